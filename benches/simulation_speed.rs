@@ -1,0 +1,48 @@
+//! Simulation speed: the stepping harness against rust-hdl's threaded
+//! `Simulation`, on the same 32-bit block. Figures, not assertions.
+//!
+//!     cargo bench --bench simulation_speed
+
+use std::time::Instant;
+
+use motion_hdl::blocks::freq_divider::FreqDivider;
+use motion_hdl::sim::Harness;
+use rust_hdl::prelude::*;
+
+fn harness_rate(cycles: u64) -> f64 {
+    let mut harness = Harness::new("freq_divider", FreqDivider::<32>::default()).unwrap();
+    harness.step_vector(&[1, 1, 7]).unwrap();
+    let start = Instant::now();
+    let mut strobes = 0u64;
+    for i in 0..cycles {
+        strobes += harness.step_vector(&[0, 1, 7 + (i >> 16)]).unwrap()[0];
+    }
+    let rate = cycles as f64 / start.elapsed().as_secs_f64();
+    assert!(strobes > 0);
+    rate
+}
+
+fn threaded_rate(cycles: u64) -> f64 {
+    let mut sim = simple_sim!(FreqDivider<32>, clock, 100_000_000, ep, {
+        let mut x = ep.init()?;
+        x.reset.next = true;
+        x.enable.next = true;
+        x.divisor.next = 7u64.into();
+        wait_clock_cycle!(ep, clock, x);
+        x.reset.next = false;
+        wait_clock_cycles!(ep, clock, x, cycles);
+        ep.done(x)
+    });
+    let start = Instant::now();
+    sim.run(Box::new(FreqDivider::<32>::default()), 1_000_000_000_000).unwrap();
+    cycles as f64 / start.elapsed().as_secs_f64()
+}
+
+fn main() {
+    let harness = harness_rate(3_000_000);
+    let threaded = threaded_rate(50_000);
+    println!("32-bit freq_divider, cycles per second (release build):");
+    println!("  motion_hdl::sim::Harness      {:>12.0}", harness);
+    println!("  rust-hdl threaded Simulation  {:>12.0}", threaded);
+    println!("  ratio                         {:>12.1}x", harness / threaded);
+}

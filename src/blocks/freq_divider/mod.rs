@@ -1,0 +1,129 @@
+//! # `freq_divider`: runtime clock-enable generator
+//!
+//! Divides the system clock by a divisor written at run time and emits a
+//! one-clock `strobe`: the time base (tick) of the DDA and of the other
+//! interpolators. It is a clock *enable*, never a derived clock, so everything
+//! downstream stays in the one clock domain.
+//!
+//! ## Ports (`W` = 32 in the exported `freq_divider`)
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clock` | in | 1 | rising-edge clock |
+//! | `reset` | in | 1 | synchronous, active high: back to the power-up state after one clock |
+//! | `enable` | in | 1 | counting runs while high; while low the phase holds and no strobe comes |
+//! | `divisor` | in | W | D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped |
+//! | `strobe` | out | 1 | one-clock pulse, registered |
+//!
+//! ## Timing
+//! The divider counts enabled clocks (clock edges with `enable` high). The
+//! strobe is registered: it is high during the clock after the enabled edge
+//! that completes an interval.
+//!
+//! ```text
+//! D = 3       edge:  1   2   3   4   5   6   7
+//! enable       ____/‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾
+//! strobe       ________/‾‾‾\___________/‾‾‾\_______   (after edges 1, 4, 7)
+//! ```
+//!
+//! * After reset (or after the divider was stopped with D = 0 and has run
+//!   out), the first enabled edge with D != 0 strobes at once. Then strobes
+//!   come every D enabled edges: with D constant and `enable` high they are
+//!   exactly D clocks apart.
+//! * A new D is loaded at each strobe, so it takes effect at the next strobe
+//!   at the latest; the interval in progress keeps the old D. No interval is
+//!   therefore shorter than the smaller of the old and the new D.
+//! * `enable` low freezes the phase: the interval resumes where it stopped.
+//!
+//! ## Bad input
+//! There is none: every divisor value is legal. D = 0 stops the strobes; the
+//! interval in progress runs out silently and the divider then waits, parked,
+//! for a non-zero D (which strobes at the next enabled edge).
+//!
+//! ## Resources
+//! A W-bit down-counter with a reload mux, a W-bit zero test of D and a
+//! "counter <= 1" test: no comparator against D, so the critical path is one
+//! carry chain. Figures for the exported 32-bit module are in
+//! `rtl-out/synthesis-report.md`.
+
+pub mod model;
+
+/// One line for the export header and the `rtl-out` index.
+pub const SUMMARY: &str = "runtime clock-enable generator: one strobe every D enabled clocks";
+
+/// Meaning of every port, for the export header and the `rtl-out` index.
+pub const PORT_DOCS: &[(&str, &str)] = &[
+    ("clock", "rising-edge clock"),
+    ("reset", "synchronous reset, active high"),
+    ("enable", "counting runs while high; while low the phase holds and no strobe comes"),
+    ("divisor", "D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped"),
+    ("strobe", "one-clock strobe, registered"),
+];
+
+use rust_hdl::prelude::*;
+
+/// Runtime clock-enable generator: one `strobe` every `divisor` enabled clocks.
+/// See the [module documentation](self) for the datasheet.
+#[derive(Clone, Debug, LogicBlock)]
+pub struct FreqDivider<const W: usize> {
+    /// Rising-edge clock.
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset, active high.
+    pub reset: Signal<In, Bit>,
+    /// Counting runs while high.
+    pub enable: Signal<In, Bit>,
+    /// D: one strobe every D enabled clocks; 0 stops the divider.
+    pub divisor: Signal<In, Bits<W>>,
+    /// One-clock strobe.
+    pub strobe: Signal<Out, Bit>,
+    /// Enabled clocks left in the current interval, counting down to 1.
+    remaining: DFF<Bits<W>>,
+    strobe_reg: DFF<Bit>,
+    /// The current interval ends at this enabled clock.
+    expires: Signal<Local, Bit>,
+    zero: Constant<Bits<W>>,
+    one: Constant<Bits<W>>,
+}
+
+impl<const W: usize> Default for FreqDivider<W> {
+    fn default() -> Self {
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            enable: Default::default(),
+            divisor: Default::default(),
+            strobe: Default::default(),
+            remaining: Default::default(),
+            strobe_reg: Default::default(),
+            expires: Default::default(),
+            zero: Constant::new(0u64.into()),
+            one: Constant::new(1u64.into()),
+        }
+    }
+}
+
+impl<const W: usize> Logic for FreqDivider<W> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, remaining, strobe_reg);
+        self.strobe.next = self.strobe_reg.q.val();
+        self.expires.next = self.remaining.q.val() <= self.one.val();
+        self.strobe_reg.d.next = false;
+        if self.enable.val() {
+            if self.expires.val() {
+                self.remaining.d.next = self.divisor.val();
+                self.strobe_reg.d.next = self.divisor.val() != self.zero.val();
+            } else {
+                self.remaining.d.next = self.remaining.q.val() - self.one.val();
+            }
+        }
+        if self.reset.val() {
+            self.remaining.d.next = self.zero.val();
+            self.strobe_reg.d.next = false;
+        }
+    }
+}
+
+crate::vector_ports!(impl[const W: usize] FreqDivider<W> {
+    inputs: [reset, enable, divisor],
+    outputs: [strobe],
+});

@@ -1,0 +1,53 @@
+//! Reference model of [`super::FreqDivider`], cycle-exact.
+
+/// Inputs of one clock cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FreqDividerInputs {
+    /// Synchronous reset.
+    pub reset: bool,
+    /// Counting runs while high.
+    pub enable: bool,
+    /// D, the divisor (only the low `width` bits count).
+    pub divisor: u64,
+}
+
+/// Plain-Rust model of a `width`-bit frequency divider.
+#[derive(Clone, Debug)]
+pub struct FreqDividerModel {
+    mask: u64,
+    remaining: u64,
+    strobe: bool,
+}
+
+impl FreqDividerModel {
+    /// A divider of `width` bits (1 to 64), in its power-up state.
+    pub fn new(width: u32) -> Self {
+        assert!((1..=64).contains(&width), "width must be 1..=64");
+        let mask = if width == 64 { u64::MAX } else { (1 << width) - 1 };
+        Self { mask, remaining: 0, strobe: false }
+    }
+
+    /// The registered strobe output.
+    pub fn strobe(&self) -> bool {
+        self.strobe
+    }
+
+    /// One rising clock edge; returns the strobe output after it.
+    pub fn step(&mut self, inputs: FreqDividerInputs) -> bool {
+        let divisor = inputs.divisor & self.mask;
+        self.strobe = false;
+        if inputs.enable {
+            if self.remaining <= 1 {
+                self.remaining = divisor;
+                self.strobe = divisor != 0;
+            } else {
+                self.remaining -= 1;
+            }
+        }
+        if inputs.reset {
+            self.remaining = 0;
+            self.strobe = false;
+        }
+        self.strobe
+    }
+}

@@ -1,0 +1,5 @@
+//! The hardware blocks. Each block lives in its own folder: `mod.rs` holds
+//! the rust-hdl implementation and its datasheet, `model.rs` the plain-Rust
+//! reference model the RTL is proven against (in `tests/<block>.rs`).
+
+pub mod freq_divider;

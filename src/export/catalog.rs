@@ -1,0 +1,45 @@
+//! The list of exported modules: the single place that says which blocks
+//! ship in `rtl-out/`, with which parameters.
+
+use rust_hdl::core::prelude::*;
+
+use crate::blocks::freq_divider::{self, FreqDivider};
+
+/// One documented port: name and meaning (direction and width come from the RTL).
+pub type PortDoc = (&'static str, &'static str);
+
+/// One fixed parameter of an exported module: name, value, meaning.
+pub type ParamDoc = (&'static str, &'static str, &'static str);
+
+/// An exported module: what `motion-hdl export` writes as `<name>.v`.
+pub struct ModuleSpec {
+    /// Verilog module name (snake_case); also the file name.
+    pub name: &'static str,
+    /// One line: what the block is.
+    pub summary: &'static str,
+    /// Parameters fixed in this export.
+    pub parameters: &'static [ParamDoc],
+    /// Every top-level port, documented.
+    pub port_docs: &'static [PortDoc],
+    /// The Fmax goal on iCE40 HX8K from the block's issue, in MHz (reported, not enforced).
+    pub fmax_target_mhz: f64,
+    /// Builds the block with the exported parameters.
+    pub build: fn() -> Box<dyn Block>,
+}
+
+/// Every exported module, in the order of `rtl-out/README.md`.
+pub fn catalog() -> Vec<ModuleSpec> {
+    vec![ModuleSpec {
+        name: "freq_divider",
+        summary: freq_divider::SUMMARY,
+        parameters: &[("W", "32", "divisor width")],
+        port_docs: freq_divider::PORT_DOCS,
+        fmax_target_mhz: 125.0,
+        build: || Box::new(FreqDivider::<32>::default()),
+    }]
+}
+
+/// The catalog entry named `name`.
+pub fn find(name: &str) -> Option<ModuleSpec> {
+    catalog().into_iter().find(|spec| spec.name == name)
+}

@@ -1,0 +1,121 @@
+//! Verilog export: the catalog of shipped modules, and the files
+//! `motion-hdl export` writes into `rtl-out/` (RTL and its index) and
+//! `testbench/` (one vector testbench per module).
+
+pub mod catalog;
+mod header;
+mod index;
+mod ports;
+mod testbench;
+mod verilog;
+
+use std::path::{Path, PathBuf};
+
+pub use catalog::{catalog, ModuleSpec};
+pub use header::{generator, PortDocError};
+pub use ports::{top_ports, Port, PortDirection};
+pub use testbench::testbench_verilog;
+pub use verilog::{module_verilog, VerilogError};
+
+/// Why an export could not be produced or written.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// rust-hdl rejected a block.
+    #[error(transparent)]
+    Verilog(#[from] VerilogError),
+    /// The catalog's port documentation disagrees with the RTL.
+    #[error(transparent)]
+    PortDoc(#[from] PortDocError),
+    /// A file could not be written.
+    #[error("cannot write `{path}`: {source}")]
+    Io { path: String, source: std::io::Error },
+}
+
+/// One exported module, rendered.
+pub struct RenderedModule {
+    /// Its catalog entry.
+    pub spec: ModuleSpec,
+    /// Its top-level ports.
+    pub ports: Vec<Port>,
+    /// `<name>.v`: header and Verilog.
+    pub verilog: String,
+    /// `<name>_tb.v`: the vector testbench.
+    pub testbench: String,
+}
+
+/// Renders one catalog entry.
+pub fn render_module(spec: ModuleSpec) -> Result<RenderedModule, ExportError> {
+    let mut block = (spec.build)();
+    let ports = top_ports(block.as_ref());
+    let rows = header::port_rows(&spec, &ports)?;
+    let header = header::verilog_header(&spec, &rows);
+    let verilog = format!("{header}\n{}", module_verilog(spec.name, block.as_mut())?);
+    let testbench = testbench_verilog(spec.name, &generator(), &ports);
+    Ok(RenderedModule { spec, ports, verilog, testbench })
+}
+
+/// Which output folder a generated file belongs in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputDir {
+    /// `rtl-out/` (or `--out`).
+    Rtl,
+    /// `testbench/` (or `--testbench-out`).
+    Testbench,
+}
+
+/// One file of the export, with its contents.
+pub struct GeneratedFile {
+    /// The folder it goes in.
+    pub dir: OutputDir,
+    /// File name within that folder.
+    pub file_name: String,
+    /// Exact contents (deterministic: the same source gives the same bytes).
+    pub contents: String,
+}
+
+/// Every file the export writes, in a fixed order.
+pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
+    let modules = catalog()
+        .into_iter()
+        .map(render_module)
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut files = Vec::new();
+    for module in &modules {
+        files.push(GeneratedFile {
+            dir: OutputDir::Rtl,
+            file_name: format!("{}.v", module.spec.name),
+            contents: module.verilog.clone(),
+        });
+        files.push(GeneratedFile {
+            dir: OutputDir::Testbench,
+            file_name: format!("{}_tb.v", module.spec.name),
+            contents: module.testbench.clone(),
+        });
+    }
+    files.push(GeneratedFile {
+        dir: OutputDir::Rtl,
+        file_name: "README.md".to_string(),
+        contents: index::rtl_index(&modules),
+    });
+    Ok(files)
+}
+
+/// Writes the export into `rtl_dir` and `testbench_dir` and returns the paths written.
+pub fn write_export(rtl_dir: &Path, testbench_dir: &Path) -> Result<Vec<PathBuf>, ExportError> {
+    let mut written = Vec::new();
+    for file in generated_files()? {
+        let dir = match file.dir {
+            OutputDir::Rtl => rtl_dir,
+            OutputDir::Testbench => testbench_dir,
+        };
+        let io_error = |source| ExportError::Io { path: dir.display().to_string(), source };
+        std::fs::create_dir_all(dir).map_err(io_error)?;
+        let path = dir.join(&file.file_name);
+        std::fs::write(&path, &file.contents).map_err(|source| ExportError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        written.push(path);
+    }
+    Ok(written)
+}

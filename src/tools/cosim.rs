@@ -1,0 +1,245 @@
+//! Cross-simulation: the same stimulus vectors drive the Rust simulation and
+//! the exported Verilog in Icarus and in Verilator, compared cycle by cycle.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use super::{repo_root, run, work_dir, ToolError};
+use crate::export::{generator, module_verilog, testbench_verilog, top_ports, PortDirection};
+use crate::sim::{Harness, HarnessError, VectorPorts};
+
+/// A Verilog simulator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Simulator {
+    /// Icarus Verilog (`iverilog` + `vvp`).
+    Icarus,
+    /// Verilator (`--binary`).
+    Verilator,
+}
+
+impl Simulator {
+    /// Both simulators.
+    pub const ALL: [Simulator; 2] = [Simulator::Icarus, Simulator::Verilator];
+
+    fn arg(self) -> &'static str {
+        match self {
+            Simulator::Icarus => "icarus",
+            Simulator::Verilator => "verilator",
+        }
+    }
+}
+
+/// The Verilog under test: RTL file, testbench file and module name.
+pub struct CosimDesign {
+    /// Top module name.
+    pub module: String,
+    /// The RTL file.
+    pub rtl: PathBuf,
+    /// The `<module>_tb.v` testbench.
+    pub testbench: PathBuf,
+    _generated_in: Option<tempfile::TempDir>,
+}
+
+impl CosimDesign {
+    /// The committed export: `rtl-out/<module>.v` with `testbench/<module>_tb.v`.
+    pub fn exported(module: &str) -> Self {
+        let root = repo_root();
+        Self {
+            module: module.to_string(),
+            rtl: root.join("rtl-out").join(format!("{module}.v")),
+            testbench: root.join("testbench").join(format!("{module}_tb.v")),
+            _generated_in: None,
+        }
+    }
+
+    /// Verilog generated now from `block` (for example a narrow instance that
+    /// is not exported), with its testbench, in a temporary folder.
+    pub fn generated(module: &str, block: &mut dyn rust_hdl::core::prelude::Block) -> Result<Self, CosimError> {
+        let dir = work_dir("generated")?;
+        let verilog = module_verilog(module, block).map_err(|e| CosimError::Setup(e.to_string()))?;
+        let testbench = testbench_verilog(module, &generator(), &top_ports(&*block));
+        let rtl = dir.path().join(format!("{module}.v"));
+        let tb = dir.path().join(format!("{module}_tb.v"));
+        write(&rtl, &verilog)?;
+        write(&tb, &testbench)?;
+        Ok(Self { module: module.to_string(), rtl, testbench: tb, _generated_in: Some(dir) })
+    }
+}
+
+/// The first difference between the Rust simulation and a Verilog simulator.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Mismatch {
+    /// The simulator that disagreed.
+    pub simulator: Simulator,
+    /// Zero-based cycle of the vector.
+    pub cycle: u64,
+    /// The output port.
+    pub signal: String,
+    /// What the Rust simulation produced (hex).
+    pub expected: String,
+    /// What the Verilog produced (hex).
+    pub got: String,
+}
+
+/// Why a cross-simulation did not pass.
+#[derive(Debug, thiserror::Error)]
+pub enum CosimError {
+    /// The Verilog disagrees with the Rust simulation.
+    #[error("{:?} disagrees with the Rust simulation at cycle {}: signal `{}` expected {} got {}", .0.simulator, .0.cycle, .0.signal, .0.expected, .0.got)]
+    Mismatch(Mismatch),
+    /// The Rust simulation failed.
+    #[error(transparent)]
+    Harness(#[from] HarnessError),
+    /// A tool failed or is missing.
+    #[error(transparent)]
+    Tool(#[from] ToolError),
+    /// The vector ports of the Rust block do not match its Verilog ports, or
+    /// the design could not be generated.
+    #[error("cross-simulation setup: {0}")]
+    Setup(String),
+    /// The testbench ran but did not report a result.
+    #[error("{simulator:?} testbench gave no verdict (expected {cycles} cycles):\n{output}")]
+    NoVerdict {
+        /// The simulator.
+        simulator: Simulator,
+        /// Cycles in the vector file.
+        cycles: usize,
+        /// What it printed.
+        output: String,
+    },
+}
+
+/// A passing cross-simulation.
+#[derive(Debug, Clone)]
+pub struct CosimPass {
+    /// Cycles compared in each simulator.
+    pub cycles: usize,
+    /// Simulators that ran.
+    pub simulators: Vec<Simulator>,
+}
+
+/// Runs `stimulus` (one input vector per cycle, in `B::INPUTS` order) through
+/// `block` in the Rust harness, then through `design` in every simulator, and
+/// compares all outputs on every cycle.
+pub fn cross_simulate<B: VectorPorts>(
+    design: &CosimDesign,
+    block: B,
+    stimulus: &[Vec<u64>],
+) -> Result<CosimPass, CosimError> {
+    let expected = rust_outputs(&design.module, block, stimulus)?;
+    for simulator in Simulator::ALL {
+        compare_in(simulator, design, stimulus, &expected)?;
+    }
+    Ok(CosimPass { cycles: stimulus.len(), simulators: Simulator::ALL.to_vec() })
+}
+
+/// The outputs of `block` on every cycle of `stimulus`, from the Rust harness,
+/// after checking that its vector ports match its Verilog ports.
+pub fn rust_outputs<B: VectorPorts>(
+    module: &str,
+    block: B,
+    stimulus: &[Vec<u64>],
+) -> Result<Vec<Vec<u64>>, CosimError> {
+    check_vector_ports::<B>(&block)?;
+    let mut harness = Harness::new(module, block)?;
+    stimulus
+        .iter()
+        .map(|inputs| harness.step_vector(inputs).map_err(CosimError::from))
+        .collect()
+}
+
+/// Runs `design` in `simulator` on `stimulus` and compares its outputs with
+/// `expected` on every cycle; returns the cycles compared.
+pub fn compare_in(
+    simulator: Simulator,
+    design: &CosimDesign,
+    stimulus: &[Vec<u64>],
+    expected: &[Vec<u64>],
+) -> Result<usize, CosimError> {
+    let mut text = String::with_capacity(stimulus.len() * 16);
+    for (inputs, outputs) in stimulus.iter().zip(expected) {
+        let fields: Vec<String> = inputs.iter().chain(outputs.iter()).map(|v| format!("{v:x}")).collect();
+        let _ = writeln!(text, "{}", fields.join(" "));
+    }
+    let dir = work_dir("cosim")?;
+    let vectors = dir.path().join("vectors.hex");
+    write(&vectors, &text)?;
+    run_testbench(simulator, design, &vectors, stimulus.len(), dir.path())?;
+    Ok(stimulus.len())
+}
+
+/// The vector runner: `testbench/run_vectors.sh`.
+pub fn vector_runner() -> PathBuf {
+    repo_root().join("testbench").join("run_vectors.sh")
+}
+
+fn run_testbench(
+    simulator: Simulator,
+    design: &CosimDesign,
+    vectors: &Path,
+    cycles: usize,
+    work: &Path,
+) -> Result<(), CosimError> {
+    let build = work.join(simulator.arg());
+    let output = run(
+        Command::new("bash")
+            .arg(vector_runner())
+            .arg(simulator.arg())
+            .arg(&design.rtl)
+            .arg(&design.testbench)
+            .arg(vectors)
+            .arg(&build),
+        true,
+    )?;
+    if let Some(line) = output.lines().find(|l| l.starts_with("MISMATCH")) {
+        return Err(CosimError::Mismatch(parse_mismatch(simulator, line)));
+    }
+    let passed = format!("PASS cycles={cycles}");
+    if output.lines().any(|l| l.trim() == passed) {
+        Ok(())
+    } else {
+        Err(CosimError::NoVerdict { simulator, cycles, output })
+    }
+}
+
+fn parse_mismatch(simulator: Simulator, line: &str) -> Mismatch {
+    let field = |key: &str| {
+        line.split_whitespace()
+            .find_map(|w| w.strip_prefix(key))
+            .unwrap_or_default()
+            .to_string()
+    };
+    Mismatch {
+        simulator,
+        cycle: field("cycle=").parse().unwrap_or(u64::MAX),
+        signal: field("signal="),
+        expected: field("expected="),
+        got: field("got="),
+    }
+}
+
+fn check_vector_ports<B: VectorPorts>(block: &B) -> Result<(), CosimError> {
+    let ports = top_ports(block);
+    let names = |dir: PortDirection| -> Vec<String> {
+        ports
+            .iter()
+            .filter(|p| p.direction == dir && p.name != "clock")
+            .map(|p| p.name.clone())
+            .collect()
+    };
+    let (inputs, outputs) = (names(PortDirection::Input), names(PortDirection::Output));
+    if inputs != B::INPUTS || outputs != B::OUTPUTS {
+        return Err(CosimError::Setup(format!(
+            "vector_ports! lists inputs {:?} outputs {:?}, but the block has inputs {inputs:?} outputs {outputs:?}",
+            B::INPUTS,
+            B::OUTPUTS
+        )));
+    }
+    Ok(())
+}
+
+fn write(path: &Path, contents: &str) -> Result<(), ToolError> {
+    std::fs::write(path, contents)
+        .map_err(|source| ToolError::Io { context: format!("writing {}", path.display()), source })
+}

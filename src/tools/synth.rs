@@ -1,0 +1,136 @@
+//! Synthesis and place-and-route for iCE40 HX8K (ct256) with yosys and
+//! nextpnr, and the figures they report.
+
+use std::path::Path;
+use std::process::Command;
+
+use super::{run, work_dir, ToolError};
+
+/// The iCE40 device and package every figure refers to.
+pub const DEVICE: &str = "iCE40 HX8K (ct256)";
+
+/// Resource and timing figures of one placed-and-routed design.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SynthFigures {
+    /// `SB_LUT4` cells after synthesis.
+    pub lut4: u32,
+    /// Flip-flops (`SB_DFF*` cells) after synthesis.
+    pub dff: u32,
+    /// `SB_CARRY` cells after synthesis.
+    pub carry: u32,
+    /// `SB_RAM40_4K` block RAMs.
+    pub ram: u32,
+    /// Logic cells used after placement (`ICESTORM_LC`).
+    pub logic_cells: u32,
+    /// Achieved Fmax of `clock` for each seed, in MHz, in seed order.
+    pub fmax_mhz: Vec<f64>,
+}
+
+impl SynthFigures {
+    /// The median Fmax over the seeds.
+    pub fn median_fmax(&self) -> f64 {
+        let mut sorted = self.fmax_mhz.clone();
+        sorted.sort_by(|a, b| a.total_cmp(b));
+        let n = sorted.len();
+        if n == 0 {
+            0.0
+        } else if n % 2 == 1 {
+            sorted[n / 2]
+        } else {
+            (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
+        }
+    }
+}
+
+/// Synthesizes `rtl` (top module `top`) with `synth_ice40`, then places and
+/// routes it once per seed with nextpnr, aiming at `target_mhz`. Missing the
+/// target is not an error: the achieved Fmax is the figure.
+pub fn synthesize(rtl: &Path, top: &str, seeds: &[u64], target_mhz: f64) -> Result<SynthFigures, ToolError> {
+    let dir = work_dir("synth")?;
+    let netlist = dir.path().join("netlist.json");
+    let yosys_log = run(
+        Command::new("yosys").arg("-p").arg(format!(
+            "read_verilog {}; synth_ice40 -top {top} -json {}; stat",
+            rtl.display(),
+            netlist.display()
+        )),
+        false,
+    )?;
+    let cells = final_stat(&yosys_log);
+    let count = |prefix: &str| -> u32 {
+        cells.iter().filter(|(name, _)| name.starts_with(prefix)).map(|(_, n)| n).sum()
+    };
+    let mut figures = SynthFigures {
+        lut4: count("SB_LUT4"),
+        dff: count("SB_DFF"),
+        carry: count("SB_CARRY"),
+        ram: count("SB_RAM40_4K"),
+        logic_cells: 0,
+        fmax_mhz: Vec::new(),
+    };
+    for seed in seeds {
+        let report = dir.path().join(format!("report-{seed}.json"));
+        run(
+            Command::new("nextpnr-ice40")
+                .args(["--hx8k", "--package", "ct256", "--pcf-allow-unconstrained", "--timing-allow-fail", "--quiet"])
+                .arg("--json")
+                .arg(&netlist)
+                .arg("--freq")
+                .arg(format!("{target_mhz}"))
+                .arg("--seed")
+                .arg(seed.to_string())
+                .arg("--report")
+                .arg(&report),
+            false,
+        )?;
+        let (fmax, cells) = read_nextpnr_report(&report)?;
+        figures.fmax_mhz.push(fmax);
+        figures.logic_cells = cells;
+    }
+    Ok(figures)
+}
+
+/// Cell counts of the last `stat` block in a yosys log: `(cell type, count)`.
+fn final_stat(log: &str) -> Vec<(String, u32)> {
+    let start = log.rfind("Number of cells:").unwrap_or(0);
+    log[start..]
+        .lines()
+        .skip(1)
+        .map_while(|line| {
+            let mut words = line.split_whitespace();
+            match (words.next(), words.next(), words.next()) {
+                (Some(name), Some(count), None) => count.parse().ok().map(|n| (name.to_string(), n)),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
+    let parse_error = |detail: &str| ToolError::Parse { tool: "nextpnr-ice40".into(), detail: detail.into() };
+    let text = std::fs::read_to_string(path)
+        .map_err(|source| ToolError::Io { context: format!("reading {}", path.display()), source })?;
+    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| parse_error(&e.to_string()))?;
+    let fmax = json["fmax"]
+        .as_object()
+        .and_then(|clocks| clocks.values().filter_map(|c| c["achieved"].as_f64()).reduce(f64::min))
+        .ok_or_else(|| parse_error("no achieved Fmax in the report"))?;
+    let cells = json["utilization"]["ICESTORM_LC"]["used"]
+        .as_u64()
+        .ok_or_else(|| parse_error("no ICESTORM_LC utilization in the report"))?;
+    Ok((fmax, cells as u32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::final_stat;
+
+    #[test]
+    fn reads_the_last_stat_block() {
+        let log = "Number of cells: 3\n  $_AND_ 3\n\n=== top ===\n   Number of cells:        5\n     SB_CARRY    2\n     SB_DFFE     1\n     SB_LUT4     2\n\n";
+        assert_eq!(
+            final_stat(log),
+            vec![("SB_CARRY".into(), 2), ("SB_DFFE".into(), 1), ("SB_LUT4".into(), 2)]
+        );
+    }
+}

@@ -1,0 +1,192 @@
+//! `freq_divider`: RTL against the model, RTL against the port contract, and
+//! the exported Verilog against the Rust simulation.
+
+use motion_hdl::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
+use motion_hdl::blocks::freq_divider::FreqDivider;
+use motion_hdl::sim::Harness;
+use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+/// Random stimulus: bursts with one divisor (mostly small, sometimes large,
+/// sometimes 0), enable gating of varying density, divisor changes at any
+/// phase, and rare resets.
+fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<FreqDividerInputs> {
+    let mask = if width == 64 { u64::MAX } else { (1u64 << width) - 1 };
+    let mut out = Vec::with_capacity(cycles);
+    let mut divisor = 3;
+    let mut enable_density = 1.0;
+    while out.len() < cycles {
+        let burst = rng.gen_range(1..400);
+        divisor = match rng.gen_range(0..20) {
+            0 => 0,
+            1 => rng.gen::<u64>() & mask,
+            2..=4 => rng.gen_range(1..300),
+            5 => divisor, // unchanged: tests long constant runs
+            _ => rng.gen_range(1..12),
+        } & mask;
+        enable_density = match rng.gen_range(0..4) {
+            0 => rng.gen_range(0.0..1.0),
+            1 => enable_density,
+            _ => 1.0,
+        };
+        for _ in 0..burst {
+            out.push(FreqDividerInputs {
+                reset: rng.gen_ratio(1, 5000),
+                enable: rng.gen_bool(enable_density),
+                divisor,
+            });
+        }
+    }
+    out.truncate(cycles);
+    // Start from a defined state, as a user's design would.
+    out[0].reset = true;
+    out
+}
+
+fn vector(inputs: &FreqDividerInputs) -> Vec<u64> {
+    vec![inputs.reset as u64, inputs.enable as u64, inputs.divisor]
+}
+
+/// An independent monitor of the port contract (not derived from the model):
+/// it sees only the inputs applied at each rising edge and the strobe after it.
+#[derive(Default)]
+struct ContractMonitor {
+    /// Enabled edges since the last strobe; None after reset (no strobe yet).
+    edges_since_strobe: Option<u64>,
+    /// The divisor, if it has stayed the same on every edge since the last strobe (inclusive).
+    constant_divisor: Option<u64>,
+    /// The smallest divisor applied since the last strobe (inclusive).
+    min_divisor: u64,
+    cycle: u64,
+}
+
+impl ContractMonitor {
+    fn edge(&mut self, inputs: &FreqDividerInputs, strobe: bool) {
+        let cycle = self.cycle;
+        self.cycle += 1;
+        if inputs.reset {
+            assert!(!strobe, "cycle {cycle}: strobe during reset");
+            *self = Self { cycle: self.cycle, ..Self::default() };
+            return;
+        }
+        if !inputs.enable {
+            assert!(!strobe, "cycle {cycle}: strobe after an edge with enable low");
+            return;
+        }
+        let d = inputs.divisor;
+        self.min_divisor = self.min_divisor.min(d);
+        if self.constant_divisor != Some(d) {
+            self.constant_divisor = None;
+        }
+        let Some(edges) = self.edges_since_strobe.as_mut() else {
+            // First interval after reset: the first enabled edge with D != 0 strobes.
+            assert_eq!(strobe, d != 0, "cycle {cycle}: first strobe after reset with D={d}");
+            if strobe {
+                self.restart(d);
+            }
+            return;
+        };
+        *edges += 1;
+        let edges = *edges;
+        if strobe {
+            assert!(d != 0 || self.min_divisor == 0, "cycle {cycle}: strobe with D=0");
+            assert!(
+                edges >= self.min_divisor,
+                "cycle {cycle}: interval {edges} shorter than the smallest divisor {} applied during it",
+                self.min_divisor
+            );
+            if let Some(constant) = self.constant_divisor {
+                assert_eq!(edges, constant, "cycle {cycle}: interval with constant D");
+            }
+            self.restart(d);
+        } else if let Some(constant) = self.constant_divisor {
+            assert!(
+                constant == 0 || edges < constant,
+                "cycle {cycle}: no strobe after {edges} enabled edges with constant D={constant}"
+            );
+        }
+    }
+
+    fn restart(&mut self, divisor: u64) {
+        self.edges_since_strobe = Some(0);
+        self.constant_divisor = Some(divisor);
+        self.min_divisor = divisor;
+    }
+}
+
+fn run_against_model<const W: usize>(stimulus: &[FreqDividerInputs]) {
+    let mut harness = Harness::new("freq_divider", FreqDivider::<W>::default()).expect("harness");
+    let mut model = FreqDividerModel::new(W as u32);
+    let mut monitor = ContractMonitor::default();
+    for (cycle, inputs) in stimulus.iter().enumerate() {
+        let rtl = harness.step_vector(&vector(inputs)).expect("step")[0] != 0;
+        let expected = model.step(*inputs);
+        assert_eq!(rtl, expected, "W={W} cycle {cycle}: RTL strobe differs from the model ({inputs:?})");
+        monitor.edge(inputs, rtl);
+    }
+}
+
+#[test]
+fn rtl_matches_model_and_contract_on_a_million_random_cycles() {
+    let mut rng = StdRng::seed_from_u64(0x5eed_d1de);
+    let stimulus = random_stimulus(&mut rng, 1_000_000, 32);
+    run_against_model::<32>(&stimulus);
+}
+
+#[test]
+fn narrow_rtl_matches_model_and_contract() {
+    let mut rng = StdRng::seed_from_u64(12);
+    run_against_model::<12>(&random_stimulus(&mut rng, 200_000, 12));
+    run_against_model::<4>(&random_stimulus(&mut rng, 200_000, 4));
+}
+
+/// Every pair of old and new divisor of a 4-bit divider, with the change
+/// landing at every phase of the interval in progress.
+#[test]
+fn every_divisor_change_at_every_phase_keeps_the_contract() {
+    for old in 0..16u64 {
+        for new in 0..16u64 {
+            for phase in 0..old.max(1) + 1 {
+                let mut stimulus = vec![FreqDividerInputs { reset: true, enable: false, divisor: old }];
+                // Two full intervals of the old divisor, then `phase` more edges.
+                let lead = 1 + 2 * old + phase;
+                stimulus.extend((0..lead).map(|_| FreqDividerInputs { reset: false, enable: true, divisor: old }));
+                stimulus.extend((0..40).map(|_| FreqDividerInputs { reset: false, enable: true, divisor: new }));
+                run_against_model::<4>(&stimulus);
+            }
+        }
+    }
+}
+
+#[test]
+fn strobes_are_exactly_d_clocks_apart() {
+    for d in [1u64, 2, 3, 7, 100, 1000] {
+        let mut harness = Harness::new("freq_divider", FreqDivider::<32>::default()).unwrap();
+        harness.step_vector(&[1, 0, d]).unwrap();
+        let times: Vec<u64> = (0..5000u64)
+            .filter(|_| harness.step_vector(&[0, 1, d]).unwrap()[0] != 0)
+            .collect();
+        assert_eq!(times.len() as u64, 5000u64.div_ceil(d), "D={d}");
+        assert_eq!(times[0], 0, "D={d}: the first enabled clock after reset strobes");
+        assert!(times.windows(2).all(|w| w[1] - w[0] == d), "D={d}: intervals {times:?}");
+    }
+}
+
+#[test]
+fn exported_verilog_matches_rust_in_icarus_and_verilator() {
+    let mut rng = StdRng::seed_from_u64(0xc0515);
+    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 32).iter().map(vector).collect();
+    let pass = cross_simulate(&CosimDesign::exported("freq_divider"), FreqDivider::<32>::default(), &stimulus)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(pass.cycles, 20_000);
+}
+
+#[test]
+fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
+    let mut rng = StdRng::seed_from_u64(0xc0516);
+    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 12).iter().map(vector).collect();
+    let mut block = FreqDivider::<12>::default();
+    let design = CosimDesign::generated("freq_divider_w12", &mut block).unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate(&design, FreqDivider::<12>::default(), &stimulus).unwrap_or_else(|e| panic!("{e}"));
+}

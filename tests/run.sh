@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The whole motion-hdl test suite, on a fresh machine: installs the FPGA
+# tools it needs (Debian, as root) or stops with the exact install line,
+# then runs every test. `.ci/run` calls this script.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+tools=(yosys iverilog vvp verilator nextpnr-ice40)
+missing=()
+for tool in "${tools[@]}"; do
+  command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  install_line="apt-get install -y yosys iverilog verilator nextpnr-ice40"
+  if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "installing missing FPGA tools: ${missing[*]}"
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $install_line -qq
+  else
+    echo "missing FPGA tools: ${missing[*]}" >&2
+    echo "install them with: sudo $install_line" >&2
+    exit 1
+  fi
+fi
+for tool in "${tools[@]}"; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "still missing after install: $tool" >&2; exit 1; }
+done
+
+# Test binaries run one after another; the tests inside one run in parallel.
+cargo test
