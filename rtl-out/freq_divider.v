@@ -30,23 +30,33 @@ module freq_divider(clock,reset,enable,divisor,strobe);
     // Constant declarations
     localparam  zero = 32'h0;
     localparam  one = 32'h1;
+    localparam  two = 32'h2;
+    localparam  high_bits = 32'hfffffffe;
 
     // Stub signals
     reg  [31:0] remaining__d;
     wire  [31:0] remaining__q;
     reg  remaining__clock;
+    reg  at_end__d;
+    wire  at_end__q;
+    reg  at_end__clock;
     reg  strobe_reg__d;
     wire  strobe_reg__q;
     reg  strobe_reg__clock;
 
     // Local signals
-    reg  expires;
+    reg  divisor_at_most_one;
 
     // Sub module instances
     freq_divider__remaining remaining(
         .d(remaining__d),
         .q(remaining__q),
         .clock(remaining__clock)
+    );
+    freq_divider__at_end at_end(
+        .d(at_end__d),
+        .q(at_end__q),
+        .clock(at_end__clock)
     );
     freq_divider__strobe_reg strobe_reg(
         .d(strobe_reg__d),
@@ -57,28 +67,52 @@ module freq_divider(clock,reset,enable,divisor,strobe);
     // Update code
     always @(*) begin
         remaining__clock = clock;
+        at_end__clock = clock;
         strobe_reg__clock = clock;
         remaining__d = remaining__q;
+        at_end__d = at_end__q;
         strobe_reg__d = strobe_reg__q;
         strobe = strobe_reg__q;
-        expires = remaining__q <= one;
+        divisor_at_most_one = (divisor & high_bits) == zero;
         strobe_reg__d = 1'b0;
         if (enable) begin
-            if (expires) begin
+            if (at_end__q) begin
                 remaining__d = divisor;
+                at_end__d = divisor_at_most_one;
                 strobe_reg__d = divisor != zero;
             end
             else begin
                 remaining__d = remaining__q - one;
+                at_end__d = remaining__q == two;
             end
         end
         if (reset) begin
             remaining__d = zero;
+            at_end__d = 1'b1;
             strobe_reg__d = 1'b0;
         end
     end
 
 endmodule // freq_divider
+
+
+module freq_divider__at_end(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // freq_divider__at_end
 
 
 module freq_divider__remaining(d,q,clock);

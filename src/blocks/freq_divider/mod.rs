@@ -40,9 +40,11 @@
 //! for a non-zero D (which strobes at the next enabled edge).
 //!
 //! ## Resources
-//! A W-bit down-counter with a reload mux, a W-bit zero test of D and a
-//! "counter <= 1" test: no comparator against D, so the critical path is one
-//! carry chain. Figures for the exported 32-bit module are in
+//! A W-bit down-counter with a reload mux and a registered end-of-interval
+//! flag, so the reload select comes straight from a flip-flop and the only
+//! carry chain is the decrement. D is never compared by magnitude: the
+//! control needs only equality tests (D <= 1, D != 0, counter == 2), which
+//! map to LUT trees. Figures for the exported 32-bit module are in
 //! `rtl-out/synthesis-report.md`.
 
 pub mod model;
@@ -77,15 +79,23 @@ pub struct FreqDivider<const W: usize> {
     pub strobe: Signal<Out, Bit>,
     /// Enabled clocks left in the current interval, counting down to 1.
     remaining: DFF<Bits<W>>,
+    /// Registered `remaining <= 1`: the next enabled clock ends the interval.
+    /// Keeping it in a flip-flop takes the zero test off the reload path.
+    at_end: DFF<Bit>,
     strobe_reg: DFF<Bit>,
-    /// The current interval ends at this enabled clock.
-    expires: Signal<Local, Bit>,
+    /// D <= 1 (the next interval is a single clock).
+    divisor_at_most_one: Signal<Local, Bit>,
     zero: Constant<Bits<W>>,
     one: Constant<Bits<W>>,
+    two: Constant<Bits<W>>,
+    /// All bits but bit 0: equality tests map to LUT trees, where `<=`
+    /// would cost a second carry chain.
+    high_bits: Constant<Bits<W>>,
 }
 
 impl<const W: usize> Default for FreqDivider<W> {
     fn default() -> Self {
+        let all_ones = if W >= 64 { u64::MAX } else { (1u64 << W) - 1 };
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -93,10 +103,13 @@ impl<const W: usize> Default for FreqDivider<W> {
             divisor: Default::default(),
             strobe: Default::default(),
             remaining: Default::default(),
+            at_end: Default::default(),
             strobe_reg: Default::default(),
-            expires: Default::default(),
+            divisor_at_most_one: Default::default(),
             zero: Constant::new(0u64.into()),
             one: Constant::new(1u64.into()),
+            two: Constant::new(2u64.into()),
+            high_bits: Constant::new((all_ones & !1).into()),
         }
     }
 }
@@ -104,20 +117,23 @@ impl<const W: usize> Default for FreqDivider<W> {
 impl<const W: usize> Logic for FreqDivider<W> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, remaining, strobe_reg);
+        dff_setup!(self, clock, remaining, at_end, strobe_reg);
         self.strobe.next = self.strobe_reg.q.val();
-        self.expires.next = self.remaining.q.val() <= self.one.val();
+        self.divisor_at_most_one.next = (self.divisor.val() & self.high_bits.val()) == self.zero.val();
         self.strobe_reg.d.next = false;
         if self.enable.val() {
-            if self.expires.val() {
+            if self.at_end.q.val() {
                 self.remaining.d.next = self.divisor.val();
+                self.at_end.d.next = self.divisor_at_most_one.val();
                 self.strobe_reg.d.next = self.divisor.val() != self.zero.val();
             } else {
                 self.remaining.d.next = self.remaining.q.val() - self.one.val();
+                self.at_end.d.next = self.remaining.q.val() == self.two.val();
             }
         }
         if self.reset.val() {
             self.remaining.d.next = self.zero.val();
+            self.at_end.d.next = true;
             self.strobe_reg.d.next = false;
         }
     }
