@@ -34,7 +34,8 @@ fn threaded_rate(cycles: u64) -> f64 {
         ep.done(x)
     });
     let start = Instant::now();
-    sim.run(Box::new(FreqDivider::<32>::default()), 1_000_000_000_000).unwrap();
+    sim.run(Box::new(FreqDivider::<32>::default()), 1_000_000_000_000)
+        .unwrap();
     cycles as f64 / start.elapsed().as_secs_f64()
 }
 
@@ -44,5 +45,8 @@ fn main() {
     println!("32-bit freq_divider, cycles per second (release build):");
     println!("  motion_hdl::sim::Harness      {:>12.0}", harness);
     println!("  rust-hdl threaded Simulation  {:>12.0}", threaded);
-    println!("  ratio                         {:>12.1}x", harness / threaded);
+    println!(
+        "  ratio                         {:>12.1}x",
+        harness / threaded
+    );
 }

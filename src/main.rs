@@ -64,10 +64,18 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Report { rtl, out, seeds, modules } => {
+        Command::Report {
+            rtl,
+            out,
+            seeds,
+            modules,
+        } => {
             let known: Vec<&str> = catalog().iter().map(|s| s.name).collect();
             if let Some(unknown) = modules.iter().find(|m| !known.contains(&m.as_str())) {
-                return Err(format!("unknown module `{unknown}`; exported modules: {}", known.join(", ")));
+                return Err(format!(
+                    "unknown module `{unknown}`; exported modules: {}",
+                    known.join(", ")
+                ));
             }
             let specs: Vec<_> = catalog()
                 .into_iter()
@@ -76,7 +84,8 @@ fn run(cli: Cli) -> Result<(), String> {
             let seeds: Vec<u64> = (1..=seeds).collect();
             let rows = report::measure(&specs, &rtl, &seeds).map_err(|e| e.to_string())?;
             let text = report::render(&rows, &seeds).map_err(|e| e.to_string())?;
-            std::fs::write(&out, text).map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+            std::fs::write(&out, text)
+                .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
             println!("wrote {}", out.display());
             Ok(())
         }

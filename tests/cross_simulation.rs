@@ -2,21 +2,25 @@
 //! is reported by both simulators at the right cycle and signal.
 
 use motion_hdl::blocks::freq_divider::FreqDivider;
-use rust_hdl::prelude::*;
 use motion_hdl::tools::cosim::{compare_in, rust_outputs, CosimDesign, CosimError, Simulator};
+use rust_hdl::prelude::*;
 
 #[test]
 fn a_wrong_output_is_reported_with_its_cycle_and_signal() {
     let stimulus: Vec<Vec<u64>> = std::iter::once(vec![1, 0, 5])
         .chain((0..3000).map(|_| vec![0, 1, 5]))
         .collect();
-    let mut expected = rust_outputs("freq_divider", FreqDivider::<32>::default(), &stimulus).unwrap();
+    let mut expected =
+        rust_outputs("freq_divider", FreqDivider::<32>::default(), &stimulus).unwrap();
     expected[1234][0] ^= 1;
     let design = CosimDesign::exported("freq_divider");
     for simulator in Simulator::ALL {
         match compare_in(simulator, &design, &stimulus, &expected) {
             Err(CosimError::Mismatch(m)) => {
-                assert_eq!((m.simulator, m.cycle, m.signal.as_str()), (simulator, 1234, "strobe"));
+                assert_eq!(
+                    (m.simulator, m.cycle, m.signal.as_str()),
+                    (simulator, 1234, "strobe")
+                );
             }
             other => panic!("{simulator:?}: corrupted vectors were not caught: {other:?}"),
         }

@@ -12,7 +12,11 @@ use rand::{Rng, SeedableRng};
 /// sometimes 0), enable gating of varying density, divisor changes at any
 /// phase, and rare resets.
 fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<FreqDividerInputs> {
-    let mask = if width == 64 { u64::MAX } else { (1u64 << width) - 1 };
+    let mask = if width == 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    };
     let mut out = Vec::with_capacity(cycles);
     let mut divisor = 3;
     let mut enable_density = 1.0;
@@ -67,11 +71,17 @@ impl ContractMonitor {
         self.cycle += 1;
         if inputs.reset {
             assert!(!strobe, "cycle {cycle}: strobe during reset");
-            *self = Self { cycle: self.cycle, ..Self::default() };
+            *self = Self {
+                cycle: self.cycle,
+                ..Self::default()
+            };
             return;
         }
         if !inputs.enable {
-            assert!(!strobe, "cycle {cycle}: strobe after an edge with enable low");
+            assert!(
+                !strobe,
+                "cycle {cycle}: strobe after an edge with enable low"
+            );
             return;
         }
         let d = inputs.divisor;
@@ -81,7 +91,11 @@ impl ContractMonitor {
         }
         let Some(edges) = self.edges_since_strobe.as_mut() else {
             // First interval after reset: the first enabled edge with D != 0 strobes.
-            assert_eq!(strobe, d != 0, "cycle {cycle}: first strobe after reset with D={d}");
+            assert_eq!(
+                strobe,
+                d != 0,
+                "cycle {cycle}: first strobe after reset with D={d}"
+            );
             if strobe {
                 self.restart(d);
             }
@@ -90,7 +104,10 @@ impl ContractMonitor {
         *edges += 1;
         let edges = *edges;
         if strobe {
-            assert!(d != 0 || self.min_divisor == 0, "cycle {cycle}: strobe with D=0");
+            assert!(
+                d != 0 || self.min_divisor == 0,
+                "cycle {cycle}: strobe with D=0"
+            );
             assert!(
                 edges >= self.min_divisor,
                 "cycle {cycle}: interval {edges} shorter than the smallest divisor {} applied during it",
@@ -122,7 +139,10 @@ fn run_against_model<const W: usize>(stimulus: &[FreqDividerInputs]) {
     for (cycle, inputs) in stimulus.iter().enumerate() {
         let rtl = harness.step_vector(&vector(inputs)).expect("step")[0] != 0;
         let expected = model.step(*inputs);
-        assert_eq!(rtl, expected, "W={W} cycle {cycle}: RTL strobe differs from the model ({inputs:?})");
+        assert_eq!(
+            rtl, expected,
+            "W={W} cycle {cycle}: RTL strobe differs from the model ({inputs:?})"
+        );
         monitor.edge(inputs, rtl);
     }
 }
@@ -148,11 +168,23 @@ fn every_divisor_change_at_every_phase_keeps_the_contract() {
     for old in 0..16u64 {
         for new in 0..16u64 {
             for phase in 0..old.max(1) + 1 {
-                let mut stimulus = vec![FreqDividerInputs { reset: true, enable: false, divisor: old }];
+                let mut stimulus = vec![FreqDividerInputs {
+                    reset: true,
+                    enable: false,
+                    divisor: old,
+                }];
                 // Two full intervals of the old divisor, then `phase` more edges.
                 let lead = 1 + 2 * old + phase;
-                stimulus.extend((0..lead).map(|_| FreqDividerInputs { reset: false, enable: true, divisor: old }));
-                stimulus.extend((0..40).map(|_| FreqDividerInputs { reset: false, enable: true, divisor: new }));
+                stimulus.extend((0..lead).map(|_| FreqDividerInputs {
+                    reset: false,
+                    enable: true,
+                    divisor: old,
+                }));
+                stimulus.extend((0..40).map(|_| FreqDividerInputs {
+                    reset: false,
+                    enable: true,
+                    divisor: new,
+                }));
                 run_against_model::<4>(&stimulus);
             }
         }
@@ -168,25 +200,43 @@ fn strobes_are_exactly_d_clocks_apart() {
             .filter(|_| harness.step_vector(&[0, 1, d]).unwrap()[0] != 0)
             .collect();
         assert_eq!(times.len() as u64, 5000u64.div_ceil(d), "D={d}");
-        assert_eq!(times[0], 0, "D={d}: the first enabled clock after reset strobes");
-        assert!(times.windows(2).all(|w| w[1] - w[0] == d), "D={d}: intervals {times:?}");
+        assert_eq!(
+            times[0], 0,
+            "D={d}: the first enabled clock after reset strobes"
+        );
+        assert!(
+            times.windows(2).all(|w| w[1] - w[0] == d),
+            "D={d}: intervals {times:?}"
+        );
     }
 }
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc0515);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 32).iter().map(vector).collect();
-    let pass = cross_simulate(&CosimDesign::exported("freq_divider"), FreqDivider::<32>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 32)
+        .iter()
+        .map(vector)
+        .collect();
+    let pass = cross_simulate(
+        &CosimDesign::exported("freq_divider"),
+        FreqDivider::<32>::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(pass.cycles, 20_000);
 }
 
 #[test]
 fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc0516);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 12).iter().map(vector).collect();
+    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 12)
+        .iter()
+        .map(vector)
+        .collect();
     let mut block = FreqDivider::<12>::default();
-    let design = CosimDesign::generated("freq_divider_w12", &mut block).unwrap_or_else(|e| panic!("{e}"));
-    cross_simulate(&design, FreqDivider::<12>::default(), &stimulus).unwrap_or_else(|e| panic!("{e}"));
+    let design =
+        CosimDesign::generated("freq_divider_w12", &mut block).unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate(&design, FreqDivider::<12>::default(), &stimulus)
+        .unwrap_or_else(|e| panic!("{e}"));
 }

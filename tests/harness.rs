@@ -42,7 +42,10 @@ fn a_combinational_loop_is_an_error_naming_the_block() {
         .and_then(|mut h| h.cycle())
         .err()
         .expect("a ring oscillator must not settle");
-    assert!(matches!(error, HarnessError::CombinationalLoop { .. }), "{error:?}");
+    assert!(
+        matches!(error, HarnessError::CombinationalLoop { .. }),
+        "{error:?}"
+    );
     assert!(error.to_string().contains("ring_oscillator"), "{error}");
 }
 
@@ -64,7 +67,9 @@ motion_hdl::vector_ports!(impl[] Undriven { inputs: [], outputs: [out] });
 
 #[test]
 fn an_undriven_child_input_fails_the_structural_check() {
-    let error = Harness::new("undriven", Undriven::default()).err().expect("check_all must fail");
+    let error = Harness::new("undriven", Undriven::default())
+        .err()
+        .expect("check_all must fail");
     assert!(matches!(error, HarnessError::Check { .. }), "{error:?}");
     assert!(error.to_string().contains("undriven"), "{error}");
 }
@@ -72,7 +77,10 @@ fn an_undriven_child_input_fails_the_structural_check() {
 #[test]
 fn records_a_vcd_and_renders_chosen_signals_to_svg() {
     let dir = tempfile::tempdir().unwrap();
-    let (vcd, svg) = (dir.path().join("divider.vcd"), dir.path().join("divider.svg"));
+    let (vcd, svg) = (
+        dir.path().join("divider.vcd"),
+        dir.path().join("divider.svg"),
+    );
     let mut harness = Harness::new("freq_divider", FreqDivider::<8>::default()).unwrap();
     harness.record_vcd(&vcd).unwrap();
     harness.step_vector(&[1, 0, 3]).unwrap();
@@ -81,9 +89,22 @@ fn records_a_vcd_and_renders_chosen_signals_to_svg() {
     }
     drop(harness.finish());
     let text = std::fs::read_to_string(&vcd).unwrap();
-    assert!(text.contains("strobe") && text.contains("remaining"), "VCD lacks the block's signals");
-    render_svg(&vcd, &svg, &["uut.clock", "uut.enable", "uut.strobe"], 0, 20).unwrap();
+    assert!(
+        text.contains("strobe") && text.contains("remaining"),
+        "VCD lacks the block's signals"
+    );
+    render_svg(
+        &vcd,
+        &svg,
+        &["uut.clock", "uut.enable", "uut.strobe"],
+        0,
+        20,
+    )
+    .unwrap();
     let picture = std::fs::read_to_string(&svg).unwrap();
-    assert!(picture.starts_with("<svg") && picture.contains("strobe"), "not an SVG waveform");
+    assert!(
+        picture.starts_with("<svg") && picture.contains("strobe"),
+        "not an SVG waveform"
+    );
     assert!(render_svg(&vcd, &svg, &["uut.no_such_signal"], 0, 20).is_err());
 }

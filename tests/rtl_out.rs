@@ -21,7 +21,10 @@ fn committed_export_is_fresh() {
             stale.push(path.display().to_string());
         }
     }
-    assert!(stale.is_empty(), "stale or missing (run `cargo run --release -- export`): {stale:?}");
+    assert!(
+        stale.is_empty(),
+        "stale or missing (run `cargo run --release -- export`): {stale:?}"
+    );
 }
 
 #[test]
@@ -37,8 +40,16 @@ fn rtl_out_holds_no_module_that_is_not_exported() {
 
 #[test]
 fn export_is_deterministic() {
-    let first: Vec<String> = generated_files().unwrap().into_iter().map(|f| f.contents).collect();
-    let second: Vec<String> = generated_files().unwrap().into_iter().map(|f| f.contents).collect();
+    let first: Vec<String> = generated_files()
+        .unwrap()
+        .into_iter()
+        .map(|f| f.contents)
+        .collect();
+    let second: Vec<String> = generated_files()
+        .unwrap()
+        .into_iter()
+        .map(|f| f.contents)
+        .collect();
     assert_eq!(first, second);
 }
 
@@ -46,14 +57,32 @@ fn export_is_deterministic() {
 fn module_names_are_unique_across_all_files_and_free_of_dollars() {
     let mut seen = BTreeSet::new();
     for spec in catalog() {
-        let text = std::fs::read_to_string(repo_root().join("rtl-out").join(format!("{}.v", spec.name))).unwrap();
+        let text =
+            std::fs::read_to_string(repo_root().join("rtl-out").join(format!("{}.v", spec.name)))
+                .unwrap();
         for line in text.lines().filter(|l| l.starts_with("module ")) {
-            let name = line["module ".len()..].split('(').next().unwrap().trim().to_string();
-            assert!(name == spec.name || name.starts_with(&format!("{}__", spec.name)), "{name} in {}.v", spec.name);
-            assert!(seen.insert(name.clone()), "module {name} defined twice in rtl-out/");
+            let name = line["module ".len()..]
+                .split('(')
+                .next()
+                .unwrap()
+                .trim()
+                .to_string();
+            assert!(
+                name == spec.name || name.starts_with(&format!("{}__", spec.name)),
+                "{name} in {}.v",
+                spec.name
+            );
+            assert!(
+                seen.insert(name.clone()),
+                "module {name} defined twice in rtl-out/"
+            );
         }
         let code: String = text.lines().filter(|l| !l.starts_with("//")).collect();
-        assert!(!code.contains("$ ") && !code.contains("$."), "hierarchy `$` left in {}.v", spec.name);
+        assert!(
+            !code.contains("$ ") && !code.contains("$."),
+            "hierarchy `$` left in {}.v",
+            spec.name
+        );
     }
 }
 

@@ -3,3 +3,4 @@
 //! reference model the RTL is proven against (in `tests/<block>.rs`).
 
 pub mod freq_divider;
+pub mod pulse_counter;

@@ -4,6 +4,7 @@
 use rust_hdl::core::prelude::*;
 
 use crate::blocks::freq_divider::{self, FreqDivider};
+use crate::blocks::pulse_counter::{self, PulseCounter};
 
 /// One documented port: name and meaning (direction and width come from the RTL).
 pub type PortDoc = (&'static str, &'static str);
@@ -29,14 +30,24 @@ pub struct ModuleSpec {
 
 /// Every exported module, in the order of `rtl-out/README.md`.
 pub fn catalog() -> Vec<ModuleSpec> {
-    vec![ModuleSpec {
-        name: "freq_divider",
-        summary: freq_divider::SUMMARY,
-        parameters: &[("W", "32", "divisor width")],
-        port_docs: freq_divider::PORT_DOCS,
-        fmax_target_mhz: 125.0,
-        build: || Box::new(FreqDivider::<32>::default()),
-    }]
+    vec![
+        ModuleSpec {
+            name: "freq_divider",
+            summary: freq_divider::SUMMARY,
+            parameters: &[("W", "32", "divisor width")],
+            port_docs: freq_divider::PORT_DOCS,
+            fmax_target_mhz: 125.0,
+            build: || Box::new(FreqDivider::<32>::default()),
+        },
+        ModuleSpec {
+            name: "pulse_counter",
+            summary: pulse_counter::SUMMARY,
+            parameters: &[("W", "32", "count width")],
+            port_docs: pulse_counter::PORT_DOCS,
+            fmax_target_mhz: 125.0,
+            build: || Box::new(PulseCounter::<32>::default()),
+        },
+    ]
 }
 
 /// The catalog entry named `name`.

@@ -17,10 +17,16 @@ pub fn rtl_index(modules: &[RenderedModule]) -> String {
     );
     md.push_str("| module | what it is |\n|---|---|\n");
     for m in modules {
-        md.push_str(&format!("| [`{0}`](#{0}) | {1} |\n", m.spec.name, m.spec.summary));
+        md.push_str(&format!(
+            "| [`{0}`](#{0}) | {1} |\n",
+            m.spec.name, m.spec.summary
+        ));
     }
     for m in modules {
-        md.push_str(&format!("\n## {}\n\n{}\n\nFile: `{}.v`\n\n", m.spec.name, m.spec.summary, m.spec.name));
+        md.push_str(&format!(
+            "\n## {}\n\n{}\n\nFile: `{}.v`\n\n",
+            m.spec.name, m.spec.summary, m.spec.name
+        ));
         md.push_str("| parameter | value | meaning |\n|---|---|---|\n");
         for (name, value, meaning) in m.spec.parameters {
             md.push_str(&format!("| {name} | {value} | {meaning} |\n"));

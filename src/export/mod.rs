@@ -28,7 +28,10 @@ pub enum ExportError {
     PortDoc(#[from] PortDocError),
     /// A file could not be written.
     #[error("cannot write `{path}`: {source}")]
-    Io { path: String, source: std::io::Error },
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
 }
 
 /// One exported module, rendered.
@@ -51,7 +54,12 @@ pub fn render_module(spec: ModuleSpec) -> Result<RenderedModule, ExportError> {
     let header = header::verilog_header(&spec, &rows);
     let verilog = format!("{header}\n{}", module_verilog(spec.name, block.as_mut())?);
     let testbench = testbench_verilog(spec.name, &generator(), &ports);
-    Ok(RenderedModule { spec, ports, verilog, testbench })
+    Ok(RenderedModule {
+        spec,
+        ports,
+        verilog,
+        testbench,
+    })
 }
 
 /// Which output folder a generated file belongs in.
@@ -108,7 +116,10 @@ pub fn write_export(rtl_dir: &Path, testbench_dir: &Path) -> Result<Vec<PathBuf>
             OutputDir::Rtl => rtl_dir,
             OutputDir::Testbench => testbench_dir,
         };
-        let io_error = |source| ExportError::Io { path: dir.display().to_string(), source };
+        let io_error = |source| ExportError::Io {
+            path: dir.display().to_string(),
+            source,
+        };
         std::fs::create_dir_all(dir).map_err(io_error)?;
         let path = dir.join(&file.file_name);
         std::fs::write(&path, &file.contents).map_err(|source| ExportError::Io {

@@ -36,7 +36,10 @@ pub struct Port {
 
 /// The top-level ports of `block`, in declaration order.
 pub fn top_ports(block: &dyn Block) -> Vec<Port> {
-    let mut probe = TopPorts { depth: 0, ports: vec![] };
+    let mut probe = TopPorts {
+        depth: 0,
+        ports: vec![],
+    };
     block.accept("top", &mut probe);
     probe.ports
 }

@@ -37,7 +37,11 @@ fn strip_hierarchy_dollars(verilog: &str) -> String {
     let separator = SEPARATOR.get_or_init(|| Regex::new(r"([A-Za-z0-9_])\$").expect("valid regex"));
     let renamed = separator.replace_all(verilog, "${1}__").into_owned();
     // Trailing spaces are noise in review diffs of the committed RTL.
-    let mut out: String = renamed.lines().map(str::trim_end).collect::<Vec<_>>().join("\n");
+    let mut out: String = renamed
+        .lines()
+        .map(str::trim_end)
+        .collect::<Vec<_>>()
+        .join("\n");
     out.push('\n');
     out
 }

@@ -26,7 +26,10 @@ pub enum HarnessError {
     CombinationalLoop { block: String, cycle: u64 },
     /// Writing the waveform failed.
     #[error("waveform file `{path}`: {source}")]
-    Waveform { path: String, source: std::io::Error },
+    Waveform {
+        path: String,
+        source: std::io::Error,
+    },
 }
 
 /// Steps one rust-hdl block clock by clock, without threads.

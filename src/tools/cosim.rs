@@ -55,15 +55,24 @@ impl CosimDesign {
 
     /// Verilog generated now from `block` (for example a narrow instance that
     /// is not exported), with its testbench, in a temporary folder.
-    pub fn generated(module: &str, block: &mut dyn rust_hdl::core::prelude::Block) -> Result<Self, CosimError> {
+    pub fn generated(
+        module: &str,
+        block: &mut dyn rust_hdl::core::prelude::Block,
+    ) -> Result<Self, CosimError> {
         let dir = work_dir("generated")?;
-        let verilog = module_verilog(module, block).map_err(|e| CosimError::Setup(e.to_string()))?;
+        let verilog =
+            module_verilog(module, block).map_err(|e| CosimError::Setup(e.to_string()))?;
         let testbench = testbench_verilog(module, &generator(), &top_ports(&*block));
         let rtl = dir.path().join(format!("{module}.v"));
         let tb = dir.path().join(format!("{module}_tb.v"));
         write(&rtl, &verilog)?;
         write(&tb, &testbench)?;
-        Ok(Self { module: module.to_string(), rtl, testbench: tb, _generated_in: Some(dir) })
+        Ok(Self {
+            module: module.to_string(),
+            rtl,
+            testbench: tb,
+            _generated_in: Some(dir),
+        })
     }
 }
 
@@ -131,7 +140,10 @@ pub fn cross_simulate<B: VectorPorts>(
     for simulator in Simulator::ALL {
         compare_in(simulator, design, stimulus, &expected)?;
     }
-    Ok(CosimPass { cycles: stimulus.len(), simulators: Simulator::ALL.to_vec() })
+    Ok(CosimPass {
+        cycles: stimulus.len(),
+        simulators: Simulator::ALL.to_vec(),
+    })
 }
 
 /// The outputs of `block` on every cycle of `stimulus`, from the Rust harness,
@@ -159,7 +171,11 @@ pub fn compare_in(
 ) -> Result<usize, CosimError> {
     let mut text = String::with_capacity(stimulus.len() * 16);
     for (inputs, outputs) in stimulus.iter().zip(expected) {
-        let fields: Vec<String> = inputs.iter().chain(outputs.iter()).map(|v| format!("{v:x}")).collect();
+        let fields: Vec<String> = inputs
+            .iter()
+            .chain(outputs.iter())
+            .map(|v| format!("{v:x}"))
+            .collect();
         let _ = writeln!(text, "{}", fields.join(" "));
     }
     let dir = work_dir("cosim")?;
@@ -199,7 +215,11 @@ fn run_testbench(
     if output.lines().any(|l| l.trim() == passed) {
         Ok(())
     } else {
-        Err(CosimError::NoVerdict { simulator, cycles, output })
+        Err(CosimError::NoVerdict {
+            simulator,
+            cycles,
+            output,
+        })
     }
 }
 
@@ -240,6 +260,8 @@ fn check_vector_ports<B: VectorPorts>(block: &B) -> Result<(), CosimError> {
 }
 
 fn write(path: &Path, contents: &str) -> Result<(), ToolError> {
-    std::fs::write(path, contents)
-        .map_err(|source| ToolError::Io { context: format!("writing {}", path.display()), source })
+    std::fs::write(path, contents).map_err(|source| ToolError::Io {
+        context: format!("writing {}", path.display()),
+        source,
+    })
 }

@@ -60,7 +60,10 @@ pub(crate) fn work_dir(purpose: &str) -> Result<tempfile::TempDir, ToolError> {
     tempfile::Builder::new()
         .prefix(&format!("motion-hdl-{purpose}-"))
         .tempdir()
-        .map_err(|source| ToolError::Io { context: format!("temporary folder for {purpose}"), source })
+        .map_err(|source| ToolError::Io {
+            context: format!("temporary folder for {purpose}"),
+            source,
+        })
 }
 
 /// Runs `command` and returns its stdout and stderr joined; fails on a
@@ -70,13 +73,22 @@ pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, 
     let line = format!(
         "{} {}",
         program,
-        command.get_args().map(|a| a.to_string_lossy()).collect::<Vec<_>>().join(" ")
+        command
+            .get_args()
+            .map(|a| a.to_string_lossy())
+            .collect::<Vec<_>>()
+            .join(" ")
     );
     let output = command.output().map_err(|source| {
         if source.kind() == std::io::ErrorKind::NotFound {
-            ToolError::Missing { tool: program.clone() }
+            ToolError::Missing {
+                tool: program.clone(),
+            }
         } else {
-            ToolError::Io { context: format!("running `{line}`"), source }
+            ToolError::Io {
+                context: format!("running `{line}`"),
+                source,
+            }
         }
     })?;
     let text = format!(
@@ -85,7 +97,11 @@ pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, 
         String::from_utf8_lossy(&output.stderr)
     );
     if !output.status.success() && !allow_failure {
-        return Err(ToolError::Failed { command: line, status: output.status.to_string(), output: text });
+        return Err(ToolError::Failed {
+            command: line,
+            status: output.status.to_string(),
+            output: text,
+        });
     }
     Ok(text)
 }

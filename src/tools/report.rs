@@ -20,7 +20,11 @@ pub struct ReportRow {
 }
 
 /// Synthesizes `rtl_dir/<module>.v` for each spec with the given seeds.
-pub fn measure(specs: &[ModuleSpec], rtl_dir: &Path, seeds: &[u64]) -> Result<Vec<ReportRow>, ToolError> {
+pub fn measure(
+    specs: &[ModuleSpec],
+    rtl_dir: &Path,
+    seeds: &[u64],
+) -> Result<Vec<ReportRow>, ToolError> {
     specs
         .iter()
         .map(|spec| {
@@ -65,7 +69,11 @@ pub fn render(rows: &[ReportRow], seeds: &[u64]) -> Result<String, ToolError> {
             f.logic_cells,
             median,
             row.target_mhz,
-            if median >= row.target_mhz { "yes" } else { "**no**" },
+            if median >= row.target_mhz {
+                "yes"
+            } else {
+                "**no**"
+            },
             per_seed.join(", ")
         ));
     }

@@ -45,7 +45,12 @@ impl SynthFigures {
 /// Synthesizes `rtl` (top module `top`) with `synth_ice40`, then places and
 /// routes it once per seed with nextpnr, aiming at `target_mhz`. Missing the
 /// target is not an error: the achieved Fmax is the figure.
-pub fn synthesize(rtl: &Path, top: &str, seeds: &[u64], target_mhz: f64) -> Result<SynthFigures, ToolError> {
+pub fn synthesize(
+    rtl: &Path,
+    top: &str,
+    seeds: &[u64],
+    target_mhz: f64,
+) -> Result<SynthFigures, ToolError> {
     let dir = work_dir("synth")?;
     let netlist = dir.path().join("netlist.json");
     let yosys_log = run(
@@ -58,7 +63,11 @@ pub fn synthesize(rtl: &Path, top: &str, seeds: &[u64], target_mhz: f64) -> Resu
     )?;
     let cells = final_stat(&yosys_log);
     let count = |prefix: &str| -> u32 {
-        cells.iter().filter(|(name, _)| name.starts_with(prefix)).map(|(_, n)| n).sum()
+        cells
+            .iter()
+            .filter(|(name, _)| name.starts_with(prefix))
+            .map(|(_, n)| n)
+            .sum()
     };
     let mut figures = SynthFigures {
         lut4: count("SB_LUT4"),
@@ -72,7 +81,14 @@ pub fn synthesize(rtl: &Path, top: &str, seeds: &[u64], target_mhz: f64) -> Resu
         let report = dir.path().join(format!("report-{seed}.json"));
         run(
             Command::new("nextpnr-ice40")
-                .args(["--hx8k", "--package", "ct256", "--pcf-allow-unconstrained", "--timing-allow-fail", "--quiet"])
+                .args([
+                    "--hx8k",
+                    "--package",
+                    "ct256",
+                    "--pcf-allow-unconstrained",
+                    "--timing-allow-fail",
+                    "--quiet",
+                ])
                 .arg("--json")
                 .arg(&netlist)
                 .arg("--freq")
@@ -99,7 +115,9 @@ fn final_stat(log: &str) -> Vec<(String, u32)> {
         .map_while(|line| {
             let mut words = line.split_whitespace();
             match (words.next(), words.next(), words.next()) {
-                (Some(name), Some(count), None) => count.parse().ok().map(|n| (name.to_string(), n)),
+                (Some(name), Some(count), None) => {
+                    count.parse().ok().map(|n| (name.to_string(), n))
+                }
                 _ => None,
             }
         })
@@ -107,13 +125,24 @@ fn final_stat(log: &str) -> Vec<(String, u32)> {
 }
 
 fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
-    let parse_error = |detail: &str| ToolError::Parse { tool: "nextpnr-ice40".into(), detail: detail.into() };
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| ToolError::Io { context: format!("reading {}", path.display()), source })?;
-    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| parse_error(&e.to_string()))?;
+    let parse_error = |detail: &str| ToolError::Parse {
+        tool: "nextpnr-ice40".into(),
+        detail: detail.into(),
+    };
+    let text = std::fs::read_to_string(path).map_err(|source| ToolError::Io {
+        context: format!("reading {}", path.display()),
+        source,
+    })?;
+    let json: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| parse_error(&e.to_string()))?;
     let fmax = json["fmax"]
         .as_object()
-        .and_then(|clocks| clocks.values().filter_map(|c| c["achieved"].as_f64()).reduce(f64::min))
+        .and_then(|clocks| {
+            clocks
+                .values()
+                .filter_map(|c| c["achieved"].as_f64())
+                .reduce(f64::min)
+        })
         .ok_or_else(|| parse_error("no achieved Fmax in the report"))?;
     let cells = json["utilization"]["ICESTORM_LC"]["used"]
         .as_u64()
@@ -130,7 +159,11 @@ mod tests {
         let log = "Number of cells: 3\n  $_AND_ 3\n\n=== top ===\n   Number of cells:        5\n     SB_CARRY    2\n     SB_DFFE     1\n     SB_LUT4     2\n\n";
         assert_eq!(
             final_stat(log),
-            vec![("SB_CARRY".into(), 2), ("SB_DFFE".into(), 1), ("SB_LUT4".into(), 2)]
+            vec![
+                ("SB_CARRY".into(), 2),
+                ("SB_DFFE".into(), 1),
+                ("SB_LUT4".into(), 2)
+            ]
         );
     }
 }

@@ -56,8 +56,14 @@ pub const SUMMARY: &str = "runtime clock-enable generator: one strobe every D en
 pub const PORT_DOCS: &[(&str, &str)] = &[
     ("clock", "rising-edge clock"),
     ("reset", "synchronous reset, active high"),
-    ("enable", "counting runs while high; while low the phase holds and no strobe comes"),
-    ("divisor", "D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped"),
+    (
+        "enable",
+        "counting runs while high; while low the phase holds and no strobe comes",
+    ),
+    (
+        "divisor",
+        "D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped",
+    ),
     ("strobe", "one-clock strobe, registered"),
 ];
 
@@ -119,7 +125,8 @@ impl<const W: usize> Logic for FreqDivider<W> {
     fn update(&mut self) {
         dff_setup!(self, clock, remaining, at_end, strobe_reg);
         self.strobe.next = self.strobe_reg.q.val();
-        self.divisor_at_most_one.next = (self.divisor.val() & self.high_bits.val()) == self.zero.val();
+        self.divisor_at_most_one.next =
+            (self.divisor.val() & self.high_bits.val()) == self.zero.val();
         self.strobe_reg.d.next = false;
         if self.enable.val() {
             if self.at_end.q.val() {

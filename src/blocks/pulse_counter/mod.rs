@@ -1,0 +1,163 @@
+//! # `pulse_counter`: up/down counter with clear, load and compare
+//!
+//! Counts step pulses (commanded position) or encoder counts (actual
+//! position) up and down, and detects the end of an interpolation period by
+//! comparing the count with a programmable value.
+//!
+//! ## Ports (`W` = 32 in the exported `pulse_counter`)
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clock` | in | 1 | rising-edge clock |
+//! | `reset` | in | 1 | synchronous, active high: count <- 0 |
+//! | `up` | in | 1 | count +1 |
+//! | `down` | in | 1 | count -1; with `up` in the same clock the count is unchanged and neither pulse is lost |
+//! | `clear` | in | 1 | count <- 0; priority over `load` and counting |
+//! | `load` | in | 1 | count <- `load_value`; priority over counting |
+//! | `load_value` | in | W | value for `load` |
+//! | `compare_value` | in | W | value for `compare_match` |
+//! | `count` | out | W | two's complement, wrapping; registered |
+//! | `compare_match` | out | 1 | `count == compare_value`, combinational from the registered count |
+//! | `pulse_overridden` | out | 1 | registered strobe: the previous edge had a net `up` or `down` pulse that `clear`, `load` or `reset` overrode, so it was not counted |
+//!
+//! ## Timing
+//! `count` is registered: one clock after an edge, it shows the result of
+//! that edge's inputs. Priority per edge: `reset`, then `clear`, then `load`,
+//! then `up`/`down`. `compare_match` has no latency of its own: it follows
+//! `count` and `compare_value` in the same cycle (one equality tree, no
+//! register), so a period-end detector sees the match in the cycle the count
+//! reaches the value.
+//!
+//! ## Bad input
+//! * `up` and `down` together: the count holds (+1 -1). No pulse is lost.
+//! * `clear` or `load` in the same clock as a pulse: the clear or load wins
+//!   (the port contract) and that clock's pulse is not counted, but never
+//!   silently: `pulse_overridden` strobes one clock later. A design that must
+//!   keep such a pulse adds it back (for example with a `load` of the
+//!   cleared value ±1); a CPU clearing a position register can read the flag.
+//! * Overflow wraps (two's complement), as position registers do; the CPU
+//!   extends the count in software from successive reads.
+//! * `compare_value` tied to 0 flags count == 0; the count is unaffected.
+
+pub mod model;
+
+use rust_hdl::prelude::*;
+
+/// One line for the export header and the `rtl-out` index.
+pub const SUMMARY: &str = "up/down pulse counter with clear, load and a compare output";
+
+/// Meaning of every port, for the export header and the `rtl-out` index.
+pub const PORT_DOCS: &[(&str, &str)] = &[
+    ("clock", "rising-edge clock"),
+    ("reset", "synchronous reset, active high: count <- 0"),
+    ("up", "count +1"),
+    (
+        "down",
+        "count -1; with up in the same clock the count is unchanged",
+    ),
+    ("clear", "count <- 0; priority over load and counting"),
+    ("load", "count <- load_value; priority over counting"),
+    ("load_value", "value taken by load"),
+    (
+        "compare_value",
+        "value compared with the count for compare_match",
+    ),
+    ("count", "two's complement count, wrapping; registered"),
+    (
+        "compare_match",
+        "count == compare_value, combinational from the registered count",
+    ),
+    (
+        "pulse_overridden",
+        "strobe: the previous edge's net up/down pulse was overridden by clear, load or reset",
+    ),
+];
+
+/// Up/down pulse counter. See the [module documentation](self) for the datasheet.
+#[derive(Clone, Debug, LogicBlock)]
+pub struct PulseCounter<const W: usize> {
+    /// Rising-edge clock.
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset, active high.
+    pub reset: Signal<In, Bit>,
+    /// Count +1.
+    pub up: Signal<In, Bit>,
+    /// Count -1.
+    pub down: Signal<In, Bit>,
+    /// Count <- 0.
+    pub clear: Signal<In, Bit>,
+    /// Count <- `load_value`.
+    pub load: Signal<In, Bit>,
+    /// Value for `load`.
+    pub load_value: Signal<In, Bits<W>>,
+    /// Value for `compare_match`.
+    pub compare_value: Signal<In, Bits<W>>,
+    /// The count, registered.
+    pub count: Signal<Out, Bits<W>>,
+    /// `count == compare_value`.
+    pub compare_match: Signal<Out, Bit>,
+    /// The previous edge's net pulse was overridden by clear, load or reset.
+    pub pulse_overridden: Signal<Out, Bit>,
+    value: DFF<Bits<W>>,
+    overridden: DFF<Bit>,
+    /// +1 or -1, as a W-bit two's complement addend.
+    delta: Signal<Local, Bits<W>>,
+    zero: Constant<Bits<W>>,
+    one: Constant<Bits<W>>,
+    all_ones: Constant<Bits<W>>,
+}
+
+impl<const W: usize> Default for PulseCounter<W> {
+    fn default() -> Self {
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            up: Default::default(),
+            down: Default::default(),
+            clear: Default::default(),
+            load: Default::default(),
+            load_value: Default::default(),
+            compare_value: Default::default(),
+            count: Default::default(),
+            compare_match: Default::default(),
+            pulse_overridden: Default::default(),
+            value: Default::default(),
+            overridden: Default::default(),
+            delta: Default::default(),
+            zero: Constant::new(0u64.into()),
+            one: Constant::new(1u64.into()),
+            all_ones: Constant::new(if W >= 64 { u64::MAX } else { (1u64 << W) - 1 }.into()),
+        }
+    }
+}
+
+impl<const W: usize> Logic for PulseCounter<W> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, value, overridden);
+        self.count.next = self.value.q.val();
+        self.pulse_overridden.next = self.overridden.q.val();
+        self.overridden.d.next = (self.up.val() ^ self.down.val())
+            & (self.load.val() | self.clear.val() | self.reset.val());
+        self.compare_match.next = self.value.q.val() == self.compare_value.val();
+        // One adder for both directions: +1 or +(-1), applied only on a net pulse.
+        if self.down.val() {
+            self.delta.next = self.all_ones.val();
+        } else {
+            self.delta.next = self.one.val();
+        }
+        if self.up.val() ^ self.down.val() {
+            self.value.d.next = self.value.q.val() + self.delta.val();
+        }
+        if self.load.val() {
+            self.value.d.next = self.load_value.val();
+        }
+        if self.clear.val() | self.reset.val() {
+            self.value.d.next = self.zero.val();
+        }
+    }
+}
+
+crate::vector_ports!(impl[const W: usize] PulseCounter<W> {
+    inputs: [reset, up, down, clear, load, load_value, compare_value],
+    outputs: [count, compare_match, pulse_overridden],
+});
