@@ -4,3 +4,4 @@
 
 pub mod freq_divider;
 pub mod pulse_counter;
+pub mod sequential_divider;

@@ -5,6 +5,7 @@ use rust_hdl::core::prelude::*;
 
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::pulse_counter::{self, PulseCounter};
+use crate::blocks::sequential_divider::{self, SequentialDivider};
 
 /// One documented port: name and meaning (direction and width come from the RTL).
 pub type PortDoc = (&'static str, &'static str);
@@ -46,6 +47,14 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: pulse_counter::PORT_DOCS,
             fmax_target_mhz: 125.0,
             build: || Box::new(PulseCounter::<32>::default()),
+        },
+        ModuleSpec {
+            name: "sequential_divider",
+            summary: sequential_divider::SUMMARY,
+            parameters: &[("W", "32", "operand and result width")],
+            port_docs: sequential_divider::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            build: || Box::new(SequentialDivider::<32>::default()),
         },
     ]
 }

@@ -66,8 +66,13 @@ pub(crate) fn work_dir(purpose: &str) -> Result<tempfile::TempDir, ToolError> {
         })
 }
 
+/// Longest any single tool run may take. nextpnr can route for ever on a
+/// hopeless design; a stuck tool fails its test instead of hanging CI.
+pub const TOOL_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(300);
+
 /// Runs `command` and returns its stdout and stderr joined; fails on a
-/// non-zero exit unless `allow_failure` says so.
+/// non-zero exit unless `allow_failure` says so, and after
+/// [`TOOL_TIME_LIMIT`] kills the tool and fails.
 pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, ToolError> {
     let program = command.get_program().to_string_lossy().into_owned();
     let line = format!(
@@ -79,29 +84,65 @@ pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, 
             .collect::<Vec<_>>()
             .join(" ")
     );
-    let output = command.output().map_err(|source| {
-        if source.kind() == std::io::ErrorKind::NotFound {
-            ToolError::Missing {
-                tool: program.clone(),
+    let io_error = |context: &str, source| ToolError::Io {
+        context: format!("{context} `{line}`"),
+        source,
+    };
+    // Output goes to files, so a chatty tool can never block on a full pipe.
+    let stdout = tempfile::tempfile().map_err(|e| io_error("capturing output of", e))?;
+    let stderr = tempfile::tempfile().map_err(|e| io_error("capturing output of", e))?;
+    let mut child = command
+        .stdout(
+            stdout
+                .try_clone()
+                .map_err(|e| io_error("capturing output of", e))?,
+        )
+        .stderr(
+            stderr
+                .try_clone()
+                .map_err(|e| io_error("capturing output of", e))?,
+        )
+        .spawn()
+        .map_err(|source| {
+            if source.kind() == std::io::ErrorKind::NotFound {
+                ToolError::Missing {
+                    tool: program.clone(),
+                }
+            } else {
+                io_error("running", source)
             }
-        } else {
-            ToolError::Io {
-                context: format!("running `{line}`"),
-                source,
-            }
+        })?;
+    let started = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(|e| io_error("waiting for", e))? {
+            break Some(status);
         }
-    })?;
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    if !output.status.success() && !allow_failure {
-        return Err(ToolError::Failed {
+        if started.elapsed() > TOOL_TIME_LIMIT {
+            let _ = child.kill();
+            let _ = child.wait();
+            break None;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let text = format!("{}{}", read_all(stdout), read_all(stderr));
+    match status {
+        None => Err(ToolError::Failed {
             command: line,
-            status: output.status.to_string(),
+            status: format!("killed after {} s", TOOL_TIME_LIMIT.as_secs()),
             output: text,
-        });
+        }),
+        Some(status) if !status.success() && !allow_failure => Err(ToolError::Failed {
+            command: line,
+            status: status.to_string(),
+            output: text,
+        }),
+        Some(_) => Ok(text),
     }
-    Ok(text)
+}
+
+fn read_all(mut file: std::fs::File) -> String {
+    use std::io::{Read, Seek};
+    let mut bytes = Vec::new();
+    let _ = file.rewind().and_then(|_| file.read_to_end(&mut bytes));
+    String::from_utf8_lossy(&bytes).into_owned()
 }
