@@ -93,3 +93,20 @@ fn every_exported_module_passes_verilator_lint_wall() {
         lint(&rtl, spec.name).unwrap_or_else(|e| panic!("{}: {e}", spec.name));
     }
 }
+
+#[test]
+fn committed_synthesis_report_covers_every_exported_module() {
+    let report = std::fs::read_to_string(repo_root().join("rtl-out").join("synthesis-report.md"))
+        .expect("rtl-out/synthesis-report.md is missing: run `cargo run --release -- report`");
+    let listed: BTreeSet<String> = report
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .filter_map(|l| l.split('`').next())
+        .map(str::to_string)
+        .collect();
+    let exported: BTreeSet<String> = catalog().iter().map(|s| s.name.to_string()).collect();
+    assert_eq!(
+        listed, exported,
+        "synthesis-report.md is stale: run `cargo run --release -- report`"
+    );
+}

@@ -25,6 +25,8 @@ pub struct ModuleSpec {
     pub port_docs: &'static [PortDoc],
     /// The Fmax goal on iCE40 HX8K from the block's issue, in MHz (reported, not enforced).
     pub fmax_target_mhz: f64,
+    /// The LUT4 budget on iCE40 HX8K from the block's issue, if it sets one.
+    pub lut4_budget: Option<u32>,
     /// Builds the block with the exported parameters.
     pub build: fn() -> Box<dyn Block>,
 }
@@ -38,6 +40,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             parameters: &[("W", "32", "divisor width")],
             port_docs: freq_divider::PORT_DOCS,
             fmax_target_mhz: 125.0,
+            lut4_budget: Some(80),
             build: || Box::new(FreqDivider::<32>::default()),
         },
         ModuleSpec {
@@ -46,6 +49,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             parameters: &[("W", "32", "count width")],
             port_docs: pulse_counter::PORT_DOCS,
             fmax_target_mhz: 125.0,
+            lut4_budget: None,
             build: || Box::new(PulseCounter::<32>::default()),
         },
         ModuleSpec {
@@ -54,6 +58,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             parameters: &[("W", "32", "operand and result width")],
             port_docs: sequential_divider::PORT_DOCS,
             fmax_target_mhz: 100.0,
+            lut4_budget: None,
             build: || Box::new(SequentialDivider::<32>::default()),
         },
     ]
