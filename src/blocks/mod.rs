@@ -2,6 +2,7 @@
 //! the rust-hdl implementation and its datasheet, `model.rs` the plain-Rust
 //! reference model the RTL is proven against (in `tests/<block>.rs`).
 
+pub mod dda_integrator;
 pub mod freq_divider;
 pub mod pulse_counter;
 pub mod sequential_divider;

@@ -3,6 +3,7 @@
 
 use rust_hdl::core::prelude::*;
 
+use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
@@ -60,6 +61,15 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 100.0,
             lut4_budget: None,
             build: || Box::new(SequentialDivider::<32>::default()),
+        },
+        ModuleSpec {
+            name: "dda_integrator",
+            summary: dda_integrator::SUMMARY,
+            parameters: &[("W", "32", "integrand, modulus and accumulator width")],
+            port_docs: dda_integrator::PORT_DOCS,
+            fmax_target_mhz: 110.0,
+            lut4_budget: None,
+            build: || Box::new(DdaIntegrator::<32>::default()),
         },
     ]
 }
