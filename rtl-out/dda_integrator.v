@@ -48,9 +48,9 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
     reg  [31:0] back_inverted__d;
     wire  [31:0] back_inverted__q;
     reg  back_inverted__clock;
-    reg  step_too_large__d;
-    wire  step_too_large__q;
-    reg  step_too_large__clock;
+    reg  saturated__d;
+    wire  saturated__q;
+    reg  saturated__clock;
     reg  [31:0] acc__d;
     wire  [31:0] acc__q;
     reg  acc__clock;
@@ -83,10 +83,10 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
         .q(back_inverted__q),
         .clock(back_inverted__clock)
     );
-    dda_integrator__step_too_large step_too_large(
-        .d(step_too_large__d),
-        .q(step_too_large__q),
-        .clock(step_too_large__clock)
+    dda_integrator__saturated saturated(
+        .d(saturated__d),
+        .q(saturated__q),
+        .clock(saturated__clock)
     );
     dda_integrator__acc acc(
         .d(acc__d),
@@ -109,14 +109,14 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
         ticked__clock = clock;
         step__clock = clock;
         back_inverted__clock = clock;
-        step_too_large__clock = clock;
+        saturated__clock = clock;
         acc__clock = clock;
         pulse_reg__clock = clock;
         overrange_reg__clock = clock;
         ticked__d = ticked__q;
         step__d = step__q;
         back_inverted__d = back_inverted__q;
-        step_too_large__d = step_too_large__q;
+        saturated__d = saturated__q;
         acc__d = acc__q;
         pulse_reg__d = pulse_reg__q;
         overrange_reg__d = overrange_reg__q;
@@ -126,19 +126,13 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
         too_large = (((~modulus & integrand) | (~(modulus ^ integrand) & headroom)) & msb) != zero;
         too_large = too_large & (modulus != zero);
         ticked__d = tick & (integrand != zero);
-        step_too_large__d = tick & too_large;
-        if (too_large) begin
-            step__d = modulus;
-            back_inverted__d = ~zero;
-        end
-        else begin
-            step__d = integrand;
-            back_inverted__d = ~headroom;
-        end
+        saturated__d = too_large;
+        step__d = integrand;
+        back_inverted__d = ~headroom;
         wrapped = acc__q + back_inverted__q + one;
         below = (((acc__q & back_inverted__q) | ((acc__q ^ back_inverted__q) & ~wrapped)) & msb) == zero;
-        pulse_reg__d = ticked__q & ~below;
-        if (ticked__q) begin
+        pulse_reg__d = ticked__q & (saturated__q | ~below);
+        if (ticked__q & ~saturated__q) begin
             if (below) begin
                 acc__d = acc__q + step__q;
             end
@@ -146,7 +140,7 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
                 acc__d = wrapped;
             end
         end
-        if (step_too_large__q) begin
+        if (ticked__q & saturated__q) begin
             overrange_reg__d = 1'b1;
         end
         if (clear_overrange) begin
@@ -154,7 +148,7 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
         end
         if (reset) begin
             ticked__d = 1'b0;
-            step_too_large__d = 1'b0;
+            saturated__d = 1'b0;
             acc__d = zero;
             pulse_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
@@ -240,6 +234,25 @@ module dda_integrator__pulse_reg(d,q,clock);
 endmodule // dda_integrator__pulse_reg
 
 
+module dda_integrator__saturated(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // dda_integrator__saturated
+
+
 module dda_integrator__step(d,q,clock);
 
     // Module arguments
@@ -257,25 +270,6 @@ module dda_integrator__step(d,q,clock);
     end
 
 endmodule // dda_integrator__step
-
-
-module dda_integrator__step_too_large(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // dda_integrator__step_too_large
 
 
 module dda_integrator__ticked(d,q,clock);

@@ -37,9 +37,9 @@ module freq_divider(clock,reset,enable,divisor,strobe);
     reg  [31:0] remaining__d;
     wire  [31:0] remaining__q;
     reg  remaining__clock;
-    reg  at_end__d;
-    wire  at_end__q;
-    reg  at_end__clock;
+    reg  mid_interval__d;
+    wire  mid_interval__q;
+    reg  mid_interval__clock;
     reg  strobe_reg__d;
     wire  strobe_reg__q;
     reg  strobe_reg__clock;
@@ -53,10 +53,10 @@ module freq_divider(clock,reset,enable,divisor,strobe);
         .q(remaining__q),
         .clock(remaining__clock)
     );
-    freq_divider__at_end at_end(
-        .d(at_end__d),
-        .q(at_end__q),
-        .clock(at_end__clock)
+    freq_divider__mid_interval mid_interval(
+        .d(mid_interval__d),
+        .q(mid_interval__q),
+        .clock(mid_interval__clock)
     );
     freq_divider__strobe_reg strobe_reg(
         .d(strobe_reg__d),
@@ -67,28 +67,28 @@ module freq_divider(clock,reset,enable,divisor,strobe);
     // Update code
     always @(*) begin
         remaining__clock = clock;
-        at_end__clock = clock;
+        mid_interval__clock = clock;
         strobe_reg__clock = clock;
         remaining__d = remaining__q;
-        at_end__d = at_end__q;
+        mid_interval__d = mid_interval__q;
         strobe_reg__d = strobe_reg__q;
         strobe = strobe_reg__q;
         divisor_at_most_one = (divisor & high_bits) == zero;
         strobe_reg__d = 1'b0;
         if (enable) begin
-            if (at_end__q) begin
+            if (~mid_interval__q) begin
                 remaining__d = divisor;
-                at_end__d = divisor_at_most_one;
+                mid_interval__d = ~divisor_at_most_one;
                 strobe_reg__d = divisor != zero;
             end
             else begin
                 remaining__d = remaining__q - one;
-                at_end__d = remaining__q == two;
+                mid_interval__d = remaining__q != two;
             end
         end
         if (reset) begin
             remaining__d = zero;
-            at_end__d = 1'b1;
+            mid_interval__d = 1'b0;
             strobe_reg__d = 1'b0;
         end
     end
@@ -96,7 +96,7 @@ module freq_divider(clock,reset,enable,divisor,strobe);
 endmodule // freq_divider
 
 
-module freq_divider__at_end(d,q,clock);
+module freq_divider__mid_interval(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -112,7 +112,7 @@ module freq_divider__at_end(d,q,clock);
        q <= d;
     end
 
-endmodule // freq_divider__at_end
+endmodule // freq_divider__mid_interval
 
 
 module freq_divider__remaining(d,q,clock);

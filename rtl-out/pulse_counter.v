@@ -19,7 +19,7 @@
 //   compare_value     in        32  value compared with the count for compare_match
 //   count             out       32  two's complement count, wrapping; registered
 //   compare_match     out        1  count == compare_value, combinational from the registered count
-//   pulse_overridden  out        1  strobe: the previous edge's net up/down pulse was overridden by clear, load or reset
+//   pulse_overridden  out        1  strobe: the previous edge's net up/down pulse was overridden by clear or load
 // ============================================================================
 
 
@@ -75,7 +75,7 @@ module pulse_counter(clock,reset,up,down,clear,load,load_value,compare_value,cou
         overridden__d = overridden__q;
         count = value__q;
         pulse_overridden = overridden__q;
-        overridden__d = (up ^ down) & (load | clear | reset);
+        overridden__d = (up ^ down) & (load | clear) & ~reset;
         compare_match = value__q == compare_value;
         if (down) begin
             delta = all_ones;

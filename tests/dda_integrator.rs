@@ -71,7 +71,6 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<DdaIntegr
         }
     }
     out.truncate(cycles);
-    out[0].reset = true;
     out
 }
 

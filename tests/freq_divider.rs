@@ -43,8 +43,7 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<FreqDivid
         }
     }
     out.truncate(cycles);
-    // Start from a defined state, as a user's design would.
-    out[0].reset = true;
+    // No reset at cycle 0: power-up must equal the reset state.
     out
 }
 
@@ -54,14 +53,23 @@ fn vector(inputs: &FreqDividerInputs) -> Vec<u64> {
 
 /// An independent monitor of the port contract (not derived from the model):
 /// it sees only the inputs applied at each rising edge and the strobe after it.
+///
+/// Between two strobes the divisor may change; the contract says the new D
+/// takes effect at the next strobe at the latest and no interval is shorter
+/// than the smaller D. So an interval lasts at least the smallest and at
+/// most the largest divisor applied during it (exactly D when D was
+/// constant), and a strobe must come once the largest is reached.
 #[derive(Default)]
 struct ContractMonitor {
     /// Enabled edges since the last strobe; None after reset (no strobe yet).
     edges_since_strobe: Option<u64>,
-    /// The divisor, if it has stayed the same on every edge since the last strobe (inclusive).
-    constant_divisor: Option<u64>,
-    /// The smallest divisor applied since the last strobe (inclusive).
+    /// Divisors applied on the enabled edges since the last strobe (inclusive).
     min_divisor: u64,
+    max_divisor: u64,
+    constant_divisor: Option<u64>,
+    /// D = 0 was applied during the interval: the divider was stopped, so
+    /// only "no strobe with D = 0" is checked until the next strobe.
+    stopped: bool,
     cycle: u64,
 }
 
@@ -85,12 +93,12 @@ impl ContractMonitor {
             return;
         }
         let d = inputs.divisor;
-        self.min_divisor = self.min_divisor.min(d);
-        if self.constant_divisor != Some(d) {
-            self.constant_divisor = None;
-        }
+        assert!(
+            !strobe || d != 0,
+            "cycle {cycle}: strobe on an edge with D=0"
+        );
         let Some(edges) = self.edges_since_strobe.as_mut() else {
-            // First interval after reset: the first enabled edge with D != 0 strobes.
+            // From power-up or reset, the first enabled edge with D != 0 strobes.
             assert_eq!(
                 strobe,
                 d != 0,
@@ -103,24 +111,31 @@ impl ContractMonitor {
         };
         *edges += 1;
         let edges = *edges;
+        self.min_divisor = self.min_divisor.min(d);
+        self.max_divisor = self.max_divisor.max(d);
+        self.stopped |= d == 0;
+        if self.constant_divisor != Some(d) {
+            self.constant_divisor = None;
+        }
         if strobe {
-            assert!(
-                d != 0 || self.min_divisor == 0,
-                "cycle {cycle}: strobe with D=0"
-            );
-            assert!(
-                edges >= self.min_divisor,
-                "cycle {cycle}: interval {edges} shorter than the smallest divisor {} applied during it",
-                self.min_divisor
-            );
-            if let Some(constant) = self.constant_divisor {
-                assert_eq!(edges, constant, "cycle {cycle}: interval with constant D");
+            if !self.stopped {
+                assert!(
+                    (self.min_divisor..=self.max_divisor).contains(&edges),
+                    "cycle {cycle}: interval {edges} outside the divisors applied during it ({}..={})",
+                    self.min_divisor,
+                    self.max_divisor
+                );
+                if let Some(constant) = self.constant_divisor {
+                    assert_eq!(edges, constant, "cycle {cycle}: interval with constant D");
+                }
             }
             self.restart(d);
-        } else if let Some(constant) = self.constant_divisor {
+        } else if !self.stopped {
             assert!(
-                constant == 0 || edges < constant,
-                "cycle {cycle}: no strobe after {edges} enabled edges with constant D={constant}"
+                edges < self.max_divisor,
+                "cycle {cycle}: no strobe after {edges} enabled edges (divisors {}..={})",
+                self.min_divisor,
+                self.max_divisor
             );
         }
     }
@@ -129,6 +144,8 @@ impl ContractMonitor {
         self.edges_since_strobe = Some(0);
         self.constant_divisor = Some(divisor);
         self.min_divisor = divisor;
+        self.max_divisor = divisor;
+        self.stopped = false;
     }
 }
 
@@ -188,6 +205,38 @@ fn every_divisor_change_at_every_phase_keeps_the_contract() {
                 run_against_model::<4>(&stimulus);
             }
         }
+    }
+}
+
+/// The monitor must catch a divider that goes quiet after a divisor change
+/// (a check that cannot fail is worse than none).
+#[test]
+#[should_panic(expected = "no strobe after")]
+fn monitor_catches_a_missing_strobe_after_a_divisor_change() {
+    let mut monitor = ContractMonitor::default();
+    let edge = |d| FreqDividerInputs {
+        reset: false,
+        enable: true,
+        divisor: d,
+    };
+    monitor.edge(&edge(10), true);
+    for _ in 0..5 {
+        monitor.edge(&edge(10), false);
+    }
+    for _ in 0..100 {
+        monitor.edge(&edge(3), false);
+    }
+}
+
+#[test]
+fn power_up_without_reset_strobes_like_after_reset() {
+    let mut from_power_up = Harness::new("freq_divider", FreqDivider::<32>::default()).unwrap();
+    let mut from_reset = Harness::new("freq_divider", FreqDivider::<32>::default()).unwrap();
+    from_reset.step_vector(&[1, 1, 3]).unwrap();
+    for cycle in 0..100 {
+        let a = from_power_up.step_vector(&[0, 1, 3]).unwrap();
+        let b = from_reset.step_vector(&[0, 1, 3]).unwrap();
+        assert_eq!(a, b, "cycle {cycle}");
     }
 }
 

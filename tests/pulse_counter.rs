@@ -96,13 +96,14 @@ fn narrow_rtl_matches_model() {
 }
 
 /// A 4-bit counter: from every count, every combination of the five control
-/// inputs with every load value and every compare value.
+/// inputs, every load value and every compare value.
 #[test]
 fn every_transition_of_a_4_bit_counter() {
     let mut harness = Harness::new("pulse_counter", PulseCounter::<4>::default()).unwrap();
     for start in 0..16u64 {
         for controls in 0..32u32 {
-            for value in 0..16u64 {
+            for value in 0..256u64 {
+                let (load_value, compare_value) = (value & 15, value >> 4);
                 let set = PulseCounterInputs {
                     load: true,
                     load_value: start,
@@ -116,8 +117,8 @@ fn every_transition_of_a_4_bit_counter() {
                     down: bit(2),
                     clear: bit(3),
                     load: bit(4),
-                    load_value: value,
-                    compare_value: value ^ 5,
+                    load_value,
+                    compare_value,
                 };
                 let got = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
                 let mut model = PulseCounterModel::new(4);
@@ -128,17 +129,17 @@ fn every_transition_of_a_4_bit_counter() {
     }
 }
 
-/// An independent position monitor: it tracks the true position from the
-/// pulses as a signed integer, and checks that the counter equals it (mod
-/// 2^32) after every edge, and that every pulse the counter did not count is
-/// reported by `pulse_overridden`.
+/// An independent position monitor, written from the port contract: it
+/// tracks the position from the pulses as a signed integer and checks that
+/// the counter equals it (mod 2^32) after every edge, and that every pulse
+/// the counter did not count (a net pulse under clear or load) is reported
+/// by `pulse_overridden`, and no other edge is.
 #[test]
 fn no_pulse_is_lost_or_invented_silently() {
     let mut rng = StdRng::seed_from_u64(77);
     let stimulus = random_stimulus(&mut rng, 300_000, 32);
     let mut harness = Harness::new("pulse_counter", PulseCounter::<32>::default()).unwrap();
     let mut position: i64 = 0;
-    let mut unreported = 0u32;
     for (cycle, inputs) in stimulus.iter().enumerate() {
         let out = outputs(&harness.step_vector(&vector(inputs)).unwrap());
         let net = inputs.up as i64 - inputs.down as i64;
@@ -149,14 +150,11 @@ fn no_pulse_is_lost_or_invented_silently() {
         } else {
             position += net;
         }
-        let overridden_pulse = net != 0 && (inputs.reset || inputs.clear || inputs.load);
+        let overridden_pulse = net != 0 && !inputs.reset && (inputs.clear || inputs.load);
         assert_eq!(
             out.pulse_overridden, overridden_pulse,
-            "cycle {cycle}: overridden pulse not reported"
+            "cycle {cycle}: pulse_overridden"
         );
-        if overridden_pulse && !out.pulse_overridden {
-            unreported += 1;
-        }
         assert_eq!(
             out.count,
             position as u64 & 0xffff_ffff,
@@ -168,7 +166,6 @@ fn no_pulse_is_lost_or_invented_silently() {
             "cycle {cycle}: compare"
         );
     }
-    assert_eq!(unreported, 0);
 }
 
 #[test]

@@ -42,8 +42,8 @@ fn operand(rng: &mut StdRng, mask: u64) -> u64 {
 fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<SequentialDividerInputs> {
     let mask = (1u64 << width) - 1;
     (0..cycles)
-        .map(|cycle| SequentialDividerInputs {
-            reset: cycle == 0 || rng.gen_ratio(1, 3000),
+        .map(|_| SequentialDividerInputs {
+            reset: rng.gen_ratio(1, 3000),
             start: rng.gen_bool(0.3),
             dividend: operand(rng, mask),
             divisor: operand(rng, mask),
@@ -53,17 +53,19 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<Sequentia
 
 /// Runs a stream through the RTL and the model, cycle by cycle, and checks
 /// every result against plain arithmetic.
-fn run_against_model<const W: usize>(stimulus: &[SequentialDividerInputs]) -> usize {
+fn run_against_model<const N: usize, const D: usize>(
+    stimulus: &[SequentialDividerInputs],
+) -> usize {
     let mut harness =
-        Harness::new("sequential_divider", SequentialDivider::<W>::default()).unwrap();
-    let mut model = SequentialDividerModel::new(W as u32);
+        Harness::new("sequential_divider", SequentialDivider::<N, D>::default()).unwrap();
+    let mut model = SequentialDividerModel::new(N as u32, D as u32);
     let mut operands = None;
     let mut results = 0;
     for (cycle, inputs) in stimulus.iter().enumerate() {
         let was_busy = model.outputs().busy;
         let rtl = outputs(&harness.step_vector(&vector(inputs)).unwrap());
         let expected = model.step(*inputs);
-        assert_eq!(rtl, expected, "W={W} cycle {cycle}: {inputs:?}");
+        assert_eq!(rtl, expected, "N={N} D={D} cycle {cycle}: {inputs:?}");
         if inputs.reset {
             operands = None;
         } else if inputs.start && !was_busy {
@@ -71,7 +73,7 @@ fn run_against_model<const W: usize>(stimulus: &[SequentialDividerInputs]) -> us
         }
         if rtl.done {
             let (dividend, divisor) = operands.expect("done without a start");
-            let (q, r, by_zero) = expected_result(dividend, divisor, W as u32);
+            let (q, r, by_zero) = expected_result(dividend, divisor, N as u32, D as u32);
             assert_eq!(
                 (rtl.quotient, rtl.remainder, rtl.divide_by_zero),
                 (q, r, by_zero),
@@ -86,9 +88,9 @@ fn run_against_model<const W: usize>(stimulus: &[SequentialDividerInputs]) -> us
 #[test]
 fn every_8_bit_operand_pair_with_exact_latency() {
     let mut harness =
-        Harness::new("sequential_divider", SequentialDivider::<8>::default()).unwrap();
+        Harness::new("sequential_divider", SequentialDivider::<8, 8>::default()).unwrap();
     let idle =
-        |h: &mut Harness<SequentialDivider<8>>| outputs(&h.step_vector(&[0, 0, 0, 0]).unwrap());
+        |h: &mut Harness<SequentialDivider<8, 8>>| outputs(&h.step_vector(&[0, 0, 0, 0]).unwrap());
     for dividend in 0..256u64 {
         for divisor in 0..256u64 {
             let first = outputs(&harness.step_vector(&[0, 1, dividend, divisor]).unwrap());
@@ -105,7 +107,30 @@ fn every_8_bit_operand_pair_with_exact_latency() {
                 !last.busy && last.done,
                 "{dividend}/{divisor}: done W+1 clocks after start"
             );
-            let expected = expected_result(dividend, divisor, 8);
+            let expected = expected_result(dividend, divisor, 8, 8);
+            assert_eq!(
+                (last.quotient, last.remainder, last.divide_by_zero),
+                expected,
+                "{dividend}/{divisor}"
+            );
+        }
+    }
+}
+
+/// Every 8-bit dividend with every 4-bit divisor, on an 8-by-4-bit divider.
+#[test]
+fn every_8_by_4_bit_operand_pair() {
+    let mut harness =
+        Harness::new("sequential_divider", SequentialDivider::<8, 4>::default()).unwrap();
+    for dividend in 0..256u64 {
+        for divisor in 0..16u64 {
+            harness.step_vector(&[0, 1, dividend, divisor]).unwrap();
+            for _ in 1..8 {
+                harness.step_vector(&[0, 0, 0, 0]).unwrap();
+            }
+            let last = outputs(&harness.step_vector(&[0, 0, 0, 0]).unwrap());
+            assert!(last.done, "{dividend}/{divisor}");
+            let expected = expected_result(dividend, divisor, 8, 4);
             assert_eq!(
                 (last.quotient, last.remainder, last.divide_by_zero),
                 expected,
@@ -118,15 +143,18 @@ fn every_8_bit_operand_pair_with_exact_latency() {
 #[test]
 fn random_32_bit_streams_match_the_model_and_arithmetic() {
     let mut rng = StdRng::seed_from_u64(0xd1_71de);
-    let results = run_against_model::<32>(&random_stimulus(&mut rng, 300_000, 32));
+    let results = run_against_model::<32, 32>(&random_stimulus(&mut rng, 300_000, 32));
     assert!(results > 5_000, "only {results} divisions completed");
 }
 
 #[test]
 fn narrow_widths_match_the_model_and_arithmetic() {
     let mut rng = StdRng::seed_from_u64(3);
-    run_against_model::<12>(&random_stimulus(&mut rng, 100_000, 12));
-    run_against_model::<2>(&random_stimulus(&mut rng, 20_000, 2));
+    run_against_model::<12, 12>(&random_stimulus(&mut rng, 100_000, 12));
+    run_against_model::<2, 2>(&random_stimulus(&mut rng, 20_000, 2));
+    // A divisor narrower than the dividend (the interpolator's 32-by-24).
+    run_against_model::<32, 24>(&random_stimulus(&mut rng, 100_000, 32));
+    run_against_model::<12, 5>(&random_stimulus(&mut rng, 100_000, 12));
 }
 
 #[test]
@@ -138,7 +166,7 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
         .collect();
     cross_simulate(
         &CosimDesign::exported("sequential_divider"),
-        SequentialDivider::<32>::default(),
+        SequentialDivider::<32, 32>::default(),
         &stimulus,
     )
     .unwrap_or_else(|e| panic!("{e}"));
@@ -151,9 +179,9 @@ fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
         .iter()
         .map(vector)
         .collect();
-    let mut block = SequentialDivider::<12>::default();
+    let mut block = SequentialDivider::<12, 12>::default();
     let design = CosimDesign::generated("sequential_divider_w12", &mut block)
         .unwrap_or_else(|e| panic!("{e}"));
-    cross_simulate(&design, SequentialDivider::<12>::default(), &stimulus)
+    cross_simulate(&design, SequentialDivider::<12, 12>::default(), &stimulus)
         .unwrap_or_else(|e| panic!("{e}"));
 }

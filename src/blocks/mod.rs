@@ -3,6 +3,7 @@
 //! reference model the RTL is proven against (in `tests/<block>.rs`).
 
 pub mod dda_integrator;
+pub mod dda_interpolator;
 pub mod freq_divider;
 pub mod pulse_counter;
 pub mod sequential_divider;

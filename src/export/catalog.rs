@@ -4,6 +4,7 @@
 use rust_hdl::core::prelude::*;
 
 use crate::blocks::dda_integrator::{self, DdaIntegrator};
+use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
@@ -56,11 +57,14 @@ pub fn catalog() -> Vec<ModuleSpec> {
         ModuleSpec {
             name: "sequential_divider",
             summary: sequential_divider::SUMMARY,
-            parameters: &[("W", "32", "operand and result width")],
+            parameters: &[
+                ("N", "32", "dividend and quotient width"),
+                ("D", "32", "divisor and remainder width"),
+            ],
             port_docs: sequential_divider::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
-            build: || Box::new(SequentialDivider::<32>::default()),
+            build: || Box::new(SequentialDivider::<32, 32>::default()),
         },
         ModuleSpec {
             name: "dda_integrator",
@@ -70,6 +74,23 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 110.0,
             lut4_budget: None,
             build: || Box::new(DdaIntegrator::<32>::default()),
+        },
+        ModuleSpec {
+            name: "dda_interpolator",
+            summary: dda_interpolator::SUMMARY,
+            parameters: &[
+                ("K", "3", "axes"),
+                (
+                    "P",
+                    "24",
+                    "period length width in ticks (next_period is 32 bits; P >= 2^24 is refused)",
+                ),
+                ("delta", "32", "per-axis steps per period, signed Q16.16"),
+            ],
+            port_docs: dda_interpolator::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            build: || Box::new(DdaInterpolator::<3>::default()),
         },
     ]
 }

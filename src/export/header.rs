@@ -21,7 +21,20 @@ pub struct PortRow<'a> {
     /// The RTL port.
     pub port: &'a Port,
     /// Its meaning, from the catalog.
-    pub meaning: &'static str,
+    pub meaning: String,
+}
+
+/// The index `n` when `port` is element n of the array documented as
+/// `doc` (`name__i` documents `name__0`, `name__1`, ...); `Some(None)` for
+/// a plain match.
+fn doc_match(doc: &str, port: &str) -> Option<Option<String>> {
+    if doc == port {
+        return Some(None);
+    }
+    let prefix = doc.strip_suffix("__i")?;
+    let index = port.strip_prefix(prefix)?.strip_prefix("__")?;
+    (!index.is_empty() && index.chars().all(|c| c.is_ascii_digit()))
+        .then(|| Some(index.to_string()))
 }
 
 /// Pairs every RTL port with its documentation, failing on any mismatch.
@@ -31,13 +44,18 @@ pub fn port_rows<'a>(
 ) -> Result<Vec<PortRow<'a>>, PortDocError> {
     let undocumented: Vec<&str> = ports
         .iter()
-        .filter(|p| !spec.port_docs.iter().any(|(name, _)| *name == p.name))
+        .filter(|p| {
+            !spec
+                .port_docs
+                .iter()
+                .any(|(name, _)| doc_match(name, &p.name).is_some())
+        })
         .map(|p| p.name.as_str())
         .collect();
     let unknown: Vec<&str> = spec
         .port_docs
         .iter()
-        .filter(|(name, _)| !ports.iter().any(|p| p.name == *name))
+        .filter(|(name, _)| !ports.iter().any(|p| doc_match(name, &p.name).is_some()))
         .map(|(name, _)| *name)
         .collect();
     if !undocumented.is_empty() || !unknown.is_empty() {
@@ -53,8 +71,10 @@ pub fn port_rows<'a>(
             meaning: spec
                 .port_docs
                 .iter()
-                .find(|(name, _)| *name == port.name)
-                .map(|(_, meaning)| *meaning)
+                .find_map(|(name, meaning)| match doc_match(name, &port.name)? {
+                    None => Some(meaning.to_string()),
+                    Some(index) => Some(meaning.replace("axis i", &format!("axis {index}"))),
+                })
                 .unwrap_or_default(),
         })
         .collect())

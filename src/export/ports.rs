@@ -66,8 +66,10 @@ impl Probe for TopPorts {
             AtomKind::InOutParameter => PortDirection::InOut,
             _ => return,
         };
+        // Arrays of signals are named `name$index` by rust-hdl; the export
+        // writes `name__index`.
         self.ports.push(Port {
-            name: name.to_string(),
+            name: name.replace('$', "__"),
             direction,
             width: signal.bits(),
         });

@@ -114,8 +114,9 @@ impl<B: VectorPorts> Harness<B> {
         Ok(())
     }
 
-    /// Applies one vector of input values (in [`VectorPorts::INPUTS`] order),
-    /// runs a cycle and returns the outputs (in [`VectorPorts::OUTPUTS`] order).
+    /// Applies one vector of input values (in [`VectorPorts::input_names`]
+    /// order), runs a cycle and returns the outputs (in
+    /// [`VectorPorts::output_names`] order).
     pub fn step_vector(&mut self, inputs: &[u64]) -> Result<Vec<u64>, HarnessError> {
         self.block.set_inputs(inputs);
         self.cycle()?;

@@ -38,15 +38,16 @@ impl<const N: usize> PortValue for Bits<N> {
 /// rust-hdl reports, so a stale list fails loudly. Implement it with
 /// [`crate::vector_ports!`].
 pub trait VectorPorts: Block {
-    /// Input port names, in vector column order.
-    const INPUTS: &'static [&'static str];
-    /// Output port names, in vector column order.
-    const OUTPUTS: &'static [&'static str];
+    /// Input port names as exported (`name__i` for element i of an array),
+    /// in vector column order.
+    fn input_names() -> Vec<String>;
+    /// Output port names as exported, in vector column order.
+    fn output_names() -> Vec<String>;
     /// The clock input.
     fn clock_mut(&mut self) -> &mut Signal<In, Clock>;
-    /// Sets every input from `values` (in `INPUTS` order).
+    /// Sets every input from `values` (in `input_names` order).
     fn set_inputs(&mut self, values: &[u64]);
-    /// Reads every output (in `OUTPUTS` order).
+    /// Reads every output (in `output_names` order).
     fn outputs(&self) -> Vec<u64>;
 }
 
@@ -62,8 +63,12 @@ pub trait VectorPorts: Block {
 macro_rules! vector_ports {
     (impl[$($generics:tt)*] $ty:ty { inputs: [$($input:ident),* $(,)?], outputs: [$($output:ident),* $(,)?] $(,)? }) => {
         impl<$($generics)*> $crate::sim::VectorPorts for $ty {
-            const INPUTS: &'static [&'static str] = &[$(stringify!($input)),*];
-            const OUTPUTS: &'static [&'static str] = &[$(stringify!($output)),*];
+            fn input_names() -> Vec<String> {
+                vec![$(stringify!($input).to_string()),*]
+            }
+            fn output_names() -> Vec<String> {
+                vec![$(stringify!($output).to_string()),*]
+            }
             fn clock_mut(&mut self) -> &mut ::rust_hdl::core::prelude::Signal<::rust_hdl::core::prelude::In, ::rust_hdl::core::prelude::Clock> {
                 &mut self.clock
             }

@@ -128,7 +128,7 @@ pub struct CosimPass {
     pub simulators: Vec<Simulator>,
 }
 
-/// Runs `stimulus` (one input vector per cycle, in `B::INPUTS` order) through
+/// Runs `stimulus` (one input vector per cycle, in `B::input_names()` order) through
 /// `block` in the Rust harness, then through `design` in every simulator, and
 /// compares all outputs on every cycle.
 pub fn cross_simulate<B: VectorPorts>(
@@ -249,11 +249,11 @@ fn check_vector_ports<B: VectorPorts>(block: &B) -> Result<(), CosimError> {
             .collect()
     };
     let (inputs, outputs) = (names(PortDirection::Input), names(PortDirection::Output));
-    if inputs != B::INPUTS || outputs != B::OUTPUTS {
+    if inputs != B::input_names() || outputs != B::output_names() {
         return Err(CosimError::Setup(format!(
             "vector_ports! lists inputs {:?} outputs {:?}, but the block has inputs {inputs:?} outputs {outputs:?}",
-            B::INPUTS,
-            B::OUTPUTS
+            B::input_names(),
+            B::output_names()
         )));
     }
     Ok(())

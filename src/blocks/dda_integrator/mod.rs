@@ -34,8 +34,9 @@
 //! ## Arithmetic
 //! On each tick, with s = acc + J computed without losing the carry: if
 //! s >= M then acc <- s - M and a pulse is emitted, else acc <- s. The RTL
-//! computes this as `acc >= M - J` (the input stage registers K = M - J), so
-//! the accumulator loop is one subtract/compare chain beside one add chain.
+//! computes this as `acc >= M - J` (the input stage registers K = M - J, and
+//! a flag for J > M), so the input stage and the accumulator loop are each
+//! one carry chain deep.
 //!
 //! ## Bad input
 //! * J > M (M != 0): J is treated as M, so every tick pulses, and the sticky
@@ -102,7 +103,9 @@ pub struct DdaIntegrator<const W: usize> {
     /// !K = !(M - J): stored inverted so that acc - K = acc + !K + 1 needs
     /// no inverter in front of the accumulator's carry chain.
     back_inverted: DFF<Bits<W>>,
-    step_too_large: DFF<Bit>,
+    /// J > M: every tick pulses and the accumulator holds. A flag instead
+    /// of muxing M into J keeps the input stage one carry chain deep.
+    saturated: DFF<Bit>,
     // Accumulator stage.
     acc: DFF<Bits<W>>,
     pulse_reg: DFF<Bit>,
@@ -134,7 +137,7 @@ impl<const W: usize> Default for DdaIntegrator<W> {
             ticked: Default::default(),
             step: Default::default(),
             back_inverted: Default::default(),
-            step_too_large: Default::default(),
+            saturated: Default::default(),
             acc: Default::default(),
             pulse_reg: Default::default(),
             overrange_reg: Default::default(),
@@ -158,7 +161,7 @@ impl<const W: usize> Logic for DdaIntegrator<W> {
             ticked,
             step,
             back_inverted,
-            step_too_large,
+            saturated,
             acc,
             pulse_reg,
             overrange_reg
@@ -181,14 +184,9 @@ impl<const W: usize> Logic for DdaIntegrator<W> {
         // "never pulse" case (J = 0, M = 0 means K = 2^W) off the
         // accumulator's critical path.
         self.ticked.d.next = self.tick.val() & (self.integrand.val() != self.zero.val());
-        self.step_too_large.d.next = self.tick.val() & self.too_large.val();
-        if self.too_large.val() {
-            self.step.d.next = self.modulus.val();
-            self.back_inverted.d.next = !self.zero.val();
-        } else {
-            self.step.d.next = self.integrand.val();
-            self.back_inverted.d.next = !self.headroom.val();
-        }
+        self.saturated.d.next = self.too_large.val();
+        self.step.d.next = self.integrand.val();
+        self.back_inverted.d.next = !self.headroom.val();
         // Accumulator stage: s = acc + J >= M  <=>  acc >= M - J.
         // No pulse when acc + !K + 1 does not carry out of the MSB.
         self.wrapped.next = self.acc.q.val() + self.back_inverted.q.val() + self.one.val();
@@ -196,15 +194,15 @@ impl<const W: usize> Logic for DdaIntegrator<W> {
             | ((self.acc.q.val() ^ self.back_inverted.q.val()) & !self.wrapped.val()))
             & self.msb.val())
             == self.zero.val();
-        self.pulse_reg.d.next = self.ticked.q.val() & !self.below.val();
-        if self.ticked.q.val() {
+        self.pulse_reg.d.next = self.ticked.q.val() & (self.saturated.q.val() | !self.below.val());
+        if self.ticked.q.val() & !self.saturated.q.val() {
             if self.below.val() {
                 self.acc.d.next = self.acc.q.val() + self.step.q.val();
             } else {
                 self.acc.d.next = self.wrapped.val();
             }
         }
-        if self.step_too_large.q.val() {
+        if self.ticked.q.val() & self.saturated.q.val() {
             self.overrange_reg.d.next = true;
         }
         if self.clear_overrange.val() {
@@ -212,7 +210,7 @@ impl<const W: usize> Logic for DdaIntegrator<W> {
         }
         if self.reset.val() {
             self.ticked.d.next = false;
-            self.step_too_large.d.next = false;
+            self.saturated.d.next = false;
             self.acc.d.next = self.zero.val();
             self.pulse_reg.d.next = false;
             self.overrange_reg.d.next = false;

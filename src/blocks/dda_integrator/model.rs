@@ -74,6 +74,11 @@ impl DdaIntegratorModel {
         }
     }
 
+    /// The outputs after the last edge.
+    pub fn outputs(&self) -> DdaIntegratorOutputs {
+        self.out
+    }
+
     /// The accumulator (for tests).
     pub fn accumulator(&self) -> u128 {
         self.acc

@@ -10,14 +10,20 @@
 //! |---|---|---|---|
 //! | `clock` | in | 1 | rising-edge clock |
 //! | `reset` | in | 1 | synchronous, active high: back to the power-up state after one clock |
-//! | `enable` | in | 1 | counting runs while high; while low the phase holds and no strobe comes |
+//! | `enable` | in | 1 | counting runs while high; while low the phase holds and no new strobe comes |
 //! | `divisor` | in | W | D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped |
 //! | `strobe` | out | 1 | one-clock pulse, registered |
 //!
 //! ## Timing
 //! The divider counts enabled clocks (clock edges with `enable` high). The
 //! strobe is registered: it is high during the clock after the enabled edge
-//! that completes an interval.
+//! that completes an interval. So a strobe can still be high in the first
+//! clock in which `enable` is low (it belongs to the last enabled edge); no
+//! edge with `enable` low ever produces one.
+//!
+//! Reset and power-up are the same state (every flip-flop 0), so a design
+//! that ties `reset` low and relies on the FPGA's initial values behaves
+//! exactly like one that resets.
 //!
 //! ```text
 //! D = 3       edge:  1   2   3   4   5   6   7
@@ -38,6 +44,10 @@
 //! There is none: every divisor value is legal. D = 0 stops the strobes; the
 //! interval in progress runs out silently and the divider then waits, parked,
 //! for a non-zero D (which strobes at the next enabled edge).
+//!
+//! An interval in progress always completes with the D it started with. A
+//! mistakenly huge D (up to 2^W - 1 clocks, 43 s at 100 MHz for W = 32) can
+//! therefore only be cut short by `reset`.
 //!
 //! ## Resources
 //! A W-bit down-counter with a reload mux and a registered end-of-interval
@@ -85,9 +95,11 @@ pub struct FreqDivider<const W: usize> {
     pub strobe: Signal<Out, Bit>,
     /// Enabled clocks left in the current interval, counting down to 1.
     remaining: DFF<Bits<W>>,
-    /// Registered `remaining <= 1`: the next enabled clock ends the interval.
-    /// Keeping it in a flip-flop takes the zero test off the reload path.
-    at_end: DFF<Bit>,
+    /// Registered `remaining > 1`: the next enabled clock does not end the
+    /// interval. A flip-flop takes the zero test off the reload path; it is
+    /// stored in this sense so that power-up (all flip-flops 0) and reset
+    /// give the same state.
+    mid_interval: DFF<Bit>,
     strobe_reg: DFF<Bit>,
     /// D <= 1 (the next interval is a single clock).
     divisor_at_most_one: Signal<Local, Bit>,
@@ -109,7 +121,7 @@ impl<const W: usize> Default for FreqDivider<W> {
             divisor: Default::default(),
             strobe: Default::default(),
             remaining: Default::default(),
-            at_end: Default::default(),
+            mid_interval: Default::default(),
             strobe_reg: Default::default(),
             divisor_at_most_one: Default::default(),
             zero: Constant::new(0u64.into()),
@@ -123,24 +135,24 @@ impl<const W: usize> Default for FreqDivider<W> {
 impl<const W: usize> Logic for FreqDivider<W> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, remaining, at_end, strobe_reg);
+        dff_setup!(self, clock, remaining, mid_interval, strobe_reg);
         self.strobe.next = self.strobe_reg.q.val();
         self.divisor_at_most_one.next =
             (self.divisor.val() & self.high_bits.val()) == self.zero.val();
         self.strobe_reg.d.next = false;
         if self.enable.val() {
-            if self.at_end.q.val() {
+            if !self.mid_interval.q.val() {
                 self.remaining.d.next = self.divisor.val();
-                self.at_end.d.next = self.divisor_at_most_one.val();
+                self.mid_interval.d.next = !self.divisor_at_most_one.val();
                 self.strobe_reg.d.next = self.divisor.val() != self.zero.val();
             } else {
                 self.remaining.d.next = self.remaining.q.val() - self.one.val();
-                self.at_end.d.next = self.remaining.q.val() == self.two.val();
+                self.mid_interval.d.next = self.remaining.q.val() != self.two.val();
             }
         }
         if self.reset.val() {
             self.remaining.d.next = self.zero.val();
-            self.at_end.d.next = true;
+            self.mid_interval.d.next = false;
             self.strobe_reg.d.next = false;
         }
     }

@@ -17,7 +17,7 @@
 //! | `compare_value` | in | W | value for `compare_match` |
 //! | `count` | out | W | two's complement, wrapping; registered |
 //! | `compare_match` | out | 1 | `count == compare_value`, combinational from the registered count |
-//! | `pulse_overridden` | out | 1 | registered strobe: the previous edge had a net `up` or `down` pulse that `clear`, `load` or `reset` overrode, so it was not counted |
+//! | `pulse_overridden` | out | 1 | registered strobe: the previous edge had a net `up` or `down` pulse that `clear` or `load` overrode, so it was not counted |
 //!
 //! ## Timing
 //! `count` is registered: one clock after an edge, it shows the result of
@@ -36,6 +36,10 @@
 //!   cleared value ±1); a CPU clearing a position register can read the flag.
 //! * Overflow wraps (two's complement), as position registers do; the CPU
 //!   extends the count in software from successive reads.
+//! * `up` and `down` are sampled every clock as levels: a pulse held high for
+//!   n clocks counts n times. They are synchronous inputs (from other blocks
+//!   of this clock domain); asynchronous pins need a synchronizer first, as
+//!   the quadrature decoder has.
 //! * `compare_value` tied to 0 flags count == 0; the count is unaffected.
 
 pub mod model;
@@ -68,7 +72,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ),
     (
         "pulse_overridden",
-        "strobe: the previous edge's net up/down pulse was overridden by clear, load or reset",
+        "strobe: the previous edge's net up/down pulse was overridden by clear or load",
     ),
 ];
 
@@ -136,8 +140,11 @@ impl<const W: usize> Logic for PulseCounter<W> {
         dff_setup!(self, clock, value, overridden);
         self.count.next = self.value.q.val();
         self.pulse_overridden.next = self.overridden.q.val();
+        // Reset is not an override: it returns to the power-up state, in
+        // which the flag is 0.
         self.overridden.d.next = (self.up.val() ^ self.down.val())
-            & (self.load.val() | self.clear.val() | self.reset.val());
+            & (self.load.val() | self.clear.val())
+            & !self.reset.val();
         self.compare_match.next = self.value.q.val() == self.compare_value.val();
         // One adder for both directions: +1 or +(-1), applied only on a net pulse.
         if self.down.val() {

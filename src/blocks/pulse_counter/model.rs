@@ -26,7 +26,7 @@ pub struct PulseCounterOutputs {
     pub count: u64,
     /// `count == compare_value`.
     pub compare_match: bool,
-    /// The edge's net up/down pulse was overridden by clear, load or reset.
+    /// The edge's net up/down pulse was overridden by clear or load.
     pub pulse_overridden: bool,
 }
 
@@ -59,7 +59,7 @@ impl PulseCounterModel {
     /// `compare_value` still applied).
     pub fn step(&mut self, inputs: PulseCounterInputs) -> PulseCounterOutputs {
         let net_pulse = inputs.up != inputs.down;
-        let overridden = net_pulse && (inputs.reset || inputs.clear || inputs.load);
+        let overridden = net_pulse && !inputs.reset && (inputs.clear || inputs.load);
         if inputs.reset || inputs.clear {
             self.count = 0;
         } else if inputs.load {

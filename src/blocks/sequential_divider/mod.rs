@@ -1,54 +1,64 @@
-//! # `sequential_divider`: unsigned W-bit divider, one quotient bit per clock
+//! # `sequential_divider`: unsigned N-bit by D-bit divider, one quotient bit per clock
 //!
 //! rust-hdl has no `/`, and a combinational 32-bit divider would not close
 //! timing anyway. This block computes `dividend / divisor` and
-//! `dividend % divisor` by restoring division in W clocks, for blocks that
+//! `dividend % divisor` by restoring division, one quotient bit per clock,
+//! for blocks that
 //! need a division now and then (the uniform pulse generator computes its
 //! pulse periods with it, one period ahead).
 //!
-//! ## Ports (`W` = 32 in the exported `sequential_divider`)
+//! ## Ports (`N` = `D` = 32 in the exported `sequential_divider`)
+//! The dividend and quotient are N bits wide, the divisor and remainder D
+//! bits (D <= N). The remainder is below the divisor, so the subtractor is
+//! only D bits long: a narrow divisor makes a faster divider.
+//!
 //! | port | dir | width | meaning |
 //! |---|---|---|---|
 //! | `clock` | in | 1 | rising-edge clock |
 //! | `reset` | in | 1 | synchronous, active high: idle, outputs 0 |
 //! | `start` | in | 1 | start a division of `dividend` by `divisor` (sampled only while `busy` is low) |
-//! | `dividend` | in | W | unsigned dividend, sampled with `start` |
-//! | `divisor` | in | W | unsigned divisor, sampled with `start` |
+//! | `dividend` | in | N | unsigned dividend, sampled with `start` |
+//! | `divisor` | in | D | unsigned divisor, sampled with `start` |
 //! | `busy` | out | 1 | a division is running; `start` is ignored |
 //! | `done` | out | 1 | one-clock strobe: `quotient`, `remainder` and `divide_by_zero` are valid |
-//! | `quotient` | out | W | `dividend / divisor`; valid from `done` until the next `start` |
-//! | `remainder` | out | W | `dividend % divisor`; valid from `done` until the next `start` |
+//! | `quotient` | out | N | `dividend / divisor`; valid from `done` until the next `start` |
+//! | `remainder` | out | D | `dividend % divisor`; valid from `done` until the next `start` |
 //! | `divide_by_zero` | out | 1 | the divisor was 0; valid with the result |
 //!
 //! ## Timing
 //! ```text
-//! edge:      s   s+1  ...  s+W   s+W+1
+//! edge:      s   s+1  ...  s+N   s+N+1
 //! start    ‾‾‾\______________________        (sampled at edge s, busy low)
-//! busy     ____/‾‾‾‾‾‾‾‾‾‾‾‾‾\_______        high after edges s .. s+W-1
-//! done     __________________/‾‾‾\___        high for the clock after edge s+W
+//! busy     ____/‾‾‾‾‾‾‾‾‾‾‾‾‾\_______        high after edges s .. s+N-1
+//! done     __________________/‾‾‾\___        high for the clock after edge s+N
 //! ```
-//! Latency from the start edge to `done`: W + 1 clocks (33 for W = 32).
-//! `start` may be high in the `done` cycle: the next division begins at once,
-//! so back-to-back divisions take W + 1 clocks each.
+//! `start` is sampled at edge s; `done` is high in the clock after edge
+//! s + N, that is N clocks after the start edge (32 for N = 32), with the
+//! result valid from then until the next start. `start` may be high in the
+//! `done` cycle: the next division begins at once, so back-to-back divisions
+//! take N + 1 clocks each.
 //!
 //! ## Bad input
 //! * Divisor 0: the division runs its W clocks as usual and gives the
 //!   restoring algorithm's natural result, `quotient` = all ones (the
-//!   largest value) and `remainder` = `dividend`, with `divide_by_zero` set.
+//!   largest value) and `remainder` = the low D bits of `dividend`, with
+//!   `divide_by_zero` set.
 //! * `start` while `busy`: ignored; the running division is not disturbed.
 //!   `busy` is the handshake: issue `start` only while it is low.
 //! * While `busy`, `quotient` and `remainder` show intermediate values.
 //!
 //! ## Structure
-//! Shift registers for the partial remainder and the quotient, one W-bit
-//! subtractor and comparator, and an 8-bit step counter (W <= 64).
+//! Shift registers for the partial remainder (D bits) and the quotient (N
+//! bits), one D-bit subtractor whose carry out is the comparison, and an
+//! 8-bit step counter (2 <= D <= N <= 63).
 
 pub mod model;
 
 use rust_hdl::prelude::*;
 
 /// One line for the export header and the `rtl-out` index.
-pub const SUMMARY: &str = "unsigned W-bit restoring divider: quotient and remainder in W+1 clocks";
+pub const SUMMARY: &str =
+    "unsigned N-by-D-bit restoring divider: quotient and remainder N clocks after start";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
 pub const PORT_DOCS: &[(&str, &str)] = &[
@@ -78,7 +88,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
 
 /// Unsigned restoring divider. See the [module documentation](self) for the datasheet.
 #[derive(Clone, Debug, LogicBlock)]
-pub struct SequentialDivider<const W: usize> {
+pub struct SequentialDivider<const N: usize, const D: usize> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
     /// Synchronous reset, active high.
@@ -86,44 +96,54 @@ pub struct SequentialDivider<const W: usize> {
     /// Start a division.
     pub start: Signal<In, Bit>,
     /// Unsigned dividend.
-    pub dividend: Signal<In, Bits<W>>,
+    pub dividend: Signal<In, Bits<N>>,
     /// Unsigned divisor.
-    pub divisor: Signal<In, Bits<W>>,
+    pub divisor: Signal<In, Bits<D>>,
     /// A division is running.
     pub busy: Signal<Out, Bit>,
     /// The result is valid (one-clock strobe).
     pub done: Signal<Out, Bit>,
     /// `dividend / divisor`.
-    pub quotient: Signal<Out, Bits<W>>,
+    pub quotient: Signal<Out, Bits<N>>,
     /// `dividend % divisor`.
-    pub remainder: Signal<Out, Bits<W>>,
+    pub remainder: Signal<Out, Bits<D>>,
     /// The divisor was 0.
     pub divide_by_zero: Signal<Out, Bit>,
     /// Dividend bits not yet consumed (high end) and quotient bits (low end).
-    shift: DFF<Bits<W>>,
-    partial: DFF<Bits<W>>,
-    denominator: DFF<Bits<W>>,
+    shift: DFF<Bits<N>>,
+    partial: DFF<Bits<D>>,
+    /// The divisor, stored inverted: shifted - d = shifted + !d + 1 needs no
+    /// inverters in front of the carry chain.
+    denominator_inverted: DFF<Bits<D>>,
     steps_left: DFF<Bits<8>>,
     running: DFF<Bit>,
     finished: DFF<Bit>,
     by_zero: DFF<Bit>,
-    /// The partial remainder shifted left with the next dividend bit, low W bits.
-    shifted: Signal<Local, Bits<W>>,
-    /// Bit W of the shifted remainder: set means it exceeds any divisor.
+    /// The partial remainder shifted left with the next dividend bit, low D bits.
+    shifted: Signal<Local, Bits<D>>,
+    /// Bit D of the shifted remainder: set means it exceeds any divisor.
     shifted_overflows: Signal<Local, Bit>,
-    zero: Constant<Bits<W>>,
-    one: Constant<Bits<W>>,
-    msb: Constant<Bits<W>>,
+    /// shifted - divisor, low D bits.
+    difference: Signal<Local, Bits<D>>,
+    /// shifted >= divisor (D-bit compare), the carry out of the subtraction.
+    fits: Signal<Local, Bit>,
+    zero: Constant<Bits<N>>,
+    one: Constant<Bits<N>>,
+    msb: Constant<Bits<N>>,
+    zero_d: Constant<Bits<D>>,
+    one_d: Constant<Bits<D>>,
+    msb_d: Constant<Bits<D>>,
     width: Constant<Bits<8>>,
     one_step: Constant<Bits<8>>,
     no_steps: Constant<Bits<8>>,
 }
 
-impl<const W: usize> Default for SequentialDivider<W> {
+impl<const N: usize, const D: usize> Default for SequentialDivider<N, D> {
     fn default() -> Self {
+        // 64 bits would need a 65-bit model; no block needs it.
         assert!(
-            (2..=64).contains(&W),
-            "SequentialDivider width must be 2..=64"
+            2 <= D && D <= N && N <= 63,
+            "SequentialDivider needs 2 <= D <= N <= 63"
         );
         Self {
             clock: Default::default(),
@@ -138,24 +158,29 @@ impl<const W: usize> Default for SequentialDivider<W> {
             divide_by_zero: Default::default(),
             shift: Default::default(),
             partial: Default::default(),
-            denominator: Default::default(),
+            denominator_inverted: Default::default(),
             steps_left: Default::default(),
             running: Default::default(),
             finished: Default::default(),
             by_zero: Default::default(),
             shifted: Default::default(),
             shifted_overflows: Default::default(),
+            difference: Default::default(),
+            fits: Default::default(),
             zero: Constant::new(0u64.into()),
             one: Constant::new(1u64.into()),
-            msb: Constant::new((1u64 << (W - 1)).into()),
-            width: Constant::new((W as u64).into()),
+            msb: Constant::new((1u64 << (N - 1)).into()),
+            zero_d: Constant::new(0u64.into()),
+            one_d: Constant::new(1u64.into()),
+            msb_d: Constant::new((1u64 << (D - 1)).into()),
+            width: Constant::new((N as u64).into()),
             one_step: Constant::new(1u64.into()),
             no_steps: Constant::new(0u64.into()),
         }
     }
 }
 
-impl<const W: usize> Logic for SequentialDivider<W> {
+impl<const N: usize, const D: usize> Logic for SequentialDivider<N, D> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -163,7 +188,7 @@ impl<const W: usize> Logic for SequentialDivider<W> {
             clock,
             shift,
             partial,
-            denominator,
+            denominator_inverted,
             steps_left,
             running,
             finished,
@@ -177,19 +202,26 @@ impl<const W: usize> Logic for SequentialDivider<W> {
         // Shifts are wiring; `x + x` would cost a carry chain each.
         self.shifted.next = self.partial.q.val() << 1;
         if (self.shift.q.val() & self.msb.val()) != self.zero.val() {
-            self.shifted.next = (self.partial.q.val() << 1) | self.one.val();
+            self.shifted.next = (self.partial.q.val() << 1) | self.one_d.val();
         }
-        self.shifted_overflows.next = (self.partial.q.val() & self.msb.val()) != self.zero.val();
+        self.shifted_overflows.next =
+            (self.partial.q.val() & self.msb_d.val()) != self.zero_d.val();
+        self.difference.next =
+            self.shifted.val() + self.denominator_inverted.q.val() + self.one_d.val();
+        self.fits.next = (((self.shifted.val() & self.denominator_inverted.q.val())
+            | ((self.shifted.val() ^ self.denominator_inverted.q.val()) & !self.difference.val()))
+            & self.msb_d.val())
+            != self.zero_d.val();
         self.finished.d.next = false;
         if self.running.q.val() {
-            // `shifted < denominator` keeps the operand order of the
-            // subtraction, so yosys computes both on one carry chain.
-            if !self.shifted_overflows.val() & (self.shifted.val() < self.denominator.q.val()) {
+            // One carry chain computes the difference; its carry out (from
+            // the MSBs: a&b | (a^b)&!sum) says whether the divisor fits.
+            if self.fits.val() | self.shifted_overflows.val() {
+                self.partial.d.next = self.difference.val();
+                self.shift.d.next = (self.shift.q.val() << 1) | self.one.val();
+            } else {
                 self.partial.d.next = self.shifted.val();
                 self.shift.d.next = self.shift.q.val() << 1;
-            } else {
-                self.partial.d.next = self.shifted.val() - self.denominator.q.val();
-                self.shift.d.next = (self.shift.q.val() << 1) | self.one.val();
             }
             self.steps_left.d.next = self.steps_left.q.val() - self.one_step.val();
             if self.steps_left.q.val() == self.one_step.val() {
@@ -198,16 +230,16 @@ impl<const W: usize> Logic for SequentialDivider<W> {
             }
         } else if self.start.val() {
             self.shift.d.next = self.dividend.val();
-            self.partial.d.next = self.zero.val();
-            self.denominator.d.next = self.divisor.val();
+            self.partial.d.next = self.zero_d.val();
+            self.denominator_inverted.d.next = !self.divisor.val();
             self.steps_left.d.next = self.width.val();
             self.running.d.next = true;
-            self.by_zero.d.next = self.divisor.val() == self.zero.val();
+            self.by_zero.d.next = self.divisor.val() == self.zero_d.val();
         }
         if self.reset.val() {
             self.shift.d.next = self.zero.val();
-            self.partial.d.next = self.zero.val();
-            self.denominator.d.next = self.zero.val();
+            self.partial.d.next = self.zero_d.val();
+            self.denominator_inverted.d.next = !self.zero_d.val();
             self.steps_left.d.next = self.no_steps.val();
             self.running.d.next = false;
             self.finished.d.next = false;
@@ -216,7 +248,7 @@ impl<const W: usize> Logic for SequentialDivider<W> {
     }
 }
 
-crate::vector_ports!(impl[const W: usize] SequentialDivider<W> {
+crate::vector_ports!(impl[const N: usize, const D: usize] SequentialDivider<N, D> {
     inputs: [reset, start, dividend, divisor],
     outputs: [busy, done, quotient, remainder, divide_by_zero],
 });

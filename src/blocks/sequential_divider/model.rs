@@ -1,17 +1,20 @@
 //! Reference model of [`super::SequentialDivider`], cycle-exact, and the
 //! arithmetic it must produce.
 
-/// The result a division must give: `(quotient, remainder, divide_by_zero)`.
-/// Divisor 0 gives all ones and the dividend (the restoring algorithm's result).
-pub fn expected_result(dividend: u64, divisor: u64, width: u32) -> (u64, u64, bool) {
-    let mask = if width == 64 {
-        u64::MAX
-    } else {
-        (1u64 << width) - 1
-    };
-    let (dividend, divisor) = (dividend & mask, divisor & mask);
+/// The result a division must give: `(quotient, remainder, divide_by_zero)`
+/// for an N-bit dividend and a D-bit divisor. Divisor 0 gives all ones and
+/// the dividend's low D bits (the restoring algorithm's result).
+pub fn expected_result(
+    dividend: u64,
+    divisor: u64,
+    dividend_bits: u32,
+    divisor_bits: u32,
+) -> (u64, u64, bool) {
+    let n_mask = (1u64 << dividend_bits) - 1;
+    let d_mask = (1u64 << divisor_bits) - 1;
+    let (dividend, divisor) = (dividend & n_mask, divisor & d_mask);
     if divisor == 0 {
-        (mask, dividend, true)
+        (n_mask, dividend & d_mask, true)
     } else {
         (dividend / divisor, dividend % divisor, false)
     }
@@ -45,23 +48,31 @@ pub struct SequentialDividerOutputs {
     pub divide_by_zero: bool,
 }
 
-/// Plain-Rust, cycle-exact model of a `width`-bit sequential divider.
+/// Plain-Rust, cycle-exact model of an N-by-D-bit sequential divider.
 #[derive(Clone, Debug)]
 pub struct SequentialDividerModel {
     width: u32,
     mask: u64,
+    divisor_bits: u32,
+    divisor_mask: u64,
     steps_left: u32,
     denominator: u64,
     out: SequentialDividerOutputs,
 }
 
 impl SequentialDividerModel {
-    /// A divider of `width` bits (2 to 63), idle.
-    pub fn new(width: u32) -> Self {
-        assert!((2..=63).contains(&width), "model width must be 2..=63");
+    /// A divider with an N = `width`-bit dividend and a D = `divisor_bits`
+    /// divisor (2 <= D <= N <= 63), idle.
+    pub fn new(width: u32, divisor_bits: u32) -> Self {
+        assert!(
+            2 <= divisor_bits && divisor_bits <= width && width <= 63,
+            "need 2 <= D <= N <= 63"
+        );
         Self {
             width,
             mask: (1u64 << width) - 1,
+            divisor_bits,
+            divisor_mask: (1u64 << divisor_bits) - 1,
             steps_left: 0,
             denominator: 0,
             out: SequentialDividerOutputs::default(),
@@ -84,10 +95,10 @@ impl SequentialDividerModel {
             let shifted = (out.remainder << 1) | next_bit;
             let quotient = (out.quotient << 1) & self.mask;
             if shifted >= self.denominator {
-                out.remainder = (shifted - self.denominator) & self.mask;
+                out.remainder = (shifted - self.denominator) & self.divisor_mask;
                 out.quotient = quotient | 1;
             } else {
-                out.remainder = shifted & self.mask;
+                out.remainder = shifted & self.divisor_mask;
                 out.quotient = quotient;
             }
             self.steps_left -= 1;
@@ -98,13 +109,13 @@ impl SequentialDividerModel {
         } else if inputs.start {
             out.quotient = inputs.dividend & self.mask;
             out.remainder = 0;
-            self.denominator = inputs.divisor & self.mask;
+            self.denominator = inputs.divisor & self.divisor_mask;
             self.steps_left = self.width;
             out.busy = true;
             out.divide_by_zero = self.denominator == 0;
         }
         if inputs.reset {
-            *self = Self::new(self.width);
+            *self = Self::new(self.width, self.divisor_bits);
         }
         self.out
     }
