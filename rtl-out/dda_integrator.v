@@ -19,8 +19,7 @@
 //   overrange        out        1  sticky: a tick was processed with J > M (M != 0)
 // ============================================================================
 
-
-
+`default_nettype none
 module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
 
     // Module arguments
@@ -289,3 +288,4 @@ module dda_integrator__ticked(d,q,clock);
     end
 
 endmodule // dda_integrator__ticked
+`default_nettype wire

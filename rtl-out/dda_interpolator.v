@@ -34,8 +34,7 @@
 //   load_error     out        1  sticky: a load was refused (not ready, or P out of range)
 // ============================================================================
 
-
-
+`default_nettype none
 module dda_interpolator(clock,reset,tick,load,next_period,next_delta__0,next_delta__1,next_delta__2,clear_status,step__0,step__1,step__2,dir__0,dir__1,dir__2,period_done,ready,running,underrun,overrange,load_error);
 
     // Module arguments
@@ -3638,3 +3637,4 @@ module dda_interpolator__underrun_reg(d,q,clock);
     end
 
 endmodule // dda_interpolator__underrun_reg
+`default_nettype wire

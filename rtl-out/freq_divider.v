@@ -16,8 +16,7 @@
 //   strobe   out        1  one-clock strobe, registered
 // ============================================================================
 
-
-
+`default_nettype none
 module freq_divider(clock,reset,enable,divisor,strobe);
 
     // Module arguments
@@ -151,3 +150,4 @@ module freq_divider__strobe_reg(d,q,clock);
     end
 
 endmodule // freq_divider__strobe_reg
+`default_nettype wire

@@ -22,8 +22,7 @@
 //   pulse_overridden  out        1  strobe: the previous edge's net up/down pulse was overridden by clear or load
 // ============================================================================
 
-
-
+`default_nettype none
 module pulse_counter(clock,reset,up,down,clear,load,load_value,compare_value,count,compare_match,pulse_overridden);
 
     // Module arguments
@@ -133,3 +132,4 @@ module pulse_counter__value(d,q,clock);
     end
 
 endmodule // pulse_counter__value
+`default_nettype wire

@@ -22,8 +22,7 @@
 //   divide_by_zero  out        1  the divisor was 0 (quotient all ones, remainder = dividend)
 // ============================================================================
 
-
-
+`default_nettype none
 module sequential_divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
 
     // Module arguments
@@ -312,3 +311,4 @@ module sequential_divider__steps_left(d,q,clock);
     end
 
 endmodule // sequential_divider__steps_left
+`default_nettype wire

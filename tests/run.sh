@@ -26,5 +26,13 @@ for tool in "${tools[@]}"; do
   command -v "$tool" >/dev/null 2>&1 || { echo "still missing after install: $tool" >&2; exit 1; }
 done
 
+# Cross-simulation builds testbenches with `verilator --binary` (Verilator 5).
+verilator_major=$(verilator --version | sed -n 's/^Verilator \([0-9]*\)\..*/\1/p')
+if [ "${verilator_major:-0}" -lt 5 ]; then
+  echo "Verilator 5 or newer is needed (found: $(verilator --version))." >&2
+  echo "Debian 12 ships 5.006: apt-get install -y verilator" >&2
+  exit 1
+fi
+
 # Test binaries run one after another; the tests inside one run in parallel.
 cargo test

@@ -52,7 +52,12 @@ pub fn render_module(spec: ModuleSpec) -> Result<RenderedModule, ExportError> {
     let ports = top_ports(block.as_ref());
     let rows = header::port_rows(&spec, &ports)?;
     let header = header::verilog_header(&spec, &rows);
-    let verilog = format!("{header}\n{}", module_verilog(spec.name, block.as_mut())?);
+    // `default_nettype none makes a mistyped net an error in the user's
+    // project; it is restored at the end so that other files are unaffected.
+    let verilog = format!(
+        "{header}\n`default_nettype none\n{}\n`default_nettype wire\n",
+        module_verilog(spec.name, block.as_mut())?.trim()
+    );
     let testbench = testbench_verilog(spec.name, &generator(), &ports);
     Ok(RenderedModule {
         spec,
