@@ -5,8 +5,10 @@
 
 use std::time::Instant;
 
+use motion_hdl::blocks::dda_integrator::DdaIntegrator;
+use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
 use motion_hdl::blocks::freq_divider::FreqDivider;
-use motion_hdl::sim::Harness;
+use motion_hdl::sim::{Harness, VectorPorts};
 use rust_hdl::prelude::*;
 
 fn harness_rate(cycles: u64) -> f64 {
@@ -20,6 +22,16 @@ fn harness_rate(cycles: u64) -> f64 {
     let rate = cycles as f64 / start.elapsed().as_secs_f64();
     assert!(strobes > 0);
     rate
+}
+
+/// Cycles per second of `block` stepped by the harness on a fixed vector.
+fn stepping_rate<B: VectorPorts>(name: &str, block: B, vector: &[u64], cycles: u64) -> f64 {
+    let mut harness = Harness::new(name, block).unwrap();
+    let start = Instant::now();
+    for _ in 0..cycles {
+        harness.step_vector(vector).unwrap();
+    }
+    cycles as f64 / start.elapsed().as_secs_f64()
 }
 
 fn threaded_rate(cycles: u64) -> f64 {
