@@ -57,10 +57,18 @@ fn main() {
     println!("32-bit freq_divider, cycles per second (release build):");
     println!("  motion_hdl::sim::Harness      {:>12.0}", harness);
     println!("  rust-hdl threaded Simulation  {:>12.0}", threaded);
-    println!("  ratio                         {:>12.1}x", harness / threaded);
+    println!(
+        "  ratio                         {:>12.1}x",
+        harness / threaded
+    );
     // A 32-bit DDA ticking every clock (J/M = 3/7), and the 3-axis
     // interpolator idle-ticking (its per-cycle cost does not depend on load).
-    let dda = stepping_rate("dda_integrator", DdaIntegrator::<32>::default(), &[0, 1, 3, 7, 0], 2_000_000);
+    let dda = stepping_rate(
+        "dda_integrator",
+        DdaIntegrator::<32>::default(),
+        &[0, 1, 3, 7, 0],
+        2_000_000,
+    );
     let interpolator = stepping_rate(
         "dda_interpolator",
         DdaInterpolator::<3>::default(),
@@ -68,5 +76,8 @@ fn main() {
         500_000,
     );
     println!("  dda_integrator (32-bit), harness      {:>12.0}", dda);
-    println!("  dda_interpolator (3 axes), harness    {:>12.0}", interpolator);
+    println!(
+        "  dda_interpolator (3 axes), harness    {:>12.0}",
+        interpolator
+    );
 }

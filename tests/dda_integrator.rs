@@ -6,7 +6,7 @@ use motion_hdl::blocks::dda_integrator::model::{
 };
 use motion_hdl::blocks::dda_integrator::DdaIntegrator;
 use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -34,11 +34,7 @@ fn outputs(v: &[u64]) -> DdaIntegratorOutputs {
 /// below the accumulator), tick densities from sparse to every clock, and
 /// rare overrange clears and resets.
 fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<DdaIntegratorInputs> {
-    let mask = if width == 64 {
-        u64::MAX
-    } else {
-        (1u64 << width) - 1
-    };
+    let mask = motion_hdl::blocks::width_mask(width);
     let mut out = Vec::with_capacity(cycles);
     while out.len() < cycles {
         let modulus = match rng.gen_range(0..6) {
@@ -194,9 +190,10 @@ fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
         .iter()
         .map(vector)
         .collect();
-    let mut block = DdaIntegrator::<12>::default();
-    let design =
-        CosimDesign::generated("dda_integrator_w12", &mut block).unwrap_or_else(|e| panic!("{e}"));
-    cross_simulate(&design, DdaIntegrator::<12>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate_generated(
+        "dda_integrator_w12",
+        DdaIntegrator::<12>::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

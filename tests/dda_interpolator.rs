@@ -9,7 +9,7 @@ use motion_hdl::blocks::dda_interpolator::model::{
 };
 use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
 use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -355,9 +355,10 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
 #[test]
 fn single_axis_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus::<1>(0xc058, 20_000);
-    let mut block = DdaInterpolator::<1>::default();
-    let design =
-        CosimDesign::generated("dda_interpolator_k1", &mut block).unwrap_or_else(|e| panic!("{e}"));
-    cross_simulate(&design, DdaInterpolator::<1>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate_generated(
+        "dda_interpolator_k1",
+        DdaInterpolator::<1>::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

@@ -4,7 +4,7 @@
 use motion_hdl::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
 use motion_hdl::blocks::freq_divider::FreqDivider;
 use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -12,11 +12,7 @@ use rand::{Rng, SeedableRng};
 /// sometimes 0), enable gating of varying density, divisor changes at any
 /// phase, and rare resets.
 fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<FreqDividerInputs> {
-    let mask = if width == 64 {
-        u64::MAX
-    } else {
-        (1u64 << width) - 1
-    };
+    let mask = motion_hdl::blocks::width_mask(width);
     let mut out = Vec::with_capacity(cycles);
     let mut divisor = 3;
     let mut enable_density = 1.0;
@@ -283,9 +279,6 @@ fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
         .iter()
         .map(vector)
         .collect();
-    let mut block = FreqDivider::<12>::default();
-    let design =
-        CosimDesign::generated("freq_divider_w12", &mut block).unwrap_or_else(|e| panic!("{e}"));
-    cross_simulate(&design, FreqDivider::<12>::default(), &stimulus)
+    cross_simulate_generated("freq_divider_w12", FreqDivider::<12>::default(), &stimulus)
         .unwrap_or_else(|e| panic!("{e}"));
 }

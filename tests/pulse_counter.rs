@@ -6,7 +6,7 @@ use motion_hdl::blocks::pulse_counter::model::{
 };
 use motion_hdl::blocks::pulse_counter::PulseCounter;
 use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -34,11 +34,7 @@ fn outputs(v: &[u64]) -> PulseCounterOutputs {
 /// down), with clears, loads and resets landing on pulses, loads near the
 /// wrap point, and compare values near the count so that matches happen.
 fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<PulseCounterInputs> {
-    let mask = if width == 64 {
-        u64::MAX
-    } else {
-        (1u64 << width) - 1
-    };
+    let mask = motion_hdl::blocks::width_mask(width);
     // The model only steers the compare values towards the count.
     let mut shadow = PulseCounterModel::new(width);
     let mut count = 0u64;
@@ -190,9 +186,10 @@ fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
         .iter()
         .map(vector)
         .collect();
-    let mut block = PulseCounter::<12>::default();
-    let design =
-        CosimDesign::generated("pulse_counter_w12", &mut block).unwrap_or_else(|e| panic!("{e}"));
-    cross_simulate(&design, PulseCounter::<12>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate_generated(
+        "pulse_counter_w12",
+        PulseCounter::<12>::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

@@ -6,7 +6,7 @@ use motion_hdl::blocks::sequential_divider::model::{
 };
 use motion_hdl::blocks::sequential_divider::SequentialDivider;
 use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -40,7 +40,7 @@ fn operand(rng: &mut StdRng, mask: u64) -> u64 {
 /// A cycle stream: starts at random times (often while busy, sometimes in
 /// the `done` cycle), operands that change while busy, and rare resets.
 fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<SequentialDividerInputs> {
-    let mask = (1u64 << width) - 1;
+    let mask = motion_hdl::blocks::width_mask(width);
     (0..cycles)
         .map(|_| SequentialDividerInputs {
             reset: rng.gen_ratio(1, 3000),
@@ -179,9 +179,10 @@ fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
         .iter()
         .map(vector)
         .collect();
-    let mut block = SequentialDivider::<12, 12>::default();
-    let design = CosimDesign::generated("sequential_divider_w12", &mut block)
-        .unwrap_or_else(|e| panic!("{e}"));
-    cross_simulate(&design, SequentialDivider::<12, 12>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate_generated(
+        "sequential_divider_w12",
+        SequentialDivider::<12, 12>::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

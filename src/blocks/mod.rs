@@ -7,3 +7,10 @@ pub mod dda_interpolator;
 pub mod freq_divider;
 pub mod pulse_counter;
 pub mod sequential_divider;
+
+/// All ones in the low `width` bits (1 to 64): the value range of a
+/// `width`-bit port, for models and stimulus.
+pub fn width_mask(width: u32) -> u64 {
+    assert!((1..=64).contains(&width), "width must be 1..=64");
+    u64::MAX >> (64 - width)
+}

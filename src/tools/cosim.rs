@@ -146,6 +146,18 @@ pub fn cross_simulate<B: VectorPorts>(
     })
 }
 
+/// [`cross_simulate`] on Verilog generated now from a copy of `block` and
+/// named `module`: for instances that are not exported, such as narrow widths.
+pub fn cross_simulate_generated<B: VectorPorts + Clone>(
+    module: &str,
+    block: B,
+    stimulus: &[Vec<u64>],
+) -> Result<CosimPass, CosimError> {
+    let mut copy = block.clone();
+    let design = CosimDesign::generated(module, &mut copy)?;
+    cross_simulate(&design, block, stimulus)
+}
+
 /// The outputs of `block` on every cycle of `stimulus`, from the Rust harness,
 /// after checking that its vector ports match its Verilog ports.
 pub fn rust_outputs<B: VectorPorts>(

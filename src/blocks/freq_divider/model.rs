@@ -22,12 +22,7 @@ pub struct FreqDividerModel {
 impl FreqDividerModel {
     /// A divider of `width` bits (1 to 64), in its power-up state.
     pub fn new(width: u32) -> Self {
-        assert!((1..=64).contains(&width), "width must be 1..=64");
-        let mask = if width == 64 {
-            u64::MAX
-        } else {
-            (1 << width) - 1
-        };
+        let mask = crate::blocks::width_mask(width);
         Self {
             mask,
             remaining: 0,
