@@ -34,7 +34,6 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
 
     // Constant declarations
     localparam  zero = 32'h0;
-    localparam  one = 32'h1;
     localparam  msb = 32'h80000000;
 
     // Stub signals
@@ -59,6 +58,10 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
     reg  overrange_reg__d;
     wire  overrange_reg__q;
     reg  overrange_reg__clock;
+    reg  [31:0] subtractor__a;
+    reg  [31:0] subtractor__b;
+    wire  [31:0] subtractor__sum;
+    wire  subtractor__carry_out;
 
     // Local signals
     reg  [31:0] headroom;
@@ -102,6 +105,12 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
+    dda_integrator__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
 
     // Update code
     always @(*) begin
@@ -128,8 +137,10 @@ module dda_integrator(clock,reset,tick,integrand,modulus,clear_overrange,pulse,o
         saturated__d = too_large;
         step__d = integrand;
         back_inverted__d = ~headroom;
-        wrapped = acc__q + back_inverted__q + one;
-        below = (((acc__q & back_inverted__q) | ((acc__q ^ back_inverted__q) & ~wrapped)) & msb) == zero;
+        subtractor__a = acc__q;
+        subtractor__b = back_inverted__q;
+        wrapped = subtractor__sum;
+        below = ~subtractor__carry_out;
         pulse_reg__d = ticked__q & (saturated__q | ~below);
         if (ticked__q & ~saturated__q) begin
             if (below) begin
@@ -269,6 +280,51 @@ module dda_integrator__step(d,q,clock);
     end
 
 endmodule // dda_integrator__step
+
+
+module dda_integrator__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [31:0] a;
+    input wire  [31:0] b;
+    output reg  [31:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 32'h0;
+    localparam  one = 32'h1;
+    localparam  msb = 32'h80000000;
+    localparam  low_half = 32'hffff;
+    localparam  high_half = 32'hffff0000;
+    localparam  mid_bit = 32'h10000;
+
+    // Local signals
+    reg  [31:0] low_sum;
+    reg  [31:0] high_sum_carry0;
+    reg  [31:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // dda_integrator__subtractor
 
 
 module dda_integrator__ticked(d,q,clock);

@@ -1019,7 +1019,6 @@ module dda_interpolator__axes__0__remainder_dda(clock,reset,tick,integrand,modul
 
     // Constant declarations
     localparam  zero = 24'h0;
-    localparam  one = 24'h1;
     localparam  msb = 24'h800000;
 
     // Stub signals
@@ -1044,6 +1043,10 @@ module dda_interpolator__axes__0__remainder_dda(clock,reset,tick,integrand,modul
     reg  overrange_reg__d;
     wire  overrange_reg__q;
     reg  overrange_reg__clock;
+    reg  [23:0] subtractor__a;
+    reg  [23:0] subtractor__b;
+    wire  [23:0] subtractor__sum;
+    wire  subtractor__carry_out;
 
     // Local signals
     reg  [23:0] headroom;
@@ -1087,6 +1090,12 @@ module dda_interpolator__axes__0__remainder_dda(clock,reset,tick,integrand,modul
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
+    dda_interpolator__axes__0__remainder_dda__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
 
     // Update code
     always @(*) begin
@@ -1113,8 +1122,10 @@ module dda_interpolator__axes__0__remainder_dda(clock,reset,tick,integrand,modul
         saturated__d = too_large;
         step__d = integrand;
         back_inverted__d = ~headroom;
-        wrapped = acc__q + back_inverted__q + one;
-        below = (((acc__q & back_inverted__q) | ((acc__q ^ back_inverted__q) & ~wrapped)) & msb) == zero;
+        subtractor__a = acc__q;
+        subtractor__b = back_inverted__q;
+        wrapped = subtractor__sum;
+        below = ~subtractor__carry_out;
         pulse_reg__d = ticked__q & (saturated__q | ~below);
         if (ticked__q & ~saturated__q) begin
             if (below) begin
@@ -1254,6 +1265,51 @@ module dda_interpolator__axes__0__remainder_dda__step(d,q,clock);
     end
 
 endmodule // dda_interpolator__axes__0__remainder_dda__step
+
+
+module dda_interpolator__axes__0__remainder_dda__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [23:0] a;
+    input wire  [23:0] b;
+    output reg  [23:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  msb = 24'h800000;
+    localparam  low_half = 24'hfff;
+    localparam  high_half = 24'hfff000;
+    localparam  mid_bit = 24'h1000;
+
+    // Local signals
+    reg  [23:0] low_sum;
+    reg  [23:0] high_sum_carry0;
+    reg  [23:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // dda_interpolator__axes__0__remainder_dda__subtractor
 
 
 module dda_interpolator__axes__0__remainder_dda__ticked(d,q,clock);
@@ -1866,7 +1922,6 @@ module dda_interpolator__axes__1__remainder_dda(clock,reset,tick,integrand,modul
 
     // Constant declarations
     localparam  zero = 24'h0;
-    localparam  one = 24'h1;
     localparam  msb = 24'h800000;
 
     // Stub signals
@@ -1891,6 +1946,10 @@ module dda_interpolator__axes__1__remainder_dda(clock,reset,tick,integrand,modul
     reg  overrange_reg__d;
     wire  overrange_reg__q;
     reg  overrange_reg__clock;
+    reg  [23:0] subtractor__a;
+    reg  [23:0] subtractor__b;
+    wire  [23:0] subtractor__sum;
+    wire  subtractor__carry_out;
 
     // Local signals
     reg  [23:0] headroom;
@@ -1934,6 +1993,12 @@ module dda_interpolator__axes__1__remainder_dda(clock,reset,tick,integrand,modul
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
+    dda_interpolator__axes__1__remainder_dda__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
 
     // Update code
     always @(*) begin
@@ -1960,8 +2025,10 @@ module dda_interpolator__axes__1__remainder_dda(clock,reset,tick,integrand,modul
         saturated__d = too_large;
         step__d = integrand;
         back_inverted__d = ~headroom;
-        wrapped = acc__q + back_inverted__q + one;
-        below = (((acc__q & back_inverted__q) | ((acc__q ^ back_inverted__q) & ~wrapped)) & msb) == zero;
+        subtractor__a = acc__q;
+        subtractor__b = back_inverted__q;
+        wrapped = subtractor__sum;
+        below = ~subtractor__carry_out;
         pulse_reg__d = ticked__q & (saturated__q | ~below);
         if (ticked__q & ~saturated__q) begin
             if (below) begin
@@ -2101,6 +2168,51 @@ module dda_interpolator__axes__1__remainder_dda__step(d,q,clock);
     end
 
 endmodule // dda_interpolator__axes__1__remainder_dda__step
+
+
+module dda_interpolator__axes__1__remainder_dda__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [23:0] a;
+    input wire  [23:0] b;
+    output reg  [23:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  msb = 24'h800000;
+    localparam  low_half = 24'hfff;
+    localparam  high_half = 24'hfff000;
+    localparam  mid_bit = 24'h1000;
+
+    // Local signals
+    reg  [23:0] low_sum;
+    reg  [23:0] high_sum_carry0;
+    reg  [23:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // dda_interpolator__axes__1__remainder_dda__subtractor
 
 
 module dda_interpolator__axes__1__remainder_dda__ticked(d,q,clock);
@@ -2713,7 +2825,6 @@ module dda_interpolator__axes__2__remainder_dda(clock,reset,tick,integrand,modul
 
     // Constant declarations
     localparam  zero = 24'h0;
-    localparam  one = 24'h1;
     localparam  msb = 24'h800000;
 
     // Stub signals
@@ -2738,6 +2849,10 @@ module dda_interpolator__axes__2__remainder_dda(clock,reset,tick,integrand,modul
     reg  overrange_reg__d;
     wire  overrange_reg__q;
     reg  overrange_reg__clock;
+    reg  [23:0] subtractor__a;
+    reg  [23:0] subtractor__b;
+    wire  [23:0] subtractor__sum;
+    wire  subtractor__carry_out;
 
     // Local signals
     reg  [23:0] headroom;
@@ -2781,6 +2896,12 @@ module dda_interpolator__axes__2__remainder_dda(clock,reset,tick,integrand,modul
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
+    dda_interpolator__axes__2__remainder_dda__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
 
     // Update code
     always @(*) begin
@@ -2807,8 +2928,10 @@ module dda_interpolator__axes__2__remainder_dda(clock,reset,tick,integrand,modul
         saturated__d = too_large;
         step__d = integrand;
         back_inverted__d = ~headroom;
-        wrapped = acc__q + back_inverted__q + one;
-        below = (((acc__q & back_inverted__q) | ((acc__q ^ back_inverted__q) & ~wrapped)) & msb) == zero;
+        subtractor__a = acc__q;
+        subtractor__b = back_inverted__q;
+        wrapped = subtractor__sum;
+        below = ~subtractor__carry_out;
         pulse_reg__d = ticked__q & (saturated__q | ~below);
         if (ticked__q & ~saturated__q) begin
             if (below) begin
@@ -2948,6 +3071,51 @@ module dda_interpolator__axes__2__remainder_dda__step(d,q,clock);
     end
 
 endmodule // dda_interpolator__axes__2__remainder_dda__step
+
+
+module dda_interpolator__axes__2__remainder_dda__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [23:0] a;
+    input wire  [23:0] b;
+    output reg  [23:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  msb = 24'h800000;
+    localparam  low_half = 24'hfff;
+    localparam  high_half = 24'hfff000;
+    localparam  mid_bit = 24'h1000;
+
+    // Local signals
+    reg  [23:0] low_sum;
+    reg  [23:0] high_sum_carry0;
+    reg  [23:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // dda_interpolator__axes__2__remainder_dda__subtractor
 
 
 module dda_interpolator__axes__2__remainder_dda__ticked(d,q,clock);
@@ -3168,12 +3336,14 @@ module dda_interpolator__divider(clock,reset,start,dividend,divisor,busy,done,qu
     reg  by_zero__d;
     wire  by_zero__q;
     reg  by_zero__clock;
+    reg  [23:0] subtractor__a;
+    reg  [23:0] subtractor__b;
+    wire  [23:0] subtractor__sum;
+    wire  subtractor__carry_out;
 
     // Local signals
     reg  [23:0] shifted;
     reg  shifted_overflows;
-    reg  [23:0] difference;
-    reg  fits;
 
     // Sub module instances
     dda_interpolator__divider__shift shift(
@@ -3211,6 +3381,12 @@ module dda_interpolator__divider(clock,reset,start,dividend,divisor,busy,done,qu
         .q(by_zero__q),
         .clock(by_zero__clock)
     );
+    dda_interpolator__divider__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
 
     // Update code
     always @(*) begin
@@ -3238,12 +3414,12 @@ module dda_interpolator__divider(clock,reset,start,dividend,divisor,busy,done,qu
             shifted = (partial__q << 32'h1) | one_d;
         end
         shifted_overflows = (partial__q & msb_d) != zero_d;
-        difference = shifted + denominator_inverted__q + one_d;
-        fits = (((shifted & denominator_inverted__q) | ((shifted ^ denominator_inverted__q) & ~difference)) & msb_d) != zero_d;
+        subtractor__a = shifted;
+        subtractor__b = denominator_inverted__q;
         finished__d = 1'b0;
         if (running__q) begin
-            if (fits | shifted_overflows) begin
-                partial__d = difference;
+            if (subtractor__carry_out | shifted_overflows) begin
+                partial__d = subtractor__sum;
                 shift__d = (shift__q << 32'h1) | one;
             end
             else begin
@@ -3409,6 +3585,51 @@ module dda_interpolator__divider__steps_left(d,q,clock);
     end
 
 endmodule // dda_interpolator__divider__steps_left
+
+
+module dda_interpolator__divider__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [23:0] a;
+    input wire  [23:0] b;
+    output reg  [23:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  msb = 24'h800000;
+    localparam  low_half = 24'hfff;
+    localparam  high_half = 24'hfff000;
+    localparam  mid_bit = 24'h1000;
+
+    // Local signals
+    reg  [23:0] low_sum;
+    reg  [23:0] high_sum_carry0;
+    reg  [23:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // dda_interpolator__divider__subtractor
 
 
 module dda_interpolator__division_issued(d,q,clock);

@@ -70,12 +70,14 @@ module sequential_divider(clock,reset,start,dividend,divisor,busy,done,quotient,
     reg  by_zero__d;
     wire  by_zero__q;
     reg  by_zero__clock;
+    reg  [31:0] subtractor__a;
+    reg  [31:0] subtractor__b;
+    wire  [31:0] subtractor__sum;
+    wire  subtractor__carry_out;
 
     // Local signals
     reg  [31:0] shifted;
     reg  shifted_overflows;
-    reg  [31:0] difference;
-    reg  fits;
 
     // Sub module instances
     sequential_divider__shift shift(
@@ -113,6 +115,12 @@ module sequential_divider(clock,reset,start,dividend,divisor,busy,done,quotient,
         .q(by_zero__q),
         .clock(by_zero__clock)
     );
+    sequential_divider__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
 
     // Update code
     always @(*) begin
@@ -140,12 +148,12 @@ module sequential_divider(clock,reset,start,dividend,divisor,busy,done,quotient,
             shifted = (partial__q << 32'h1) | one_d;
         end
         shifted_overflows = (partial__q & msb_d) != zero_d;
-        difference = shifted + denominator_inverted__q + one_d;
-        fits = (((shifted & denominator_inverted__q) | ((shifted ^ denominator_inverted__q) & ~difference)) & msb_d) != zero_d;
+        subtractor__a = shifted;
+        subtractor__b = denominator_inverted__q;
         finished__d = 1'b0;
         if (running__q) begin
-            if (fits | shifted_overflows) begin
-                partial__d = difference;
+            if (subtractor__carry_out | shifted_overflows) begin
+                partial__d = subtractor__sum;
                 shift__d = (shift__q << 32'h1) | one;
             end
             else begin
@@ -311,4 +319,49 @@ module sequential_divider__steps_left(d,q,clock);
     end
 
 endmodule // sequential_divider__steps_left
+
+
+module sequential_divider__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [31:0] a;
+    input wire  [31:0] b;
+    output reg  [31:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 32'h0;
+    localparam  one = 32'h1;
+    localparam  msb = 32'h80000000;
+    localparam  low_half = 32'hffff;
+    localparam  high_half = 32'hffff0000;
+    localparam  mid_bit = 32'h10000;
+
+    // Local signals
+    reg  [31:0] low_sum;
+    reg  [31:0] high_sum_carry0;
+    reg  [31:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // sequential_divider__subtractor
 `default_nettype wire

@@ -2,6 +2,7 @@
 //! the rust-hdl implementation and its datasheet, `model.rs` the plain-Rust
 //! reference model the RTL is proven against (in `tests/<block>.rs`).
 
+pub mod carry_select_adder;
 pub mod dda_integrator;
 pub mod dda_interpolator;
 pub mod freq_divider;

@@ -51,6 +51,8 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::carry_select_adder::CarrySelectAdder;
+
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str = "DDA integrator: exactly floor(t*J/M) evenly spread pulses after t ticks";
 
@@ -116,10 +118,12 @@ pub struct DdaIntegrator<const W: usize> {
     too_large: Signal<Local, Bit>,
     /// acc - K, the accumulator after an overflow.
     wrapped: Signal<Local, Bits<W>>,
+    /// acc + !K + 1 = acc - K, with the carry out meaning acc >= K; a
+    /// carry-select adder halves the loop's carry chain.
+    subtractor: CarrySelectAdder<W>,
     /// The accumulator stays below K: no pulse on this tick.
     below: Signal<Local, Bit>,
     zero: Constant<Bits<W>>,
-    one: Constant<Bits<W>>,
     msb: Constant<Bits<W>>,
 }
 
@@ -144,9 +148,9 @@ impl<const W: usize> Default for DdaIntegrator<W> {
             headroom: Default::default(),
             too_large: Default::default(),
             wrapped: Default::default(),
+            subtractor: Default::default(),
             below: Default::default(),
             zero: Constant::new(0u64.into()),
-            one: Constant::new(1u64.into()),
             msb: Constant::new((1u64 << (W - 1)).into()),
         }
     }
@@ -189,11 +193,10 @@ impl<const W: usize> Logic for DdaIntegrator<W> {
         self.back_inverted.d.next = !self.headroom.val();
         // Accumulator stage: s = acc + J >= M  <=>  acc >= M - J.
         // No pulse when acc + !K + 1 does not carry out of the MSB.
-        self.wrapped.next = self.acc.q.val() + self.back_inverted.q.val() + self.one.val();
-        self.below.next = (((self.acc.q.val() & self.back_inverted.q.val())
-            | ((self.acc.q.val() ^ self.back_inverted.q.val()) & !self.wrapped.val()))
-            & self.msb.val())
-            == self.zero.val();
+        self.subtractor.a.next = self.acc.q.val();
+        self.subtractor.b.next = self.back_inverted.q.val();
+        self.wrapped.next = self.subtractor.sum.val();
+        self.below.next = !self.subtractor.carry_out.val();
         self.pulse_reg.d.next = self.ticked.q.val() & (self.saturated.q.val() | !self.below.val());
         if self.ticked.q.val() & !self.saturated.q.val() {
             if self.below.val() {

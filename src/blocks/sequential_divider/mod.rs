@@ -49,12 +49,14 @@
 //!
 //! ## Structure
 //! Shift registers for the partial remainder (D bits) and the quotient (N
-//! bits), one D-bit subtractor whose carry out is the comparison, and an
-//! 8-bit step counter (2 <= D <= N <= 63).
+//! bits), one D-bit carry-select subtractor whose carry out is the
+//! comparison, and an 8-bit step counter (2 <= D <= N <= 63).
 
 pub mod model;
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::carry_select_adder::CarrySelectAdder;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
@@ -123,10 +125,9 @@ pub struct SequentialDivider<const N: usize, const D: usize> {
     shifted: Signal<Local, Bits<D>>,
     /// Bit D of the shifted remainder: set means it exceeds any divisor.
     shifted_overflows: Signal<Local, Bit>,
-    /// shifted - divisor, low D bits.
-    difference: Signal<Local, Bits<D>>,
-    /// shifted >= divisor (D-bit compare), the carry out of the subtraction.
-    fits: Signal<Local, Bit>,
+    /// shifted + !divisor + 1: the difference, and in its carry out
+    /// `shifted >= divisor`; a carry-select adder halves the loop's chain.
+    subtractor: CarrySelectAdder<D>,
     zero: Constant<Bits<N>>,
     one: Constant<Bits<N>>,
     msb: Constant<Bits<N>>,
@@ -165,8 +166,7 @@ impl<const N: usize, const D: usize> Default for SequentialDivider<N, D> {
             by_zero: Default::default(),
             shifted: Default::default(),
             shifted_overflows: Default::default(),
-            difference: Default::default(),
-            fits: Default::default(),
+            subtractor: Default::default(),
             zero: Constant::new(0u64.into()),
             one: Constant::new(1u64.into()),
             msb: Constant::new((1u64 << (N - 1)).into()),
@@ -206,18 +206,13 @@ impl<const N: usize, const D: usize> Logic for SequentialDivider<N, D> {
         }
         self.shifted_overflows.next =
             (self.partial.q.val() & self.msb_d.val()) != self.zero_d.val();
-        self.difference.next =
-            self.shifted.val() + self.denominator_inverted.q.val() + self.one_d.val();
-        self.fits.next = (((self.shifted.val() & self.denominator_inverted.q.val())
-            | ((self.shifted.val() ^ self.denominator_inverted.q.val()) & !self.difference.val()))
-            & self.msb_d.val())
-            != self.zero_d.val();
+        self.subtractor.a.next = self.shifted.val();
+        self.subtractor.b.next = self.denominator_inverted.q.val();
         self.finished.d.next = false;
         if self.running.q.val() {
-            // One carry chain computes the difference; its carry out (from
-            // the MSBs: a&b | (a^b)&!sum) says whether the divisor fits.
-            if self.fits.val() | self.shifted_overflows.val() {
-                self.partial.d.next = self.difference.val();
+            // The subtractor's carry out says whether the divisor fits.
+            if self.subtractor.carry_out.val() | self.shifted_overflows.val() {
+                self.partial.d.next = self.subtractor.sum.val();
                 self.shift.d.next = (self.shift.q.val() << 1) | self.one.val();
             } else {
                 self.partial.d.next = self.shifted.val();
