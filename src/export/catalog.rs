@@ -8,6 +8,7 @@ use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
+use crate::blocks::step_output::{self, StepOutput};
 
 /// One documented port: name and meaning (direction and width come from the RTL).
 pub type PortDoc = (&'static str, &'static str);
@@ -91,6 +92,22 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 100.0,
             lut4_budget: None,
             build: || Box::new(DdaInterpolator::<3>::default()),
+        },
+        ModuleSpec {
+            name: "step_output",
+            summary: step_output::SUMMARY,
+            parameters: &[
+                (
+                    "T",
+                    "16",
+                    "timer width (step_len, step_space, dir_setup, dir_hold)",
+                ),
+                ("pending", "16", "signed pending-step count"),
+            ],
+            port_docs: step_output::PORT_DOCS,
+            fmax_target_mhz: 125.0,
+            lut4_budget: None,
+            build: || Box::new(StepOutput::<16>::default()),
         },
     ]
 }
