@@ -363,3 +363,57 @@ fn narrow_6_bit_timers_match_rust_in_icarus_and_verilator() {
     cross_simulate_generated("step_output_t6", StepOutput::<6>::default(), &stimulus)
         .unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// The timing diagram in the datasheet (`src/blocks/step_output/timing.txt`,
+/// included into the rustdoc) is this simulation, not a drawing: step/dir,
+/// step_len 2, step_space 3, dir_setup 2, dir_hold 2; three forward steps
+/// requested on clocks 1 to 3, then two backward steps on clocks 14 and 15.
+fn timing_diagram() -> String {
+    let mut harness = Harness::new("step_output", StepOutput::<16>::default()).unwrap();
+    let settings = StepOutputInputs {
+        step_len: 2,
+        step_space: 3,
+        dir_setup: 2,
+        dir_hold: 2,
+        ..Default::default()
+    };
+    let (mut a, mut b, mut req) = (String::new(), String::new(), String::new());
+    for clock in 1..=36 {
+        let mut inputs = settings;
+        inputs.step = clock <= 3 || clock == 14 || clock == 15;
+        inputs.dir = clock <= 3;
+        let out = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+        req.push(if inputs.step {
+            if inputs.dir {
+                '+'
+            } else {
+                '-'
+            }
+        } else {
+            ' '
+        });
+        a.push(if out.out_a { '#' } else { '_' });
+        b.push(if out.out_b { '#' } else { '_' });
+    }
+    let ruler: String = (1..=36)
+        .map(|c| char::from_digit(c % 10, 10).unwrap())
+        .collect();
+    format!(
+        "```text\nclock    {ruler}\nrequest  {}\nout_a    {a}   (step)\nout_b    {b}   (dir)\n```\n",
+        req.trim_end()
+    )
+}
+
+#[test]
+fn datasheet_timing_diagram_is_the_simulation() {
+    let path = motion_hdl::tools::repo_root().join("src/blocks/step_output/timing.txt");
+    let drawn = std::fs::read_to_string(&path).unwrap_or_default();
+    let simulated = timing_diagram();
+    if std::env::var_os("UPDATE_TIMING_DIAGRAM").is_some() {
+        std::fs::write(&path, &simulated).unwrap();
+    }
+    assert_eq!(
+        drawn, simulated,
+        "timing.txt differs from the simulation (rerun with UPDATE_TIMING_DIAGRAM=1)"
+    );
+}

@@ -24,16 +24,15 @@
 //! | `busy` | out | 1 | steps are pending or a pulse is in progress |
 //!
 //! ## Timing
-//! Step/dir (mode 0), step_len = 2, step_space = 3, dir_hold = 2, dir_setup = 2,
-//! three forward steps requested, then one backward:
-//! ```text
-//! clock     1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17
-//! out_a     _/‾‾‾\_____/‾‾‾\___________/‾‾‾\_______     high exactly step_len
-//!                 <space>                              low at least step_space
-//! out_b     ‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾\_______________________   changes only while out_a is low:
-//!                       hold> <setup                   >= dir_hold after the fall,
-//!                                                      >= dir_setup before the rise
-//! ```
+//! Step/dir, step_len = 2, step_space = 3, dir_setup = 2, dir_hold = 2; three
+//! forward steps requested on clocks 1 to 3, two backward on clocks 14 and 15
+//! (`+`/`-`). Two forward steps are emitted; the third forward request and
+//! one backward request cancel; one backward step follows the direction
+//! change. This diagram is the simulation, checked by a test, not a drawing
+//! (`#` = high, one column per clock, outputs after that clock's edge):
+//!
+#![doc = include_str!("timing.txt")]
+//!
 //! * A step request is counted at the edge that samples it. A pulse starts
 //!   at the earliest edge at which the pulse space, the direction setup and
 //!   the pending count all allow it; with every timer 0 the stage emits one
