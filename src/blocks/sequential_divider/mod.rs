@@ -3,9 +3,9 @@
 //! rust-hdl has no `/`, and a combinational 32-bit divider would not close
 //! timing anyway. This block computes `dividend / divisor` and
 //! `dividend % divisor` by restoring division, one quotient bit per clock,
-//! for blocks that
-//! need a division now and then (the uniform pulse generator computes its
-//! pulse periods with it, one period ahead).
+//! for blocks that need a division now and then: the DDA interpolator
+//! splits each period's step count with it, and the uniform pulse generator
+//! will compute its pulse periods with it, one period ahead.
 //!
 //! ## Ports (`N` = `D` = 32 in the exported `sequential_divider`)
 //! The dividend and quotient are N bits wide, the divisor and remainder D
@@ -39,7 +39,7 @@
 //! take N + 1 clocks each.
 //!
 //! ## Bad input
-//! * Divisor 0: the division runs its W clocks as usual and gives the
+//! * Divisor 0: the division runs its N clocks as usual and gives the
 //!   restoring algorithm's natural result, `quotient` = all ones (the
 //!   largest value) and `remainder` = the low D bits of `dividend`, with
 //!   `divide_by_zero` set.
