@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 
 use motion_hdl::export::{catalog, generated_files, OutputDir};
 use motion_hdl::tools::lint::lint;
-use motion_hdl::tools::repo_root;
+use motion_hdl::tools::{repo_root, report};
 
 #[test]
 fn committed_export_is_fresh() {
@@ -98,12 +98,7 @@ fn every_exported_module_passes_verilator_lint_wall() {
 fn committed_synthesis_report_covers_every_exported_module() {
     let report = std::fs::read_to_string(repo_root().join("rtl-out").join("synthesis-report.md"))
         .expect("rtl-out/synthesis-report.md is missing: run `cargo run --release -- report`");
-    let listed: BTreeSet<String> = report
-        .lines()
-        .filter_map(|l| l.strip_prefix("| `"))
-        .filter_map(|l| l.split('`').next())
-        .map(str::to_string)
-        .collect();
+    let listed: BTreeSet<String> = report::listed_modules(&report).into_iter().collect();
     let exported: BTreeSet<String> = catalog().iter().map(|s| s.name.to_string()).collect();
     assert_eq!(
         listed, exported,

@@ -35,23 +35,12 @@ fn every_exported_module_synthesizes_and_places_on_ice40_hx8k() {
         std::fs::read_to_string(repo_root().join("rtl-out").join("synthesis-report.md")).unwrap();
     for row in &rows {
         let f = &row.figures;
-        let line = committed
-            .lines()
-            .find(|l| l.starts_with(&format!("| `{}` |", row.module)))
-            .unwrap_or_else(|| {
-                panic!("{} is missing from rtl-out/synthesis-report.md", row.module)
-            });
-        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
-        let counts = (cells[2], cells[4], cells[5], cells[6]);
-        let fresh = (
-            f.lut4.to_string(),
-            f.dff.to_string(),
-            f.carry.to_string(),
-            f.ram.to_string(),
-        );
+        let counts = report::cell_counts(&committed, &row.module).unwrap_or_else(|| {
+            panic!("{} is missing from rtl-out/synthesis-report.md", row.module)
+        });
         assert_eq!(
             counts,
-            (fresh.0.as_str(), fresh.1.as_str(), fresh.2.as_str(), fresh.3.as_str()),
+            (f.lut4, f.dff, f.carry, f.ram),
             "{}: rtl-out/synthesis-report.md is stale (LUT4, DFF, carry, RAM); run `cargo run --release -- report`",
             row.module
         );

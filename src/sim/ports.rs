@@ -22,11 +22,7 @@ impl<const N: usize> PortValue for Bits<N> {
         self.to_u64()
     }
     fn from_vector(value: u64) -> Self {
-        let masked = if N >= 64 {
-            value
-        } else {
-            value & ((1u64 << N) - 1)
-        };
+        let masked = value & crate::blocks::width_mask(N.min(64) as u32);
         Bits::<N>::from(masked)
     }
 }

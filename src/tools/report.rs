@@ -87,3 +87,25 @@ pub fn render(rows: &[ReportRow], seeds: &[u64]) -> Result<String, ToolError> {
     }
     Ok(md)
 }
+
+/// The cell counts a rendered report gives for one module's row:
+/// `(LUT4, DFF, carry, RAM)`, or `None` if the module has no row. The
+/// reading lives beside [`render`] so that the two agree on the layout.
+pub fn cell_counts(report: &str, module: &str) -> Option<(u32, u32, u32, u32)> {
+    let line = report
+        .lines()
+        .find(|l| l.starts_with(&format!("| `{module}` |")))?;
+    let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+    let number = |i: usize| cells.get(i)?.parse().ok();
+    Some((number(2)?, number(4)?, number(5)?, number(6)?))
+}
+
+/// The modules a rendered report has rows for, in order.
+pub fn listed_modules(report: &str) -> Vec<String> {
+    report
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .filter_map(|l| l.split('`').next())
+        .map(str::to_string)
+        .collect()
+}

@@ -27,7 +27,7 @@ pub struct DdaIntegratorOutputs {
 }
 
 /// The accumulator arithmetic alone: one tick of a `width`-bit DDA.
-/// Returns whether it pulses; `acc` is updated.
+/// Returns `(pulse, J > M)`; `acc` is updated.
 pub fn dda_tick(acc: &mut u128, integrand: u64, modulus: u64, width: u32) -> (bool, bool) {
     let mask = (1u128 << width) - 1;
     let m = if modulus as u128 & mask == 0 {

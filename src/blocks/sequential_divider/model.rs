@@ -10,8 +10,8 @@ pub fn expected_result(
     dividend_bits: u32,
     divisor_bits: u32,
 ) -> (u64, u64, bool) {
-    let n_mask = (1u64 << dividend_bits) - 1;
-    let d_mask = (1u64 << divisor_bits) - 1;
+    let n_mask = crate::blocks::width_mask(dividend_bits);
+    let d_mask = crate::blocks::width_mask(divisor_bits);
     let (dividend, divisor) = (dividend & n_mask, divisor & d_mask);
     if divisor == 0 {
         (n_mask, dividend & d_mask, true)
@@ -70,9 +70,9 @@ impl SequentialDividerModel {
         );
         Self {
             width,
-            mask: (1u64 << width) - 1,
+            mask: crate::blocks::width_mask(width),
             divisor_bits,
-            divisor_mask: (1u64 << divisor_bits) - 1,
+            divisor_mask: crate::blocks::width_mask(divisor_bits),
             steps_left: 0,
             denominator: 0,
             out: SequentialDividerOutputs::default(),
