@@ -8,6 +8,7 @@ use std::time::Instant;
 use motion_hdl::blocks::dda_integrator::DdaIntegrator;
 use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
 use motion_hdl::blocks::freq_divider::FreqDivider;
+use motion_hdl::blocks::step_channel::StepChannel;
 use motion_hdl::sim::{Harness, VectorPorts};
 use rust_hdl::prelude::*;
 
@@ -75,7 +76,16 @@ fn main() {
         &[0, 1, 0, 100, 1, 2, 3, 0],
         500_000,
     );
+    // The step channel at full rate: a step every tick into 1-clock pulses
+    // (reset, tick, J, M, dir, clear, mode, len, space, setup, hold).
+    let channel = stepping_rate(
+        "step_channel",
+        StepChannel::<32, 16>::default(),
+        &[0, 1, 1, 2, 1, 0, 0, 1, 1, 1, 1],
+        1_000_000,
+    );
     println!("  dda_integrator (32-bit), harness      {:>12.0}", dda);
+    println!("  step_channel (32/16-bit), harness     {:>12.0}", channel);
     println!(
         "  dda_interpolator (3 axes), harness    {:>12.0}",
         interpolator

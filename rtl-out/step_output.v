@@ -11,13 +11,13 @@
 // Ports:
 //   name          dir    width  meaning
 //   clock         in         1  rising-edge clock
-//   reset         in         1  synchronous reset, active high: nothing pending, outputs low, flags 0
+//   reset         in         1  synchronous reset, active high: nothing pending, outputs low, flags 0, mode 0
 //   step          in         1  request one step (one-clock pulse)
 //   dir           in         1  direction of that request: 1 = forward
 //   mode          in         2  0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)
 //   step_len      in        16  step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state
 //   step_space    in        16  minimum low time between step pulses in clocks (0 acts as 1)
-//   dir_setup     in        16  dir stable at least this many clocks before a step's rising edge
+//   dir_setup     in        16  dir stable at least this many clocks before a step's rising edge (0 acts as 1)
 //   dir_hold      in        16  dir stable at least this many clocks after a step's falling edge (0 acts as 1)
 //   out_a         out        1  step (mode 0), up (mode 1), A (mode 2)
 //   out_b         out        1  dir (mode 0), down (mode 1), B (mode 2)
@@ -48,24 +48,37 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
     // Constant declarations
     localparam  zero_t = 16'h0;
     localparam  one_t = 16'h1;
-    localparam  max_t = 16'hffff;
+    localparam  not_one = 16'hfffe;
+    localparam  not_three = 16'hfffc;
     localparam  zero_p = 16'h0;
     localparam  one_p = 16'h1;
     localparam  minus_one_p = 16'hffff;
     localparam  two_p = 16'h2;
     localparam  minus_two_p = 16'hfffe;
-    localparam  sign_p = 16'h8000;
-    localparam  max_p = 16'h7fff;
+    localparam  low_two_p = 16'h3;
+    localparam  high_mask_p = 16'hfffc;
+    localparam  below_max_p = 16'h7ffe;
+    localparam  above_min_p = 16'h8001;
     localparam  min_p = 16'h8000;
+    localparam  low_plus_one = 2'b1;
+    localparam  low_two = 2'b10;
+    localparam  low_minus_one = 2'b11;
     localparam  mode_step_dir = 2'b0;
-    localparam  mode_up_down = 2'b1;
-    localparam  mode_quadrature = 2'b10;
     localparam  mode_reserved = 2'b11;
 
     // Stub signals
     reg  [15:0] pending__d;
     wire  [15:0] pending__q;
     reg  pending__clock;
+    reg  nonzero__d;
+    wire  nonzero__q;
+    reg  nonzero__clock;
+    reg  at_max__d;
+    wire  at_max__q;
+    reg  at_max__clock;
+    reg  at_min__d;
+    wire  at_min__q;
+    reg  at_min__clock;
     reg  a_reg__d;
     wire  a_reg__q;
     reg  a_reg__clock;
@@ -75,12 +88,27 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
     reg  high__d;
     wire  high__q;
     reg  high__clock;
-    reg  [15:0] elapsed__d;
-    wire  [15:0] elapsed__q;
-    reg  elapsed__clock;
-    reg  [15:0] dir_elapsed__d;
-    wire  [15:0] dir_elapsed__q;
-    reg  dir_elapsed__clock;
+    reg  started__d;
+    wire  started__q;
+    reg  started__clock;
+    reg  [15:0] phase_count__d;
+    wire  [15:0] phase_count__q;
+    reg  phase_count__clock;
+    reg  phase_done__d;
+    wire  phase_done__q;
+    reg  phase_done__clock;
+    reg  [15:0] dir_count__d;
+    wire  [15:0] dir_count__q;
+    reg  dir_count__clock;
+    reg  dir_done__d;
+    wire  dir_done__q;
+    reg  dir_done__clock;
+    reg  timing_setup__d;
+    wire  timing_setup__q;
+    reg  timing_setup__clock;
+    reg  setup_wait__d;
+    wire  setup_wait__q;
+    reg  setup_wait__clock;
     reg  [1:0] active_mode__d;
     wire  [1:0] active_mode__q;
     reg  active_mode__clock;
@@ -89,17 +117,21 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
     reg  overrun_reg__clock;
 
     // Local signals
-    reg  positive;
     reg  negative;
-    reg  idle;
+    reg  positive;
+    reg  quadrature;
+    reg  up_down;
     reg  emit;
-    reg  [15:0] len;
-    reg  [15:0] space;
-    reg  [15:0] hold;
-    reg  [15:0] elapsed_next;
-    reg  [15:0] dir_elapsed_next;
+    reg  fall;
+    reg  dir_change;
+    reg  load_len;
+    reg  dir_done_next;
+    reg  timing_setup_next;
     reg  request;
     reg  [15:0] change;
+    reg  high_bits_zero;
+    reg  high_bits_ones;
+    reg  reaches_zero;
     reg  [1:0] requested_mode;
 
     // Sub module instances
@@ -107,6 +139,21 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         .d(pending__d),
         .q(pending__q),
         .clock(pending__clock)
+    );
+    step_output__nonzero nonzero(
+        .d(nonzero__d),
+        .q(nonzero__q),
+        .clock(nonzero__clock)
+    );
+    step_output__at_max at_max(
+        .d(at_max__d),
+        .q(at_max__q),
+        .clock(at_max__clock)
+    );
+    step_output__at_min at_min(
+        .d(at_min__d),
+        .q(at_min__q),
+        .clock(at_min__clock)
     );
     step_output__a_reg a_reg(
         .d(a_reg__d),
@@ -123,15 +170,40 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         .q(high__q),
         .clock(high__clock)
     );
-    step_output__elapsed elapsed(
-        .d(elapsed__d),
-        .q(elapsed__q),
-        .clock(elapsed__clock)
+    step_output__started started(
+        .d(started__d),
+        .q(started__q),
+        .clock(started__clock)
     );
-    step_output__dir_elapsed dir_elapsed(
-        .d(dir_elapsed__d),
-        .q(dir_elapsed__q),
-        .clock(dir_elapsed__clock)
+    step_output__phase_count phase_count(
+        .d(phase_count__d),
+        .q(phase_count__q),
+        .clock(phase_count__clock)
+    );
+    step_output__phase_done phase_done(
+        .d(phase_done__d),
+        .q(phase_done__q),
+        .clock(phase_done__clock)
+    );
+    step_output__dir_count dir_count(
+        .d(dir_count__d),
+        .q(dir_count__q),
+        .clock(dir_count__clock)
+    );
+    step_output__dir_done dir_done(
+        .d(dir_done__d),
+        .q(dir_done__q),
+        .clock(dir_done__clock)
+    );
+    step_output__timing_setup timing_setup(
+        .d(timing_setup__d),
+        .q(timing_setup__q),
+        .clock(timing_setup__clock)
+    );
+    step_output__setup_wait setup_wait(
+        .d(setup_wait__d),
+        .q(setup_wait__q),
+        .clock(setup_wait__clock)
     );
     step_output__active_mode active_mode(
         .d(active_mode__d),
@@ -147,56 +219,53 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
     // Update code
     always @(*) begin
         pending__clock = clock;
+        nonzero__clock = clock;
+        at_max__clock = clock;
+        at_min__clock = clock;
         a_reg__clock = clock;
         b_reg__clock = clock;
         high__clock = clock;
-        elapsed__clock = clock;
-        dir_elapsed__clock = clock;
+        started__clock = clock;
+        phase_count__clock = clock;
+        phase_done__clock = clock;
+        dir_count__clock = clock;
+        dir_done__clock = clock;
+        timing_setup__clock = clock;
+        setup_wait__clock = clock;
         active_mode__clock = clock;
         overrun_reg__clock = clock;
         pending__d = pending__q;
+        nonzero__d = nonzero__q;
+        at_max__d = at_max__q;
+        at_min__d = at_min__q;
         a_reg__d = a_reg__q;
         b_reg__d = b_reg__q;
         high__d = high__q;
-        elapsed__d = elapsed__q;
-        dir_elapsed__d = dir_elapsed__q;
+        started__d = started__q;
+        phase_count__d = phase_count__q;
+        phase_done__d = phase_done__q;
+        dir_count__d = dir_count__q;
+        dir_done__d = dir_done__q;
+        timing_setup__d = timing_setup__q;
+        setup_wait__d = setup_wait__q;
         active_mode__d = active_mode__q;
         overrun_reg__d = overrun_reg__q;
         out_a = a_reg__q;
         out_b = b_reg__q;
         overrun = overrun_reg__q;
         mode_invalid = mode == mode_reserved;
-        len = step_len;
-        if (step_len == zero_t) begin
-            len = one_t;
-        end
-        space = step_space;
-        if (step_space == zero_t) begin
-            space = one_t;
-        end
-        hold = dir_hold;
-        if (dir_hold == zero_t) begin
-            hold = one_t;
-        end
-        elapsed_next = elapsed__q;
-        if (elapsed__q != max_t) begin
-            elapsed_next = elapsed__q + one_t;
-        end
-        dir_elapsed_next = dir_elapsed__q;
-        if (dir_elapsed__q != max_t) begin
-            dir_elapsed_next = dir_elapsed__q + one_t;
-        end
-        elapsed__d = elapsed_next;
-        dir_elapsed__d = dir_elapsed_next;
-        negative = (pending__q & sign_p) != zero_p;
-        positive = ~negative & (pending__q != zero_p);
-        idle = (pending__q == zero_p) & ~high__q;
-        busy = ~idle;
+        busy = nonzero__q | high__q;
+        started__d = 1'b1;
+        negative = (pending__q & min_p) != zero_p;
+        positive = nonzero__q & ~negative;
+        quadrature = active_mode__q[32'h1];
+        up_down = active_mode__q[32'h0];
         emit = 1'b0;
-        if (active_mode__q == mode_quadrature) begin
-            if ((positive | negative) & (elapsed__q >= len)) begin
+        fall = 1'b0;
+        dir_change = 1'b0;
+        if (quadrature) begin
+            if (nonzero__q & phase_done__q) begin
                 emit = 1'b1;
-                elapsed__d = one_t;
                 if (positive) begin
                     a_reg__d = ~b_reg__q;
                     b_reg__d = a_reg__q;
@@ -208,49 +277,67 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
             end
         end
         else if (high__q) begin
-            if (elapsed__q >= len) begin
+            if (phase_done__q) begin
+                fall = 1'b1;
                 high__d = 1'b0;
                 a_reg__d = 1'b0;
-                if (active_mode__q == mode_up_down) begin
+                if (up_down) begin
                     b_reg__d = 1'b0;
                 end
-                elapsed__d = one_t;
             end
         end
-        else if ((positive | negative) & (elapsed__q >= space)) begin
-            if (active_mode__q == mode_up_down) begin
-                emit = 1'b1;
-                high__d = 1'b1;
-                elapsed__d = one_t;
-                if (positive) begin
-                    a_reg__d = 1'b1;
-                end
-                else begin
-                    b_reg__d = 1'b1;
-                end
+        else if (nonzero__q & phase_done__q & (up_down | ((b_reg__q == positive) & ~setup_wait__q))) begin
+            emit = 1'b1;
+            high__d = 1'b1;
+            if (up_down) begin
+                a_reg__d = positive;
+                b_reg__d = ~positive;
             end
-            else if (b_reg__q == positive) begin
-                if (dir_elapsed__q >= dir_setup) begin
-                    emit = 1'b1;
-                    high__d = 1'b1;
-                    a_reg__d = 1'b1;
-                    elapsed__d = one_t;
-                end
-            end
-            else if (elapsed__q >= hold) begin
-                b_reg__d = positive;
-                dir_elapsed__d = one_t;
+            else begin
+                a_reg__d = 1'b1;
             end
         end
+        else if (~up_down & nonzero__q & (b_reg__q != positive) & (dir_done__q | timing_setup__q)) begin
+            dir_change = 1'b1;
+            b_reg__d = positive;
+        end
+        load_len = quadrature | (started__q & ~high__q);
+        phase_count__d = phase_count__q - one_t;
+        phase_done__d = phase_done__q | (((phase_count__q & not_three) == zero_t) & ~(phase_count__q[32'h0] & phase_count__q[32'h1]));
+        if (~started__q | emit | fall) begin
+            if (load_len) begin
+                phase_count__d = step_len;
+                phase_done__d = (step_len & not_one) == zero_t;
+            end
+            else begin
+                phase_count__d = step_space;
+                phase_done__d = (step_space & not_one) == zero_t;
+            end
+        end
+        timing_setup_next = timing_setup__q;
+        dir_count__d = dir_count__q - one_t;
+        dir_done_next = dir_done__q | (((dir_count__q & not_three) == zero_t) & ~(dir_count__q[32'h0] & dir_count__q[32'h1]));
+        if (~started__q | fall | dir_change) begin
+            timing_setup_next = ~high__q;
+            if (high__q) begin
+                dir_count__d = dir_hold;
+                dir_done_next = (dir_hold & not_one) == zero_t;
+            end
+            else begin
+                dir_count__d = dir_setup;
+                dir_done_next = (dir_setup & not_one) == zero_t;
+            end
+        end
+        dir_done__d = dir_done_next;
+        timing_setup__d = timing_setup_next;
+        setup_wait__d = timing_setup_next & ~dir_done_next;
         request = step;
-        if (step & dir & (pending__q == max_p) & ~emit) begin
+        if (step & ((dir & at_max__q) | (~dir & at_min__q))) begin
             request = 1'b0;
             overrun_reg__d = 1'b1;
         end
-        if (step & ~dir & (pending__q == min_p) & ~emit) begin
-            request = 1'b0;
-            overrun_reg__d = 1'b1;
-        end
+        at_max__d = ~emit & ((at_max__q & ~request) | ((pending__q == below_max_p) & request & dir));
+        at_min__d = ~emit & ((at_min__q & ~request) | ((pending__q == above_min_p) & request & ~dir));
         change = zero_p;
         if (request & dir) begin
             change = one_p;
@@ -279,25 +366,56 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
             end
         end
         pending__d = pending__q + change;
+        high_bits_zero = (pending__q & high_mask_p) == zero_p;
+        high_bits_ones = (pending__q | low_two_p) == minus_one_p;
+        reaches_zero = ~nonzero__q & ~request;
+        if (high_bits_zero) begin
+            if (pending__q[(32'h0)+:(2)] == low_plus_one) begin
+                reaches_zero = (emit & ~request) | (~emit & request & ~dir);
+            end
+            if (pending__q[(32'h0)+:(2)] == low_two) begin
+                reaches_zero = emit & request & ~dir;
+            end
+        end
+        if (high_bits_ones) begin
+            if (pending__q[(32'h0)+:(2)] == low_minus_one) begin
+                reaches_zero = (emit & ~request) | (~emit & request & dir);
+            end
+            if (pending__q[(32'h0)+:(2)] == low_two) begin
+                reaches_zero = emit & request & dir;
+            end
+        end
+        nonzero__d = ~reaches_zero;
         requested_mode = mode;
         if (mode == mode_reserved) begin
             requested_mode = mode_step_dir;
         end
-        if (idle & (requested_mode != active_mode__q)) begin
+        if (~nonzero__q & ~high__q & (requested_mode != active_mode__q)) begin
             active_mode__d = requested_mode;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;
             high__d = 1'b0;
-            elapsed__d = zero_t;
-            dir_elapsed__d = zero_t;
+            started__d = 1'b0;
+            phase_done__d = 1'b0;
+            dir_done__d = 1'b0;
+            timing_setup__d = 1'b0;
+            setup_wait__d = 1'b0;
         end
         if (reset) begin
             pending__d = zero_p;
+            nonzero__d = 1'b0;
+            at_max__d = 1'b0;
+            at_min__d = 1'b0;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;
             high__d = 1'b0;
-            elapsed__d = zero_t;
-            dir_elapsed__d = zero_t;
+            started__d = 1'b0;
+            phase_count__d = zero_t;
+            phase_done__d = 1'b0;
+            dir_count__d = zero_t;
+            dir_done__d = 1'b0;
+            timing_setup__d = 1'b0;
+            setup_wait__d = 1'b0;
             active_mode__d = mode_step_dir;
             overrun_reg__d = 1'b0;
         end
@@ -344,6 +462,44 @@ module step_output__active_mode(d,q,clock);
 endmodule // step_output__active_mode
 
 
+module step_output__at_max(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__at_max
+
+
+module step_output__at_min(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__at_min
+
+
 module step_output__b_reg(d,q,clock);
 
     // Module arguments
@@ -363,7 +519,7 @@ module step_output__b_reg(d,q,clock);
 endmodule // step_output__b_reg
 
 
-module step_output__dir_elapsed(d,q,clock);
+module step_output__dir_count(d,q,clock);
 
     // Module arguments
     input wire  [15:0] d;
@@ -379,26 +535,26 @@ module step_output__dir_elapsed(d,q,clock);
        q <= d;
     end
 
-endmodule // step_output__dir_elapsed
+endmodule // step_output__dir_count
 
 
-module step_output__elapsed(d,q,clock);
+module step_output__dir_done(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // step_output__elapsed
+endmodule // step_output__dir_done
 
 
 module step_output__high(d,q,clock);
@@ -418,6 +574,25 @@ module step_output__high(d,q,clock);
     end
 
 endmodule // step_output__high
+
+
+module step_output__nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__nonzero
 
 
 module step_output__overrun_reg(d,q,clock);
@@ -456,4 +631,99 @@ module step_output__pending(d,q,clock);
     end
 
 endmodule // step_output__pending
+
+
+module step_output__phase_count(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__phase_count
+
+
+module step_output__phase_done(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__phase_done
+
+
+module step_output__setup_wait(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__setup_wait
+
+
+module step_output__started(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__started
+
+
+module step_output__timing_setup(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__timing_setup
 `default_nettype wire

@@ -3,7 +3,7 @@
 //! saturation, and cross-simulation.
 
 use motion_hdl::blocks::step_output::model::{
-    StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX,
+    StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX, PENDING_MIN,
 };
 use motion_hdl::blocks::step_output::StepOutput;
 use motion_hdl::sim::Harness;
@@ -295,16 +295,16 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
     }
 }
 
-/// Fills the pending count while very long timing holds the output back,
-/// keeps requesting after `overrun`, then drains with short timing: exactly
-/// the count's capacity comes out, plus any pulse that started during the
-/// fill; the requests beyond the capacity are dropped.
-#[test]
-fn a_saturated_count_drops_requests_and_flags_overrun() {
+/// Fills the pending count in one direction while very long timing holds
+/// the output back, keeps requesting after `overrun`, then drains with short
+/// timing: exactly the count's capacity in that direction comes out, plus
+/// any pulse that started during the fill; the requests beyond the capacity
+/// are dropped.
+fn saturate_and_drain(dir: bool, capacity: i32) {
     let mut harness = Harness::new("step_output", StepOutput::<16>::default()).unwrap();
     let slow = StepOutputInputs {
         step: true,
-        dir: true,
+        dir,
         step_len: 60_000,
         step_space: 60_000,
         ..Default::default()
@@ -339,9 +339,19 @@ fn a_saturated_count_drops_requests_and_flags_overrun() {
     }
     assert_eq!(
         rises,
-        PENDING_MAX + started_during_fill,
-        "steps emitted after saturation"
+        capacity + started_during_fill,
+        "steps emitted after saturation (dir {dir})"
     );
+}
+
+#[test]
+fn a_saturated_count_drops_requests_and_flags_overrun_forward() {
+    saturate_and_drain(true, PENDING_MAX);
+}
+
+#[test]
+fn a_saturated_count_drops_requests_and_flags_overrun_backward() {
+    saturate_and_drain(false, -PENDING_MIN);
 }
 
 /// A closed-loop run of the driver against the model, as input vectors.

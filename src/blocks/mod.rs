@@ -8,6 +8,7 @@ pub mod dda_interpolator;
 pub mod freq_divider;
 pub mod pulse_counter;
 pub mod sequential_divider;
+pub mod step_channel;
 pub mod step_output;
 
 /// All ones in the low `width` bits (1 to 64): the value range of a

@@ -8,6 +8,7 @@ use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
+use crate::blocks::step_channel::{self, StepChannel};
 use crate::blocks::step_output::{self, StepOutput};
 
 /// One documented port: name and meaning (direction and width come from the RTL).
@@ -108,6 +109,22 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 125.0,
             lut4_budget: None,
             build: || Box::new(StepOutput::<16>::default()),
+        },
+        ModuleSpec {
+            name: "step_channel",
+            summary: step_channel::SUMMARY,
+            parameters: &[
+                ("W", "32", "DDA width (integrand, modulus, accumulator)"),
+                (
+                    "T",
+                    "16",
+                    "timer width (step_len, step_space, dir_setup, dir_hold)",
+                ),
+            ],
+            port_docs: step_channel::PORT_DOCS,
+            fmax_target_mhz: 110.0,
+            lut4_budget: Some(232),
+            build: || Box::new(StepChannel::<32, 16>::default()),
         },
     ]
 }

@@ -9,13 +9,13 @@
 //! | port | dir | width | meaning |
 //! |---|---|---|---|
 //! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: nothing pending, outputs low, timers 0, flags 0 |
+//! | `reset` | in | 1 | synchronous, active high: nothing pending, outputs low, flags 0, mode 0 |
 //! | `step` | in | 1 | request one step (one-clock pulse; a level requests one step per clock) |
 //! | `dir` | in | 1 | direction of that request: 1 = forward |
 //! | `mode` | in | 2 | 0 step/dir, 1 up/down (CW/CCW), 2 quadrature, 3 reserved (acts as 0, `mode_invalid` high) |
 //! | `step_len` | in | T | step pulse high time in clocks (0 acts as 1); in quadrature, the minimum time per state |
 //! | `step_space` | in | T | minimum low time between step pulses, in clocks (0 acts as 1) |
-//! | `dir_setup` | in | T | `out_b` (dir) stable at least this many clocks before a step's rising edge |
+//! | `dir_setup` | in | T | `out_b` (dir) stable at least this many clocks before a step's rising edge (0 acts as 1) |
 //! | `dir_hold` | in | T | `out_b` (dir) stable at least this many clocks after a step's falling edge (0 acts as 1) |
 //! | `out_a` | out | 1 | step (mode 0), up (mode 1), A (mode 2); registered |
 //! | `out_b` | out | 1 | dir (mode 0), down (mode 1), B (mode 2); registered |
@@ -24,12 +24,15 @@
 //! | `busy` | out | 1 | steps are pending or a pulse is in progress |
 //!
 //! ## Timing
-//! Step/dir, step_len = 2, step_space = 3, dir_setup = 2, dir_hold = 2; three
-//! forward steps requested on clocks 1 to 3, two backward on clocks 14 and 15
-//! (`+`/`-`). Two forward steps are emitted; the third forward request and
-//! one backward request cancel; one backward step follows the direction
-//! change. This diagram is the simulation, checked by a test, not a drawing
-//! (`#` = high, one column per clock, outputs after that clock's edge):
+//! Step/dir after reset, step_len = 2, step_space = 3, dir_setup = 2,
+//! dir_hold = 2; three forward steps requested on clocks 1 to 3, two
+//! backward on clocks 14 and 15 (`+`/`-`). Clock 1 loads the timers; `out_b`
+//! turns forward at clock 2 and the first pulse rises dir_setup later; the
+//! pulses are 2 high and 3 low. The backward requests come while the third
+//! pulse is high: `out_b` turns dir_hold after its fall, and the first
+//! backward pulse rises dir_setup after that. This diagram is the
+//! simulation, checked by a test, not a drawing (`#` = high, one column per
+//! clock, outputs after that clock's edge):
 //!
 #![doc = include_str!("timing.txt")]
 //!
@@ -38,20 +41,38 @@
 //!   the pending count all allow it; with every timer 0 the stage emits one
 //!   step every 2 clocks (high 1, low 1).
 //! * The direction of a pulse is the sign of the pending count when it
-//!   starts. In mode 0 the stage first sets `out_b` (at least dir_hold after
-//!   the last fall), then waits dir_setup, then raises `out_a`.
+//!   starts. In mode 0, when the sign differs from `out_b`, the stage turns
+//!   `out_b` dir_hold clocks after the last fall (during the space), and
+//!   raises `out_a` once both step_space since the fall and dir_setup since
+//!   the turn have passed.
+//! * Each setting is sampled when the interval it times starts (step_len at
+//!   a rise or quadrature state change, step_space and dir_hold at a fall,
+//!   dir_setup at a direction change); a new value applies from the next
+//!   interval, and an interval in progress keeps its length.
 //! * Mode 1: forward steps pulse `out_a`, backward steps pulse `out_b`; the
 //!   length and space rules hold across both outputs (never both high).
 //! * Mode 2: each step moves (out_a, out_b) one Gray state forward
 //!   (00 -> 10 -> 11 -> 01 -> 00) or backward, and every state is held at
 //!   least step_len clocks. step_space, dir_setup and dir_hold do not apply.
-//! * After reset the outputs are low and the first pulse waits step_space
-//!   (and dir_setup) clocks, as if a pulse had just ended.
+//! * After reset (and after a mode change) the outputs are low; the next
+//!   clock loads the timers as if a pulse had just ended and `out_b` had just
+//!   turned, so the first pulse rises step_space and dir_setup clocks later
+//!   at the earliest (quadrature: step_len).
+//!
+//! ## Implementation
+//! Two loadable down-counters, one for the current level (step_len or
+//! step_space) and one for the direction (dir_hold or dir_setup), each with
+//! a registered "expired" flag computed one clock ahead; the pending count's
+//! zero test and its limits are registered flags computed beside the adder.
+//! No comparator sits between a register and a step decision, which is
+//! what lets the 16-bit stage run above 125 MHz on iCE40 HX8K.
 //!
 //! ## Bad input
-//! * More pending steps than the count holds (±(2^15 - 1) for the exported
-//!   16-bit count): the request that does not fit is dropped and the sticky
-//!   `overrun` is set. No other request is ever lost.
+//! * More pending steps than the count holds (it runs from -2^15 to
+//!   +2^15 - 1): a forward request that arrives with the count at +2^15 - 1,
+//!   or a backward one at -2^15, is dropped, even if a step leaves at the
+//!   same edge, and the sticky `overrun` is set. No other request is ever
+//!   lost.
 //! * `mode` is taken only while the stage is idle (nothing pending, no pulse);
 //!   a change resets both outputs to 0 and restarts the timers. Change it
 //!   with the drive disabled: the pins' meaning changes with it.
@@ -74,7 +95,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("clock", "rising-edge clock"),
     (
         "reset",
-        "synchronous reset, active high: nothing pending, outputs low, flags 0",
+        "synchronous reset, active high: nothing pending, outputs low, flags 0, mode 0",
     ),
     ("step", "request one step (one-clock pulse)"),
     ("dir", "direction of that request: 1 = forward"),
@@ -92,7 +113,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ),
     (
         "dir_setup",
-        "dir stable at least this many clocks before a step's rising edge",
+        "dir stable at least this many clocks before a step's rising edge (0 acts as 1)",
     ),
     (
         "dir_hold",
@@ -142,47 +163,82 @@ pub struct StepOutput<const T: usize> {
     pub mode_invalid: Signal<Out, Bit>,
     /// Steps pending or a pulse in progress.
     pub busy: Signal<Out, Bit>,
+    /// Signed pending steps; its MSB is the sign.
     pending: DFF<Bits<PENDING_BITS>>,
+    /// `pending != 0`, registered so that no decision waits for a 16-bit
+    /// zero test (0 at power-up, like the count).
+    nonzero: DFF<Bit>,
+    /// `pending` is at its most positive / most negative value.
+    at_max: DFF<Bit>,
+    at_min: DFF<Bit>,
     a_reg: DFF<Bit>,
     b_reg: DFF<Bit>,
     /// Mode 0/1: a pulse is high.
     high: DFF<Bit>,
-    /// Clocks since the current level (pulse, space, or quadrature state)
-    /// began, saturating.
-    elapsed: DFF<Bits<T>>,
-    /// Clocks since `out_b` last changed in mode 0, saturating.
-    dir_elapsed: DFF<Bits<T>>,
+    /// Low for the one clock after reset or a mode change, which loads the
+    /// timers as if a pulse had just ended and the direction had changed.
+    started: DFF<Bit>,
+    /// Down-counter of the current level (pulse, space or quadrature
+    /// state); loaded with the setting when the level starts.
+    phase_count: DFF<Bits<T>>,
+    /// The level has lasted long enough: the next edge may come. Registered
+    /// from "the counter reaches 1 at this edge", so 0 and 1 both mean one
+    /// clock and no comparator sits in the decision path.
+    phase_done: DFF<Bit>,
+    /// Mode 0 down-counter: dir_hold after a fall, dir_setup after a
+    /// direction change.
+    dir_count: DFF<Bits<T>>,
+    dir_done: DFF<Bit>,
+    /// The direction counter times a setup, not a hold.
+    timing_setup: DFF<Bit>,
+    /// `timing_setup & !dir_done`, registered: a rise must wait. Keeps the
+    /// rise decision, and the pending adder behind it, one level shallower.
+    setup_wait: DFF<Bit>,
     active_mode: DFF<Bits<2>>,
     overrun_reg: DFF<Bit>,
     // Decisions of this clock.
-    positive: Signal<Local, Bit>,
     negative: Signal<Local, Bit>,
-    idle: Signal<Local, Bit>,
+    positive: Signal<Local, Bit>,
+    quadrature: Signal<Local, Bit>,
+    up_down: Signal<Local, Bit>,
     emit: Signal<Local, Bit>,
-    len: Signal<Local, Bits<T>>,
-    space: Signal<Local, Bits<T>>,
-    hold: Signal<Local, Bits<T>>,
-    elapsed_next: Signal<Local, Bits<T>>,
-    dir_elapsed_next: Signal<Local, Bits<T>>,
+    fall: Signal<Local, Bit>,
+    dir_change: Signal<Local, Bit>,
+    /// The phase counter loads step_len (else step_space).
+    load_len: Signal<Local, Bit>,
+    dir_done_next: Signal<Local, Bit>,
+    timing_setup_next: Signal<Local, Bit>,
     request: Signal<Local, Bit>,
     /// This clock's change of the pending count, -2..2.
     change: Signal<Local, Bits<PENDING_BITS>>,
+    /// `pending` is 1, 2, -1, -2: with this clock's change, the count
+    /// reaches 0 exactly from one of these (or stays at 0).
+    high_bits_zero: Signal<Local, Bit>,
+    high_bits_ones: Signal<Local, Bit>,
+    reaches_zero: Signal<Local, Bit>,
     /// `mode` with the reserved value 3 mapped to step/dir.
     requested_mode: Signal<Local, Bits<2>>,
     zero_t: Constant<Bits<T>>,
     one_t: Constant<Bits<T>>,
-    max_t: Constant<Bits<T>>,
+    /// Clears bit 0: `(v & not_one) == 0` is v <= 1.
+    not_one: Constant<Bits<T>>,
+    /// Clears bits 1..0: with both low bits checked, v <= 2.
+    not_three: Constant<Bits<T>>,
     zero_p: Constant<Bits<PENDING_BITS>>,
     one_p: Constant<Bits<PENDING_BITS>>,
     minus_one_p: Constant<Bits<PENDING_BITS>>,
     two_p: Constant<Bits<PENDING_BITS>>,
     minus_two_p: Constant<Bits<PENDING_BITS>>,
-    sign_p: Constant<Bits<PENDING_BITS>>,
-    max_p: Constant<Bits<PENDING_BITS>>,
+    low_two_p: Constant<Bits<PENDING_BITS>>,
+    high_mask_p: Constant<Bits<PENDING_BITS>>,
+    below_max_p: Constant<Bits<PENDING_BITS>>,
+    above_min_p: Constant<Bits<PENDING_BITS>>,
     min_p: Constant<Bits<PENDING_BITS>>,
+    /// Low two bits of +1, +-2 and -1.
+    low_plus_one: Constant<Bits<2>>,
+    low_two: Constant<Bits<2>>,
+    low_minus_one: Constant<Bits<2>>,
     mode_step_dir: Constant<Bits<2>>,
-    mode_up_down: Constant<Bits<2>>,
-    mode_quadrature: Constant<Bits<2>>,
     mode_reserved: Constant<Bits<2>>,
 }
 
@@ -192,6 +248,7 @@ impl<const T: usize> Default for StepOutput<T> {
             (2..=32).contains(&T),
             "StepOutput timers must be 2 to 32 bits"
         );
+        let t_mask = crate::blocks::width_mask(T as u32);
         let p_mask = crate::blocks::width_mask(PENDING_BITS as u32);
         Self {
             clock: Default::default(),
@@ -209,39 +266,55 @@ impl<const T: usize> Default for StepOutput<T> {
             mode_invalid: Default::default(),
             busy: Default::default(),
             pending: Default::default(),
+            nonzero: Default::default(),
+            at_max: Default::default(),
+            at_min: Default::default(),
             a_reg: Default::default(),
             b_reg: Default::default(),
             high: Default::default(),
-            elapsed: Default::default(),
-            dir_elapsed: Default::default(),
+            started: Default::default(),
+            phase_count: Default::default(),
+            phase_done: Default::default(),
+            dir_count: Default::default(),
+            dir_done: Default::default(),
+            timing_setup: Default::default(),
+            setup_wait: Default::default(),
             active_mode: Default::default(),
             overrun_reg: Default::default(),
-            positive: Default::default(),
             negative: Default::default(),
-            idle: Default::default(),
+            positive: Default::default(),
+            quadrature: Default::default(),
+            up_down: Default::default(),
             emit: Default::default(),
-            len: Default::default(),
-            space: Default::default(),
-            hold: Default::default(),
-            elapsed_next: Default::default(),
-            dir_elapsed_next: Default::default(),
+            fall: Default::default(),
+            dir_change: Default::default(),
+            load_len: Default::default(),
+            dir_done_next: Default::default(),
+            timing_setup_next: Default::default(),
             request: Default::default(),
             change: Default::default(),
+            high_bits_zero: Default::default(),
+            high_bits_ones: Default::default(),
+            reaches_zero: Default::default(),
             requested_mode: Default::default(),
             zero_t: Constant::new(0u64.into()),
             one_t: Constant::new(1u64.into()),
-            max_t: Constant::new(crate::blocks::width_mask(T as u32).into()),
+            not_one: Constant::new((t_mask & !1).into()),
+            not_three: Constant::new((t_mask & !3).into()),
             zero_p: Constant::new(0u64.into()),
             one_p: Constant::new(1u64.into()),
             minus_one_p: Constant::new(p_mask.into()),
             two_p: Constant::new(2u64.into()),
             minus_two_p: Constant::new((p_mask - 1).into()),
-            sign_p: Constant::new((1u64 << (PENDING_BITS - 1)).into()),
-            max_p: Constant::new(((1u64 << (PENDING_BITS - 1)) - 1).into()),
-            min_p: Constant::new((p_mask & !((1u64 << (PENDING_BITS - 1)) - 1)).into()),
+            low_two_p: Constant::new(3u64.into()),
+            high_mask_p: Constant::new((p_mask & !3).into()),
+            below_max_p: Constant::new(((1u64 << (PENDING_BITS - 1)) - 2).into()),
+            above_min_p: Constant::new(((1u64 << (PENDING_BITS - 1)) + 1).into()),
+            min_p: Constant::new((1u64 << (PENDING_BITS - 1)).into()),
+            low_plus_one: Constant::new(1u64.into()),
+            low_two: Constant::new(2u64.into()),
+            low_minus_one: Constant::new(3u64.into()),
             mode_step_dir: Constant::new(0u64.into()),
-            mode_up_down: Constant::new(1u64.into()),
-            mode_quadrature: Constant::new(2u64.into()),
             mode_reserved: Constant::new(3u64.into()),
         }
     }
@@ -254,11 +327,19 @@ impl<const T: usize> Logic for StepOutput<T> {
             self,
             clock,
             pending,
+            nonzero,
+            at_max,
+            at_min,
             a_reg,
             b_reg,
             high,
-            elapsed,
-            dir_elapsed,
+            started,
+            phase_count,
+            phase_done,
+            dir_count,
+            dir_done,
+            timing_setup,
+            setup_wait,
             active_mode,
             overrun_reg
         );
@@ -266,46 +347,24 @@ impl<const T: usize> Logic for StepOutput<T> {
         self.out_b.next = self.b_reg.q.val();
         self.overrun.next = self.overrun_reg.q.val();
         self.mode_invalid.next = self.mode.val() == self.mode_reserved.val();
+        self.busy.next = self.nonzero.q.val() | self.high.q.val();
+        self.started.d.next = true;
 
-        // Timer minimums: 0 acts as 1.
-        self.len.next = self.step_len.val();
-        if self.step_len.val() == self.zero_t.val() {
-            self.len.next = self.one_t.val();
-        }
-        self.space.next = self.step_space.val();
-        if self.step_space.val() == self.zero_t.val() {
-            self.space.next = self.one_t.val();
-        }
-        self.hold.next = self.dir_hold.val();
-        if self.dir_hold.val() == self.zero_t.val() {
-            self.hold.next = self.one_t.val();
-        }
-        // Saturating counters.
-        self.elapsed_next.next = self.elapsed.q.val();
-        if self.elapsed.q.val() != self.max_t.val() {
-            self.elapsed_next.next = self.elapsed.q.val() + self.one_t.val();
-        }
-        self.dir_elapsed_next.next = self.dir_elapsed.q.val();
-        if self.dir_elapsed.q.val() != self.max_t.val() {
-            self.dir_elapsed_next.next = self.dir_elapsed.q.val() + self.one_t.val();
-        }
-        self.elapsed.d.next = self.elapsed_next.val();
-        self.dir_elapsed.d.next = self.dir_elapsed_next.val();
+        self.negative.next = (self.pending.q.val() & self.min_p.val()) != self.zero_p.val();
+        self.positive.next = self.nonzero.q.val() & !self.negative.val();
+        // The active mode is never 3, so each of its bits is one mode.
+        self.quadrature.next = self.active_mode.q.val().get_bit(1);
+        self.up_down.next = self.active_mode.q.val().get_bit(0);
 
-        self.negative.next = (self.pending.q.val() & self.sign_p.val()) != self.zero_p.val();
-        self.positive.next = !self.negative.val() & (self.pending.q.val() != self.zero_p.val());
-        self.idle.next = (self.pending.q.val() == self.zero_p.val()) & !self.high.q.val();
-        self.busy.next = !self.idle.val();
-
-        // Emission: one step leaves the pending count when its pulse (or
-        // quadrature state change) starts.
+        // Events. After reset or a mode change, phase_done, dir_done,
+        // timing_setup and high are all 0, so no event fires in the clock
+        // that loads the timers.
         self.emit.next = false;
-        if self.active_mode.q.val() == self.mode_quadrature.val() {
-            if (self.positive.val() | self.negative.val())
-                & (self.elapsed.q.val() >= self.len.val())
-            {
+        self.fall.next = false;
+        self.dir_change.next = false;
+        if self.quadrature.val() {
+            if self.nonzero.q.val() & self.phase_done.q.val() {
                 self.emit.next = true;
-                self.elapsed.d.next = self.one_t.val();
                 if self.positive.val() {
                     self.a_reg.d.next = !self.b_reg.q.val();
                     self.b_reg.d.next = self.a_reg.q.val();
@@ -315,61 +374,101 @@ impl<const T: usize> Logic for StepOutput<T> {
                 }
             }
         } else if self.high.q.val() {
-            // A pulse ends after exactly `len` clocks.
-            if self.elapsed.q.val() >= self.len.val() {
+            if self.phase_done.q.val() {
+                self.fall.next = true;
                 self.high.d.next = false;
                 self.a_reg.d.next = false;
-                if self.active_mode.q.val() == self.mode_up_down.val() {
+                if self.up_down.val() {
                     self.b_reg.d.next = false;
                 }
-                self.elapsed.d.next = self.one_t.val();
             }
-        } else if (self.positive.val() | self.negative.val())
-            & (self.elapsed.q.val() >= self.space.val())
+        } else if self.nonzero.q.val()
+            & self.phase_done.q.val()
+            & (self.up_down.val()
+                | ((self.b_reg.q.val() == self.positive.val()) & !self.setup_wait.q.val()))
         {
-            if self.active_mode.q.val() == self.mode_up_down.val() {
-                self.emit.next = true;
-                self.high.d.next = true;
-                self.elapsed.d.next = self.one_t.val();
-                if self.positive.val() {
-                    self.a_reg.d.next = true;
-                } else {
-                    self.b_reg.d.next = true;
-                }
-            } else if self.b_reg.q.val() == self.positive.val() {
-                // Step/dir with the direction already right: wait for setup.
-                if self.dir_elapsed.q.val() >= self.dir_setup.val() {
-                    self.emit.next = true;
-                    self.high.d.next = true;
-                    self.a_reg.d.next = true;
-                    self.elapsed.d.next = self.one_t.val();
-                }
-            } else if self.elapsed.q.val() >= self.hold.val() {
-                // Step/dir needing the other direction: change it once the
-                // hold time after the last fall has passed.
-                self.b_reg.d.next = self.positive.val();
-                self.dir_elapsed.d.next = self.one_t.val();
+            self.emit.next = true;
+            self.high.d.next = true;
+            if self.up_down.val() {
+                self.a_reg.d.next = self.positive.val();
+                self.b_reg.d.next = !self.positive.val();
+            } else {
+                self.a_reg.d.next = true;
             }
+        } else if !self.up_down.val()
+            & self.nonzero.q.val()
+            & (self.b_reg.q.val() != self.positive.val())
+            & (self.dir_done.q.val() | self.timing_setup.q.val())
+        {
+            self.dir_change.next = true;
+            self.b_reg.d.next = self.positive.val();
         }
 
-        // The pending count: + request, - emitted step, saturating requests.
+        // Timers: a counter loaded with v at an edge lets its event happen
+        // max(v, 1) clocks later.
+        self.load_len.next = self.quadrature.val() | (self.started.q.val() & !self.high.q.val());
+        // Once done, a counter runs on freely (its value is unused until
+        // the next load): no clock enable, which nextpnr would route through
+        // a slow global buffer.
+        self.phase_count.d.next = self.phase_count.q.val() - self.one_t.val();
+        self.phase_done.d.next = self.phase_done.q.val()
+            | (((self.phase_count.q.val() & self.not_three.val()) == self.zero_t.val())
+                & !(self.phase_count.q.val().get_bit(0) & self.phase_count.q.val().get_bit(1)));
+        if !self.started.q.val() | self.emit.val() | self.fall.val() {
+            if self.load_len.val() {
+                self.phase_count.d.next = self.step_len.val();
+                self.phase_done.d.next =
+                    (self.step_len.val() & self.not_one.val()) == self.zero_t.val();
+            } else {
+                self.phase_count.d.next = self.step_space.val();
+                self.phase_done.d.next =
+                    (self.step_space.val() & self.not_one.val()) == self.zero_t.val();
+            }
+        }
+        self.timing_setup_next.next = self.timing_setup.q.val();
+        self.dir_count.d.next = self.dir_count.q.val() - self.one_t.val();
+        self.dir_done_next.next = self.dir_done.q.val()
+            | (((self.dir_count.q.val() & self.not_three.val()) == self.zero_t.val())
+                & !(self.dir_count.q.val().get_bit(0) & self.dir_count.q.val().get_bit(1)));
+        if !self.started.q.val() | self.fall.val() | self.dir_change.val() {
+            self.timing_setup_next.next = !self.high.q.val();
+            if self.high.q.val() {
+                self.dir_count.d.next = self.dir_hold.val();
+                self.dir_done_next.next =
+                    (self.dir_hold.val() & self.not_one.val()) == self.zero_t.val();
+            } else {
+                self.dir_count.d.next = self.dir_setup.val();
+                self.dir_done_next.next =
+                    (self.dir_setup.val() & self.not_one.val()) == self.zero_t.val();
+            }
+        }
+        self.dir_done.d.next = self.dir_done_next.val();
+        self.timing_setup.d.next = self.timing_setup_next.val();
+        self.setup_wait.d.next = self.timing_setup_next.val() & !self.dir_done_next.val();
+
+        // The pending count: + request, - emitted step. A request that meets
+        // the count at its limit is dropped even if a step leaves at the
+        // same edge: the emit decision stays off the request path.
         self.request.next = self.step.val();
         if self.step.val()
-            & self.dir.val()
-            & (self.pending.q.val() == self.max_p.val())
-            & !self.emit.val()
+            & ((self.dir.val() & self.at_max.q.val()) | (!self.dir.val() & self.at_min.q.val()))
         {
             self.request.next = false;
             self.overrun_reg.d.next = true;
         }
-        if self.step.val()
-            & !self.dir.val()
-            & (self.pending.q.val() == self.min_p.val())
-            & !self.emit.val()
-        {
-            self.request.next = false;
-            self.overrun_reg.d.next = true;
-        }
+        // The limits are registered like `nonzero`: the count reaches its
+        // limit from one step below with a request and no emitted step, and
+        // stays there with neither (a request beyond it is dropped).
+        self.at_max.d.next = !self.emit.val()
+            & ((self.at_max.q.val() & !self.request.val())
+                | ((self.pending.q.val() == self.below_max_p.val())
+                    & self.request.val()
+                    & self.dir.val()));
+        self.at_min.d.next = !self.emit.val()
+            & ((self.at_min.q.val() & !self.request.val())
+                | ((self.pending.q.val() == self.above_min_p.val())
+                    & self.request.val()
+                    & !self.dir.val()));
         // One adder: the change is -2..2 (emitted step and request).
         self.change.next = self.zero_p.val();
         if self.request.val() & self.dir.val() {
@@ -398,27 +497,71 @@ impl<const T: usize> Logic for StepOutput<T> {
             }
         }
         self.pending.d.next = self.pending.q.val() + self.change.val();
+        // The next count is 0 exactly when the change cancels a count of
+        // 0, +-1 or +-2: decided from the current count beside the adder,
+        // not after it.
+        self.high_bits_zero.next =
+            (self.pending.q.val() & self.high_mask_p.val()) == self.zero_p.val();
+        self.high_bits_ones.next =
+            (self.pending.q.val() | self.low_two_p.val()) == self.minus_one_p.val();
+        self.reaches_zero.next = !self.nonzero.q.val() & !self.request.val();
+        if self.high_bits_zero.val() {
+            if self.pending.q.val().get_bits::<2>(0) == self.low_plus_one.val() {
+                // +1: an emitted step alone, or a backward request alone.
+                self.reaches_zero.next = (self.emit.val() & !self.request.val())
+                    | (!self.emit.val() & self.request.val() & !self.dir.val());
+            }
+            if self.pending.q.val().get_bits::<2>(0) == self.low_two.val() {
+                self.reaches_zero.next = self.emit.val() & self.request.val() & !self.dir.val();
+            }
+        }
+        if self.high_bits_ones.val() {
+            if self.pending.q.val().get_bits::<2>(0) == self.low_minus_one.val() {
+                // -1: an emitted step alone, or a forward request alone.
+                self.reaches_zero.next = (self.emit.val() & !self.request.val())
+                    | (!self.emit.val() & self.request.val() & self.dir.val());
+            }
+            if self.pending.q.val().get_bits::<2>(0) == self.low_two.val() {
+                self.reaches_zero.next = self.emit.val() & self.request.val() & self.dir.val();
+            }
+        }
+        self.nonzero.d.next = !self.reaches_zero.val();
 
-        // The mode is taken only while idle; a change resets the outputs.
+        // The mode is taken only while idle; a change resets the outputs
+        // and restarts the timers.
         self.requested_mode.next = self.mode.val();
         if self.mode.val() == self.mode_reserved.val() {
             self.requested_mode.next = self.mode_step_dir.val();
         }
-        if self.idle.val() & (self.requested_mode.val() != self.active_mode.q.val()) {
+        if !self.nonzero.q.val()
+            & !self.high.q.val()
+            & (self.requested_mode.val() != self.active_mode.q.val())
+        {
             self.active_mode.d.next = self.requested_mode.val();
             self.a_reg.d.next = false;
             self.b_reg.d.next = false;
             self.high.d.next = false;
-            self.elapsed.d.next = self.zero_t.val();
-            self.dir_elapsed.d.next = self.zero_t.val();
+            self.started.d.next = false;
+            self.phase_done.d.next = false;
+            self.dir_done.d.next = false;
+            self.timing_setup.d.next = false;
+            self.setup_wait.d.next = false;
         }
         if self.reset.val() {
             self.pending.d.next = self.zero_p.val();
+            self.nonzero.d.next = false;
+            self.at_max.d.next = false;
+            self.at_min.d.next = false;
             self.a_reg.d.next = false;
             self.b_reg.d.next = false;
             self.high.d.next = false;
-            self.elapsed.d.next = self.zero_t.val();
-            self.dir_elapsed.d.next = self.zero_t.val();
+            self.started.d.next = false;
+            self.phase_count.d.next = self.zero_t.val();
+            self.phase_done.d.next = false;
+            self.dir_count.d.next = self.zero_t.val();
+            self.dir_done.d.next = false;
+            self.timing_setup.d.next = false;
+            self.setup_wait.d.next = false;
             self.active_mode.d.next = self.mode_step_dir.val();
             self.overrun_reg.d.next = false;
         }

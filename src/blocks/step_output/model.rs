@@ -1,4 +1,9 @@
 //! Reference model of [`super::StepOutput`], cycle-exact.
+//!
+//! The model keeps each timer as "clocks still to wait" and gates every
+//! event on an explicit `started` state; the RTL uses loadable down-counters
+//! with registered "expired" flags instead. The two representations are
+//! proven equal by the cycle-by-cycle comparison in `tests/step_output.rs`.
 
 /// Inputs of one clock cycle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -15,7 +20,7 @@ pub struct StepOutputInputs {
     pub step_len: u64,
     /// Minimum low time (0 acts as 1).
     pub step_space: u64,
-    /// Direction setup time.
+    /// Direction setup time (0 acts as 1).
     pub dir_setup: u64,
     /// Direction hold time (0 acts as 1).
     pub dir_hold: u64,
@@ -36,37 +41,51 @@ pub struct StepOutputOutputs {
     pub busy: bool,
 }
 
+/// The most positive pending count, 2^15 - 1.
+pub const PENDING_MAX: i32 = (1 << 15) - 1;
+/// The most negative pending count, -2^15.
+pub const PENDING_MIN: i32 = -(1 << 15);
+
 /// Plain-Rust, cycle-exact model of the step output stage with `timer_bits`
 /// timers and a 16-bit pending count.
 #[derive(Clone, Debug)]
 pub struct StepOutputModel {
-    timer_max: u64,
+    timer_mask: u64,
     pending: i32,
     a: bool,
     b: bool,
+    /// Mode 0/1: a pulse is high.
     high: bool,
-    elapsed: u64,
-    dir_elapsed: u64,
+    /// False for the one clock after reset or a mode change, in which the
+    /// timers are loaded as if a pulse had just ended and the direction
+    /// had just changed.
+    started: bool,
+    /// Clocks the current level (pulse, space or quadrature state) must
+    /// still last before the next edge of `out_a`/state may come.
+    phase_left: u64,
+    /// Mode 0: clocks until `out_b` may change (hold) or, while
+    /// `timing_setup`, until a pulse may rise (setup).
+    dir_left: u64,
+    /// The direction timer times a setup (after a direction change), not a
+    /// hold (after a fall).
+    timing_setup: bool,
     active_mode: u8,
     overrun: bool,
 }
-
-/// The pending count's limit: ±(2^15 - 1) forward, -2^15 backward.
-pub const PENDING_MAX: i32 = (1 << 15) - 1;
-/// The most negative pending count.
-pub const PENDING_MIN: i32 = -(1 << 15);
 
 impl StepOutputModel {
     /// A stage with `timer_bits`-bit timers, in its power-up state.
     pub fn new(timer_bits: u32) -> Self {
         Self {
-            timer_max: crate::blocks::width_mask(timer_bits),
+            timer_mask: crate::blocks::width_mask(timer_bits),
             pending: 0,
             a: false,
             b: false,
             high: false,
-            elapsed: 0,
-            dir_elapsed: 0,
+            started: false,
+            phase_left: 0,
+            dir_left: 0,
+            timing_setup: false,
             active_mode: 0,
             overrun: false,
         }
@@ -83,107 +102,109 @@ impl StepOutputModel {
             out_b: self.b,
             overrun: self.overrun,
             mode_invalid: mode == 3,
-            busy: !(self.pending == 0 && !self.high),
+            busy: self.pending != 0 || self.high,
         }
     }
 
     /// One rising clock edge; returns the outputs after it (with the same
     /// `mode` input still applied).
     pub fn step(&mut self, i: StepOutputInputs) -> StepOutputOutputs {
-        let mask = self.timer_max;
-        let at_least_one = |x: u64| if x & mask == 0 { 1 } else { x & mask };
-        let (len, space, hold, setup) = (
-            at_least_one(i.step_len),
-            at_least_one(i.step_space),
-            at_least_one(i.dir_hold),
-            i.dir_setup & mask,
-        );
+        // A timer loaded with v lets its event happen max(v, 1) clocks later.
+        let wait = |v: u64| (v & self.timer_mask).max(1) - 1;
         let positive = self.pending > 0;
-        let negative = self.pending < 0;
-        let idle = self.pending == 0 && !self.high;
+        let nonzero = self.pending != 0;
+        let quadrature = self.active_mode == 2;
+        let up_down = self.active_mode == 1;
+        let phase_done = self.phase_left == 0;
+        let dir_done = self.dir_left == 0;
         let mut next = self.clone();
-        next.elapsed = (self.elapsed + 1).min(mask);
-        next.dir_elapsed = (self.dir_elapsed + 1).min(mask);
-        let mut emit = false;
-        if self.active_mode == 2 {
-            if (positive || negative) && self.elapsed >= len {
+        next.phase_left = self.phase_left.saturating_sub(1);
+        next.dir_left = self.dir_left.saturating_sub(1);
+        next.started = true;
+
+        let (mut emit, mut fall, mut dir_change) = (false, false, false);
+        if !self.started {
+            // Only the timers load (below).
+        } else if quadrature {
+            if nonzero && phase_done {
                 emit = true;
-                next.elapsed = 1;
-                if positive {
-                    (next.a, next.b) = (!self.b, self.a);
+                (next.a, next.b) = if positive {
+                    (!self.b, self.a)
                 } else {
-                    (next.a, next.b) = (self.b, !self.a);
-                }
+                    (self.b, !self.a)
+                };
             }
         } else if self.high {
-            if self.elapsed >= len {
+            if phase_done {
+                fall = true;
                 next.high = false;
                 next.a = false;
-                if self.active_mode == 1 {
+                if up_down {
                     next.b = false;
                 }
-                next.elapsed = 1;
             }
-        } else if (positive || negative) && self.elapsed >= space {
-            if self.active_mode == 1 {
-                emit = true;
-                next.high = true;
-                next.elapsed = 1;
-                if positive {
-                    next.a = true;
-                } else {
-                    next.b = true;
-                }
-            } else if self.b == positive {
-                if self.dir_elapsed >= setup {
-                    emit = true;
-                    next.high = true;
-                    next.a = true;
-                    next.elapsed = 1;
-                }
-            } else if self.elapsed >= hold {
-                next.b = positive;
-                next.dir_elapsed = 1;
+        } else if nonzero
+            && phase_done
+            && (up_down || (self.b == positive && (dir_done || !self.timing_setup)))
+        {
+            emit = true;
+            next.high = true;
+            if up_down {
+                (next.a, next.b) = (positive, !positive);
+            } else {
+                next.a = true;
             }
+        } else if !up_down && nonzero && self.b != positive && (dir_done || self.timing_setup) {
+            // A direction change once the hold after the last fall has
+            // passed; during a setup (no pulse since the last change) it
+            // may change back at once.
+            dir_change = true;
+            next.b = positive;
         }
+
+        if !self.started || emit || fall {
+            // A rise or a quadrature state times step_len; a fall or the
+            // start times step_space (quadrature: step_len).
+            let len = quadrature || (self.started && !self.high);
+            next.phase_left = wait(if len { i.step_len } else { i.step_space });
+        }
+        if !self.started || fall || dir_change {
+            // After a fall: hold; after a direction change or the start:
+            // setup.
+            next.timing_setup = !self.high;
+            next.dir_left = wait(if self.high { i.dir_hold } else { i.dir_setup });
+        }
+
         let mut request = i.step;
         if i.step
-            && !emit
             && ((i.dir && self.pending == PENDING_MAX) || (!i.dir && self.pending == PENDING_MIN))
         {
             request = false;
             next.overrun = true;
         }
-        let emitted = if emit {
-            if positive {
-                -1
-            } else {
-                1
-            }
-        } else {
-            0
+        let emitted = match (emit, positive) {
+            (false, _) => 0,
+            (true, true) => -1,
+            (true, false) => 1,
         };
-        let requested = if request {
-            if i.dir {
-                1
-            } else {
-                -1
-            }
-        } else {
-            0
+        let requested = match (request, i.dir) {
+            (false, _) => 0,
+            (true, true) => 1,
+            (true, false) => -1,
         };
         next.pending = self.pending + emitted + requested;
+
         let requested_mode = if i.mode == 3 { 0 } else { i.mode };
+        let idle = !nonzero && !self.high;
         if idle && requested_mode != self.active_mode {
             next.active_mode = requested_mode;
             next.a = false;
             next.b = false;
             next.high = false;
-            next.elapsed = 0;
-            next.dir_elapsed = 0;
+            next.started = false;
         }
         if i.reset {
-            next = Self::new(mask.count_ones());
+            next = Self::new(self.timer_mask.count_ones());
         }
         *self = next;
         self.outputs(i.mode)
