@@ -8,6 +8,7 @@ use std::time::Instant;
 use motion_hdl::blocks::dda_integrator::DdaIntegrator;
 use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
 use motion_hdl::blocks::freq_divider::FreqDivider;
+use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
 use motion_hdl::blocks::step_channel::StepChannel;
 use motion_hdl::sim::{Harness, VectorPorts};
 use rust_hdl::prelude::*;
@@ -84,7 +85,15 @@ fn main() {
         &[0, 1, 1, 2, 1, 0, 0, 1, 1, 1, 1],
         1_000_000,
     );
+    // The quadrature decoder with its filter off, fed a constant state.
+    let decoder = stepping_rate(
+        "quadrature_decoder",
+        QuadratureDecoder::<32, 8, 16>::default(),
+        &[0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0],
+        1_000_000,
+    );
     println!("  dda_integrator (32-bit), harness      {:>12.0}", dda);
+    println!("  quadrature_decoder (32-bit), harness  {:>12.0}", decoder);
     println!("  step_channel (32/16-bit), harness     {:>12.0}", channel);
     println!(
         "  dda_interpolator (3 axes), harness    {:>12.0}",

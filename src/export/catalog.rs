@@ -7,6 +7,7 @@ use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::pulse_counter::{self, PulseCounter};
+use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
 use crate::blocks::step_channel::{self, StepChannel};
 use crate::blocks::step_output::{self, StepOutput};
@@ -93,6 +94,19 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 100.0,
             lut4_budget: None,
             build: || Box::new(DdaInterpolator::<3>::default()),
+        },
+        ModuleSpec {
+            name: "quadrature_decoder",
+            summary: quadrature_decoder::SUMMARY,
+            parameters: &[
+                ("W", "32", "count and index_count width"),
+                ("S", "8", "sample_rate width"),
+                ("TS", "16", "timestamp and count_time width"),
+            ],
+            port_docs: quadrature_decoder::PORT_DOCS,
+            fmax_target_mhz: 150.0,
+            lut4_budget: Some(130),
+            build: || Box::new(QuadratureDecoder::<32, 8, 16>::default()),
         },
         ModuleSpec {
             name: "step_output",
