@@ -11,5 +11,6 @@
 
 pub mod blocks;
 pub mod export;
+pub mod plots;
 pub mod sim;
 pub mod tools;

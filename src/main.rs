@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export};
+use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::tools::report;
 
 /// motion-hdl: FPGA motion-control blocks, exported to Verilog.
@@ -43,6 +44,20 @@ enum Command {
         #[arg(long = "module")]
         modules: Vec<String>,
     },
+    /// Draw the uniform pulse generator's figures as SVG: one period of
+    /// (T, N) in single-period, paper-order and interleaved form, and the
+    /// single-period unevenness mu against N for this T.
+    PlotPulses {
+        /// T: the interpolation period in ticks (even, at least 2).
+        #[arg(long)]
+        period: u64,
+        /// N: pulses in the period (at most T/2).
+        #[arg(long)]
+        count: u64,
+        /// Folder for pulse-trains-T<T>-N<N>.svg and unevenness-T<T>.svg.
+        #[arg(long, default_value = "plots")]
+        out_dir: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -57,6 +72,24 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
+        Command::PlotPulses {
+            period,
+            count,
+            out_dir,
+        } => {
+            std::fs::create_dir_all(&out_dir)
+                .map_err(|e| format!("cannot create {}: {e}", out_dir.display()))?;
+            let trains = out_dir.join(format!("pulse-trains-T{period}-N{count}.svg"));
+            let mu = plot_pulse_trains(period, count, &trains).map_err(|e| e.to_string())?;
+            println!("wrote {} (single-period mu = {mu:.4})", trains.display());
+            let curve = out_dir.join(format!("unevenness-T{period}.svg"));
+            let (worst, at) = plot_unevenness(period, &curve).map_err(|e| e.to_string())?;
+            println!(
+                "wrote {} (worst single-period mu = {worst:.4} at N = {at})",
+                curve.display()
+            );
+            Ok(())
+        }
         Command::Export { out, testbench_out } => {
             let written = write_export(&out, &testbench_out).map_err(|e| e.to_string())?;
             for path in written {

@@ -12,6 +12,7 @@ pub mod quadrature_decoder;
 pub mod sequential_divider;
 pub mod step_channel;
 pub mod step_output;
+pub mod uniform_pulse_gen;
 
 /// All ones in the low `width` bits (1 to 64): the value range of a
 /// `width`-bit port, for models and stimulus.

@@ -11,6 +11,7 @@ use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
 use crate::blocks::step_channel::{self, StepChannel};
 use crate::blocks::step_output::{self, StepOutput};
+use crate::blocks::uniform_pulse_gen::{self, UniformPulseGen};
 
 /// One documented port: name and meaning (direction and width come from the RTL).
 pub type PortDoc = (&'static str, &'static str);
@@ -94,6 +95,18 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 100.0,
             lut4_budget: None,
             build: || Box::new(DdaInterpolator::<3>::default()),
+        },
+        ModuleSpec {
+            name: "uniform_pulse_gen",
+            summary: uniform_pulse_gen::SUMMARY,
+            parameters: &[
+                ("T", "32", "period width in ticks"),
+                ("N", "32", "count width"),
+            ],
+            port_docs: uniform_pulse_gen::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            build: || Box::new(UniformPulseGen::default()),
         },
         ModuleSpec {
             name: "quadrature_decoder",

@@ -1,0 +1,272 @@
+//! Reference models of [`super::UniformPulseGen`]: the dual-period plan of
+//! a period (both pulse orders), the single-period algorithm it replaces,
+//! tick-level pulse trains of all three for plots and checks, and a
+//! cycle-exact model of the RTL.
+
+/// How the pulses of one interpolation period are laid out.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PulsePlan {
+    /// T: the period in ticks (even, >= 2).
+    pub period: u64,
+    /// N: pulses in the period, 0 <= N <= T/2.
+    pub count: u64,
+    /// Tp1 / 2 = floor(T / 2N): high (and low) ticks of a short pulse.
+    pub half: u64,
+    /// N1 = (N * Tp2 - T) / 2: short pulses.
+    pub short_pulses: u64,
+    /// N2 = (T - N * Tp1) / 2: long pulses (Tp2 = Tp1 + 2).
+    pub long_pulses: u64,
+    /// The (T, N) asked for, before correction.
+    pub requested: (u64, u64),
+}
+
+impl PulsePlan {
+    /// The plan for a requested (T, N), with the bad-input rules of the
+    /// datasheet applied: an odd T is rounded down to even, a T below 2
+    /// becomes 2, and N above T/2 is clamped to T/2. The flag tells whether
+    /// any rule applied (`overrange`).
+    pub fn new(period: u64, count: u64) -> (Self, bool) {
+        let period = period & 0xffff_ffff;
+        let count = count & 0xffff_ffff;
+        let mut overrange = period % 2 == 1 || period < 2;
+        let t = (period & !1).max(2);
+        let half_t = t / 2;
+        let n = if count > half_t {
+            overrange = true;
+            half_t
+        } else {
+            count
+        };
+        let plan = if n == 0 {
+            Self {
+                period: t,
+                requested: (period, count),
+                ..Default::default()
+            }
+        } else {
+            Self {
+                period: t,
+                count: n,
+                half: half_t / n,
+                short_pulses: n - half_t % n,
+                long_pulses: half_t % n,
+                requested: (period, count),
+            }
+        };
+        (plan, overrange)
+    }
+
+    /// Tp1, the short pulse period in ticks (0 when N = 0).
+    pub fn short_period(&self) -> u64 {
+        2 * self.half
+    }
+
+    /// Whether pulse `i` (0-based) of the period is a long one: in paper
+    /// order all N1 short pulses come first; interleaved, pulse i is long
+    /// when floor((i + 1) * N2 / N) steps up (Bresenham over the index).
+    pub fn is_long(&self, i: u64, interleaved: bool) -> bool {
+        if interleaved {
+            (i + 1) * self.long_pulses / self.count > i * self.long_pulses / self.count
+        } else {
+            i >= self.short_pulses
+        }
+    }
+
+    /// The output level on each tick of the period (dual-period algorithm).
+    pub fn train(&self, interleaved: bool) -> Vec<bool> {
+        let mut levels = Vec::with_capacity(self.period as usize);
+        for i in 0..self.count {
+            let half = self.half + self.is_long(i, interleaved) as u64;
+            levels.extend(std::iter::repeat(true).take(half as usize));
+            levels.extend(std::iter::repeat(false).take(half as usize));
+        }
+        // N = 0: the whole period low.
+        levels.resize(self.period as usize, false);
+        levels
+    }
+}
+
+/// The single-period algorithm the dual-period one replaces: N pulses of
+/// Tp = 2 * floor(T / 2N) ticks, then idle until the period ends.
+pub fn single_period_train(period: u64, count: u64) -> Vec<bool> {
+    let (plan, _) = PulsePlan::new(period, count);
+    let mut levels = Vec::with_capacity(plan.period as usize);
+    for _ in 0..plan.count {
+        levels.extend(std::iter::repeat(true).take(plan.half as usize));
+        levels.extend(std::iter::repeat(false).take(plan.half as usize));
+    }
+    levels.resize(plan.period as usize, false);
+    levels
+}
+
+/// The unevenness of the single-period algorithm, mu = 1 - N * Tp / T:
+/// the share of the period left idle.
+pub fn single_period_unevenness(period: u64, count: u64) -> f64 {
+    let (plan, _) = PulsePlan::new(period, count);
+    1.0 - (plan.count * plan.short_period()) as f64 / plan.period as f64
+}
+
+/// Inputs of one clock cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UniformPulseGenInputs {
+    /// Synchronous reset.
+    pub reset: bool,
+    /// Time base.
+    pub tick: bool,
+    /// T.
+    pub period: u64,
+    /// N.
+    pub count: u64,
+    /// false = paper order, true = interleaved.
+    pub mode: bool,
+    /// Queue (period, count, mode).
+    pub load: bool,
+    /// Clear the sticky flags.
+    pub clear_flags: bool,
+}
+
+/// Outputs after one clock edge.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UniformPulseGenOutputs {
+    /// The pulse train.
+    pub pulse: bool,
+    /// One-clock strobe at the end of each period.
+    pub period_done: bool,
+    /// The next-period slot is free.
+    pub ready: bool,
+    /// A period is running.
+    pub running: bool,
+    /// Sticky: a period ended with no next period ready.
+    pub underrun: bool,
+    /// Sticky: an odd or too small T, or N > T/2, was corrected.
+    pub overrange: bool,
+    /// Sticky: a load arrived while `ready` was low and was ignored.
+    pub overflow: bool,
+}
+
+/// Clocks from the edge that accepts a load to the edge after which the
+/// slot is complete (a check and a clamp clock, the 32-clock division and
+/// two clocks of precomputation): a period loaded at edge L can start at the first tick
+/// edge after L + `LOAD_TO_READY`.
+pub const LOAD_TO_READY: u32 = 38;
+
+#[derive(Clone, Copy, Debug, Default)]
+struct Current {
+    plan: PulsePlan,
+    interleaved: bool,
+    ticks_left: u64,
+    /// Tick edges left in the current half pulse (1: it ends at the next).
+    half_left: u64,
+    pulse_index: u64,
+    long: bool,
+}
+
+/// Cycle-exact model of the 32-bit `uniform_pulse_gen`.
+#[derive(Clone, Debug, Default)]
+pub struct UniformPulseGenModel {
+    /// The queued period and the clocks until it is computed.
+    slot: Option<(PulsePlan, bool, u32)>,
+    current: Option<Current>,
+    out: UniformPulseGenOutputs,
+}
+
+impl UniformPulseGenModel {
+    /// A generator in its power-up state.
+    pub fn new() -> Self {
+        Self {
+            out: UniformPulseGenOutputs {
+                ready: true,
+                ..Default::default()
+            },
+            ..Default::default()
+        }
+    }
+
+    /// One rising clock edge; returns the outputs after it.
+    pub fn step(&mut self, i: UniformPulseGenInputs) -> UniformPulseGenOutputs {
+        if i.reset {
+            *self = Self::new();
+            return self.out;
+        }
+        // Sticky flags: a clear and a new event on the same clock leave the
+        // flag set (the event is not lost).
+        if i.clear_flags {
+            self.out.underrun = false;
+            self.out.overrange = false;
+            self.out.overflow = false;
+        }
+        let slot_full = matches!(self.slot, Some((_, _, 0)));
+        let was_ready = self.slot.is_none();
+        let mut start = false;
+        self.out.period_done = false;
+        if i.tick {
+            match &mut self.current {
+                Some(c) if c.ticks_left == 1 => {
+                    // The period's T ticks have elapsed; the last pulse
+                    // ends on this same edge.
+                    assert!(c.plan.count == 0 || (!self.out.pulse && c.half_left == 1));
+                    self.out.period_done = true;
+                    if slot_full {
+                        start = true;
+                    } else {
+                        self.current = None;
+                        self.out.underrun = true;
+                    }
+                }
+                Some(c) => {
+                    c.ticks_left -= 1;
+                    if c.plan.count > 0 {
+                        if c.half_left == 1 {
+                            if self.out.pulse {
+                                self.out.pulse = false;
+                            } else {
+                                c.pulse_index += 1;
+                                c.long = c.plan.is_long(c.pulse_index, c.interleaved);
+                                self.out.pulse = true;
+                            }
+                            c.half_left = c.plan.half + c.long as u64;
+                        } else {
+                            c.half_left -= 1;
+                        }
+                    }
+                }
+                None => start = slot_full,
+            }
+        }
+        if start {
+            let (plan, interleaved, _) = self.slot.take().expect("a full slot");
+            self.current = Some(Current {
+                plan,
+                interleaved,
+                ticks_left: plan.period,
+                half_left: plan.half,
+                pulse_index: 0,
+                long: false,
+            });
+            self.out.pulse = plan.count > 0;
+        }
+        if let Some((plan, _, left)) = &mut self.slot {
+            if *left == LOAD_TO_READY - 1 {
+                // The clamp, two clocks after the load, reports corrected
+                // input.
+                self.out.overrange |= PulsePlan::new(plan.requested.0, plan.requested.1).1;
+            }
+            *left = left.saturating_sub(1);
+        }
+        if i.load {
+            if was_ready {
+                let (mut plan, _) = PulsePlan::new(i.period, i.count);
+                plan.requested = (i.period, i.count);
+                self.slot = Some((plan, i.mode, LOAD_TO_READY));
+            } else {
+                self.out.overflow = true;
+            }
+        }
+        if self.current.is_none() {
+            self.out.pulse = false;
+        }
+        self.out.ready = self.slot.is_none();
+        self.out.running = self.current.is_some();
+        self.out
+    }
+}
