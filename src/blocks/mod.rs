@@ -5,6 +5,7 @@
 pub mod carry_select_adder;
 pub mod dda_integrator;
 pub mod dda_interpolator;
+pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;
 pub mod pulse_counter;

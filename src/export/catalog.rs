@@ -5,6 +5,7 @@ use rust_hdl::core::prelude::*;
 
 use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
+use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
@@ -136,6 +137,18 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 125.0,
             lut4_budget: None,
             build: || Box::new(StepOutput::<16>::default()),
+        },
+        ModuleSpec {
+            name: "external_bus_adapter",
+            summary: external_bus_adapter::SUMMARY,
+            parameters: &[
+                ("A", "8", "word address width"),
+                ("data", "32", "data width"),
+            ],
+            port_docs: external_bus_adapter::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            build: || Box::new(ExternalBusAdapter::<8>::default()),
         },
         ModuleSpec {
             name: "step_channel",

@@ -1,0 +1,295 @@
+//! # `external_bus_adapter`: asynchronous external-memory bus to a synchronous register bus
+//!
+//! A DSP or MCU reaches FPGA registers through its external memory
+//! interface (EMIF, XINTF, FSMC): chip select, write and read strobes,
+//! address and data, all asynchronous to the FPGA clock. This block
+//! synchronizes the strobes (two flip-flops each), samples address and data
+//! through the same pipeline, and turns every access into exactly one
+//! one-clock strobe on a simple synchronous register bus:
+//!
+//! * a write becomes `bus_write` (with `bus_address`, `bus_write_data`) once
+//!   the write strobe ends, with the address and data sampled while it was
+//!   still active;
+//! * a read becomes `bus_read` (with `bus_address`) once the read strobe is
+//!   seen active; the slave answers on `bus_read_data` in the next clock,
+//!   and the adapter holds that word on `data_out` for the rest of the read.
+//!
+//! ## Ports (`A` = 8-bit address in the exported `external_bus_adapter`)
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clock` | in | 1 | rising-edge clock |
+//! | `reset` | in | 1 | synchronous, active high: no access in progress, outputs 0 |
+//! | `cs_n` | in | 1 | chip select, active low, asynchronous |
+//! | `we_n` | in | 1 | write strobe, active low, asynchronous |
+//! | `rd_n` | in | 1 | read strobe (output enable), active low, asynchronous |
+//! | `address` | in | A | word address, asynchronous |
+//! | `data_in` | in | 32 | write data from the pins, asynchronous |
+//! | `data_out` | out | 32 | read data to the pins, registered |
+//! | `data_oe` | out | 1 | drive the data pins: `!cs_n & !rd_n`, combinational from the pins (for the IO buffer's enable) |
+//! | `bus_address` | out | A | address of the current bus strobe, registered |
+//! | `bus_write_data` | out | 32 | data of `bus_write`, registered |
+//! | `bus_write` | out | 1 | one-clock write strobe |
+//! | `bus_read` | out | 1 | one-clock read strobe |
+//! | `bus_read_data` | in | 32 | the slave's read data, valid in the clock after `bus_read` |
+//!
+//! ## Synchronous bus timing
+//! ```text
+//! clock        |  c   | c+1  | c+2  |
+//! bus_write    ‾‾‾‾‾‾‾\______________     (with bus_address, bus_write_data)
+//! bus_read     ‾‾‾‾‾‾‾\______________     (with bus_address)
+//! bus_read_data       |  D   |            slave: registered, the clock after bus_read
+//! data_out                   |  D ...     held until the next read
+//! ```
+//!
+//! ## Minimum strobe timing at the pins, in FPGA clocks (t_clk)
+//! | parameter | minimum | why |
+//! |---|---|---|
+//! | write strobe (cs_n and we_n low) | 2 t_clk | at least one synchronizer sample sees it |
+//! | address and data stable before the end of the write strobe | 2 t_clk | the sample taken one clock before the end is used |
+//! | address and data hold after the write strobe | 0 | |
+//! | read access time: rd_n low to data valid at the pins | 6 t_clk + pin delays | 2 synchronizer clocks, 1 to issue `bus_read`, 1 for the slave, 1 to register `data_out`, 1 of sampling uncertainty |
+//! | address stable before rd_n falls | 1 t_clk | it is sampled with the first active sample of rd_n |
+//! | strobe high between accesses | 2 t_clk | one inactive sample separates two accesses |
+//!
+//! ## Bad input
+//! * A write strobe shorter than one clock may be missed entirely; one of
+//!   at least 2 clocks is never missed and never doubled.
+//! * we_n and rd_n low together: the write is taken when it ends and the
+//!   read is issued once; neither is lost, but the read may return the word
+//!   from before or after the write. Do not do this.
+//! * A read whose strobe ends before its data is registered is still issued
+//!   (side effects happen once); the DSP just reads an older `data_out`.
+
+pub mod model;
+
+use rust_hdl::prelude::*;
+
+/// One line for the export header and the `rtl-out` index.
+pub const SUMMARY: &str =
+    "asynchronous external-memory bus (cs_n, we_n, rd_n) to a synchronous register bus, with synchronizers";
+
+/// Meaning of every port, for the export header and the `rtl-out` index.
+pub const PORT_DOCS: &[(&str, &str)] = &[
+    ("clock", "rising-edge clock"),
+    (
+        "reset",
+        "synchronous reset, active high: no access in progress, outputs 0",
+    ),
+    ("cs_n", "chip select, active low, asynchronous"),
+    ("we_n", "write strobe, active low, asynchronous"),
+    (
+        "rd_n",
+        "read strobe (output enable), active low, asynchronous",
+    ),
+    ("address", "word address, asynchronous"),
+    ("data_in", "write data from the pins, asynchronous"),
+    ("data_out", "read data to the pins, registered"),
+    (
+        "data_oe",
+        "drive the data pins: !cs_n & !rd_n, combinational from the pins",
+    ),
+    ("bus_address", "address of the current bus strobe"),
+    ("bus_write_data", "data of bus_write"),
+    ("bus_write", "one-clock write strobe"),
+    ("bus_read", "one-clock read strobe"),
+    (
+        "bus_read_data",
+        "the slave's read data, valid in the clock after bus_read",
+    ),
+];
+
+/// Asynchronous external bus adapter. See the [module documentation](self).
+#[derive(Clone, Debug, LogicBlock)]
+pub struct ExternalBusAdapter<const A: usize> {
+    /// Rising-edge clock.
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset, active high.
+    pub reset: Signal<In, Bit>,
+    /// Chip select, active low.
+    pub cs_n: Signal<In, Bit>,
+    /// Write strobe, active low.
+    pub we_n: Signal<In, Bit>,
+    /// Read strobe, active low.
+    pub rd_n: Signal<In, Bit>,
+    /// Word address.
+    pub address: Signal<In, Bits<A>>,
+    /// Write data from the pins.
+    pub data_in: Signal<In, Bits<32>>,
+    /// Read data to the pins.
+    pub data_out: Signal<Out, Bits<32>>,
+    /// Drive the data pins.
+    pub data_oe: Signal<Out, Bit>,
+    /// Address of the bus strobe.
+    pub bus_address: Signal<Out, Bits<A>>,
+    /// Data of the write strobe.
+    pub bus_write_data: Signal<Out, Bits<32>>,
+    /// Write strobe.
+    pub bus_write: Signal<Out, Bit>,
+    /// Read strobe.
+    pub bus_read: Signal<Out, Bit>,
+    /// Read data from the slave.
+    pub bus_read_data: Signal<In, Bits<32>>,
+    // Two-flip-flop synchronizers; the address and data go through the same
+    // stages, so each stage holds one consistent sample of all pins.
+    write_meta: DFF<Bit>,
+    write_sync: DFF<Bit>,
+    write_prev: DFF<Bit>,
+    read_meta: DFF<Bit>,
+    read_sync: DFF<Bit>,
+    address_meta: DFF<Bits<A>>,
+    address_sync: DFF<Bits<A>>,
+    address_prev: DFF<Bits<A>>,
+    data_meta: DFF<Bits<32>>,
+    data_sync: DFF<Bits<32>>,
+    data_prev: DFF<Bits<32>>,
+    /// The current read strobe has been issued.
+    read_served: DFF<Bit>,
+    /// `bus_read` was high last clock: capture the slave's answer now.
+    read_answer: DFF<Bit>,
+    bus_address_reg: DFF<Bits<A>>,
+    bus_write_data_reg: DFF<Bits<32>>,
+    bus_write_reg: DFF<Bit>,
+    bus_read_reg: DFF<Bit>,
+    data_out_reg: DFF<Bits<32>>,
+    write_ends: Signal<Local, Bit>,
+    zero_a: Constant<Bits<A>>,
+    zero_d: Constant<Bits<32>>,
+}
+
+impl<const A: usize> Default for ExternalBusAdapter<A> {
+    fn default() -> Self {
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            cs_n: Default::default(),
+            we_n: Default::default(),
+            rd_n: Default::default(),
+            address: Default::default(),
+            data_in: Default::default(),
+            data_out: Default::default(),
+            data_oe: Default::default(),
+            bus_address: Default::default(),
+            bus_write_data: Default::default(),
+            bus_write: Default::default(),
+            bus_read: Default::default(),
+            bus_read_data: Default::default(),
+            write_meta: Default::default(),
+            write_sync: Default::default(),
+            write_prev: Default::default(),
+            read_meta: Default::default(),
+            read_sync: Default::default(),
+            address_meta: Default::default(),
+            address_sync: Default::default(),
+            address_prev: Default::default(),
+            data_meta: Default::default(),
+            data_sync: Default::default(),
+            data_prev: Default::default(),
+            read_served: Default::default(),
+            read_answer: Default::default(),
+            bus_address_reg: Default::default(),
+            bus_write_data_reg: Default::default(),
+            bus_write_reg: Default::default(),
+            bus_read_reg: Default::default(),
+            data_out_reg: Default::default(),
+            write_ends: Default::default(),
+            zero_a: Constant::new(0u64.into()),
+            zero_d: Constant::new(0u64.into()),
+        }
+    }
+}
+
+impl<const A: usize> Logic for ExternalBusAdapter<A> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            write_meta,
+            write_sync,
+            write_prev,
+            read_meta,
+            read_sync,
+            address_meta,
+            address_sync,
+            address_prev,
+            data_meta,
+            data_sync,
+            data_prev,
+            read_served,
+            read_answer,
+            bus_address_reg,
+            bus_write_data_reg,
+            bus_write_reg,
+            bus_read_reg,
+            data_out_reg
+        );
+        self.data_out.next = self.data_out_reg.q.val();
+        self.data_oe.next = !self.cs_n.val() & !self.rd_n.val();
+        self.bus_address.next = self.bus_address_reg.q.val();
+        self.bus_write_data.next = self.bus_write_data_reg.q.val();
+        self.bus_write.next = self.bus_write_reg.q.val();
+        self.bus_read.next = self.bus_read_reg.q.val();
+
+        // Samples of the pins; "active" is cs_n and the strobe both low.
+        self.write_meta.d.next = !self.cs_n.val() & !self.we_n.val();
+        self.write_sync.d.next = self.write_meta.q.val();
+        self.write_prev.d.next = self.write_sync.q.val();
+        self.read_meta.d.next = !self.cs_n.val() & !self.rd_n.val();
+        self.read_sync.d.next = self.read_meta.q.val();
+        self.address_meta.d.next = self.address.val();
+        self.address_sync.d.next = self.address_meta.q.val();
+        self.address_prev.d.next = self.address_sync.q.val();
+        self.data_meta.d.next = self.data_in.val();
+        self.data_sync.d.next = self.data_meta.q.val();
+        self.data_prev.d.next = self.data_sync.q.val();
+
+        // A write is taken when its strobe ends, with the address and data
+        // of the last active sample. A read is issued once per strobe, one
+        // clock later if a write takes this clock.
+        self.write_ends.next = self.write_prev.q.val() & !self.write_sync.q.val();
+        self.bus_write_reg.d.next = false;
+        self.bus_read_reg.d.next = false;
+        if self.write_ends.val() {
+            self.bus_write_reg.d.next = true;
+            self.bus_address_reg.d.next = self.address_prev.q.val();
+            self.bus_write_data_reg.d.next = self.data_prev.q.val();
+        } else if self.read_sync.q.val() & !self.read_served.q.val() {
+            self.bus_read_reg.d.next = true;
+            self.bus_address_reg.d.next = self.address_sync.q.val();
+            self.read_served.d.next = true;
+        }
+        if !self.read_sync.q.val() {
+            self.read_served.d.next = false;
+        }
+        self.read_answer.d.next = self.bus_read_reg.q.val();
+        if self.read_answer.q.val() {
+            self.data_out_reg.d.next = self.bus_read_data.val();
+        }
+
+        if self.reset.val() {
+            self.write_meta.d.next = false;
+            self.write_sync.d.next = false;
+            self.write_prev.d.next = false;
+            self.read_meta.d.next = false;
+            self.read_sync.d.next = false;
+            self.address_meta.d.next = self.zero_a.val();
+            self.address_sync.d.next = self.zero_a.val();
+            self.address_prev.d.next = self.zero_a.val();
+            self.data_meta.d.next = self.zero_d.val();
+            self.data_sync.d.next = self.zero_d.val();
+            self.data_prev.d.next = self.zero_d.val();
+            self.read_served.d.next = false;
+            self.read_answer.d.next = false;
+            self.bus_address_reg.d.next = self.zero_a.val();
+            self.bus_write_data_reg.d.next = self.zero_d.val();
+            self.bus_write_reg.d.next = false;
+            self.bus_read_reg.d.next = false;
+            self.data_out_reg.d.next = self.zero_d.val();
+        }
+    }
+}
+
+crate::vector_ports!(impl[const A: usize] ExternalBusAdapter<A> {
+    inputs: [reset, cs_n, we_n, rd_n, address, data_in, bus_read_data],
+    outputs: [data_out, data_oe, bus_address, bus_write_data, bus_write, bus_read],
+});

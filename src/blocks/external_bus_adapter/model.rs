@@ -1,0 +1,126 @@
+//! Reference model of [`super::ExternalBusAdapter`], cycle-exact.
+
+/// Inputs of one clock cycle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ExternalBusInputs {
+    /// Synchronous reset.
+    pub reset: bool,
+    /// Chip select, active low.
+    pub cs_n: bool,
+    /// Write strobe, active low.
+    pub we_n: bool,
+    /// Read strobe, active low.
+    pub rd_n: bool,
+    /// Word address.
+    pub address: u64,
+    /// Write data at the pins.
+    pub data_in: u64,
+    /// The slave's read data.
+    pub bus_read_data: u64,
+}
+
+impl Default for ExternalBusInputs {
+    /// An idle bus: every strobe high.
+    fn default() -> Self {
+        Self {
+            reset: false,
+            cs_n: true,
+            we_n: true,
+            rd_n: true,
+            address: 0,
+            data_in: 0,
+            bus_read_data: 0,
+        }
+    }
+}
+
+/// Outputs after one clock edge.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExternalBusOutputs {
+    /// Read data to the pins.
+    pub data_out: u64,
+    /// Drive the data pins.
+    pub data_oe: bool,
+    /// Address of the bus strobe.
+    pub bus_address: u64,
+    /// Data of the write strobe.
+    pub bus_write_data: u64,
+    /// Write strobe.
+    pub bus_write: bool,
+    /// Read strobe.
+    pub bus_read: bool,
+}
+
+/// One sample of the pins as the synchronizer stages hold it.
+#[derive(Clone, Copy, Debug, Default)]
+struct Sample {
+    write: bool,
+    read: bool,
+    address: u64,
+    data: u64,
+}
+
+/// Cycle-exact model of the adapter with an `address_bits` address.
+#[derive(Clone, Debug)]
+pub struct ExternalBusModel {
+    address_mask: u64,
+    /// Pin samples: [meta, sync, prev] (read uses meta and sync only).
+    stages: [Sample; 3],
+    read_served: bool,
+    read_answer: bool,
+    out: ExternalBusOutputs,
+}
+
+impl ExternalBusModel {
+    /// An adapter in its power-up state.
+    pub fn new(address_bits: u32) -> Self {
+        Self {
+            address_mask: crate::blocks::width_mask(address_bits),
+            stages: Default::default(),
+            read_served: false,
+            read_answer: false,
+            out: ExternalBusOutputs::default(),
+        }
+    }
+
+    /// One rising clock edge; returns the outputs after it (`data_oe` with
+    /// this clock's pins still applied).
+    pub fn step(&mut self, i: ExternalBusInputs) -> ExternalBusOutputs {
+        let [_, sync, prev] = self.stages;
+        let mut out = self.out;
+        out.bus_write = false;
+        out.bus_read = false;
+        if prev.write && !sync.write {
+            out.bus_write = true;
+            out.bus_address = prev.address;
+            out.bus_write_data = prev.data;
+        } else if sync.read && !self.read_served {
+            out.bus_read = true;
+            out.bus_address = sync.address;
+            self.read_served = true;
+        }
+        if !sync.read {
+            self.read_served = false;
+        }
+        if self.read_answer {
+            out.data_out = i.bus_read_data & 0xffff_ffff;
+        }
+        self.read_answer = self.out.bus_read;
+        self.stages = [
+            Sample {
+                write: !i.cs_n && !i.we_n,
+                read: !i.cs_n && !i.rd_n,
+                address: i.address & self.address_mask,
+                data: i.data_in & 0xffff_ffff,
+            },
+            self.stages[0],
+            self.stages[1],
+        ];
+        self.out = out;
+        if i.reset {
+            *self = Self::new(self.address_mask.count_ones());
+        }
+        self.out.data_oe = !i.cs_n && !i.rd_n;
+        self.out
+    }
+}
