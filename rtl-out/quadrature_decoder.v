@@ -27,7 +27,7 @@
 //   index_rearm   in         1  clears index_seen
 //   count         out       32  signed position, two's complement, wrapping; 4 counts per line
 //   dir           out        1  1 when the last count was up
-//   error         out        1  sticky: a and b changed on the same sample (counts lost); cleared by clear
+//   error         out        1  sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode); cleared by clear
 //   index_seen    out        1  sticky: an index event was acted on since index_rearm
 //   index_count   out       32  the count latched at the last acted-on index event
 //   count_time    out       16  timestamp latched at the last count
@@ -414,7 +414,7 @@ module quadrature_decoder(clock,reset,a,b,index,filter,clear,sample_rate,counter
         up__d = up_next;
         down__d = down_next;
         index_event__d = filter_index__changed & (filter_index__filtered != index_invert);
-        index_act = index_event__q & (~index_once | ~index_seen_reg__q);
+        index_act = index_event__q & (~index_once | ~index_seen_reg__q | index_rearm);
         clear_now = clear | (index_act & index_clear);
         if (index_act & index_latch) begin
             index_position__d = position__q;

@@ -750,7 +750,7 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         out_b = b_reg__q;
         overrun = overrun_reg__q;
         mode_invalid = mode == mode_reserved;
-        busy = nonzero__q | high__q;
+        busy = nonzero__q | high__q | ~phase_done__q | ~dir_done__q;
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
@@ -886,7 +886,7 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         if (mode == mode_reserved) begin
             requested_mode = mode_step_dir;
         end
-        if (~nonzero__q & ~high__q & (requested_mode != active_mode__q)) begin
+        if (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q)) begin
             active_mode__d = requested_mode;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;

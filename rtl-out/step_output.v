@@ -23,7 +23,7 @@
 //   out_b         out        1  dir (mode 0), down (mode 1), B (mode 2)
 //   overrun       out        1  sticky: a request arrived with the pending count saturated and was dropped
 //   mode_invalid  out        1  mode is 3 (reserved); the stage runs as step/dir
-//   busy          out        1  steps are pending or a pulse is in progress
+//   busy          out        1  steps pending, a pulse in progress, or a timing interval still running
 // ============================================================================
 
 `default_nettype none
@@ -254,7 +254,7 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         out_b = b_reg__q;
         overrun = overrun_reg__q;
         mode_invalid = mode == mode_reserved;
-        busy = nonzero__q | high__q;
+        busy = nonzero__q | high__q | ~phase_done__q | ~dir_done__q;
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
@@ -390,7 +390,7 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         if (mode == mode_reserved) begin
             requested_mode = mode_step_dir;
         end
-        if (~nonzero__q & ~high__q & (requested_mode != active_mode__q)) begin
+        if (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q)) begin
             active_mode__d = requested_mode;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;

@@ -20,7 +20,7 @@
 //   clear_flags  in         1  clears underrun, overrange and overflow (tie to 0 if unused)
 //   pulse        out        1  each pulse high Tp/2 ticks, then low Tp/2 ticks
 //   period_done  out        1  one-clock strobe when a period's T ticks have elapsed
-//   ready        out        1  the next-period slot is free: a load now is accepted
+//   ready        out        1  the next-period slot is free: a load now is accepted (gapless if 39+ clocks before the period ends)
 //   running      out        1  a period is in progress
 //   underrun     out        1  sticky: a period ended with no next period ready (output low, waiting)
 //   overrange    out        1  sticky: an odd or too small T, or N > T/2, was corrected
@@ -449,7 +449,7 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
-        period_half = slot_period__q >> 32'h1;
+        period_half = slot_period__q >> one;
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
         count_too_large__d = slot_count__q > period_half;

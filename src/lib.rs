@@ -12,5 +12,6 @@
 pub mod blocks;
 pub mod export;
 pub mod plots;
+pub mod regmap;
 pub mod sim;
 pub mod tools;

@@ -72,6 +72,7 @@ fn a_level_is_accepted_exactly_after_k_samples() {
                 let mut h = harness();
                 edge(&mut h, false, false, false, k, true);
                 let mut accepted_at = None;
+                let mut returned_at = None;
                 let mut sample_index = 0;
                 for clock in 0..(w + 20) * (gap + 1) {
                     let sample = clock % (gap + 1) == 0;
@@ -83,10 +84,14 @@ fn a_level_is_accepted_exactly_after_k_samples() {
                     if filtered && accepted_at.is_none() {
                         accepted_at = Some(sample_index);
                     }
+                    if !filtered && accepted_at.is_some() && returned_at.is_none() {
+                        returned_at = Some(sample_index);
+                    }
                 }
                 let need = k.max(1) as u32;
                 if w >= need {
                     assert_eq!(accepted_at, Some(need), "k {k} w {w} gap {gap}");
+                    assert_eq!(returned_at, Some(w + need), "k {k} w {w} gap {gap}: return");
                 } else {
                     assert_eq!(accepted_at, None, "k {k} w {w} gap {gap}: glitch passed");
                 }

@@ -191,7 +191,7 @@ impl Bench {
     }
 }
 
-/// Walks that respect the documented rate limit for random filter lengths
+/// Walks at exactly the documented rate limit for random filter lengths
 /// and sample rates, with glitches shorter than the filter on either
 /// channel and clears while the encoder rests: after every dwell the count
 /// equals the true position, computed from the pins alone.
@@ -209,9 +209,10 @@ fn count_equals_the_true_position_whenever_the_input_is_stable() {
             ..Default::default()
         });
         let sample_period = rate + 1;
-        // A level held this long is seen by at least max(k, 1) samples,
-        // and the next change of the other channel falls on a later sample.
-        let need = (k.max(1) as u64 + 1) * sample_period;
+        // The documented rate limit, exactly: every level is held
+        // max(k, 1) samples' worth of clocks, so it is seen by max(k, 1)
+        // samples and the next change falls on a later sample.
+        let need = k.max(1) as u64 * sample_period;
         let latency = 6 + sample_period;
         let mut truth = 0i64;
         let mut forward = true;
@@ -219,9 +220,15 @@ fn count_equals_the_true_position_whenever_the_input_is_stable() {
             if rng.gen_ratio(1, 5) {
                 forward = !forward;
             }
-            bench.move_by(forward);
-            truth += if forward { 1 } else { -1 };
-            bench.hold(need);
+            // A burst of transitions at the maximum rate.
+            for _ in 0..rng.gen_range(1..8) {
+                if rng.gen_ratio(1, 6) {
+                    forward = !forward;
+                }
+                bench.move_by(forward);
+                truth += if forward { 1 } else { -1 };
+                bench.hold(need);
+            }
             if k >= 2 && rng.gen_ratio(1, 3) {
                 // A glitch seen by at most k - 1 samples.
                 let width = rng.gen_range(1..=(k as u64 - 1) * sample_period);
@@ -348,8 +355,14 @@ fn index_latches_the_count_with_either_polarity() {
         assert!(out.index_seen);
         assert_eq!(out.index_count, 7, "invert {invert}");
         assert_eq!(out.count, 7, "a latch does not clear");
-        let out = bench.walk(-3, 3);
-        assert_eq!(out.index_count, 7, "the inactive edge does not latch");
+        // Move while the index is active: only its active edge latches.
+        bench.inputs.index = !invert;
+        bench.hold(4);
+        bench.walk(-3, 3);
+        bench.inputs.index = invert;
+        let out = bench.hold(10);
+        assert_eq!(out.count, 4);
+        assert_eq!(out.index_count, 7, "the inactive edge latched");
         let out = index_pulse(&mut bench);
         assert_eq!(out.index_count, 4, "every index latches");
     }
@@ -451,4 +464,89 @@ fn narrow_8_bit_count_matches_rust_in_icarus_and_verilator() {
         &stimulus,
     )
     .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// An index event on the very clock of a re-arm is acted on (latched,
+/// cleared) and leaves `index_seen` set: a re-arm never loses an index.
+#[test]
+fn an_index_on_the_clock_of_a_rearm_is_acted_on() {
+    for offset in 0..10u64 {
+        let mut bench = Bench::new(QuadratureDecoderInputs {
+            index_latch: true,
+            index_once: true,
+            ..Default::default()
+        });
+        bench.walk(5, 3);
+        index_pulse(&mut bench);
+        bench.walk(2, 3);
+        bench.hold(10);
+        // Second index pulse with a re-arm at every offset around its
+        // arrival at the count stage (5 edges after the pin).
+        bench.inputs.index = true;
+        let mut acted = false;
+        for clock in 0..20 {
+            if clock == offset {
+                bench.inputs.index_rearm = true;
+            }
+            let out = bench.clock();
+            acted |= out.index_count == 7;
+            if clock == 4 {
+                bench.inputs.index = false;
+            }
+        }
+        let out = bench.hold(10);
+        // Re-armed at or before the event's edge: it acts. After: it was
+        // ignored (once mode) and the re-arm leaves index_seen clear.
+        if offset <= motion_hdl::blocks::quadrature_decoder::PIN_TO_COUNT_EDGES - 1 {
+            assert!(acted && out.index_seen, "offset {offset}: index lost");
+        } else {
+            assert!(!acted && !out.index_seen, "offset {offset}");
+        }
+    }
+}
+
+/// From the pins alone: an encoder resting at any state through reset does
+/// not count; `dir` follows the last transition; `count_time` is the
+/// timestamp of the clock before the count changed.
+#[test]
+fn start_up_dir_and_timestamp_from_the_pins() {
+    for phase in 0..4 {
+        let mut h = harness();
+        let (a, b) = gray(phase);
+        let resting = QuadratureDecoderInputs {
+            a,
+            b,
+            ..Default::default()
+        };
+        let mut reset = resting;
+        reset.reset = true;
+        run(&mut h, &reset);
+        for _ in 0..20 {
+            let out = run(&mut h, &resting);
+            assert_eq!(
+                (out.count, out.error),
+                (0, false),
+                "resting at {:?}",
+                (a, b)
+            );
+        }
+    }
+    let mut bench = Bench::new(QuadratureDecoderInputs::default());
+    let mut last = bench.hold(1);
+    let mut changes = 0;
+    for (steps, dir) in [(3i64, true), (-2, false), (1, true)] {
+        for clock in 0..(steps.unsigned_abs() * 3 + 12) {
+            if clock % 3 == 0 && clock < steps.unsigned_abs() * 3 {
+                bench.move_by(steps > 0);
+            }
+            let out = bench.clock();
+            if out.count != last.count {
+                assert_eq!(out.count_time, last.timestamp, "count_time");
+                changes += 1;
+            }
+            last = out;
+        }
+        assert_eq!(last.dir, dir, "dir after {steps}");
+    }
+    assert_eq!((last.count, changes), (2, 6));
 }

@@ -141,7 +141,7 @@ impl PinMonitor {
             mode: if s.mode == 3 { 0 } else { s.mode },
             len: at_least_one(s.step_len),
             space: at_least_one(s.step_space),
-            setup: s.dir_setup,
+            setup: at_least_one(s.dir_setup),
             hold: at_least_one(s.dir_hold),
             last: pins,
             last_rise: None,
@@ -263,7 +263,7 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
                     == (
                         inputs.step_len.max(1),
                         inputs.step_space.max(1),
-                        inputs.dir_setup,
+                        inputs.dir_setup.max(1),
                         inputs.dir_hold.max(1),
                     )
             });
@@ -288,6 +288,23 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
             assert_eq!(out.mode_invalid, mode == 3);
             busy = out.busy;
         }
+        // The last run: drain it with its own settings and check it too.
+        let mut m = monitor.take().unwrap();
+        let idle = StepOutputInputs {
+            step: false,
+            ..driver.settings
+        };
+        for cycle in 1_000_000..1_300_000u64 {
+            let out = outputs(&harness.step_vector(&vector(&idle)).unwrap());
+            m.sample(cycle, (out.out_a, out.out_b));
+            if !out.busy {
+                break;
+            }
+        }
+        assert_eq!(
+            m.emitted, m.requested,
+            "mode {mode}: the last run's net count"
+        );
         assert!(
             runs_checked > 300 && checks > 50_000,
             "mode {mode}: {runs_checked} runs, {checks} checks"

@@ -50,8 +50,9 @@
 //!   sample (`error`). With k <= 1 and `sample_rate` = 0 the decoder counts
 //!   one state change per clock. In general the maximum count rate is
 //!   f_clock / (max(k, 1) * (sample_rate + 1)).
-//! * `sample_rate`, `filter` and the index options are taken at every clock;
-//!   the filter length applies from the next change of each input.
+//! * The index options are taken at every clock. A new `sample_rate`
+//!   applies from the next sample (the running sample interval finishes
+//!   first); a new `filter` length from the next change of each input.
 //! * Start-up: after reset (and power-up) the first three clocks fill the
 //!   synchronizers and load the filters with the pins' levels, without
 //!   counting, so an encoder resting at any state does not count on
@@ -62,8 +63,9 @@
 //! level (`index_invert` = 0: rising). It is acted on when `index_once` is
 //! 0, or when `index_seen` is 0. An acted-on event sets `index_seen`,
 //! latches the count (with `index_latch`) and clears it (with
-//! `index_clear`). `index_rearm` clears `index_seen`; an event on the same
-//! clock still sets it.
+//! `index_clear`). `index_rearm` clears `index_seen` and re-arms a
+//! once-only index; an event on the same clock as `index_rearm` is acted on
+//! and sets `index_seen` again.
 //!
 //! ## Collisions
 //! * A count and a `clear` (or an index clear) on the same clock: the count
@@ -150,7 +152,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("dir", "1 when the last count was up"),
     (
         "error",
-        "sticky: a and b changed on the same sample (counts lost); cleared by clear",
+        "sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode); cleared by clear",
     ),
     (
         "index_seen",
@@ -460,8 +462,10 @@ impl<const W: usize, const S: usize, const TS: usize> Logic for QuadratureDecode
         // clock's change, so the change register holds -2..2: the next
         // count plus the carried one. Registering it keeps the count's
         // carry chain the only logic between two registers.
-        self.index_act.next =
-            self.index_event.q.val() & (!self.index_once.val() | !self.index_seen_reg.q.val());
+        // A re-arm on the clock of an index event arms it: the event is
+        // acted on and sets index_seen again.
+        self.index_act.next = self.index_event.q.val()
+            & (!self.index_once.val() | !self.index_seen_reg.q.val() | self.index_rearm.val());
         self.clear_now.next = self.clear.val() | (self.index_act.val() & self.index_clear.val());
         if self.index_act.val() & self.index_latch.val() {
             self.index_position.d.next = self.position.q.val();

@@ -118,7 +118,7 @@ impl QuadratureDecoderModel {
         let o = &mut self.out;
 
         // Count stage: applies what the decode stage registered last edge.
-        let armed = !i.index_once || !prev.out.index_seen;
+        let armed = !i.index_once || !prev.out.index_seen || i.index_rearm;
         let index_act = prev.index_event && armed;
         let clear_now = i.clear || (index_act && i.index_clear);
         if index_act && i.index_latch {

@@ -21,7 +21,7 @@
 //! | `out_b` | out | 1 | dir (mode 0), down (mode 1), B (mode 2); registered |
 //! | `overrun` | out | 1 | sticky: a request arrived with the pending count saturated and was dropped |
 //! | `mode_invalid` | out | 1 | `mode` is 3 (reserved); the stage runs as step/dir |
-//! | `busy` | out | 1 | steps are pending or a pulse is in progress |
+//! | `busy` | out | 1 | steps are pending, a pulse is in progress, or a step_len/step_space/dir_hold/dir_setup interval is still running |
 //!
 //! ## Timing
 //! Step/dir after reset, step_len = 2, step_space = 3, dir_setup = 2,
@@ -73,9 +73,11 @@
 //!   or a backward one at -2^15, is dropped, even if a step leaves at the
 //!   same edge, and the sticky `overrun` is set. No other request is ever
 //!   lost.
-//! * `mode` is taken only while the stage is idle (nothing pending, no pulse);
-//!   a change resets both outputs to 0 and restarts the timers. Change it
-//!   with the drive disabled: the pins' meaning changes with it.
+//! * `mode` is taken only while `busy` is low (nothing pending, no pulse,
+//!   every interval over), so a change never cuts a pulse, a quadrature
+//!   state or a direction hold short; a change resets both outputs to 0 and
+//!   restarts the timers. Change it with the drive disabled: the pins'
+//!   meaning changes with it.
 //! * Timer values of 0 where a minimum of 1 is needed act as 1 (documented
 //!   per port above).
 
@@ -129,7 +131,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
         "mode_invalid",
         "mode is 3 (reserved); the stage runs as step/dir",
     ),
-    ("busy", "steps are pending or a pulse is in progress"),
+    (
+        "busy",
+        "steps pending, a pulse in progress, or a timing interval still running",
+    ),
 ];
 
 /// Step output stage with enforced timing. See the [module documentation](self).
@@ -347,7 +352,12 @@ impl<const T: usize> Logic for StepOutput<T> {
         self.out_b.next = self.b_reg.q.val();
         self.overrun.next = self.overrun_reg.q.val();
         self.mode_invalid.next = self.mode.val() == self.mode_reserved.val();
-        self.busy.next = self.nonzero.q.val() | self.high.q.val();
+        // Busy until the last interval's timers have run out too, so that a
+        // mode change (taken only while not busy) never cuts an interval.
+        self.busy.next = self.nonzero.q.val()
+            | self.high.q.val()
+            | !self.phase_done.q.val()
+            | !self.dir_done.q.val();
         self.started.d.next = true;
 
         self.negative.next = (self.pending.q.val() & self.min_p.val()) != self.zero_p.val();
@@ -535,6 +545,8 @@ impl<const T: usize> Logic for StepOutput<T> {
         }
         if !self.nonzero.q.val()
             & !self.high.q.val()
+            & self.phase_done.q.val()
+            & self.dir_done.q.val()
             & (self.requested_mode.val() != self.active_mode.q.val())
         {
             self.active_mode.d.next = self.requested_mode.val();

@@ -96,13 +96,19 @@ impl StepOutputModel {
         self.pending
     }
 
+    /// Steps pending, a pulse high, or an interval still running (the
+    /// start clock after reset or a mode change counts as running).
+    fn busy(&self) -> bool {
+        self.pending != 0 || self.high || !self.started || self.phase_left > 0 || self.dir_left > 0
+    }
+
     fn outputs(&self, mode: u8) -> StepOutputOutputs {
         StepOutputOutputs {
             out_a: self.a,
             out_b: self.b,
             overrun: self.overrun,
             mode_invalid: mode == 3,
-            busy: self.pending != 0 || self.high,
+            busy: self.busy(),
         }
     }
 
@@ -195,8 +201,7 @@ impl StepOutputModel {
         next.pending = self.pending + emitted + requested;
 
         let requested_mode = if i.mode == 3 { 0 } else { i.mode };
-        let idle = !nonzero && !self.high;
-        if idle && requested_mode != self.active_mode {
+        if !self.busy() && requested_mode != self.active_mode {
             next.active_mode = requested_mode;
             next.a = false;
             next.b = false;

@@ -48,9 +48,10 @@
 //! * Back to back: a period that is complete when the running one ends
 //!   starts on the same tick edge, with zero idle ticks, and `period_done`
 //!   strobes exactly T ticks apart. For that the next load must come at
-//!   least LOAD_TO_READY clocks before the running period's last tick, which
-//!   also means that a period shorter than about 40 clocks cannot be
-//!   followed without a gap.
+//!   least LOAD_TO_READY + 1 clocks before the edge that ends the running
+//!   period. Since `ready` rises only when a period starts, a period that
+//!   lasts fewer than LOAD_TO_READY + 2 clocks (T ticks at the tick rate)
+//!   cannot be followed without a gap: it underruns.
 //! * N = 0: the period lasts T ticks with the output low.
 //! * `period`, `count` and `mode` are sampled only with an accepted load.
 //!
@@ -108,7 +109,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ),
     (
         "ready",
-        "the next-period slot is free: a load now is accepted",
+        "the next-period slot is free: a load now is accepted (gapless if 39+ clocks before the period ends)",
     ),
     ("running", "a period is in progress"),
     (
@@ -360,7 +361,7 @@ impl Logic for UniformPulseGen {
 
         // The slot: load, clamp, divide T/2 by N, then precompute what the
         // first clock of the period needs.
-        self.period_half.next = self.slot_period.q.val() >> 1;
+        self.period_half.next = self.slot_period.q.val() >> self.one.val();
         self.period_odd.d.next = self.slot_period.q.val().get_bit(0);
         self.period_small.d.next =
             (self.slot_period.q.val() & self.not_one.val()) == self.zero.val();

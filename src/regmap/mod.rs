@@ -1,0 +1,383 @@
+//! Register maps: one description in Rust, from which the C header for
+//! firmware, the Markdown register table and the field packing used by tests
+//! and drivers are all derived, so that they cannot disagree (a driver and
+//! firmware disagreeing on register packing is a known field failure).
+//!
+//! A [`RegisterMap`] is a list of 32-bit [`Register`]s at word addresses;
+//! a register may repeat with a stride (one copy per axis). Each register is
+//! made of [`Field`]s with an access type and a reset value.
+//! [`RegisterMap::validate`] refuses overlapping fields or addresses, fields
+//! outside the word, reset values that do not fit, and names that are not C
+//! identifiers, each with an error naming the problem.
+
+mod c_header;
+mod markdown;
+
+use bitvec::prelude::*;
+
+pub use c_header::c_header;
+pub use markdown::markdown;
+
+/// How software may access a field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Access {
+    /// Read only; writes are ignored.
+    ReadOnly,
+    /// Read and write; reads return the last value written.
+    ReadWrite,
+    /// Read; writing 1 clears the bit, writing 0 leaves it.
+    WriteOneToClear,
+    /// Write only, an action (a strobe or a FIFO push); reads return 0.
+    WriteOnly,
+}
+
+impl Access {
+    /// The short name used in the header and the table.
+    pub fn abbreviation(self) -> &'static str {
+        match self {
+            Access::ReadOnly => "RO",
+            Access::ReadWrite => "RW",
+            Access::WriteOneToClear => "W1C",
+            Access::WriteOnly => "WO",
+        }
+    }
+}
+
+/// A bit field of a register.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Field {
+    /// C identifier, upper case.
+    pub name: &'static str,
+    /// Least significant bit.
+    pub lsb: u32,
+    /// Width in bits (1 to 32).
+    pub width: u32,
+    /// Software access.
+    pub access: Access,
+    /// Value after reset.
+    pub reset: u64,
+    /// One line: what the field means.
+    pub doc: &'static str,
+}
+
+impl Field {
+    /// All ones in the field's width.
+    pub fn max_value(&self) -> u64 {
+        u64::MAX >> (64 - self.width.clamp(1, 64))
+    }
+
+    /// The field's bits within the word.
+    pub fn mask(&self) -> u32 {
+        (self.max_value() << self.lsb) as u32
+    }
+
+    /// `word` with this field set to `value`.
+    pub fn insert(&self, word: u32, value: u64) -> Result<u32, RegMapError> {
+        if value > self.max_value() {
+            return Err(RegMapError::ValueTooWide {
+                field: self.name.to_string(),
+                value,
+                width: self.width,
+            });
+        }
+        let mut bits = BitArray::<[u32; 1], Lsb0>::new([word]);
+        bits[self.lsb as usize..(self.lsb + self.width) as usize].store(value);
+        Ok(bits.into_inner()[0])
+    }
+
+    /// This field's value in `word`.
+    pub fn extract(&self, word: u32) -> u64 {
+        let bits = BitArray::<[u32; 1], Lsb0>::new([word]);
+        bits[self.lsb as usize..(self.lsb + self.width) as usize].load::<u64>()
+    }
+}
+
+/// A 32-bit register, or an array of them (one per axis).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Register {
+    /// C identifier, upper case.
+    pub name: &'static str,
+    /// Word address of the first copy.
+    pub address: u32,
+    /// Copies (1 for a plain register).
+    pub count: u32,
+    /// Words between copies.
+    pub stride: u32,
+    /// One line: what the register is.
+    pub doc: &'static str,
+    /// The fields, in any order.
+    pub fields: Vec<Field>,
+}
+
+impl Register {
+    /// A register with one field filling all 32 bits.
+    pub fn word(
+        name: &'static str,
+        address: u32,
+        access: Access,
+        reset: u64,
+        doc: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            address,
+            count: 1,
+            stride: 0,
+            doc,
+            fields: vec![Field {
+                name: "VALUE",
+                lsb: 0,
+                width: 32,
+                access,
+                reset,
+                doc,
+            }],
+        }
+    }
+
+    /// Repeats the register `count` times, `stride` words apart.
+    pub fn repeated(mut self, count: u32, stride: u32) -> Self {
+        self.count = count;
+        self.stride = stride;
+        self
+    }
+
+    /// The word address of copy `index`.
+    pub fn address_of(&self, index: u32) -> Result<u32, RegMapError> {
+        if index >= self.count {
+            return Err(RegMapError::NoSuchCopy {
+                register: self.name.to_string(),
+                index,
+                count: self.count,
+            });
+        }
+        Ok(self.address + index * self.stride)
+    }
+
+    /// Every word address the register occupies.
+    pub fn addresses(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.count).map(move |i| self.address + i * self.stride)
+    }
+
+    /// The field named `name`.
+    pub fn field(&self, name: &str) -> Result<&Field, RegMapError> {
+        self.fields
+            .iter()
+            .find(|f| f.name == name)
+            .ok_or_else(|| RegMapError::NoSuchField {
+                register: self.name.to_string(),
+                field: name.to_string(),
+            })
+    }
+
+    /// The register's value after reset, assembled from its fields.
+    pub fn reset_value(&self) -> u32 {
+        self.fields.iter().fold(0, |word, f| {
+            f.insert(word, f.reset & f.max_value()).unwrap_or(word)
+        })
+    }
+
+    /// A word with the named fields set, every other bit 0.
+    pub fn pack(&self, values: &[(&str, u64)]) -> Result<u32, RegMapError> {
+        values.iter().try_fold(0, |word, (name, value)| {
+            self.field(name)?.insert(word, *value)
+        })
+    }
+}
+
+/// A named set of registers on one 32-bit bus.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RegisterMap {
+    /// The module the map belongs to (C prefix, upper-cased).
+    pub name: &'static str,
+    /// Address bits of the bus: addresses run from 0 to 2^bits - 1.
+    pub address_bits: u32,
+    /// One line: what the map is.
+    pub doc: &'static str,
+    /// The registers, in address order.
+    pub registers: Vec<Register>,
+}
+
+/// What is wrong with a register map or an access through it.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum RegMapError {
+    /// A name is not an upper-case C identifier.
+    #[error("`{0}` is not an upper-case C identifier")]
+    BadName(String),
+    /// Two registers, or two fields of one register, share a name.
+    #[error("the name `{0}` is used twice")]
+    DuplicateName(String),
+    /// A field does not fit in 32 bits.
+    #[error("field {register}.{field} (bits {lsb}..{lsb}+{width}) does not fit in 32 bits")]
+    FieldOutOfWord {
+        /// Register name.
+        register: String,
+        /// Field name.
+        field: String,
+        /// Its least significant bit.
+        lsb: u32,
+        /// Its width.
+        width: u32,
+    },
+    /// Two fields of one register share a bit.
+    #[error("fields {register}.{first} and {register}.{second} overlap")]
+    FieldOverlap {
+        /// Register name.
+        register: String,
+        /// One field.
+        first: String,
+        /// The other.
+        second: String,
+    },
+    /// A reset value does not fit its field.
+    #[error("reset value {value:#x} of {register}.{field} does not fit its {width} bits")]
+    ResetTooWide {
+        /// Register name.
+        register: String,
+        /// Field name.
+        field: String,
+        /// The value.
+        value: u64,
+        /// The field width.
+        width: u32,
+    },
+    /// Two registers share an address.
+    #[error("registers {first} and {second} both use address {address:#x}")]
+    AddressOverlap {
+        /// One register.
+        first: String,
+        /// The other.
+        second: String,
+        /// The shared word address.
+        address: u32,
+    },
+    /// An address is beyond the bus.
+    #[error("register {register} uses address {address:#x}, beyond the {bits}-bit bus")]
+    AddressOutOfRange {
+        /// Register name.
+        register: String,
+        /// The address.
+        address: u32,
+        /// Bus address bits.
+        bits: u32,
+    },
+    /// A value does not fit the field it is written to.
+    #[error("value {value:#x} does not fit field {field} ({width} bits)")]
+    ValueTooWide {
+        /// Field name.
+        field: String,
+        /// The value.
+        value: u64,
+        /// The field width.
+        width: u32,
+    },
+    /// No register of that name.
+    #[error("no register named `{0}`")]
+    NoSuchRegister(String),
+    /// No field of that name in the register.
+    #[error("register {register} has no field `{field}`")]
+    NoSuchField {
+        /// Register name.
+        register: String,
+        /// The missing field.
+        field: String,
+    },
+    /// An array index beyond the register's copies.
+    #[error("register {register} has {count} copies; there is no copy {index}")]
+    NoSuchCopy {
+        /// Register name.
+        register: String,
+        /// The index asked for.
+        index: u32,
+        /// Copies.
+        count: u32,
+    },
+}
+
+fn check_name(name: &str) -> Result<(), RegMapError> {
+    let mut chars = name.chars();
+    let first_ok = chars.next().is_some_and(|c| c.is_ascii_uppercase());
+    if first_ok && chars.all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') {
+        Ok(())
+    } else {
+        Err(RegMapError::BadName(name.to_string()))
+    }
+}
+
+impl RegisterMap {
+    /// Checks every rule of a well-formed map (see the module docs).
+    pub fn validate(&self) -> Result<(), RegMapError> {
+        check_name(self.name)?;
+        let mut names = std::collections::HashSet::new();
+        let mut used = std::collections::HashMap::new();
+        for r in &self.registers {
+            check_name(r.name)?;
+            if !names.insert(r.name) {
+                return Err(RegMapError::DuplicateName(r.name.to_string()));
+            }
+            for address in r.addresses() {
+                if u64::from(address) >= 1u64 << self.address_bits {
+                    return Err(RegMapError::AddressOutOfRange {
+                        register: r.name.to_string(),
+                        address,
+                        bits: self.address_bits,
+                    });
+                }
+                if let Some(first) = used.insert(address, r.name) {
+                    return Err(RegMapError::AddressOverlap {
+                        first: first.to_string(),
+                        second: r.name.to_string(),
+                        address,
+                    });
+                }
+            }
+            let mut field_names = std::collections::HashSet::new();
+            let mut claimed = bitarr![u32, Lsb0; 0; 32];
+            for f in &r.fields {
+                check_name(f.name)?;
+                if !field_names.insert(f.name) {
+                    return Err(RegMapError::DuplicateName(format!("{}.{}", r.name, f.name)));
+                }
+                if f.width == 0 || f.lsb + f.width > 32 {
+                    return Err(RegMapError::FieldOutOfWord {
+                        register: r.name.to_string(),
+                        field: f.name.to_string(),
+                        lsb: f.lsb,
+                        width: f.width,
+                    });
+                }
+                if f.reset > f.max_value() {
+                    return Err(RegMapError::ResetTooWide {
+                        register: r.name.to_string(),
+                        field: f.name.to_string(),
+                        value: f.reset,
+                        width: f.width,
+                    });
+                }
+                let bits = f.lsb as usize..(f.lsb + f.width) as usize;
+                if claimed[bits.clone()].any() {
+                    let other = r
+                        .fields
+                        .iter()
+                        .find(|o| o.name != f.name && o.mask() & f.mask() != 0)
+                        .map_or("?", |o| o.name);
+                    return Err(RegMapError::FieldOverlap {
+                        register: r.name.to_string(),
+                        first: other.to_string(),
+                        second: f.name.to_string(),
+                    });
+                }
+                claimed[bits].fill(true);
+            }
+        }
+        Ok(())
+    }
+
+    /// The register named `name`.
+    pub fn register(&self, name: &str) -> Result<&Register, RegMapError> {
+        self.registers
+            .iter()
+            .find(|r| r.name == name)
+            .ok_or_else(|| RegMapError::NoSuchRegister(name.to_string()))
+    }
+}
