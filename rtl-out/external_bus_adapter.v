@@ -18,7 +18,7 @@
 //   address         in         8  word address, asynchronous
 //   data_in         in        32  write data from the pins, asynchronous
 //   data_out        out       32  read data to the pins, registered
-//   data_oe         out        1  drive the data pins: !cs_n & !rd_n, combinational from the pins
+//   data_oe         out        1  drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins
 //   bus_address     out        8  address of the current bus strobe
 //   bus_write_data  out       32  data of bus_write
 //   bus_write       out        1  one-clock write strobe
@@ -59,12 +59,18 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
     reg  write_prev__d;
     wire  write_prev__q;
     reg  write_prev__clock;
+    reg  write_older__d;
+    wire  write_older__q;
+    reg  write_older__clock;
     reg  read_meta__d;
     wire  read_meta__q;
     reg  read_meta__clock;
     reg  read_sync__d;
     wire  read_sync__q;
     reg  read_sync__clock;
+    reg  read_prev__d;
+    wire  read_prev__q;
+    reg  read_prev__clock;
     reg  [7:0] address_meta__d;
     wire  [7:0] address_meta__q;
     reg  address_meta__clock;
@@ -83,9 +89,18 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
     reg  [31:0] data_prev__d;
     wire  [31:0] data_prev__q;
     reg  data_prev__clock;
+    reg  [7:0] address_older__d;
+    wire  [7:0] address_older__q;
+    reg  address_older__clock;
+    reg  [31:0] data_older__d;
+    wire  [31:0] data_older__q;
+    reg  data_older__clock;
     reg  read_served__d;
     wire  read_served__q;
     reg  read_served__clock;
+    reg  read_pending__d;
+    wire  read_pending__q;
+    reg  read_pending__clock;
     reg  read_answer__d;
     wire  read_answer__q;
     reg  read_answer__clock;
@@ -107,6 +122,7 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
 
     // Local signals
     reg  write_ends;
+    reg  read_wanted;
 
     // Sub module instances
     external_bus_adapter__write_meta write_meta(
@@ -124,6 +140,11 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         .q(write_prev__q),
         .clock(write_prev__clock)
     );
+    external_bus_adapter__write_older write_older(
+        .d(write_older__d),
+        .q(write_older__q),
+        .clock(write_older__clock)
+    );
     external_bus_adapter__read_meta read_meta(
         .d(read_meta__d),
         .q(read_meta__q),
@@ -133,6 +154,11 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         .d(read_sync__d),
         .q(read_sync__q),
         .clock(read_sync__clock)
+    );
+    external_bus_adapter__read_prev read_prev(
+        .d(read_prev__d),
+        .q(read_prev__q),
+        .clock(read_prev__clock)
     );
     external_bus_adapter__address_meta address_meta(
         .d(address_meta__d),
@@ -164,10 +190,25 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         .q(data_prev__q),
         .clock(data_prev__clock)
     );
+    external_bus_adapter__address_older address_older(
+        .d(address_older__d),
+        .q(address_older__q),
+        .clock(address_older__clock)
+    );
+    external_bus_adapter__data_older data_older(
+        .d(data_older__d),
+        .q(data_older__q),
+        .clock(data_older__clock)
+    );
     external_bus_adapter__read_served read_served(
         .d(read_served__d),
         .q(read_served__q),
         .clock(read_served__clock)
+    );
+    external_bus_adapter__read_pending read_pending(
+        .d(read_pending__d),
+        .q(read_pending__q),
+        .clock(read_pending__clock)
     );
     external_bus_adapter__read_answer read_answer(
         .d(read_answer__d),
@@ -205,15 +246,20 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         write_meta__clock = clock;
         write_sync__clock = clock;
         write_prev__clock = clock;
+        write_older__clock = clock;
         read_meta__clock = clock;
         read_sync__clock = clock;
+        read_prev__clock = clock;
         address_meta__clock = clock;
         address_sync__clock = clock;
         address_prev__clock = clock;
         data_meta__clock = clock;
         data_sync__clock = clock;
         data_prev__clock = clock;
+        address_older__clock = clock;
+        data_older__clock = clock;
         read_served__clock = clock;
+        read_pending__clock = clock;
         read_answer__clock = clock;
         bus_address_reg__clock = clock;
         bus_write_data_reg__clock = clock;
@@ -223,15 +269,20 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         write_meta__d = write_meta__q;
         write_sync__d = write_sync__q;
         write_prev__d = write_prev__q;
+        write_older__d = write_older__q;
         read_meta__d = read_meta__q;
         read_sync__d = read_sync__q;
+        read_prev__d = read_prev__q;
         address_meta__d = address_meta__q;
         address_sync__d = address_sync__q;
         address_prev__d = address_prev__q;
         data_meta__d = data_meta__q;
         data_sync__d = data_sync__q;
         data_prev__d = data_prev__q;
+        address_older__d = address_older__q;
+        data_older__d = data_older__q;
         read_served__d = read_served__q;
+        read_pending__d = read_pending__q;
         read_answer__d = read_answer__q;
         bus_address_reg__d = bus_address_reg__q;
         bus_write_data_reg__d = bus_write_data_reg__q;
@@ -239,7 +290,7 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         bus_read_reg__d = bus_read_reg__q;
         data_out_reg__d = data_out_reg__q;
         data_out = data_out_reg__q;
-        data_oe = ~cs_n & ~rd_n;
+        data_oe = ~cs_n & ~rd_n & we_n;
         bus_address = bus_address_reg__q;
         bus_write_data = bus_write_data_reg__q;
         bus_write = bus_write_reg__q;
@@ -247,28 +298,41 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         write_meta__d = ~cs_n & ~we_n;
         write_sync__d = write_meta__q;
         write_prev__d = write_sync__q;
+        write_older__d = write_prev__q;
         read_meta__d = ~cs_n & ~rd_n;
         read_sync__d = read_meta__q;
+        read_prev__d = read_sync__q;
         address_meta__d = address;
         address_sync__d = address_meta__q;
         address_prev__d = address_sync__q;
         data_meta__d = data_in;
         data_sync__d = data_meta__q;
         data_prev__d = data_sync__q;
-        write_ends = write_prev__q & ~write_sync__q;
+        address_older__d = address_prev__q;
+        data_older__d = data_prev__q;
+        write_ends = write_older__q & write_prev__q & ~write_sync__q;
+        read_wanted = (read_prev__q & read_sync__q & ~read_served__q) | read_pending__q;
         bus_write_reg__d = 1'b0;
         bus_read_reg__d = 1'b0;
         if (write_ends) begin
             bus_write_reg__d = 1'b1;
-            bus_address_reg__d = address_prev__q;
-            bus_write_data_reg__d = data_prev__q;
+            bus_address_reg__d = address_older__q;
+            bus_write_data_reg__d = data_older__q;
+            if (read_wanted) begin
+                read_pending__d = 1'b1;
+                read_served__d = 1'b1;
+            end
         end
-        else if (read_sync__q & ~read_served__q) begin
+        else if (read_wanted) begin
             bus_read_reg__d = 1'b1;
             bus_address_reg__d = address_sync__q;
+            if (read_pending__q) begin
+                bus_address_reg__d = address_prev__q;
+            end
             read_served__d = 1'b1;
+            read_pending__d = 1'b0;
         end
-        if (~read_sync__q) begin
+        if (~read_sync__q & ~read_wanted) begin
             read_served__d = 1'b0;
         end
         read_answer__d = bus_read_reg__q;
@@ -279,6 +343,11 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
             write_meta__d = 1'b0;
             write_sync__d = 1'b0;
             write_prev__d = 1'b0;
+            write_older__d = 1'b0;
+            read_prev__d = 1'b0;
+            read_pending__d = 1'b0;
+            address_older__d = zero_a;
+            data_older__d = zero_d;
             read_meta__d = 1'b0;
             read_sync__d = 1'b0;
             address_meta__d = zero_a;
@@ -317,6 +386,25 @@ module external_bus_adapter__address_meta(d,q,clock);
     end
 
 endmodule // external_bus_adapter__address_meta
+
+
+module external_bus_adapter__address_older(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__address_older
 
 
 module external_bus_adapter__address_prev(d,q,clock);
@@ -452,6 +540,25 @@ module external_bus_adapter__data_meta(d,q,clock);
 endmodule // external_bus_adapter__data_meta
 
 
+module external_bus_adapter__data_older(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__data_older
+
+
 module external_bus_adapter__data_out_reg(d,q,clock);
 
     // Module arguments
@@ -547,6 +654,44 @@ module external_bus_adapter__read_meta(d,q,clock);
 endmodule // external_bus_adapter__read_meta
 
 
+module external_bus_adapter__read_pending(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__read_pending
+
+
+module external_bus_adapter__read_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__read_prev
+
+
 module external_bus_adapter__read_served(d,q,clock);
 
     // Module arguments
@@ -602,6 +747,25 @@ module external_bus_adapter__write_meta(d,q,clock);
     end
 
 endmodule // external_bus_adapter__write_meta
+
+
+module external_bus_adapter__write_older(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__write_older
 
 
 module external_bus_adapter__write_prev(d,q,clock);

@@ -51,7 +51,16 @@ fn a_good_map_validates_and_packs() {
     assert_eq!(status.reset_value(), 0x8000_1000);
     let word = status.pack(&[("LEVEL", 0xab), ("UNDERRUN", 1)]).unwrap();
     assert_eq!(word, 0x0000_ab01);
-    assert_eq!(status.field("LEVEL").unwrap().extract(word), 0xab);
+    assert_eq!(status.field("LEVEL").unwrap().extract(word).unwrap(), 0xab);
+    // Read-modify-write keeps RW fields, never clears pending W1C flags.
+    let read = 0x8000_1001;
+    assert_eq!(status.modify(read, &[]).unwrap(), 0x8000_0000);
+    assert_eq!(
+        status.modify(read, &[("UNDERRUN", 1)]).unwrap(),
+        0x8000_0001
+    );
+    assert_eq!(status.modify(read, &[("ENABLE", 0)]).unwrap(), 0);
+    assert_eq!(status.w1c_mask(), 1);
     assert_eq!(status.field("ENABLE").unwrap().mask(), 0x8000_0000);
     let fifo = map.register("FIFO").unwrap();
     assert_eq!(fifo.address_of(2).unwrap(), 0x18);
@@ -129,6 +138,46 @@ fn every_malformed_map_is_refused_with_its_reason() {
         twice.validate(),
         Err(RegMapError::DuplicateName("ID".into()))
     );
+    // STATUS.LEVEL and a register STATUS_LEVEL would both define
+    // DEMO_STATUS_LEVEL_RESET.
+    let mut collide = example();
+    collide.registers.push(Register::word(
+        "STATUS_LEVEL",
+        0x40,
+        Access::ReadOnly,
+        0,
+        "clash",
+    ));
+    assert!(matches!(
+        collide.validate(),
+        Err(RegMapError::MacroCollision(_))
+    ));
+    let mut none = example();
+    none.registers[2].count = 0;
+    assert_eq!(none.validate(), Err(RegMapError::NoCopies("FIFO".into())));
+    let mut flat = example();
+    flat.registers[2].stride = 0;
+    assert_eq!(flat.validate(), Err(RegMapError::ZeroStride("FIFO".into())));
+    let mut wo = example();
+    wo.registers[2].fields[0].reset = 1;
+    assert!(matches!(
+        wo.validate(),
+        Err(RegMapError::WriteOnlyReset { .. })
+    ));
+    let mut doc = example();
+    doc.registers[0].doc = "ends the comment */ early";
+    assert_eq!(doc.validate(), Err(RegMapError::BadDoc("ID".into())));
+    let mut bits = example();
+    bits.address_bits = 64;
+    assert_eq!(bits.validate(), Err(RegMapError::BadAddressBits(64)));
+    let mut huge = example();
+    huge.registers[2].stride = u32::MAX;
+    assert!(matches!(
+        huge.validate(),
+        Err(RegMapError::AddressOutOfRange { .. })
+    ));
+    let bad_field = field("BAD", 30, 8, Access::ReadOnly, 0);
+    assert!(bad_field.insert(0, 1).is_err() && bad_field.extract(0).is_err());
 }
 
 /// The header compiles as C and its constants equal the Rust map's.
@@ -146,7 +195,7 @@ fn the_c_header_compiles_and_agrees_with_the_map() {
         r#"#include <stdio.h>
 #include "demo_regs.h"
 int main(void) {{
-    printf("%u %u %u %u %u\n", DEMO_STATUS_INDEX, DEMO_STATUS_RESET, DEMO_STATUS_LEVEL_MASK,
+    printf("%lu %lu %lu %lu %lu\n", DEMO_STATUS_INDEX, DEMO_STATUS_RESET, DEMO_STATUS_LEVEL_MASK,
            DEMO_FIFO_INDEX(2), DEMO_POSITION_OFFSET(1));
     return 0;
 }}
@@ -154,18 +203,28 @@ int main(void) {{
     );
     std::fs::write(dir.path().join("main.c"), program).unwrap();
     let exe = dir.path().join("demo");
-    let built = Command::new("gcc")
-        .args(["-std=c99", "-Wall", "-Werror", "-o"])
-        .arg(&exe)
-        .arg(dir.path().join("main.c"))
-        .current_dir(dir.path())
-        .output()
-        .expect("gcc runs");
-    assert!(
-        built.status.success(),
-        "{}",
-        String::from_utf8_lossy(&built.stderr)
-    );
+    for standard in ["-std=c89", "-std=c99"] {
+        let built = Command::new("gcc")
+            .args([standard, "-pedantic", "-Wall", "-Wextra", "-Werror", "-o"])
+            .arg(&exe)
+            .arg(dir.path().join("main.c"))
+            .current_dir(dir.path())
+            .output()
+            .expect("gcc runs");
+        assert!(
+            built.status.success(),
+            "{standard}: {}",
+            String::from_utf8_lossy(&built.stderr)
+        );
+    }
+    // Every number is an unsigned long: 32 bits even where int is 16.
+    let header = std::fs::read_to_string(dir.path().join("demo_regs.h")).unwrap();
+    for line in header.lines().filter(|l| l.starts_with("#define DEMO_")) {
+        // (The include guard has no value.)
+        if let Some(value) = line.splitn(3, ' ').nth(2) {
+            assert!(value.contains("UL"), "no UL suffix: {line}");
+        }
+    }
     let printed = String::from_utf8(Command::new(&exe).output().unwrap().stdout).unwrap();
     let expected = format!(
         "{} {} {} {} {}\n",

@@ -1,14 +1,124 @@
 //! The C header for firmware: word indices and byte offsets, field shifts,
-//! masks and reset values, as plain `#define`s a DSP compiler accepts.
+//! masks and reset values, as plain `#define`s that C89 compilers accept.
+//! Every 32-bit value carries `UL`: on 16-bit-int DSPs (C28x, C55x) a plain
+//! `u` constant is 16 bits and `~MASK` would lose the upper half.
 
 use std::fmt::Write;
 
 use super::RegisterMap;
 
+/// One generated macro: name, replacement text, and an optional comment.
+struct Macro {
+    name: String,
+    value: String,
+    comment: Option<String>,
+}
+
+/// Every macro of the header, in order, with the register each belongs to.
+fn macros(map: &RegisterMap) -> Vec<(usize, Macro)> {
+    let p = map.name;
+    let mut out = vec![];
+    let mut push = |r: usize, name: String, value: String, comment: Option<String>| {
+        out.push((
+            r,
+            Macro {
+                name,
+                value,
+                comment,
+            },
+        ))
+    };
+    push(
+        usize::MAX,
+        format!("{p}_ADDRESS_BITS"),
+        format!("{}UL", map.address_bits),
+        None,
+    );
+    for (n, r) in map.registers.iter().enumerate() {
+        let reg = format!("{p}_{}", r.name);
+        if r.count > 1 {
+            push(n, format!("{reg}_COUNT"), format!("{}UL", r.count), None);
+            push(
+                n,
+                format!("{reg}_INDEX(n)"),
+                format!(
+                    "({:#06x}UL + (unsigned long)(n) * {:#x}UL)",
+                    r.address, r.stride
+                ),
+                None,
+            );
+            push(
+                n,
+                format!("{reg}_OFFSET(n)"),
+                format!("({reg}_INDEX(n) * 4UL)"),
+                None,
+            );
+        } else {
+            push(
+                n,
+                format!("{reg}_INDEX"),
+                format!("{:#06x}UL", r.address),
+                None,
+            );
+            push(
+                n,
+                format!("{reg}_OFFSET"),
+                format!("{:#06x}UL", r.address as u64 * 4),
+                None,
+            );
+        }
+        push(
+            n,
+            format!("{reg}_RESET"),
+            format!("{:#010x}UL", r.reset_value()),
+            None,
+        );
+        let w1c = r.w1c_mask();
+        if w1c != 0 {
+            push(
+                n,
+                format!("{reg}_W1C_MASK"),
+                format!("{w1c:#010x}UL"),
+                Some("write 1 to clear; write 0 here in a read-modify-write".into()),
+            );
+        }
+        for f in &r.fields {
+            let field = format!("{reg}_{}", f.name);
+            push(
+                n,
+                format!("{field}_SHIFT"),
+                format!("{}UL", f.lsb),
+                Some(format!("{} {}", f.access.abbreviation(), f.doc)),
+            );
+            push(
+                n,
+                format!("{field}_MASK"),
+                format!("{:#010x}UL", f.mask()),
+                None,
+            );
+            push(
+                n,
+                format!("{field}_RESET"),
+                format!("{:#x}UL", f.reset),
+                None,
+            );
+        }
+    }
+    out
+}
+
+/// The name of every macro the header defines (without parameters), for
+/// the collision check in [`RegisterMap::validate`].
+pub(super) fn macro_names(map: &RegisterMap) -> Vec<String> {
+    macros(map)
+        .into_iter()
+        .map(|(_, m)| m.name.split('(').next().unwrap_or_default().to_string())
+        .collect()
+}
+
 /// The C header text for `map` (call [`RegisterMap::validate`] first).
 pub fn c_header(map: &RegisterMap, generator: &str) -> String {
-    let p = map.name;
-    let guard = format!("{p}_REGS_H");
+    let guard = format!("{}_REGS_H", map.name);
     let mut h = String::new();
     let _ = writeln!(
         h,
@@ -24,39 +134,31 @@ pub fn c_header(map: &RegisterMap, generator: &str) -> String {
         h,
         " * Registers are 32 bits wide at word addresses (INDEX); OFFSET is the byte"
     );
-    let _ = writeln!(h, " * offset for a byte-addressed CPU (INDEX * 4). */");
+    let _ = writeln!(
+        h,
+        " * offset for a byte-addressed CPU (INDEX * 4). Access: RO read only, RW"
+    );
+    let _ = writeln!(
+        h,
+        " * read/write, W1C write 1 to clear, WO write only (reads 0). */"
+    );
     let _ = writeln!(h, "#ifndef {guard}\n#define {guard}\n");
-    let _ = writeln!(h, "#define {p}_ADDRESS_BITS {}u\n", map.address_bits);
-    for r in &map.registers {
-        let _ = writeln!(h, "/* {}: {} */", r.name, r.doc);
-        let reg = format!("{p}_{}", r.name);
-        if r.count > 1 {
-            let _ = writeln!(h, "#define {reg}_COUNT {}u", r.count);
-            let _ = writeln!(
-                h,
-                "#define {reg}_INDEX(n) ({:#06x}u + (n) * {:#x}u)",
-                r.address, r.stride
-            );
-            let _ = writeln!(h, "#define {reg}_OFFSET(n) ({reg}_INDEX(n) * 4u)");
-        } else {
-            let _ = writeln!(h, "#define {reg}_INDEX {:#06x}u", r.address);
-            let _ = writeln!(h, "#define {reg}_OFFSET {:#06x}u", r.address * 4);
+    let mut current = usize::MAX;
+    for (r, m) in macros(map) {
+        if r != current && r != usize::MAX {
+            let reg = &map.registers[r];
+            let _ = writeln!(h, "\n/* {}: {} */", reg.name, reg.doc);
+            current = r;
         }
-        let _ = writeln!(h, "#define {reg}_RESET {:#010x}u", r.reset_value());
-        for f in &r.fields {
-            let field = format!("{reg}_{}", f.name);
-            let _ = writeln!(
-                h,
-                "#define {field}_SHIFT {}u /* {} {} */",
-                f.lsb,
-                f.access.abbreviation(),
-                f.doc
-            );
-            let _ = writeln!(h, "#define {field}_MASK {:#010x}u", f.mask());
-            let _ = writeln!(h, "#define {field}_RESET {:#x}u", f.reset);
+        match m.comment {
+            Some(c) => {
+                let _ = writeln!(h, "#define {} {} /* {c} */", m.name, m.value);
+            }
+            None => {
+                let _ = writeln!(h, "#define {} {}", m.name, m.value);
+            }
         }
-        let _ = writeln!(h);
     }
-    let _ = writeln!(h, "#endif /* {guard} */");
+    let _ = writeln!(h, "\n#endif /* {guard} */");
     h
 }

@@ -71,8 +71,21 @@ impl Field {
         (self.max_value() << self.lsb) as u32
     }
 
+    fn check_fits(&self) -> Result<(), RegMapError> {
+        match self.lsb.checked_add(self.width) {
+            Some(end) if self.width > 0 && end <= 32 => Ok(()),
+            _ => Err(RegMapError::FieldOutOfWord {
+                register: String::new(),
+                field: self.name.to_string(),
+                lsb: self.lsb,
+                width: self.width,
+            }),
+        }
+    }
+
     /// `word` with this field set to `value`.
     pub fn insert(&self, word: u32, value: u64) -> Result<u32, RegMapError> {
+        self.check_fits()?;
         if value > self.max_value() {
             return Err(RegMapError::ValueTooWide {
                 field: self.name.to_string(),
@@ -86,9 +99,10 @@ impl Field {
     }
 
     /// This field's value in `word`.
-    pub fn extract(&self, word: u32) -> u64 {
+    pub fn extract(&self, word: u32) -> Result<u64, RegMapError> {
+        self.check_fits()?;
         let bits = BitArray::<[u32; 1], Lsb0>::new([word]);
-        bits[self.lsb as usize..(self.lsb + self.width) as usize].load::<u64>()
+        Ok(bits[self.lsb as usize..(self.lsb + self.width) as usize].load::<u64>())
     }
 }
 
@@ -156,7 +170,12 @@ impl Register {
 
     /// Every word address the register occupies.
     pub fn addresses(&self) -> impl Iterator<Item = u32> + '_ {
-        (0..self.count).map(move |i| self.address + i * self.stride)
+        // Saturating: a map whose addresses overflow fails validation.
+        (0..self.count).map(move |i| {
+            i.checked_mul(self.stride)
+                .and_then(|o| o.checked_add(self.address))
+                .unwrap_or(u32::MAX)
+        })
     }
 
     /// The field named `name`.
@@ -170,7 +189,8 @@ impl Register {
             })
     }
 
-    /// The register's value after reset, assembled from its fields.
+    /// The register's value after reset, as a read returns it (write-only
+    /// fields read as 0 and must reset to 0).
     pub fn reset_value(&self) -> u32 {
         self.fields.iter().fold(0, |word, f| {
             f.insert(word, f.reset & f.max_value()).unwrap_or(word)
@@ -182,6 +202,35 @@ impl Register {
         values.iter().try_fold(0, |word, (name, value)| {
             self.field(name)?.insert(word, *value)
         })
+    }
+
+    /// The bits of write-one-to-clear fields.
+    pub fn w1c_mask(&self) -> u32 {
+        self.mask_of(Access::WriteOneToClear)
+    }
+
+    /// The bits of read-write fields.
+    pub fn rw_mask(&self) -> u32 {
+        self.mask_of(Access::ReadWrite)
+    }
+
+    fn mask_of(&self, access: Access) -> u32 {
+        self.fields
+            .iter()
+            .filter(|f| f.access == access)
+            .fold(0, |m, f| m | f.mask())
+    }
+
+    /// The word to write for a read-modify-write: the read-write fields of
+    /// `current` kept, the named fields set, and every write-one-to-clear
+    /// bit 0 unless named (so pending flags are not cleared by accident)
+    /// and every write-only field 0 unless named.
+    pub fn modify(&self, current: u32, values: &[(&str, u64)]) -> Result<u32, RegMapError> {
+        values
+            .iter()
+            .try_fold(current & self.rw_mask(), |word, (name, value)| {
+                self.field(name)?.insert(word, *value)
+            })
     }
 }
 
@@ -274,6 +323,29 @@ pub enum RegMapError {
     /// No register of that name.
     #[error("no register named `{0}`")]
     NoSuchRegister(String),
+    /// The bus address width is outside 1..=32.
+    #[error("a register bus of {0} address bits is not supported (1 to 32)")]
+    BadAddressBits(u32),
+    /// A register with no copies.
+    #[error("register {0} has a count of 0")]
+    NoCopies(String),
+    /// A repeated register whose copies all sit at one address.
+    #[error("register {0} repeats with a stride of 0")]
+    ZeroStride(String),
+    /// A write-only field with a non-zero reset value (it reads as 0).
+    #[error("write-only field {register}.{field} must reset to 0 (it reads as 0)")]
+    WriteOnlyReset {
+        /// Register name.
+        register: String,
+        /// Field name.
+        field: String,
+    },
+    /// A description that would break the header or the table.
+    #[error("the description of {0} contains a newline, `*/` or `|`")]
+    BadDoc(String),
+    /// Two generated C macros would have the same name.
+    #[error("two generated C macros are both named {0}")]
+    MacroCollision(String),
     /// No field of that name in the register.
     #[error("register {register} has no field `{field}`")]
     NoSuchField {
@@ -294,6 +366,14 @@ pub enum RegMapError {
     },
 }
 
+fn check_doc(owner: &str, doc: &str) -> Result<(), RegMapError> {
+    if doc.contains('\n') || doc.contains("*/") || doc.contains('|') {
+        Err(RegMapError::BadDoc(owner.to_string()))
+    } else {
+        Ok(())
+    }
+}
+
 fn check_name(name: &str) -> Result<(), RegMapError> {
     let mut chars = name.chars();
     let first_ok = chars.next().is_some_and(|c| c.is_ascii_uppercase());
@@ -308,15 +388,26 @@ impl RegisterMap {
     /// Checks every rule of a well-formed map (see the module docs).
     pub fn validate(&self) -> Result<(), RegMapError> {
         check_name(self.name)?;
+        if !(1..=32).contains(&self.address_bits) {
+            return Err(RegMapError::BadAddressBits(self.address_bits));
+        }
+        check_doc(self.name, self.doc)?;
         let mut names = std::collections::HashSet::new();
         let mut used = std::collections::HashMap::new();
         for r in &self.registers {
             check_name(r.name)?;
+            check_doc(r.name, r.doc)?;
             if !names.insert(r.name) {
                 return Err(RegMapError::DuplicateName(r.name.to_string()));
             }
+            if r.count == 0 {
+                return Err(RegMapError::NoCopies(r.name.to_string()));
+            }
+            if r.count > 1 && r.stride == 0 {
+                return Err(RegMapError::ZeroStride(r.name.to_string()));
+            }
             for address in r.addresses() {
-                if u64::from(address) >= 1u64 << self.address_bits {
+                if address == u32::MAX || u64::from(address) >= 1u64 << self.address_bits {
                     return Err(RegMapError::AddressOutOfRange {
                         register: r.name.to_string(),
                         address,
@@ -335,15 +426,22 @@ impl RegisterMap {
             let mut claimed = bitarr![u32, Lsb0; 0; 32];
             for f in &r.fields {
                 check_name(f.name)?;
+                check_doc(f.name, f.doc)?;
                 if !field_names.insert(f.name) {
                     return Err(RegMapError::DuplicateName(format!("{}.{}", r.name, f.name)));
                 }
-                if f.width == 0 || f.lsb + f.width > 32 {
+                if f.check_fits().is_err() {
                     return Err(RegMapError::FieldOutOfWord {
                         register: r.name.to_string(),
                         field: f.name.to_string(),
                         lsb: f.lsb,
                         width: f.width,
+                    });
+                }
+                if f.access == Access::WriteOnly && f.reset != 0 {
+                    return Err(RegMapError::WriteOnlyReset {
+                        register: r.name.to_string(),
+                        field: f.name.to_string(),
                     });
                 }
                 if f.reset > f.max_value() {
@@ -368,6 +466,12 @@ impl RegisterMap {
                     });
                 }
                 claimed[bits].fill(true);
+            }
+        }
+        let mut macros = std::collections::HashSet::new();
+        for name in c_header::macro_names(self) {
+            if !macros.insert(name.clone()) {
+                return Err(RegMapError::MacroCollision(name));
             }
         }
         Ok(())

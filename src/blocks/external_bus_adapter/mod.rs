@@ -8,11 +8,12 @@
 //! one-clock strobe on a simple synchronous register bus:
 //!
 //! * a write becomes `bus_write` (with `bus_address`, `bus_write_data`) once
-//!   the write strobe ends, with the address and data sampled while it was
-//!   still active;
+//!   the write strobe ends, with the address and data sampled a clock
+//!   before its last active sample;
 //! * a read becomes `bus_read` (with `bus_address`) once the read strobe is
-//!   seen active; the slave answers on `bus_read_data` in the next clock,
-//!   and the adapter holds that word on `data_out` for the rest of the read.
+//!   seen active on two samples; the slave answers on `bus_read_data` in
+//!   the next clock, and the adapter holds that word on `data_out` for the
+//!   rest of the read.
 //!
 //! ## Ports (`A` = 8-bit address in the exported `external_bus_adapter`)
 //! | port | dir | width | meaning |
@@ -25,7 +26,7 @@
 //! | `address` | in | A | word address, asynchronous |
 //! | `data_in` | in | 32 | write data from the pins, asynchronous |
 //! | `data_out` | out | 32 | read data to the pins, registered |
-//! | `data_oe` | out | 1 | drive the data pins: `!cs_n & !rd_n`, combinational from the pins (for the IO buffer's enable) |
+//! | `data_oe` | out | 1 | drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins (for the IO buffer's enable) |
 //! | `bus_address` | out | A | address of the current bus strobe, registered |
 //! | `bus_write_data` | out | 32 | data of `bus_write`, registered |
 //! | `bus_write` | out | 1 | one-clock write strobe |
@@ -41,24 +42,32 @@
 //! data_out                   |  D ...     held until the next read
 //! ```
 //!
-//! ## Minimum strobe timing at the pins, in FPGA clocks (t_clk)
+//! ## Minimum timing at the pins, in FPGA clocks (t_clk)
+//! An access counts only after two active samples in a row, so runts
+//! shorter than that never become bus strobes.
+//!
 //! | parameter | minimum | why |
 //! |---|---|---|
-//! | write strobe (cs_n and we_n low) | 2 t_clk | at least one synchronizer sample sees it |
-//! | address and data stable before the end of the write strobe | 2 t_clk | the sample taken one clock before the end is used |
-//! | address and data hold after the write strobe | 0 | |
-//! | read access time: rd_n low to data valid at the pins | 6 t_clk + pin delays | 2 synchronizer clocks, 1 to issue `bus_read`, 1 for the slave, 1 to register `data_out`, 1 of sampling uncertainty |
-//! | address stable before rd_n falls | 1 t_clk | it is sampled with the first active sample of rd_n |
-//! | strobe high between accesses | 2 t_clk | one inactive sample separates two accesses |
+//! | write strobe (cs_n and we_n low) | 3 t_clk | two clean active samples |
+//! | address and data stable before we_n (or cs_n) rises | 2 t_clk | the sample taken a clock before the last active one is written |
+//! | address and data hold after the write strobe | 0 | that sample is at least a clock old |
+//! | write latency: we_n rising to `bus_write` | at most 4 t_clk | |
+//! | read access time: rd_n low to data valid at the pins | 6 t_clk + t_su + t_co + pad delays | 1 to the first sure sample, 2 more to qualify, 1 to issue `bus_read`, 1 for the slave, 1 to register `data_out` |
+//! | read address stable after rd_n falls | 2 t_clk + t_h | it is sampled with the second active sample (hold it for the whole strobe) |
+//! | strobe high between accesses | 2 t_clk | one clean inactive sample separates two accesses |
+//!
+//! The `*_meta` flip-flops are synchronizer first stages: give them your
+//! tool's ASYNC_REG (or equivalent) attribute and a false path from the
+//! pins; rust-hdl cannot emit the attribute itself.
 //!
 //! ## Bad input
-//! * A write strobe shorter than one clock may be missed entirely; one of
-//!   at least 2 clocks is never missed and never doubled.
-//! * we_n and rd_n low together: the write is taken when it ends and the
-//!   read is issued once; neither is lost, but the read may return the word
-//!   from before or after the write. Do not do this.
+//! * A strobe seen active on only one sample (a runt) is ignored.
+//! * we_n and rd_n low together: `data_oe` stays low (the master drives
+//!   the pins), the write is taken when it ends, and the read is issued
+//!   once, one clock later if the write took its clock; the read may return
+//!   the word from before or after the write. Do not do this.
 //! * A read whose strobe ends before its data is registered is still issued
-//!   (side effects happen once); the DSP just reads an older `data_out`.
+//!   (side effects happen once); the master just reads an older `data_out`.
 
 pub mod model;
 
@@ -86,7 +95,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("data_out", "read data to the pins, registered"),
     (
         "data_oe",
-        "drive the data pins: !cs_n & !rd_n, combinational from the pins",
+        "drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins",
     ),
     ("bus_address", "address of the current bus strobe"),
     ("bus_write_data", "data of bus_write"),
@@ -134,16 +143,22 @@ pub struct ExternalBusAdapter<const A: usize> {
     write_meta: DFF<Bit>,
     write_sync: DFF<Bit>,
     write_prev: DFF<Bit>,
+    write_older: DFF<Bit>,
     read_meta: DFF<Bit>,
     read_sync: DFF<Bit>,
+    read_prev: DFF<Bit>,
     address_meta: DFF<Bits<A>>,
     address_sync: DFF<Bits<A>>,
     address_prev: DFF<Bits<A>>,
     data_meta: DFF<Bits<32>>,
     data_sync: DFF<Bits<32>>,
     data_prev: DFF<Bits<32>>,
-    /// The current read strobe has been issued.
+    address_older: DFF<Bits<A>>,
+    data_older: DFF<Bits<32>>,
+    /// The current read strobe has been issued (or is pending).
     read_served: DFF<Bit>,
+    /// A qualified read lost its clock to a write; it is issued next clock.
+    read_pending: DFF<Bit>,
     /// `bus_read` was high last clock: capture the slave's answer now.
     read_answer: DFF<Bit>,
     bus_address_reg: DFF<Bits<A>>,
@@ -152,6 +167,7 @@ pub struct ExternalBusAdapter<const A: usize> {
     bus_read_reg: DFF<Bit>,
     data_out_reg: DFF<Bits<32>>,
     write_ends: Signal<Local, Bit>,
+    read_wanted: Signal<Local, Bit>,
     zero_a: Constant<Bits<A>>,
     zero_d: Constant<Bits<32>>,
 }
@@ -176,15 +192,20 @@ impl<const A: usize> Default for ExternalBusAdapter<A> {
             write_meta: Default::default(),
             write_sync: Default::default(),
             write_prev: Default::default(),
+            write_older: Default::default(),
             read_meta: Default::default(),
             read_sync: Default::default(),
+            read_prev: Default::default(),
             address_meta: Default::default(),
             address_sync: Default::default(),
             address_prev: Default::default(),
             data_meta: Default::default(),
             data_sync: Default::default(),
             data_prev: Default::default(),
+            address_older: Default::default(),
+            data_older: Default::default(),
             read_served: Default::default(),
+            read_pending: Default::default(),
             read_answer: Default::default(),
             bus_address_reg: Default::default(),
             bus_write_data_reg: Default::default(),
@@ -192,6 +213,7 @@ impl<const A: usize> Default for ExternalBusAdapter<A> {
             bus_read_reg: Default::default(),
             data_out_reg: Default::default(),
             write_ends: Default::default(),
+            read_wanted: Default::default(),
             zero_a: Constant::new(0u64.into()),
             zero_d: Constant::new(0u64.into()),
         }
@@ -207,15 +229,20 @@ impl<const A: usize> Logic for ExternalBusAdapter<A> {
             write_meta,
             write_sync,
             write_prev,
+            write_older,
             read_meta,
             read_sync,
+            read_prev,
             address_meta,
             address_sync,
             address_prev,
             data_meta,
             data_sync,
             data_prev,
+            address_older,
+            data_older,
             read_served,
+            read_pending,
             read_answer,
             bus_address_reg,
             bus_write_data_reg,
@@ -224,7 +251,8 @@ impl<const A: usize> Logic for ExternalBusAdapter<A> {
             data_out_reg
         );
         self.data_out.next = self.data_out_reg.q.val();
-        self.data_oe.next = !self.cs_n.val() & !self.rd_n.val();
+        // Never drive the pins while the master writes.
+        self.data_oe.next = !self.cs_n.val() & !self.rd_n.val() & self.we_n.val();
         self.bus_address.next = self.bus_address_reg.q.val();
         self.bus_write_data.next = self.bus_write_data_reg.q.val();
         self.bus_write.next = self.bus_write_reg.q.val();
@@ -234,31 +262,52 @@ impl<const A: usize> Logic for ExternalBusAdapter<A> {
         self.write_meta.d.next = !self.cs_n.val() & !self.we_n.val();
         self.write_sync.d.next = self.write_meta.q.val();
         self.write_prev.d.next = self.write_sync.q.val();
+        self.write_older.d.next = self.write_prev.q.val();
         self.read_meta.d.next = !self.cs_n.val() & !self.rd_n.val();
         self.read_sync.d.next = self.read_meta.q.val();
+        self.read_prev.d.next = self.read_sync.q.val();
         self.address_meta.d.next = self.address.val();
         self.address_sync.d.next = self.address_meta.q.val();
         self.address_prev.d.next = self.address_sync.q.val();
         self.data_meta.d.next = self.data_in.val();
         self.data_sync.d.next = self.data_meta.q.val();
         self.data_prev.d.next = self.data_sync.q.val();
+        self.address_older.d.next = self.address_prev.q.val();
+        self.data_older.d.next = self.data_prev.q.val();
 
-        // A write is taken when its strobe ends, with the address and data
-        // of the last active sample. A read is issued once per strobe, one
-        // clock later if a write takes this clock.
-        self.write_ends.next = self.write_prev.q.val() & !self.write_sync.q.val();
+        // A strobe counts only after two active samples in a row, so a runt
+        // (chip-select skew, a glitch) never becomes an access. A write is
+        // taken when its strobe ends, with the address and data of the
+        // sample before the last active one: that sample is at least a
+        // clock before the strobe's end, so a master with zero hold time
+        // cannot corrupt it. A read is issued once per strobe, one clock
+        // later if a write takes this clock.
+        self.write_ends.next =
+            self.write_older.q.val() & self.write_prev.q.val() & !self.write_sync.q.val();
+        self.read_wanted.next =
+            (self.read_prev.q.val() & self.read_sync.q.val() & !self.read_served.q.val())
+                | self.read_pending.q.val();
         self.bus_write_reg.d.next = false;
         self.bus_read_reg.d.next = false;
         if self.write_ends.val() {
             self.bus_write_reg.d.next = true;
-            self.bus_address_reg.d.next = self.address_prev.q.val();
-            self.bus_write_data_reg.d.next = self.data_prev.q.val();
-        } else if self.read_sync.q.val() & !self.read_served.q.val() {
+            self.bus_address_reg.d.next = self.address_older.q.val();
+            self.bus_write_data_reg.d.next = self.data_older.q.val();
+            if self.read_wanted.val() {
+                self.read_pending.d.next = true;
+                self.read_served.d.next = true;
+            }
+        } else if self.read_wanted.val() {
             self.bus_read_reg.d.next = true;
             self.bus_address_reg.d.next = self.address_sync.q.val();
+            if self.read_pending.q.val() {
+                // The address as it was on the clock the write took.
+                self.bus_address_reg.d.next = self.address_prev.q.val();
+            }
             self.read_served.d.next = true;
+            self.read_pending.d.next = false;
         }
-        if !self.read_sync.q.val() {
+        if !self.read_sync.q.val() & !self.read_wanted.val() {
             self.read_served.d.next = false;
         }
         self.read_answer.d.next = self.bus_read_reg.q.val();
@@ -270,6 +319,11 @@ impl<const A: usize> Logic for ExternalBusAdapter<A> {
             self.write_meta.d.next = false;
             self.write_sync.d.next = false;
             self.write_prev.d.next = false;
+            self.write_older.d.next = false;
+            self.read_prev.d.next = false;
+            self.read_pending.d.next = false;
+            self.address_older.d.next = self.zero_a.val();
+            self.data_older.d.next = self.zero_d.val();
             self.read_meta.d.next = false;
             self.read_sync.d.next = false;
             self.address_meta.d.next = self.zero_a.val();

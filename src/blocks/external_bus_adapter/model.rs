@@ -64,9 +64,10 @@ struct Sample {
 #[derive(Clone, Debug)]
 pub struct ExternalBusModel {
     address_mask: u64,
-    /// Pin samples: [meta, sync, prev] (read uses meta and sync only).
-    stages: [Sample; 3],
+    /// Pin samples, newest first: [meta, sync, prev, older].
+    stages: [Sample; 4],
     read_served: bool,
+    read_pending: bool,
     read_answer: bool,
     out: ExternalBusOutputs,
 }
@@ -78,6 +79,7 @@ impl ExternalBusModel {
             address_mask: crate::blocks::width_mask(address_bits),
             stages: Default::default(),
             read_served: false,
+            read_pending: false,
             read_answer: false,
             out: ExternalBusOutputs::default(),
         }
@@ -86,20 +88,33 @@ impl ExternalBusModel {
     /// One rising clock edge; returns the outputs after it (`data_oe` with
     /// this clock's pins still applied).
     pub fn step(&mut self, i: ExternalBusInputs) -> ExternalBusOutputs {
-        let [_, sync, prev] = self.stages;
+        let [_, sync, prev, older] = self.stages;
         let mut out = self.out;
         out.bus_write = false;
         out.bus_read = false;
-        if prev.write && !sync.write {
+        // Two active samples make an access; a write ends on the first
+        // inactive one and uses the sample before the last active one.
+        let write_ends = older.write && prev.write && !sync.write;
+        let read_wanted = (prev.read && sync.read && !self.read_served) || self.read_pending;
+        if write_ends {
             out.bus_write = true;
-            out.bus_address = prev.address;
-            out.bus_write_data = prev.data;
-        } else if sync.read && !self.read_served {
+            out.bus_address = older.address;
+            out.bus_write_data = older.data;
+            if read_wanted {
+                self.read_pending = true;
+                self.read_served = true;
+            }
+        } else if read_wanted {
             out.bus_read = true;
-            out.bus_address = sync.address;
+            out.bus_address = if self.read_pending {
+                prev.address
+            } else {
+                sync.address
+            };
             self.read_served = true;
+            self.read_pending = false;
         }
-        if !sync.read {
+        if !sync.read && !read_wanted {
             self.read_served = false;
         }
         if self.read_answer {
@@ -115,12 +130,13 @@ impl ExternalBusModel {
             },
             self.stages[0],
             self.stages[1],
+            self.stages[2],
         ];
         self.out = out;
         if i.reset {
             *self = Self::new(self.address_mask.count_ones());
         }
-        self.out.data_oe = !i.cs_n && !i.rd_n;
+        self.out.data_oe = !i.cs_n && !i.rd_n && i.we_n;
         self.out
     }
 }
