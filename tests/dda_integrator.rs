@@ -116,7 +116,7 @@ fn bresenham_contract_for_every_4_bit_integrand_and_modulus() {
                 let mut cycle = 0usize;
                 let total_cycles = ticks * (gap + 1) + LATENCY + 1;
                 while cycle < total_cycles {
-                    let tick = cycle % (gap + 1) == 0 && tick_cycles.len() < ticks;
+                    let tick = cycle.is_multiple_of(gap + 1) && tick_cycles.len() < ticks;
                     if tick {
                         tick_cycles.push(cycle);
                     }

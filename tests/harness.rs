@@ -40,8 +40,7 @@ motion_hdl::vector_ports!(impl[] RingOscillator { inputs: [], outputs: [out] });
 fn a_combinational_loop_is_an_error_naming_the_block() {
     let error = Harness::new("ring_oscillator", RingOscillator::default())
         .and_then(|mut h| h.cycle())
-        .err()
-        .expect("a ring oscillator must not settle");
+        .expect_err("a ring oscillator must not settle");
     assert!(
         matches!(error, HarnessError::CombinationalLoop { .. }),
         "{error:?}"

@@ -191,16 +191,15 @@ fn the_c_header_compiles_and_agrees_with_the_map() {
     )
     .unwrap();
     let status = map.register("STATUS").unwrap();
-    let program = format!(
-        r#"#include <stdio.h>
+    let program = r#"#include <stdio.h>
 #include "demo_regs.h"
-int main(void) {{
+int main(void) {
     printf("%lu %lu %lu %lu %lu\n", DEMO_STATUS_INDEX, DEMO_STATUS_RESET, DEMO_STATUS_LEVEL_MASK,
            DEMO_FIFO_INDEX(2), DEMO_POSITION_OFFSET(1));
     return 0;
-}}
+}
 "#
-    );
+    .to_string();
     std::fs::write(dir.path().join("main.c"), program).unwrap();
     let exe = dir.path().join("demo");
     for standard in ["-std=c89", "-std=c99"] {

@@ -133,7 +133,7 @@ fn run_back_to_back(
     let mut pending = queue.next();
     loop {
         let mut i = UniformPulseGenInputs {
-            tick: pair.cycle % tick_every == 0,
+            tick: pair.cycle.is_multiple_of(tick_every),
             ..Default::default()
         };
         if let Some(&(period, count, mode)) = pending {

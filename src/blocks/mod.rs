@@ -8,12 +8,14 @@ pub mod dda_interpolator;
 pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;
+pub mod interrupt_controller;
 pub mod pulse_counter;
 pub mod quadrature_decoder;
 pub mod sequential_divider;
 pub mod step_channel;
 pub mod step_output;
 pub mod uniform_pulse_gen;
+pub mod watchdog;
 
 /// All ones in the low `width` bits (1 to 64): the value range of a
 /// `width`-bit port, for models and stimulus.

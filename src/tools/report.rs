@@ -63,7 +63,7 @@ pub fn render(rows: &[ReportRow], seeds: &[u64]) -> Result<String, ToolError> {
         let median = f.median_fmax();
         let per_seed: Vec<String> = f.fmax_mhz.iter().map(|x| format!("{x:.1}")).collect();
         let fmax_met = median >= row.target_mhz;
-        let lut4_met = row.lut4_budget.map_or(true, |budget| f.lut4 <= budget);
+        let lut4_met = row.lut4_budget.is_none_or(|budget| f.lut4 <= budget);
         let verdict = match (fmax_met, lut4_met) {
             (true, true) => "yes",
             (false, true) => "**no: Fmax**",

@@ -77,8 +77,8 @@ impl PulsePlan {
         let mut levels = Vec::with_capacity(self.period as usize);
         for i in 0..self.count {
             let half = self.half + self.is_long(i, interleaved) as u64;
-            levels.extend(std::iter::repeat(true).take(half as usize));
-            levels.extend(std::iter::repeat(false).take(half as usize));
+            levels.extend(std::iter::repeat_n(true, half as usize));
+            levels.extend(std::iter::repeat_n(false, half as usize));
         }
         // N = 0: the whole period low.
         levels.resize(self.period as usize, false);
@@ -92,8 +92,8 @@ pub fn single_period_train(period: u64, count: u64) -> Vec<bool> {
     let (plan, _) = PulsePlan::new(period, count);
     let mut levels = Vec::with_capacity(plan.period as usize);
     for _ in 0..plan.count {
-        levels.extend(std::iter::repeat(true).take(plan.half as usize));
-        levels.extend(std::iter::repeat(false).take(plan.half as usize));
+        levels.extend(std::iter::repeat_n(true, plan.half as usize));
+        levels.extend(std::iter::repeat_n(false, plan.half as usize));
     }
     levels.resize(plan.period as usize, false);
     levels
