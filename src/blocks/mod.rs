@@ -3,6 +3,7 @@
 //! reference model the RTL is proven against (in `tests/<block>.rs`).
 
 pub mod carry_select_adder;
+pub mod command_fifo;
 pub mod dda_integrator;
 pub mod dda_interpolator;
 pub mod external_bus_adapter;

@@ -146,14 +146,17 @@ pub fn cross_simulate<B: VectorPorts>(
     })
 }
 
-/// [`cross_simulate`] on Verilog generated now from a copy of `block` and
-/// named `module`: for instances that are not exported, such as narrow widths.
-pub fn cross_simulate_generated<B: VectorPorts + Clone>(
+/// [`cross_simulate`] on Verilog generated now from a fresh `B::default()`
+/// and named `module`: for instances that are not exported, such as narrow
+/// widths. Every block's structure is fixed by its type (its const
+/// parameters), so the fresh instance has the same Verilog as `block`; a
+/// fresh one is used because blocks holding a RAM cannot be cloned.
+pub fn cross_simulate_generated<B: VectorPorts + Default>(
     module: &str,
     block: B,
     stimulus: &[Vec<u64>],
 ) -> Result<CosimPass, CosimError> {
-    let mut copy = block.clone();
+    let mut copy = B::default();
     let design = CosimDesign::generated(module, &mut copy)?;
     cross_simulate(&design, block, stimulus)
 }

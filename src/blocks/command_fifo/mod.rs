@@ -1,0 +1,220 @@
+//! # `CommandFifo`: a block-RAM FIFO with flush, level, low-water and sticky error flags
+//!
+//! An internal building block for the motion controller's per-axis command
+//! queues. rust-hdl's `SynchronousFIFO` has no reset (a controller must be
+//! able to flush its queues) and no sticky error flags, so this FIFO wraps
+//! rust-hdl's `RAM` (which yosys maps to iCE40 block RAM) with its own
+//! pointers. The head entry is always on `head` while `empty` is low
+//! (first-word fall-through); nothing is ever overwritten or invented.
+//!
+//! ## Ports (2^N entries of 32 bits)
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clock` | in | 1 | rising-edge clock |
+//! | `reset` | in | 1 | synchronous, active high: flush (empty), flags 0 |
+//! | `write` | in | 1 | push `write_data` (refused when full, unless a pop frees a slot on the same clock) |
+//! | `write_data` | in | 32 | the entry to push |
+//! | `pop` | in | 1 | remove the head entry (refused when empty) |
+//! | `head` | out | 32 | the oldest entry, valid while `empty` is low (while empty: 0 after power-up, else a stale word) |
+//! | `empty` | out | 1 | no entry |
+//! | `full` | out | 1 | 2^N entries |
+//! | `level` | out | N+1 | entries held |
+//! | `low_water` | in | N+1 | threshold for `low` |
+//! | `low` | out | 1 | `level` <= `low_water` (combinational from the registered level) |
+//! | `clear_flags` | in | 1 | clears `overflow` and `underflow` |
+//! | `overflow` | out | 1 | sticky: a write was refused (FIFO full); the FIFO is unchanged |
+//! | `underflow` | out | 1 | sticky: a pop was refused (FIFO empty) |
+//!
+//! ## Timing
+//! A write at edge e is counted in `level` after e and is on `head` after e
+//! if the FIFO was empty. A pop at edge e shows the next entry on `head`
+//! after e. Write and pop may come on every clock, together. A flag set on
+//! the clock of `clear_flags` stays set.
+//!
+//! ## Implementation
+//! The RAM reads synchronously at the address the head will have after the
+//! edge. A write to that same address on the same edge (into an empty FIFO,
+//! or into the slot a pop is about to expose) is caught by a bypass
+//! register, because block RAM returns the old word on a read-during-write.
+
+pub mod model;
+
+use rust_hdl::prelude::*;
+
+/// Block-RAM FIFO of 2^N 32-bit entries with flush and sticky flags. See the
+/// [module documentation](self).
+#[derive(LogicBlock)]
+pub struct CommandFifo<const N: usize, const NP1: usize> {
+    /// Rising-edge clock.
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset: flush.
+    pub reset: Signal<In, Bit>,
+    /// Push.
+    pub write: Signal<In, Bit>,
+    /// Entry to push.
+    pub write_data: Signal<In, Bits<32>>,
+    /// Remove the head.
+    pub pop: Signal<In, Bit>,
+    /// The oldest entry.
+    pub head: Signal<Out, Bits<32>>,
+    /// No entry.
+    pub empty: Signal<Out, Bit>,
+    /// No free slot.
+    pub full: Signal<Out, Bit>,
+    /// Entries held.
+    pub level: Signal<Out, Bits<NP1>>,
+    /// Threshold for `low`.
+    pub low_water: Signal<In, Bits<NP1>>,
+    /// `level <= low_water`.
+    pub low: Signal<Out, Bit>,
+    /// Clear the sticky flags.
+    pub clear_flags: Signal<In, Bit>,
+    /// Sticky: a write was refused.
+    pub overflow: Signal<Out, Bit>,
+    /// Sticky: a pop was refused.
+    pub underflow: Signal<Out, Bit>,
+    ram: RAM<Bits<32>, N>,
+    read_pointer: DFF<Bits<N>>,
+    write_pointer: DFF<Bits<N>>,
+    count: DFF<Bits<NP1>>,
+    /// The head comes from `bypass_data`, not from the RAM, this clock.
+    bypass: DFF<Bit>,
+    bypass_data: DFF<Bits<32>>,
+    overflow_reg: DFF<Bit>,
+    underflow_reg: DFF<Bit>,
+    is_empty: Signal<Local, Bit>,
+    is_full: Signal<Local, Bit>,
+    write_taken: Signal<Local, Bit>,
+    pop_taken: Signal<Local, Bit>,
+    next_read: Signal<Local, Bits<N>>,
+    one_n: Constant<Bits<N>>,
+    zero_n: Constant<Bits<N>>,
+    one_c: Constant<Bits<NP1>>,
+    zero_c: Constant<Bits<NP1>>,
+    capacity: Constant<Bits<NP1>>,
+}
+
+impl<const N: usize, const NP1: usize> Default for CommandFifo<N, NP1> {
+    fn default() -> Self {
+        assert_eq!(NP1, N + 1, "NP1 must be N + 1");
+        assert!((1..=12).contains(&N), "2 to 4096 entries");
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            write: Default::default(),
+            write_data: Default::default(),
+            pop: Default::default(),
+            head: Default::default(),
+            empty: Default::default(),
+            full: Default::default(),
+            level: Default::default(),
+            low_water: Default::default(),
+            low: Default::default(),
+            clear_flags: Default::default(),
+            overflow: Default::default(),
+            underflow: Default::default(),
+            // Zero-initialized (block RAM INIT), so the Verilog's head
+            // is 0, not X, before the first write, as in the simulation.
+            ram: RAM::from((0..1usize << N).map(|_| Bits::<32>::default())),
+            read_pointer: Default::default(),
+            write_pointer: Default::default(),
+            count: Default::default(),
+            bypass: Default::default(),
+            bypass_data: Default::default(),
+            overflow_reg: Default::default(),
+            underflow_reg: Default::default(),
+            is_empty: Default::default(),
+            is_full: Default::default(),
+            write_taken: Default::default(),
+            pop_taken: Default::default(),
+            next_read: Default::default(),
+            one_n: Constant::new(1u64.into()),
+            zero_n: Constant::new(0u64.into()),
+            one_c: Constant::new(1u64.into()),
+            zero_c: Constant::new(0u64.into()),
+            capacity: Constant::new((1u64 << N).into()),
+        }
+    }
+}
+
+impl<const N: usize, const NP1: usize> Logic for CommandFifo<N, NP1> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            read_pointer,
+            write_pointer,
+            count,
+            bypass,
+            bypass_data,
+            overflow_reg,
+            underflow_reg
+        );
+        self.ram.read_clock.next = self.clock.val();
+        self.ram.write_clock.next = self.clock.val();
+        self.is_empty.next = self.count.q.val() == self.zero_c.val();
+        self.is_full.next = self.count.q.val() == self.capacity.val();
+        self.empty.next = self.is_empty.val();
+        self.full.next = self.is_full.val();
+        self.level.next = self.count.q.val();
+        self.low.next = self.count.q.val() <= self.low_water.val();
+        self.overflow.next = self.overflow_reg.q.val();
+        self.underflow.next = self.underflow_reg.q.val();
+        self.head.next = self.ram.read_data.val();
+        if self.bypass.q.val() {
+            self.head.next = self.bypass_data.q.val();
+        }
+
+        self.pop_taken.next = self.pop.val() & !self.is_empty.val();
+        self.write_taken.next = self.write.val() & (!self.is_full.val() | self.pop_taken.val());
+        if self.clear_flags.val() {
+            self.overflow_reg.d.next = false;
+            self.underflow_reg.d.next = false;
+        }
+        if self.write.val() & !self.write_taken.val() {
+            self.overflow_reg.d.next = true;
+        }
+        if self.pop.val() & !self.pop_taken.val() {
+            self.underflow_reg.d.next = true;
+        }
+
+        // The RAM reads where the head will be after this edge.
+        self.next_read.next = self.read_pointer.q.val();
+        if self.pop_taken.val() {
+            self.next_read.next = self.read_pointer.q.val() + self.one_n.val();
+            self.read_pointer.d.next = self.next_read.val();
+        }
+        self.ram.read_address.next = self.next_read.val();
+        self.ram.write_address.next = self.write_pointer.q.val();
+        self.ram.write_data.next = self.write_data.val();
+        self.ram.write_enable.next = self.write_taken.val();
+        if self.write_taken.val() {
+            self.write_pointer.d.next = self.write_pointer.q.val() + self.one_n.val();
+        }
+        // Read-during-write of the head's next address: take the new word.
+        self.bypass.d.next =
+            self.write_taken.val() & (self.write_pointer.q.val() == self.next_read.val());
+        self.bypass_data.d.next = self.write_data.val();
+
+        if self.write_taken.val() & !self.pop_taken.val() {
+            self.count.d.next = self.count.q.val() + self.one_c.val();
+        }
+        if self.pop_taken.val() & !self.write_taken.val() {
+            self.count.d.next = self.count.q.val() - self.one_c.val();
+        }
+        if self.reset.val() {
+            self.read_pointer.d.next = self.zero_n.val();
+            self.write_pointer.d.next = self.zero_n.val();
+            self.count.d.next = self.zero_c.val();
+            self.bypass.d.next = false;
+            self.overflow_reg.d.next = false;
+            self.underflow_reg.d.next = false;
+        }
+    }
+}
+
+crate::vector_ports!(impl[const N: usize, const NP1: usize] CommandFifo<N, NP1> {
+    inputs: [reset, write, write_data, pop, low_water, clear_flags],
+    outputs: [head, empty, full, level, low, overflow, underflow],
+});
