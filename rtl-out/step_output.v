@@ -6,7 +6,7 @@
 //
 // Parameters (fixed in this file):
 //   T = 16: timer width (step_len, step_space, dir_setup, dir_hold)
-//   pending = 16: signed pending-step count
+//   P = 16: signed pending-step count width (-32768 to 32767)
 //
 // Ports:
 //   name          dir    width  meaning

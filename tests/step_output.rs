@@ -3,7 +3,7 @@
 //! saturation, and cross-simulation.
 
 use motion_hdl::blocks::step_output::model::{
-    StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX, PENDING_MIN,
+    pending_limits, StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX, PENDING_MIN,
 };
 use motion_hdl::blocks::step_output::StepOutput;
 use motion_hdl::sim::Harness;
@@ -103,8 +103,8 @@ impl Driver {
 #[test]
 fn rtl_matches_model_cycle_by_cycle_in_every_mode() {
     let mut driver = Driver::new(0x57e9, vec![0, 1, 2, 3]);
-    let mut harness = Harness::new("step_output", StepOutput::<16>::default()).unwrap();
-    let mut model = StepOutputModel::new(16);
+    let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
+    let mut model = StepOutputModel::new(16, 16);
     let mut busy = false;
     for cycle in 0..1_000_000 {
         let mut inputs = driver.next(busy);
@@ -247,7 +247,7 @@ impl PinMonitor {
 fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
     for mode in 0..4u8 {
         let mut driver = Driver::new(0x9e0 + mode as u64, vec![mode]);
-        let mut harness = Harness::new("step_output", StepOutput::<16>::default()).unwrap();
+        let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
         let mut monitor: Option<PinMonitor> = None;
         let mut busy = false;
         let mut checks = 0;
@@ -317,8 +317,8 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
 /// timing: exactly the count's capacity in that direction comes out, plus
 /// any pulse that started during the fill; the requests beyond the capacity
 /// are dropped.
-fn saturate_and_drain(dir: bool, capacity: i32) {
-    let mut harness = Harness::new("step_output", StepOutput::<16>::default()).unwrap();
+fn saturate_and_drain<const P: usize>(dir: bool, capacity: i64) {
+    let mut harness = Harness::new("step_output", StepOutput::<16, P>::default()).unwrap();
     let slow = StepOutputInputs {
         step: true,
         dir,
@@ -326,12 +326,12 @@ fn saturate_and_drain(dir: bool, capacity: i32) {
         step_space: 60_000,
         ..Default::default()
     };
-    let mut rises = 0;
+    let mut rises: i64 = 0;
     let mut last_a = false;
     let count = |out: StepOutputOutputs, last_a: &mut bool| {
         let rise = out.out_a && !*last_a;
         *last_a = out.out_a;
-        rise as i32
+        rise as i64
     };
     let mut after_overrun = 0;
     while after_overrun < 100 {
@@ -363,18 +363,18 @@ fn saturate_and_drain(dir: bool, capacity: i32) {
 
 #[test]
 fn a_saturated_count_drops_requests_and_flags_overrun_forward() {
-    saturate_and_drain(true, PENDING_MAX);
+    saturate_and_drain::<16>(true, PENDING_MAX.into());
 }
 
 #[test]
 fn a_saturated_count_drops_requests_and_flags_overrun_backward() {
-    saturate_and_drain(false, -PENDING_MIN);
+    saturate_and_drain::<16>(false, (-PENDING_MIN).into());
 }
 
 /// A closed-loop run of the driver against the model, as input vectors.
 fn cosim_stimulus(seed: u64, modes: Vec<u8>, timer_bits: u32, cycles: usize) -> Vec<Vec<u64>> {
     let mut driver = Driver::new(seed, modes);
-    let mut model = StepOutputModel::new(timer_bits);
+    let mut model = StepOutputModel::new(timer_bits, 16);
     let mut busy = false;
     (0..cycles)
         .map(|_| {
@@ -390,7 +390,7 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus(0xc059, vec![0, 1, 2, 3], 16, 40_000);
     cross_simulate(
         &CosimDesign::exported("step_output"),
-        StepOutput::<16>::default(),
+        StepOutput::<16, 16>::default(),
         &stimulus,
     )
     .unwrap_or_else(|e| panic!("{e}"));
@@ -399,7 +399,7 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
 #[test]
 fn narrow_6_bit_timers_match_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus(0xc05a, vec![0, 1, 2], 6, 30_000);
-    cross_simulate_generated("step_output_t6", StepOutput::<6>::default(), &stimulus)
+    cross_simulate_generated("step_output_t6", StepOutput::<6, 16>::default(), &stimulus)
         .unwrap_or_else(|e| panic!("{e}"));
 }
 
@@ -408,7 +408,7 @@ fn narrow_6_bit_timers_match_rust_in_icarus_and_verilator() {
 /// step_len 2, step_space 3, dir_setup 2, dir_hold 2; three forward steps
 /// requested on clocks 1 to 3, then two backward steps on clocks 14 and 15.
 fn timing_diagram() -> String {
-    let mut harness = Harness::new("step_output", StepOutput::<16>::default()).unwrap();
+    let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
     let settings = StepOutputInputs {
         step_len: 2,
         step_space: 3,
@@ -455,4 +455,29 @@ fn datasheet_timing_diagram_is_the_simulation() {
         drawn, simulated,
         "timing.txt differs from the simulation (rerun with UPDATE_TIMING_DIAGRAM=1)"
     );
+}
+
+/// The pending width is a parameter: an 8-bit count saturates at +127 and
+/// -128 with the same rules.
+#[test]
+fn an_8_bit_pending_count_saturates_at_its_own_limits() {
+    let (min, max) = pending_limits(8);
+    saturate_and_drain::<8>(true, max);
+    saturate_and_drain::<8>(false, -min);
+}
+
+#[test]
+fn an_8_bit_pending_count_matches_its_model_and_verilog() {
+    let mut driver = Driver::new(0x8b17, vec![0, 1, 2]);
+    let mut model = StepOutputModel::new(16, 8);
+    let mut busy = false;
+    let stimulus: Vec<Vec<u64>> = (0..30_000)
+        .map(|_| {
+            let inputs = driver.next(busy);
+            busy = model.step(inputs).busy;
+            vector(&inputs)
+        })
+        .collect();
+    cross_simulate_generated("step_output_p8", StepOutput::<16, 8>::default(), &stimulus)
+        .unwrap_or_else(|e| panic!("{e}"));
 }

@@ -145,7 +145,7 @@ pub struct StepChannel<const W: usize, const T: usize> {
     /// Steps pending or a pulse in progress.
     pub busy: Signal<Out, Bit>,
     dda: DdaIntegrator<W>,
-    stage: StepOutput<T>,
+    stage: StepOutput<T, 16>,
     /// `dir` one and two clocks after its tick.
     dir_sampled: DFF<Bit>,
     dir_aligned: DFF<Bit>,

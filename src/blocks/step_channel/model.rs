@@ -63,13 +63,13 @@ impl StepChannelModel {
     pub fn new(dda_bits: u32, timer_bits: u32) -> Self {
         Self {
             dda: DdaIntegratorModel::new(dda_bits),
-            output: StepOutputModel::new(timer_bits),
+            output: StepOutputModel::new(timer_bits, 16),
             dir_delay: [false; super::DDA_LATENCY],
         }
     }
 
     /// Steps requested by the DDA but not yet emitted (signed).
-    pub fn pending(&self) -> i32 {
+    pub fn pending(&self) -> i64 {
         self.output.pending()
     }
 

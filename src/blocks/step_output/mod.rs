@@ -5,7 +5,11 @@
 //! so opposite requests cancel) and emits them as fast as the programmed
 //! drive timing allows: it delays steps, it never drops or merges them.
 //!
-//! ## Ports (`T` = 16-bit timers in the exported `step_output`)
+//! ## Ports (`T` = 16-bit timers and `P` = 16-bit pending count in the exported `step_output`)
+//! `P` (3 to 32) sets the slack for steps the timing holds back: the count
+//! runs from -2^(P-1) to 2^(P-1) - 1. A controller build that never
+//! requests faster than its timing allows can use P = 8 (about 15 LUT4
+//! less).
 //! | port | dir | width | meaning |
 //! |---|---|---|---|
 //! | `clock` | in | 1 | rising-edge clock |
@@ -68,11 +72,11 @@
 //! what lets the 16-bit stage run above 125 MHz on iCE40 HX8K.
 //!
 //! ## Bad input
-//! * More pending steps than the count holds (it runs from -2^15 to
-//!   +2^15 - 1): a forward request that arrives with the count at +2^15 - 1,
-//!   or a backward one at -2^15, is dropped, even if a step leaves at the
-//!   same edge, and the sticky `overrun` is set. No other request is ever
-//!   lost.
+//! * More pending steps than the count holds (it runs from -2^(P-1) to
+//!   2^(P-1) - 1; -32768 to 32767 for the exported P = 16): a forward
+//!   request that arrives with the count at its maximum, or a backward one
+//!   at its minimum, is dropped, even if a step leaves at the same edge, and
+//!   the sticky `overrun` is set. No other request is ever lost.
 //! * `mode` is taken only while `busy` is low (nothing pending, no pulse,
 //!   every interval over), so a change never cuts a pulse, a quadrature
 //!   state or a direction hold short; a change resets both outputs to 0 and
@@ -85,8 +89,11 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
-/// Width of the signed pending-step count.
+/// Width `P` of the signed pending-step count in the exported `step_output`.
 pub const PENDING_BITS: usize = 16;
+
+/// The smallest and largest pending-count widths `StepOutput` accepts.
+pub const PENDING_BITS_RANGE: std::ops::RangeInclusive<usize> = 3..=32;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
@@ -137,9 +144,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ),
 ];
 
-/// Step output stage with enforced timing. See the [module documentation](self).
+/// Step output stage with `T`-bit timers and a `P`-bit pending count. See
+/// the [module documentation](self).
 #[derive(Clone, Debug, LogicBlock)]
-pub struct StepOutput<const T: usize> {
+pub struct StepOutput<const T: usize, const P: usize> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
     /// Synchronous reset, active high.
@@ -169,7 +177,7 @@ pub struct StepOutput<const T: usize> {
     /// Steps pending or a pulse in progress.
     pub busy: Signal<Out, Bit>,
     /// Signed pending steps; its MSB is the sign.
-    pending: DFF<Bits<PENDING_BITS>>,
+    pending: DFF<Bits<P>>,
     /// `pending != 0`, registered so that no decision waits for a 16-bit
     /// zero test (0 at power-up, like the count).
     nonzero: DFF<Bit>,
@@ -215,7 +223,7 @@ pub struct StepOutput<const T: usize> {
     timing_setup_next: Signal<Local, Bit>,
     request: Signal<Local, Bit>,
     /// This clock's change of the pending count, -2..2.
-    change: Signal<Local, Bits<PENDING_BITS>>,
+    change: Signal<Local, Bits<P>>,
     /// `pending` is 1, 2, -1, -2: with this clock's change, the count
     /// reaches 0 exactly from one of these (or stays at 0).
     high_bits_zero: Signal<Local, Bit>,
@@ -229,16 +237,16 @@ pub struct StepOutput<const T: usize> {
     not_one: Constant<Bits<T>>,
     /// Clears bits 1..0: with both low bits checked, v <= 2.
     not_three: Constant<Bits<T>>,
-    zero_p: Constant<Bits<PENDING_BITS>>,
-    one_p: Constant<Bits<PENDING_BITS>>,
-    minus_one_p: Constant<Bits<PENDING_BITS>>,
-    two_p: Constant<Bits<PENDING_BITS>>,
-    minus_two_p: Constant<Bits<PENDING_BITS>>,
-    low_two_p: Constant<Bits<PENDING_BITS>>,
-    high_mask_p: Constant<Bits<PENDING_BITS>>,
-    below_max_p: Constant<Bits<PENDING_BITS>>,
-    above_min_p: Constant<Bits<PENDING_BITS>>,
-    min_p: Constant<Bits<PENDING_BITS>>,
+    zero_p: Constant<Bits<P>>,
+    one_p: Constant<Bits<P>>,
+    minus_one_p: Constant<Bits<P>>,
+    two_p: Constant<Bits<P>>,
+    minus_two_p: Constant<Bits<P>>,
+    low_two_p: Constant<Bits<P>>,
+    high_mask_p: Constant<Bits<P>>,
+    below_max_p: Constant<Bits<P>>,
+    above_min_p: Constant<Bits<P>>,
+    min_p: Constant<Bits<P>>,
     /// Low two bits of +1, +-2 and -1.
     low_plus_one: Constant<Bits<2>>,
     low_two: Constant<Bits<2>>,
@@ -247,14 +255,18 @@ pub struct StepOutput<const T: usize> {
     mode_reserved: Constant<Bits<2>>,
 }
 
-impl<const T: usize> Default for StepOutput<T> {
+impl<const T: usize, const P: usize> Default for StepOutput<T, P> {
     fn default() -> Self {
         assert!(
             (2..=32).contains(&T),
             "StepOutput timers must be 2 to 32 bits"
         );
+        assert!(
+            PENDING_BITS_RANGE.contains(&P),
+            "StepOutput pending count must be 3 to 32 bits"
+        );
         let t_mask = crate::blocks::width_mask(T as u32);
-        let p_mask = crate::blocks::width_mask(PENDING_BITS as u32);
+        let p_mask = crate::blocks::width_mask(P as u32);
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -313,9 +325,9 @@ impl<const T: usize> Default for StepOutput<T> {
             minus_two_p: Constant::new((p_mask - 1).into()),
             low_two_p: Constant::new(3u64.into()),
             high_mask_p: Constant::new((p_mask & !3).into()),
-            below_max_p: Constant::new(((1u64 << (PENDING_BITS - 1)) - 2).into()),
-            above_min_p: Constant::new(((1u64 << (PENDING_BITS - 1)) + 1).into()),
-            min_p: Constant::new((1u64 << (PENDING_BITS - 1)).into()),
+            below_max_p: Constant::new(((1u64 << (P - 1)) - 2).into()),
+            above_min_p: Constant::new(((1u64 << (P - 1)) + 1).into()),
+            min_p: Constant::new((1u64 << (P - 1)).into()),
             low_plus_one: Constant::new(1u64.into()),
             low_two: Constant::new(2u64.into()),
             low_minus_one: Constant::new(3u64.into()),
@@ -325,7 +337,7 @@ impl<const T: usize> Default for StepOutput<T> {
     }
 }
 
-impl<const T: usize> Logic for StepOutput<T> {
+impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -580,7 +592,7 @@ impl<const T: usize> Logic for StepOutput<T> {
     }
 }
 
-crate::vector_ports!(impl[const T: usize] StepOutput<T> {
+crate::vector_ports!(impl[const T: usize, const P: usize] StepOutput<T, P> {
     inputs: [reset, step, dir, mode, step_len, step_space, dir_setup, dir_hold],
     outputs: [out_a, out_b, overrun, mode_invalid, busy],
 });

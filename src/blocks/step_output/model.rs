@@ -41,17 +41,23 @@ pub struct StepOutputOutputs {
     pub busy: bool,
 }
 
-/// The most positive pending count, 2^15 - 1.
+/// The most positive pending count of the exported 16-bit count, 2^15 - 1.
 pub const PENDING_MAX: i32 = (1 << 15) - 1;
-/// The most negative pending count, -2^15.
+/// The most negative pending count of the exported 16-bit count, -2^15.
 pub const PENDING_MIN: i32 = -(1 << 15);
 
-/// Plain-Rust, cycle-exact model of the step output stage with `timer_bits`
-/// timers and a 16-bit pending count.
+/// (most negative, most positive) pending count of a `bits`-wide count.
+pub fn pending_limits(bits: u32) -> (i64, i64) {
+    (-(1i64 << (bits - 1)), (1i64 << (bits - 1)) - 1)
+}
+
+/// Plain-Rust, cycle-exact model of the step output stage with
+/// `timer_bits` timers and a `pending_bits` pending count.
 #[derive(Clone, Debug)]
 pub struct StepOutputModel {
     timer_mask: u64,
-    pending: i32,
+    pending_bits: u32,
+    pending: i64,
     a: bool,
     b: bool,
     /// Mode 0/1: a pulse is high.
@@ -74,10 +80,12 @@ pub struct StepOutputModel {
 }
 
 impl StepOutputModel {
-    /// A stage with `timer_bits`-bit timers, in its power-up state.
-    pub fn new(timer_bits: u32) -> Self {
+    /// A stage with `timer_bits`-bit timers and a `pending_bits` count, in
+    /// its power-up state.
+    pub fn new(timer_bits: u32, pending_bits: u32) -> Self {
         Self {
             timer_mask: crate::blocks::width_mask(timer_bits),
+            pending_bits,
             pending: 0,
             a: false,
             b: false,
@@ -92,7 +100,7 @@ impl StepOutputModel {
     }
 
     /// Steps requested but not yet emitted (signed).
-    pub fn pending(&self) -> i32 {
+    pub fn pending(&self) -> i64 {
         self.pending
     }
 
@@ -181,10 +189,9 @@ impl StepOutputModel {
             next.dir_left = wait(if self.high { i.dir_hold } else { i.dir_setup });
         }
 
+        let (min, max) = pending_limits(self.pending_bits);
         let mut request = i.step;
-        if i.step
-            && ((i.dir && self.pending == PENDING_MAX) || (!i.dir && self.pending == PENDING_MIN))
-        {
+        if i.step && ((i.dir && self.pending == max) || (!i.dir && self.pending == min)) {
             request = false;
             next.overrun = true;
         }
@@ -209,7 +216,7 @@ impl StepOutputModel {
             next.started = false;
         }
         if i.reset {
-            next = Self::new(self.timer_mask.count_ones());
+            next = Self::new(self.timer_mask.count_ones(), self.pending_bits);
         }
         *self = next;
         self.outputs(i.mode)
