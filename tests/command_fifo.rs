@@ -17,7 +17,8 @@ fn random_inputs(seed: u64, cycles: usize, capacity: u64) -> Vec<[u64; 6]> {
     let mut low_water = capacity / 4;
     (0..cycles)
         .map(|_| {
-            if rng.gen_ratio(1, 300) {
+            // Phases long enough to fill and drain the deepest FIFO.
+            if rng.gen_ratio(1, (capacity as u32 * 4).max(300)) {
                 (p_write, p_pop) = [(0.9, 0.1), (0.1, 0.9), (0.5, 0.5), (1.0, 1.0), (0.7, 0.6)]
                     [rng.gen_range(0..5)];
                 low_water = rng.gen_range(0..=capacity);
@@ -51,8 +52,17 @@ fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
     let mut h = Harness::new("command_fifo", CommandFifo::<N, NP1>::default()).unwrap();
     let mut model = CommandFifoModel::new(capacity as usize);
     let (mut fulls, mut empties, mut overflows, mut underflows, mut heads) = (0, 0, 0, 0, 0);
+    // The three read-during-write cases of the head bypass, counted from
+    // the ports: a write into an empty FIFO, write and pop at level 1,
+    // write and pop when full.
+    let (mut into_empty, mut at_one, mut when_full) = (0, 0, 0);
     let mut last = CommandFifoOutputs::default();
     for (cycle, v) in random_inputs(seed, cycles, capacity).iter().enumerate() {
+        if v[0] == 0 && v[1] != 0 {
+            into_empty += (last.level == 0) as u32;
+            at_one += (v[3] != 0 && last.level == 1) as u32;
+            when_full += (v[3] != 0 && last.full) as u32;
+        }
         let mut rtl = outputs(&h.step_vector(v).unwrap());
         let expected = model.step(v[0] != 0, v[1] != 0, v[2], v[3] != 0, v[4], v[5] != 0);
         if rtl.empty {
@@ -70,6 +80,10 @@ fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
     assert!(
         fulls > 1000 && empties > 1000 && overflows > 20 && underflows > 20 && heads > 100_000,
         "coverage: {fulls} full, {empties} empty, {overflows} overflows, {underflows} underflows"
+    );
+    assert!(
+        into_empty > 1000 && at_one > 1000 && when_full > 1000,
+        "bypass coverage: {into_empty} into empty, {at_one} at level 1, {when_full} when full"
     );
 }
 
@@ -102,4 +116,19 @@ fn generated_verilog_matches_rust_in_icarus_and_verilator() {
         &stimulus,
     )
     .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// The FIFO's memory is block RAM on iCE40, not flip-flops: 256 x 32 bits
+/// is two SB_RAM40_4K.
+#[test]
+fn a_256_entry_fifo_synthesizes_into_two_block_rams() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("command_fifo_256.v");
+    let mut fifo = CommandFifo::<8, 9>::default();
+    let verilog = motion_hdl::export::module_verilog("command_fifo_256", &mut fifo).unwrap();
+    std::fs::write(&path, verilog).unwrap();
+    let figures = motion_hdl::tools::synth::synthesize(&path, "command_fifo_256", &[1], 100.0)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(figures.ram, 2, "{figures:?}");
+    assert!(figures.dff < 200, "memory in flip-flops? {figures:?}");
 }

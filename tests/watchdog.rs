@@ -88,3 +88,17 @@ fn generated_verilog_matches_rust_in_icarus_and_verilator() {
     cross_simulate_generated("watchdog_w6", Watchdog::<6>::default(), &stimulus)
         .unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// The widest timeout counts every one of its ticks.
+#[test]
+fn the_largest_timeout_expires_on_its_last_tick() {
+    let mut h = Harness::new("watchdog", Watchdog::<16>::default()).unwrap();
+    let kick = [0, 1, 0xffff, 1, 0];
+    let wait = [0, 1, 0xffff, 0, 0];
+    h.step_vector(&kick).unwrap();
+    for tick in 1..0xffff {
+        let out = h.step_vector(&wait).unwrap();
+        assert_eq!(out, vec![0, 1], "tick {tick}");
+    }
+    assert_eq!(h.step_vector(&wait).unwrap(), vec![1, 0], "tick 65535");
+}

@@ -131,7 +131,11 @@ pub fn catalog() -> Vec<ModuleSpec> {
                     "16",
                     "timer width (step_len, step_space, dir_setup, dir_hold)",
                 ),
-                ("P", "16", "signed pending-step count width (-32768 to 32767)"),
+                (
+                    "P",
+                    "16",
+                    "signed pending-step count width (-32768 to 32767)",
+                ),
             ],
             port_docs: step_output::PORT_DOCS,
             fmax_target_mhz: 125.0,
