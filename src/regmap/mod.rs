@@ -63,7 +63,8 @@ pub struct Field {
 impl Field {
     /// All ones in the field's width.
     pub fn max_value(&self) -> u64 {
-        u64::MAX >> (64 - self.width.clamp(1, 64))
+        // Clamped: an invalid width must give an error later, not a panic.
+        crate::blocks::width_mask(self.width.clamp(1, 64))
     }
 
     /// The field's bits within the word.
