@@ -76,6 +76,9 @@ module step_channel(clock,reset,tick,integrand,modulus,dir,clear_overrange,mode,
     wire  stage__overrun;
     wire  stage__mode_invalid;
     wire  stage__busy;
+    reg  stage__clear_overrun;
+    wire  stage__emitted;
+    wire  stage__emitted_forward;
     reg  dir_sampled__d;
     wire  dir_sampled__q;
     reg  dir_sampled__clock;
@@ -108,7 +111,10 @@ module step_channel(clock,reset,tick,integrand,modulus,dir,clear_overrange,mode,
         .out_b(stage__out_b),
         .overrun(stage__overrun),
         .mode_invalid(stage__mode_invalid),
-        .busy(stage__busy)
+        .busy(stage__busy),
+        .clear_overrun(stage__clear_overrun),
+        .emitted(stage__emitted),
+        .emitted_forward(stage__emitted_forward)
     );
     step_channel__dir_sampled dir_sampled(
         .d(dir_sampled__d),
@@ -148,6 +154,7 @@ module step_channel(clock,reset,tick,integrand,modulus,dir,clear_overrange,mode,
         stage__step_space = step_space;
         stage__dir_setup = dir_setup;
         stage__dir_hold = dir_hold;
+        stage__clear_overrun = 1'b0;
         out_a = stage__out_a;
         out_b = stage__out_b;
         overrun = stage__overrun;
@@ -523,7 +530,7 @@ module step_channel__dir_sampled(d,q,clock);
 endmodule // step_channel__dir_sampled
 
 
-module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy);
+module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward);
 
     // Module arguments
     input wire  clock;
@@ -540,6 +547,9 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
     output reg  overrun;
     output reg  mode_invalid;
     output reg  busy;
+    input wire  clear_overrun;
+    output reg  emitted;
+    output reg  emitted_forward;
 
     // Constant declarations
     localparam  zero_t = 16'h0;
@@ -611,6 +621,12 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
     reg  overrun_reg__d;
     wire  overrun_reg__q;
     reg  overrun_reg__clock;
+    reg  emitted_reg__d;
+    wire  emitted_reg__q;
+    reg  emitted_reg__clock;
+    reg  emitted_forward_reg__d;
+    wire  emitted_forward_reg__q;
+    reg  emitted_forward_reg__clock;
 
     // Local signals
     reg  negative;
@@ -711,6 +727,16 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         .q(overrun_reg__q),
         .clock(overrun_reg__clock)
     );
+    step_channel__stage__emitted_reg emitted_reg(
+        .d(emitted_reg__d),
+        .q(emitted_reg__q),
+        .clock(emitted_reg__clock)
+    );
+    step_channel__stage__emitted_forward_reg emitted_forward_reg(
+        .d(emitted_forward_reg__d),
+        .q(emitted_forward_reg__q),
+        .clock(emitted_forward_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -730,6 +756,8 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         setup_wait__clock = clock;
         active_mode__clock = clock;
         overrun_reg__clock = clock;
+        emitted_reg__clock = clock;
+        emitted_forward_reg__clock = clock;
         pending__d = pending__q;
         nonzero__d = nonzero__q;
         at_max__d = at_max__q;
@@ -746,9 +774,13 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         setup_wait__d = setup_wait__q;
         active_mode__d = active_mode__q;
         overrun_reg__d = overrun_reg__q;
+        emitted_reg__d = emitted_reg__q;
+        emitted_forward_reg__d = emitted_forward_reg__q;
         out_a = a_reg__q;
         out_b = b_reg__q;
         overrun = overrun_reg__q;
+        emitted = emitted_reg__q;
+        emitted_forward = emitted_forward_reg__q;
         mode_invalid = mode == mode_reserved;
         busy = nonzero__q | high__q | ~phase_done__q | ~dir_done__q;
         started__d = 1'b1;
@@ -827,6 +859,11 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         dir_done__d = dir_done_next;
         timing_setup__d = timing_setup_next;
         setup_wait__d = timing_setup_next & ~dir_done_next;
+        emitted_reg__d = emit;
+        emitted_forward_reg__d = positive;
+        if (clear_overrun) begin
+            overrun_reg__d = 1'b0;
+        end
         request = step;
         if (step & ((dir & at_max__q) | (~dir & at_min__q))) begin
             request = 1'b0;
@@ -914,6 +951,8 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
             setup_wait__d = 1'b0;
             active_mode__d = mode_step_dir;
             overrun_reg__d = 1'b0;
+            emitted_reg__d = 1'b0;
+            emitted_forward_reg__d = 1'b0;
         end
     end
 
@@ -1051,6 +1090,44 @@ module step_channel__stage__dir_done(d,q,clock);
     end
 
 endmodule // step_channel__stage__dir_done
+
+
+module step_channel__stage__emitted_forward_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_channel__stage__emitted_forward_reg
+
+
+module step_channel__stage__emitted_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_channel__stage__emitted_reg
 
 
 module step_channel__stage__high(d,q,clock);

@@ -9,25 +9,28 @@
 //   P = 16: signed pending-step count width (-32768 to 32767)
 //
 // Ports:
-//   name          dir    width  meaning
-//   clock         in         1  rising-edge clock
-//   reset         in         1  synchronous reset, active high: nothing pending, outputs low, flags 0, mode 0
-//   step          in         1  request one step (one-clock pulse)
-//   dir           in         1  direction of that request: 1 = forward
-//   mode          in         2  0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)
-//   step_len      in        16  step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state
-//   step_space    in        16  minimum low time between step pulses in clocks (0 acts as 1)
-//   dir_setup     in        16  dir stable at least this many clocks before a step's rising edge (0 acts as 1)
-//   dir_hold      in        16  dir stable at least this many clocks after a step's falling edge (0 acts as 1)
-//   out_a         out        1  step (mode 0), up (mode 1), A (mode 2)
-//   out_b         out        1  dir (mode 0), down (mode 1), B (mode 2)
-//   overrun       out        1  sticky: a request arrived with the pending count saturated and was dropped
-//   mode_invalid  out        1  mode is 3 (reserved); the stage runs as step/dir
-//   busy          out        1  steps pending, a pulse in progress, or a timing interval still running
+//   name             dir    width  meaning
+//   clock            in         1  rising-edge clock
+//   reset            in         1  synchronous reset, active high: nothing pending, outputs low, flags 0, mode 0
+//   step             in         1  request one step (one-clock pulse)
+//   dir              in         1  direction of that request: 1 = forward
+//   mode             in         2  0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)
+//   step_len         in        16  step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state
+//   step_space       in        16  minimum low time between step pulses in clocks (0 acts as 1)
+//   dir_setup        in        16  dir stable at least this many clocks before a step's rising edge (0 acts as 1)
+//   dir_hold         in        16  dir stable at least this many clocks after a step's falling edge (0 acts as 1)
+//   out_a            out        1  step (mode 0), up (mode 1), A (mode 2)
+//   out_b            out        1  dir (mode 0), down (mode 1), B (mode 2)
+//   overrun          out        1  sticky: a request arrived with the pending count saturated and was dropped
+//   mode_invalid     out        1  mode is 3 (reserved); the stage runs as step/dir
+//   busy             out        1  steps pending, a pulse in progress, or a timing interval still running
+//   clear_overrun    in         1  clears overrun (a drop on the same clock keeps it set); tie to 0 if unused
+//   emitted          out        1  a step left at the last edge (its first pin edge is out now); registered
+//   emitted_forward  out        1  direction of that step: 1 = forward
 // ============================================================================
 
 `default_nettype none
-module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy);
+module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward);
 
     // Module arguments
     input wire  clock;
@@ -44,6 +47,9 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
     output reg  overrun;
     output reg  mode_invalid;
     output reg  busy;
+    input wire  clear_overrun;
+    output reg  emitted;
+    output reg  emitted_forward;
 
     // Constant declarations
     localparam  zero_t = 16'h0;
@@ -115,6 +121,12 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
     reg  overrun_reg__d;
     wire  overrun_reg__q;
     reg  overrun_reg__clock;
+    reg  emitted_reg__d;
+    wire  emitted_reg__q;
+    reg  emitted_reg__clock;
+    reg  emitted_forward_reg__d;
+    wire  emitted_forward_reg__q;
+    reg  emitted_forward_reg__clock;
 
     // Local signals
     reg  negative;
@@ -215,6 +227,16 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         .q(overrun_reg__q),
         .clock(overrun_reg__clock)
     );
+    step_output__emitted_reg emitted_reg(
+        .d(emitted_reg__d),
+        .q(emitted_reg__q),
+        .clock(emitted_reg__clock)
+    );
+    step_output__emitted_forward_reg emitted_forward_reg(
+        .d(emitted_forward_reg__d),
+        .q(emitted_forward_reg__q),
+        .clock(emitted_forward_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -234,6 +256,8 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         setup_wait__clock = clock;
         active_mode__clock = clock;
         overrun_reg__clock = clock;
+        emitted_reg__clock = clock;
+        emitted_forward_reg__clock = clock;
         pending__d = pending__q;
         nonzero__d = nonzero__q;
         at_max__d = at_max__q;
@@ -250,9 +274,13 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         setup_wait__d = setup_wait__q;
         active_mode__d = active_mode__q;
         overrun_reg__d = overrun_reg__q;
+        emitted_reg__d = emitted_reg__q;
+        emitted_forward_reg__d = emitted_forward_reg__q;
         out_a = a_reg__q;
         out_b = b_reg__q;
         overrun = overrun_reg__q;
+        emitted = emitted_reg__q;
+        emitted_forward = emitted_forward_reg__q;
         mode_invalid = mode == mode_reserved;
         busy = nonzero__q | high__q | ~phase_done__q | ~dir_done__q;
         started__d = 1'b1;
@@ -331,6 +359,11 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         dir_done__d = dir_done_next;
         timing_setup__d = timing_setup_next;
         setup_wait__d = timing_setup_next & ~dir_done_next;
+        emitted_reg__d = emit;
+        emitted_forward_reg__d = positive;
+        if (clear_overrun) begin
+            overrun_reg__d = 1'b0;
+        end
         request = step;
         if (step & ((dir & at_max__q) | (~dir & at_min__q))) begin
             request = 1'b0;
@@ -418,6 +451,8 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
             setup_wait__d = 1'b0;
             active_mode__d = mode_step_dir;
             overrun_reg__d = 1'b0;
+            emitted_reg__d = 1'b0;
+            emitted_forward_reg__d = 1'b0;
         end
     end
 
@@ -555,6 +590,44 @@ module step_output__dir_done(d,q,clock);
     end
 
 endmodule // step_output__dir_done
+
+
+module step_output__emitted_forward_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__emitted_forward_reg
+
+
+module step_output__emitted_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_output__emitted_reg
 
 
 module step_output__high(d,q,clock);

@@ -21,6 +21,7 @@ fn vector(i: &StepOutputInputs) -> Vec<u64> {
         i.step_space,
         i.dir_setup,
         i.dir_hold,
+        i.clear_overrun as u64,
     ]
 }
 
@@ -31,6 +32,8 @@ fn outputs(v: &[u64]) -> StepOutputOutputs {
         overrun: v[2] != 0,
         mode_invalid: v[3] != 0,
         busy: v[4] != 0,
+        emitted: v[5] != 0,
+        emitted_forward: v[6] != 0,
     }
 }
 
@@ -88,6 +91,7 @@ impl Driver {
             self.forward_bias = [1.0, 0.0, 0.5, 0.8][rng.gen_range(0..4)];
         }
         let mut inputs = self.settings;
+        inputs.clear_overrun = rng.gen_ratio(1, 300);
         if self.burst_left > 0 {
             self.burst_left -= 1;
             inputs.step = rng.gen_bool(self.density);
@@ -116,6 +120,27 @@ fn rtl_matches_model_cycle_by_cycle_in_every_mode() {
     assert!(driver.runs > 500, "only {} runs", driver.runs);
 }
 
+/// A 4-bit pending count (-8..7) saturates often under the same stimulus:
+/// drops, `overrun` and `clear_overrun` against the model.
+#[test]
+fn narrow_pending_count_saturates_and_clears_like_the_model() {
+    let mut driver = Driver::new(0x4a7, vec![0, 1, 2]);
+    let mut harness = Harness::new("step_output", StepOutput::<16, 4>::default()).unwrap();
+    let mut model = StepOutputModel::new(16, 4);
+    let (mut busy, mut before, mut overruns, mut clears) = (false, false, 0, 0);
+    for cycle in 0..300_000 {
+        let inputs = driver.next(busy);
+        let rtl = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+        let expected = model.step(inputs);
+        assert_eq!(rtl, expected, "cycle {cycle}: {inputs:?}");
+        overruns += (!before && rtl.overrun) as u32;
+        clears += (before && inputs.clear_overrun && !rtl.overrun) as u32;
+        busy = rtl.busy;
+        before = rtl.overrun;
+    }
+    assert!(overruns > 50 && clears > 50, "{overruns} overruns, {clears} clears");
+}
+
 /// Checks the output pins against the port contract of one mode, knowing
 /// only the settings, the requests and the pins (not the model).
 struct PinMonitor {
@@ -130,6 +155,8 @@ struct PinMonitor {
     last_dir_change: Option<u64>,
     last_state_change: Option<u64>,
     emitted: i64,
+    /// Net steps signalled on `emitted` / `emitted_forward`.
+    strobed: i64,
     requested: i64,
     checks: u64,
 }
@@ -149,9 +176,19 @@ impl PinMonitor {
             last_dir_change: None,
             last_state_change: None,
             emitted: 0,
+            strobed: 0,
             requested: 0,
             checks: 0,
         }
+    }
+
+    /// The `emitted` strobe must mark each step seen at the pins, in the
+    /// same clock and with its direction.
+    fn strobe(&mut self, out: &StepOutputOutputs) {
+        if out.emitted {
+            self.strobed += if out.emitted_forward { 1 } else { -1 };
+        }
+        assert_eq!(self.strobed, self.emitted, "emitted strobes disagree with the pins");
     }
 
     fn sample(&mut self, cycle: u64, (a, b): (bool, bool)) {
@@ -284,6 +321,7 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
                 m.requested += if inputs.dir { 1 } else { -1 };
             }
             m.sample(cycle, pins);
+            m.strobe(&out);
             assert!(!out.overrun, "mode {mode}: overrun without saturation");
             assert_eq!(out.mode_invalid, mode == 3);
             busy = out.busy;
@@ -297,6 +335,7 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
         for cycle in 1_000_000..1_300_000u64 {
             let out = outputs(&harness.step_vector(&vector(&idle)).unwrap());
             m.sample(cycle, (out.out_a, out.out_b));
+            m.strobe(&out);
             if !out.busy {
                 break;
             }

@@ -95,6 +95,7 @@ impl StepChannelModel {
             step_space: i.step_space,
             dir_setup: i.dir_setup,
             dir_hold: i.dir_hold,
+            clear_overrun: false,
         });
         self.dir_delay.rotate_right(1);
         self.dir_delay[0] = i.dir && !i.reset;

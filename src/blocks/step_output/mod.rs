@@ -26,6 +26,9 @@
 //! | `overrun` | out | 1 | sticky: a request arrived with the pending count saturated and was dropped |
 //! | `mode_invalid` | out | 1 | `mode` is 3 (reserved); the stage runs as step/dir |
 //! | `busy` | out | 1 | steps are pending, a pulse is in progress, or a step_len/step_space/dir_hold/dir_setup interval is still running |
+//! | `clear_overrun` | in | 1 | clears `overrun` (a request dropped on the same clock keeps it set); tie to 0 if unused |
+//! | `emitted` | out | 1 | a step left the stage at the last edge (its first pin edge is on `out_a`/`out_b` now): one clock per step, registered |
+//! | `emitted_forward` | out | 1 | direction of that step: 1 = forward (valid with `emitted`) |
 //!
 //! ## Timing
 //! Step/dir after reset, step_len = 2, step_space = 3, dir_setup = 2,
@@ -142,6 +145,15 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
         "busy",
         "steps pending, a pulse in progress, or a timing interval still running",
     ),
+    (
+        "clear_overrun",
+        "clears overrun (a drop on the same clock keeps it set); tie to 0 if unused",
+    ),
+    (
+        "emitted",
+        "a step left at the last edge (its first pin edge is out now); registered",
+    ),
+    ("emitted_forward", "direction of that step: 1 = forward"),
 ];
 
 /// Step output stage with `T`-bit timers and a `P`-bit pending count. See
@@ -176,6 +188,12 @@ pub struct StepOutput<const T: usize, const P: usize> {
     pub mode_invalid: Signal<Out, Bit>,
     /// Steps pending or a pulse in progress.
     pub busy: Signal<Out, Bit>,
+    /// Clears the sticky `overrun`.
+    pub clear_overrun: Signal<In, Bit>,
+    /// A step left at the last edge.
+    pub emitted: Signal<Out, Bit>,
+    /// Its direction.
+    pub emitted_forward: Signal<Out, Bit>,
     /// Signed pending steps; its MSB is the sign.
     pending: DFF<Bits<P>>,
     /// `pending != 0`, registered so that no decision waits for a 16-bit
@@ -209,6 +227,9 @@ pub struct StepOutput<const T: usize, const P: usize> {
     setup_wait: DFF<Bit>,
     active_mode: DFF<Bits<2>>,
     overrun_reg: DFF<Bit>,
+    /// `emit` and its direction, registered for the `emitted` outputs.
+    emitted_reg: DFF<Bit>,
+    emitted_forward_reg: DFF<Bit>,
     // Decisions of this clock.
     negative: Signal<Local, Bit>,
     positive: Signal<Local, Bit>,
@@ -282,6 +303,9 @@ impl<const T: usize, const P: usize> Default for StepOutput<T, P> {
             overrun: Default::default(),
             mode_invalid: Default::default(),
             busy: Default::default(),
+            clear_overrun: Default::default(),
+            emitted: Default::default(),
+            emitted_forward: Default::default(),
             pending: Default::default(),
             nonzero: Default::default(),
             at_max: Default::default(),
@@ -298,6 +322,8 @@ impl<const T: usize, const P: usize> Default for StepOutput<T, P> {
             setup_wait: Default::default(),
             active_mode: Default::default(),
             overrun_reg: Default::default(),
+            emitted_reg: Default::default(),
+            emitted_forward_reg: Default::default(),
             negative: Default::default(),
             positive: Default::default(),
             quadrature: Default::default(),
@@ -358,11 +384,15 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
             timing_setup,
             setup_wait,
             active_mode,
-            overrun_reg
+            overrun_reg,
+            emitted_reg,
+            emitted_forward_reg
         );
         self.out_a.next = self.a_reg.q.val();
         self.out_b.next = self.b_reg.q.val();
         self.overrun.next = self.overrun_reg.q.val();
+        self.emitted.next = self.emitted_reg.q.val();
+        self.emitted_forward.next = self.emitted_forward_reg.q.val();
         self.mode_invalid.next = self.mode.val() == self.mode_reserved.val();
         // Busy until the last interval's timers have run out too, so that a
         // mode change (taken only while not busy) never cuts an interval.
@@ -471,6 +501,11 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
         // The pending count: + request, - emitted step. A request that meets
         // the count at its limit is dropped even if a step leaves at the
         // same edge: the emit decision stays off the request path.
+        self.emitted_reg.d.next = self.emit.val();
+        self.emitted_forward_reg.d.next = self.positive.val();
+        if self.clear_overrun.val() {
+            self.overrun_reg.d.next = false;
+        }
         self.request.next = self.step.val();
         if self.step.val()
             & ((self.dir.val() & self.at_max.q.val()) | (!self.dir.val() & self.at_min.q.val()))
@@ -588,11 +623,13 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
             self.setup_wait.d.next = false;
             self.active_mode.d.next = self.mode_step_dir.val();
             self.overrun_reg.d.next = false;
+            self.emitted_reg.d.next = false;
+            self.emitted_forward_reg.d.next = false;
         }
     }
 }
 
 crate::vector_ports!(impl[const T: usize, const P: usize] StepOutput<T, P> {
-    inputs: [reset, step, dir, mode, step_len, step_space, dir_setup, dir_hold],
-    outputs: [out_a, out_b, overrun, mode_invalid, busy],
+    inputs: [reset, step, dir, mode, step_len, step_space, dir_setup, dir_hold, clear_overrun],
+    outputs: [out_a, out_b, overrun, mode_invalid, busy, emitted, emitted_forward],
 });

@@ -24,6 +24,8 @@ pub struct StepOutputInputs {
     pub dir_setup: u64,
     /// Direction hold time (0 acts as 1).
     pub dir_hold: u64,
+    /// Clears the sticky overrun.
+    pub clear_overrun: bool,
 }
 
 /// Outputs after one clock edge.
@@ -39,6 +41,10 @@ pub struct StepOutputOutputs {
     pub mode_invalid: bool,
     /// Steps pending or a pulse in progress.
     pub busy: bool,
+    /// A step left at the last edge.
+    pub emitted: bool,
+    /// Its direction: true = forward.
+    pub emitted_forward: bool,
 }
 
 /// The most positive pending count of the exported 16-bit count, 2^15 - 1.
@@ -77,6 +83,8 @@ pub struct StepOutputModel {
     timing_setup: bool,
     active_mode: u8,
     overrun: bool,
+    emitted: bool,
+    emitted_forward: bool,
 }
 
 impl StepOutputModel {
@@ -96,6 +104,8 @@ impl StepOutputModel {
             timing_setup: false,
             active_mode: 0,
             overrun: false,
+            emitted: false,
+            emitted_forward: false,
         }
     }
 
@@ -117,6 +127,8 @@ impl StepOutputModel {
             overrun: self.overrun,
             mode_invalid: mode == 3,
             busy: self.busy(),
+            emitted: self.emitted,
+            emitted_forward: self.emitted_forward,
         }
     }
 
@@ -190,6 +202,11 @@ impl StepOutputModel {
         }
 
         let (min, max) = pending_limits(self.pending_bits);
+        next.emitted = emit;
+        next.emitted_forward = positive;
+        if i.clear_overrun {
+            next.overrun = false;
+        }
         let mut request = i.step;
         if i.step && ((i.dir && self.pending == max) || (!i.dir && self.pending == min)) {
             request = false;
