@@ -10,6 +10,7 @@ pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;
 pub mod interrupt_controller;
+pub mod motion_controller;
 pub mod pulse_counter;
 pub mod quadrature_decoder;
 pub mod sequential_divider;
@@ -24,3 +25,4 @@ pub fn width_mask(width: u32) -> u64 {
     assert!((1..=64).contains(&width), "width must be 1..=64");
     u64::MAX >> (64 - width)
 }
+

@@ -1,0 +1,538 @@
+//! One axis of the motion controller: its command FIFO, both fine
+//! interpolators, the step output stage, the commanded-position counter,
+//! the quadrature decoder and the axis's register window.
+//!
+//! Internal to [`super::MotionController`]; its behavior is specified there
+//! and modelled by [`super::model::AxisModel`].
+
+use rust_hdl::prelude::*;
+
+
+use super::registers::{axis, AXIS_BASE, AXIS_STRIDE};
+use crate::blocks::command_fifo::CommandFifo;
+use crate::blocks::dda_integrator::DdaIntegrator;
+use crate::blocks::pulse_counter::PulseCounter;
+use crate::blocks::quadrature_decoder::QuadratureDecoder;
+use crate::blocks::step_output::StepOutput;
+use crate::blocks::uniform_pulse_gen::UniformPulseGen;
+
+/// One controller axis with a FIFO of 2^N entries (`NP1` = N + 1).
+#[derive(LogicBlock)]
+pub struct MotionAxis<const N: usize, const NP1: usize> {
+    /// Rising-edge clock.
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset.
+    pub reset: Signal<In, Bit>,
+    /// Base tick.
+    pub tick: Signal<In, Bit>,
+    /// RUN was accepted: reset the DDA, latch the interpolator choice,
+    /// clear the uniform generator's flags.
+    pub start: Signal<In, Bit>,
+    /// Stop at once (RUN written 0, or the watchdog).
+    pub halt: Signal<In, Bit>,
+    /// Period boundary with every FIFO non-empty: pop and load.
+    pub pop: Signal<In, Bit>,
+    /// Period boundary with some FIFO empty: stop loading.
+    pub underrun: Signal<In, Bit>,
+    /// The period length that starts at this boundary (for loads).
+    pub period_next: Signal<In, Bits<32>>,
+    /// The running period's length (the DDA modulus).
+    pub period_active: Signal<In, Bits<32>>,
+    /// Latch both positions into the snapshot registers.
+    pub snapshot: Signal<In, Bit>,
+    /// FIFO low-water threshold.
+    pub low_water: Signal<In, Bits<NP1>>,
+    /// Register bus: word address, write strobe and data.
+    pub address: Signal<In, Bits<8>>,
+    /// Register bus write strobe.
+    pub write: Signal<In, Bit>,
+    /// Register bus write data.
+    pub write_data: Signal<In, Bits<32>>,
+    /// The addressed register of this axis's window, 0 outside it.
+    pub read_data: Signal<Out, Bits<32>>,
+    /// Encoder channel A (asynchronous).
+    pub enc_a: Signal<In, Bit>,
+    /// Encoder channel B (asynchronous).
+    pub enc_b: Signal<In, Bit>,
+    /// Encoder index (asynchronous).
+    pub enc_index: Signal<In, Bit>,
+    /// Step output A.
+    pub out_a: Signal<Out, Bit>,
+    /// Step output B.
+    pub out_b: Signal<Out, Bit>,
+    /// The FIFO is empty.
+    pub empty: Signal<Out, Bit>,
+    /// The FIFO is at or below the low-water level.
+    pub low: Signal<Out, Bit>,
+    /// A FIFO write was refused at this edge.
+    pub overflow_event: Signal<Out, Bit>,
+    /// An axis fault flag rose.
+    pub fault_event: Signal<Out, Bit>,
+    /// The encoder error flag rose.
+    pub encoder_error_event: Signal<Out, Bit>,
+
+    fifo: CommandFifo<N, NP1>,
+    dda: DdaIntegrator<32>,
+    uniform: UniformPulseGen,
+    stage: StepOutput<16, 16>,
+    position: PulseCounter<32>,
+    encoder: QuadratureDecoder<32, 8, 16>,
+
+    settings: DFF<Bits<13>>,
+    step_len: DFF<Bits<16>>,
+    step_space: DFF<Bits<16>>,
+    dir_setup: DFF<Bits<16>>,
+    dir_hold: DFF<Bits<16>>,
+    sample_rate: DFF<Bits<8>>,
+    /// The DDA's J for the running period (0 when stopped or uniform).
+    integrand: DFF<Bits<32>>,
+    /// The running period's direction (DDA).
+    forward: DFF<Bit>,
+    /// The direction travels with the DDA's two clocks of latency.
+    forward_1: DFF<Bit>,
+    forward_2: DFF<Bit>,
+    /// The uniform generator, not the DDA, drives this axis (latched at start).
+    uniform_active: DFF<Bit>,
+    /// Direction of the period loaded into the uniform generator, and of
+    /// the one it is running.
+    uniform_loaded_forward: DFF<Bit>,
+    uniform_running_forward: DFF<Bit>,
+    uniform_ready_prev: DFF<Bit>,
+    uniform_pulse_prev: DFF<Bit>,
+    cmd_snapshot: DFF<Bits<32>>,
+    act_snapshot: DFF<Bits<32>>,
+    fault_prev: DFF<Bit>,
+    encoder_error_prev: DFF<Bit>,
+
+    selected: Signal<Local, Bit>,
+    offset: Signal<Local, Bits<4>>,
+    command: Signal<Local, Bit>,
+    clear_faults: Signal<Local, Bit>,
+    magnitude: Signal<Local, Bits<32>>,
+    uniform_started: Signal<Local, Bit>,
+    uniform_forward: Signal<Local, Bit>,
+    fault: Signal<Local, Bit>,
+    fifo_status: Signal<Local, Bits<32>>,
+    axis_status: Signal<Local, Bits<32>>,
+
+    window: Constant<Bits<4>>,
+    bit0_32: Constant<Bits<32>>,
+    bit16_32: Constant<Bits<32>>,
+    bit17_32: Constant<Bits<32>>,
+    bit18_32: Constant<Bits<32>>,
+    bit1_32: Constant<Bits<32>>,
+    bit2_32: Constant<Bits<32>>,
+    bit3_32: Constant<Bits<32>>,
+    bit4_32: Constant<Bits<32>>,
+    bit5_32: Constant<Bits<32>>,
+    bit6_32: Constant<Bits<32>>,
+    bit7_32: Constant<Bits<32>>,
+    zero32: Constant<Bits<32>>,
+    zero16: Constant<Bits<16>>,
+    zero13: Constant<Bits<13>>,
+    zero8: Constant<Bits<8>>,
+    off_fifo_write: Constant<Bits<4>>,
+    off_fifo_status: Constant<Bits<4>>,
+    off_config: Constant<Bits<4>>,
+    off_step_len: Constant<Bits<4>>,
+    off_step_space: Constant<Bits<4>>,
+    off_dir_setup: Constant<Bits<4>>,
+    off_dir_hold: Constant<Bits<4>>,
+    off_sample_rate: Constant<Bits<4>>,
+    off_cmd_position: Constant<Bits<4>>,
+    off_act_position: Constant<Bits<4>>,
+    off_cmd_snapshot: Constant<Bits<4>>,
+    off_act_snapshot: Constant<Bits<4>>,
+    off_axis_status: Constant<Bits<4>>,
+    off_index_position: Constant<Bits<4>>,
+    off_command: Constant<Bits<4>>,
+}
+
+impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
+    /// Axis number `index` (its register window is at
+    /// `AXIS_BASE + index * AXIS_STRIDE`).
+    pub fn new(index: usize) -> Self {
+        let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> 4;
+        let c4 = |v: u32| Constant::new((v as u64).into());
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            tick: Default::default(),
+            start: Default::default(),
+            halt: Default::default(),
+            pop: Default::default(),
+            underrun: Default::default(),
+            period_next: Default::default(),
+            period_active: Default::default(),
+            snapshot: Default::default(),
+            low_water: Default::default(),
+            address: Default::default(),
+            write: Default::default(),
+            write_data: Default::default(),
+            read_data: Default::default(),
+            enc_a: Default::default(),
+            enc_b: Default::default(),
+            enc_index: Default::default(),
+            out_a: Default::default(),
+            out_b: Default::default(),
+            empty: Default::default(),
+            low: Default::default(),
+            overflow_event: Default::default(),
+            fault_event: Default::default(),
+            encoder_error_event: Default::default(),
+            fifo: Default::default(),
+            dda: Default::default(),
+            uniform: Default::default(),
+            stage: Default::default(),
+            position: Default::default(),
+            encoder: Default::default(),
+            settings: Default::default(),
+            step_len: Default::default(),
+            step_space: Default::default(),
+            dir_setup: Default::default(),
+            dir_hold: Default::default(),
+            sample_rate: Default::default(),
+            integrand: Default::default(),
+            forward: Default::default(),
+            forward_1: Default::default(),
+            forward_2: Default::default(),
+            uniform_active: Default::default(),
+            uniform_loaded_forward: Default::default(),
+            uniform_running_forward: Default::default(),
+            uniform_ready_prev: Default::default(),
+            uniform_pulse_prev: Default::default(),
+            cmd_snapshot: Default::default(),
+            act_snapshot: Default::default(),
+            fault_prev: Default::default(),
+            encoder_error_prev: Default::default(),
+            selected: Default::default(),
+            offset: Default::default(),
+            command: Default::default(),
+            clear_faults: Default::default(),
+            magnitude: Default::default(),
+            uniform_started: Default::default(),
+            uniform_forward: Default::default(),
+            fault: Default::default(),
+            fifo_status: Default::default(),
+            axis_status: Default::default(),
+            window: c4(window),
+            bit0_32: Constant::new((1u64 << 0).into()),
+            bit16_32: Constant::new((1u64 << 16).into()),
+            bit17_32: Constant::new((1u64 << 17).into()),
+            bit18_32: Constant::new((1u64 << 18).into()),
+            bit1_32: Constant::new((1u64 << 1).into()),
+            bit2_32: Constant::new((1u64 << 2).into()),
+            bit3_32: Constant::new((1u64 << 3).into()),
+            bit4_32: Constant::new((1u64 << 4).into()),
+            bit5_32: Constant::new((1u64 << 5).into()),
+            bit6_32: Constant::new((1u64 << 6).into()),
+            bit7_32: Constant::new((1u64 << 7).into()),
+            zero32: Constant::new(0u64.into()),
+            zero16: Constant::new(0u64.into()),
+            zero13: Constant::new(0u64.into()),
+            zero8: Constant::new(0u64.into()),
+            off_fifo_write: c4(axis::FIFO_WRITE),
+            off_fifo_status: c4(axis::FIFO_STATUS),
+            off_config: c4(axis::AXIS_CONFIG),
+            off_step_len: c4(axis::STEP_LEN),
+            off_step_space: c4(axis::STEP_SPACE),
+            off_dir_setup: c4(axis::DIR_SETUP),
+            off_dir_hold: c4(axis::DIR_HOLD),
+            off_sample_rate: c4(axis::ENC_SAMPLE_RATE),
+            off_cmd_position: c4(axis::CMD_POSITION),
+            off_act_position: c4(axis::ACT_POSITION),
+            off_cmd_snapshot: c4(axis::CMD_SNAPSHOT),
+            off_act_snapshot: c4(axis::ACT_SNAPSHOT),
+            off_axis_status: c4(axis::AXIS_STATUS),
+            off_index_position: c4(axis::INDEX_POSITION),
+            off_command: c4(axis::AXIS_COMMAND),
+        }
+    }
+}
+
+impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            settings,
+            step_len,
+            step_space,
+            dir_setup,
+            dir_hold,
+            sample_rate,
+            integrand,
+            forward,
+            forward_1,
+            forward_2,
+            uniform_active,
+            uniform_loaded_forward,
+            uniform_running_forward,
+            uniform_ready_prev,
+            uniform_pulse_prev,
+            cmd_snapshot,
+            act_snapshot,
+            fault_prev,
+            encoder_error_prev
+        );
+        self.fifo.clock.next = self.clock.val();
+        self.dda.clock.next = self.clock.val();
+        self.uniform.clock.next = self.clock.val();
+        self.stage.clock.next = self.clock.val();
+        self.position.clock.next = self.clock.val();
+        self.encoder.clock.next = self.clock.val();
+
+        // Register window decode.
+        self.selected.next = self.address.val().get_bits::<4>(4) == self.window.val();
+        self.offset.next = self.address.val().get_bits::<4>(0);
+        self.command.next =
+            self.write.val() & self.selected.val() & (self.offset.val() == self.off_command.val());
+        self.clear_faults.next = self.command.val() & self.write_data.val().get_bit(0);
+        if self.write.val() & self.selected.val() {
+            if self.offset.val() == self.off_config.val() {
+                self.settings.d.next = self.write_data.val().get_bits::<13>(0);
+            }
+            if self.offset.val() == self.off_step_len.val() {
+                self.step_len.d.next = self.write_data.val().get_bits::<16>(0);
+            }
+            if self.offset.val() == self.off_step_space.val() {
+                self.step_space.d.next = self.write_data.val().get_bits::<16>(0);
+            }
+            if self.offset.val() == self.off_dir_setup.val() {
+                self.dir_setup.d.next = self.write_data.val().get_bits::<16>(0);
+            }
+            if self.offset.val() == self.off_dir_hold.val() {
+                self.dir_hold.d.next = self.write_data.val().get_bits::<16>(0);
+            }
+            if self.offset.val() == self.off_sample_rate.val() {
+                self.sample_rate.d.next = self.write_data.val().get_bits::<8>(0);
+            }
+        }
+
+        // Command FIFO.
+        self.fifo.reset.next = self.reset.val();
+        self.fifo.write.next = self.write.val()
+            & self.selected.val()
+            & (self.offset.val() == self.off_fifo_write.val());
+        self.fifo.write_data.next = self.write_data.val();
+        self.fifo.pop.next = self.pop.val();
+        self.fifo.low_water.next = self.low_water.val();
+        self.fifo.clear_flags.next = false;
+        self.empty.next = self.fifo.empty.val();
+        self.low.next = self.fifo.low.val();
+        // CommandFifo refuses a write when full unless a pop frees a slot.
+        self.overflow_event.next =
+            self.fifo.write.val() & self.fifo.full.val() & !self.pop.val();
+        self.magnitude.next = self.fifo.head.val();
+        if self.fifo.head.val().get_bit(31) {
+            self.magnitude.next = self.zero32.val() - self.fifo.head.val();
+        }
+
+        // Per-period state. The DDA takes J and its direction at the
+        // boundary edge; the boundary tick itself still uses the old ones.
+        if self.start.val() {
+            self.uniform_active.d.next = self.settings.q.val().get_bit(0);
+        }
+        if self.pop.val() {
+            self.forward.d.next = !self.fifo.head.val().get_bit(31);
+            if self.uniform_active.q.val() {
+                self.integrand.d.next = self.zero32.val();
+            } else {
+                self.integrand.d.next = self.magnitude.val();
+            }
+        }
+        if self.underrun.val() | self.halt.val() {
+            self.integrand.d.next = self.zero32.val();
+        }
+        self.forward_1.d.next = self.forward.q.val();
+        self.forward_2.d.next = self.forward_1.q.val();
+
+        self.dda.reset.next = self.reset.val() | self.halt.val() | self.start.val();
+        self.dda.tick.next = self.tick.val();
+        self.dda.integrand.next = self.integrand.q.val();
+        self.dda.modulus.next = self.period_active.val();
+        self.dda.clear_overrange.next = self.clear_faults.val();
+
+        // The uniform generator runs each loaded period after its set-up
+        // time; the direction moves with the period it belongs to: `ready`
+        // rises in the clock after the edge that starts a loaded period,
+        // together with that period's first pulse.
+        self.uniform.reset.next = self.reset.val() | self.halt.val();
+        self.uniform.tick.next = self.tick.val();
+        self.uniform.period.next = self.period_next.val();
+        self.uniform.count.next = self.magnitude.val();
+        self.uniform.mode.next = self.settings.q.val().get_bit(1);
+        self.uniform.load.next = self.pop.val() & self.uniform_active.q.val();
+        self.uniform.clear_flags.next = self.clear_faults.val() | self.start.val();
+        if self.pop.val() & self.uniform_active.q.val() & self.uniform.ready.val() {
+            self.uniform_loaded_forward.d.next = !self.fifo.head.val().get_bit(31);
+        }
+        self.uniform_ready_prev.d.next = self.uniform.ready.val();
+        self.uniform_pulse_prev.d.next = self.uniform.pulse.val();
+        self.uniform_started.next = self.uniform.ready.val() & !self.uniform_ready_prev.q.val();
+        self.uniform_forward.next = self.uniform_running_forward.q.val();
+        if self.uniform_started.val() {
+            self.uniform_forward.next = self.uniform_loaded_forward.q.val();
+        }
+        self.uniform_running_forward.d.next = self.uniform_forward.val();
+
+        // Output stage.
+        self.stage.reset.next = self.reset.val();
+        if self.uniform_active.q.val() {
+            self.stage.step.next = self.uniform.pulse.val() & !self.uniform_pulse_prev.q.val();
+            self.stage.dir.next = self.uniform_forward.val();
+        } else {
+            self.stage.step.next = self.dda.pulse.val();
+            self.stage.dir.next = self.forward_2.q.val();
+        }
+        self.stage.mode.next = self.settings.q.val().get_bits::<2>(2);
+        self.stage.step_len.next = self.step_len.q.val();
+        self.stage.step_space.next = self.step_space.q.val();
+        self.stage.dir_setup.next = self.dir_setup.q.val();
+        self.stage.dir_hold.next = self.dir_hold.q.val();
+        self.stage.clear_overrun.next = self.clear_faults.val();
+        self.out_a.next = self.stage.out_a.val();
+        self.out_b.next = self.stage.out_b.val();
+
+        // Commanded position: the steps that left the output stage.
+        self.position.reset.next = self.reset.val();
+        self.position.up.next = self.stage.emitted.val() & self.stage.emitted_forward.val();
+        self.position.down.next = self.stage.emitted.val() & !self.stage.emitted_forward.val();
+        self.position.clear.next = self.command.val() & self.write_data.val().get_bit(3);
+        self.position.load.next = false;
+        self.position.load_value.next = self.zero32.val();
+        self.position.compare_value.next = self.zero32.val();
+
+        // Encoder.
+        self.encoder.reset.next = self.reset.val();
+        self.encoder.a.next = self.enc_a.val();
+        self.encoder.b.next = self.enc_b.val();
+        self.encoder.index.next = self.enc_index.val();
+        self.encoder.filter.next = self.settings.q.val().get_bits::<4>(4);
+        self.encoder.sample_rate.next = self.sample_rate.q.val();
+        self.encoder.counter_mode.next = self.settings.q.val().get_bit(8);
+        self.encoder.index_invert.next = self.settings.q.val().get_bit(9);
+        self.encoder.index_clear.next = self.settings.q.val().get_bit(10);
+        self.encoder.index_latch.next = self.settings.q.val().get_bit(11);
+        self.encoder.index_once.next = self.settings.q.val().get_bit(12);
+        self.encoder.clear.next = self.command.val() & self.write_data.val().get_bit(1);
+        self.encoder.index_rearm.next = self.command.val() & self.write_data.val().get_bit(2);
+
+        if self.snapshot.val() {
+            self.cmd_snapshot.d.next = self.position.count.val();
+            self.act_snapshot.d.next = self.encoder.count.val();
+        }
+
+        // Events: rising edges of the sticky flags.
+        self.fault.next = self.stage.overrun.val()
+            | self.dda.overrange.val()
+            | self.uniform.overrange.val()
+            | self.uniform.overflow.val();
+        self.fault_prev.d.next = self.fault.val();
+        self.fault_event.next = self.fault.val() & !self.fault_prev.q.val();
+        self.encoder_error_prev.d.next = self.encoder.error.val();
+        self.encoder_error_event.next = self.encoder.error.val() & !self.encoder_error_prev.q.val();
+
+        // Read data.
+        self.fifo_status.next = bit_cast::<32, NP1>(self.fifo.level.val());
+        if self.fifo.empty.val() {
+            self.fifo_status.next = self.fifo_status.val() | self.bit16_32.val();
+        }
+        if self.fifo.full.val() {
+            self.fifo_status.next = self.fifo_status.val() | self.bit17_32.val();
+        }
+        if self.fifo.low.val() {
+            self.fifo_status.next = self.fifo_status.val() | self.bit18_32.val();
+        }
+        self.axis_status.next = self.zero32.val();
+        if self.stage.overrun.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit0_32.val();
+        }
+        if self.dda.overrange.val() | self.uniform.overrange.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit1_32.val();
+        }
+        if self.uniform.overflow.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit2_32.val();
+        }
+        if self.encoder.error.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit3_32.val();
+        }
+        if self.encoder.index_seen.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit4_32.val();
+        }
+        if self.stage.busy.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit5_32.val();
+        }
+        if self.uniform.running.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit6_32.val();
+        }
+        if self.stage.mode_invalid.val() {
+            self.axis_status.next = self.axis_status.val() | self.bit7_32.val();
+        }
+        self.read_data.next = self.zero32.val();
+        if self.selected.val() {
+            if self.offset.val() == self.off_fifo_status.val() {
+                self.read_data.next = self.fifo_status.val();
+            }
+            if self.offset.val() == self.off_config.val() {
+                self.read_data.next = bit_cast::<32, 13>(self.settings.q.val());
+            }
+            if self.offset.val() == self.off_step_len.val() {
+                self.read_data.next = bit_cast::<32, 16>(self.step_len.q.val());
+            }
+            if self.offset.val() == self.off_step_space.val() {
+                self.read_data.next = bit_cast::<32, 16>(self.step_space.q.val());
+            }
+            if self.offset.val() == self.off_dir_setup.val() {
+                self.read_data.next = bit_cast::<32, 16>(self.dir_setup.q.val());
+            }
+            if self.offset.val() == self.off_dir_hold.val() {
+                self.read_data.next = bit_cast::<32, 16>(self.dir_hold.q.val());
+            }
+            if self.offset.val() == self.off_sample_rate.val() {
+                self.read_data.next = bit_cast::<32, 8>(self.sample_rate.q.val());
+            }
+            if self.offset.val() == self.off_cmd_position.val() {
+                self.read_data.next = self.position.count.val();
+            }
+            if self.offset.val() == self.off_act_position.val() {
+                self.read_data.next = self.encoder.count.val();
+            }
+            if self.offset.val() == self.off_cmd_snapshot.val() {
+                self.read_data.next = self.cmd_snapshot.q.val();
+            }
+            if self.offset.val() == self.off_act_snapshot.val() {
+                self.read_data.next = self.act_snapshot.q.val();
+            }
+            if self.offset.val() == self.off_axis_status.val() {
+                self.read_data.next = self.axis_status.val();
+            }
+            if self.offset.val() == self.off_index_position.val() {
+                self.read_data.next = self.encoder.index_count.val();
+            }
+        }
+
+        if self.reset.val() {
+            self.settings.d.next = self.zero13.val();
+            self.step_len.d.next = self.zero16.val();
+            self.step_space.d.next = self.zero16.val();
+            self.dir_setup.d.next = self.zero16.val();
+            self.dir_hold.d.next = self.zero16.val();
+            self.sample_rate.d.next = self.zero8.val();
+            self.integrand.d.next = self.zero32.val();
+            self.forward.d.next = false;
+            self.forward_1.d.next = false;
+            self.forward_2.d.next = false;
+            self.uniform_active.d.next = false;
+            self.uniform_loaded_forward.d.next = false;
+            self.uniform_running_forward.d.next = false;
+            self.uniform_ready_prev.d.next = false;
+            self.uniform_pulse_prev.d.next = false;
+            self.cmd_snapshot.d.next = self.zero32.val();
+            self.act_snapshot.d.next = self.zero32.val();
+            self.fault_prev.d.next = false;
+            self.encoder_error_prev.d.next = false;
+        }
+    }
+}

@@ -1,0 +1,648 @@
+//! # `motion_controller`: K step/encoder axes behind a CPU register bus
+//!
+//! The FPGA half of a DSP/CPU + FPGA motion controller. The CPU queues each
+//! interpolation period's step count per axis in a FIFO; at every period
+//! boundary all axes take their next entry on the same clock edge, a fine
+//! interpolator per axis (a DDA or the dual-period uniform pulse generator,
+//! chosen per axis) spreads the steps over the period, and a step output
+//! stage emits them with enforced drive timing. Each axis also counts the
+//! steps it emitted (commanded position) and decodes an encoder (actual
+//! position). The CPU is interrupted to refill the FIFOs and on every
+//! fault; a watchdog stops everything when the CPU goes silent.
+//!
+//! Composition (per axis): [`CommandFifo`](crate::blocks::command_fifo),
+//! [`DdaIntegrator`](crate::blocks::dda_integrator),
+//! [`UniformPulseGen`](crate::blocks::uniform_pulse_gen),
+//! [`StepOutput`](crate::blocks::step_output),
+//! [`PulseCounter`](crate::blocks::pulse_counter) and
+//! [`QuadratureDecoder`](crate::blocks::quadrature_decoder); shared: a
+//! [`FreqDivider`](crate::blocks::freq_divider) base tick, the period
+//! counter, a [`Watchdog`](crate::blocks::watchdog) and an
+//! [`InterruptController`](crate::blocks::interrupt_controller). The
+//! register map is in [`registers`] (generated as
+//! `rtl-out/motion_controller_regs.h` and `rtl-out/motion_controller_regs.md`).
+//!
+//! ## Ports (`K` axes; the exported `motion_controller` has K = 3 and 16-entry FIFOs)
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clock` | in | 1 | rising-edge clock (the step timing and encoder sampling run on it) |
+//! | `reset` | in | 1 | synchronous, active high: every register to its documented reset value, FIFOs empty, outputs low |
+//! | `bus_address` | in | 8 | word address of `bus_write` / `bus_read` |
+//! | `bus_write_data` | in | 32 | data of `bus_write` |
+//! | `bus_write` | in | 1 | one-clock write strobe |
+//! | `bus_read` | in | 1 | one-clock read strobe (reads have no side effects) |
+//! | `bus_read_data` | out | 32 | the addressed register, registered: valid in the clock after `bus_read`, held until the next read |
+//! | `irq` | out | 1 | level interrupt: an enabled `STATUS` bit is set; registered |
+//! | `running` | out | 1 | periods are running (`STATE.RUNNING`), for a drive-enable pin |
+//! | `step_a[k]` | out | 1 | axis k: step (step/dir), up (up/down) or A (quadrature); registered |
+//! | `step_b[k]` | out | 1 | axis k: dir, down or B; registered |
+//! | `enc_a[k]`, `enc_b[k]`, `enc_index[k]` | in | 1 | axis k encoder, asynchronous (synchronized inside) |
+//!
+//! This is the synchronous register bus of
+//! [`external_bus_adapter`](crate::blocks::external_bus_adapter), so a DSP's
+//! asynchronous external-memory interface connects through that adapter.
+//!
+//! ```text
+//! clock           |  c   | c+1  | c+2  |
+//! bus_write       /‾‾‾‾‾‾\______________     register written at edge c+1
+//! bus_read        /‾‾‾‾‾‾\______________
+//! bus_read_data          |  D   ...          valid after edge c+1, held
+//! ```
+//!
+//! ## Time base and periods
+//! * The base tick is one clock in `TICK_DIVISOR` (0 stops it: everything
+//!   that counts ticks pauses). An interpolation period is `PERIOD_TICKS`
+//!   base ticks (0 acts as 1), taken at each boundary.
+//! * Writing `CONTROL.RUN` = 1 while stopped starts: the first base tick is
+//!   a boundary at which every axis pops its first entry; then a boundary
+//!   comes every `PERIOD_TICKS` ticks. At each boundary all axes pop on the
+//!   same clock edge, `PERIOD_COUNT` counts, and `STATUS.PERIOD_DONE` is
+//!   raised (except at the first boundary after a start).
+//! * An entry is the signed number of steps of that axis in that period.
+//!   DDA axes emit exactly |n| steps spread over the period's P ticks (at
+//!   most one per tick: |n| <= P). Uniform axes load the dual-period
+//!   generator with (P, |n|), |n| <= P/2; it runs each period
+//!   [`LOAD_TO_READY`](crate::blocks::uniform_pulse_gen::LOAD_TO_READY) + 1
+//!   clocks or more after its boundary (a fixed lag), so P must be longer
+//!   than that in clocks.
+//! * The commanded position counts the steps that left each output stage,
+//!   so it is exact whatever happened before.
+//!
+//! ## Bad input and faults
+//! * **Underrun**: a boundary that finds any axis's FIFO empty pops
+//!   nothing. Every axis stops taking steps (DDA integrands go to 0, no
+//!   uniform period is loaded; steps already requested still leave, and a
+//!   uniform period in progress completes), `RUN` clears, and
+//!   `STATUS.UNDERRUN` is raised. Restart: refill the FIFOs, clear
+//!   `STATUS.UNDERRUN` if wanted, write `RUN` = 1.
+//! * **Overflow**: a `FIFO_WRITE` to a full FIFO is refused; the FIFO is
+//!   unchanged and `STATUS.OVERFLOW` is raised.
+//! * **Watchdog**: with `WATCHDOG_TIMEOUT` != 0, the first `WATCHDOG_KICK`
+//!   arms it; if `WATCHDOG_TIMEOUT` base ticks pass without a kick, every
+//!   axis stops at once (interpolators reset; steps already requested to an
+//!   output stage still leave with correct timing, so no pulse is cut),
+//!   `RUN` clears, `STATUS.WATCHDOG` is raised and `RUN` cannot be set
+//!   until `STATUS.WATCHDOG` is written 1.
+//! * **Stop**: `RUN` written 0 stops like the watchdog.
+//! * **Encoder error**: A and B changing on one sample sets
+//!   `AXIS_STATUS.ENCODER_ERROR` (cleared with `CLEAR_ENCODER`) and raises
+//!   `STATUS.ENCODER_ERROR`.
+//! * **Lost steps** (never silent): a count beyond what the interpolator
+//!   can emit is clamped (`INTERP_OVERRANGE`), a uniform period refused for
+//!   lack of set-up time (`INTERP_OVERFLOW`), a saturated output stage
+//!   (`STEP_OVERRUN`): each raises `STATUS.AXIS_FAULT`, and the commanded
+//!   position still counts only what was emitted.
+//! * Writes to read-only or unused addresses are ignored; reads of unused
+//!   addresses return 0.
+//!
+//! ## Latency
+//! A DDA step leaves the output stage at the earliest 3 clocks after the
+//! tick that produced it (2 in the DDA, 1 in the stage); the stage's timing
+//! settings may delay it further. `irq` follows a `STATUS` bit by one clock.
+
+pub mod axis;
+pub mod model;
+pub mod registers;
+
+use rust_hdl::prelude::*;
+
+
+use crate::blocks::freq_divider::FreqDivider;
+use crate::blocks::interrupt_controller::InterruptController;
+use crate::blocks::watchdog::Watchdog;
+use axis::MotionAxis;
+use registers::{global, ID_VALUE, VERSION_VALUE};
+
+/// Width of the step timing registers.
+pub const TIMER_BITS: u32 = 16;
+
+/// One line for the export header and the `rtl-out` index.
+pub const SUMMARY: &str =
+    "motion controller: K step/encoder axes, command FIFOs, synchronized periods, interrupt, watchdog, register bus";
+
+/// Meaning of every port, for the export header and the `rtl-out` index.
+pub const PORT_DOCS: &[(&str, &str)] = &[
+    ("clock", "rising-edge clock"),
+    (
+        "reset",
+        "synchronous reset, active high: registers to reset values, FIFOs empty, outputs low",
+    ),
+    ("bus_address", "word address of bus_write / bus_read"),
+    ("bus_write_data", "data of bus_write"),
+    ("bus_write", "one-clock write strobe"),
+    ("bus_read", "one-clock read strobe (no side effects)"),
+    (
+        "bus_read_data",
+        "addressed register, valid in the clock after bus_read, held until the next read",
+    ),
+    ("irq", "level interrupt: an enabled STATUS bit is set"),
+    ("running", "periods are running (STATE.RUNNING)"),
+    ("step_a", "per axis: step, up or A"),
+    ("step_b", "per axis: dir, down or B"),
+    ("enc_a", "per axis: encoder A, asynchronous"),
+    ("enc_b", "per axis: encoder B, asynchronous"),
+    ("enc_index", "per axis: encoder index, asynchronous"),
+];
+
+/// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
+/// N + 1). See the [module documentation](self).
+#[derive(LogicBlock)]
+pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
+    /// Rising-edge clock.
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset, active high.
+    pub reset: Signal<In, Bit>,
+    /// Bus word address.
+    pub bus_address: Signal<In, Bits<8>>,
+    /// Bus write data.
+    pub bus_write_data: Signal<In, Bits<32>>,
+    /// Bus write strobe.
+    pub bus_write: Signal<In, Bit>,
+    /// Bus read strobe.
+    pub bus_read: Signal<In, Bit>,
+    /// Per axis: encoder A.
+    pub enc_a: [Signal<In, Bit>; K],
+    /// Per axis: encoder B.
+    pub enc_b: [Signal<In, Bit>; K],
+    /// Per axis: encoder index.
+    pub enc_index: [Signal<In, Bit>; K],
+    /// Bus read data.
+    pub bus_read_data: Signal<Out, Bits<32>>,
+    /// Level interrupt.
+    pub irq: Signal<Out, Bit>,
+    /// Periods are running.
+    pub running: Signal<Out, Bit>,
+    /// Per axis: step / up / A.
+    pub step_a: [Signal<Out, Bit>; K],
+    /// Per axis: dir / down / B.
+    pub step_b: [Signal<Out, Bit>; K],
+
+    axes: [MotionAxis<N, NP1>; K],
+    tick_divider: FreqDivider<32>,
+    watchdog: Watchdog<32>,
+    interrupts: InterruptController<7>,
+
+    run: DFF<Bit>,
+    irq_enable: DFF<Bits<7>>,
+    tick_divisor: DFF<Bits<32>>,
+    period_ticks: DFF<Bits<32>>,
+    low_water: DFF<Bits<NP1>>,
+    watchdog_timeout: DFF<Bits<32>>,
+    /// Base ticks left in the running period after the next one.
+    ticks_left: DFF<Bits<32>>,
+    /// The next base tick is a boundary.
+    boundary_next: DFF<Bit>,
+    /// A period has been popped since the start (so a boundary ends one).
+    in_period: DFF<Bit>,
+    period_active: DFF<Bits<32>>,
+    period_count: DFF<Bits<32>>,
+    read_data: DFF<Bits<32>>,
+    any_low_prev: DFF<Bit>,
+    expired_prev: DFF<Bit>,
+
+    tick: Signal<Local, Bit>,
+    write_control: Signal<Local, Bit>,
+    start: Signal<Local, Bit>,
+    halt: Signal<Local, Bit>,
+    boundary: Signal<Local, Bit>,
+    all_ready: Signal<Local, Bit>,
+    pop: Signal<Local, Bit>,
+    underrun: Signal<Local, Bit>,
+    period_next: Signal<Local, Bits<32>>,
+    any_low: Signal<Local, Bit>,
+    any_overflow: Signal<Local, Bit>,
+    any_fault: Signal<Local, Bit>,
+    any_encoder_error: Signal<Local, Bit>,
+    axes_read: Signal<Local, Bits<32>>,
+    global_read: Signal<Local, Bits<32>>,
+    events: Signal<Local, Bits<7>>,
+    state_word: Signal<Local, Bits<32>>,
+
+    a_id: Constant<Bits<8>>,
+    a_version: Constant<Bits<8>>,
+    a_config: Constant<Bits<8>>,
+    a_control: Constant<Bits<8>>,
+    a_status: Constant<Bits<8>>,
+    a_irq_enable: Constant<Bits<8>>,
+    a_tick_divisor: Constant<Bits<8>>,
+    a_period_ticks: Constant<Bits<8>>,
+    a_low_water: Constant<Bits<8>>,
+    a_watchdog_timeout: Constant<Bits<8>>,
+    a_watchdog_kick: Constant<Bits<8>>,
+    a_snapshot: Constant<Bits<8>>,
+    a_state: Constant<Bits<8>>,
+    a_period_count: Constant<Bits<8>>,
+    id_value: Constant<Bits<32>>,
+    version_value: Constant<Bits<32>>,
+    config_value: Constant<Bits<32>>,
+    bit0_32: Constant<Bits<32>>,
+    bit0_7: Constant<Bits<7>>,
+    bit1_32: Constant<Bits<32>>,
+    bit1_7: Constant<Bits<7>>,
+    bit2_32: Constant<Bits<32>>,
+    bit2_7: Constant<Bits<7>>,
+    bit3_7: Constant<Bits<7>>,
+    bit4_7: Constant<Bits<7>>,
+    bit5_7: Constant<Bits<7>>,
+    bit6_7: Constant<Bits<7>>,
+    zero32: Constant<Bits<32>>,
+    one32: Constant<Bits<32>>,
+    two32: Constant<Bits<32>>,
+    not_one32: Constant<Bits<32>>,
+    zero7: Constant<Bits<7>>,
+    zero_level: Constant<Bits<NP1>>,
+}
+
+impl<const K: usize, const N: usize, const NP1: usize> Default for MotionController<K, N, NP1> {
+    fn default() -> Self {
+        assert!(
+            (1..=registers::MAX_AXES).contains(&K),
+            "MotionController: 1 to {} axes",
+            registers::MAX_AXES
+        );
+        assert!(NP1 == N + 1 && (2..=8).contains(&N), "MotionController: N in 2..=8, NP1 = N + 1");
+        let a8 = |v: u32| Constant::new((v as u64).into());
+        let config = registers::register_map(K, N as u32)
+            .and_then(|map| map.register("CONFIG").map(|r| r.reset_value()))
+            .expect("the controller's own register map validates");
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            bus_address: Default::default(),
+            bus_write_data: Default::default(),
+            bus_write: Default::default(),
+            bus_read: Default::default(),
+            enc_a: array_init::array_init(|_| Default::default()),
+            enc_b: array_init::array_init(|_| Default::default()),
+            enc_index: array_init::array_init(|_| Default::default()),
+            bus_read_data: Default::default(),
+            irq: Default::default(),
+            running: Default::default(),
+            step_a: array_init::array_init(|_| Default::default()),
+            step_b: array_init::array_init(|_| Default::default()),
+            axes: array_init::array_init(MotionAxis::new),
+            tick_divider: Default::default(),
+            watchdog: Default::default(),
+            interrupts: Default::default(),
+            run: Default::default(),
+            irq_enable: Default::default(),
+            tick_divisor: Default::default(),
+            period_ticks: Default::default(),
+            low_water: Default::default(),
+            watchdog_timeout: Default::default(),
+            ticks_left: Default::default(),
+            boundary_next: Default::default(),
+            in_period: Default::default(),
+            period_active: Default::default(),
+            period_count: Default::default(),
+            read_data: Default::default(),
+            any_low_prev: Default::default(),
+            expired_prev: Default::default(),
+            tick: Default::default(),
+            write_control: Default::default(),
+            start: Default::default(),
+            halt: Default::default(),
+            boundary: Default::default(),
+            all_ready: Default::default(),
+            pop: Default::default(),
+            underrun: Default::default(),
+            period_next: Default::default(),
+            any_low: Default::default(),
+            any_overflow: Default::default(),
+            any_fault: Default::default(),
+            any_encoder_error: Default::default(),
+            axes_read: Default::default(),
+            global_read: Default::default(),
+            events: Default::default(),
+            state_word: Default::default(),
+            a_id: a8(global::ID),
+            a_version: a8(global::VERSION),
+            a_config: a8(global::CONFIG),
+            a_control: a8(global::CONTROL),
+            a_status: a8(global::STATUS),
+            a_irq_enable: a8(global::IRQ_ENABLE),
+            a_tick_divisor: a8(global::TICK_DIVISOR),
+            a_period_ticks: a8(global::PERIOD_TICKS),
+            a_low_water: a8(global::FIFO_LOW_WATER),
+            a_watchdog_timeout: a8(global::WATCHDOG_TIMEOUT),
+            a_watchdog_kick: a8(global::WATCHDOG_KICK),
+            a_snapshot: a8(global::SNAPSHOT),
+            a_state: a8(global::STATE),
+            a_period_count: a8(global::PERIOD_COUNT),
+            id_value: Constant::new((ID_VALUE as u64).into()),
+            version_value: Constant::new((VERSION_VALUE as u64).into()),
+            config_value: Constant::new((config as u64).into()),
+            bit0_32: Constant::new((1u64 << 0).into()),
+            bit0_7: Constant::new((1u64 << 0).into()),
+            bit1_32: Constant::new((1u64 << 1).into()),
+            bit1_7: Constant::new((1u64 << 1).into()),
+            bit2_32: Constant::new((1u64 << 2).into()),
+            bit2_7: Constant::new((1u64 << 2).into()),
+            bit3_7: Constant::new((1u64 << 3).into()),
+            bit4_7: Constant::new((1u64 << 4).into()),
+            bit5_7: Constant::new((1u64 << 5).into()),
+            bit6_7: Constant::new((1u64 << 6).into()),
+            zero32: Constant::new(0u64.into()),
+            one32: Constant::new(1u64.into()),
+            two32: Constant::new(2u64.into()),
+            not_one32: Constant::new(0xffff_fffeu64.into()),
+            zero7: Constant::new(0u64.into()),
+            zero_level: Constant::new(0u64.into()),
+        }
+    }
+}
+
+impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionController<K, N, NP1> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            run,
+            irq_enable,
+            tick_divisor,
+            period_ticks,
+            low_water,
+            watchdog_timeout,
+            ticks_left,
+            boundary_next,
+            in_period,
+            period_active,
+            period_count,
+            read_data,
+            any_low_prev,
+            expired_prev
+        );
+        self.tick_divider.clock.next = self.clock.val();
+        self.watchdog.clock.next = self.clock.val();
+        self.interrupts.clock.next = self.clock.val();
+
+        // Global register writes.
+        if self.bus_write.val() {
+            if self.bus_address.val() == self.a_irq_enable.val() {
+                self.irq_enable.d.next = self.bus_write_data.val().get_bits::<7>(0);
+            }
+            if self.bus_address.val() == self.a_tick_divisor.val() {
+                self.tick_divisor.d.next = self.bus_write_data.val();
+            }
+            if self.bus_address.val() == self.a_period_ticks.val() {
+                self.period_ticks.d.next = self.bus_write_data.val();
+            }
+            if self.bus_address.val() == self.a_low_water.val() {
+                self.low_water.d.next = self.bus_write_data.val().get_bits::<NP1>(0);
+            }
+            if self.bus_address.val() == self.a_watchdog_timeout.val() {
+                self.watchdog_timeout.d.next = self.bus_write_data.val();
+            }
+        }
+
+        // Base tick.
+        self.tick_divider.reset.next = self.reset.val();
+        self.tick_divider.enable.next = true;
+        self.tick_divider.divisor.next = self.tick_divisor.q.val();
+        self.tick.next = self.tick_divider.strobe.val();
+
+        // Watchdog: kicked by a KICK write, cleared with STATUS.WATCHDOG.
+        self.watchdog.reset.next = self.reset.val();
+        self.watchdog.tick.next = self.tick.val();
+        self.watchdog.timeout.next = self.watchdog_timeout.q.val();
+        self.watchdog.kick.next =
+            self.bus_write.val() & (self.bus_address.val() == self.a_watchdog_kick.val());
+        self.watchdog.clear.next = self.bus_write.val()
+            & (self.bus_address.val() == self.a_status.val())
+            & self.bus_write_data.val().get_bit(5);
+
+        // Run control and the period boundary.
+        self.write_control.next =
+            self.bus_write.val() & (self.bus_address.val() == self.a_control.val());
+        self.start.next = self.write_control.val()
+            & self.bus_write_data.val().get_bit(0)
+            & !self.run.q.val()
+            & !self.watchdog.expired.val();
+        self.halt.next = (self.write_control.val() & !self.bus_write_data.val().get_bit(0))
+            | self.watchdog.expired.val();
+        self.all_ready.next = true;
+        self.any_low.next = false;
+        self.any_overflow.next = false;
+        self.any_fault.next = false;
+        self.any_encoder_error.next = false;
+        for i in 0..K {
+            self.all_ready.next = self.all_ready.val() & !self.axes[i].empty.val();
+            self.any_low.next = self.any_low.val() | self.axes[i].low.val();
+            self.any_overflow.next = self.any_overflow.val() | self.axes[i].overflow_event.val();
+            self.any_fault.next = self.any_fault.val() | self.axes[i].fault_event.val();
+            self.any_encoder_error.next =
+                self.any_encoder_error.val() | self.axes[i].encoder_error_event.val();
+        }
+        self.boundary.next = self.run.q.val() & self.tick.val() & self.boundary_next.q.val();
+        self.pop.next = self.boundary.val() & self.all_ready.val();
+        self.underrun.next = self.boundary.val() & !self.all_ready.val();
+        // PERIOD_TICKS = 0 acts as 1.
+        self.period_next.next = self.period_ticks.q.val();
+        if self.period_ticks.q.val() == self.zero32.val() {
+            self.period_next.next = self.one32.val();
+        }
+        if self.start.val() {
+            self.run.d.next = true;
+            self.boundary_next.d.next = true;
+            self.in_period.d.next = false;
+        }
+        if self.run.q.val() & self.tick.val() {
+            if self.boundary_next.q.val() {
+                self.ticks_left.d.next = self.period_next.val();
+                self.boundary_next.d.next =
+                    (self.period_ticks.q.val() & self.not_one32.val()) == self.zero32.val();
+                self.period_active.d.next = self.period_next.val();
+            } else {
+                self.ticks_left.d.next = self.ticks_left.q.val() - self.one32.val();
+                self.boundary_next.d.next = self.ticks_left.q.val() == self.two32.val();
+            }
+        }
+        if self.pop.val() {
+            self.in_period.d.next = true;
+            self.period_count.d.next = self.period_count.q.val() + self.one32.val();
+        }
+        if self.underrun.val() | self.halt.val() {
+            self.run.d.next = false;
+            self.in_period.d.next = false;
+        }
+        self.running.next = self.run.q.val();
+
+        // Axes.
+        self.axes_read.next = self.zero32.val();
+        for i in 0..K {
+            self.axes[i].clock.next = self.clock.val();
+            self.axes[i].reset.next = self.reset.val();
+            self.axes[i].tick.next = self.tick.val();
+            self.axes[i].start.next = self.start.val();
+            self.axes[i].halt.next = self.halt.val();
+            self.axes[i].pop.next = self.pop.val();
+            self.axes[i].underrun.next = self.underrun.val();
+            self.axes[i].period_next.next = self.period_next.val();
+            self.axes[i].period_active.next = self.period_active.q.val();
+            self.axes[i].snapshot.next =
+                self.bus_write.val() & (self.bus_address.val() == self.a_snapshot.val());
+            self.axes[i].low_water.next = self.low_water.q.val();
+            self.axes[i].address.next = self.bus_address.val();
+            self.axes[i].write.next = self.bus_write.val();
+            self.axes[i].write_data.next = self.bus_write_data.val();
+            self.axes[i].enc_a.next = self.enc_a[i].val();
+            self.axes[i].enc_b.next = self.enc_b[i].val();
+            self.axes[i].enc_index.next = self.enc_index[i].val();
+            self.step_a[i].next = self.axes[i].out_a.val();
+            self.step_b[i].next = self.axes[i].out_b.val();
+            self.axes_read.next = self.axes_read.val() | self.axes[i].read_data.val();
+        }
+
+        // Interrupts: pulses, so that a write-1-to-clear always clears.
+        self.any_low_prev.d.next = self.any_low.val();
+        self.expired_prev.d.next = self.watchdog.expired.val();
+        self.events.next = self.zero7.val();
+        if self.pop.val() & self.in_period.q.val() {
+            self.events.next = self.events.val() | self.bit0_7.val();
+        }
+        if self.any_low.val() & !self.any_low_prev.q.val() {
+            self.events.next = self.events.val() | self.bit1_7.val();
+        }
+        if self.underrun.val() {
+            self.events.next = self.events.val() | self.bit2_7.val();
+        }
+        if self.any_overflow.val() {
+            self.events.next = self.events.val() | self.bit3_7.val();
+        }
+        if self.any_encoder_error.val() {
+            self.events.next = self.events.val() | self.bit4_7.val();
+        }
+        if self.watchdog.expired.val() & !self.expired_prev.q.val() {
+            self.events.next = self.events.val() | self.bit5_7.val();
+        }
+        if self.any_fault.val() {
+            self.events.next = self.events.val() | self.bit6_7.val();
+        }
+        self.interrupts.reset.next = self.reset.val();
+        self.interrupts.events.next = self.events.val();
+        self.interrupts.clear.next =
+            self.bus_write.val() & (self.bus_address.val() == self.a_status.val());
+        self.interrupts.clear_bits.next = self.bus_write_data.val().get_bits::<7>(0);
+        self.interrupts.enable.next = self.irq_enable.q.val();
+        self.irq.next = self.interrupts.irq.val();
+
+        // Reads.
+        self.state_word.next = self.zero32.val();
+        if self.run.q.val() {
+            self.state_word.next = self.state_word.val() | self.bit0_32.val();
+        }
+        if self.watchdog.armed.val() {
+            self.state_word.next = self.state_word.val() | self.bit1_32.val();
+        }
+        if self.watchdog.expired.val() {
+            self.state_word.next = self.state_word.val() | self.bit2_32.val();
+        }
+        self.global_read.next = self.zero32.val();
+        if self.bus_address.val() == self.a_id.val() {
+            self.global_read.next = self.id_value.val();
+        }
+        if self.bus_address.val() == self.a_version.val() {
+            self.global_read.next = self.version_value.val();
+        }
+        if self.bus_address.val() == self.a_config.val() {
+            self.global_read.next = self.config_value.val();
+        }
+        if self.bus_address.val() == self.a_control.val() {
+            self.global_read.next = bit_cast::<32, 1>(self.run.q.val().into());
+        }
+        if self.bus_address.val() == self.a_status.val() {
+            self.global_read.next = bit_cast::<32, 7>(self.interrupts.status.val());
+        }
+        if self.bus_address.val() == self.a_irq_enable.val() {
+            self.global_read.next = bit_cast::<32, 7>(self.irq_enable.q.val());
+        }
+        if self.bus_address.val() == self.a_tick_divisor.val() {
+            self.global_read.next = self.tick_divisor.q.val();
+        }
+        if self.bus_address.val() == self.a_period_ticks.val() {
+            self.global_read.next = self.period_ticks.q.val();
+        }
+        if self.bus_address.val() == self.a_low_water.val() {
+            self.global_read.next = bit_cast::<32, NP1>(self.low_water.q.val());
+        }
+        if self.bus_address.val() == self.a_watchdog_timeout.val() {
+            self.global_read.next = self.watchdog_timeout.q.val();
+        }
+        if self.bus_address.val() == self.a_state.val() {
+            self.global_read.next = self.state_word.val();
+        }
+        if self.bus_address.val() == self.a_period_count.val() {
+            self.global_read.next = self.period_count.q.val();
+        }
+        if self.bus_read.val() {
+            self.read_data.d.next = self.global_read.val() | self.axes_read.val();
+        }
+        self.bus_read_data.next = self.read_data.q.val();
+
+        if self.reset.val() {
+            self.run.d.next = false;
+            self.irq_enable.d.next = self.zero7.val();
+            self.tick_divisor.d.next = self.zero32.val();
+            self.period_ticks.d.next = self.zero32.val();
+            self.low_water.d.next = self.zero_level.val();
+            self.watchdog_timeout.d.next = self.zero32.val();
+            self.ticks_left.d.next = self.zero32.val();
+            self.boundary_next.d.next = false;
+            self.in_period.d.next = false;
+            self.period_active.d.next = self.zero32.val();
+            self.period_count.d.next = self.zero32.val();
+            self.read_data.d.next = self.zero32.val();
+            self.any_low_prev.d.next = false;
+            self.expired_prev.d.next = false;
+        }
+    }
+}
+
+impl<const K: usize, const N: usize, const NP1: usize> crate::sim::VectorPorts
+    for MotionController<K, N, NP1>
+{
+    fn input_names() -> Vec<String> {
+        let mut names: Vec<String> = ["reset", "bus_address", "bus_write_data", "bus_write", "bus_read"]
+            .map(String::from)
+            .to_vec();
+        for port in ["enc_a", "enc_b", "enc_index"] {
+            names.extend((0..K).map(|i| format!("{port}__{i}")));
+        }
+        names
+    }
+    fn output_names() -> Vec<String> {
+        let mut names: Vec<String> = ["bus_read_data", "irq", "running"].map(String::from).to_vec();
+        for port in ["step_a", "step_b"] {
+            names.extend((0..K).map(|i| format!("{port}__{i}")));
+        }
+        names
+    }
+    fn clock_mut(&mut self) -> &mut Signal<In, Clock> {
+        &mut self.clock
+    }
+    fn set_inputs(&mut self, values: &[u64]) {
+        use crate::sim::PortValue;
+        self.reset.next = PortValue::from_vector(values[0]);
+        self.bus_address.next = PortValue::from_vector(values[1]);
+        self.bus_write_data.next = PortValue::from_vector(values[2]);
+        self.bus_write.next = PortValue::from_vector(values[3]);
+        self.bus_read.next = PortValue::from_vector(values[4]);
+        for i in 0..K {
+            self.enc_a[i].next = PortValue::from_vector(values[5 + i]);
+            self.enc_b[i].next = PortValue::from_vector(values[5 + K + i]);
+            self.enc_index[i].next = PortValue::from_vector(values[5 + 2 * K + i]);
+        }
+    }
+    fn outputs(&self) -> Vec<u64> {
+        use crate::sim::PortValue;
+        let mut out = vec![
+            self.bus_read_data.val().to_vector(),
+            self.irq.val().to_vector(),
+            self.running.val().to_vector(),
+        ];
+        out.extend(self.step_a.iter().map(|s| s.val().to_vector()));
+        out.extend(self.step_b.iter().map(|s| s.val().to_vector()));
+        out
+    }
+}

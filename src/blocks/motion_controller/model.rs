@@ -1,0 +1,633 @@
+//! Reference model of [`super::MotionController`], cycle-exact.
+//!
+//! Composed of the block models (each proven against its own RTL) and a
+//! plain-Rust model of the controller's glue: register file, period
+//! counter, run control, interrupt events and read multiplexer. Each clock
+//! is computed in two phases, like the hardware: first the combinational
+//! values from the registered state of every part, then the edge.
+
+use super::registers::{self, axis, global, AXIS_BASE, AXIS_STRIDE, ID_VALUE, VERSION_VALUE};
+use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
+use crate::blocks::dda_integrator::model::{DdaIntegratorInputs, DdaIntegratorModel, DdaIntegratorOutputs};
+use crate::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
+use crate::blocks::interrupt_controller::model::InterruptControllerModel;
+use crate::blocks::pulse_counter::model::{PulseCounterInputs, PulseCounterModel, PulseCounterOutputs};
+use crate::blocks::quadrature_decoder::model::{
+    QuadratureDecoderInputs, QuadratureDecoderModel, QuadratureDecoderOutputs,
+};
+use crate::blocks::step_output::model::{StepOutputInputs, StepOutputModel, StepOutputOutputs};
+use crate::blocks::uniform_pulse_gen::model::{
+    UniformPulseGenInputs, UniformPulseGenModel, UniformPulseGenOutputs,
+};
+use crate::blocks::watchdog::model::WatchdogModel;
+
+/// The controller's inputs in one clock.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ControllerInputs {
+    /// Synchronous reset.
+    pub reset: bool,
+    /// Bus word address.
+    pub address: u32,
+    /// Bus write data.
+    pub write_data: u32,
+    /// Bus write strobe.
+    pub write: bool,
+    /// Bus read strobe.
+    pub read: bool,
+    /// Per axis: encoder (a, b, index).
+    pub encoders: Vec<(bool, bool, bool)>,
+}
+
+/// The controller's outputs after one edge.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ControllerOutputs {
+    /// Bus read data.
+    pub read_data: u32,
+    /// Level interrupt.
+    pub irq: bool,
+    /// Periods are running.
+    pub running: bool,
+    /// Per axis: (step_a, step_b).
+    pub steps: Vec<(bool, bool)>,
+}
+
+/// Glue inputs an axis receives from the controller in one clock.
+#[derive(Clone, Copy, Debug, Default)]
+struct AxisControl {
+    reset: bool,
+    tick: bool,
+    start: bool,
+    halt: bool,
+    pop: bool,
+    underrun: bool,
+    period_next: u64,
+    period_active: u64,
+    snapshot: bool,
+    low_water: u64,
+    address: u32,
+    write: bool,
+    write_data: u32,
+}
+
+/// Model of one axis ([`super::axis::MotionAxis`]).
+#[derive(Clone, Debug)]
+pub struct AxisModel {
+    window: u32,
+    fifo: CommandFifoModel,
+    fifo_out: CommandFifoOutputs,
+    dda: DdaIntegratorModel,
+    dda_out: DdaIntegratorOutputs,
+    uniform: UniformPulseGenModel,
+    uniform_out: UniformPulseGenOutputs,
+    stage: StepOutputModel,
+    stage_out: StepOutputOutputs,
+    position: PulseCounterModel,
+    position_out: PulseCounterOutputs,
+    encoder: QuadratureDecoderModel,
+    encoder_out: QuadratureDecoderOutputs,
+    config: u32,
+    step_len: u32,
+    step_space: u32,
+    dir_setup: u32,
+    dir_hold: u32,
+    sample_rate: u32,
+    integrand: u64,
+    forward: bool,
+    forward_1: bool,
+    forward_2: bool,
+    uniform_active: bool,
+    uniform_loaded_forward: bool,
+    uniform_running_forward: bool,
+    uniform_ready_prev: bool,
+    uniform_pulse_prev: bool,
+    cmd_snapshot: u32,
+    act_snapshot: u32,
+    fault_prev: bool,
+    encoder_error_prev: bool,
+}
+
+/// The combinational values of an axis in one clock.
+#[derive(Clone, Copy, Debug, Default)]
+struct AxisComb {
+    low: bool,
+    overflow_event: bool,
+    fault_event: bool,
+    encoder_error_event: bool,
+    read_data: u32,
+}
+
+impl AxisModel {
+    fn new(index: usize, fifo_log2: u32) -> Self {
+        let mut fifo = CommandFifoModel::new(1 << fifo_log2);
+        let fifo_out = fifo.step(true, false, 0, false, 0, false);
+        let mut uniform = UniformPulseGenModel::new();
+        let uniform_out = uniform.step(UniformPulseGenInputs {
+            reset: true,
+            ..Default::default()
+        });
+        let mut stage = StepOutputModel::new(super::TIMER_BITS, 16);
+        let stage_out = stage.step(StepOutputInputs {
+            reset: true,
+            ..Default::default()
+        });
+        let mut position = PulseCounterModel::new(32);
+        let position_out = position.step(PulseCounterInputs {
+            reset: true,
+            ..Default::default()
+        });
+        let dda = DdaIntegratorModel::new(32);
+        let encoder = QuadratureDecoderModel::new(32, 8, 16);
+        Self {
+            window: (AXIS_BASE + index as u32 * AXIS_STRIDE) >> 4,
+            fifo,
+            fifo_out,
+            dda_out: dda.outputs(),
+            dda,
+            uniform,
+            uniform_out,
+            stage,
+            stage_out,
+            position,
+            position_out,
+            encoder_out: encoder.outputs(),
+            encoder,
+            config: 0,
+            step_len: 0,
+            step_space: 0,
+            dir_setup: 0,
+            dir_hold: 0,
+            sample_rate: 0,
+            integrand: 0,
+            forward: false,
+            forward_1: false,
+            forward_2: false,
+            uniform_active: false,
+            uniform_loaded_forward: false,
+            uniform_running_forward: false,
+            uniform_ready_prev: false,
+            uniform_pulse_prev: false,
+            cmd_snapshot: 0,
+            act_snapshot: 0,
+            fault_prev: false,
+            encoder_error_prev: false,
+        }
+    }
+
+    /// Steps emitted by the output stage, net (the commanded position).
+    pub fn commanded_position(&self) -> i32 {
+        self.position_out.count as u32 as i32
+    }
+
+    /// The encoder count (the actual position).
+    pub fn actual_position(&self) -> i32 {
+        self.encoder_out.count as u32 as i32
+    }
+
+    /// Entries queued in the FIFO.
+    pub fn fifo_level(&self) -> u64 {
+        self.fifo_out.level
+    }
+
+    fn selected(&self, address: u32) -> bool {
+        (address >> 4) & 0xf == self.window
+    }
+
+    fn head_magnitude(&self) -> u64 {
+        (self.fifo_out.head as u32 as i32).unsigned_abs() as u64
+    }
+
+    fn head_forward(&self) -> bool {
+        self.fifo_out.head & (1 << 31) == 0
+    }
+
+    fn fault(&self) -> bool {
+        self.stage_out.overrun
+            || self.dda_out.overrange
+            || self.uniform_out.overrange
+            || self.uniform_out.overflow
+    }
+
+    fn comb(&self, address: u32, write: bool, pop: bool, low_water: u64) -> AxisComb {
+        let selected = self.selected(address);
+        let offset = address & 0xf;
+        let fifo_write = write && selected && offset == axis::FIFO_WRITE;
+        let low = self.fifo_out.level <= low_water;
+        let read_data = if !selected {
+            0
+        } else {
+            match offset {
+                axis::FIFO_STATUS => {
+                    self.fifo_out.level as u32
+                        | (self.fifo_out.empty as u32) << 16
+                        | (self.fifo_out.full as u32) << 17
+                        | (low as u32) << 18
+                }
+                axis::AXIS_CONFIG => self.config,
+                axis::STEP_LEN => self.step_len,
+                axis::STEP_SPACE => self.step_space,
+                axis::DIR_SETUP => self.dir_setup,
+                axis::DIR_HOLD => self.dir_hold,
+                axis::ENC_SAMPLE_RATE => self.sample_rate,
+                axis::CMD_POSITION => self.position_out.count as u32,
+                axis::ACT_POSITION => self.encoder_out.count as u32,
+                axis::CMD_SNAPSHOT => self.cmd_snapshot,
+                axis::ACT_SNAPSHOT => self.act_snapshot,
+                axis::AXIS_STATUS => {
+                    self.stage_out.overrun as u32
+                        | ((self.dda_out.overrange || self.uniform_out.overrange) as u32) << 1
+                        | (self.uniform_out.overflow as u32) << 2
+                        | (self.encoder_out.error as u32) << 3
+                        | (self.encoder_out.index_seen as u32) << 4
+                        | (self.stage_out.busy as u32) << 5
+                        | (self.uniform_out.running as u32) << 6
+                        | ((((self.config >> 2) & 3) == 3) as u32) << 7
+                }
+                axis::INDEX_POSITION => self.encoder_out.index_count as u32,
+                _ => 0,
+            }
+        };
+        AxisComb {
+            low,
+            overflow_event: fifo_write && self.fifo_out.full && !pop,
+            fault_event: self.fault() && !self.fault_prev,
+            encoder_error_event: self.encoder_out.error && !self.encoder_error_prev,
+            read_data,
+        }
+    }
+
+    fn edge(&mut self, c: &AxisControl, (a, b, index): (bool, bool, bool)) {
+        let selected = self.selected(c.address);
+        let offset = c.address & 0xf;
+        let command = c.write && selected && offset == axis::AXIS_COMMAND;
+        let clear_faults = command && c.write_data & 1 != 0;
+        let mut next = self.clone();
+        if c.write && selected {
+            match offset {
+                axis::AXIS_CONFIG => next.config = c.write_data & 0x1fff,
+                axis::STEP_LEN => next.step_len = c.write_data & 0xffff,
+                axis::STEP_SPACE => next.step_space = c.write_data & 0xffff,
+                axis::DIR_SETUP => next.dir_setup = c.write_data & 0xffff,
+                axis::DIR_HOLD => next.dir_hold = c.write_data & 0xffff,
+                axis::ENC_SAMPLE_RATE => next.sample_rate = c.write_data & 0xff,
+                _ => {}
+            }
+        }
+        let magnitude = self.head_magnitude();
+        let head_forward = self.head_forward();
+        if c.start {
+            next.uniform_active = self.config & 1 != 0;
+        }
+        if c.pop {
+            next.forward = head_forward;
+            next.integrand = if self.uniform_active { 0 } else { magnitude };
+        }
+        if c.underrun || c.halt {
+            next.integrand = 0;
+        }
+        next.forward_1 = self.forward;
+        next.forward_2 = self.forward_1;
+
+        next.fifo_out = next.fifo.step(
+            c.reset,
+            c.write && selected && offset == axis::FIFO_WRITE,
+            c.write_data as u64,
+            c.pop,
+            c.low_water,
+            false,
+        );
+        next.dda_out = next.dda.step(DdaIntegratorInputs {
+            reset: c.reset || c.halt || c.start,
+            tick: c.tick,
+            integrand: self.integrand,
+            modulus: c.period_active,
+            clear_overrange: clear_faults,
+        });
+        next.uniform_out = next.uniform.step(UniformPulseGenInputs {
+            reset: c.reset || c.halt,
+            tick: c.tick,
+            period: c.period_next,
+            count: magnitude,
+            mode: self.config & 2 != 0,
+            load: c.pop && self.uniform_active,
+            clear_flags: clear_faults || c.start,
+        });
+        if c.pop && self.uniform_active && self.uniform_out.ready {
+            next.uniform_loaded_forward = head_forward;
+        }
+        next.uniform_ready_prev = self.uniform_out.ready;
+        next.uniform_pulse_prev = self.uniform_out.pulse;
+        let uniform_started = self.uniform_out.ready && !self.uniform_ready_prev;
+        let uniform_forward = if uniform_started {
+            self.uniform_loaded_forward
+        } else {
+            self.uniform_running_forward
+        };
+        next.uniform_running_forward = uniform_forward;
+        let (step, dir) = if self.uniform_active {
+            (self.uniform_out.pulse && !self.uniform_pulse_prev, uniform_forward)
+        } else {
+            (self.dda_out.pulse, self.forward_2)
+        };
+        next.stage_out = next.stage.step(StepOutputInputs {
+            reset: c.reset,
+            step,
+            dir,
+            mode: ((self.config >> 2) & 3) as u8,
+            step_len: self.step_len as u64,
+            step_space: self.step_space as u64,
+            dir_setup: self.dir_setup as u64,
+            dir_hold: self.dir_hold as u64,
+            clear_overrun: clear_faults,
+        });
+        next.position_out = next.position.step(PulseCounterInputs {
+            reset: c.reset,
+            up: self.stage_out.emitted && self.stage_out.emitted_forward,
+            down: self.stage_out.emitted && !self.stage_out.emitted_forward,
+            clear: command && c.write_data & 8 != 0,
+            load: false,
+            load_value: 0,
+            compare_value: 0,
+        });
+        let bit = |n: u32| self.config & (1 << n) != 0;
+        next.encoder_out = next.encoder.step(QuadratureDecoderInputs {
+            reset: c.reset,
+            a,
+            b,
+            index,
+            filter: ((self.config >> 4) & 0xf) as u8,
+            clear: command && c.write_data & 2 != 0,
+            sample_rate: self.sample_rate as u64,
+            counter_mode: bit(8),
+            index_invert: bit(9),
+            index_clear: bit(10),
+            index_latch: bit(11),
+            index_once: bit(12),
+            index_rearm: command && c.write_data & 4 != 0,
+        });
+        if c.snapshot {
+            next.cmd_snapshot = self.position_out.count as u32;
+            next.act_snapshot = self.encoder_out.count as u32;
+        }
+        next.fault_prev = self.fault();
+        next.encoder_error_prev = self.encoder_out.error;
+        if c.reset {
+            next.config = 0;
+            next.step_len = 0;
+            next.step_space = 0;
+            next.dir_setup = 0;
+            next.dir_hold = 0;
+            next.sample_rate = 0;
+            next.integrand = 0;
+            next.forward = false;
+            next.forward_1 = false;
+            next.forward_2 = false;
+            next.uniform_active = false;
+            next.uniform_loaded_forward = false;
+            next.uniform_running_forward = false;
+            next.uniform_ready_prev = false;
+            next.uniform_pulse_prev = false;
+            next.cmd_snapshot = 0;
+            next.act_snapshot = 0;
+            next.fault_prev = false;
+            next.encoder_error_prev = false;
+        }
+        *self = next;
+    }
+}
+
+/// Plain-Rust, cycle-exact model of a `motion_controller` with `axes` axes
+/// and FIFOs of 2^`fifo_log2` entries.
+#[derive(Clone, Debug)]
+pub struct MotionControllerModel {
+    fifo_log2: u32,
+    config_value: u32,
+    axes: Vec<AxisModel>,
+    tick_divider: FreqDividerModel,
+    tick: bool,
+    watchdog: WatchdogModel,
+    watchdog_out: (bool, bool),
+    interrupts: InterruptControllerModel,
+    status: u64,
+    irq: bool,
+    run: bool,
+    irq_enable: u32,
+    tick_divisor: u32,
+    period_ticks: u32,
+    low_water: u32,
+    watchdog_timeout: u32,
+    ticks_left: u32,
+    boundary_next: bool,
+    in_period: bool,
+    period_active: u32,
+    period_count: u32,
+    read_data: u32,
+    any_low_prev: bool,
+    expired_prev: bool,
+}
+
+impl MotionControllerModel {
+    /// A controller in its power-up state. Fails like
+    /// [`registers::register_map`] for an unsupported axis count.
+    pub fn new(axes: usize, fifo_log2: u32) -> Result<Self, crate::regmap::RegMapError> {
+        let map = registers::register_map(axes, fifo_log2)?;
+        let config_value = map.register("CONFIG")?.reset_value();
+        Ok(Self {
+            fifo_log2,
+            config_value,
+            axes: (0..axes).map(|i| AxisModel::new(i, fifo_log2)).collect(),
+            tick_divider: FreqDividerModel::new(32),
+            tick: false,
+            watchdog: WatchdogModel::new(),
+            watchdog_out: (false, false),
+            interrupts: InterruptControllerModel::new(),
+            status: 0,
+            irq: false,
+            run: false,
+            irq_enable: 0,
+            tick_divisor: 0,
+            period_ticks: 0,
+            low_water: 0,
+            watchdog_timeout: 0,
+            ticks_left: 0,
+            boundary_next: false,
+            in_period: false,
+            period_active: 0,
+            period_count: 0,
+            read_data: 0,
+            any_low_prev: false,
+            expired_prev: false,
+        })
+    }
+
+    /// The axes, for positions and FIFO levels.
+    pub fn axes(&self) -> &[AxisModel] {
+        &self.axes
+    }
+
+    /// Periods are running.
+    pub fn running(&self) -> bool {
+        self.run
+    }
+
+    fn outputs(&self) -> ControllerOutputs {
+        ControllerOutputs {
+            read_data: self.read_data,
+            irq: self.irq,
+            running: self.run,
+            steps: self
+                .axes
+                .iter()
+                .map(|a| (a.stage_out.out_a, a.stage_out.out_b))
+                .collect(),
+        }
+    }
+
+    fn global_read(&self, address: u32) -> u32 {
+        let (expired, armed) = self.watchdog_out;
+        match address {
+            global::ID => ID_VALUE,
+            global::VERSION => VERSION_VALUE,
+            global::CONFIG => self.config_value,
+            global::CONTROL => self.run as u32,
+            global::STATUS => self.status as u32,
+            global::IRQ_ENABLE => self.irq_enable,
+            global::TICK_DIVISOR => self.tick_divisor,
+            global::PERIOD_TICKS => self.period_ticks,
+            global::FIFO_LOW_WATER => self.low_water,
+            global::WATCHDOG_TIMEOUT => self.watchdog_timeout,
+            global::STATE => self.run as u32 | (armed as u32) << 1 | (expired as u32) << 2,
+            global::PERIOD_COUNT => self.period_count,
+            _ => 0,
+        }
+    }
+
+    /// One rising clock edge; returns the outputs after it.
+    pub fn step(&mut self, i: &ControllerInputs) -> ControllerOutputs {
+        assert_eq!(i.encoders.len(), self.axes.len(), "one encoder input per axis");
+        let level_mask = (1u32 << (self.fifo_log2 + 1)) - 1;
+        let address = i.address & 0xff;
+        let write = |a: u32| i.write && address == a;
+        let (expired, _) = self.watchdog_out;
+        let tick = self.tick;
+
+        // Combinational phase.
+        let write_control = write(global::CONTROL);
+        let start = write_control && i.write_data & 1 != 0 && !self.run && !expired;
+        let halt = (write_control && i.write_data & 1 == 0) || expired;
+        let boundary = self.run && tick && self.boundary_next;
+        let all_ready = self.axes.iter().all(|a| !a.fifo_out.empty);
+        let pop = boundary && all_ready;
+        let underrun = boundary && !all_ready;
+        let period_next = self.period_ticks.max(1);
+        let combs: Vec<AxisComb> = self
+            .axes
+            .iter()
+            .map(|a| a.comb(address, i.write, pop, self.low_water as u64))
+            .collect();
+        let any_low = combs.iter().any(|c| c.low);
+        let mut events = 0u64;
+        let mut set = |bit: u32, on: bool| events |= (on as u64) << bit;
+        set(registers::irq::PERIOD_DONE, pop && self.in_period);
+        set(registers::irq::FIFO_LOW, any_low && !self.any_low_prev);
+        set(registers::irq::UNDERRUN, underrun);
+        set(registers::irq::OVERFLOW, combs.iter().any(|c| c.overflow_event));
+        set(registers::irq::ENCODER_ERROR, combs.iter().any(|c| c.encoder_error_event));
+        set(registers::irq::WATCHDOG, expired && !self.expired_prev);
+        set(registers::irq::AXIS_FAULT, combs.iter().any(|c| c.fault_event));
+        let read_word = combs
+            .iter()
+            .fold(self.global_read(address), |w, c| w | c.read_data);
+
+        // Edge.
+        let mut next = self.clone();
+        if i.write {
+            match address {
+                global::IRQ_ENABLE => next.irq_enable = i.write_data & 0x7f,
+                global::TICK_DIVISOR => next.tick_divisor = i.write_data,
+                global::PERIOD_TICKS => next.period_ticks = i.write_data,
+                global::FIFO_LOW_WATER => next.low_water = i.write_data & level_mask,
+                global::WATCHDOG_TIMEOUT => next.watchdog_timeout = i.write_data,
+                _ => {}
+            }
+        }
+        next.tick = next.tick_divider.step(FreqDividerInputs {
+            reset: i.reset,
+            enable: true,
+            divisor: self.tick_divisor as u64,
+        });
+        next.watchdog_out = next.watchdog.step(
+            i.reset,
+            tick,
+            self.watchdog_timeout as u64,
+            write(global::WATCHDOG_KICK),
+            write(global::STATUS) && i.write_data & (1 << registers::irq::WATCHDOG) != 0,
+        );
+        if start {
+            next.run = true;
+            next.boundary_next = true;
+            next.in_period = false;
+        }
+        if self.run && tick {
+            if self.boundary_next {
+                next.ticks_left = period_next;
+                next.boundary_next = self.period_ticks <= 1;
+                next.period_active = period_next;
+            } else {
+                next.ticks_left = self.ticks_left.wrapping_sub(1);
+                next.boundary_next = self.ticks_left == 2;
+            }
+        }
+        if pop {
+            next.in_period = true;
+            next.period_count = self.period_count.wrapping_add(1);
+        }
+        if underrun || halt {
+            next.run = false;
+            next.in_period = false;
+        }
+        let control = AxisControl {
+            reset: i.reset,
+            tick,
+            start,
+            halt,
+            pop,
+            underrun,
+            period_next: period_next as u64,
+            period_active: self.period_active as u64,
+            snapshot: write(global::SNAPSHOT),
+            low_water: self.low_water as u64,
+            address,
+            write: i.write,
+            write_data: i.write_data,
+        };
+        for (axis, pins) in next.axes.iter_mut().zip(&i.encoders) {
+            axis.edge(&control, *pins);
+        }
+        next.any_low_prev = any_low;
+        next.expired_prev = expired;
+        let clear = write(global::STATUS).then_some((i.write_data & 0x7f) as u64);
+        (next.status, next.irq) =
+            next.interrupts.step(i.reset, events, clear, self.irq_enable as u64);
+        if i.read {
+            next.read_data = read_word;
+        }
+        if i.reset {
+            next.run = false;
+            next.irq_enable = 0;
+            next.tick_divisor = 0;
+            next.period_ticks = 0;
+            next.low_water = 0;
+            next.watchdog_timeout = 0;
+            next.ticks_left = 0;
+            next.boundary_next = false;
+            next.in_period = false;
+            next.period_active = 0;
+            next.period_count = 0;
+            next.read_data = 0;
+            next.any_low_prev = false;
+            next.expired_prev = false;
+        }
+        *self = next;
+        self.outputs()
+    }
+}
