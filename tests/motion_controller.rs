@@ -6,6 +6,8 @@
 mod bench;
 
 use bench::Bench;
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
 
 type Controller3 = Bench<3, 4, 5>;
 
@@ -31,4 +33,268 @@ fn smoke_dda_periods_reach_their_positions() {
     }
     let status = b.read("STATUS", 0);
     assert_eq!(b.field("STATUS", "UNDERRUN", status), 1);
+}
+
+/// Random firmware-like and hostile bus traffic: every register written
+/// with plausible and with junk values, FIFO writes (valid, oversized, into
+/// full FIFOs), starts and stops, watchdog kicks and lapses, snapshots,
+/// axis commands, reads of every address, random legal and illegal encoder
+/// transitions and index pulses, and rare resets. RTL and model are
+/// compared after every clock.
+struct ChaosDriver {
+    rng: StdRng,
+    encoder_state: Vec<u8>,
+    p_bus: f64,
+}
+
+impl ChaosDriver {
+    fn new(seed: u64, axes: usize) -> Self {
+        Self {
+            rng: StdRng::seed_from_u64(seed),
+            encoder_state: vec![0; axes],
+            p_bus: 0.05,
+        }
+    }
+
+    fn encoders(&mut self) -> Vec<(bool, bool, bool)> {
+        const GRAY: [(bool, bool); 4] = [(false, false), (true, false), (true, true), (false, true)];
+        let rng = &mut self.rng;
+        self.encoder_state
+            .iter_mut()
+            .map(|s| {
+                match rng.gen_range(0..1000) {
+                    0..=19 => *s = (*s + 1) % 4,
+                    20..=34 => *s = (*s + 3) % 4,
+                    35 => *s = (*s + 2) % 4, // illegal: A and B together
+                    _ => {}
+                }
+                let (a, b) = GRAY[*s as usize];
+                (a, b, rng.gen_ratio(1, 300))
+            })
+            .collect()
+    }
+
+    /// One clock's bus inputs: (reset, address, data, write, read).
+    fn bus<const K: usize, const N: usize, const NP1: usize>(
+        &mut self,
+        b: &Bench<K, N, NP1>,
+    ) -> (bool, u32, u32, bool, bool) {
+        let rng = &mut self.rng;
+        if rng.gen_ratio(1, 60_000) {
+            return (true, 0, 0, false, false);
+        }
+        if rng.gen_ratio(1, 5000) {
+            self.p_bus = [0.01, 0.05, 0.3][rng.gen_range(0..3)];
+        }
+        if !rng.gen_bool(self.p_bus) {
+            return (false, 0, 0, false, false);
+        }
+        let axis = rng.gen_range(0..K as u32);
+        let small = |rng: &mut StdRng| [0, 1, 2, 3, rng.gen_range(0..20)][rng.gen_range(0..5)];
+        let w = |name: &str, index: u32, value: u32| (false, b.address(name, index), value, true, false);
+        match rng.gen_range(0..100) {
+            0..=29 => {
+                let n = match rng.gen_range(0..20) {
+                    0 => rng.gen::<u32>() as i32,
+                    1 => rng.gen_range(-400..400),
+                    _ => rng.gen_range(-25..=25),
+                };
+                w("FIFO_WRITE", axis, n as u32)
+            }
+            30..=33 => w("CONTROL", 0, (!rng.gen_ratio(1, 8)) as u32),
+            34..=36 => w("STATUS", 0, rng.gen_range(0..128)),
+            37 => w("IRQ_ENABLE", 0, rng.gen()),
+            38 => w("TICK_DIVISOR", 0, [0, 1, 1, 1, 2, 3][rng.gen_range(0..6)]),
+            39 => w("PERIOD_TICKS", 0, [0, 1, 2, 60, 100, 150, 64][rng.gen_range(0..7)]),
+            40 => w("FIFO_LOW_WATER", 0, rng.gen_range(0..40)),
+            41 => w("WATCHDOG_TIMEOUT", 0, [0, 0, 300, 2000, 20_000][rng.gen_range(0..5)]),
+            42..=49 => w("WATCHDOG_KICK", 0, rng.gen()),
+            50..=51 => w("SNAPSHOT", 0, 0),
+            52..=54 => {
+                let mode = [0, 0, 1, 2, 3][rng.gen_range(0..5)];
+                let value = b.pack(
+                    "AXIS_CONFIG",
+                    &[
+                        ("UNIFORM", rng.gen_range(0..2)),
+                        ("INTERLEAVED", rng.gen_range(0..2)),
+                        ("STEP_MODE", mode),
+                        ("ENC_FILTER", [0, 1, 2, 3][rng.gen_range(0..4)]),
+                        ("ENC_COUNTER_MODE", rng.gen_ratio(1, 5) as u64),
+                        ("INDEX_INVERT", rng.gen_range(0..2)),
+                        ("INDEX_CLEAR", rng.gen_range(0..2)),
+                        ("INDEX_LATCH", rng.gen_range(0..2)),
+                        ("INDEX_ONCE", rng.gen_range(0..2)),
+                    ],
+                );
+                w("AXIS_CONFIG", axis, value | (rng.gen_ratio(1, 10) as u32 * rng.gen::<u32>()))
+            }
+            55 => w("STEP_LEN", axis, small(rng)),
+            56 => w("STEP_SPACE", axis, small(rng)),
+            57 => w("DIR_SETUP", axis, small(rng)),
+            58 => w("DIR_HOLD", axis, small(rng)),
+            59 => w("ENC_SAMPLE_RATE", axis, [0, 0, 1, 2][rng.gen_range(0..4)]),
+            60..=62 => w("AXIS_COMMAND", axis, rng.gen_range(0..16)),
+            63..=64 => (false, rng.gen_range(0..256), rng.gen(), true, false),
+            _ => (false, rng.gen_range(0..256), 0, false, true),
+        }
+    }
+}
+
+#[test]
+fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
+    let mut b = Controller3::new();
+    let mut driver = ChaosDriver::new(0xc0_ffee, 3);
+    let status_address = b.address("STATUS", 0);
+    let (mut status_seen, mut running_cycles, mut steps, mut irq_rises) = (0u32, 0u64, 0u64, 0u64);
+    let mut last_read = None;
+    let mut previous = b.last.clone();
+    for _ in 0..400_000 {
+        b.encoders = driver.encoders();
+        let (reset, address, data, write, read) = driver.bus(&b);
+        let out = b.clock(reset, address, data, write, read).clone();
+        if last_read == Some(status_address) {
+            status_seen |= out.read_data;
+        }
+        last_read = read.then_some(address);
+        running_cycles += out.running as u64;
+        irq_rises += (out.irq && !previous.irq) as u64;
+        steps += out
+            .steps
+            .iter()
+            .zip(&previous.steps)
+            .filter(|(now, before)| now.0 && !before.0)
+            .count() as u64;
+        previous = out;
+    }
+    assert_eq!(status_seen, 0x7f, "every STATUS bit seen set: {status_seen:#x}");
+    assert!(
+        running_cycles > 100_000 && steps > 5_000 && irq_rises > 100,
+        "{running_cycles} running cycles, {steps} steps, {irq_rises} interrupts"
+    );
+}
+
+const IRQ_ALL_FAULTS: &[(&str, u64)] = &[
+    ("FIFO_LOW", 1),
+    ("UNDERRUN", 1),
+    ("OVERFLOW", 1),
+    ("ENCODER_ERROR", 1),
+    ("WATCHDOG", 1),
+    ("AXIS_FAULT", 1),
+];
+
+/// Firmware set-up: base tick every clock, `period` clocks per period,
+/// step/dir outputs with 1-clock timing, axis `i` uniform if `uniform[i]`.
+fn configure(b: &mut Controller3, period: u32, uniform: [bool; 3]) {
+    b.write("TICK_DIVISOR", 0, 1);
+    b.write("PERIOD_TICKS", 0, period);
+    b.write("FIFO_LOW_WATER", 0, 4);
+    let enable = b.pack("IRQ_ENABLE", IRQ_ALL_FAULTS);
+    b.write("IRQ_ENABLE", 0, enable);
+    for (axis, u) in uniform.iter().enumerate() {
+        let config = b.pack("AXIS_CONFIG", &[("UNIFORM", *u as u64), ("INTERLEAVED", 1)]);
+        b.write("AXIS_CONFIG", axis as u32, config);
+        for timer in ["STEP_LEN", "STEP_SPACE", "DIR_SETUP", "DIR_HOLD"] {
+            b.write(timer, axis as u32, 1);
+        }
+    }
+}
+
+/// Idles until the controller has stopped and every output stage is idle.
+fn drain(b: &mut Controller3) {
+    for _ in 0..200 {
+        b.idle(50);
+        let state = b.read("STATE", 0);
+        let busy = (0..3).any(|axis| {
+            let status = b.read("AXIS_STATUS", axis);
+            b.field("AXIS_STATUS", "STEP_BUSY", status) == 1
+                || b.field("AXIS_STATUS", "UNIFORM_RUNNING", status) == 1
+        });
+        if b.field("STATE", "RUNNING", state) == 0 && !busy {
+            b.idle(20); // encoder latency
+            return;
+        }
+    }
+    panic!("the controller did not come to rest");
+}
+
+fn positions(b: &mut Controller3, axis: u32) -> (i32, i32) {
+    (
+        b.read("CMD_POSITION", axis) as i32,
+        b.read("ACT_POSITION", axis) as i32,
+    )
+}
+
+/// The firmware loop: thousands of periods of random moves, fed from the
+/// FIFO low-water interrupt, on one DDA axis, one uniform axis and one axis
+/// that changes interpolator between runs; every step loops back into that
+/// axis's encoder. At the end the commanded position (steps counted by the
+/// controller), the steps counted at the pins, the sum of the queued counts
+/// and the actual (encoder) position are all equal on every axis.
+#[test]
+fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
+    let mut b = Controller3::new().with_loopback();
+    let mut rng = StdRng::seed_from_u64(0x10_09);
+    let mut queued = [0i64; 3];
+    let mut periods = 0;
+    let (mut snapshots, mut refills) = (0, 0);
+    for run in 0..2 {
+        configure(&mut b, 120, [false, true, run == 1]);
+        let mut velocity = [0i32; 3];
+        let mut queue_period = |b: &mut Controller3, rng: &mut StdRng, queued: &mut [i64; 3]| {
+            for axis in 0..3 {
+                // A random walk in velocity: smooth moves with reversals.
+                velocity[axis] = (velocity[axis] + rng.gen_range(-6..=6)).clamp(-45, 45);
+                b.write("FIFO_WRITE", axis as u32, velocity[axis] as u32);
+                queued[axis] += velocity[axis] as i64;
+            }
+        };
+        for _ in 0..16 {
+            queue_period(&mut b, &mut rng, &mut queued);
+        }
+        b.write("CONTROL", 0, 1);
+        let mut run_periods = 16;
+        while run_periods < 1100 {
+            b.idle(1);
+            if !b.last.irq {
+                continue;
+            }
+            let status = b.read("STATUS", 0);
+            assert_eq!(status & !b.pack("STATUS", &[("FIFO_LOW", 1), ("PERIOD_DONE", 1)]), 0, "fault: {status:#x}");
+            b.write("STATUS", 0, status);
+            let level = b.read("FIFO_STATUS", 0);
+            let room = 16 - b.field("FIFO_STATUS", "LEVEL", level);
+            for _ in 0..room {
+                queue_period(&mut b, &mut rng, &mut queued);
+                run_periods += 1;
+            }
+            refills += 1;
+            if refills % 7 == 0 {
+                b.write("SNAPSHOT", 0, 0);
+                for axis in 0..3 {
+                    let cmd = b.read("CMD_SNAPSHOT", axis) as i32;
+                    let act = b.read("ACT_SNAPSHOT", axis) as i32;
+                    // The encoder sees a step 6 clocks after the pins
+                    // (simulated encoder 1, decoder 5): at 2 clocks per
+                    // step at most 3 steps behind.
+                    assert!((cmd - act).abs() <= 3, "axis {axis}: snapshot cmd {cmd} act {act}");
+                }
+                snapshots += 1;
+            }
+        }
+        periods += run_periods;
+        // Stop feeding: the run ends with an underrun, which is its defined
+        // end, and every queued step has left.
+        drain(&mut b);
+        let status = b.read("STATUS", 0);
+        assert_eq!(b.field("STATUS", "UNDERRUN", status), 1);
+        assert_eq!(status & b.pack("STATUS", &[("OVERFLOW", 1), ("AXIS_FAULT", 1), ("ENCODER_ERROR", 1)]), 0);
+        b.write("STATUS", 0, status);
+        for axis in 0..3u32 {
+            let (cmd, act) = positions(&mut b, axis);
+            assert_eq!(cmd as i64, queued[axis as usize], "run {run} axis {axis}: commanded");
+            assert_eq!(b.pin_steps(axis as usize), queued[axis as usize], "axis {axis}: pins");
+            assert_eq!(act, cmd, "run {run} axis {axis}: actual");
+        }
+    }
+    assert!(periods >= 2000 && snapshots > 20, "{periods} periods, {snapshots} snapshots");
 }

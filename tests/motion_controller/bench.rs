@@ -19,6 +19,8 @@ use motion_hdl::sim::{Harness, VectorPorts};
 pub struct SimulatedEncoder {
     state: u8,
     last_step: bool,
+    /// Net steps seen on the pins (an independent count of the output).
+    pub net: i64,
 }
 
 impl SimulatedEncoder {
@@ -28,6 +30,7 @@ impl SimulatedEncoder {
     pub fn follow(&mut self, (step, dir): (bool, bool)) -> (bool, bool, bool) {
         if step && !self.last_step {
             self.state = if dir { (self.state + 1) % 4 } else { (self.state + 3) % 4 };
+            self.net += if dir { 1 } else { -1 };
         }
         self.last_step = step;
         let (a, b) = Self::GRAY[self.state as usize];
@@ -50,6 +53,8 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
     pub last: ControllerOutputs,
     /// Clocks run.
     pub cycles: u64,
+    /// Input vectors of every clock, when recording (for cross-simulation).
+    pub recording: Option<Vec<Vec<u64>>>,
 }
 
 impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
@@ -69,6 +74,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
                 ..Default::default()
             },
             cycles: 0,
+            recording: None,
         }
     }
 
@@ -110,6 +116,9 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
         vector.extend(self.encoders.iter().map(|e| e.2 as u64));
         debug_assert_eq!(vector.len(), MotionController::<K, N, NP1>::input_names().len());
         let rtl = self.harness.step_vector(&vector).unwrap();
+        if let Some(recording) = self.recording.as_mut() {
+            recording.push(vector);
+        }
         let expected = self.model.step(&inputs);
         let got = ControllerOutputs {
             read_data: rtl[0] as u32,
@@ -146,6 +155,11 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
         let address = self.address(name, index);
         self.clock(false, address, 0, false, true);
         self.clock(false, 0, 0, false, false).read_data
+    }
+
+    /// Net steps seen on the step/dir pins of `axis` (loopback only).
+    pub fn pin_steps(&self, axis: usize) -> i64 {
+        self.loopback.as_ref().expect("loopback")[axis].net
     }
 
     /// Pulses reset for one clock.
