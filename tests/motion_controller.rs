@@ -298,3 +298,229 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
     }
     assert!(periods >= 2000 && snapshots > 20, "{periods} periods, {snapshots} snapshots");
 }
+
+fn queue(b: &mut Controller3, axis: u32, counts: &[i32]) -> i64 {
+    for n in counts {
+        b.write("FIFO_WRITE", axis, *n as u32);
+    }
+    counts.iter().map(|&n| n as i64).sum()
+}
+
+/// Clocks with no step edge on any pin.
+fn assert_pins_quiet(b: &mut Controller3, clocks: u64) {
+    let before: Vec<i64> = (0..3).map(|axis| b.pin_steps(axis)).collect();
+    b.idle(clocks);
+    let after: Vec<i64> = (0..3).map(|axis| b.pin_steps(axis)).collect();
+    assert_eq!(before, after, "steps while stopped");
+}
+
+#[test]
+fn underrun_stops_every_axis_on_the_same_boundary_and_restarts_cleanly() {
+    let mut b = Controller3::new().with_loopback();
+    configure(&mut b, 80, [false, true, false]);
+    let first = [10, -20, 30];
+    queue(&mut b, 0, &[10, 10, 10, 10, 10]);
+    queue(&mut b, 1, &[-20, -20, -20, -20, -20]);
+    queue(&mut b, 2, &[30, 30, 30]);
+    b.write("CONTROL", 0, 1);
+    drain(&mut b);
+    // The 4th boundary found axis 2 empty: nobody popped, all stopped.
+    let status = b.read("STATUS", 0);
+    assert_eq!(b.field("STATUS", "UNDERRUN", status), 1);
+    assert!(b.last.irq, "underrun interrupts");
+    assert_eq!(b.read("PERIOD_COUNT", 0), 3);
+    for axis in 0..3u32 {
+        let (cmd, act) = positions(&mut b, axis);
+        assert_eq!(cmd, 3 * first[axis as usize], "axis {axis}: three periods, no more, no less");
+        assert_eq!((act, b.pin_steps(axis as usize)), (cmd, cmd as i64));
+        let level = b.read("FIFO_STATUS", axis);
+        assert_eq!(b.field("FIFO_STATUS", "LEVEL", level), [2, 2, 0][axis as usize]);
+    }
+    assert_pins_quiet(&mut b, 2000);
+    // Restart: refill, clear, run.
+    queue(&mut b, 2, &[30, 30]);
+    b.write("STATUS", 0, status);
+    assert!(!b.idle_then_irq(2));
+    b.write("CONTROL", 0, 1);
+    drain(&mut b);
+    for axis in 0..3u32 {
+        let (cmd, act) = positions(&mut b, axis);
+        assert_eq!(cmd, 5 * first[axis as usize], "axis {axis}: after the restart");
+        assert_eq!(act, cmd);
+    }
+    assert_eq!(b.read("PERIOD_COUNT", 0), 5);
+}
+
+#[test]
+fn a_write_to_a_full_fifo_is_refused_and_overwrites_nothing() {
+    let mut b = Controller3::new().with_loopback();
+    configure(&mut b, 60, [false; 3]);
+    let expected = queue(&mut b, 0, &(1..=16).collect::<Vec<i32>>());
+    for axis in 1..3 {
+        queue(&mut b, axis, &[0; 16]);
+    }
+    assert!(!b.read("STATUS", 0) & 8 != 0);
+    b.write("FIFO_WRITE", 0, 1000); // the 17th: refused
+    let status = b.read("STATUS", 0);
+    assert_eq!(b.field("STATUS", "OVERFLOW", status), 1);
+    let level = b.read("FIFO_STATUS", 0);
+    assert_eq!(b.field("FIFO_STATUS", "LEVEL", level), 16);
+    assert_eq!(b.field("FIFO_STATUS", "FULL", level), 1);
+    b.write("STATUS", 0, status);
+    b.write("CONTROL", 0, 1);
+    drain(&mut b);
+    let (cmd, act) = positions(&mut b, 0);
+    assert_eq!((cmd as i64, act as i64), (expected, expected), "the 16 accepted entries, not the refused one");
+    assert_eq!(b.read("PERIOD_COUNT", 0), 16);
+}
+
+#[test]
+fn watchdog_stops_all_stepping_and_blocks_restart_until_cleared() {
+    let mut b = Controller3::new().with_loopback();
+    configure(&mut b, 100, [false, true, false]);
+    for axis in 0..3 {
+        queue(&mut b, axis, &[40; 16]);
+    }
+    b.write("WATCHDOG_TIMEOUT", 0, 550);
+    b.write("WATCHDOG_KICK", 0, 0);
+    b.write("CONTROL", 0, 1);
+    for _ in 0..3 {
+        b.idle(300);
+        b.write("WATCHDOG_KICK", 0, 0);
+    }
+    // The host goes silent in mid-period.
+    b.idle(600);
+    let state = b.read("STATE", 0);
+    assert_eq!(b.field("STATE", "RUNNING", state), 0, "the watchdog stopped the run");
+    assert_eq!(b.field("STATE", "WATCHDOG_EXPIRED", state), 1);
+    let status = b.read("STATUS", 0);
+    assert_eq!(b.field("STATUS", "WATCHDOG", status), 1);
+    assert!(b.last.irq);
+    drain(&mut b);
+    assert_pins_quiet(&mut b, 3000);
+    let mut stopped_at = [0i32; 3];
+    for axis in 0..3u32 {
+        let (cmd, act) = positions(&mut b, axis);
+        // Stopped inside a period: fewer than all queued steps, every one
+        // that left is counted.
+        assert!(cmd > 0 && cmd < 16 * 40 && cmd % 40 != 0, "axis {axis}: {cmd}");
+        assert_eq!((act, b.pin_steps(axis as usize)), (cmd, cmd as i64), "axis {axis}");
+        stopped_at[axis as usize] = cmd;
+    }
+    // RUN is refused while expired.
+    b.write("CONTROL", 0, 1);
+    assert_eq!(b.read("CONTROL", 0), 0, "RUN refused while the watchdog is expired");
+    assert_pins_quiet(&mut b, 500);
+    // Clear, kick, run again: the remaining periods run.
+    b.write("STATUS", 0, status);
+    b.write("WATCHDOG_TIMEOUT", 0, 0);
+    b.write("CONTROL", 0, 1);
+    assert_eq!(b.read("CONTROL", 0), 1);
+    drain(&mut b);
+    for axis in 0..3u32 {
+        let (cmd, act) = positions(&mut b, axis);
+        assert!(cmd > stopped_at[axis as usize]);
+        assert_eq!((act, b.pin_steps(axis as usize)), (cmd, cmd as i64));
+        assert_eq!(b.read("FIFO_STATUS", axis) & 0xffff, 0);
+    }
+}
+
+#[test]
+fn encoder_error_is_flagged_counts_nothing_and_clears() {
+    let mut b = Controller3::new();
+    let enable = b.pack("IRQ_ENABLE", &[("ENCODER_ERROR", 1)]);
+    b.write("IRQ_ENABLE", 0, enable);
+    // A legal forward step on axis 1, then A and B together.
+    b.encoders[1] = (true, false, false);
+    b.idle(10);
+    assert_eq!(b.read("ACT_POSITION", 1), 1);
+    b.encoders[1] = (false, true, false);
+    b.idle(10);
+    assert_eq!(b.read("ACT_POSITION", 1), 1, "an illegal transition counts nothing");
+    let axis_status = b.read("AXIS_STATUS", 1);
+    assert_eq!(b.field("AXIS_STATUS", "ENCODER_ERROR", axis_status), 1);
+    assert_eq!(b.read("AXIS_STATUS", 0) & 8, 0, "only the faulty axis");
+    let status = b.read("STATUS", 0);
+    assert_eq!(status, b.pack("STATUS", &[("ENCODER_ERROR", 1)]));
+    assert!(b.last.irq);
+    let command = b.pack("AXIS_COMMAND", &[("CLEAR_ENCODER", 1)]);
+    b.write("AXIS_COMMAND", 1, command);
+    b.write("STATUS", 0, status);
+    b.idle(2);
+    assert!(!b.last.irq);
+    assert_eq!(b.read("AXIS_STATUS", 1) & 8, 0);
+    assert_eq!(b.read("ACT_POSITION", 1), 0);
+}
+
+#[test]
+fn reset_in_mid_period_returns_every_register_to_its_reset_value() {
+    let mut b = Controller3::new().with_loopback();
+    configure(&mut b, 100, [false, true, false]);
+    for axis in 0..3 {
+        queue(&mut b, axis, &[30; 8]);
+    }
+    b.write("CONTROL", 0, 1);
+    b.idle(350);
+    b.reset();
+    assert_eq!(b.last.steps, vec![(false, false); 3]);
+    assert!(!b.last.running && !b.last.irq);
+    assert_reset_values(&mut b);
+    assert_pins_quiet(&mut b, 2000);
+    // Reconfigured, it runs exactly from zero.
+    configure(&mut b, 100, [false, true, false]);
+    let moved: Vec<i64> = (0..3).map(|axis| b.pin_steps(axis)).collect();
+    let expected = [queue(&mut b, 0, &[5, 6]), queue(&mut b, 1, &[-7, 8]), queue(&mut b, 2, &[9, -10])];
+    b.write("CONTROL", 0, 1);
+    drain(&mut b);
+    for axis in 0..3u32 {
+        let cmd = b.read("CMD_POSITION", axis) as i32 as i64;
+        assert_eq!(cmd, expected[axis as usize]);
+        assert_eq!(b.pin_steps(axis as usize) - moved[axis as usize], cmd);
+    }
+}
+
+/// Every readable register reads its map reset value.
+fn assert_reset_values(b: &mut Controller3) {
+    let registers: Vec<_> = b.map.registers.clone();
+    for register in &registers {
+        for address in register.addresses() {
+            let readable = register.fields.iter().any(|f| f.access != motion_hdl::regmap::Access::WriteOnly);
+            if !readable {
+                continue;
+            }
+            b.clock(false, address, 0, false, true);
+            let value = b.clock(false, 0, 0, false, false).read_data;
+            assert_eq!(value, register.reset_value(), "{} at {address:#x}", register.name);
+        }
+    }
+}
+
+#[test]
+fn power_up_reads_reset_values_and_every_rw_field_reads_back() {
+    let mut b = Controller3::new();
+    assert_reset_values(&mut b);
+    let mut rng = StdRng::seed_from_u64(0x4e9);
+    let registers: Vec<_> = b.map.registers.clone();
+    for _ in 0..20 {
+        for register in &registers {
+            let mask = register.rw_mask();
+            if mask == 0 || register.name == "CONTROL" {
+                continue;
+            }
+            for address in register.addresses() {
+                let value: u32 = rng.gen();
+                b.clock(false, address, value, true, false);
+                b.clock(false, address, 0, false, true);
+                let read = b.clock(false, 0, 0, false, false).read_data;
+                assert_eq!(read & mask, value & mask, "{} at {address:#x}", register.name);
+            }
+        }
+    }
+    // Unused addresses read 0 and ignore writes.
+    let used: Vec<u32> = registers.iter().flat_map(|r| r.addresses()).collect();
+    for address in (0..256).filter(|a| !used.contains(a)) {
+        b.clock(false, address, u32::MAX, true, false);
+        b.clock(false, address, 0, false, true);
+        assert_eq!(b.clock(false, 0, 0, false, false).read_data, 0, "{address:#x}");
+    }
+}

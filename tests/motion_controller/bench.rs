@@ -162,6 +162,12 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
         self.loopback.as_ref().expect("loopback")[axis].net
     }
 
+    /// Idles `clocks` clocks; returns the interrupt after them.
+    pub fn idle_then_irq(&mut self, clocks: u64) -> bool {
+        self.idle(clocks);
+        self.last.irq
+    }
+
     /// Pulses reset for one clock.
     pub fn reset(&mut self) {
         self.clock(true, 0, 0, false, false);

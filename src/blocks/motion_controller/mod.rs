@@ -197,7 +197,10 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     period_active: DFF<Bits<32>>,
     period_count: DFF<Bits<32>>,
     read_data: DFF<Bits<32>>,
-    any_low_prev: DFF<Bit>,
+    /// Inverted, so that reset (all flip-flops 0) counts as "already low":
+    /// FIFO_LOW is raised when a level falls to the low-water mark, not for
+    /// the empty FIFOs after reset.
+    any_low_prev_n: DFF<Bit>,
     expired_prev: DFF<Bit>,
 
     tick: Signal<Local, Bit>,
@@ -296,7 +299,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             period_active: Default::default(),
             period_count: Default::default(),
             read_data: Default::default(),
-            any_low_prev: Default::default(),
+            any_low_prev_n: Default::default(),
             expired_prev: Default::default(),
             tick: Default::default(),
             write_control: Default::default(),
@@ -370,7 +373,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             period_active,
             period_count,
             read_data,
-            any_low_prev,
+            any_low_prev_n,
             expired_prev
         );
         self.tick_divider.clock.next = self.clock.val();
@@ -495,13 +498,13 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         }
 
         // Interrupts: pulses, so that a write-1-to-clear always clears.
-        self.any_low_prev.d.next = self.any_low.val();
+        self.any_low_prev_n.d.next = !self.any_low.val();
         self.expired_prev.d.next = self.watchdog.expired.val();
         self.events.next = self.zero7.val();
         if self.pop.val() & self.in_period.q.val() {
             self.events.next = self.events.val() | self.bit0_7.val();
         }
-        if self.any_low.val() & !self.any_low_prev.q.val() {
+        if self.any_low.val() & self.any_low_prev_n.q.val() {
             self.events.next = self.events.val() | self.bit1_7.val();
         }
         if self.underrun.val() {
@@ -593,7 +596,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.period_active.d.next = self.zero32.val();
             self.period_count.d.next = self.zero32.val();
             self.read_data.d.next = self.zero32.val();
-            self.any_low_prev.d.next = false;
+            self.any_low_prev_n.d.next = false;
             self.expired_prev.d.next = false;
         }
     }

@@ -421,7 +421,8 @@ pub struct MotionControllerModel {
     period_active: u32,
     period_count: u32,
     read_data: u32,
-    any_low_prev: bool,
+    /// Inverted like the RTL's: reset counts as "already low".
+    any_low_prev_n: bool,
     expired_prev: bool,
 }
 
@@ -454,7 +455,7 @@ impl MotionControllerModel {
             period_active: 0,
             period_count: 0,
             read_data: 0,
-            any_low_prev: false,
+            any_low_prev_n: false,
             expired_prev: false,
         })
     }
@@ -528,7 +529,7 @@ impl MotionControllerModel {
         let mut events = 0u64;
         let mut set = |bit: u32, on: bool| events |= (on as u64) << bit;
         set(registers::irq::PERIOD_DONE, pop && self.in_period);
-        set(registers::irq::FIFO_LOW, any_low && !self.any_low_prev);
+        set(registers::irq::FIFO_LOW, any_low && self.any_low_prev_n);
         set(registers::irq::UNDERRUN, underrun);
         set(registers::irq::OVERFLOW, combs.iter().any(|c| c.overflow_event));
         set(registers::irq::ENCODER_ERROR, combs.iter().any(|c| c.encoder_error_event));
@@ -603,7 +604,7 @@ impl MotionControllerModel {
         for (axis, pins) in next.axes.iter_mut().zip(&i.encoders) {
             axis.edge(&control, *pins);
         }
-        next.any_low_prev = any_low;
+        next.any_low_prev_n = !any_low;
         next.expired_prev = expired;
         let clear = write(global::STATUS).then_some((i.write_data & 0x7f) as u64);
         (next.status, next.irq) =
@@ -624,7 +625,7 @@ impl MotionControllerModel {
             next.period_active = 0;
             next.period_count = 0;
             next.read_data = 0;
-            next.any_low_prev = false;
+            next.any_low_prev_n = false;
             next.expired_prev = false;
         }
         *self = next;

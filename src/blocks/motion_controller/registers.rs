@@ -135,6 +135,11 @@ fn register(name: &'static str, address: u32, doc: &'static str, fields: Vec<Fie
     }
 }
 
+/// A read-write register whose low `width` bits hold a number.
+fn number(name: &'static str, address: u32, width: u32, doc: &'static str) -> Register {
+    register(name, address, doc, vec![field("VALUE", 0, width, Access::ReadWrite, doc)])
+}
+
 fn irq_fields(access: Access) -> Vec<Field> {
     vec![
         field("PERIOD_DONE", irq::PERIOD_DONE, 1, access, "a period ended and the next began"),
@@ -256,11 +261,11 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                     field("INDEX_ONCE", 12, 1, ReadWrite, "act on the first index only, until REARM_INDEX"),
                 ],
             )),
-            per_axis(Register::word("STEP_LEN", at(axis::STEP_LEN), ReadWrite, 0, "step pulse high time in clocks (0 acts as 1); bits 15..0")),
-            per_axis(Register::word("STEP_SPACE", at(axis::STEP_SPACE), ReadWrite, 0, "minimum step low time in clocks (0 acts as 1); bits 15..0")),
-            per_axis(Register::word("DIR_SETUP", at(axis::DIR_SETUP), ReadWrite, 0, "dir stable before a step rises, clocks (0 acts as 1); bits 15..0")),
-            per_axis(Register::word("DIR_HOLD", at(axis::DIR_HOLD), ReadWrite, 0, "dir stable after a step falls, clocks (0 acts as 1); bits 15..0")),
-            per_axis(Register::word("ENC_SAMPLE_RATE", at(axis::ENC_SAMPLE_RATE), ReadWrite, 0, "encoder sample every n + 1 clocks; bits 7..0")),
+            per_axis(number("STEP_LEN", at(axis::STEP_LEN), 16, "step pulse high time in clocks (0 acts as 1)")),
+            per_axis(number("STEP_SPACE", at(axis::STEP_SPACE), 16, "minimum step low time in clocks (0 acts as 1)")),
+            per_axis(number("DIR_SETUP", at(axis::DIR_SETUP), 16, "dir stable before a step rises, clocks (0 acts as 1)")),
+            per_axis(number("DIR_HOLD", at(axis::DIR_HOLD), 16, "dir stable after a step falls, clocks (0 acts as 1)")),
+            per_axis(number("ENC_SAMPLE_RATE", at(axis::ENC_SAMPLE_RATE), 8, "encoder sample every n + 1 clocks")),
             per_axis(Register::word("CMD_POSITION", at(axis::CMD_POSITION), ReadOnly, 0, "commanded position: steps emitted at the pins, signed")),
             per_axis(Register::word("ACT_POSITION", at(axis::ACT_POSITION), ReadOnly, 0, "actual position: encoder count, signed")),
             per_axis(Register::word("CMD_SNAPSHOT", at(axis::CMD_SNAPSHOT), ReadOnly, 0, "CMD_POSITION at the last SNAPSHOT write")),
