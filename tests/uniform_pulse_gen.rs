@@ -5,9 +5,9 @@
 use motion_hdl::blocks::uniform_pulse_gen::model::{
     PulsePlan, UniformPulseGenInputs, UniformPulseGenModel, UniformPulseGenOutputs,
 };
-use motion_hdl::blocks::uniform_pulse_gen::{UniformPulseGen, LOAD_TO_READY};
+use motion_hdl::blocks::uniform_pulse_gen::{load_to_ready, UniformPulseGen, LOAD_TO_READY};
 use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -36,19 +36,19 @@ fn outputs(v: &[u64]) -> UniformPulseGenOutputs {
 }
 
 /// RTL and model side by side; every clock is compared.
-struct Pair {
-    rtl: Harness<UniformPulseGen>,
+struct Pair<const W: usize = 32> {
+    rtl: Harness<UniformPulseGen<W>>,
     model: UniformPulseGenModel,
     cycle: u64,
     /// The outputs after the last clock (power-up: only `ready`).
     last: UniformPulseGenOutputs,
 }
 
-impl Pair {
+impl<const W: usize> Pair<W> {
     fn new() -> Self {
         Self {
-            rtl: Harness::new("uniform_pulse_gen", UniformPulseGen::default()).unwrap(),
-            model: UniformPulseGenModel::new(),
+            rtl: Harness::new("uniform_pulse_gen", UniformPulseGen::<W>::default()).unwrap(),
+            model: UniformPulseGenModel::with_width(W as u32),
             cycle: 0,
             last: UniformPulseGenOutputs {
                 ready: true,
@@ -180,7 +180,7 @@ fn every_n_for_t_4000_in_both_orders_back_to_back() {
         .into_iter()
         .map(|interleaved| {
             std::thread::spawn(move || {
-                let mut pair = Pair::new();
+                let mut pair = Pair::<32>::new();
                 for n in 0..=T / 2 {
                     let periods = [
                         (T, n, interleaved),
@@ -211,12 +211,23 @@ fn every_n_for_t_4000_in_both_orders_back_to_back() {
 /// ready), flag clears and resets, against the model.
 #[test]
 fn rtl_matches_model_on_random_32_bit_periods_and_load_timing() {
-    let mut rng = StdRng::seed_from_u64(0x0f1);
-    let mut pair = Pair::new();
+    random_periods_against_model::<32>(0x0f1, 1_500_000);
+}
+
+/// The 16-bit generator of the motion controller's axes: the same stimulus
+/// with T and N reaching past 16 bits (they are truncated to the port).
+#[test]
+fn a_16_bit_generator_matches_its_model() {
+    random_periods_against_model::<16>(0x16, 1_000_000);
+}
+
+fn random_periods_against_model<const W: usize>(seed: u64, cycles: u32) {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let mut pair = Pair::<W>::new();
     let (mut starts, mut rejected, mut underruns) = (0, 0, 0);
     let mut density = 1.0;
     let mut starved = false;
-    for _ in 0..1_500_000 {
+    for _ in 0..cycles {
         if rng.gen_ratio(1, 5000) {
             density = [1.0, 1.0, 0.5, 0.05][rng.gen_range(0..4)];
             // Starved phases: loads come late, so periods underrun.
@@ -266,7 +277,12 @@ fn rtl_matches_model_on_random_32_bit_periods_and_load_timing() {
 /// LOAD_TO_READY clocks: the datasheet's latency.
 #[test]
 fn a_period_loaded_from_idle_starts_load_to_ready_plus_one_clocks_later() {
-    let mut pair = Pair::new();
+    latency_from_idle::<32>();
+    latency_from_idle::<16>();
+}
+
+fn latency_from_idle<const W: usize>() {
+    let mut pair = Pair::<W>::new();
     let load = UniformPulseGenInputs {
         tick: true,
         period: 100,
@@ -288,7 +304,10 @@ fn a_period_loaded_from_idle_starts_load_to_ready_plus_one_clocks_later() {
         }
         assert!(clocks < 100);
     }
-    assert_eq!(clocks, LOAD_TO_READY + 1);
+    assert_eq!(clocks, load_to_ready(W as u32) + 1);
+    if W == 32 {
+        assert_eq!(clocks, LOAD_TO_READY + 1);
+    }
 }
 
 #[test]
@@ -314,17 +333,44 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
         .collect();
     cross_simulate(
         &CosimDesign::exported("uniform_pulse_gen"),
-        UniformPulseGen::default(),
+        UniformPulseGen::<32>::default(),
         &stimulus,
     )
     .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// A narrow 12-bit instance in Icarus and Verilator: truncated ports and
+/// the sign bit of a 12-bit Bresenham error.
+#[test]
+fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
+    let mut rng = StdRng::seed_from_u64(0x12b);
+    let mut model = UniformPulseGenModel::with_width(12);
+    let mut ready = true;
+    let stimulus: Vec<Vec<u64>> = (0..30_000)
+        .map(|_| {
+            let period = [rng.gen_range(0..300), rng.gen_range(0..5000)][rng.gen_range(0..2)];
+            let i = UniformPulseGenInputs {
+                tick: rng.gen_ratio(9, 10),
+                period,
+                count: rng.gen_range(0..=period / 2 + 2),
+                mode: rng.gen_bool(0.5),
+                load: rng.gen_ratio(1, if ready { 20 } else { 300 }),
+                clear_flags: rng.gen_ratio(1, 2000),
+                reset: rng.gen_ratio(1, 20_000),
+            };
+            ready = model.step(i).ready;
+            vector(&i)
+        })
+        .collect();
+    cross_simulate_generated("uniform_pulse_gen_12", UniformPulseGen::<12>::default(), &stimulus)
+        .unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// The same pin-level checks with a sparse time base (a tick every third
 /// clock): every count is measured in ticks, not clocks.
 #[test]
 fn sparse_ticks_keep_every_period_exact() {
-    let mut pair = Pair::new();
+    let mut pair = Pair::<32>::new();
     for (t, n) in [
         (100u64, 0u64),
         (100, 1),

@@ -7,6 +7,7 @@ use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
+use crate::blocks::motion_controller::{self, MotionController};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
@@ -107,7 +108,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: uniform_pulse_gen::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
-            build: || Box::new(UniformPulseGen::default()),
+            build: || Box::new(UniformPulseGen::<32>::default()),
         },
         ModuleSpec {
             name: "quadrature_decoder",
@@ -169,6 +170,19 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 110.0,
             lut4_budget: Some(232),
             build: || Box::new(StepChannel::<32, 16>::default()),
+        },
+        ModuleSpec {
+            name: "motion_controller",
+            summary: motion_controller::SUMMARY,
+            parameters: &[
+                ("K", "3", "axes"),
+                ("N", "4", "FIFO depth 2^N = 16 periods per axis"),
+                ("T", "16", "step timing register width"),
+            ],
+            port_docs: motion_controller::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            build: || Box::new(MotionController::<3, 4, 5>::default()),
         },
     ]
 }

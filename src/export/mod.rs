@@ -26,6 +26,9 @@ pub enum ExportError {
     /// The catalog's port documentation disagrees with the RTL.
     #[error(transparent)]
     PortDoc(#[from] PortDocError),
+    /// The controller's register map does not validate.
+    #[error(transparent)]
+    RegisterMap(#[from] crate::regmap::RegMapError),
     /// A file could not be written.
     #[error("cannot write `{path}`: {source}")]
     Io {
@@ -105,6 +108,18 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
             contents: module.testbench.clone(),
         });
     }
+    let map = crate::blocks::motion_controller::registers::register_map(3, 4)
+        ?;
+    files.push(GeneratedFile {
+        dir: OutputDir::Rtl,
+        file_name: "motion_controller_regs.h".to_string(),
+        contents: crate::regmap::c_header(&map, &header::generator()),
+    });
+    files.push(GeneratedFile {
+        dir: OutputDir::Rtl,
+        file_name: "motion_controller_regs.md".to_string(),
+        contents: crate::regmap::markdown(&map, &header::generator()),
+    });
     files.push(GeneratedFile {
         dir: OutputDir::Rtl,
         file_name: "README.md".to_string(),

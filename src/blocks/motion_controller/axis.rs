@@ -9,6 +9,7 @@ use rust_hdl::prelude::*;
 
 
 use super::registers::{axis, AXIS_BASE, AXIS_STRIDE};
+use super::PERIOD_BITS;
 use crate::blocks::command_fifo::CommandFifo;
 use crate::blocks::dda_integrator::DdaIntegrator;
 use crate::blocks::pulse_counter::PulseCounter;
@@ -34,10 +35,12 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub pop: Signal<In, Bit>,
     /// Period boundary with some FIFO empty: stop loading.
     pub underrun: Signal<In, Bit>,
-    /// The period length that starts at this boundary (for loads).
-    pub period_next: Signal<In, Bits<32>>,
-    /// The running period's length (the DDA modulus).
-    pub period_active: Signal<In, Bits<32>>,
+    /// The running period's length (the uniform generator's T; updated at
+    /// each boundary).
+    pub period_active: Signal<In, Bits<PERIOD_BITS>>,
+    /// `period_active` one clock late: the DDA's modulus, in step with its
+    /// delayed tick.
+    pub modulus: Signal<In, Bits<PERIOD_BITS>>,
     /// Latch both positions into the snapshot registers.
     pub snapshot: Signal<In, Bit>,
     /// FIFO low-water threshold.
@@ -72,20 +75,32 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub encoder_error_event: Signal<Out, Bit>,
 
     fifo: CommandFifo<N, NP1>,
-    dda: DdaIntegrator<32>,
-    uniform: UniformPulseGen,
+    dda: DdaIntegrator<PERIOD_BITS>,
+    uniform: UniformPulseGen<PERIOD_BITS>,
     stage: StepOutput<16, 16>,
     position: PulseCounter<32>,
     encoder: QuadratureDecoder<32, 8, 16>,
 
-    settings: DFF<Bits<13>>,
-    step_len: DFF<Bits<16>>,
-    step_space: DFF<Bits<16>>,
-    dir_setup: DFF<Bits<16>>,
-    dir_hold: DFF<Bits<16>>,
-    sample_rate: DFF<Bits<8>>,
+    settings: DFF<Bits<32>>,
+    step_len: DFF<Bits<32>>,
+    step_space: DFF<Bits<32>>,
+    dir_setup: DFF<Bits<32>>,
+    dir_hold: DFF<Bits<32>>,
+    sample_rate: DFF<Bits<32>>,
+    /// The entry popped at the last edge, and that a pop (an underrun)
+    /// happened then: the interpolators take it one clock after the
+    /// boundary, so the block RAM's read path ends in a flip-flop.
+    popped: DFF<Bits<32>>,
+    popped_valid: DFF<Bit>,
+    underrun_d: DFF<Bit>,
+    /// The base tick one clock late: the interpolators see each tick after
+    /// the period counter, so the boundary tick still uses the old entry.
+    tick_d: DFF<Bit>,
     /// The DDA's J for the running period (0 when stopped or uniform).
-    integrand: DFF<Bits<32>>,
+    integrand: DFF<Bits<PERIOD_BITS>>,
+    /// Sticky: an entry's magnitude did not fit the interpolators (it was
+    /// saturated to 2^PERIOD_BITS - 1).
+    entry_overrange: DFF<Bit>,
     /// The running period's direction (DDA).
     forward: DFF<Bit>,
     /// The direction travels with the DDA's two clocks of latency.
@@ -99,6 +114,9 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     uniform_running_forward: DFF<Bit>,
     uniform_ready_prev: DFF<Bit>,
     uniform_pulse_prev: DFF<Bit>,
+    /// The step request to the output stage, registered.
+    request: DFF<Bit>,
+    request_forward: DFF<Bit>,
     cmd_snapshot: DFF<Bits<32>>,
     act_snapshot: DFF<Bits<32>>,
     fault_prev: DFF<Bit>,
@@ -108,7 +126,13 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     offset: Signal<Local, Bits<4>>,
     command: Signal<Local, Bit>,
     clear_faults: Signal<Local, Bit>,
-    magnitude: Signal<Local, Bits<32>>,
+    upper_ones: Signal<Local, Bit>,
+    upper_zero: Signal<Local, Bit>,
+    low_half: Signal<Local, Bits<PERIOD_BITS>>,
+    /// |popped| does not fit the interpolators.
+    too_large: Signal<Local, Bit>,
+    /// |popped| saturated to the interpolators' width.
+    count: Signal<Local, Bits<PERIOD_BITS>>,
     uniform_started: Signal<Local, Bit>,
     uniform_forward: Signal<Local, Bit>,
     fault: Signal<Local, Bit>,
@@ -128,9 +152,17 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     bit6_32: Constant<Bits<32>>,
     bit7_32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
-    zero16: Constant<Bits<16>>,
-    zero13: Constant<Bits<13>>,
-    zero8: Constant<Bits<8>>,
+    zero_count: Constant<Bits<PERIOD_BITS>>,
+    max_count: Constant<Bits<PERIOD_BITS>>,
+    /// The bits of a magnitude above the interpolators' width.
+    above_count: Constant<Bits<32>>,
+    /// `bit_mask[i]` = 1 << i, one per FIFO level bit.
+    bit_mask: [Constant<Bits<32>>; NP1],
+    /// Register widths: the upper bits of the 32-bit registers are always
+    /// 0, and yosys removes their flip-flops.
+    mask16: Constant<Bits<32>>,
+    mask13: Constant<Bits<32>>,
+    mask8: Constant<Bits<32>>,
     off_fifo_write: Constant<Bits<4>>,
     off_fifo_status: Constant<Bits<4>>,
     off_config: Constant<Bits<4>>,
@@ -162,8 +194,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             halt: Default::default(),
             pop: Default::default(),
             underrun: Default::default(),
-            period_next: Default::default(),
             period_active: Default::default(),
+            modulus: Default::default(),
             snapshot: Default::default(),
             low_water: Default::default(),
             address: Default::default(),
@@ -192,7 +224,12 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             dir_setup: Default::default(),
             dir_hold: Default::default(),
             sample_rate: Default::default(),
+            popped: Default::default(),
+            popped_valid: Default::default(),
+            underrun_d: Default::default(),
+            tick_d: Default::default(),
             integrand: Default::default(),
+            entry_overrange: Default::default(),
             forward: Default::default(),
             forward_1: Default::default(),
             forward_2: Default::default(),
@@ -201,6 +238,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             uniform_running_forward: Default::default(),
             uniform_ready_prev: Default::default(),
             uniform_pulse_prev: Default::default(),
+            request: Default::default(),
+            request_forward: Default::default(),
             cmd_snapshot: Default::default(),
             act_snapshot: Default::default(),
             fault_prev: Default::default(),
@@ -209,7 +248,11 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             offset: Default::default(),
             command: Default::default(),
             clear_faults: Default::default(),
-            magnitude: Default::default(),
+            upper_ones: Default::default(),
+            upper_zero: Default::default(),
+            low_half: Default::default(),
+            too_large: Default::default(),
+            count: Default::default(),
             uniform_started: Default::default(),
             uniform_forward: Default::default(),
             fault: Default::default(),
@@ -228,9 +271,13 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             bit6_32: Constant::new((1u64 << 6).into()),
             bit7_32: Constant::new((1u64 << 7).into()),
             zero32: Constant::new(0u64.into()),
-            zero16: Constant::new(0u64.into()),
-            zero13: Constant::new(0u64.into()),
-            zero8: Constant::new(0u64.into()),
+            zero_count: Constant::new(0u64.into()),
+            max_count: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
+            above_count: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into()),
+            bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
+            mask16: Constant::new(0xffffu64.into()),
+            mask13: Constant::new(0x1fffu64.into()),
+            mask8: Constant::new(0xffu64.into()),
             off_fifo_write: c4(axis::FIFO_WRITE),
             off_fifo_status: c4(axis::FIFO_STATUS),
             off_config: c4(axis::AXIS_CONFIG),
@@ -262,7 +309,12 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             dir_setup,
             dir_hold,
             sample_rate,
+            popped,
+            popped_valid,
+            underrun_d,
+            tick_d,
             integrand,
+            entry_overrange,
             forward,
             forward_1,
             forward_2,
@@ -271,6 +323,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             uniform_running_forward,
             uniform_ready_prev,
             uniform_pulse_prev,
+            request,
+            request_forward,
             cmd_snapshot,
             act_snapshot,
             fault_prev,
@@ -291,22 +345,22 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.clear_faults.next = self.command.val() & self.write_data.val().get_bit(0);
         if self.write.val() & self.selected.val() {
             if self.offset.val() == self.off_config.val() {
-                self.settings.d.next = self.write_data.val().get_bits::<13>(0);
+                self.settings.d.next = self.write_data.val() & self.mask13.val();
             }
             if self.offset.val() == self.off_step_len.val() {
-                self.step_len.d.next = self.write_data.val().get_bits::<16>(0);
+                self.step_len.d.next = self.write_data.val() & self.mask16.val();
             }
             if self.offset.val() == self.off_step_space.val() {
-                self.step_space.d.next = self.write_data.val().get_bits::<16>(0);
+                self.step_space.d.next = self.write_data.val() & self.mask16.val();
             }
             if self.offset.val() == self.off_dir_setup.val() {
-                self.dir_setup.d.next = self.write_data.val().get_bits::<16>(0);
+                self.dir_setup.d.next = self.write_data.val() & self.mask16.val();
             }
             if self.offset.val() == self.off_dir_hold.val() {
-                self.dir_hold.d.next = self.write_data.val().get_bits::<16>(0);
+                self.dir_hold.d.next = self.write_data.val() & self.mask16.val();
             }
             if self.offset.val() == self.off_sample_rate.val() {
-                self.sample_rate.d.next = self.write_data.val().get_bits::<8>(0);
+                self.sample_rate.d.next = self.write_data.val() & self.mask8.val();
             }
         }
 
@@ -324,9 +378,33 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // CommandFifo refuses a write when full unless a pop frees a slot.
         self.overflow_event.next =
             self.fifo.write.val() & self.fifo.full.val() & !self.pop.val();
-        self.magnitude.next = self.fifo.head.val();
-        if self.fifo.head.val().get_bit(31) {
-            self.magnitude.next = self.zero32.val() - self.fifo.head.val();
+        self.popped_valid.d.next = self.pop.val();
+        self.underrun_d.d.next = self.underrun.val();
+        self.tick_d.d.next = self.tick.val();
+        if self.pop.val() {
+            self.popped.d.next = self.fifo.head.val();
+        }
+        // |entry| saturated to the interpolators' width, without a 32-bit
+        // negation: too large is decided on the upper half alone (and
+        // -2^16 itself), the count negates only the lower half.
+        self.upper_ones.next = (self.popped.q.val() & self.above_count.val()) == self.above_count.val();
+        self.upper_zero.next = (self.popped.q.val() & self.above_count.val()) == self.zero32.val();
+        self.low_half.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
+        if self.popped.q.val().get_bit(31) {
+            self.too_large.next = !self.upper_ones.val() | (self.low_half.val() == self.zero_count.val());
+            self.count.next = self.zero_count.val() - self.low_half.val();
+        } else {
+            self.too_large.next = !self.upper_zero.val();
+            self.count.next = self.low_half.val();
+        }
+        if self.too_large.val() {
+            self.count.next = self.max_count.val();
+        }
+        if self.clear_faults.val() {
+            self.entry_overrange.d.next = false;
+        }
+        if self.popped_valid.q.val() & self.too_large.val() {
+            self.entry_overrange.d.next = true;
         }
 
         // Per-period state. The DDA takes J and its direction at the
@@ -334,24 +412,24 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.start.val() {
             self.uniform_active.d.next = self.settings.q.val().get_bit(0);
         }
-        if self.pop.val() {
-            self.forward.d.next = !self.fifo.head.val().get_bit(31);
+        if self.popped_valid.q.val() {
+            self.forward.d.next = !self.popped.q.val().get_bit(31);
             if self.uniform_active.q.val() {
-                self.integrand.d.next = self.zero32.val();
+                self.integrand.d.next = self.zero_count.val();
             } else {
-                self.integrand.d.next = self.magnitude.val();
+                self.integrand.d.next = self.count.val();
             }
         }
-        if self.underrun.val() | self.halt.val() {
-            self.integrand.d.next = self.zero32.val();
+        if self.underrun_d.q.val() | self.halt.val() {
+            self.integrand.d.next = self.zero_count.val();
         }
         self.forward_1.d.next = self.forward.q.val();
         self.forward_2.d.next = self.forward_1.q.val();
 
         self.dda.reset.next = self.reset.val() | self.halt.val() | self.start.val();
-        self.dda.tick.next = self.tick.val();
+        self.dda.tick.next = self.tick_d.q.val();
         self.dda.integrand.next = self.integrand.q.val();
-        self.dda.modulus.next = self.period_active.val();
+        self.dda.modulus.next = self.modulus.val();
         self.dda.clear_overrange.next = self.clear_faults.val();
 
         // The uniform generator runs each loaded period after its set-up
@@ -359,14 +437,14 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // rises in the clock after the edge that starts a loaded period,
         // together with that period's first pulse.
         self.uniform.reset.next = self.reset.val() | self.halt.val();
-        self.uniform.tick.next = self.tick.val();
-        self.uniform.period.next = self.period_next.val();
-        self.uniform.count.next = self.magnitude.val();
+        self.uniform.tick.next = self.tick_d.q.val();
+        self.uniform.period.next = self.period_active.val();
+        self.uniform.count.next = self.count.val();
         self.uniform.mode.next = self.settings.q.val().get_bit(1);
-        self.uniform.load.next = self.pop.val() & self.uniform_active.q.val();
+        self.uniform.load.next = self.popped_valid.q.val() & self.uniform_active.q.val();
         self.uniform.clear_flags.next = self.clear_faults.val() | self.start.val();
-        if self.pop.val() & self.uniform_active.q.val() & self.uniform.ready.val() {
-            self.uniform_loaded_forward.d.next = !self.fifo.head.val().get_bit(31);
+        if self.popped_valid.q.val() & self.uniform_active.q.val() & self.uniform.ready.val() {
+            self.uniform_loaded_forward.d.next = !self.popped.q.val().get_bit(31);
         }
         self.uniform_ready_prev.d.next = self.uniform.ready.val();
         self.uniform_pulse_prev.d.next = self.uniform.pulse.val();
@@ -379,18 +457,22 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
 
         // Output stage.
         self.stage.reset.next = self.reset.val();
+        // The request is registered: the interpolators' decode and the
+        // stage's pending-count logic are each a clock deep.
         if self.uniform_active.q.val() {
-            self.stage.step.next = self.uniform.pulse.val() & !self.uniform_pulse_prev.q.val();
-            self.stage.dir.next = self.uniform_forward.val();
+            self.request.d.next = self.uniform.pulse.val() & !self.uniform_pulse_prev.q.val();
+            self.request_forward.d.next = self.uniform_forward.val();
         } else {
-            self.stage.step.next = self.dda.pulse.val();
-            self.stage.dir.next = self.forward_2.q.val();
+            self.request.d.next = self.dda.pulse.val();
+            self.request_forward.d.next = self.forward_2.q.val();
         }
+        self.stage.step.next = self.request.q.val();
+        self.stage.dir.next = self.request_forward.q.val();
         self.stage.mode.next = self.settings.q.val().get_bits::<2>(2);
-        self.stage.step_len.next = self.step_len.q.val();
-        self.stage.step_space.next = self.step_space.q.val();
-        self.stage.dir_setup.next = self.dir_setup.q.val();
-        self.stage.dir_hold.next = self.dir_hold.q.val();
+        self.stage.step_len.next = self.step_len.q.val().get_bits::<16>(0);
+        self.stage.step_space.next = self.step_space.q.val().get_bits::<16>(0);
+        self.stage.dir_setup.next = self.dir_setup.q.val().get_bits::<16>(0);
+        self.stage.dir_hold.next = self.dir_hold.q.val().get_bits::<16>(0);
         self.stage.clear_overrun.next = self.clear_faults.val();
         self.out_a.next = self.stage.out_a.val();
         self.out_b.next = self.stage.out_b.val();
@@ -410,7 +492,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder.b.next = self.enc_b.val();
         self.encoder.index.next = self.enc_index.val();
         self.encoder.filter.next = self.settings.q.val().get_bits::<4>(4);
-        self.encoder.sample_rate.next = self.sample_rate.q.val();
+        self.encoder.sample_rate.next = self.sample_rate.q.val().get_bits::<8>(0);
         self.encoder.counter_mode.next = self.settings.q.val().get_bit(8);
         self.encoder.index_invert.next = self.settings.q.val().get_bit(9);
         self.encoder.index_clear.next = self.settings.q.val().get_bit(10);
@@ -426,6 +508,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
 
         // Events: rising edges of the sticky flags.
         self.fault.next = self.stage.overrun.val()
+            | self.entry_overrange.q.val()
             | self.dda.overrange.val()
             | self.uniform.overrange.val()
             | self.uniform.overflow.val();
@@ -435,7 +518,14 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder_error_event.next = self.encoder.error.val() & !self.encoder_error_prev.q.val();
 
         // Read data.
-        self.fifo_status.next = bit_cast::<32, NP1>(self.fifo.level.val());
+        // Zero-extended bit by bit: rust-hdl's cast prints as a mask that
+        // Verilator flags for width.
+        self.fifo_status.next = self.zero32.val();
+        for i in 0..NP1 {
+            if self.fifo.level.val().get_bit(i) {
+                self.fifo_status.next = self.fifo_status.val() | self.bit_mask[i].val();
+            }
+        }
         if self.fifo.empty.val() {
             self.fifo_status.next = self.fifo_status.val() | self.bit16_32.val();
         }
@@ -449,7 +539,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.stage.overrun.val() {
             self.axis_status.next = self.axis_status.val() | self.bit0_32.val();
         }
-        if self.dda.overrange.val() | self.uniform.overrange.val() {
+        if self.dda.overrange.val() | self.uniform.overrange.val() | self.entry_overrange.q.val() {
             self.axis_status.next = self.axis_status.val() | self.bit1_32.val();
         }
         if self.uniform.overflow.val() {
@@ -476,22 +566,22 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
                 self.read_data.next = self.fifo_status.val();
             }
             if self.offset.val() == self.off_config.val() {
-                self.read_data.next = bit_cast::<32, 13>(self.settings.q.val());
+                self.read_data.next = self.settings.q.val();
             }
             if self.offset.val() == self.off_step_len.val() {
-                self.read_data.next = bit_cast::<32, 16>(self.step_len.q.val());
+                self.read_data.next = self.step_len.q.val();
             }
             if self.offset.val() == self.off_step_space.val() {
-                self.read_data.next = bit_cast::<32, 16>(self.step_space.q.val());
+                self.read_data.next = self.step_space.q.val();
             }
             if self.offset.val() == self.off_dir_setup.val() {
-                self.read_data.next = bit_cast::<32, 16>(self.dir_setup.q.val());
+                self.read_data.next = self.dir_setup.q.val();
             }
             if self.offset.val() == self.off_dir_hold.val() {
-                self.read_data.next = bit_cast::<32, 16>(self.dir_hold.q.val());
+                self.read_data.next = self.dir_hold.q.val();
             }
             if self.offset.val() == self.off_sample_rate.val() {
-                self.read_data.next = bit_cast::<32, 8>(self.sample_rate.q.val());
+                self.read_data.next = self.sample_rate.q.val();
             }
             if self.offset.val() == self.off_cmd_position.val() {
                 self.read_data.next = self.position.count.val();
@@ -514,13 +604,18 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         }
 
         if self.reset.val() {
-            self.settings.d.next = self.zero13.val();
-            self.step_len.d.next = self.zero16.val();
-            self.step_space.d.next = self.zero16.val();
-            self.dir_setup.d.next = self.zero16.val();
-            self.dir_hold.d.next = self.zero16.val();
-            self.sample_rate.d.next = self.zero8.val();
-            self.integrand.d.next = self.zero32.val();
+            self.settings.d.next = self.zero32.val();
+            self.step_len.d.next = self.zero32.val();
+            self.step_space.d.next = self.zero32.val();
+            self.dir_setup.d.next = self.zero32.val();
+            self.dir_hold.d.next = self.zero32.val();
+            self.sample_rate.d.next = self.zero32.val();
+            self.popped.d.next = self.zero32.val();
+            self.popped_valid.d.next = false;
+            self.underrun_d.d.next = false;
+            self.tick_d.d.next = false;
+            self.integrand.d.next = self.zero_count.val();
+            self.entry_overrange.d.next = false;
             self.forward.d.next = false;
             self.forward_1.d.next = false;
             self.forward_2.d.next = false;
@@ -529,6 +624,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.uniform_running_forward.d.next = false;
             self.uniform_ready_prev.d.next = false;
             self.uniform_pulse_prev.d.next = false;
+            self.request.d.next = false;
+            self.request_forward.d.next = false;
             self.cmd_snapshot.d.next = self.zero32.val();
             self.act_snapshot.d.next = self.zero32.val();
             self.fault_prev.d.next = false;

@@ -34,9 +34,9 @@
 //! | `bus_read_data` | out | 32 | the addressed register, registered: valid in the clock after `bus_read`, held until the next read |
 //! | `irq` | out | 1 | level interrupt: an enabled `STATUS` bit is set; registered |
 //! | `running` | out | 1 | periods are running (`STATE.RUNNING`), for a drive-enable pin |
-//! | `step_a[k]` | out | 1 | axis k: step (step/dir), up (up/down) or A (quadrature); registered |
-//! | `step_b[k]` | out | 1 | axis k: dir, down or B; registered |
-//! | `enc_a[k]`, `enc_b[k]`, `enc_index[k]` | in | 1 | axis k encoder, asynchronous (synchronized inside) |
+//! | `step_a__k` | out | 1 | axis k: step (step/dir), up (up/down) or A (quadrature); registered |
+//! | `step_b__k` | out | 1 | axis k: dir, down or B; registered |
+//! | `enc_a__k`, `enc_b__k`, `enc_index__k` | in | 1 | axis k encoder, asynchronous (synchronized inside) |
 //!
 //! This is the synchronous register bus of
 //! [`external_bus_adapter`](crate::blocks::external_bus_adapter), so a DSP's
@@ -116,6 +116,11 @@ use registers::{global, ID_VALUE, VERSION_VALUE};
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
 
+/// Width of `PERIOD_TICKS` and of both interpolators: a period is at most
+/// 2^16 - 1 base ticks, and an axis emits at most that many steps in one.
+/// (At 32 bits the uniform generators alone would not fit an HX8K at K = 3.)
+pub const PERIOD_BITS: usize = 16;
+
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
     "motion controller: K step/encoder axes, command FIFOs, synchronized periods, interrupt, watchdog, register bus";
@@ -137,11 +142,11 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ),
     ("irq", "level interrupt: an enabled STATUS bit is set"),
     ("running", "periods are running (STATE.RUNNING)"),
-    ("step_a", "per axis: step, up or A"),
-    ("step_b", "per axis: dir, down or B"),
-    ("enc_a", "per axis: encoder A, asynchronous"),
-    ("enc_b", "per axis: encoder B, asynchronous"),
-    ("enc_index", "per axis: encoder index, asynchronous"),
+    ("step_a__i", "axis i's step (step/dir), up (up/down) or A (quadrature)"),
+    ("step_b__i", "axis i's dir, down or B"),
+    ("enc_a__i", "axis i's encoder A, asynchronous"),
+    ("enc_b__i", "axis i's encoder B, asynchronous"),
+    ("enc_index__i", "axis i's encoder index, asynchronous"),
 ];
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
@@ -183,18 +188,20 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     interrupts: InterruptController<7>,
 
     run: DFF<Bit>,
-    irq_enable: DFF<Bits<7>>,
+    irq_enable: DFF<Bits<32>>,
     tick_divisor: DFF<Bits<32>>,
-    period_ticks: DFF<Bits<32>>,
-    low_water: DFF<Bits<NP1>>,
+    period_ticks: DFF<Bits<PERIOD_BITS>>,
+    low_water: DFF<Bits<32>>,
     watchdog_timeout: DFF<Bits<32>>,
     /// Base ticks left in the running period after the next one.
-    ticks_left: DFF<Bits<32>>,
+    ticks_left: DFF<Bits<PERIOD_BITS>>,
     /// The next base tick is a boundary.
     boundary_next: DFF<Bit>,
     /// A period has been popped since the start (so a boundary ends one).
     in_period: DFF<Bit>,
-    period_active: DFF<Bits<32>>,
+    period_active: DFF<Bits<PERIOD_BITS>>,
+    /// `period_active` one clock late, for the DDAs (see the axis).
+    modulus: DFF<Bits<PERIOD_BITS>>,
     period_count: DFF<Bits<32>>,
     read_data: DFF<Bits<32>>,
     /// Inverted, so that reset (all flip-flops 0) counts as "already low":
@@ -211,7 +218,7 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     all_ready: Signal<Local, Bit>,
     pop: Signal<Local, Bit>,
     underrun: Signal<Local, Bit>,
-    period_next: Signal<Local, Bits<32>>,
+    period_next: Signal<Local, Bits<PERIOD_BITS>>,
     any_low: Signal<Local, Bit>,
     any_overflow: Signal<Local, Bit>,
     any_fault: Signal<Local, Bit>,
@@ -250,10 +257,16 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     bit6_7: Constant<Bits<7>>,
     zero32: Constant<Bits<32>>,
     one32: Constant<Bits<32>>,
-    two32: Constant<Bits<32>>,
-    not_one32: Constant<Bits<32>>,
+    zero_p: Constant<Bits<PERIOD_BITS>>,
+    one_p: Constant<Bits<PERIOD_BITS>>,
+    two_p: Constant<Bits<PERIOD_BITS>>,
+    not_one_p: Constant<Bits<PERIOD_BITS>>,
     zero7: Constant<Bits<7>>,
-    zero_level: Constant<Bits<NP1>>,
+    mask7: Constant<Bits<32>>,
+    /// `bit_mask[i]` = 1 << i, to zero-extend STATUS and PERIOD_TICKS.
+    bit_mask: [Constant<Bits<32>>; PERIOD_BITS],
+    /// FIFO_LOW_WATER.LEVEL: N + 1 bits.
+    level_mask: Constant<Bits<32>>,
 }
 
 impl<const K: usize, const N: usize, const NP1: usize> Default for MotionController<K, N, NP1> {
@@ -297,6 +310,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             boundary_next: Default::default(),
             in_period: Default::default(),
             period_active: Default::default(),
+            modulus: Default::default(),
             period_count: Default::default(),
             read_data: Default::default(),
             any_low_prev_n: Default::default(),
@@ -347,10 +361,14 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             bit6_7: Constant::new((1u64 << 6).into()),
             zero32: Constant::new(0u64.into()),
             one32: Constant::new(1u64.into()),
-            two32: Constant::new(2u64.into()),
-            not_one32: Constant::new(0xffff_fffeu64.into()),
+            zero_p: Constant::new(0u64.into()),
+            one_p: Constant::new(1u64.into()),
+            two_p: Constant::new(2u64.into()),
+            not_one_p: Constant::new((crate::blocks::width_mask(PERIOD_BITS as u32) & !1).into()),
             zero7: Constant::new(0u64.into()),
-            zero_level: Constant::new(0u64.into()),
+            mask7: Constant::new(0x7fu64.into()),
+            bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
+            level_mask: Constant::new(((1u64 << NP1) - 1).into()),
         }
     }
 }
@@ -371,6 +389,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             boundary_next,
             in_period,
             period_active,
+            modulus,
             period_count,
             read_data,
             any_low_prev_n,
@@ -383,16 +402,16 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         // Global register writes.
         if self.bus_write.val() {
             if self.bus_address.val() == self.a_irq_enable.val() {
-                self.irq_enable.d.next = self.bus_write_data.val().get_bits::<7>(0);
+                self.irq_enable.d.next = self.bus_write_data.val() & self.mask7.val();
             }
             if self.bus_address.val() == self.a_tick_divisor.val() {
                 self.tick_divisor.d.next = self.bus_write_data.val();
             }
             if self.bus_address.val() == self.a_period_ticks.val() {
-                self.period_ticks.d.next = self.bus_write_data.val();
+                self.period_ticks.d.next = self.bus_write_data.val().get_bits::<PERIOD_BITS>(0);
             }
             if self.bus_address.val() == self.a_low_water.val() {
-                self.low_water.d.next = self.bus_write_data.val().get_bits::<NP1>(0);
+                self.low_water.d.next = self.bus_write_data.val() & self.level_mask.val();
             }
             if self.bus_address.val() == self.a_watchdog_timeout.val() {
                 self.watchdog_timeout.d.next = self.bus_write_data.val();
@@ -438,12 +457,13 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
                 self.any_encoder_error.val() | self.axes[i].encoder_error_event.val();
         }
         self.boundary.next = self.run.q.val() & self.tick.val() & self.boundary_next.q.val();
-        self.pop.next = self.boundary.val() & self.all_ready.val();
-        self.underrun.next = self.boundary.val() & !self.all_ready.val();
+        // A stop on the boundary clock wins: nothing is popped.
+        self.pop.next = self.boundary.val() & self.all_ready.val() & !self.halt.val();
+        self.underrun.next = self.boundary.val() & !self.all_ready.val() & !self.halt.val();
         // PERIOD_TICKS = 0 acts as 1.
         self.period_next.next = self.period_ticks.q.val();
-        if self.period_ticks.q.val() == self.zero32.val() {
-            self.period_next.next = self.one32.val();
+        if self.period_ticks.q.val() == self.zero_p.val() {
+            self.period_next.next = self.one_p.val();
         }
         if self.start.val() {
             self.run.d.next = true;
@@ -454,13 +474,14 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             if self.boundary_next.q.val() {
                 self.ticks_left.d.next = self.period_next.val();
                 self.boundary_next.d.next =
-                    (self.period_ticks.q.val() & self.not_one32.val()) == self.zero32.val();
+                    (self.period_ticks.q.val() & self.not_one_p.val()) == self.zero_p.val();
                 self.period_active.d.next = self.period_next.val();
             } else {
-                self.ticks_left.d.next = self.ticks_left.q.val() - self.one32.val();
-                self.boundary_next.d.next = self.ticks_left.q.val() == self.two32.val();
+                self.ticks_left.d.next = self.ticks_left.q.val() - self.one_p.val();
+                self.boundary_next.d.next = self.ticks_left.q.val() == self.two_p.val();
             }
         }
+        self.modulus.d.next = self.period_active.q.val();
         if self.pop.val() {
             self.in_period.d.next = true;
             self.period_count.d.next = self.period_count.q.val() + self.one32.val();
@@ -481,11 +502,11 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.axes[i].halt.next = self.halt.val();
             self.axes[i].pop.next = self.pop.val();
             self.axes[i].underrun.next = self.underrun.val();
-            self.axes[i].period_next.next = self.period_next.val();
             self.axes[i].period_active.next = self.period_active.q.val();
+            self.axes[i].modulus.next = self.modulus.q.val();
             self.axes[i].snapshot.next =
                 self.bus_write.val() & (self.bus_address.val() == self.a_snapshot.val());
-            self.axes[i].low_water.next = self.low_water.q.val();
+            self.axes[i].low_water.next = self.low_water.q.val().get_bits::<NP1>(0);
             self.axes[i].address.next = self.bus_address.val();
             self.axes[i].write.next = self.bus_write.val();
             self.axes[i].write_data.next = self.bus_write_data.val();
@@ -527,7 +548,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         self.interrupts.clear.next =
             self.bus_write.val() & (self.bus_address.val() == self.a_status.val());
         self.interrupts.clear_bits.next = self.bus_write_data.val().get_bits::<7>(0);
-        self.interrupts.enable.next = self.irq_enable.q.val();
+        self.interrupts.enable.next = self.irq_enable.q.val().get_bits::<7>(0);
         self.irq.next = self.interrupts.irq.val();
 
         // Reads.
@@ -552,22 +573,32 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.global_read.next = self.config_value.val();
         }
         if self.bus_address.val() == self.a_control.val() {
-            self.global_read.next = bit_cast::<32, 1>(self.run.q.val().into());
+            if self.run.q.val() {
+                self.global_read.next = self.one32.val();
+            }
         }
         if self.bus_address.val() == self.a_status.val() {
-            self.global_read.next = bit_cast::<32, 7>(self.interrupts.status.val());
+            for i in 0..7 {
+                if self.interrupts.status.val().get_bit(i) {
+                    self.global_read.next = self.global_read.val() | self.bit_mask[i].val();
+                }
+            }
         }
         if self.bus_address.val() == self.a_irq_enable.val() {
-            self.global_read.next = bit_cast::<32, 7>(self.irq_enable.q.val());
+            self.global_read.next = self.irq_enable.q.val();
         }
         if self.bus_address.val() == self.a_tick_divisor.val() {
             self.global_read.next = self.tick_divisor.q.val();
         }
         if self.bus_address.val() == self.a_period_ticks.val() {
-            self.global_read.next = self.period_ticks.q.val();
+            for i in 0..PERIOD_BITS {
+                if self.period_ticks.q.val().get_bit(i) {
+                    self.global_read.next = self.global_read.val() | self.bit_mask[i].val();
+                }
+            }
         }
         if self.bus_address.val() == self.a_low_water.val() {
-            self.global_read.next = bit_cast::<32, NP1>(self.low_water.q.val());
+            self.global_read.next = self.low_water.q.val();
         }
         if self.bus_address.val() == self.a_watchdog_timeout.val() {
             self.global_read.next = self.watchdog_timeout.q.val();
@@ -585,15 +616,16 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
 
         if self.reset.val() {
             self.run.d.next = false;
-            self.irq_enable.d.next = self.zero7.val();
+            self.irq_enable.d.next = self.zero32.val();
             self.tick_divisor.d.next = self.zero32.val();
-            self.period_ticks.d.next = self.zero32.val();
-            self.low_water.d.next = self.zero_level.val();
+            self.period_ticks.d.next = self.zero_p.val();
+            self.low_water.d.next = self.zero32.val();
             self.watchdog_timeout.d.next = self.zero32.val();
-            self.ticks_left.d.next = self.zero32.val();
+            self.ticks_left.d.next = self.zero_p.val();
             self.boundary_next.d.next = false;
             self.in_period.d.next = false;
-            self.period_active.d.next = self.zero32.val();
+            self.period_active.d.next = self.zero_p.val();
+            self.modulus.d.next = self.zero_p.val();
             self.period_count.d.next = self.zero32.val();
             self.read_data.d.next = self.zero32.val();
             self.any_low_prev_n.d.next = false;

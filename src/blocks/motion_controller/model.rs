@@ -21,6 +21,9 @@ use crate::blocks::uniform_pulse_gen::model::{
 };
 use crate::blocks::watchdog::model::WatchdogModel;
 
+/// The largest count the interpolators take.
+const COUNT_MAX: u64 = (1 << super::PERIOD_BITS) - 1;
+
 /// The controller's inputs in one clock.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ControllerInputs {
@@ -60,8 +63,8 @@ struct AxisControl {
     halt: bool,
     pop: bool,
     underrun: bool,
-    period_next: u64,
     period_active: u64,
+    modulus: u64,
     snapshot: bool,
     low_water: u64,
     address: u32,
@@ -91,7 +94,12 @@ pub struct AxisModel {
     dir_setup: u32,
     dir_hold: u32,
     sample_rate: u32,
+    popped: u32,
+    popped_valid: bool,
+    underrun_d: bool,
+    tick_d: bool,
     integrand: u64,
+    entry_overrange: bool,
     forward: bool,
     forward_1: bool,
     forward_2: bool,
@@ -100,6 +108,8 @@ pub struct AxisModel {
     uniform_running_forward: bool,
     uniform_ready_prev: bool,
     uniform_pulse_prev: bool,
+    request: bool,
+    request_forward: bool,
     cmd_snapshot: u32,
     act_snapshot: u32,
     fault_prev: bool,
@@ -120,7 +130,7 @@ impl AxisModel {
     fn new(index: usize, fifo_log2: u32) -> Self {
         let mut fifo = CommandFifoModel::new(1 << fifo_log2);
         let fifo_out = fifo.step(true, false, 0, false, 0, false);
-        let mut uniform = UniformPulseGenModel::new();
+        let mut uniform = UniformPulseGenModel::with_width(super::PERIOD_BITS as u32);
         let uniform_out = uniform.step(UniformPulseGenInputs {
             reset: true,
             ..Default::default()
@@ -135,7 +145,7 @@ impl AxisModel {
             reset: true,
             ..Default::default()
         });
-        let dda = DdaIntegratorModel::new(32);
+        let dda = DdaIntegratorModel::new(super::PERIOD_BITS as u32);
         let encoder = QuadratureDecoderModel::new(32, 8, 16);
         Self {
             window: (AXIS_BASE + index as u32 * AXIS_STRIDE) >> 4,
@@ -157,7 +167,12 @@ impl AxisModel {
             dir_setup: 0,
             dir_hold: 0,
             sample_rate: 0,
+            popped: 0,
+            popped_valid: false,
+            underrun_d: false,
+            tick_d: false,
             integrand: 0,
+            entry_overrange: false,
             forward: false,
             forward_1: false,
             forward_2: false,
@@ -166,6 +181,8 @@ impl AxisModel {
             uniform_running_forward: false,
             uniform_ready_prev: false,
             uniform_pulse_prev: false,
+            request: false,
+            request_forward: false,
             cmd_snapshot: 0,
             act_snapshot: 0,
             fault_prev: false,
@@ -192,16 +209,13 @@ impl AxisModel {
         (address >> 4) & 0xf == self.window
     }
 
-    fn head_magnitude(&self) -> u64 {
-        (self.fifo_out.head as u32 as i32).unsigned_abs() as u64
-    }
-
-    fn head_forward(&self) -> bool {
-        self.fifo_out.head & (1 << 31) == 0
+    fn popped_magnitude(&self) -> u64 {
+        (self.popped as i32).unsigned_abs() as u64
     }
 
     fn fault(&self) -> bool {
         self.stage_out.overrun
+            || self.entry_overrange
             || self.dda_out.overrange
             || self.uniform_out.overrange
             || self.uniform_out.overflow
@@ -234,7 +248,7 @@ impl AxisModel {
                 axis::ACT_SNAPSHOT => self.act_snapshot,
                 axis::AXIS_STATUS => {
                     self.stage_out.overrun as u32
-                        | ((self.dda_out.overrange || self.uniform_out.overrange) as u32) << 1
+                        | ((self.dda_out.overrange || self.uniform_out.overrange || self.entry_overrange) as u32) << 1
                         | (self.uniform_out.overflow as u32) << 2
                         | (self.encoder_out.error as u32) << 3
                         | (self.encoder_out.index_seen as u32) << 4
@@ -272,16 +286,29 @@ impl AxisModel {
                 _ => {}
             }
         }
-        let magnitude = self.head_magnitude();
-        let head_forward = self.head_forward();
+        // The entry popped at the last edge is taken now.
+        next.popped_valid = c.pop;
+        next.underrun_d = c.underrun;
+        next.tick_d = c.tick;
+        if c.pop {
+            next.popped = self.fifo_out.head as u32;
+        }
+        let magnitude = self.popped_magnitude().min(COUNT_MAX);
+        let popped_forward = self.popped & (1 << 31) == 0;
+        if clear_faults {
+            next.entry_overrange = false;
+        }
+        if self.popped_valid && self.popped_magnitude() > COUNT_MAX {
+            next.entry_overrange = true;
+        }
         if c.start {
             next.uniform_active = self.config & 1 != 0;
         }
-        if c.pop {
-            next.forward = head_forward;
+        if self.popped_valid {
+            next.forward = popped_forward;
             next.integrand = if self.uniform_active { 0 } else { magnitude };
         }
-        if c.underrun || c.halt {
+        if self.underrun_d || c.halt {
             next.integrand = 0;
         }
         next.forward_1 = self.forward;
@@ -297,22 +324,22 @@ impl AxisModel {
         );
         next.dda_out = next.dda.step(DdaIntegratorInputs {
             reset: c.reset || c.halt || c.start,
-            tick: c.tick,
+            tick: self.tick_d,
             integrand: self.integrand,
-            modulus: c.period_active,
+            modulus: c.modulus,
             clear_overrange: clear_faults,
         });
         next.uniform_out = next.uniform.step(UniformPulseGenInputs {
             reset: c.reset || c.halt,
-            tick: c.tick,
-            period: c.period_next,
+            tick: self.tick_d,
+            period: c.period_active,
             count: magnitude,
             mode: self.config & 2 != 0,
-            load: c.pop && self.uniform_active,
+            load: self.popped_valid && self.uniform_active,
             clear_flags: clear_faults || c.start,
         });
-        if c.pop && self.uniform_active && self.uniform_out.ready {
-            next.uniform_loaded_forward = head_forward;
+        if self.popped_valid && self.uniform_active && self.uniform_out.ready {
+            next.uniform_loaded_forward = popped_forward;
         }
         next.uniform_ready_prev = self.uniform_out.ready;
         next.uniform_pulse_prev = self.uniform_out.pulse;
@@ -323,11 +350,12 @@ impl AxisModel {
             self.uniform_running_forward
         };
         next.uniform_running_forward = uniform_forward;
-        let (step, dir) = if self.uniform_active {
+        (next.request, next.request_forward) = if self.uniform_active {
             (self.uniform_out.pulse && !self.uniform_pulse_prev, uniform_forward)
         } else {
             (self.dda_out.pulse, self.forward_2)
         };
+        let (step, dir) = (self.request, self.request_forward);
         next.stage_out = next.stage.step(StepOutputInputs {
             reset: c.reset,
             step,
@@ -377,7 +405,12 @@ impl AxisModel {
             next.dir_setup = 0;
             next.dir_hold = 0;
             next.sample_rate = 0;
+            next.popped = 0;
+            next.popped_valid = false;
+            next.underrun_d = false;
+            next.tick_d = false;
             next.integrand = 0;
+            next.entry_overrange = false;
             next.forward = false;
             next.forward_1 = false;
             next.forward_2 = false;
@@ -386,6 +419,8 @@ impl AxisModel {
             next.uniform_running_forward = false;
             next.uniform_ready_prev = false;
             next.uniform_pulse_prev = false;
+            next.request = false;
+            next.request_forward = false;
             next.cmd_snapshot = 0;
             next.act_snapshot = 0;
             next.fault_prev = false;
@@ -419,6 +454,7 @@ pub struct MotionControllerModel {
     boundary_next: bool,
     in_period: bool,
     period_active: u32,
+    modulus: u32,
     period_count: u32,
     read_data: u32,
     /// Inverted like the RTL's: reset counts as "already low".
@@ -453,6 +489,7 @@ impl MotionControllerModel {
             boundary_next: false,
             in_period: false,
             period_active: 0,
+            modulus: 0,
             period_count: 0,
             read_data: 0,
             any_low_prev_n: false,
@@ -517,8 +554,8 @@ impl MotionControllerModel {
         let halt = (write_control && i.write_data & 1 == 0) || expired;
         let boundary = self.run && tick && self.boundary_next;
         let all_ready = self.axes.iter().all(|a| !a.fifo_out.empty);
-        let pop = boundary && all_ready;
-        let underrun = boundary && !all_ready;
+        let pop = boundary && all_ready && !halt;
+        let underrun = boundary && !all_ready && !halt;
         let period_next = self.period_ticks.max(1);
         let combs: Vec<AxisComb> = self
             .axes
@@ -545,7 +582,7 @@ impl MotionControllerModel {
             match address {
                 global::IRQ_ENABLE => next.irq_enable = i.write_data & 0x7f,
                 global::TICK_DIVISOR => next.tick_divisor = i.write_data,
-                global::PERIOD_TICKS => next.period_ticks = i.write_data,
+                global::PERIOD_TICKS => next.period_ticks = i.write_data & COUNT_MAX as u32,
                 global::FIFO_LOW_WATER => next.low_water = i.write_data & level_mask,
                 global::WATCHDOG_TIMEOUT => next.watchdog_timeout = i.write_data,
                 _ => {}
@@ -578,6 +615,7 @@ impl MotionControllerModel {
                 next.boundary_next = self.ticks_left == 2;
             }
         }
+        next.modulus = self.period_active;
         if pop {
             next.in_period = true;
             next.period_count = self.period_count.wrapping_add(1);
@@ -593,8 +631,8 @@ impl MotionControllerModel {
             halt,
             pop,
             underrun,
-            period_next: period_next as u64,
             period_active: self.period_active as u64,
+            modulus: self.modulus as u64,
             snapshot: write(global::SNAPSHOT),
             low_water: self.low_water as u64,
             address,
@@ -623,6 +661,7 @@ impl MotionControllerModel {
             next.boundary_next = false;
             next.in_period = false;
             next.period_active = 0;
+            next.modulus = 0;
             next.period_count = 0;
             next.read_data = 0;
             next.any_low_prev_n = false;

@@ -212,7 +212,7 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
             register("STATUS", global::STATUS, "sticky interrupt status, write 1 to clear", irq_fields(WriteOneToClear)),
             register("IRQ_ENABLE", global::IRQ_ENABLE, "interrupt enable mask: irq is high while an enabled STATUS bit is set", irq_fields(ReadWrite)),
             Register::word("TICK_DIVISOR", global::TICK_DIVISOR, ReadWrite, 0, "base tick = one every n clocks; 0 stops the tick (pauses everything)"),
-            Register::word("PERIOD_TICKS", global::PERIOD_TICKS, ReadWrite, 0, "interpolation period in base ticks, taken at each boundary; 0 acts as 1"),
+            number("PERIOD_TICKS", global::PERIOD_TICKS, super::PERIOD_BITS as u32, "interpolation period in base ticks, taken at each boundary; 0 acts as 1"),
             register(
                 "FIFO_LOW_WATER",
                 global::FIFO_LOW_WATER,
@@ -233,7 +233,7 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                 ],
             ),
             Register::word("PERIOD_COUNT", global::PERIOD_COUNT, ReadOnly, 0, "periods started since reset, wrapping"),
-            per_axis(Register::word("FIFO_WRITE", at(axis::FIFO_WRITE), WriteOnly, 0, "push one period's signed step count (refused when full)")),
+            per_axis(Register::word("FIFO_WRITE", at(axis::FIFO_WRITE), WriteOnly, 0, "push one period's signed step count (refused when full); a magnitude above 65535 is saturated and flagged")),
             per_axis(register(
                 "FIFO_STATUS",
                 at(axis::FIFO_STATUS),

@@ -71,7 +71,7 @@ use rust_hdl::prelude::*;
 
 use crate::blocks::sequential_divider::SequentialDivider;
 
-pub use model::LOAD_TO_READY;
+pub use model::{load_to_ready, LOAD_TO_READY};
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
@@ -137,7 +137,7 @@ const SLOT_FULL: u64 = 6;
 
 /// Dual-period uniform pulse generator. See the [module documentation](self).
 #[derive(Clone, Debug, LogicBlock)]
-pub struct UniformPulseGen {
+pub struct UniformPulseGen<const W: usize> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
     /// Synchronous reset, active high.
@@ -145,9 +145,9 @@ pub struct UniformPulseGen {
     /// Time base.
     pub tick: Signal<In, Bit>,
     /// T.
-    pub period: Signal<In, Bits<32>>,
+    pub period: Signal<In, Bits<W>>,
     /// N.
-    pub count: Signal<In, Bits<32>>,
+    pub count: Signal<In, Bits<W>>,
     /// Interleaved order.
     pub mode: Signal<In, Bit>,
     /// Queue the next period.
@@ -168,38 +168,38 @@ pub struct UniformPulseGen {
     pub overrange: Signal<Out, Bit>,
     /// Sticky overflow.
     pub overflow: Signal<Out, Bit>,
-    divider: SequentialDivider<32, 32>,
+    divider: SequentialDivider<W, W>,
     // The next-period slot, filled by a small sequencer after a load.
     slot_state: DFF<Bits<3>>,
-    slot_period: DFF<Bits<32>>,
-    slot_count: DFF<Bits<32>>,
+    slot_period: DFF<Bits<W>>,
+    slot_count: DFF<Bits<W>>,
     slot_interleaved: DFF<Bit>,
-    slot_half: DFF<Bits<32>>,
+    slot_half: DFF<Bits<W>>,
     slot_half_is_one: DFF<Bit>,
-    slot_long_half: DFF<Bits<32>>,
-    slot_short_pulses: DFF<Bits<32>>,
-    slot_long_pulses: DFF<Bits<32>>,
-    slot_step_long: DFF<Bits<32>>,
-    slot_step_short: DFF<Bits<32>>,
-    slot_first_error: DFF<Bits<32>>,
+    slot_long_half: DFF<Bits<W>>,
+    slot_short_pulses: DFF<Bits<W>>,
+    slot_long_pulses: DFF<Bits<W>>,
+    slot_step_long: DFF<Bits<W>>,
+    slot_step_short: DFF<Bits<W>>,
+    slot_first_error: DFF<Bits<W>>,
     slot_has_pulses: DFF<Bit>,
     // The running period.
     running_reg: DFF<Bit>,
-    ticks_left: DFF<Bits<32>>,
+    ticks_left: DFF<Bits<W>>,
     /// `ticks_left == 1`: the next tick edge ends the period.
     period_last: DFF<Bit>,
-    half_left: DFF<Bits<32>>,
+    half_left: DFF<Bits<W>>,
     /// `half_left == 1`: the next tick edge ends the half pulse.
     half_last: DFF<Bit>,
     pulse_reg: DFF<Bit>,
     long: DFF<Bit>,
     /// Bresenham error, signed: the next pulse is long when it is >= 0.
-    error: DFF<Bits<32>>,
-    half: DFF<Bits<32>>,
+    error: DFF<Bits<W>>,
+    half: DFF<Bits<W>>,
     half_is_one: DFF<Bit>,
-    long_half: DFF<Bits<32>>,
-    step_long: DFF<Bits<32>>,
-    step_short: DFF<Bits<32>>,
+    long_half: DFF<Bits<W>>,
+    step_long: DFF<Bits<W>>,
+    step_short: DFF<Bits<W>>,
     has_pulses: DFF<Bit>,
     period_done_reg: DFF<Bit>,
     underrun_reg: DFF<Bit>,
@@ -212,7 +212,7 @@ pub struct UniformPulseGen {
     count_too_large: DFF<Bit>,
     start: Signal<Local, Bit>,
     next_long: Signal<Local, Bit>,
-    period_half: Signal<Local, Bits<32>>,
+    period_half: Signal<Local, Bits<W>>,
     empty: Constant<Bits<3>>,
     check: Constant<Bits<3>>,
     clamp: Constant<Bits<3>>,
@@ -220,15 +220,16 @@ pub struct UniformPulseGen {
     split: Constant<Bits<3>>,
     steps: Constant<Bits<3>>,
     full: Constant<Bits<3>>,
-    zero: Constant<Bits<32>>,
-    one: Constant<Bits<32>>,
-    two: Constant<Bits<32>>,
-    not_one: Constant<Bits<32>>,
-    sign: Constant<Bits<32>>,
+    zero: Constant<Bits<W>>,
+    one: Constant<Bits<W>>,
+    two: Constant<Bits<W>>,
+    not_one: Constant<Bits<W>>,
+    sign: Constant<Bits<W>>,
 }
 
-impl Default for UniformPulseGen {
+impl<const W: usize> Default for UniformPulseGen<W> {
     fn default() -> Self {
+        assert!((4..=32).contains(&W), "UniformPulseGen: W must be 4 to 32 bits");
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -293,13 +294,13 @@ impl Default for UniformPulseGen {
             zero: Constant::new(0u64.into()),
             one: Constant::new(1u64.into()),
             two: Constant::new(2u64.into()),
-            not_one: Constant::new(0xffff_fffeu64.into()),
-            sign: Constant::new(0x8000_0000u64.into()),
+            not_one: Constant::new((crate::blocks::width_mask(W as u32) & !1).into()),
+            sign: Constant::new((1u64 << (W - 1)).into()),
         }
     }
 }
 
-impl Logic for UniformPulseGen {
+impl<const W: usize> Logic for UniformPulseGen<W> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -522,7 +523,7 @@ impl Logic for UniformPulseGen {
     }
 }
 
-crate::vector_ports!(impl[] UniformPulseGen {
+crate::vector_ports!(impl[const W: usize] UniformPulseGen<W> {
     inputs: [reset, tick, period, count, mode, load, clear_flags],
     outputs: [pulse, period_done, ready, running, underrun, overrange, overflow],
 });

@@ -145,10 +145,16 @@ pub struct UniformPulseGenOutputs {
 }
 
 /// Clocks from the edge that accepts a load to the edge after which the
-/// slot is complete (a check and a clamp clock, the 32-clock division and
-/// two clocks of precomputation): a period loaded at edge L can start at the first tick
-/// edge after L + `LOAD_TO_READY`.
-pub const LOAD_TO_READY: u32 = 38;
+/// slot is complete, for a `width`-bit generator (a check and a clamp
+/// clock, the `width`-clock division and two clocks of precomputation): a
+/// period loaded at edge L can start at the first tick edge after
+/// L + `load_to_ready(width)`.
+pub const fn load_to_ready(width: u32) -> u32 {
+    width + 6
+}
+
+/// [`load_to_ready`] of the exported 32-bit generator.
+pub const LOAD_TO_READY: u32 = load_to_ready(32);
 
 #[derive(Clone, Copy, Debug, Default)]
 struct Current {
@@ -161,9 +167,13 @@ struct Current {
     long: bool,
 }
 
-/// Cycle-exact model of the 32-bit `uniform_pulse_gen`.
-#[derive(Clone, Debug, Default)]
+/// Cycle-exact model of a `uniform_pulse_gen` (32-bit by default).
+#[derive(Clone, Debug)]
 pub struct UniformPulseGenModel {
+    /// Port width mask.
+    mask: u64,
+    /// [`load_to_ready`] of this width.
+    load_to_ready: u32,
     /// The queued period and the clocks until it is computed.
     slot: Option<(PulsePlan, bool, u32)>,
     current: Option<Current>,
@@ -171,21 +181,29 @@ pub struct UniformPulseGenModel {
 }
 
 impl UniformPulseGenModel {
-    /// A generator in its power-up state.
+    /// A 32-bit generator in its power-up state.
     pub fn new() -> Self {
+        Self::with_width(32)
+    }
+
+    /// A `width`-bit generator (4 to 32) in its power-up state.
+    pub fn with_width(width: u32) -> Self {
         Self {
+            mask: crate::blocks::width_mask(width),
+            load_to_ready: load_to_ready(width),
+            slot: None,
+            current: None,
             out: UniformPulseGenOutputs {
                 ready: true,
                 ..Default::default()
             },
-            ..Default::default()
         }
     }
 
     /// One rising clock edge; returns the outputs after it.
     pub fn step(&mut self, i: UniformPulseGenInputs) -> UniformPulseGenOutputs {
         if i.reset {
-            *self = Self::new();
+            *self = Self::with_width(self.mask.count_ones());
             return self.out;
         }
         // Sticky flags: a clear and a new event on the same clock leave the
@@ -246,7 +264,7 @@ impl UniformPulseGenModel {
             self.out.pulse = plan.count > 0;
         }
         if let Some((plan, _, left)) = &mut self.slot {
-            if *left == LOAD_TO_READY - 1 {
+            if *left == self.load_to_ready - 1 {
                 // The clamp, two clocks after the load, reports corrected
                 // input.
                 self.out.overrange |= PulsePlan::new(plan.requested.0, plan.requested.1).1;
@@ -255,9 +273,10 @@ impl UniformPulseGenModel {
         }
         if i.load {
             if was_ready {
-                let (mut plan, _) = PulsePlan::new(i.period, i.count);
-                plan.requested = (i.period, i.count);
-                self.slot = Some((plan, i.mode, LOAD_TO_READY));
+                let (period, count) = (i.period & self.mask, i.count & self.mask);
+                let (mut plan, _) = PulsePlan::new(period, count);
+                plan.requested = (period, count);
+                self.slot = Some((plan, i.mode, self.load_to_ready));
             } else {
                 self.out.overflow = true;
             }
