@@ -35,6 +35,8 @@ pub struct ModuleSpec {
     pub fmax_target_mhz: f64,
     /// The LUT4 budget on iCE40 HX8K from the block's issue, if it sets one.
     pub lut4_budget: Option<u32>,
+    /// The logic-cell budget on iCE40 HX8K from the block's issue, if it sets one.
+    pub logic_cell_budget: Option<u32>,
     /// Builds the block with the exported parameters.
     pub build: fn() -> Box<dyn Block>,
 }
@@ -49,6 +51,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: freq_divider::PORT_DOCS,
             fmax_target_mhz: 125.0,
             lut4_budget: Some(80),
+            logic_cell_budget: None,
             build: || Box::new(FreqDivider::<32>::default()),
         },
         ModuleSpec {
@@ -58,6 +61,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: pulse_counter::PORT_DOCS,
             fmax_target_mhz: 125.0,
             lut4_budget: None,
+            logic_cell_budget: None,
             build: || Box::new(PulseCounter::<32>::default()),
         },
         ModuleSpec {
@@ -70,6 +74,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: sequential_divider::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
+            logic_cell_budget: None,
             build: || Box::new(SequentialDivider::<32, 32>::default()),
         },
         ModuleSpec {
@@ -79,6 +84,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: dda_integrator::PORT_DOCS,
             fmax_target_mhz: 110.0,
             lut4_budget: None,
+            logic_cell_budget: None,
             build: || Box::new(DdaIntegrator::<32>::default()),
         },
         ModuleSpec {
@@ -96,6 +102,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: dda_interpolator::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
+            logic_cell_budget: None,
             build: || Box::new(DdaInterpolator::<3>::default()),
         },
         ModuleSpec {
@@ -108,6 +115,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: uniform_pulse_gen::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
+            logic_cell_budget: None,
             build: || Box::new(UniformPulseGen::<32>::default()),
         },
         ModuleSpec {
@@ -121,6 +129,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: quadrature_decoder::PORT_DOCS,
             fmax_target_mhz: 150.0,
             lut4_budget: Some(130),
+            logic_cell_budget: None,
             build: || Box::new(QuadratureDecoder::<32, 8, 16>::default()),
         },
         ModuleSpec {
@@ -141,6 +150,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: step_output::PORT_DOCS,
             fmax_target_mhz: 125.0,
             lut4_budget: None,
+            logic_cell_budget: None,
             build: || Box::new(StepOutput::<16, 16>::default()),
         },
         ModuleSpec {
@@ -153,6 +163,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: external_bus_adapter::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
+            logic_cell_budget: None,
             build: || Box::new(ExternalBusAdapter::<8>::default()),
         },
         ModuleSpec {
@@ -169,6 +180,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: step_channel::PORT_DOCS,
             fmax_target_mhz: 110.0,
             lut4_budget: Some(232),
+            logic_cell_budget: None,
             build: || Box::new(StepChannel::<32, 16>::default()),
         },
         ModuleSpec {
@@ -182,6 +194,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: motion_controller::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
+            logic_cell_budget: Some(2500),
             build: || Box::new(MotionController::<3, 4, 5>::default()),
         },
     ]

@@ -52,19 +52,23 @@
 //! ## Time base and periods
 //! * The base tick is one clock in `TICK_DIVISOR` (0 stops it: everything
 //!   that counts ticks pauses). An interpolation period is `PERIOD_TICKS`
-//!   base ticks (0 acts as 1), taken at each boundary.
+//!   base ticks (16 bits, 1 to 65535; 0 acts as 1), taken at each
+//!   boundary. For a 1 ms period at 100 MHz, use `TICK_DIVISOR` >= 2.
 //! * Writing `CONTROL.RUN` = 1 while stopped starts: the first base tick is
 //!   a boundary at which every axis pops its first entry; then a boundary
 //!   comes every `PERIOD_TICKS` ticks. At each boundary all axes pop on the
 //!   same clock edge, `PERIOD_COUNT` counts, and `STATUS.PERIOD_DONE` is
 //!   raised (except at the first boundary after a start).
 //! * An entry is the signed number of steps of that axis in that period.
-//!   DDA axes emit exactly |n| steps spread over the period's P ticks (at
-//!   most one per tick: |n| <= P). Uniform axes load the dual-period
+//!   The interpolators take it one clock after the boundary and see every
+//!   tick one clock late, so the boundary tick still belongs to the old
+//!   period. DDA axes emit exactly |n| steps spread over the period's P
+//!   ticks (at most one per tick: |n| <= P). Uniform axes load the dual-period
 //!   generator with (P, |n|), |n| <= P/2; it runs each period
-//!   [`LOAD_TO_READY`](crate::blocks::uniform_pulse_gen::LOAD_TO_READY) + 1
-//!   clocks or more after its boundary (a fixed lag), so P must be longer
-//!   than that in clocks.
+//!   [`load_to_ready`](crate::blocks::uniform_pulse_gen::load_to_ready)(16)
+//!   + 2 = 24 clocks or more after its boundary (a fixed lag), so a period
+//!   must be longer than that in clocks, or the generator refuses the next
+//!   one (`INTERP_OVERFLOW`).
 //! * The commanded position counts the steps that left each output stage,
 //!   so it is exact whatever happened before.
 //!
@@ -95,10 +99,25 @@
 //! * Writes to read-only or unused addresses are ignored; reads of unused
 //!   addresses return 0.
 //!
+//! * **Entry too large**: |n| > 65535 is saturated to 65535 and
+//!   `INTERP_OVERRANGE` is set (then the interpolator's own clamp applies).
+//!
 //! ## Latency
-//! A DDA step leaves the output stage at the earliest 3 clocks after the
-//! tick that produced it (2 in the DDA, 1 in the stage); the stage's timing
-//! settings may delay it further. `irq` follows a `STATUS` bit by one clock.
+//! A DDA step reaches the pins at the earliest 5 clocks after the base tick
+//! that produced it (1 tick delay, 2 in the DDA, 1 request register, 1 in
+//! the stage); the stage's timing settings may delay it further. A uniform
+//! axis runs each period 24 clocks or more behind the boundary. `irq` follows a `STATUS` bit by
+//! one clock. The commanded position counts a step in the clock its first
+//! pin edge appears; the actual position follows the encoder pins by the
+//! decoder's latency (5 clocks with the filter off).
+//!
+//! ## Resources (iCE40 HX8K, K = 3, 16-entry FIFOs)
+//! See `rtl-out/synthesis-report.md`. The budget of 2500 logic
+//! cells is not met: each axis carries a complete uniform pulse generator
+//! (its own divider and a double-buffered period plan), a DDA, an output
+//! stage with four 16-bit timers, a 32-bit position counter, a quadrature
+//! decoder with timestamps and a FIFO, and the register file and read
+//! multiplexer are 32 bits wide.
 
 pub mod axis;
 pub mod model;
