@@ -11,6 +11,7 @@
 
 pub mod blocks;
 pub mod export;
+pub mod host;
 pub mod plots;
 pub mod regmap;
 pub mod sim;

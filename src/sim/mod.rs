@@ -5,10 +5,12 @@
 //! the calling thread (about 200x faster) and is the one way every test and
 //! tool in this crate drives RTL.
 
+mod encoder;
 mod harness;
 mod ports;
 mod waveform;
 
+pub use encoder::SimulatedEncoder;
 pub use harness::{Harness, HarnessError};
 pub use ports::{PortValue, VectorPorts};
 pub use waveform::{render_svg, WaveformError};

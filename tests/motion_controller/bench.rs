@@ -10,33 +10,7 @@ use motion_hdl::blocks::motion_controller::model::{
 use motion_hdl::blocks::motion_controller::registers::register_map;
 use motion_hdl::blocks::motion_controller::MotionController;
 use motion_hdl::regmap::RegisterMap;
-use motion_hdl::sim::{Harness, VectorPorts};
-
-/// A quadrature encoder on a step/dir output: each rising edge of the step
-/// pin moves it one Gray state (one count) in the direction of the dir pin.
-/// Pins change in the clock after the step edge is seen.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct SimulatedEncoder {
-    state: u8,
-    last_step: bool,
-    /// Net steps seen on the pins (an independent count of the output).
-    pub net: i64,
-}
-
-impl SimulatedEncoder {
-    const GRAY: [(bool, bool); 4] = [(false, false), (true, false), (true, true), (false, true)];
-
-    /// Watches the step/dir pins after an edge; returns (a, b, index).
-    pub fn follow(&mut self, (step, dir): (bool, bool)) -> (bool, bool, bool) {
-        if step && !self.last_step {
-            self.state = if dir { (self.state + 1) % 4 } else { (self.state + 3) % 4 };
-            self.net += if dir { 1 } else { -1 };
-        }
-        self.last_step = step;
-        let (a, b) = Self::GRAY[self.state as usize];
-        (a, b, false)
-    }
-}
+use motion_hdl::sim::{Harness, SimulatedEncoder, VectorPorts};
 
 /// RTL and model of a K-axis controller with 2^N-entry FIFOs, in lockstep.
 pub struct Bench<const K: usize, const N: usize, const NP1: usize> {

@@ -1,0 +1,238 @@
+//! The register bus the driver talks to, and its implementations: the RTL
+//! simulation of `motion_controller` (with each axis's steps looped back
+//! into its encoder), and a recorder of register writes.
+
+use std::fmt::Write as _;
+
+use crate::blocks::motion_controller::model::{ControllerInputs, MotionControllerModel};
+use crate::blocks::motion_controller::MotionController;
+use crate::regmap::RegisterMap;
+use crate::sim::{Harness, HarnessError, SimulatedEncoder};
+
+/// A `motion_controller` register bus as firmware sees it.
+pub trait ControllerBus {
+    /// Writes a register (word address).
+    fn write(&mut self, address: u32, value: u32);
+    /// Reads a register (word address).
+    fn read(&mut self, address: u32) -> u32;
+    /// Lets `clocks` clocks pass; returns the interrupt line after them.
+    fn wait(&mut self, clocks: u64) -> bool;
+    /// Clocks run so far.
+    fn cycles(&self) -> u64;
+}
+
+/// The 3-axis exported controller (16-entry FIFOs) in RTL simulation, each
+/// axis's step/dir pins driving a [`SimulatedEncoder`] on its encoder
+/// inputs.
+pub struct RtlBus {
+    harness: Harness<MotionController<3, 4, 5>>,
+    encoders: [SimulatedEncoder; 3],
+    irq: bool,
+    /// Largest pin step rate seen per axis: steps in the busiest window of
+    /// `rate_window` clocks.
+    window_steps: [u64; 3],
+    window_start: u64,
+    peak_window_steps: [u64; 3],
+    rate_window: u64,
+}
+
+impl RtlBus {
+    /// A controller in its power-up state.
+    pub fn new() -> Result<Self, HarnessError> {
+        Ok(Self {
+            harness: Harness::new("motion_controller", MotionController::<3, 4, 5>::default())?,
+            encoders: [SimulatedEncoder::default(); 3],
+            irq: false,
+            window_steps: [0; 3],
+            window_start: 0,
+            peak_window_steps: [0; 3],
+            rate_window: 10_000,
+        })
+    }
+
+    /// Records every signal to a VCD file from now on.
+    pub fn record_vcd(&mut self, path: &std::path::Path) -> Result<(), HarnessError> {
+        self.harness.record_vcd(path)
+    }
+
+    /// The simulated encoders (their `net` and `total` count the pins).
+    pub fn encoders(&self) -> &[SimulatedEncoder; 3] {
+        &self.encoders
+    }
+
+    /// Peak step rate per axis at the pins, in steps per clock, measured
+    /// over windows of 10,000 clocks.
+    pub fn peak_steps_per_clock(&self) -> [f64; 3] {
+        self.peak_window_steps.map(|n| n as f64 / self.rate_window as f64)
+    }
+
+    fn clock(&mut self, address: u32, data: u32, write: bool, read: bool) -> u32 {
+        let block = self.harness.block();
+        block.bus_address.next = (address as u64).into();
+        block.bus_write_data.next = (data as u64).into();
+        block.bus_write.next = write;
+        block.bus_read.next = read;
+        block.reset.next = false;
+        for (i, e) in self.encoders.iter().enumerate() {
+            let (a, b, index) = e.outputs();
+            block.enc_a[i].next = a;
+            block.enc_b[i].next = b;
+            block.enc_index[i].next = index;
+        }
+        self.harness.cycle().expect("the controller settles");
+        let block = self.harness.block();
+        let pins: Vec<(bool, bool)> = (0..3)
+            .map(|i| (block.step_a[i].val(), block.step_b[i].val()))
+            .collect();
+        self.irq = block.irq.val();
+        let read_data = block.bus_read_data.val().to_u64() as u32;
+        for (i, e) in self.encoders.iter_mut().enumerate() {
+            let before = e.total;
+            e.follow(pins[i]);
+            self.window_steps[i] += e.total - before;
+        }
+        if self.harness.cycles() - self.window_start >= self.rate_window {
+            for i in 0..3 {
+                self.peak_window_steps[i] = self.peak_window_steps[i].max(self.window_steps[i]);
+            }
+            self.window_steps = [0; 3];
+            self.window_start = self.harness.cycles();
+        }
+        read_data
+    }
+}
+
+impl ControllerBus for RtlBus {
+    fn write(&mut self, address: u32, value: u32) {
+        self.clock(address, value, true, false);
+    }
+    fn read(&mut self, address: u32) -> u32 {
+        self.clock(address, 0, false, true);
+        self.clock(0, 0, false, false)
+    }
+    fn wait(&mut self, clocks: u64) -> bool {
+        for _ in 0..clocks {
+            self.clock(0, 0, false, false);
+        }
+        self.irq
+    }
+    fn cycles(&self) -> u64 {
+        self.harness.cycles()
+    }
+}
+
+/// The controller's reference model as a bus (no RTL: fast), with no
+/// encoder motion. For recording a driver's register traffic.
+pub struct ModelBus {
+    model: MotionControllerModel,
+    irq: bool,
+    cycles: u64,
+}
+
+impl ModelBus {
+    /// A 3-axis, 16-entry model in its power-up state.
+    pub fn new() -> Self {
+        Self {
+            model: MotionControllerModel::new(3, 4).expect("3 axes fit"),
+            irq: false,
+            cycles: 0,
+        }
+    }
+
+    fn clock(&mut self, address: u32, write_data: u32, write: bool, read: bool) -> u32 {
+        let out = self.model.step(&ControllerInputs {
+            reset: false,
+            address,
+            write_data,
+            write,
+            read,
+            encoders: vec![(false, false, false); 3],
+        });
+        self.cycles += 1;
+        self.irq = out.irq;
+        out.read_data
+    }
+}
+
+impl Default for ModelBus {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl ControllerBus for ModelBus {
+    fn write(&mut self, address: u32, value: u32) {
+        self.clock(address, value, true, false);
+    }
+    fn read(&mut self, address: u32) -> u32 {
+        self.clock(address, 0, false, true);
+        self.clock(0, 0, false, false)
+    }
+    fn wait(&mut self, clocks: u64) -> bool {
+        for _ in 0..clocks {
+            self.clock(0, 0, false, false);
+        }
+        self.irq
+    }
+    fn cycles(&self) -> u64 {
+        self.cycles
+    }
+}
+
+/// Records every register write of a driver as a line of text, named with
+/// the register map (`@clock  FIFO_WRITE[1] <- 0x00000005`), and passes
+/// the traffic on to `inner` (which answers the reads).
+pub struct RecordingBus<B: ControllerBus> {
+    inner: B,
+    names: Vec<(u32, String)>,
+    /// One line per write.
+    pub log: String,
+}
+
+impl<B: ControllerBus> RecordingBus<B> {
+    /// Records the writes going to `inner`, named after `map`.
+    pub fn new(inner: B, map: &RegisterMap) -> Self {
+        let mut names = Vec::new();
+        for r in &map.registers {
+            for (i, address) in r.addresses().enumerate() {
+                let name = if r.count > 1 {
+                    format!("{}[{i}]", r.name)
+                } else {
+                    r.name.to_string()
+                };
+                names.push((address, name));
+            }
+        }
+        Self {
+            inner,
+            names,
+            log: String::new(),
+        }
+    }
+
+    /// The bus behind the recorder.
+    pub fn inner(&self) -> &B {
+        &self.inner
+    }
+}
+
+impl<B: ControllerBus> ControllerBus for RecordingBus<B> {
+    fn write(&mut self, address: u32, value: u32) {
+        let name = self
+            .names
+            .iter()
+            .find(|(a, _)| *a == address)
+            .map_or_else(|| format!("{address:#04x}"), |(_, n)| n.clone());
+        let _ = writeln!(self.log, "@{:<10} {name} <- {value:#010x}", self.inner.cycles());
+        self.inner.write(address, value);
+    }
+    fn read(&mut self, address: u32) -> u32 {
+        self.inner.read(address)
+    }
+    fn wait(&mut self, clocks: u64) -> bool {
+        self.inner.wait(clocks)
+    }
+    fn cycles(&self) -> u64 {
+        self.inner.cycles()
+    }
+}

@@ -1,0 +1,338 @@
+//! The firmware half in Rust: programs `motion_controller` through its
+//! generated register map over any [`ControllerBus`], streams per-period
+//! step counts into the FIFOs from the low-water interrupt, and reports
+//! underruns and faults.
+
+use thiserror::Error;
+
+use super::bus::ControllerBus;
+use crate::blocks::motion_controller::registers::register_map;
+use crate::regmap::{RegMapError, RegisterMap};
+
+/// How the driver sets the controller up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DriverConfig {
+    /// Clocks per base tick (`TICK_DIVISOR`).
+    pub tick_divisor: u32,
+    /// Base ticks per interpolation period (`PERIOD_TICKS`, 1 to 65535).
+    pub period_ticks: u32,
+    /// Step pulse high and low times and direction setup/hold, clocks.
+    pub step_len: u32,
+    /// Minimum step low time, clocks.
+    pub step_space: u32,
+    /// Direction setup and hold, clocks.
+    pub dir_time: u32,
+    /// Per axis: the uniform pulse generator (else the DDA).
+    pub uniform: [bool; 3],
+}
+
+impl Default for DriverConfig {
+    fn default() -> Self {
+        Self {
+            tick_divisor: 1,
+            period_ticks: 200,
+            step_len: 2,
+            step_space: 2,
+            dir_time: 2,
+            uniform: [false, true, false],
+        }
+    }
+}
+
+/// What a run did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunReport {
+    /// Periods streamed.
+    pub periods: usize,
+    /// Underruns while periods were still to come (each one restarted).
+    pub underruns: usize,
+    /// Final commanded positions (steps emitted), per axis.
+    pub commanded: [i32; 3],
+    /// Final actual (encoder) positions, per axis.
+    pub actual: [i32; 3],
+    /// Interrupts serviced.
+    pub interrupts: usize,
+    /// Clocks simulated.
+    pub cycles: u64,
+}
+
+/// Why a run could not be done.
+#[derive(Debug, Error)]
+pub enum DriverError {
+    /// A setting is out of range.
+    #[error("invalid configuration: {0}")]
+    Config(String),
+    /// A period asks more of an axis than its interpolator can emit.
+    #[error("period {period}, axis {axis}: {count} steps exceed the limit of {limit} per period ({why})")]
+    CountTooLarge {
+        /// Period index.
+        period: usize,
+        /// Axis.
+        axis: usize,
+        /// The count.
+        count: i32,
+        /// The limit.
+        limit: u32,
+        /// Which rule.
+        why: &'static str,
+    },
+    /// The controller reported a fault that loses steps.
+    #[error("controller fault: STATUS {status:#x}, AXIS_STATUS {axis_status:?}")]
+    Fault {
+        /// STATUS when it was seen.
+        status: u32,
+        /// Each axis's AXIS_STATUS.
+        axis_status: [u32; 3],
+    },
+    /// The controller is not the one this driver knows.
+    #[error("unexpected controller: {0}")]
+    Identity(String),
+    /// The register map is inconsistent (a bug).
+    #[error(transparent)]
+    RegisterMap(#[from] RegMapError),
+    /// The controller never came to rest.
+    #[error("the axes did not come to rest after the last period")]
+    Timeout,
+}
+
+/// The driver for a 3-axis `motion_controller`.
+pub struct Driver<B: ControllerBus> {
+    bus: B,
+    map: RegisterMap,
+    config: DriverConfig,
+    depth: u32,
+}
+
+impl<B: ControllerBus> Driver<B> {
+    /// Checks the configuration, reads the controller's identity and build
+    /// configuration, and programs it (stopped).
+    pub fn new(bus: B, config: DriverConfig) -> Result<Self, DriverError> {
+        if config.tick_divisor == 0 {
+            return Err(DriverError::Config("tick_divisor must be at least 1".into()));
+        }
+        if !(1..=65535).contains(&config.period_ticks) {
+            return Err(DriverError::Config(format!(
+                "period_ticks {} is outside 1..=65535",
+                config.period_ticks
+            )));
+        }
+        for (name, v) in [
+            ("step_len", config.step_len),
+            ("step_space", config.step_space),
+            ("dir_time", config.dir_time),
+        ] {
+            if v > 65535 {
+                return Err(DriverError::Config(format!("{name} {v} does not fit 16 bits")));
+            }
+        }
+        let map = register_map(3, 4)?;
+        let mut driver = Self {
+            bus,
+            map,
+            config,
+            depth: 0,
+        };
+        let id = driver.read("ID", 0)?;
+        if id != crate::blocks::motion_controller::registers::ID_VALUE {
+            return Err(DriverError::Identity(format!("ID reads {id:#x}")));
+        }
+        let build = driver.read("CONFIG", 0)?;
+        let axes = driver.field("CONFIG", "AXES", build)?;
+        if axes != 3 {
+            return Err(DriverError::Identity(format!("{axes} axes, this driver drives 3")));
+        }
+        driver.depth = 1 << driver.field("CONFIG", "FIFO_DEPTH_LOG2", build)?;
+        driver.configure()?;
+        Ok(driver)
+    }
+
+    /// The bus (for its statistics).
+    pub fn bus(&self) -> &B {
+        &self.bus
+    }
+
+    fn address(&self, name: &str, index: u32) -> Result<u32, DriverError> {
+        Ok(self.map.register(name)?.address_of(index)?)
+    }
+
+    fn write(&mut self, name: &str, index: u32, value: u32) -> Result<(), DriverError> {
+        let address = self.address(name, index)?;
+        self.bus.write(address, value);
+        Ok(())
+    }
+
+    fn read(&mut self, name: &str, index: u32) -> Result<u32, DriverError> {
+        let address = self.address(name, index)?;
+        Ok(self.bus.read(address))
+    }
+
+    fn field(&self, register: &str, field: &str, word: u32) -> Result<u64, DriverError> {
+        Ok(self.map.register(register)?.field(field)?.extract(word)?)
+    }
+
+    fn pack(&self, register: &str, fields: &[(&str, u64)]) -> Result<u32, DriverError> {
+        Ok(self.map.register(register)?.pack(fields)?)
+    }
+
+    fn configure(&mut self) -> Result<(), DriverError> {
+        let c = self.config;
+        self.write("CONTROL", 0, 0)?;
+        self.write("TICK_DIVISOR", 0, c.tick_divisor)?;
+        self.write("PERIOD_TICKS", 0, c.period_ticks)?;
+        self.write("FIFO_LOW_WATER", 0, self.depth / 2)?;
+        for axis in 0..3u32 {
+            let config = self.pack(
+                "AXIS_CONFIG",
+                &[("UNIFORM", c.uniform[axis as usize] as u64), ("INTERLEAVED", 1)],
+            )?;
+            self.write("AXIS_CONFIG", axis, config)?;
+            self.write("STEP_LEN", axis, c.step_len)?;
+            self.write("STEP_SPACE", axis, c.step_space)?;
+            self.write("DIR_SETUP", axis, c.dir_time)?;
+            self.write("DIR_HOLD", axis, c.dir_time)?;
+        }
+        let enable = self.pack(
+            "IRQ_ENABLE",
+            &[
+                ("FIFO_LOW", 1),
+                ("UNDERRUN", 1),
+                ("OVERFLOW", 1),
+                ("ENCODER_ERROR", 1),
+                ("WATCHDOG", 1),
+                ("AXIS_FAULT", 1),
+            ],
+        )?;
+        self.write("IRQ_ENABLE", 0, enable)?;
+        let status = self.read("STATUS", 0)?;
+        self.write("STATUS", 0, status)
+    }
+
+    /// The most steps an axis may take in one period: the interpolator's
+    /// limit (DDA: one per tick; uniform: one per two ticks) and the output
+    /// stage's (one per step_len + step_space clocks).
+    pub fn limit(&self, axis: usize) -> (u32, &'static str) {
+        let c = self.config;
+        let interpolator = if c.uniform[axis] {
+            (c.period_ticks / 2, "uniform generator: T/2")
+        } else {
+            (c.period_ticks, "DDA: one per tick")
+        };
+        let clocks = c.period_ticks as u64 * c.tick_divisor as u64;
+        let per_step = (c.step_len.max(1) + c.step_space.max(1)) as u64;
+        let stage = (clocks / per_step) as u32;
+        if stage < interpolator.0 {
+            (stage, "output stage: step_len + step_space per step")
+        } else {
+            interpolator
+        }
+    }
+
+    fn check(&self, counts: &[[i32; 3]]) -> Result<(), DriverError> {
+        for (period, c) in counts.iter().enumerate() {
+            for axis in 0..3 {
+                let (limit, why) = self.limit(axis);
+                if c[axis].unsigned_abs() > limit {
+                    return Err(DriverError::CountTooLarge {
+                        period,
+                        axis,
+                        count: c[axis],
+                        limit,
+                        why,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn queue(&mut self, counts: &[[i32; 3]], next: &mut usize) -> Result<(), DriverError> {
+        let level = self.read("FIFO_STATUS", 0)?;
+        let room = self.depth as u64 - self.field("FIFO_STATUS", "LEVEL", level)?;
+        for _ in 0..room {
+            let Some(c) = counts.get(*next) else { break };
+            for axis in 0..3u32 {
+                self.write("FIFO_WRITE", axis, c[axis as usize] as u32)?;
+            }
+            *next += 1;
+        }
+        Ok(())
+    }
+
+    fn fault(&mut self, status: u32) -> Result<DriverError, DriverError> {
+        let mut axis_status = [0; 3];
+        for (axis, s) in axis_status.iter_mut().enumerate() {
+            *s = self.read("AXIS_STATUS", axis as u32)?;
+        }
+        Ok(DriverError::Fault { status, axis_status })
+    }
+
+    /// Streams `counts` (one entry per period) and waits until every step
+    /// has left and the encoders have settled. `progress` gets the number
+    /// of periods queued so far.
+    pub fn run(
+        &mut self,
+        counts: &[[i32; 3]],
+        mut progress: impl FnMut(usize),
+    ) -> Result<RunReport, DriverError> {
+        self.check(counts)?;
+        let mut report = RunReport {
+            periods: counts.len(),
+            ..Default::default()
+        };
+        let mut next = 0;
+        self.queue(counts, &mut next)?;
+        self.write("CONTROL", 0, 1)?;
+        let faults = self.pack(
+            "STATUS",
+            &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("WATCHDOG", 1), ("AXIS_FAULT", 1)],
+        )?;
+        let underrun = self.pack("STATUS", &[("UNDERRUN", 1)])?;
+        loop {
+            if !self.bus.wait(8) {
+                continue;
+            }
+            report.interrupts += 1;
+            let status = self.read("STATUS", 0)?;
+            self.write("STATUS", 0, status)?;
+            if status & faults != 0 {
+                return Err(self.fault(status)?);
+            }
+            self.queue(counts, &mut next)?;
+            progress(next);
+            if status & underrun != 0 {
+                let level = self.read("FIFO_STATUS", 0)?;
+                if self.field("FIFO_STATUS", "EMPTY", level)? == 1 {
+                    break; // the end: every period has been taken
+                }
+                // Data came too late: restart from where it stopped.
+                report.underruns += 1;
+                self.write("CONTROL", 0, 1)?;
+            }
+        }
+        self.settle()?;
+        for axis in 0..3u32 {
+            report.commanded[axis as usize] = self.read("CMD_POSITION", axis)? as i32;
+            report.actual[axis as usize] = self.read("ACT_POSITION", axis)? as i32;
+        }
+        report.cycles = self.bus.cycles();
+        Ok(report)
+    }
+
+    /// Waits until no output stage is busy, then for the encoder latency.
+    fn settle(&mut self) -> Result<(), DriverError> {
+        for _ in 0..10_000 {
+            let mut busy = false;
+            for axis in 0..3u32 {
+                let s = self.read("AXIS_STATUS", axis)?;
+                busy |= self.field("AXIS_STATUS", "STEP_BUSY", s)? == 1
+                    || self.field("AXIS_STATUS", "UNIFORM_RUNNING", s)? == 1;
+            }
+            if !busy {
+                self.bus.wait(32);
+                return Ok(());
+            }
+            self.bus.wait(64);
+        }
+        Err(DriverError::Timeout)
+    }
+}

@@ -1,0 +1,235 @@
+//! Paths: 3-axis line segments with feed, acceleration and contour error,
+//! and the path file format.
+//!
+//! ## Path file format
+//! Plain text, one statement per line; `#` starts a comment. Numbers are
+//! decimal (`1.5`, `-20`). Settings come before the first `line`:
+//!
+//! ```text
+//! units mm                  # mm (default: steps); mm needs steps_per_mm
+//! steps_per_mm 80 80 400    # X Y Z
+//! feed 50                   # path speed, units per second
+//! accel 500                 # units per second^2
+//! contour_error 0.02        # allowed corner deviation, units
+//! period_us 250             # interpolation period T (default 1000)
+//! start 0 0 0               # start position (default 0 0 0)
+//! line 10 0 0               # a straight move to this absolute position
+//! line 10 5 0
+//! ```
+//!
+//! Every error names the line and the problem.
+
+use thiserror::Error;
+
+/// A problem in a path file or a path.
+#[derive(Debug, Error, PartialEq)]
+pub enum PathError {
+    /// A line of the file could not be understood.
+    #[error("line {line}: {message}")]
+    Syntax {
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A setting is missing or out of range.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// A straight move to an absolute position, in steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Segment {
+    /// End position in steps (X, Y, Z).
+    pub end: [i64; 3],
+}
+
+/// A path in steps with its limits (all in steps and seconds).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Path {
+    /// Start position in steps.
+    pub start: [i64; 3],
+    /// The moves, in order.
+    pub segments: Vec<Segment>,
+    /// Path feed rate, steps per second (along the path, Euclidean in steps).
+    pub feed: f64,
+    /// Maximum path acceleration, steps per second^2.
+    pub accel: f64,
+    /// Maximum contour error at a corner, steps.
+    pub contour_error: f64,
+    /// Interpolation period T in seconds.
+    pub period: f64,
+}
+
+impl Path {
+    /// A path in steps; checks the limits.
+    pub fn new(
+        start: [i64; 3],
+        ends: &[[i64; 3]],
+        feed: f64,
+        accel: f64,
+        contour_error: f64,
+        period: f64,
+    ) -> Result<Self, PathError> {
+        let path = Self {
+            start,
+            segments: ends.iter().map(|&end| Segment { end }).collect(),
+            feed,
+            accel,
+            contour_error,
+            period,
+        };
+        path.validate()?;
+        Ok(path)
+    }
+
+    /// Checks every limit is a finite positive number and the path is not
+    /// empty.
+    pub fn validate(&self) -> Result<(), PathError> {
+        for (name, value) in [
+            ("feed", self.feed),
+            ("accel", self.accel),
+            ("period", self.period),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(PathError::Invalid(format!("{name} must be a positive number, not {value}")));
+            }
+        }
+        if !(self.contour_error.is_finite() && self.contour_error >= 0.0) {
+            return Err(PathError::Invalid(format!(
+                "contour_error must be 0 or positive, not {}",
+                self.contour_error
+            )));
+        }
+        if self.segments.is_empty() {
+            return Err(PathError::Invalid("the path has no `line`".into()));
+        }
+        Ok(())
+    }
+
+    /// The end position of the path.
+    pub fn end(&self) -> [i64; 3] {
+        self.segments.last().map_or(self.start, |s| s.end)
+    }
+
+    /// Parses a path file (see the [module documentation](self)).
+    pub fn parse(text: &str) -> Result<Self, PathError> {
+        let mut steps_per_mm: Option<[f64; 3]> = None;
+        let mut mm = false;
+        let (mut feed, mut accel, mut contour) = (None, None, 0.0);
+        let mut period_us = 1000.0;
+        let mut start = [0.0; 3];
+        let mut lines: Vec<(usize, [f64; 3])> = Vec::new();
+        for (index, raw) in text.lines().enumerate() {
+            let line = index + 1;
+            let err = |message: String| PathError::Syntax { line, message };
+            let content = raw.split('#').next().unwrap_or("").trim();
+            if content.is_empty() {
+                continue;
+            }
+            let mut words = content.split_whitespace();
+            let keyword = words.next().unwrap_or_default();
+            let numbers: Vec<f64> = words
+                .map(|w| {
+                    w.parse::<f64>()
+                        .ok()
+                        .filter(|v| v.is_finite())
+                        .ok_or_else(|| err(format!("`{w}` is not a number")))
+                })
+                .collect::<Result<_, _>>()?;
+            let want = |n: usize| {
+                if numbers.len() == n {
+                    Ok(())
+                } else {
+                    Err(err(format!("`{keyword}` takes {n} number(s), found {}", numbers.len())))
+                }
+            };
+            let settings_before_lines = |lines: &Vec<(usize, [f64; 3])>| {
+                if lines.is_empty() {
+                    Ok(())
+                } else {
+                    Err(err(format!("`{keyword}` must come before the first `line`")))
+                }
+            };
+            match keyword {
+                "units" => {
+                    let unit = content.split_whitespace().nth(1).unwrap_or("");
+                    mm = match unit {
+                        "mm" => true,
+                        "steps" => false,
+                        other => return Err(err(format!("unknown unit `{other}` (mm or steps)"))),
+                    };
+                    settings_before_lines(&lines)?;
+                }
+                "steps_per_mm" => {
+                    want(3)?;
+                    settings_before_lines(&lines)?;
+                    if numbers.iter().any(|&v| v <= 0.0) {
+                        return Err(err("steps_per_mm must be positive".into()));
+                    }
+                    steps_per_mm = Some([numbers[0], numbers[1], numbers[2]]);
+                }
+                "feed" | "accel" | "contour_error" | "period_us" => {
+                    want(1)?;
+                    settings_before_lines(&lines)?;
+                    let v = numbers[0];
+                    match keyword {
+                        "feed" => feed = Some(v),
+                        "accel" => accel = Some(v),
+                        "contour_error" => contour = v,
+                        _ => period_us = v,
+                    }
+                }
+                "start" => {
+                    want(3)?;
+                    settings_before_lines(&lines)?;
+                    start = [numbers[0], numbers[1], numbers[2]];
+                }
+                "line" => {
+                    want(3)?;
+                    lines.push((line, [numbers[0], numbers[1], numbers[2]]));
+                }
+                other => return Err(err(format!("unknown statement `{other}`"))),
+            }
+        }
+        // Everything in steps: positions rounded to the nearest step, speeds
+        // along the path scaled by the X axis's resolution when in mm
+        // (paths in mm with unequal axes are planned in steps).
+        let scale = match (mm, steps_per_mm) {
+            (false, _) => [1.0; 3],
+            (true, Some(s)) => s,
+            (true, None) => return Err(PathError::Invalid("units mm needs steps_per_mm".into())),
+        };
+        let to_steps = |p: [f64; 3]| -> Result<[i64; 3], PathError> {
+            let mut out = [0i64; 3];
+            for k in 0..3 {
+                let v = (p[k] * scale[k]).round();
+                if v.abs() > (1u64 << 40) as f64 {
+                    return Err(PathError::Invalid(format!("position {} is out of range", p[k])));
+                }
+                out[k] = v as i64;
+            }
+            Ok(out)
+        };
+        let speed_scale = scale[0];
+        let ends = lines
+            .iter()
+            .map(|&(line, p)| {
+                to_steps(p).map_err(|e| PathError::Syntax {
+                    line,
+                    message: e.to_string(),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let feed = feed.ok_or_else(|| PathError::Invalid("missing `feed`".into()))?;
+        let accel = accel.ok_or_else(|| PathError::Invalid("missing `accel`".into()))?;
+        Self::new(
+            to_steps(start)?,
+            &ends,
+            feed * speed_scale,
+            accel * speed_scale,
+            contour * speed_scale,
+            period_us * 1e-6,
+        )
+    }
+}
