@@ -29,6 +29,7 @@
 //   bus_read_data   out       32  addressed register, valid in the clock after bus_read, held until the next read
 //   irq             out        1  level interrupt: an enabled STATUS bit is set
 //   running         out        1  periods are running (STATE.RUNNING)
+//   active          out        1  steps are still leaving (running, or an output stage or uniform generator busy): the drive enable
 //   step_a__0       out        1  axis 0's step (step/dir), up (up/down) or A (quadrature)
 //   step_a__1       out        1  axis 1's step (step/dir), up (up/down) or A (quadrature)
 //   step_a__2       out        1  axis 2's step (step/dir), up (up/down) or A (quadrature)
@@ -38,7 +39,7 @@
 // ============================================================================
 
 `default_nettype none
-module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a__0,enc_a__1,enc_a__2,enc_b__0,enc_b__1,enc_b__2,enc_index__0,enc_index__1,enc_index__2,bus_read_data,irq,running,step_a__0,step_a__1,step_a__2,step_b__0,step_b__1,step_b__2);
+module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a__0,enc_a__1,enc_a__2,enc_b__0,enc_b__1,enc_b__2,enc_index__0,enc_index__1,enc_index__2,bus_read_data,irq,running,active,step_a__0,step_a__1,step_a__2,step_b__0,step_b__1,step_b__2);
 
     // Module arguments
     input wire  clock;
@@ -59,6 +60,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     output reg  [31:0] bus_read_data;
     output reg  irq;
     output reg  running;
+    output reg  active;
     output reg  step_a__0;
     output reg  step_a__1;
     output reg  step_a__2;
@@ -146,6 +148,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  axes__0__overflow_event;
     wire  axes__0__fault_event;
     wire  axes__0__encoder_error_event;
+    wire  axes__0__busy;
+    reg  axes__0__flush;
     reg  axes__1__clock;
     reg  axes__1__reset;
     reg  axes__1__tick;
@@ -171,6 +175,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  axes__1__overflow_event;
     wire  axes__1__fault_event;
     wire  axes__1__encoder_error_event;
+    wire  axes__1__busy;
+    reg  axes__1__flush;
     reg  axes__2__clock;
     reg  axes__2__reset;
     reg  axes__2__tick;
@@ -196,6 +202,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  axes__2__overflow_event;
     wire  axes__2__fault_event;
     wire  axes__2__encoder_error_event;
+    wire  axes__2__busy;
+    reg  axes__2__flush;
     reg  tick_divider__clock;
     reg  tick_divider__reset;
     reg  tick_divider__enable;
@@ -277,6 +285,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  any_overflow;
     reg  any_fault;
     reg  any_encoder_error;
+    reg  any_busy;
+    reg  flush;
     reg  [31:0] axes_read;
     reg  [31:0] global_read;
     reg  [6:0] events;
@@ -308,7 +318,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .low(axes__0__low),
         .overflow_event(axes__0__overflow_event),
         .fault_event(axes__0__fault_event),
-        .encoder_error_event(axes__0__encoder_error_event)
+        .encoder_error_event(axes__0__encoder_error_event),
+        .busy(axes__0__busy),
+        .flush(axes__0__flush)
     );
     motion_controller__axes__1 axes__1(
         .clock(axes__1__clock),
@@ -335,7 +347,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .low(axes__1__low),
         .overflow_event(axes__1__overflow_event),
         .fault_event(axes__1__fault_event),
-        .encoder_error_event(axes__1__encoder_error_event)
+        .encoder_error_event(axes__1__encoder_error_event),
+        .busy(axes__1__busy),
+        .flush(axes__1__flush)
     );
     motion_controller__axes__2 axes__2(
         .clock(axes__2__clock),
@@ -362,7 +376,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .low(axes__2__low),
         .overflow_event(axes__2__overflow_event),
         .fault_event(axes__2__fault_event),
-        .encoder_error_event(axes__2__encoder_error_event)
+        .encoder_error_event(axes__2__encoder_error_event),
+        .busy(axes__2__busy),
+        .flush(axes__2__flush)
     );
     motion_controller__tick_divider tick_divider(
         .clock(tick_divider__clock),
@@ -536,16 +552,20 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         any_overflow = 1'b0;
         any_fault = 1'b0;
         any_encoder_error = 1'b0;
+        any_busy = 1'b0;
+        any_busy = any_busy | axes__0__busy;
         all_ready = all_ready & ~axes__0__empty;
         any_low = any_low | axes__0__low;
         any_overflow = any_overflow | axes__0__overflow_event;
         any_fault = any_fault | axes__0__fault_event;
         any_encoder_error = any_encoder_error | axes__0__encoder_error_event;
+        any_busy = any_busy | axes__1__busy;
         all_ready = all_ready & ~axes__1__empty;
         any_low = any_low | axes__1__low;
         any_overflow = any_overflow | axes__1__overflow_event;
         any_fault = any_fault | axes__1__fault_event;
         any_encoder_error = any_encoder_error | axes__1__encoder_error_event;
+        any_busy = any_busy | axes__2__busy;
         all_ready = all_ready & ~axes__2__empty;
         any_low = any_low | axes__2__low;
         any_overflow = any_overflow | axes__2__overflow_event;
@@ -584,11 +604,14 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             in_period__d = 1'b0;
         end
         running = run__q;
+        active = run__q | any_busy;
+        flush = write_control & bus_write_data[32'h1];
         axes_read = zero32;
         axes__0__clock = clock;
         axes__0__reset = reset;
         axes__0__tick = tick;
         axes__0__start = start;
+        axes__0__flush = flush;
         axes__0__halt = halt;
         axes__0__pop = pop;
         axes__0__underrun = underrun;
@@ -609,6 +632,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__1__reset = reset;
         axes__1__tick = tick;
         axes__1__start = start;
+        axes__1__flush = flush;
         axes__1__halt = halt;
         axes__1__pop = pop;
         axes__1__underrun = underrun;
@@ -629,6 +653,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__2__reset = reset;
         axes__2__tick = tick;
         axes__2__start = start;
+        axes__2__flush = flush;
         axes__2__halt = halt;
         axes__2__pop = pop;
         axes__2__underrun = underrun;
@@ -836,7 +861,7 @@ module motion_controller__any_low_prev_n(d,q,clock);
 endmodule // motion_controller__any_low_prev_n
 
 
-module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event);
+module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush);
 
     // Module arguments
     input wire  clock;
@@ -864,6 +889,8 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     output reg  overflow_event;
     output reg  fault_event;
     output reg  encoder_error_event;
+    output reg  busy;
+    input wire  flush;
 
     // Constant declarations
     localparam  window = 4'h1;
@@ -879,6 +906,8 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit6_32 = 32'h40;
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
+    localparam  one32 = 32'h1;
+    localparam  minus_one32 = 32'hffffffff;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
     localparam  above_count = 32'hffff0000;
@@ -1026,9 +1055,24 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
-    reg  entry_overrange__d;
-    wire  entry_overrange__q;
-    reg  entry_overrange__clock;
+    reg  overrange_flag__d;
+    wire  overrange_flag__q;
+    reg  overrange_flag__clock;
+    reg  overflow_flag__d;
+    wire  overflow_flag__q;
+    reg  overflow_flag__clock;
+    reg  overrun_prev__d;
+    wire  overrun_prev__q;
+    reg  overrun_prev__clock;
+    reg  dda_overrange_prev__d;
+    wire  dda_overrange_prev__q;
+    reg  dda_overrange_prev__clock;
+    reg  uniform_overrange_prev__d;
+    wire  uniform_overrange_prev__q;
+    reg  uniform_overrange_prev__clock;
+    reg  uniform_overflow_prev__d;
+    wire  uniform_overflow_prev__q;
+    reg  uniform_overflow_prev__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -1065,9 +1109,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] act_snapshot__d;
     wire  [31:0] act_snapshot__q;
     reg  act_snapshot__clock;
-    reg  fault_prev__d;
-    wire  fault_prev__q;
-    reg  fault_prev__clock;
     reg  encoder_error_prev__d;
     wire  encoder_error_prev__q;
     reg  encoder_error_prev__clock;
@@ -1084,7 +1125,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] count;
     reg  uniform_started;
     reg  uniform_forward;
-    reg  fault;
     reg  [31:0] fifo_status;
     reg  [31:0] axis_status;
 
@@ -1242,10 +1282,35 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
-    motion_controller__axes__0__entry_overrange entry_overrange(
-        .d(entry_overrange__d),
-        .q(entry_overrange__q),
-        .clock(entry_overrange__clock)
+    motion_controller__axes__0__overrange_flag overrange_flag(
+        .d(overrange_flag__d),
+        .q(overrange_flag__q),
+        .clock(overrange_flag__clock)
+    );
+    motion_controller__axes__0__overflow_flag overflow_flag(
+        .d(overflow_flag__d),
+        .q(overflow_flag__q),
+        .clock(overflow_flag__clock)
+    );
+    motion_controller__axes__0__overrun_prev overrun_prev(
+        .d(overrun_prev__d),
+        .q(overrun_prev__q),
+        .clock(overrun_prev__clock)
+    );
+    motion_controller__axes__0__dda_overrange_prev dda_overrange_prev(
+        .d(dda_overrange_prev__d),
+        .q(dda_overrange_prev__q),
+        .clock(dda_overrange_prev__clock)
+    );
+    motion_controller__axes__0__uniform_overrange_prev uniform_overrange_prev(
+        .d(uniform_overrange_prev__d),
+        .q(uniform_overrange_prev__q),
+        .clock(uniform_overrange_prev__clock)
+    );
+    motion_controller__axes__0__uniform_overflow_prev uniform_overflow_prev(
+        .d(uniform_overflow_prev__d),
+        .q(uniform_overflow_prev__q),
+        .clock(uniform_overflow_prev__clock)
     );
     motion_controller__axes__0__forward forward(
         .d(forward__d),
@@ -1307,11 +1372,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .q(act_snapshot__q),
         .clock(act_snapshot__clock)
     );
-    motion_controller__axes__0__fault_prev fault_prev(
-        .d(fault_prev__d),
-        .q(fault_prev__q),
-        .clock(fault_prev__clock)
-    );
     motion_controller__axes__0__encoder_error_prev encoder_error_prev(
         .d(encoder_error_prev__d),
         .q(encoder_error_prev__q),
@@ -1331,7 +1391,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
-        entry_overrange__clock = clock;
+        overrange_flag__clock = clock;
+        overflow_flag__clock = clock;
+        overrun_prev__clock = clock;
+        dda_overrange_prev__clock = clock;
+        uniform_overrange_prev__clock = clock;
+        uniform_overflow_prev__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -1344,7 +1409,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__clock = clock;
         cmd_snapshot__clock = clock;
         act_snapshot__clock = clock;
-        fault_prev__clock = clock;
         encoder_error_prev__clock = clock;
         settings__d = settings__q;
         step_len__d = step_len__q;
@@ -1357,7 +1421,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
-        entry_overrange__d = entry_overrange__q;
+        overrange_flag__d = overrange_flag__q;
+        overflow_flag__d = overflow_flag__q;
+        overrun_prev__d = overrun_prev__q;
+        dda_overrange_prev__d = dda_overrange_prev__q;
+        uniform_overrange_prev__d = uniform_overrange_prev__q;
+        uniform_overflow_prev__d = uniform_overflow_prev__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -1370,7 +1439,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__d = request_forward__q;
         cmd_snapshot__d = cmd_snapshot__q;
         act_snapshot__d = act_snapshot__q;
-        fault_prev__d = fault_prev__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
         dda__clock = clock;
@@ -1402,7 +1470,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
                 sample_rate__d = write_data & mask8;
             end
         end
-        fifo__reset = reset;
+        fifo__reset = reset | flush;
         fifo__write = write & selected & (offset == off_fifo_write);
         fifo__write_data = write_data;
         fifo__pop = pop;
@@ -1432,12 +1500,16 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             count = max_count;
         end
         if (clear_faults) begin
-            entry_overrange__d = 1'b0;
+            overrange_flag__d = 1'b0;
+            overflow_flag__d = 1'b0;
         end
-        if (popped_valid__q & too_large) begin
-            entry_overrange__d = 1'b1;
+        if ((popped_valid__q & too_large) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+            overrange_flag__d = 1'b1;
         end
-        if (start) begin
+        if (uniform__overflow & ~uniform_overflow_prev__q) begin
+            overflow_flag__d = 1'b1;
+        end
+        if (start & ~uniform__running) begin
             uniform_active__d = settings__q[32'h0];
         end
         if (popped_valid__q) begin
@@ -1454,7 +1526,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
-        dda__reset = reset | halt | start;
+        dda__reset = reset | halt;
         dda__tick = tick_d__q;
         dda__integrand = integrand__q;
         dda__modulus = modulus;
@@ -1499,9 +1571,17 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = command & write_data[32'h3];
-        position__load = 1'b0;
+        position__clear = 1'b0;
+        position__load = command & write_data[32'h3];
         position__load_value = zero32;
+        if (stage__emitted) begin
+            if (stage__emitted_forward) begin
+                position__load_value = one32;
+            end
+            else begin
+                position__load_value = minus_one32;
+            end
+        end
         position__compare_value = zero32;
         encoder__reset = reset;
         encoder__a = enc_a;
@@ -1520,9 +1600,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             cmd_snapshot__d = position__count;
             act_snapshot__d = encoder__count;
         end
-        fault = stage__overrun | entry_overrange__q | dda__overrange | uniform__overrange | uniform__overflow;
-        fault_prev__d = fault;
-        fault_event = fault & ~fault_prev__q;
+        overrun_prev__d = stage__overrun;
+        dda_overrange_prev__d = dda__overrange;
+        uniform_overrange_prev__d = uniform__overrange;
+        uniform_overflow_prev__d = uniform__overflow;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | (popped_valid__q & too_large);
+        busy = stage__busy | uniform__running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
         fifo_status = zero32;
@@ -1554,10 +1637,10 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         if (stage__overrun) begin
             axis_status = axis_status | bit0_32;
         end
-        if (dda__overrange | uniform__overrange | entry_overrange__q) begin
+        if (overrange_flag__q) begin
             axis_status = axis_status | bit1_32;
         end
-        if (uniform__overflow) begin
+        if (overflow_flag__q) begin
             axis_status = axis_status | bit2_32;
         end
         if (encoder__error) begin
@@ -1629,7 +1712,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
-            entry_overrange__d = 1'b0;
+            overrange_flag__d = 1'b0;
+            overflow_flag__d = 1'b0;
+            overrun_prev__d = 1'b0;
+            dda_overrange_prev__d = 1'b0;
+            uniform_overrange_prev__d = 1'b0;
+            uniform_overflow_prev__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -1642,7 +1730,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             request_forward__d = 1'b0;
             cmd_snapshot__d = zero32;
             act_snapshot__d = zero32;
-            fault_prev__d = 1'b0;
             encoder_error_prev__d = 1'b0;
         end
     end
@@ -2012,6 +2099,25 @@ module motion_controller__axes__0__dda__ticked(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__dda__ticked
+
+
+module motion_controller__axes__0__dda_overrange_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__dda_overrange_prev
 
 
 module motion_controller__axes__0__dir_hold(d,q,clock);
@@ -3346,44 +3452,6 @@ module motion_controller__axes__0__encoder_error_prev(d,q,clock);
 endmodule // motion_controller__axes__0__encoder_error_prev
 
 
-module motion_controller__axes__0__entry_overrange(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__entry_overrange
-
-
-module motion_controller__axes__0__fault_prev(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__fault_prev
-
-
 module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,empty,full,level,low_water,low,clear_flags,overflow,underflow);
 
     // Module arguments
@@ -3821,6 +3889,63 @@ module motion_controller__axes__0__integrand(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__integrand
+
+
+module motion_controller__axes__0__overflow_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__overflow_flag
+
+
+module motion_controller__axes__0__overrange_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__overrange_flag
+
+
+module motion_controller__axes__0__overrun_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__overrun_prev
 
 
 module motion_controller__axes__0__popped(d,q,clock);
@@ -6503,6 +6628,44 @@ module motion_controller__axes__0__uniform_loaded_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_loaded_forward
 
 
+module motion_controller__axes__0__uniform_overflow_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__uniform_overflow_prev
+
+
+module motion_controller__axes__0__uniform_overrange_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__uniform_overrange_prev
+
+
 module motion_controller__axes__0__uniform_pulse_prev(d,q,clock);
 
     // Module arguments
@@ -6560,7 +6723,7 @@ module motion_controller__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_running_forward
 
 
-module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event);
+module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush);
 
     // Module arguments
     input wire  clock;
@@ -6588,6 +6751,8 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     output reg  overflow_event;
     output reg  fault_event;
     output reg  encoder_error_event;
+    output reg  busy;
+    input wire  flush;
 
     // Constant declarations
     localparam  window = 4'h2;
@@ -6603,6 +6768,8 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit6_32 = 32'h40;
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
+    localparam  one32 = 32'h1;
+    localparam  minus_one32 = 32'hffffffff;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
     localparam  above_count = 32'hffff0000;
@@ -6750,9 +6917,24 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
-    reg  entry_overrange__d;
-    wire  entry_overrange__q;
-    reg  entry_overrange__clock;
+    reg  overrange_flag__d;
+    wire  overrange_flag__q;
+    reg  overrange_flag__clock;
+    reg  overflow_flag__d;
+    wire  overflow_flag__q;
+    reg  overflow_flag__clock;
+    reg  overrun_prev__d;
+    wire  overrun_prev__q;
+    reg  overrun_prev__clock;
+    reg  dda_overrange_prev__d;
+    wire  dda_overrange_prev__q;
+    reg  dda_overrange_prev__clock;
+    reg  uniform_overrange_prev__d;
+    wire  uniform_overrange_prev__q;
+    reg  uniform_overrange_prev__clock;
+    reg  uniform_overflow_prev__d;
+    wire  uniform_overflow_prev__q;
+    reg  uniform_overflow_prev__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -6789,9 +6971,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] act_snapshot__d;
     wire  [31:0] act_snapshot__q;
     reg  act_snapshot__clock;
-    reg  fault_prev__d;
-    wire  fault_prev__q;
-    reg  fault_prev__clock;
     reg  encoder_error_prev__d;
     wire  encoder_error_prev__q;
     reg  encoder_error_prev__clock;
@@ -6808,7 +6987,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] count;
     reg  uniform_started;
     reg  uniform_forward;
-    reg  fault;
     reg  [31:0] fifo_status;
     reg  [31:0] axis_status;
 
@@ -6966,10 +7144,35 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
-    motion_controller__axes__1__entry_overrange entry_overrange(
-        .d(entry_overrange__d),
-        .q(entry_overrange__q),
-        .clock(entry_overrange__clock)
+    motion_controller__axes__1__overrange_flag overrange_flag(
+        .d(overrange_flag__d),
+        .q(overrange_flag__q),
+        .clock(overrange_flag__clock)
+    );
+    motion_controller__axes__1__overflow_flag overflow_flag(
+        .d(overflow_flag__d),
+        .q(overflow_flag__q),
+        .clock(overflow_flag__clock)
+    );
+    motion_controller__axes__1__overrun_prev overrun_prev(
+        .d(overrun_prev__d),
+        .q(overrun_prev__q),
+        .clock(overrun_prev__clock)
+    );
+    motion_controller__axes__1__dda_overrange_prev dda_overrange_prev(
+        .d(dda_overrange_prev__d),
+        .q(dda_overrange_prev__q),
+        .clock(dda_overrange_prev__clock)
+    );
+    motion_controller__axes__1__uniform_overrange_prev uniform_overrange_prev(
+        .d(uniform_overrange_prev__d),
+        .q(uniform_overrange_prev__q),
+        .clock(uniform_overrange_prev__clock)
+    );
+    motion_controller__axes__1__uniform_overflow_prev uniform_overflow_prev(
+        .d(uniform_overflow_prev__d),
+        .q(uniform_overflow_prev__q),
+        .clock(uniform_overflow_prev__clock)
     );
     motion_controller__axes__1__forward forward(
         .d(forward__d),
@@ -7031,11 +7234,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .q(act_snapshot__q),
         .clock(act_snapshot__clock)
     );
-    motion_controller__axes__1__fault_prev fault_prev(
-        .d(fault_prev__d),
-        .q(fault_prev__q),
-        .clock(fault_prev__clock)
-    );
     motion_controller__axes__1__encoder_error_prev encoder_error_prev(
         .d(encoder_error_prev__d),
         .q(encoder_error_prev__q),
@@ -7055,7 +7253,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
-        entry_overrange__clock = clock;
+        overrange_flag__clock = clock;
+        overflow_flag__clock = clock;
+        overrun_prev__clock = clock;
+        dda_overrange_prev__clock = clock;
+        uniform_overrange_prev__clock = clock;
+        uniform_overflow_prev__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -7068,7 +7271,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__clock = clock;
         cmd_snapshot__clock = clock;
         act_snapshot__clock = clock;
-        fault_prev__clock = clock;
         encoder_error_prev__clock = clock;
         settings__d = settings__q;
         step_len__d = step_len__q;
@@ -7081,7 +7283,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
-        entry_overrange__d = entry_overrange__q;
+        overrange_flag__d = overrange_flag__q;
+        overflow_flag__d = overflow_flag__q;
+        overrun_prev__d = overrun_prev__q;
+        dda_overrange_prev__d = dda_overrange_prev__q;
+        uniform_overrange_prev__d = uniform_overrange_prev__q;
+        uniform_overflow_prev__d = uniform_overflow_prev__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -7094,7 +7301,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__d = request_forward__q;
         cmd_snapshot__d = cmd_snapshot__q;
         act_snapshot__d = act_snapshot__q;
-        fault_prev__d = fault_prev__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
         dda__clock = clock;
@@ -7126,7 +7332,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
                 sample_rate__d = write_data & mask8;
             end
         end
-        fifo__reset = reset;
+        fifo__reset = reset | flush;
         fifo__write = write & selected & (offset == off_fifo_write);
         fifo__write_data = write_data;
         fifo__pop = pop;
@@ -7156,12 +7362,16 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             count = max_count;
         end
         if (clear_faults) begin
-            entry_overrange__d = 1'b0;
+            overrange_flag__d = 1'b0;
+            overflow_flag__d = 1'b0;
         end
-        if (popped_valid__q & too_large) begin
-            entry_overrange__d = 1'b1;
+        if ((popped_valid__q & too_large) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+            overrange_flag__d = 1'b1;
         end
-        if (start) begin
+        if (uniform__overflow & ~uniform_overflow_prev__q) begin
+            overflow_flag__d = 1'b1;
+        end
+        if (start & ~uniform__running) begin
             uniform_active__d = settings__q[32'h0];
         end
         if (popped_valid__q) begin
@@ -7178,7 +7388,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
-        dda__reset = reset | halt | start;
+        dda__reset = reset | halt;
         dda__tick = tick_d__q;
         dda__integrand = integrand__q;
         dda__modulus = modulus;
@@ -7223,9 +7433,17 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = command & write_data[32'h3];
-        position__load = 1'b0;
+        position__clear = 1'b0;
+        position__load = command & write_data[32'h3];
         position__load_value = zero32;
+        if (stage__emitted) begin
+            if (stage__emitted_forward) begin
+                position__load_value = one32;
+            end
+            else begin
+                position__load_value = minus_one32;
+            end
+        end
         position__compare_value = zero32;
         encoder__reset = reset;
         encoder__a = enc_a;
@@ -7244,9 +7462,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             cmd_snapshot__d = position__count;
             act_snapshot__d = encoder__count;
         end
-        fault = stage__overrun | entry_overrange__q | dda__overrange | uniform__overrange | uniform__overflow;
-        fault_prev__d = fault;
-        fault_event = fault & ~fault_prev__q;
+        overrun_prev__d = stage__overrun;
+        dda_overrange_prev__d = dda__overrange;
+        uniform_overrange_prev__d = uniform__overrange;
+        uniform_overflow_prev__d = uniform__overflow;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | (popped_valid__q & too_large);
+        busy = stage__busy | uniform__running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
         fifo_status = zero32;
@@ -7278,10 +7499,10 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         if (stage__overrun) begin
             axis_status = axis_status | bit0_32;
         end
-        if (dda__overrange | uniform__overrange | entry_overrange__q) begin
+        if (overrange_flag__q) begin
             axis_status = axis_status | bit1_32;
         end
-        if (uniform__overflow) begin
+        if (overflow_flag__q) begin
             axis_status = axis_status | bit2_32;
         end
         if (encoder__error) begin
@@ -7353,7 +7574,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
-            entry_overrange__d = 1'b0;
+            overrange_flag__d = 1'b0;
+            overflow_flag__d = 1'b0;
+            overrun_prev__d = 1'b0;
+            dda_overrange_prev__d = 1'b0;
+            uniform_overrange_prev__d = 1'b0;
+            uniform_overflow_prev__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -7366,7 +7592,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             request_forward__d = 1'b0;
             cmd_snapshot__d = zero32;
             act_snapshot__d = zero32;
-            fault_prev__d = 1'b0;
             encoder_error_prev__d = 1'b0;
         end
     end
@@ -7736,6 +7961,25 @@ module motion_controller__axes__1__dda__ticked(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__dda__ticked
+
+
+module motion_controller__axes__1__dda_overrange_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__dda_overrange_prev
 
 
 module motion_controller__axes__1__dir_hold(d,q,clock);
@@ -9070,44 +9314,6 @@ module motion_controller__axes__1__encoder_error_prev(d,q,clock);
 endmodule // motion_controller__axes__1__encoder_error_prev
 
 
-module motion_controller__axes__1__entry_overrange(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__entry_overrange
-
-
-module motion_controller__axes__1__fault_prev(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__fault_prev
-
-
 module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,empty,full,level,low_water,low,clear_flags,overflow,underflow);
 
     // Module arguments
@@ -9545,6 +9751,63 @@ module motion_controller__axes__1__integrand(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__integrand
+
+
+module motion_controller__axes__1__overflow_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__overflow_flag
+
+
+module motion_controller__axes__1__overrange_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__overrange_flag
+
+
+module motion_controller__axes__1__overrun_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__overrun_prev
 
 
 module motion_controller__axes__1__popped(d,q,clock);
@@ -12227,6 +12490,44 @@ module motion_controller__axes__1__uniform_loaded_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_loaded_forward
 
 
+module motion_controller__axes__1__uniform_overflow_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__uniform_overflow_prev
+
+
+module motion_controller__axes__1__uniform_overrange_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__uniform_overrange_prev
+
+
 module motion_controller__axes__1__uniform_pulse_prev(d,q,clock);
 
     // Module arguments
@@ -12284,7 +12585,7 @@ module motion_controller__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_running_forward
 
 
-module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event);
+module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush);
 
     // Module arguments
     input wire  clock;
@@ -12312,6 +12613,8 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     output reg  overflow_event;
     output reg  fault_event;
     output reg  encoder_error_event;
+    output reg  busy;
+    input wire  flush;
 
     // Constant declarations
     localparam  window = 4'h3;
@@ -12327,6 +12630,8 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit6_32 = 32'h40;
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
+    localparam  one32 = 32'h1;
+    localparam  minus_one32 = 32'hffffffff;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
     localparam  above_count = 32'hffff0000;
@@ -12474,9 +12779,24 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
-    reg  entry_overrange__d;
-    wire  entry_overrange__q;
-    reg  entry_overrange__clock;
+    reg  overrange_flag__d;
+    wire  overrange_flag__q;
+    reg  overrange_flag__clock;
+    reg  overflow_flag__d;
+    wire  overflow_flag__q;
+    reg  overflow_flag__clock;
+    reg  overrun_prev__d;
+    wire  overrun_prev__q;
+    reg  overrun_prev__clock;
+    reg  dda_overrange_prev__d;
+    wire  dda_overrange_prev__q;
+    reg  dda_overrange_prev__clock;
+    reg  uniform_overrange_prev__d;
+    wire  uniform_overrange_prev__q;
+    reg  uniform_overrange_prev__clock;
+    reg  uniform_overflow_prev__d;
+    wire  uniform_overflow_prev__q;
+    reg  uniform_overflow_prev__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -12513,9 +12833,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] act_snapshot__d;
     wire  [31:0] act_snapshot__q;
     reg  act_snapshot__clock;
-    reg  fault_prev__d;
-    wire  fault_prev__q;
-    reg  fault_prev__clock;
     reg  encoder_error_prev__d;
     wire  encoder_error_prev__q;
     reg  encoder_error_prev__clock;
@@ -12532,7 +12849,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] count;
     reg  uniform_started;
     reg  uniform_forward;
-    reg  fault;
     reg  [31:0] fifo_status;
     reg  [31:0] axis_status;
 
@@ -12690,10 +13006,35 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
-    motion_controller__axes__2__entry_overrange entry_overrange(
-        .d(entry_overrange__d),
-        .q(entry_overrange__q),
-        .clock(entry_overrange__clock)
+    motion_controller__axes__2__overrange_flag overrange_flag(
+        .d(overrange_flag__d),
+        .q(overrange_flag__q),
+        .clock(overrange_flag__clock)
+    );
+    motion_controller__axes__2__overflow_flag overflow_flag(
+        .d(overflow_flag__d),
+        .q(overflow_flag__q),
+        .clock(overflow_flag__clock)
+    );
+    motion_controller__axes__2__overrun_prev overrun_prev(
+        .d(overrun_prev__d),
+        .q(overrun_prev__q),
+        .clock(overrun_prev__clock)
+    );
+    motion_controller__axes__2__dda_overrange_prev dda_overrange_prev(
+        .d(dda_overrange_prev__d),
+        .q(dda_overrange_prev__q),
+        .clock(dda_overrange_prev__clock)
+    );
+    motion_controller__axes__2__uniform_overrange_prev uniform_overrange_prev(
+        .d(uniform_overrange_prev__d),
+        .q(uniform_overrange_prev__q),
+        .clock(uniform_overrange_prev__clock)
+    );
+    motion_controller__axes__2__uniform_overflow_prev uniform_overflow_prev(
+        .d(uniform_overflow_prev__d),
+        .q(uniform_overflow_prev__q),
+        .clock(uniform_overflow_prev__clock)
     );
     motion_controller__axes__2__forward forward(
         .d(forward__d),
@@ -12755,11 +13096,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .q(act_snapshot__q),
         .clock(act_snapshot__clock)
     );
-    motion_controller__axes__2__fault_prev fault_prev(
-        .d(fault_prev__d),
-        .q(fault_prev__q),
-        .clock(fault_prev__clock)
-    );
     motion_controller__axes__2__encoder_error_prev encoder_error_prev(
         .d(encoder_error_prev__d),
         .q(encoder_error_prev__q),
@@ -12779,7 +13115,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
-        entry_overrange__clock = clock;
+        overrange_flag__clock = clock;
+        overflow_flag__clock = clock;
+        overrun_prev__clock = clock;
+        dda_overrange_prev__clock = clock;
+        uniform_overrange_prev__clock = clock;
+        uniform_overflow_prev__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -12792,7 +13133,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__clock = clock;
         cmd_snapshot__clock = clock;
         act_snapshot__clock = clock;
-        fault_prev__clock = clock;
         encoder_error_prev__clock = clock;
         settings__d = settings__q;
         step_len__d = step_len__q;
@@ -12805,7 +13145,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
-        entry_overrange__d = entry_overrange__q;
+        overrange_flag__d = overrange_flag__q;
+        overflow_flag__d = overflow_flag__q;
+        overrun_prev__d = overrun_prev__q;
+        dda_overrange_prev__d = dda_overrange_prev__q;
+        uniform_overrange_prev__d = uniform_overrange_prev__q;
+        uniform_overflow_prev__d = uniform_overflow_prev__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -12818,7 +13163,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__d = request_forward__q;
         cmd_snapshot__d = cmd_snapshot__q;
         act_snapshot__d = act_snapshot__q;
-        fault_prev__d = fault_prev__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
         dda__clock = clock;
@@ -12850,7 +13194,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
                 sample_rate__d = write_data & mask8;
             end
         end
-        fifo__reset = reset;
+        fifo__reset = reset | flush;
         fifo__write = write & selected & (offset == off_fifo_write);
         fifo__write_data = write_data;
         fifo__pop = pop;
@@ -12880,12 +13224,16 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             count = max_count;
         end
         if (clear_faults) begin
-            entry_overrange__d = 1'b0;
+            overrange_flag__d = 1'b0;
+            overflow_flag__d = 1'b0;
         end
-        if (popped_valid__q & too_large) begin
-            entry_overrange__d = 1'b1;
+        if ((popped_valid__q & too_large) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+            overrange_flag__d = 1'b1;
         end
-        if (start) begin
+        if (uniform__overflow & ~uniform_overflow_prev__q) begin
+            overflow_flag__d = 1'b1;
+        end
+        if (start & ~uniform__running) begin
             uniform_active__d = settings__q[32'h0];
         end
         if (popped_valid__q) begin
@@ -12902,7 +13250,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
-        dda__reset = reset | halt | start;
+        dda__reset = reset | halt;
         dda__tick = tick_d__q;
         dda__integrand = integrand__q;
         dda__modulus = modulus;
@@ -12947,9 +13295,17 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = command & write_data[32'h3];
-        position__load = 1'b0;
+        position__clear = 1'b0;
+        position__load = command & write_data[32'h3];
         position__load_value = zero32;
+        if (stage__emitted) begin
+            if (stage__emitted_forward) begin
+                position__load_value = one32;
+            end
+            else begin
+                position__load_value = minus_one32;
+            end
+        end
         position__compare_value = zero32;
         encoder__reset = reset;
         encoder__a = enc_a;
@@ -12968,9 +13324,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             cmd_snapshot__d = position__count;
             act_snapshot__d = encoder__count;
         end
-        fault = stage__overrun | entry_overrange__q | dda__overrange | uniform__overrange | uniform__overflow;
-        fault_prev__d = fault;
-        fault_event = fault & ~fault_prev__q;
+        overrun_prev__d = stage__overrun;
+        dda_overrange_prev__d = dda__overrange;
+        uniform_overrange_prev__d = uniform__overrange;
+        uniform_overflow_prev__d = uniform__overflow;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | (popped_valid__q & too_large);
+        busy = stage__busy | uniform__running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
         fifo_status = zero32;
@@ -13002,10 +13361,10 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         if (stage__overrun) begin
             axis_status = axis_status | bit0_32;
         end
-        if (dda__overrange | uniform__overrange | entry_overrange__q) begin
+        if (overrange_flag__q) begin
             axis_status = axis_status | bit1_32;
         end
-        if (uniform__overflow) begin
+        if (overflow_flag__q) begin
             axis_status = axis_status | bit2_32;
         end
         if (encoder__error) begin
@@ -13077,7 +13436,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
-            entry_overrange__d = 1'b0;
+            overrange_flag__d = 1'b0;
+            overflow_flag__d = 1'b0;
+            overrun_prev__d = 1'b0;
+            dda_overrange_prev__d = 1'b0;
+            uniform_overrange_prev__d = 1'b0;
+            uniform_overflow_prev__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -13090,7 +13454,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             request_forward__d = 1'b0;
             cmd_snapshot__d = zero32;
             act_snapshot__d = zero32;
-            fault_prev__d = 1'b0;
             encoder_error_prev__d = 1'b0;
         end
     end
@@ -13460,6 +13823,25 @@ module motion_controller__axes__2__dda__ticked(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__dda__ticked
+
+
+module motion_controller__axes__2__dda_overrange_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__dda_overrange_prev
 
 
 module motion_controller__axes__2__dir_hold(d,q,clock);
@@ -14794,44 +15176,6 @@ module motion_controller__axes__2__encoder_error_prev(d,q,clock);
 endmodule // motion_controller__axes__2__encoder_error_prev
 
 
-module motion_controller__axes__2__entry_overrange(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__entry_overrange
-
-
-module motion_controller__axes__2__fault_prev(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__fault_prev
-
-
 module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,empty,full,level,low_water,low,clear_flags,overflow,underflow);
 
     // Module arguments
@@ -15269,6 +15613,63 @@ module motion_controller__axes__2__integrand(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__integrand
+
+
+module motion_controller__axes__2__overflow_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__overflow_flag
+
+
+module motion_controller__axes__2__overrange_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__overrange_flag
+
+
+module motion_controller__axes__2__overrun_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__overrun_prev
 
 
 module motion_controller__axes__2__popped(d,q,clock);
@@ -17949,6 +18350,44 @@ module motion_controller__axes__2__uniform_loaded_forward(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__uniform_loaded_forward
+
+
+module motion_controller__axes__2__uniform_overflow_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__uniform_overflow_prev
+
+
+module motion_controller__axes__2__uniform_overrange_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__uniform_overrange_prev
 
 
 module motion_controller__axes__2__uniform_pulse_prev(d,q,clock);

@@ -54,6 +54,9 @@
 #define MC_CONTROL_RUN_SHIFT 0UL /* RW write 1 to start (refused while WATCHDOG_EXPIRED); write 0 to stop at once; cleared by an underrun or the watchdog */
 #define MC_CONTROL_RUN_MASK 0x00000001UL
 #define MC_CONTROL_RUN_RESET 0x0UL
+#define MC_CONTROL_FLUSH_SHIFT 1UL /* WO write 1 to empty every FIFO at once (with RUN 0: stop and discard the queued periods) */
+#define MC_CONTROL_FLUSH_MASK 0x00000002UL
+#define MC_CONTROL_FLUSH_RESET 0x0UL
 
 /* STATUS: sticky interrupt status, write 1 to clear */
 #define MC_STATUS_INDEX 0x0004UL
@@ -210,7 +213,7 @@
 #define MC_AXIS_CONFIG_INDEX(n) (0x0012UL + (unsigned long)(n) * 0x10UL)
 #define MC_AXIS_CONFIG_OFFSET(n) (MC_AXIS_CONFIG_INDEX(n) * 4UL)
 #define MC_AXIS_CONFIG_RESET 0x00000000UL
-#define MC_AXIS_CONFIG_UNIFORM_SHIFT 0UL /* RW 0 = DDA, 1 = dual-period uniform pulse generator; taken when RUN starts */
+#define MC_AXIS_CONFIG_UNIFORM_SHIFT 0UL /* RW 0 = DDA, 1 = dual-period uniform pulse generator; taken when RUN starts and the axis's uniform generator is idle */
 #define MC_AXIS_CONFIG_UNIFORM_MASK 0x00000001UL
 #define MC_AXIS_CONFIG_UNIFORM_RESET 0x0UL
 #define MC_AXIS_CONFIG_INTERLEAVED_SHIFT 1UL /* RW uniform generator order: 0 = short pulses first, 1 = interleaved */
@@ -324,13 +327,13 @@
 #define MC_AXIS_STATUS_INDEX(n) (0x001cUL + (unsigned long)(n) * 0x10UL)
 #define MC_AXIS_STATUS_OFFSET(n) (MC_AXIS_STATUS_INDEX(n) * 4UL)
 #define MC_AXIS_STATUS_RESET 0x00000000UL
-#define MC_AXIS_STATUS_STEP_OVERRUN_SHIFT 0UL /* RO sticky: the output stage's pending count saturated and a step was dropped */
+#define MC_AXIS_STATUS_STEP_OVERRUN_SHIFT 0UL /* RO sticky until CLEAR_FAULTS: the output stage's pending count saturated and a step was dropped */
 #define MC_AXIS_STATUS_STEP_OVERRUN_MASK 0x00000001UL
 #define MC_AXIS_STATUS_STEP_OVERRUN_RESET 0x0UL
-#define MC_AXIS_STATUS_INTERP_OVERRANGE_SHIFT 1UL /* RO sticky: a period's count exceeded what the interpolator can emit (DDA: above PERIOD_TICKS; uniform: above half of it) and was clamped */
+#define MC_AXIS_STATUS_INTERP_OVERRANGE_SHIFT 1UL /* RO sticky until CLEAR_FAULTS: an entry was clamped (above 65535; DDA: above PERIOD_TICKS; uniform: above half of it, or PERIOD_TICKS odd) */
 #define MC_AXIS_STATUS_INTERP_OVERRANGE_MASK 0x00000002UL
 #define MC_AXIS_STATUS_INTERP_OVERRANGE_RESET 0x0UL
-#define MC_AXIS_STATUS_INTERP_OVERFLOW_SHIFT 2UL /* RO sticky: the uniform generator refused a period (PERIOD_TICKS too short for its set-up) */
+#define MC_AXIS_STATUS_INTERP_OVERFLOW_SHIFT 2UL /* RO sticky until CLEAR_FAULTS: the uniform generator refused a period (a period shorter than its 24-clock set-up) */
 #define MC_AXIS_STATUS_INTERP_OVERFLOW_MASK 0x00000004UL
 #define MC_AXIS_STATUS_INTERP_OVERFLOW_RESET 0x0UL
 #define MC_AXIS_STATUS_ENCODER_ERROR_SHIFT 3UL /* RO sticky: illegal encoder transition; cleared with CLEAR_ENCODER */
@@ -372,7 +375,7 @@
 #define MC_AXIS_COMMAND_REARM_INDEX_SHIFT 2UL /* WO clear INDEX_SEEN (re-arm a once-only index) */
 #define MC_AXIS_COMMAND_REARM_INDEX_MASK 0x00000004UL
 #define MC_AXIS_COMMAND_REARM_INDEX_RESET 0x0UL
-#define MC_AXIS_COMMAND_CLEAR_POSITION_SHIFT 3UL /* WO CMD_POSITION <- 0 */
+#define MC_AXIS_COMMAND_CLEAR_POSITION_SHIFT 3UL /* WO CMD_POSITION <- 0 (a step emitted on the same clock is kept: +1 or -1) */
 #define MC_AXIS_COMMAND_CLEAR_POSITION_MASK 0x00000008UL
 #define MC_AXIS_COMMAND_CLEAR_POSITION_RESET 0x0UL
 

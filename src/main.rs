@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export};
+use motion_hdl::host::simulation::{simulate, SimulationOptions};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::tools::report;
 
@@ -47,6 +48,36 @@ enum Command {
     /// Draw the uniform pulse generator's figures as SVG: one period of
     /// (T, N) in single-period, paper-order and interleaved form, and the
     /// single-period unevenness mu against N for this T.
+    /// Run a path file (format: `cargo doc`, module host::path; examples in
+    /// examples/) through the simulated 3-axis controller (RTL, steps looped
+    /// back into the encoders): final positions, peak step rates,
+    /// underruns, and SVG plots of the path and of the speed.
+    Simulate {
+        /// The path file.
+        path_file: PathBuf,
+        /// System clock in MHz. The simulation runs about 25,000 clocks per
+        /// second, so the default 1 MHz simulates about 1/40 of real time;
+        /// the controller's behavior is the same at any clock (its timing
+        /// registers count clocks).
+        #[arg(long, default_value_t = 1.0)]
+        clock_mhz: f64,
+        /// Axes driven by the uniform pulse generator instead of the DDA
+        /// (any of x, y, z, comma separated).
+        #[arg(long, value_delimiter = ',')]
+        uniform: Vec<String>,
+        /// Step pulse high time, clocks.
+        #[arg(long, default_value_t = 2)]
+        step_len: u32,
+        /// Minimum step low time, clocks.
+        #[arg(long, default_value_t = 2)]
+        step_space: u32,
+        /// Folder for <name>-path.svg and <name>-speed.svg.
+        #[arg(long, default_value = "plots")]
+        out_dir: PathBuf,
+        /// Also write every controller signal to this VCD file (large).
+        #[arg(long)]
+        vcd: Option<PathBuf>,
+    },
     PlotPulses {
         /// T: the interpolation period in ticks (even, at least 2).
         #[arg(long)]
@@ -72,6 +103,60 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
+        Command::Simulate {
+            path_file,
+            clock_mhz,
+            uniform,
+            step_len,
+            step_space,
+            out_dir,
+            vcd,
+        } => {
+            let mut uniform_axes = [false; 3];
+            for axis in &uniform {
+                match axis.to_ascii_lowercase().as_str() {
+                    "x" => uniform_axes[0] = true,
+                    "y" => uniform_axes[1] = true,
+                    "z" => uniform_axes[2] = true,
+                    other => return Err(format!("--uniform: unknown axis `{other}` (x, y or z)")),
+                }
+            }
+            if !(clock_mhz.is_finite() && clock_mhz > 0.0) {
+                return Err(format!("--clock-mhz must be positive, not {clock_mhz}"));
+            }
+            let options = SimulationOptions {
+                clock_hz: clock_mhz * 1e6,
+                uniform: uniform_axes,
+                step_len,
+                step_space,
+                out_dir: Some(out_dir),
+                vcd,
+                progress: true,
+            };
+            let r = simulate(&path_file, &options)?;
+            println!("target     {:?}", r.target);
+            println!("commanded  {:?}", r.commanded);
+            println!("actual     {:?}", r.actual);
+            println!(
+                "peak step rate (steps/s) X {:.0}  Y {:.0}  Z {:.0}",
+                r.peak_rate[0], r.peak_rate[1], r.peak_rate[2]
+            );
+            println!("periods {}, underruns {}", r.periods, r.underruns);
+            println!(
+                "simulated {} clocks in {:.1} s ({:.0} cycles/s)",
+                r.cycles,
+                r.seconds,
+                r.cycles as f64 / r.seconds
+            );
+            for figure in &r.figures {
+                println!("wrote {}", figure.display());
+            }
+            let exact = r.commanded.map(i64::from) == r.target && r.actual.map(i64::from) == r.target;
+            if !exact || r.underruns > 0 {
+                return Err("the run did not end exactly at the target without underruns".into());
+            }
+            Ok(())
+        }
         Command::PlotPulses {
             period,
             count,

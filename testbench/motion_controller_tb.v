@@ -37,6 +37,8 @@ module motion_controller_tb;
   reg expected_irq;
   wire running;
   reg expected_running;
+  wire active;
+  reg expected_active;
   wire step_a__0;
   reg expected_step_a__0;
   wire step_a__1;
@@ -53,7 +55,7 @@ module motion_controller_tb;
   integer fields;
   integer cycle;
   reg [8*1024-1:0] vector_path;
-  motion_controller uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a__0(enc_a__0), .enc_a__1(enc_a__1), .enc_a__2(enc_a__2), .enc_b__0(enc_b__0), .enc_b__1(enc_b__1), .enc_b__2(enc_b__2), .enc_index__0(enc_index__0), .enc_index__1(enc_index__1), .enc_index__2(enc_index__2), .bus_read_data(bus_read_data), .irq(irq), .running(running), .step_a__0(step_a__0), .step_a__1(step_a__1), .step_a__2(step_a__2), .step_b__0(step_b__0), .step_b__1(step_b__1), .step_b__2(step_b__2));
+  motion_controller uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a__0(enc_a__0), .enc_a__1(enc_a__1), .enc_a__2(enc_a__2), .enc_b__0(enc_b__0), .enc_b__1(enc_b__1), .enc_b__2(enc_b__2), .enc_index__0(enc_index__0), .enc_index__1(enc_index__1), .enc_index__2(enc_index__2), .bus_read_data(bus_read_data), .irq(irq), .running(running), .active(active), .step_a__0(step_a__0), .step_a__1(step_a__1), .step_a__2(step_a__2), .step_b__0(step_b__0), .step_b__1(step_b__1), .step_b__2(step_b__2));
   initial begin
     if (!$value$plusargs("vectors=%s", vector_path)) begin
       $display("ERROR missing +vectors=FILE");
@@ -66,8 +68,8 @@ module motion_controller_tb;
     end
     cycle = 0;
     while (!$feof(vectors)) begin
-      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a__0, vector_enc_a__1, vector_enc_a__2, vector_enc_b__0, vector_enc_b__1, vector_enc_b__2, vector_enc_index__0, vector_enc_index__1, vector_enc_index__2, expected_bus_read_data, expected_irq, expected_running, expected_step_a__0, expected_step_a__1, expected_step_a__2, expected_step_b__0, expected_step_b__1, expected_step_b__2);
-      if (fields == 23) begin
+      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a__0, vector_enc_a__1, vector_enc_a__2, vector_enc_b__0, vector_enc_b__1, vector_enc_b__2, vector_enc_index__0, vector_enc_index__1, vector_enc_index__2, expected_bus_read_data, expected_irq, expected_running, expected_active, expected_step_a__0, expected_step_a__1, expected_step_a__2, expected_step_b__0, expected_step_b__1, expected_step_b__2);
+      if (fields == 24) begin
         reset = vector_reset;
         bus_address = vector_bus_address;
         bus_write_data = vector_bus_write_data;
@@ -94,6 +96,10 @@ module motion_controller_tb;
         end
         if (running !== expected_running) begin
           $display("MISMATCH cycle=%0d signal=running expected=%h got=%h", cycle, expected_running, running);
+          $finish;
+        end
+        if (active !== expected_active) begin
+          $display("MISMATCH cycle=%0d signal=active expected=%h got=%h", cycle, expected_active, active);
           $finish;
         end
         if (step_a__0 !== expected_step_a__0) begin

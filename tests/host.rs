@@ -51,3 +51,202 @@ fn a_closed_50_segment_polygon_through_the_rtl_ends_exactly_at_its_start() {
     assert!(expected > 2500 && report.periods > 100, "{expected} steps, {} periods", report.periods);
     println!("{report:?}");
 }
+
+const PERIOD: f64 = 1e-3;
+
+fn single(end: [i64; 3], feed: f64, accel: f64) -> Path {
+    Path::new([0, 0, 0], &[end], feed, accel, 0.0, PERIOD).unwrap()
+}
+
+#[test]
+fn a_long_straight_move_accelerates_cruises_and_decelerates() {
+    // 10,000 steps at 1,000 steps/s with 2,000 steps/s^2: 0.5 s and 250
+    // steps to reach the feed, the same to stop, 9,500 steps of cruise.
+    let segments = plan(&single([10_000, 0, 0], 1000.0, 2000.0));
+    let s = segments[0];
+    assert_eq!((s.v_entry, s.v_cruise, s.v_exit), (0.0, 1000.0, 0.0));
+    assert!((s.duration() - (0.5 + 9.5 + 0.5)).abs() < 1e-9);
+    let (d, v) = s.state_at(0.25);
+    assert!((d - 62.5).abs() < 1e-9 && (v - 500.0).abs() < 1e-9);
+    let (d, v) = s.state_at(10.25);
+    assert!((d - (10_000.0 - 62.5)).abs() < 1e-6 && (v - 500.0).abs() < 1e-9);
+    let i = interpolate([0, 0, 0], &segments, PERIOD);
+    assert_eq!(i.counts.len(), 10_500);
+    assert_eq!(*i.positions.last().unwrap(), [10_000, 0, 0]);
+}
+
+#[test]
+fn a_very_short_move_is_a_triangle() {
+    // 100 steps at 2,000 steps/s^2 never reaches a 1,000 steps/s feed:
+    // peak sqrt(a L) = 447.2 steps/s at the middle.
+    let s = plan(&single([0, 100, 0], 1000.0, 2000.0))[0];
+    assert!((s.v_cruise - (2000.0f64 * 100.0).sqrt()).abs() < 1e-9);
+    assert!((s.duration() - 2.0 * (100.0f64 / 2000.0).sqrt()).abs() < 1e-9);
+}
+
+#[test]
+fn a_right_angle_corner_is_taken_at_the_contour_error_speed() {
+    let path = Path::new([0, 0, 0], &[[5000, 0, 0], [5000, 5000, 0]], 1000.0, 2000.0, 1.0, PERIOD).unwrap();
+    let segments = plan(&path);
+    // sin(90/2) = 0.7071: v = sqrt(a e s / (1 - s)) = sqrt(2000 * 2.414).
+    let expected = (2000.0 * 1.0 * 0.5f64.sqrt() / (1.0 - 0.5f64.sqrt())).sqrt();
+    assert!((segments[0].v_exit - expected).abs() < 1e-6, "{}", segments[0].v_exit);
+    assert_eq!(segments[0].v_exit, segments[1].v_entry);
+    assert!((junction_speed([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 2000.0, 1.0, 1e9) - expected).abs() < 1e-9);
+}
+
+#[test]
+fn a_reversal_stops_and_a_straight_continuation_does_not() {
+    let reversal = Path::new([0, 0, 0], &[[3000, 0, 0], [0, 0, 0]], 1000.0, 2000.0, 5.0, PERIOD).unwrap();
+    assert_eq!(plan(&reversal)[0].v_exit, 0.0);
+    let straight = Path::new([0, 0, 0], &[[3000, 0, 0], [6000, 0, 0]], 1000.0, 2000.0, 5.0, PERIOD).unwrap();
+    assert_eq!(plan(&straight)[0].v_exit, 1000.0);
+    let i = interpolate([0, 0, 0], &plan(&reversal), PERIOD);
+    assert_eq!(*i.positions.last().unwrap(), [0, 0, 0]);
+    assert_eq!(i.positions.iter().map(|p| p[0]).max(), Some(3000));
+}
+
+/// Random paths: the end is exact, the speed never exceeds the feed, the
+/// speed changes by at most accel * T per period, every period's position
+/// is within one step of the planned continuous position (no drift), and
+/// no segment is entered faster than it can be left.
+#[test]
+fn random_paths_end_exactly_within_their_limits_without_drift() {
+    let mut rng = StdRng::seed_from_u64(0x9a7);
+    for case in 0..200 {
+        let n = rng.gen_range(1..12);
+        let ends: Vec<[i64; 3]> = (0..n)
+            .map(|_| [rng.gen_range(-3000..3000), rng.gen_range(-3000..3000), rng.gen_range(-300..300)])
+            .collect();
+        let feed = rng.gen_range(100.0..5000.0);
+        let accel = rng.gen_range(500.0..50_000.0);
+        let path = Path::new([rng.gen_range(-50..50), 0, 0], &ends, feed, accel, rng.gen_range(0.0..5.0), PERIOD).unwrap();
+        let segments = plan(&path);
+        for s in &segments {
+            assert!(s.v_cruise <= feed * (1.0 + 1e-12), "case {case}: cruise above feed");
+            assert!(s.v_entry.powi(2) <= s.v_exit.powi(2) + 2.0 * accel * s.length + 1e-6, "case {case}: cannot stop in time");
+            assert!(s.v_exit.powi(2) <= s.v_entry.powi(2) + 2.0 * accel * s.length + 1e-6, "case {case}: exit unreachable");
+        }
+        let i = interpolate(path.start, &segments, PERIOD);
+        assert_eq!(*i.positions.last().unwrap(), path.end(), "case {case}");
+        let mut sum = path.start;
+        for c in &i.counts {
+            for k in 0..3 {
+                sum[k] += c[k] as i64;
+            }
+        }
+        assert_eq!(sum, path.end(), "case {case}: the counts add up to the move");
+        let mut previous = 0.0;
+        for v in &i.speeds {
+            assert!(*v <= feed * (1.0 + 1e-9));
+            assert!((v - previous).abs() <= accel * PERIOD * (1.0 + 1e-9) + 1e-9, "case {case}: acceleration");
+            previous = *v;
+        }
+        // No drift: each period's position is the floor of the planned one.
+        let mut t = 0.0;
+        let mut at = 0;
+        let mut start_time = 0.0;
+        for (k, p) in i.positions.iter().enumerate().take(i.positions.len() - 1) {
+            t = (k + 1) as f64 * PERIOD;
+            while at < segments.len() && t >= start_time + segments[at].duration() {
+                start_time += segments[at].duration();
+                at += 1;
+            }
+            if at == segments.len() {
+                break;
+            }
+            let s = &segments[at];
+            let (d, _) = s.state_at(t - start_time);
+            for axis in 0..3 {
+                let exact = s.start[axis] as f64 + (s.end[axis] - s.start[axis]) as f64 * d / s.length;
+                assert!((p[axis] as f64 - exact).abs() < 1.0 + 1e-6, "case {case} period {k}: drift");
+            }
+        }
+        let _ = t;
+    }
+}
+
+#[test]
+fn path_files_parse_and_bad_ones_name_the_line_and_problem() {
+    let text = "# demo\nunits mm\nsteps_per_mm 100 100 400\nfeed 10\naccel 100\ncontour_error 0.01\nperiod_us 500\nline 1 0 0\nline 1 2 0.5\n";
+    let path = Path::parse(text).unwrap();
+    assert_eq!(path.end(), [100, 200, 200]);
+    assert_eq!((path.feed, path.accel, path.period), (1000.0, 10_000.0, 5e-4));
+    for (bad, expected) in [
+        ("feed 10\naccel 1\nline 1 2\n", "line 3: `line` takes 3 number(s), found 2"),
+        ("feed x\n", "line 1: `x` is not a number"),
+        ("feed 10\naccel 1\nline 1 2 3\nfeed 5\n", "line 4: `feed` must come before the first `line`"),
+        ("spin 3\n", "line 1: unknown statement `spin`"),
+        ("units mm\nfeed 1\naccel 1\nline 1 1 1\n", "units mm needs steps_per_mm"),
+        ("feed 10\naccel 1\n", "the path has no `line`"),
+        ("accel 1\nline 1 1 1\n", "missing `feed`"),
+        ("feed -3\naccel 1\nline 1 1 1\n", "feed must be a positive number, not -3"),
+        ("units inch\n", "line 1: unknown unit `inch` (mm or steps)"),
+    ] {
+        let error: PathError = Path::parse(bad).unwrap_err();
+        assert_eq!(error.to_string(), expected, "{bad:?}");
+    }
+}
+
+/// The driver refuses work the hardware cannot do, naming the problem,
+/// and the recording bus logs the register writes by name.
+#[test]
+fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
+    let bad = DriverConfig {
+        period_ticks: 70_000,
+        ..Default::default()
+    };
+    let error = Driver::new(ModelBus::new(), bad).err().unwrap();
+    assert_eq!(error.to_string(), "invalid configuration: period_ticks 70000 is outside 1..=65535");
+    let map = motion_hdl::blocks::motion_controller::registers::register_map(3, 4).unwrap();
+    let mut driver = Driver::new(RecordingBus::new(ModelBus::new(), &map), DriverConfig::default()).unwrap();
+    let error = driver.run(&[[0, 101, 0]], |_| {}).unwrap_err();
+    assert!(error.to_string().contains("axis 1: 101 steps exceed the limit of 50"), "{error}");
+    let report = driver.run(&[[3, -2, 1], [0, 0, 0]], |_| {}).unwrap();
+    assert_eq!(report.commanded, [3, -2, 1]);
+    assert_eq!(report.underruns, 0);
+    let log = &driver.bus().log;
+    assert!(log.contains("PERIOD_TICKS <- 0x000000c8"), "{log}");
+    assert!(log.contains("FIFO_WRITE[1] <- 0xfffffffe"), "{log}");
+    assert!(log.contains("CONTROL <- 0x00000001"), "{log}");
+}
+
+/// The CLI: a malformed path file stops with the file, line and problem,
+/// and a non-zero exit status; no panic.
+#[test]
+fn simulate_rejects_a_malformed_path_file_with_a_clear_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.path");
+    std::fs::write(&file, "feed 10\naccel 1\nline 1 two 3\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
+        .arg("simulate")
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("bad.path: line 3: `two` is not a number"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+/// The long run: a 2000-segment circle approximation through the RTL
+/// controller. Not in the default suite (about a minute):
+/// `cargo test --release --test host -- --ignored`.
+#[test]
+#[ignore]
+fn a_2000_segment_circle_through_the_rtl_ends_exactly() {
+    let config = DriverConfig::default();
+    let period = config.period_ticks as f64 * config.tick_divisor as f64 / 50e6;
+    let path = Path::new([0, 0, 0], &polygon(2000, 3000.0), 1e7, 2e10, 2.0, period).unwrap();
+    let interpolation = interpolate(path.start, &plan(&path), path.period);
+    let mut driver = Driver::new(RtlBus::new().unwrap(), config).unwrap();
+    let started = std::time::Instant::now();
+    let report = driver.run(&interpolation.counts, |_| {}).unwrap();
+    let seconds = started.elapsed().as_secs_f64();
+    println!(
+        "{report:?}: {} clocks in {seconds:.1} s, {:.0} cycles/s",
+        report.cycles,
+        report.cycles as f64 / seconds
+    );
+    assert_eq!((report.commanded, report.actual, report.underruns), ([0; 3], [0; 3], 0));
+}

@@ -193,7 +193,11 @@ const IRQ_ALL_FAULTS: &[(&str, u64)] = &[
 /// Firmware set-up: base tick every clock, `period` clocks per period,
 /// step/dir outputs with 1-clock timing, axis `i` uniform if `uniform[i]`.
 fn configure(b: &mut Controller3, period: u32, uniform: [bool; 3]) {
-    b.write("TICK_DIVISOR", 0, 1);
+    configure_with_tick(b, 1, period, uniform);
+}
+
+fn configure_with_tick(b: &mut Controller3, tick_divisor: u32, period: u32, uniform: [bool; 3]) {
+    b.write("TICK_DIVISOR", 0, tick_divisor);
     b.write("PERIOD_TICKS", 0, period);
     b.write("FIFO_LOW_WATER", 0, 4);
     let enable = b.pack("IRQ_ENABLE", IRQ_ALL_FAULTS);
@@ -246,12 +250,15 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
     let mut periods = 0;
     let (mut snapshots, mut refills) = (0, 0);
     for run in 0..2 {
-        configure(&mut b, 120, [false, true, run == 1]);
+        // The second run: a base tick every 3 clocks, 40-tick periods.
+        // Velocities stay within the uniform generator's T/2 pulses.
+        let (divisor, ticks, top_speed) = [(1, 120, 45), (3, 40, 18)][run];
+        configure_with_tick(&mut b, divisor, ticks, [false, true, run == 1]);
         let mut velocity = [0i32; 3];
         let mut queue_period = |b: &mut Controller3, rng: &mut StdRng, queued: &mut [i64; 3]| {
             for axis in 0..3 {
                 // A random walk in velocity: smooth moves with reversals.
-                velocity[axis] = (velocity[axis] + rng.gen_range(-6..=6)).clamp(-45, 45);
+                velocity[axis] = (velocity[axis] + rng.gen_range(-6..=6)).clamp(-top_speed, top_speed);
                 b.write("FIFO_WRITE", axis as u32, velocity[axis] as u32);
                 queued[axis] += velocity[axis] as i64;
             }
@@ -305,6 +312,7 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
         }
     }
     assert!(periods >= 2000 && snapshots > 20, "{periods} periods, {snapshots} snapshots");
+    assert_eq!(b.steps_while_inactive, 0, "a step left with the drive enable (active) low");
 }
 
 fn queue(b: &mut Controller3, axis: u32, counts: &[i32]) -> i64 {
@@ -617,4 +625,180 @@ int main(void) {
         r("STATUS").w1c_mask(),
     );
     assert_eq!(printed, expected);
+}
+
+/// RUN written on the clocks right after an underrun boundary, while the
+/// boundary tick's last DDA step is still in the pipeline and a uniform
+/// period is still running, with the axis switching interpolator: every
+/// step still leaves, and `active` covers all of them.
+#[test]
+fn a_restart_right_after_an_underrun_loses_nothing() {
+    for delay in 0..4u64 {
+        let mut b = Controller3::new().with_loopback();
+        configure(&mut b, 64, [false, true, false]);
+        let mut expected = [
+            queue(&mut b, 0, &[20, 20, 20]),
+            queue(&mut b, 1, &[10, 10, 10]),
+            queue(&mut b, 2, &[30, 30]),
+        ];
+        b.write("CONTROL", 0, 1);
+        while b.last.running {
+            b.idle(1);
+        }
+        b.idle(delay);
+        // Refill axis 2, switch axis 1 to the DDA, restart.
+        expected[2] += queue(&mut b, 2, &[-7]);
+        let config = b.pack("AXIS_CONFIG", &[("UNIFORM", 0)]);
+        b.write("AXIS_CONFIG", 1, config);
+        b.write("CONTROL", 0, 1);
+        drain(&mut b);
+        for axis in 0..3u32 {
+            let (cmd, act) = positions(&mut b, axis);
+            assert_eq!(cmd as i64, expected[axis as usize], "delay {delay} axis {axis}");
+            assert_eq!((act as i64, b.pin_steps(axis as usize)), (cmd as i64, cmd as i64));
+        }
+        assert_eq!(b.steps_while_inactive, 0, "delay {delay}");
+    }
+}
+
+/// Lost or clamped steps are flagged per axis, raise AXIS_FAULT once per
+/// fault, and stay flagged through stops and restarts until CLEAR_FAULTS.
+#[test]
+fn interpolator_faults_are_sticky_until_cleared_and_interrupt_each_time() {
+    let mut b = Controller3::new().with_loopback();
+    configure(&mut b, 64, [false, true, false]);
+    // Axis 0: an entry above the 16-bit interpolators (saturated, flagged).
+    queue(&mut b, 0, &[70_000, 0]);
+    // Axis 1 (uniform): more than T/2 pulses (clamped, flagged).
+    queue(&mut b, 1, &[40, 0]);
+    queue(&mut b, 2, &[0, 0]);
+    b.write("CONTROL", 0, 1);
+    b.idle(40);
+    let status = b.read("STATUS", 0);
+    assert_eq!(b.field("STATUS", "AXIS_FAULT", status), 1);
+    b.write("STATUS", 0, status);
+    drain(&mut b);
+    for axis in 0..2u32 {
+        let s = b.read("AXIS_STATUS", axis);
+        assert_eq!(b.field("AXIS_STATUS", "INTERP_OVERRANGE", s), 1, "axis {axis}");
+    }
+    assert_eq!(b.read("AXIS_STATUS", 2) & 2, 0);
+    // A stop and a restart do not clear them.
+    queue(&mut b, 0, &[1]);
+    queue(&mut b, 1, &[1]);
+    queue(&mut b, 2, &[1]);
+    b.write("CONTROL", 0, 1);
+    b.write("CONTROL", 0, 0);
+    assert_eq!(b.read("AXIS_STATUS", 0) & 2, 2, "still flagged after a restart and a stop");
+    // CLEAR_FAULTS clears; a new fault raises AXIS_FAULT again.
+    let clear = b.pack("AXIS_COMMAND", &[("CLEAR_FAULTS", 1)]);
+    b.write("AXIS_COMMAND", 0, clear);
+    assert_eq!(b.read("AXIS_STATUS", 0) & 2, 0);
+    b.write("STATUS", 0, 0x7f);
+    b.write("CONTROL", 0, 2); // flush
+    queue(&mut b, 0, &[-70_000]);
+    queue(&mut b, 1, &[0]);
+    queue(&mut b, 2, &[0]);
+    b.write("CONTROL", 0, 1);
+    b.idle(30);
+    let status = b.read("STATUS", 0);
+    assert_eq!(b.field("STATUS", "AXIS_FAULT", status), 1, "a second fault interrupts again");
+    assert_eq!(b.read("AXIS_STATUS", 0) & 2, 2);
+    // A uniform period shorter than the generator's set-up is refused.
+    drain(&mut b);
+    let mut b = Controller3::new();
+    configure(&mut b, 8, [true, false, false]);
+    for axis in 0..3 {
+        queue(&mut b, axis, &[1; 6]);
+    }
+    b.write("CONTROL", 0, 1);
+    b.idle(200);
+    let s = b.read("AXIS_STATUS", 0);
+    assert_eq!(b.field("AXIS_STATUS", "INTERP_OVERFLOW", s), 1);
+}
+
+/// PERIOD_DONE fires once per period after the first; IRQ_ENABLE gates
+/// `irq` without touching STATUS; FIFO_LOW fires when a level falls to the
+/// threshold.
+#[test]
+fn period_done_fifo_low_and_the_enable_mask() {
+    let mut b = Controller3::new();
+    configure(&mut b, 50, [false; 3]);
+    b.write("IRQ_ENABLE", 0, 0);
+    b.write("FIFO_LOW_WATER", 0, 3);
+    for axis in 0..3 {
+        queue(&mut b, axis, &[1; 6]);
+    }
+    b.write("CONTROL", 0, 1);
+    let mut done = 0;
+    let mut low_seen_at = None;
+    for clock in 0..400 {
+        let status = b.read("STATUS", 0);
+        assert!(!b.last.irq, "masked");
+        if b.field("STATUS", "PERIOD_DONE", status) == 1 {
+            done += 1;
+            let clear = b.pack("STATUS", &[("PERIOD_DONE", 1)]);
+            b.write("STATUS", 0, clear);
+        }
+        if low_seen_at.is_none() && b.field("STATUS", "FIFO_LOW", status) == 1 {
+            low_seen_at = Some(b.read("FIFO_STATUS", 0) & 0xffff);
+        }
+        let _ = clock;
+    }
+    assert_eq!(done, 5, "six periods: five ends with a next period");
+    assert_eq!(low_seen_at, Some(3), "FIFO_LOW at the threshold");
+    let enable = b.pack("IRQ_ENABLE", &[("UNDERRUN", 1)]);
+    b.write("IRQ_ENABLE", 0, enable);
+    b.idle(2);
+    assert!(b.last.irq, "the pending underrun interrupts once enabled");
+}
+
+/// CLEAR_POSITION in mid-motion, on every phase of the step timing: the
+/// commanded position moves by exactly the steps at the pins after it.
+#[test]
+fn clear_position_in_motion_keeps_counting_every_step() {
+    let mut b = Controller3::new().with_loopback();
+    configure(&mut b, 40, [false; 3]);
+    for axis in 0..3 {
+        queue(&mut b, axis, &[13; 16]);
+    }
+    b.write("CONTROL", 0, 1);
+    let clear = b.pack("AXIS_COMMAND", &[("CLEAR_POSITION", 1)]);
+    for phase in 0..7 {
+        b.idle(phase);
+        let pins_before = b.pin_steps(0);
+        b.write("AXIS_COMMAND", 0, clear);
+        b.idle(20);
+        let cmd = b.read("CMD_POSITION", 0) as i32 as i64;
+        let pins_after = b.pin_steps(0);
+        // The clear takes the step of its own clock into account.
+        let moved = pins_after - pins_before;
+        assert!(cmd == moved || cmd == moved - 1, "phase {phase}: cmd {cmd}, pins moved {moved}");
+    }
+    drain(&mut b);
+    // Exact over the whole run: axes 1 and 2 were never cleared.
+    for axis in 1..3u32 {
+        assert_eq!(b.read("CMD_POSITION", axis) as i64, 13 * 16);
+    }
+}
+
+/// One SNAPSHOT write latches every axis on the same clock: identical
+/// encoder patterns on all axes give identical snapshots at any phase.
+#[test]
+fn snapshot_is_coherent_across_axes() {
+    let mut b = Controller3::new();
+    const GRAY: [(bool, bool); 4] = [(false, false), (true, false), (true, true), (false, true)];
+    let mut state = 0usize;
+    for round in 0..40u64 {
+        for _ in 0..(round % 5) {
+            state = (state + 1) % 4;
+            let (a, bb) = GRAY[state];
+            b.encoders = vec![(a, bb, false); 3];
+            b.idle(1);
+        }
+        b.write("SNAPSHOT", 0, 0);
+        let snaps: Vec<u32> = (0..3).map(|axis| b.read("ACT_SNAPSHOT", axis)).collect();
+        assert!(snaps.iter().all(|&s| s == snaps[0]), "round {round}: {snaps:?}");
+    }
+    assert!(b.read("ACT_SNAPSHOT", 0) > 50);
 }

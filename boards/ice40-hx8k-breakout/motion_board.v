@@ -85,11 +85,12 @@ module motion_board (
 
     wire irq;
     wire running;
+    wire active;
     motion_controller controller (
         .clock(clock), .reset(reset),
         .bus_address(reg_address), .bus_write_data(reg_write_data),
         .bus_write(reg_write), .bus_read(reg_read), .bus_read_data(reg_read_data),
-        .irq(irq), .running(running),
+        .irq(irq), .running(running), .active(active),
         .enc_a__0(X_ENC_A), .enc_b__0(X_ENC_B), .enc_index__0(X_ENC_Z),
         .enc_a__1(Y_ENC_A), .enc_b__1(Y_ENC_B), .enc_index__1(Y_ENC_Z),
         .enc_a__2(Z_ENC_A), .enc_b__2(Z_ENC_B), .enc_index__2(Z_ENC_Z),
@@ -99,7 +100,9 @@ module motion_board (
     );
 
     assign DSP_IRQ_N    = ~irq;
-    assign DRIVE_ENABLE = running;
+    // `active`, not `running`: the last steps of a move leave after the
+    // periods stop.
+    assign DRIVE_ENABLE = active;
     assign LED_RUNNING  = running;
     assign LED_IRQ      = irq;
 endmodule

@@ -34,6 +34,9 @@ pub struct RtlBus {
     window_start: u64,
     peak_window_steps: [u64; 3],
     rate_window: u64,
+    /// Motor positions (net pin steps) sampled every `sample_every` clocks.
+    samples: Vec<[i64; 3]>,
+    sample_every: u64,
 }
 
 impl RtlBus {
@@ -47,12 +50,25 @@ impl RtlBus {
             window_start: 0,
             peak_window_steps: [0; 3],
             rate_window: 10_000,
+            samples: Vec::new(),
+            sample_every: 0,
         })
     }
 
     /// Records every signal to a VCD file from now on.
     pub fn record_vcd(&mut self, path: &std::path::Path) -> Result<(), HarnessError> {
         self.harness.record_vcd(path)
+    }
+
+    /// Samples the motor positions (net steps at the pins) every `clocks`
+    /// clocks from now on (0: never).
+    pub fn sample_positions(&mut self, clocks: u64) {
+        self.sample_every = clocks;
+    }
+
+    /// The sampled motor positions.
+    pub fn samples(&self) -> &[[i64; 3]] {
+        &self.samples
     }
 
     /// The simulated encoders (their `net` and `total` count the pins).
@@ -90,6 +106,9 @@ impl RtlBus {
             let before = e.total;
             e.follow(pins[i]);
             self.window_steps[i] += e.total - before;
+        }
+        if self.sample_every > 0 && self.harness.cycles() % self.sample_every == 0 {
+            self.samples.push(self.encoders.map(|e| e.net));
         }
         if self.harness.cycles() - self.window_start >= self.rate_window {
             for i in 0..3 {

@@ -8,6 +8,7 @@ pub mod driver;
 pub mod interpolator;
 pub mod path;
 pub mod planner;
+pub mod simulation;
 
 pub use bus::{ControllerBus, ModelBus, RecordingBus, RtlBus};
 pub use driver::{Driver, DriverConfig, DriverError, RunReport};

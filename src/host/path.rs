@@ -129,6 +129,17 @@ impl Path {
             }
             let mut words = content.split_whitespace();
             let keyword = words.next().unwrap_or_default();
+            if keyword == "units" {
+                if !lines.is_empty() {
+                    return Err(err("`units` must come before the first `line`".into()));
+                }
+                mm = match words.next().unwrap_or("") {
+                    "mm" => true,
+                    "steps" => false,
+                    other => return Err(err(format!("unknown unit `{other}` (mm or steps)"))),
+                };
+                continue;
+            }
             let numbers: Vec<f64> = words
                 .map(|w| {
                     w.parse::<f64>()
@@ -152,15 +163,6 @@ impl Path {
                 }
             };
             match keyword {
-                "units" => {
-                    let unit = content.split_whitespace().nth(1).unwrap_or("");
-                    mm = match unit {
-                        "mm" => true,
-                        "steps" => false,
-                        other => return Err(err(format!("unknown unit `{other}` (mm or steps)"))),
-                    };
-                    settings_before_lines(&lines)?;
-                }
                 "steps_per_mm" => {
                     want(3)?;
                     settings_before_lines(&lines)?;

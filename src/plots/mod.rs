@@ -1,5 +1,7 @@
 //! Report figures, drawn with `plotters` as SVG.
 
 pub mod pulse_trains;
+pub mod trajectory;
 
 pub use pulse_trains::{plot_pulse_trains, plot_unevenness, PlotError};
+pub use trajectory::{plot_path_xy, plot_speed};

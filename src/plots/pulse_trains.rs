@@ -57,7 +57,7 @@ fn check_period(period: u64, max: u64) -> Result<(), PlotError> {
     Ok(())
 }
 
-fn draw_error(path: &Path) -> impl Fn(String) -> PlotError + '_ {
+pub(crate) fn draw_error(path: &Path) -> impl Fn(String) -> PlotError + '_ {
     move |message| PlotError::Draw {
         path: path.display().to_string(),
         message,

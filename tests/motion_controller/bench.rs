@@ -27,6 +27,8 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
     pub last: ControllerOutputs,
     /// Clocks run.
     pub cycles: u64,
+    /// Step edges seen at the pins while `active` (the drive enable) was low.
+    pub steps_while_inactive: u64,
     /// Input vectors of every clock, when recording (for cross-simulation).
     pub recording: Option<Vec<Vec<u64>>>,
 }
@@ -49,6 +51,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
             },
             cycles: 0,
             recording: None,
+            steps_while_inactive: 0,
         }
     }
 
@@ -98,13 +101,18 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
             read_data: rtl[0] as u32,
             irq: rtl[1] != 0,
             running: rtl[2] != 0,
-            steps: (0..K).map(|i| (rtl[3 + i] != 0, rtl[3 + K + i] != 0)).collect(),
+            active: rtl[3] != 0,
+            steps: (0..K).map(|i| (rtl[4 + i] != 0, rtl[4 + K + i] != 0)).collect(),
         };
         assert_eq!(got, expected, "cycle {}: RTL and model differ ({inputs:?})", self.cycles);
         self.cycles += 1;
         if let Some(encoders) = self.loopback.as_mut() {
             for (i, encoder) in encoders.iter_mut().enumerate() {
+                let before = encoder.total;
                 self.encoders[i] = encoder.follow(got.steps[i]);
+                if encoder.total != before && !got.active {
+                    self.steps_while_inactive += 1;
+                }
             }
         }
         self.last = got;

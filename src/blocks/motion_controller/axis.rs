@@ -73,6 +73,11 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub fault_event: Signal<Out, Bit>,
     /// The encoder error flag rose.
     pub encoder_error_event: Signal<Out, Bit>,
+    /// Steps are still leaving: the output stage is busy or a uniform
+    /// period is running.
+    pub busy: Signal<Out, Bit>,
+    /// Empty the FIFO.
+    pub flush: Signal<In, Bit>,
 
     fifo: CommandFifo<N, NP1>,
     dda: DdaIntegrator<PERIOD_BITS>,
@@ -98,9 +103,19 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     tick_d: DFF<Bit>,
     /// The DDA's J for the running period (0 when stopped or uniform).
     integrand: DFF<Bits<PERIOD_BITS>>,
-    /// Sticky: an entry's magnitude did not fit the interpolators (it was
-    /// saturated to 2^PERIOD_BITS - 1).
-    entry_overrange: DFF<Bit>,
+    /// AXIS_STATUS.INTERP_OVERRANGE: an entry did not fit the
+    /// interpolators (saturated to 2^PERIOD_BITS - 1) or an interpolator
+    /// clamped one. Kept here, cleared only by CLEAR_FAULTS: the
+    /// interpolators' own flags are also cleared by a start or a stop.
+    overrange_flag: DFF<Bit>,
+    /// AXIS_STATUS.INTERP_OVERFLOW: the uniform generator refused a period.
+    overflow_flag: DFF<Bit>,
+    /// The sub-blocks' sticky flags one clock ago: each rise is a fault
+    /// event (a flag re-arms when cleared, by CLEAR_FAULTS or a start).
+    overrun_prev: DFF<Bit>,
+    dda_overrange_prev: DFF<Bit>,
+    uniform_overrange_prev: DFF<Bit>,
+    uniform_overflow_prev: DFF<Bit>,
     /// The running period's direction (DDA).
     forward: DFF<Bit>,
     /// The direction travels with the DDA's two clocks of latency.
@@ -119,7 +134,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     request_forward: DFF<Bit>,
     cmd_snapshot: DFF<Bits<32>>,
     act_snapshot: DFF<Bits<32>>,
-    fault_prev: DFF<Bit>,
     encoder_error_prev: DFF<Bit>,
 
     selected: Signal<Local, Bit>,
@@ -135,7 +149,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     count: Signal<Local, Bits<PERIOD_BITS>>,
     uniform_started: Signal<Local, Bit>,
     uniform_forward: Signal<Local, Bit>,
-    fault: Signal<Local, Bit>,
     fifo_status: Signal<Local, Bits<32>>,
     axis_status: Signal<Local, Bits<32>>,
 
@@ -152,6 +165,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     bit6_32: Constant<Bits<32>>,
     bit7_32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
+    one32: Constant<Bits<32>>,
+    minus_one32: Constant<Bits<32>>,
     zero_count: Constant<Bits<PERIOD_BITS>>,
     max_count: Constant<Bits<PERIOD_BITS>>,
     /// The bits of a magnitude above the interpolators' width.
@@ -212,6 +227,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             overflow_event: Default::default(),
             fault_event: Default::default(),
             encoder_error_event: Default::default(),
+            busy: Default::default(),
+            flush: Default::default(),
             fifo: Default::default(),
             dda: Default::default(),
             uniform: Default::default(),
@@ -229,7 +246,12 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             underrun_d: Default::default(),
             tick_d: Default::default(),
             integrand: Default::default(),
-            entry_overrange: Default::default(),
+            overrange_flag: Default::default(),
+            overflow_flag: Default::default(),
+            overrun_prev: Default::default(),
+            dda_overrange_prev: Default::default(),
+            uniform_overrange_prev: Default::default(),
+            uniform_overflow_prev: Default::default(),
             forward: Default::default(),
             forward_1: Default::default(),
             forward_2: Default::default(),
@@ -242,7 +264,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             request_forward: Default::default(),
             cmd_snapshot: Default::default(),
             act_snapshot: Default::default(),
-            fault_prev: Default::default(),
             encoder_error_prev: Default::default(),
             selected: Default::default(),
             offset: Default::default(),
@@ -255,7 +276,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             count: Default::default(),
             uniform_started: Default::default(),
             uniform_forward: Default::default(),
-            fault: Default::default(),
             fifo_status: Default::default(),
             axis_status: Default::default(),
             window: c4(window),
@@ -271,6 +291,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             bit6_32: Constant::new((1u64 << 6).into()),
             bit7_32: Constant::new((1u64 << 7).into()),
             zero32: Constant::new(0u64.into()),
+            one32: Constant::new(1u64.into()),
+            minus_one32: Constant::new(0xffff_ffffu64.into()),
             zero_count: Constant::new(0u64.into()),
             max_count: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
             above_count: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into()),
@@ -314,7 +336,12 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             underrun_d,
             tick_d,
             integrand,
-            entry_overrange,
+            overrange_flag,
+            overflow_flag,
+            overrun_prev,
+            dda_overrange_prev,
+            uniform_overrange_prev,
+            uniform_overflow_prev,
             forward,
             forward_1,
             forward_2,
@@ -327,7 +354,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             request_forward,
             cmd_snapshot,
             act_snapshot,
-            fault_prev,
             encoder_error_prev
         );
         self.fifo.clock.next = self.clock.val();
@@ -365,7 +391,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         }
 
         // Command FIFO.
-        self.fifo.reset.next = self.reset.val();
+        self.fifo.reset.next = self.reset.val() | self.flush.val();
         self.fifo.write.next = self.write.val()
             & self.selected.val()
             & (self.offset.val() == self.off_fifo_write.val());
@@ -401,15 +427,26 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.count.next = self.max_count.val();
         }
         if self.clear_faults.val() {
-            self.entry_overrange.d.next = false;
+            self.overrange_flag.d.next = false;
+            self.overflow_flag.d.next = false;
         }
-        if self.popped_valid.q.val() & self.too_large.val() {
-            self.entry_overrange.d.next = true;
+        // Set by the rises of the sub-blocks' flags (their levels would
+        // defeat a CLEAR_FAULTS that clears them on the same clock).
+        if (self.popped_valid.q.val() & self.too_large.val())
+            | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
+            | (self.uniform.overrange.val() & !self.uniform_overrange_prev.q.val())
+        {
+            self.overrange_flag.d.next = true;
+        }
+        if self.uniform.overflow.val() & !self.uniform_overflow_prev.q.val() {
+            self.overflow_flag.d.next = true;
         }
 
         // Per-period state. The DDA takes J and its direction at the
         // boundary edge; the boundary tick itself still uses the old ones.
-        if self.start.val() {
+        // A uniform period still finishing keeps its generator in charge:
+        // the switch waits for the next start, and no pulse is cut off.
+        if self.start.val() & !self.uniform.running.val() {
             self.uniform_active.d.next = self.settings.q.val().get_bit(0);
         }
         if self.popped_valid.q.val() {
@@ -426,7 +463,9 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.forward_1.d.next = self.forward.q.val();
         self.forward_2.d.next = self.forward_1.q.val();
 
-        self.dda.reset.next = self.reset.val() | self.halt.val() | self.start.val();
+        // Not reset at a start: its accumulator is 0 at every boundary, and
+        // the boundary tick's pulse may still be in its pipeline.
+        self.dda.reset.next = self.reset.val() | self.halt.val();
         self.dda.tick.next = self.tick_d.q.val();
         self.dda.integrand.next = self.integrand.q.val();
         self.dda.modulus.next = self.modulus.val();
@@ -481,9 +520,18 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.position.reset.next = self.reset.val();
         self.position.up.next = self.stage.emitted.val() & self.stage.emitted_forward.val();
         self.position.down.next = self.stage.emitted.val() & !self.stage.emitted_forward.val();
-        self.position.clear.next = self.command.val() & self.write_data.val().get_bit(3);
-        self.position.load.next = false;
+        // CLEAR_POSITION loads the step emitted on the same clock, if any,
+        // rather than losing it to the clear.
+        self.position.clear.next = false;
+        self.position.load.next = self.command.val() & self.write_data.val().get_bit(3);
         self.position.load_value.next = self.zero32.val();
+        if self.stage.emitted.val() {
+            if self.stage.emitted_forward.val() {
+                self.position.load_value.next = self.one32.val();
+            } else {
+                self.position.load_value.next = self.minus_one32.val();
+            }
+        }
         self.position.compare_value.next = self.zero32.val();
 
         // Encoder.
@@ -506,14 +554,18 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.act_snapshot.d.next = self.encoder.count.val();
         }
 
-        // Events: rising edges of the sticky flags.
-        self.fault.next = self.stage.overrun.val()
-            | self.entry_overrange.q.val()
-            | self.dda.overrange.val()
-            | self.uniform.overrange.val()
-            | self.uniform.overflow.val();
-        self.fault_prev.d.next = self.fault.val();
-        self.fault_event.next = self.fault.val() & !self.fault_prev.q.val();
+        // Events: each rise of a sub-block's sticky flag, and each
+        // saturated entry.
+        self.overrun_prev.d.next = self.stage.overrun.val();
+        self.dda_overrange_prev.d.next = self.dda.overrange.val();
+        self.uniform_overrange_prev.d.next = self.uniform.overrange.val();
+        self.uniform_overflow_prev.d.next = self.uniform.overflow.val();
+        self.fault_event.next = (self.stage.overrun.val() & !self.overrun_prev.q.val())
+            | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
+            | (self.uniform.overrange.val() & !self.uniform_overrange_prev.q.val())
+            | (self.uniform.overflow.val() & !self.uniform_overflow_prev.q.val())
+            | (self.popped_valid.q.val() & self.too_large.val());
+        self.busy.next = self.stage.busy.val() | self.uniform.running.val();
         self.encoder_error_prev.d.next = self.encoder.error.val();
         self.encoder_error_event.next = self.encoder.error.val() & !self.encoder_error_prev.q.val();
 
@@ -539,10 +591,10 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.stage.overrun.val() {
             self.axis_status.next = self.axis_status.val() | self.bit0_32.val();
         }
-        if self.dda.overrange.val() | self.uniform.overrange.val() | self.entry_overrange.q.val() {
+        if self.overrange_flag.q.val() {
             self.axis_status.next = self.axis_status.val() | self.bit1_32.val();
         }
-        if self.uniform.overflow.val() {
+        if self.overflow_flag.q.val() {
             self.axis_status.next = self.axis_status.val() | self.bit2_32.val();
         }
         if self.encoder.error.val() {
@@ -615,7 +667,12 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.underrun_d.d.next = false;
             self.tick_d.d.next = false;
             self.integrand.d.next = self.zero_count.val();
-            self.entry_overrange.d.next = false;
+            self.overrange_flag.d.next = false;
+            self.overflow_flag.d.next = false;
+            self.overrun_prev.d.next = false;
+            self.dda_overrange_prev.d.next = false;
+            self.uniform_overrange_prev.d.next = false;
+            self.uniform_overflow_prev.d.next = false;
             self.forward.d.next = false;
             self.forward_1.d.next = false;
             self.forward_2.d.next = false;
@@ -628,7 +685,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.request_forward.d.next = false;
             self.cmd_snapshot.d.next = self.zero32.val();
             self.act_snapshot.d.next = self.zero32.val();
-            self.fault_prev.d.next = false;
             self.encoder_error_prev.d.next = false;
         }
     }

@@ -33,7 +33,8 @@
 //! | `bus_read` | in | 1 | one-clock read strobe (reads have no side effects) |
 //! | `bus_read_data` | out | 32 | the addressed register, registered: valid in the clock after `bus_read`, held until the next read |
 //! | `irq` | out | 1 | level interrupt: an enabled `STATUS` bit is set; registered |
-//! | `running` | out | 1 | periods are running (`STATE.RUNNING`), for a drive-enable pin |
+//! | `running` | out | 1 | periods are running (`STATE.RUNNING`) |
+//! | `active` | out | 1 | `running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls, so this, not `running`, is the drive enable |
 //! | `step_a__k` | out | 1 | axis k: step (step/dir), up (up/down) or A (quadrature); registered |
 //! | `step_b__k` | out | 1 | axis k: dir, down or B; registered |
 //! | `enc_a__k`, `enc_b__k`, `enc_index__k` | in | 1 | axis k encoder, asynchronous (synchronized inside) |
@@ -87,15 +88,31 @@
 //!   output stage still leave with correct timing, so no pulse is cut),
 //!   `RUN` clears, `STATUS.WATCHDOG` is raised and `RUN` cannot be set
 //!   until `STATUS.WATCHDOG` is written 1.
-//! * **Stop**: `RUN` written 0 stops like the watchdog.
+//! * **Stop**: `RUN` written 0 stops like the watchdog. `CONTROL.FLUSH`
+//!   empties every FIFO at once, so a restart does not run stale periods.
+//! * **Interpolator choice** (`AXIS_CONFIG.UNIFORM`) is taken at a start,
+//!   for an axis whose uniform generator is idle; an axis still finishing
+//!   a uniform period keeps the generator until the next start, so no
+//!   pulse is cut off.
 //! * **Encoder error**: A and B changing on one sample sets
-//!   `AXIS_STATUS.ENCODER_ERROR` (cleared with `CLEAR_ENCODER`) and raises
-//!   `STATUS.ENCODER_ERROR`.
+//!   `AXIS_STATUS.ENCODER_ERROR` and raises `STATUS.ENCODER_ERROR`. It is
+//!   cleared with `CLEAR_ENCODER`, which also zeroes `ACT_POSITION` (the
+//!   decoder has one clear for both): the position is not trustworthy
+//!   after an error anyway, so re-home. Until then a further error raises
+//!   no new interrupt.
 //! * **Lost steps** (never silent): a count beyond what the interpolator
-//!   can emit is clamped (`INTERP_OVERRANGE`), a uniform period refused for
-//!   lack of set-up time (`INTERP_OVERFLOW`), a saturated output stage
-//!   (`STEP_OVERRUN`): each raises `STATUS.AXIS_FAULT`, and the commanded
-//!   position still counts only what was emitted.
+//!   can emit is clamped (`INTERP_OVERRANGE`; on a uniform axis an odd
+//!   `PERIOD_TICKS` is also corrected and flagged), a uniform period
+//!   refused for lack of set-up time (`INTERP_OVERFLOW`), a saturated
+//!   output stage (`STEP_OVERRUN`). Each is sticky in `AXIS_STATUS` until
+//!   `CLEAR_FAULTS` (a stop or a start does not clear it), each occurrence
+//!   raises `STATUS.AXIS_FAULT`, and the commanded position still counts
+//!   only what was emitted. A DDA axis asked for more steps per period than
+//!   its output stage's timing allows is not flagged until the stage's
+//!   pending count saturates: the steps are delayed, not lost.
+//! * **Reset or a STEP_MODE change in quadrature mode** returns A/B to 00
+//!   from whatever state they were in, which a drive may count as a step:
+//!   change modes and reset only with the drive disabled.
 //! * Writes to read-only or unused addresses are ignored; reads of unused
 //!   addresses return 0.
 //!
@@ -107,9 +124,9 @@
 //! that produced it (1 tick delay, 2 in the DDA, 1 request register, 1 in
 //! the stage); the stage's timing settings may delay it further. A uniform
 //! axis runs each period 24 clocks or more behind the boundary. `irq` follows a `STATUS` bit by
-//! one clock. The commanded position counts a step in the clock its first
-//! pin edge appears; the actual position follows the encoder pins by the
-//! decoder's latency (5 clocks with the filter off).
+//! one clock. `CMD_POSITION` counts a step one clock after its first pin
+//! edge appears; `ACT_POSITION` follows the encoder pins by the decoder's
+//! latency (5 clocks with the filter off).
 //!
 //! ## Resources (iCE40 HX8K, K = 3, 16-entry FIFOs)
 //! See `rtl-out/synthesis-report.md`. The budget of 2500 logic
@@ -161,6 +178,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ),
     ("irq", "level interrupt: an enabled STATUS bit is set"),
     ("running", "periods are running (STATE.RUNNING)"),
+    (
+        "active",
+        "steps are still leaving (running, or an output stage or uniform generator busy): the drive enable",
+    ),
     ("step_a__i", "axis i's step (step/dir), up (up/down) or A (quadrature)"),
     ("step_b__i", "axis i's dir, down or B"),
     ("enc_a__i", "axis i's encoder A, asynchronous"),
@@ -196,6 +217,9 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     pub irq: Signal<Out, Bit>,
     /// Periods are running.
     pub running: Signal<Out, Bit>,
+    /// Steps are still leaving (running, or an output stage or uniform
+    /// generator still busy): the drive-enable output.
+    pub active: Signal<Out, Bit>,
     /// Per axis: step / up / A.
     pub step_a: [Signal<Out, Bit>; K],
     /// Per axis: dir / down / B.
@@ -242,6 +266,8 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     any_overflow: Signal<Local, Bit>,
     any_fault: Signal<Local, Bit>,
     any_encoder_error: Signal<Local, Bit>,
+    any_busy: Signal<Local, Bit>,
+    flush: Signal<Local, Bit>,
     axes_read: Signal<Local, Bits<32>>,
     global_read: Signal<Local, Bits<32>>,
     events: Signal<Local, Bits<7>>,
@@ -313,6 +339,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             bus_read_data: Default::default(),
             irq: Default::default(),
             running: Default::default(),
+            active: Default::default(),
             step_a: array_init::array_init(|_| Default::default()),
             step_b: array_init::array_init(|_| Default::default()),
             axes: array_init::array_init(MotionAxis::new),
@@ -347,6 +374,8 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             any_overflow: Default::default(),
             any_fault: Default::default(),
             any_encoder_error: Default::default(),
+            any_busy: Default::default(),
+            flush: Default::default(),
             axes_read: Default::default(),
             global_read: Default::default(),
             events: Default::default(),
@@ -467,7 +496,9 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         self.any_overflow.next = false;
         self.any_fault.next = false;
         self.any_encoder_error.next = false;
+        self.any_busy.next = false;
         for i in 0..K {
+            self.any_busy.next = self.any_busy.val() | self.axes[i].busy.val();
             self.all_ready.next = self.all_ready.val() & !self.axes[i].empty.val();
             self.any_low.next = self.any_low.val() | self.axes[i].low.val();
             self.any_overflow.next = self.any_overflow.val() | self.axes[i].overflow_event.val();
@@ -510,6 +541,8 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.in_period.d.next = false;
         }
         self.running.next = self.run.q.val();
+        self.active.next = self.run.q.val() | self.any_busy.val();
+        self.flush.next = self.write_control.val() & self.bus_write_data.val().get_bit(1);
 
         // Axes.
         self.axes_read.next = self.zero32.val();
@@ -518,6 +551,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.axes[i].reset.next = self.reset.val();
             self.axes[i].tick.next = self.tick.val();
             self.axes[i].start.next = self.start.val();
+            self.axes[i].flush.next = self.flush.val();
             self.axes[i].halt.next = self.halt.val();
             self.axes[i].pop.next = self.pop.val();
             self.axes[i].underrun.next = self.underrun.val();
@@ -666,7 +700,7 @@ impl<const K: usize, const N: usize, const NP1: usize> crate::sim::VectorPorts
         names
     }
     fn output_names() -> Vec<String> {
-        let mut names: Vec<String> = ["bus_read_data", "irq", "running"].map(String::from).to_vec();
+        let mut names: Vec<String> = ["bus_read_data", "irq", "running", "active"].map(String::from).to_vec();
         for port in ["step_a", "step_b"] {
             names.extend((0..K).map(|i| format!("{port}__{i}")));
         }
@@ -694,6 +728,7 @@ impl<const K: usize, const N: usize, const NP1: usize> crate::sim::VectorPorts
             self.bus_read_data.val().to_vector(),
             self.irq.val().to_vector(),
             self.running.val().to_vector(),
+            self.active.val().to_vector(),
         ];
         out.extend(self.step_a.iter().map(|s| s.val().to_vector()));
         out.extend(self.step_b.iter().map(|s| s.val().to_vector()));

@@ -50,6 +50,8 @@ pub struct ControllerOutputs {
     pub irq: bool,
     /// Periods are running.
     pub running: bool,
+    /// Running, or an axis still busy.
+    pub active: bool,
     /// Per axis: (step_a, step_b).
     pub steps: Vec<(bool, bool)>,
 }
@@ -61,6 +63,7 @@ struct AxisControl {
     tick: bool,
     start: bool,
     halt: bool,
+    flush: bool,
     pop: bool,
     underrun: bool,
     period_active: u64,
@@ -99,7 +102,12 @@ pub struct AxisModel {
     underrun_d: bool,
     tick_d: bool,
     integrand: u64,
-    entry_overrange: bool,
+    overrange_flag: bool,
+    overflow_flag: bool,
+    overrun_prev: bool,
+    dda_overrange_prev: bool,
+    uniform_overrange_prev: bool,
+    uniform_overflow_prev: bool,
     forward: bool,
     forward_1: bool,
     forward_2: bool,
@@ -112,7 +120,6 @@ pub struct AxisModel {
     request_forward: bool,
     cmd_snapshot: u32,
     act_snapshot: u32,
-    fault_prev: bool,
     encoder_error_prev: bool,
 }
 
@@ -172,7 +179,12 @@ impl AxisModel {
             underrun_d: false,
             tick_d: false,
             integrand: 0,
-            entry_overrange: false,
+            overrange_flag: false,
+            overflow_flag: false,
+            overrun_prev: false,
+            dda_overrange_prev: false,
+            uniform_overrange_prev: false,
+            uniform_overflow_prev: false,
             forward: false,
             forward_1: false,
             forward_2: false,
@@ -185,7 +197,6 @@ impl AxisModel {
             request_forward: false,
             cmd_snapshot: 0,
             act_snapshot: 0,
-            fault_prev: false,
             encoder_error_prev: false,
         }
     }
@@ -213,12 +224,22 @@ impl AxisModel {
         (self.popped as i32).unsigned_abs() as u64
     }
 
-    fn fault(&self) -> bool {
-        self.stage_out.overrun
-            || self.entry_overrange
-            || self.dda_out.overrange
-            || self.uniform_out.overrange
-            || self.uniform_out.overflow
+    fn too_large(&self) -> bool {
+        self.popped_magnitude() > COUNT_MAX
+    }
+
+    /// Rises of the sub-blocks' sticky flags in this clock.
+    fn rises(&self) -> (bool, bool, bool, bool) {
+        (
+            self.stage_out.overrun && !self.overrun_prev,
+            self.dda_out.overrange && !self.dda_overrange_prev,
+            self.uniform_out.overrange && !self.uniform_overrange_prev,
+            self.uniform_out.overflow && !self.uniform_overflow_prev,
+        )
+    }
+
+    fn busy(&self) -> bool {
+        self.stage_out.busy || self.uniform_out.running
     }
 
     fn comb(&self, address: u32, write: bool, pop: bool, low_water: u64) -> AxisComb {
@@ -248,8 +269,8 @@ impl AxisModel {
                 axis::ACT_SNAPSHOT => self.act_snapshot,
                 axis::AXIS_STATUS => {
                     self.stage_out.overrun as u32
-                        | ((self.dda_out.overrange || self.uniform_out.overrange || self.entry_overrange) as u32) << 1
-                        | (self.uniform_out.overflow as u32) << 2
+                        | (self.overrange_flag as u32) << 1
+                        | (self.overflow_flag as u32) << 2
                         | (self.encoder_out.error as u32) << 3
                         | (self.encoder_out.index_seen as u32) << 4
                         | (self.stage_out.busy as u32) << 5
@@ -263,7 +284,10 @@ impl AxisModel {
         AxisComb {
             low,
             overflow_event: fifo_write && self.fifo_out.full && !pop,
-            fault_event: self.fault() && !self.fault_prev,
+            fault_event: {
+                let (a, b, c, d) = self.rises();
+                a || b || c || d || (self.popped_valid && self.too_large())
+            },
             encoder_error_event: self.encoder_out.error && !self.encoder_error_prev,
             read_data,
         }
@@ -295,13 +319,22 @@ impl AxisModel {
         }
         let magnitude = self.popped_magnitude().min(COUNT_MAX);
         let popped_forward = self.popped & (1 << 31) == 0;
+        let (_, dda_rise, uniform_overrange_rise, uniform_overflow_rise) = self.rises();
         if clear_faults {
-            next.entry_overrange = false;
+            next.overrange_flag = false;
+            next.overflow_flag = false;
         }
-        if self.popped_valid && self.popped_magnitude() > COUNT_MAX {
-            next.entry_overrange = true;
+        if (self.popped_valid && self.too_large()) || dda_rise || uniform_overrange_rise {
+            next.overrange_flag = true;
         }
-        if c.start {
+        if uniform_overflow_rise {
+            next.overflow_flag = true;
+        }
+        next.overrun_prev = self.stage_out.overrun;
+        next.dda_overrange_prev = self.dda_out.overrange;
+        next.uniform_overrange_prev = self.uniform_out.overrange;
+        next.uniform_overflow_prev = self.uniform_out.overflow;
+        if c.start && !self.uniform_out.running {
             next.uniform_active = self.config & 1 != 0;
         }
         if self.popped_valid {
@@ -315,7 +348,7 @@ impl AxisModel {
         next.forward_2 = self.forward_1;
 
         next.fifo_out = next.fifo.step(
-            c.reset,
+            c.reset || c.flush,
             c.write && selected && offset == axis::FIFO_WRITE,
             c.write_data as u64,
             c.pop,
@@ -323,7 +356,7 @@ impl AxisModel {
             false,
         );
         next.dda_out = next.dda.step(DdaIntegratorInputs {
-            reset: c.reset || c.halt || c.start,
+            reset: c.reset || c.halt,
             tick: self.tick_d,
             integrand: self.integrand,
             modulus: c.modulus,
@@ -371,9 +404,13 @@ impl AxisModel {
             reset: c.reset,
             up: self.stage_out.emitted && self.stage_out.emitted_forward,
             down: self.stage_out.emitted && !self.stage_out.emitted_forward,
-            clear: command && c.write_data & 8 != 0,
-            load: false,
-            load_value: 0,
+            clear: false,
+            load: command && c.write_data & 8 != 0,
+            load_value: match (self.stage_out.emitted, self.stage_out.emitted_forward) {
+                (false, _) => 0,
+                (true, true) => 1,
+                (true, false) => 0xffff_ffff,
+            },
             compare_value: 0,
         });
         let bit = |n: u32| self.config & (1 << n) != 0;
@@ -396,7 +433,6 @@ impl AxisModel {
             next.cmd_snapshot = self.position_out.count as u32;
             next.act_snapshot = self.encoder_out.count as u32;
         }
-        next.fault_prev = self.fault();
         next.encoder_error_prev = self.encoder_out.error;
         if c.reset {
             next.config = 0;
@@ -410,7 +446,12 @@ impl AxisModel {
             next.underrun_d = false;
             next.tick_d = false;
             next.integrand = 0;
-            next.entry_overrange = false;
+            next.overrange_flag = false;
+            next.overflow_flag = false;
+            next.overrun_prev = false;
+            next.dda_overrange_prev = false;
+            next.uniform_overrange_prev = false;
+            next.uniform_overflow_prev = false;
             next.forward = false;
             next.forward_1 = false;
             next.forward_2 = false;
@@ -423,7 +464,6 @@ impl AxisModel {
             next.request_forward = false;
             next.cmd_snapshot = 0;
             next.act_snapshot = 0;
-            next.fault_prev = false;
             next.encoder_error_prev = false;
         }
         *self = next;
@@ -512,6 +552,7 @@ impl MotionControllerModel {
             read_data: self.read_data,
             irq: self.irq,
             running: self.run,
+            active: self.run || self.axes.iter().any(AxisModel::busy),
             steps: self
                 .axes
                 .iter()
@@ -629,6 +670,7 @@ impl MotionControllerModel {
             tick,
             start,
             halt,
+            flush: write_control && i.write_data & 2 != 0,
             pop,
             underrun,
             period_active: self.period_active as u64,

@@ -1,0 +1,144 @@
+//! `motion-hdl simulate`: a path file through the simulated 3-axis
+//! controller (RTL, every step looped back into its axis's encoder).
+
+use std::path::{Path as FsPath, PathBuf};
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::{interpolate, plan, Driver, DriverConfig, Path, RtlBus};
+use crate::plots::{plot_path_xy, plot_speed};
+
+/// Settings of a simulation run.
+#[derive(Clone, Debug)]
+pub struct SimulationOptions {
+    /// System clock, Hz (sets the clocks per interpolation period).
+    pub clock_hz: f64,
+    /// Per axis: the uniform pulse generator instead of the DDA.
+    pub uniform: [bool; 3],
+    /// Step pulse high time and minimum low time, clocks.
+    pub step_len: u32,
+    /// Minimum step low time, clocks.
+    pub step_space: u32,
+    /// Folder for the SVG figures (none: no figures).
+    pub out_dir: Option<PathBuf>,
+    /// Write every signal of the controller to this VCD file.
+    pub vcd: Option<PathBuf>,
+    /// Show a progress bar.
+    pub progress: bool,
+}
+
+/// What a simulation run found.
+#[derive(Clone, Debug)]
+pub struct SimulationReport {
+    /// The path's end, steps.
+    pub target: [i64; 3],
+    /// Final commanded positions (steps emitted), per axis.
+    pub commanded: [i32; 3],
+    /// Final actual (encoder) positions.
+    pub actual: [i32; 3],
+    /// Peak step rate per axis at the pins, steps per second.
+    pub peak_rate: [f64; 3],
+    /// Underruns while periods were still to come.
+    pub underruns: usize,
+    /// Interpolation periods.
+    pub periods: usize,
+    /// Clock cycles simulated, and the wall time in seconds.
+    pub cycles: u64,
+    /// Wall time, seconds.
+    pub seconds: f64,
+    /// Figures written.
+    pub figures: Vec<PathBuf>,
+}
+
+/// Clocks per base tick and base ticks per period for `period_s` at
+/// `clock_hz`: the smallest divisor that fits the 16-bit period register
+/// and divides the period exactly.
+pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), String> {
+    let clocks = (period_s * clock_hz).round();
+    if !(2.0..=4e9).contains(&clocks) {
+        return Err(format!("a period of {period_s} s is {clocks} clocks at {clock_hz} Hz"));
+    }
+    let clocks = clocks as u64;
+    let first = clocks.div_ceil(65_535).max(1);
+    (first..=clocks)
+        .find(|d| clocks % d == 0 && clocks / d <= 65_535)
+        .map(|d| (d as u32, (clocks / d) as u32))
+        .ok_or_else(|| format!("no tick divisor splits {clocks} clocks into at most 65535 ticks"))
+}
+
+/// Runs `path_file` through the RTL controller.
+pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<SimulationReport, String> {
+    let text = std::fs::read_to_string(path_file)
+        .map_err(|e| format!("cannot read {}: {e}", path_file.display()))?;
+    let path = Path::parse(&text).map_err(|e| format!("{}: {e}", path_file.display()))?;
+    let (tick_divisor, period_ticks) = period_settings(path.period, options.clock_hz)?;
+    let segments = plan(&path);
+    let interpolation = interpolate(path.start, &segments, path.period);
+    let config = DriverConfig {
+        tick_divisor,
+        period_ticks,
+        step_len: options.step_len,
+        step_space: options.step_space,
+        dir_time: options.step_len.max(1),
+        uniform: options.uniform,
+    };
+    let mut bus = RtlBus::new().map_err(|e| e.to_string())?;
+    if let Some(vcd) = &options.vcd {
+        bus.record_vcd(vcd).map_err(|e| e.to_string())?;
+    }
+    bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
+    let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
+    // The controller starts at 0: the counts move it by (end - start).
+    let bar = if options.progress {
+        let bar = ProgressBar::new(interpolation.counts.len() as u64);
+        bar.set_style(
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} periods ({per_sec})")
+                .map_err(|e| e.to_string())?,
+        );
+        Some(bar)
+    } else {
+        None
+    };
+    let started = Instant::now();
+    let report = driver
+        .run(&interpolation.counts, |queued| {
+            if let Some(bar) = &bar {
+                bar.set_position(queued as u64);
+            }
+        })
+        .map_err(|e| e.to_string())?;
+    let seconds = started.elapsed().as_secs_f64();
+    if let Some(bar) = bar {
+        bar.finish();
+    }
+    let bus = driver.bus();
+    let offset = |p: [i64; 3]| [p[0] + path.start[0], p[1] + path.start[1], p[2] + path.start[2]];
+    let mut figures = Vec::new();
+    if let Some(dir) = &options.out_dir {
+        std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        let stem = path_file.file_stem().and_then(|s| s.to_str()).unwrap_or("path");
+        let xy = dir.join(format!("{stem}-path.svg"));
+        let measured: Vec<[i64; 3]> = bus.samples().iter().map(|&p| offset(p)).collect();
+        let mut planned = vec![path.start];
+        planned.extend(&interpolation.positions);
+        plot_path_xy(&planned, &measured, &xy).map_err(|e| e.to_string())?;
+        let speed = dir.join(format!("{stem}-speed.svg"));
+        plot_speed(&interpolation.speeds, path.period, &speed).map_err(|e| e.to_string())?;
+        figures = vec![xy, speed];
+    }
+    let to_path = |p: [i32; 3]| offset(p.map(i64::from));
+    let commanded = to_path(report.commanded);
+    let actual = to_path(report.actual);
+    Ok(SimulationReport {
+        target: path.end(),
+        commanded: commanded.map(|v| v as i32),
+        actual: actual.map(|v| v as i32),
+        peak_rate: bus.peak_steps_per_clock().map(|r| r * options.clock_hz),
+        underruns: report.underruns,
+        periods: report.periods,
+        cycles: report.cycles,
+        seconds,
+        figures,
+    })
+}

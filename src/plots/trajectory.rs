@@ -1,0 +1,92 @@
+//! Figures of a simulated trajectory: the path in the XY plane (planned
+//! and as the encoders measured it) and the path speed over time.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::pulse_trains::{draw_error, PlotError};
+
+fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if lo > hi {
+        return (0.0, 1.0);
+    }
+    let pad = ((hi - lo) * 0.05).max(1.0);
+    (lo - pad, hi + pad)
+}
+
+/// Draws the XY path: `planned` positions (one per period) and `measured`
+/// ones (sampled from the encoders), in steps.
+pub fn plot_path_xy(planned: &[[i64; 3]], measured: &[[i64; 3]], path: &Path) -> Result<(), PlotError> {
+    let err = draw_error(path);
+    let all = || planned.iter().chain(measured);
+    let (x0, x1) = bounds(all().map(|p| p[0] as f64));
+    let (y0, y1) = bounds(all().map(|p| p[1] as f64));
+    let root = SVGBackend::new(path, (800, 800)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("Path in the XY plane (steps): planned, and measured by the encoders", ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| err(e.to_string()))?;
+    chart
+        .configure_mesh()
+        .x_desc("X")
+        .y_desc("Y")
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    chart
+        .draw_series(LineSeries::new(
+            planned.iter().map(|p| (p[0] as f64, p[1] as f64)),
+            BLUE.stroke_width(3),
+        ))
+        .map_err(|e| err(e.to_string()))?
+        .label("planned")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE));
+    chart
+        .draw_series(LineSeries::new(
+            measured.iter().map(|p| (p[0] as f64, p[1] as f64)),
+            RED.stroke_width(1),
+        ))
+        .map_err(|e| err(e.to_string()))?
+        .label("encoders")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED));
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    root.present().map_err(|e| err(e.to_string()))
+}
+
+/// Draws the planned path speed (steps/s) at the end of each period.
+pub fn plot_speed(speeds: &[f64], period_s: f64, path: &Path) -> Result<(), PlotError> {
+    let err = draw_error(path);
+    let end = (speeds.len() as f64 * period_s).max(period_s);
+    let (_, top) = bounds(speeds.iter().copied().chain([0.0]));
+    let root = SVGBackend::new(path, (1000, 450)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("Path speed over time (trapezoidal profile with look-ahead)", ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0f64..end, 0f64..top)
+        .map_err(|e| err(e.to_string()))?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc("steps/s")
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    chart
+        .draw_series(LineSeries::new(
+            speeds.iter().enumerate().map(|(k, v)| ((k + 1) as f64 * period_s, *v)),
+            BLUE.stroke_width(1),
+        ))
+        .map_err(|e| err(e.to_string()))?;
+    root.present().map_err(|e| err(e.to_string()))
+}
