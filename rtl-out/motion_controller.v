@@ -1015,6 +1015,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder__index_latch;
     reg  encoder__index_once;
     reg  encoder__index_rearm;
+    reg  encoder__clear_error;
     wire  [31:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
@@ -1219,6 +1220,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .index_latch(encoder__index_latch),
         .index_once(encoder__index_once),
         .index_rearm(encoder__index_rearm),
+        .clear_error(encoder__clear_error),
         .count(encoder__count),
         .dir(encoder__dir),
         .error(encoder__error),
@@ -1596,6 +1598,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         encoder__index_once = settings__q[32'hc];
         encoder__clear = command & write_data[32'h1];
         encoder__index_rearm = command & write_data[32'h2];
+        encoder__clear_error = command & write_data[32'h4];
         if (snapshot) begin
             cmd_snapshot__d = position__count;
             act_snapshot__d = encoder__count;
@@ -2158,7 +2161,7 @@ module motion_controller__axes__0__dir_setup(d,q,clock);
 endmodule // motion_controller__axes__0__dir_setup
 
 
-module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,count,dir,error,index_seen,index_count,count_time,timestamp);
+module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
 
     // Module arguments
     input wire  clock;
@@ -2175,6 +2178,7 @@ module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sa
     input wire  index_latch;
     input wire  index_once;
     input wire  index_rearm;
+    input wire  clear_error;
     output reg  [31:0] count;
     output reg  dir;
     output reg  error;
@@ -2570,7 +2574,7 @@ module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sa
         if (down__q) begin
             dir_reg__d = 1'b0;
         end
-        error_reg__d = (error_reg__q & ~clear) | double__q;
+        error_reg__d = (error_reg__q & ~clear & ~clear_error) | double__q;
         if (up__q | down__q) begin
             count_time_reg__d = samples__q;
         end
@@ -6877,6 +6881,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder__index_latch;
     reg  encoder__index_once;
     reg  encoder__index_rearm;
+    reg  encoder__clear_error;
     wire  [31:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
@@ -7081,6 +7086,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .index_latch(encoder__index_latch),
         .index_once(encoder__index_once),
         .index_rearm(encoder__index_rearm),
+        .clear_error(encoder__clear_error),
         .count(encoder__count),
         .dir(encoder__dir),
         .error(encoder__error),
@@ -7458,6 +7464,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         encoder__index_once = settings__q[32'hc];
         encoder__clear = command & write_data[32'h1];
         encoder__index_rearm = command & write_data[32'h2];
+        encoder__clear_error = command & write_data[32'h4];
         if (snapshot) begin
             cmd_snapshot__d = position__count;
             act_snapshot__d = encoder__count;
@@ -8020,7 +8027,7 @@ module motion_controller__axes__1__dir_setup(d,q,clock);
 endmodule // motion_controller__axes__1__dir_setup
 
 
-module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,count,dir,error,index_seen,index_count,count_time,timestamp);
+module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
 
     // Module arguments
     input wire  clock;
@@ -8037,6 +8044,7 @@ module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sa
     input wire  index_latch;
     input wire  index_once;
     input wire  index_rearm;
+    input wire  clear_error;
     output reg  [31:0] count;
     output reg  dir;
     output reg  error;
@@ -8432,7 +8440,7 @@ module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sa
         if (down__q) begin
             dir_reg__d = 1'b0;
         end
-        error_reg__d = (error_reg__q & ~clear) | double__q;
+        error_reg__d = (error_reg__q & ~clear & ~clear_error) | double__q;
         if (up__q | down__q) begin
             count_time_reg__d = samples__q;
         end
@@ -12739,6 +12747,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder__index_latch;
     reg  encoder__index_once;
     reg  encoder__index_rearm;
+    reg  encoder__clear_error;
     wire  [31:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
@@ -12943,6 +12952,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .index_latch(encoder__index_latch),
         .index_once(encoder__index_once),
         .index_rearm(encoder__index_rearm),
+        .clear_error(encoder__clear_error),
         .count(encoder__count),
         .dir(encoder__dir),
         .error(encoder__error),
@@ -13320,6 +13330,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         encoder__index_once = settings__q[32'hc];
         encoder__clear = command & write_data[32'h1];
         encoder__index_rearm = command & write_data[32'h2];
+        encoder__clear_error = command & write_data[32'h4];
         if (snapshot) begin
             cmd_snapshot__d = position__count;
             act_snapshot__d = encoder__count;
@@ -13882,7 +13893,7 @@ module motion_controller__axes__2__dir_setup(d,q,clock);
 endmodule // motion_controller__axes__2__dir_setup
 
 
-module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,count,dir,error,index_seen,index_count,count_time,timestamp);
+module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
 
     // Module arguments
     input wire  clock;
@@ -13899,6 +13910,7 @@ module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sa
     input wire  index_latch;
     input wire  index_once;
     input wire  index_rearm;
+    input wire  clear_error;
     output reg  [31:0] count;
     output reg  dir;
     output reg  error;
@@ -14294,7 +14306,7 @@ module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sa
         if (down__q) begin
             dir_reg__d = 1'b0;
         end
-        error_reg__d = (error_reg__q & ~clear) | double__q;
+        error_reg__d = (error_reg__q & ~clear & ~clear_error) | double__q;
         if (up__q | down__q) begin
             count_time_reg__d = samples__q;
         end

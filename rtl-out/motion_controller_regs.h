@@ -336,7 +336,7 @@
 #define MC_AXIS_STATUS_INTERP_OVERFLOW_SHIFT 2UL /* RO sticky until CLEAR_FAULTS: the uniform generator refused a period (a period shorter than its 24-clock set-up) */
 #define MC_AXIS_STATUS_INTERP_OVERFLOW_MASK 0x00000004UL
 #define MC_AXIS_STATUS_INTERP_OVERFLOW_RESET 0x0UL
-#define MC_AXIS_STATUS_ENCODER_ERROR_SHIFT 3UL /* RO sticky: illegal encoder transition; cleared with CLEAR_ENCODER */
+#define MC_AXIS_STATUS_ENCODER_ERROR_SHIFT 3UL /* RO sticky: illegal encoder transition; cleared with CLEAR_ENCODER_ERROR (or CLEAR_ENCODER) */
 #define MC_AXIS_STATUS_ENCODER_ERROR_MASK 0x00000008UL
 #define MC_AXIS_STATUS_ENCODER_ERROR_RESET 0x0UL
 #define MC_AXIS_STATUS_INDEX_SEEN_SHIFT 4UL /* RO sticky: an index event was acted on; cleared with REARM_INDEX */
@@ -378,5 +378,8 @@
 #define MC_AXIS_COMMAND_CLEAR_POSITION_SHIFT 3UL /* WO CMD_POSITION <- 0 (a step emitted on the same clock is kept: +1 or -1) */
 #define MC_AXIS_COMMAND_CLEAR_POSITION_MASK 0x00000008UL
 #define MC_AXIS_COMMAND_CLEAR_POSITION_RESET 0x0UL
+#define MC_AXIS_COMMAND_CLEAR_ENCODER_ERROR_SHIFT 4UL /* WO ENCODER_ERROR <- 0, keeping ACT_POSITION (an error on the same clock keeps it set) */
+#define MC_AXIS_COMMAND_CLEAR_ENCODER_ERROR_MASK 0x00000010UL
+#define MC_AXIS_COMMAND_CLEAR_ENCODER_ERROR_RESET 0x0UL
 
 #endif /* MC_REGS_H */

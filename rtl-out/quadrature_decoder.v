@@ -25,6 +25,7 @@
 //   index_latch   in         1  an index event latches the count into index_count
 //   index_once    in         1  act on the first index event only, until index_rearm
 //   index_rearm   in         1  clears index_seen
+//   clear_error   in         1  clears error alone, keeping the count; tie to 0 if unused
 //   count         out       32  signed position, two's complement, wrapping; 4 counts per line
 //   dir           out        1  1 when the last count was up
 //   error         out        1  sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode); cleared by clear
@@ -35,7 +36,7 @@
 // ============================================================================
 
 `default_nettype none
-module quadrature_decoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,count,dir,error,index_seen,index_count,count_time,timestamp);
+module quadrature_decoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
 
     // Module arguments
     input wire  clock;
@@ -52,6 +53,7 @@ module quadrature_decoder(clock,reset,a,b,index,filter,clear,sample_rate,counter
     input wire  index_latch;
     input wire  index_once;
     input wire  index_rearm;
+    input wire  clear_error;
     output reg  [31:0] count;
     output reg  dir;
     output reg  error;
@@ -447,7 +449,7 @@ module quadrature_decoder(clock,reset,a,b,index,filter,clear,sample_rate,counter
         if (down__q) begin
             dir_reg__d = 1'b0;
         end
-        error_reg__d = (error_reg__q & ~clear) | double__q;
+        error_reg__d = (error_reg__q & ~clear & ~clear_error) | double__q;
         if (up__q | down__q) begin
             count_time_reg__d = samples__q;
         end

@@ -29,6 +29,8 @@ module quadrature_decoder_tb;
   reg vector_index_once;
   reg index_rearm = 0;
   reg vector_index_rearm;
+  reg clear_error = 0;
+  reg vector_clear_error;
   wire [31:0] count;
   reg [31:0] expected_count;
   wire dir;
@@ -47,7 +49,7 @@ module quadrature_decoder_tb;
   integer fields;
   integer cycle;
   reg [8*1024-1:0] vector_path;
-  quadrature_decoder uut (.clock(clock), .reset(reset), .a(a), .b(b), .index(index), .filter(filter), .clear(clear), .sample_rate(sample_rate), .counter_mode(counter_mode), .index_invert(index_invert), .index_clear(index_clear), .index_latch(index_latch), .index_once(index_once), .index_rearm(index_rearm), .count(count), .dir(dir), .error(error), .index_seen(index_seen), .index_count(index_count), .count_time(count_time), .timestamp(timestamp));
+  quadrature_decoder uut (.clock(clock), .reset(reset), .a(a), .b(b), .index(index), .filter(filter), .clear(clear), .sample_rate(sample_rate), .counter_mode(counter_mode), .index_invert(index_invert), .index_clear(index_clear), .index_latch(index_latch), .index_once(index_once), .index_rearm(index_rearm), .clear_error(clear_error), .count(count), .dir(dir), .error(error), .index_seen(index_seen), .index_count(index_count), .count_time(count_time), .timestamp(timestamp));
   initial begin
     if (!$value$plusargs("vectors=%s", vector_path)) begin
       $display("ERROR missing +vectors=FILE");
@@ -60,8 +62,8 @@ module quadrature_decoder_tb;
     end
     cycle = 0;
     while (!$feof(vectors)) begin
-      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_a, vector_b, vector_index, vector_filter, vector_clear, vector_sample_rate, vector_counter_mode, vector_index_invert, vector_index_clear, vector_index_latch, vector_index_once, vector_index_rearm, expected_count, expected_dir, expected_error, expected_index_seen, expected_index_count, expected_count_time, expected_timestamp);
-      if (fields == 20) begin
+      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_a, vector_b, vector_index, vector_filter, vector_clear, vector_sample_rate, vector_counter_mode, vector_index_invert, vector_index_clear, vector_index_latch, vector_index_once, vector_index_rearm, vector_clear_error, expected_count, expected_dir, expected_error, expected_index_seen, expected_index_count, expected_count_time, expected_timestamp);
+      if (fields == 21) begin
         reset = vector_reset;
         a = vector_a;
         b = vector_b;
@@ -75,6 +77,7 @@ module quadrature_decoder_tb;
         index_latch = vector_index_latch;
         index_once = vector_index_once;
         index_rearm = vector_index_rearm;
+        clear_error = vector_clear_error;
         #5 clock = 1'b1;
         #1;
         if (count !== expected_count) begin

@@ -459,6 +459,18 @@ fn encoder_error_is_flagged_counts_nothing_and_clears() {
     let status = b.read("STATUS", 0);
     assert_eq!(status, b.pack("STATUS", &[("ENCODER_ERROR", 1)]));
     assert!(b.last.irq);
+    // Acknowledge it and keep the position; a second error interrupts again.
+    let acknowledge = b.pack("AXIS_COMMAND", &[("CLEAR_ENCODER_ERROR", 1)]);
+    b.write("AXIS_COMMAND", 1, acknowledge);
+    b.write("STATUS", 0, status);
+    b.idle(2);
+    assert!(!b.last.irq);
+    assert_eq!(b.read("AXIS_STATUS", 1) & 8, 0);
+    assert_eq!(b.read("ACT_POSITION", 1), 1, "the position is kept");
+    b.encoders[1] = (true, false, false);
+    b.idle(10);
+    assert!(b.last.irq, "the second error interrupts again");
+    let status = b.read("STATUS", 0);
     let command = b.pack("AXIS_COMMAND", &[("CLEAR_ENCODER", 1)]);
     b.write("AXIS_COMMAND", 1, command);
     b.write("STATUS", 0, status);

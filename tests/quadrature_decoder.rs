@@ -29,6 +29,7 @@ fn vector(i: &QuadratureDecoderInputs) -> Vec<u64> {
         i.index_latch as u64,
         i.index_once as u64,
         i.index_rearm as u64,
+        i.clear_error as u64,
     ]
 }
 
@@ -108,6 +109,7 @@ fn random_stimulus(seed: u64, cycles: usize, sample_mask: u64) -> Vec<Quadrature
             }
             i.clear = rng.gen_ratio(1, 3000);
             i.index_rearm = rng.gen_ratio(1, 2000);
+            i.clear_error = rng.gen_ratio(1, 1500);
             i.reset = rng.gen_ratio(1, 100_000);
             out.push(i);
         }
@@ -162,6 +164,7 @@ impl Bench {
         let out = run(&mut self.h, &self.inputs);
         self.inputs.clear = false;
         self.inputs.index_rearm = false;
+        self.inputs.clear_error = false;
         out
     }
 
@@ -306,6 +309,14 @@ fn a_double_change_counts_nothing_and_sets_error_until_clear() {
     let out = bench.hold(10);
     assert!(out.error, "error is sticky");
     assert_eq!(out.count, 8, "the decoder continues from the new state");
+    // clear_error acknowledges the error and keeps the position.
+    bench.inputs.clear_error = true;
+    let out = bench.hold(2);
+    assert!(!out.error && out.count == 8, "clear_error keeps the count");
+    bench.phase += 2;
+    (bench.inputs.a, bench.inputs.b) = gray(bench.phase);
+    let out = bench.hold(10);
+    assert!(out.error, "a new error after clear_error");
     bench.inputs.clear = true;
     let out = bench.hold(2);
     assert!(!out.error && out.count == 0);

@@ -548,6 +548,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder.index_once.next = self.settings.q.val().get_bit(12);
         self.encoder.clear.next = self.command.val() & self.write_data.val().get_bit(1);
         self.encoder.index_rearm.next = self.command.val() & self.write_data.val().get_bit(2);
+        self.encoder.clear_error.next = self.command.val() & self.write_data.val().get_bit(4);
 
         if self.snapshot.val() {
             self.cmd_snapshot.d.next = self.position.count.val();

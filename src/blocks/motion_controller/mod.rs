@@ -94,12 +94,10 @@
 //!   for an axis whose uniform generator is idle; an axis still finishing
 //!   a uniform period keeps the generator until the next start, so no
 //!   pulse is cut off.
-//! * **Encoder error**: A and B changing on one sample sets
-//!   `AXIS_STATUS.ENCODER_ERROR` and raises `STATUS.ENCODER_ERROR`. It is
-//!   cleared with `CLEAR_ENCODER`, which also zeroes `ACT_POSITION` (the
-//!   decoder has one clear for both): the position is not trustworthy
-//!   after an error anyway, so re-home. Until then a further error raises
-//!   no new interrupt.
+//! * **Encoder error**: A and B changing on one sample counts nothing, sets
+//!   `AXIS_STATUS.ENCODER_ERROR` and raises `STATUS.ENCODER_ERROR`.
+//!   `CLEAR_ENCODER_ERROR` acknowledges it and keeps `ACT_POSITION` (the
+//!   next error interrupts again); `CLEAR_ENCODER` zeroes the position too.
 //! * **Lost steps** (never silent): a count beyond what the interpolator
 //!   can emit is clamped (`INTERP_OVERRANGE`; on a uniform axis an odd
 //!   `PERIOD_TICKS` is also corrected and flagged), a uniform period

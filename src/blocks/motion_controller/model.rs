@@ -428,6 +428,7 @@ impl AxisModel {
             index_latch: bit(11),
             index_once: bit(12),
             index_rearm: command && c.write_data & 4 != 0,
+            clear_error: command && c.write_data & 16 != 0,
         });
         if c.snapshot {
             next.cmd_snapshot = self.position_out.count as u32;

@@ -25,6 +25,7 @@
 //! | `index_latch` | in | 1 | an index event latches the count into `index_count` |
 //! | `index_once` | in | 1 | act on the first index event only, until `index_rearm` |
 //! | `index_rearm` | in | 1 | clears `index_seen` (re-arms a once-only index) |
+//! | `clear_error` | in | 1 | clears `error` alone, keeping the count (an error on the same clock keeps it set); tie to 0 if unused |
 //! | `count` | out | W | signed position, two's complement, wrapping; 4 counts per line in quadrature |
 //! | `dir` | out | 1 | 1 when the last count was up |
 //! | `error` | out | 1 | sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode) |
@@ -146,6 +147,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ),
     ("index_rearm", "clears index_seen"),
     (
+        "clear_error",
+        "clears error alone, keeping the count; tie to 0 if unused",
+    ),
+    (
         "count",
         "signed position, two's complement, wrapping; 4 counts per line",
     ),
@@ -205,6 +210,8 @@ pub struct QuadratureDecoder<const W: usize, const S: usize, const TS: usize> {
     pub index_once: Signal<In, Bit>,
     /// Clear `index_seen`.
     pub index_rearm: Signal<In, Bit>,
+    /// Clear `error` alone (the count is kept).
+    pub clear_error: Signal<In, Bit>,
     /// Signed position.
     pub count: Signal<Out, Bits<W>>,
     /// The last count was up.
@@ -295,6 +302,7 @@ impl<const W: usize, const S: usize, const TS: usize> Default for QuadratureDeco
             index_latch: Default::default(),
             index_once: Default::default(),
             index_rearm: Default::default(),
+            clear_error: Default::default(),
             count: Default::default(),
             dir: Default::default(),
             error: Default::default(),
@@ -502,7 +510,8 @@ impl<const W: usize, const S: usize, const TS: usize> Logic for QuadratureDecode
         if self.down.q.val() {
             self.dir_reg.d.next = false;
         }
-        self.error_reg.d.next = (self.error_reg.q.val() & !self.clear.val()) | self.double.q.val();
+        self.error_reg.d.next = (self.error_reg.q.val() & !self.clear.val() & !self.clear_error.val())
+            | self.double.q.val();
         if self.up.q.val() | self.down.q.val() {
             self.count_time_reg.d.next = self.samples.q.val();
         }
@@ -534,6 +543,6 @@ impl<const W: usize, const S: usize, const TS: usize> Logic for QuadratureDecode
 }
 
 crate::vector_ports!(impl[const W: usize, const S: usize, const TS: usize] QuadratureDecoder<W, S, TS> {
-    inputs: [reset, a, b, index, filter, clear, sample_rate, counter_mode, index_invert, index_clear, index_latch, index_once, index_rearm],
+    inputs: [reset, a, b, index, filter, clear, sample_rate, counter_mode, index_invert, index_clear, index_latch, index_once, index_rearm, clear_error],
     outputs: [count, dir, error, index_seen, index_count, count_time, timestamp],
 });

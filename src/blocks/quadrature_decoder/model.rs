@@ -17,6 +17,8 @@ pub struct QuadratureDecoderInputs {
     pub filter: u8,
     /// Count <- 0 and error <- 0.
     pub clear: bool,
+    /// Error <- 0 (the count is kept).
+    pub clear_error: bool,
     /// A sample every sample_rate + 1 clocks.
     pub sample_rate: u64,
     /// Count rising edges of `a`, `b` = direction (1 = up).
@@ -139,7 +141,7 @@ impl QuadratureDecoderModel {
         if prev.down {
             o.dir = false;
         }
-        o.error = (prev.out.error && !i.clear) || prev.double;
+        o.error = (prev.out.error && !i.clear && !i.clear_error) || prev.double;
         if prev.up || prev.down {
             o.count_time = prev.out.timestamp;
         }
