@@ -12,6 +12,7 @@ use motion_hdl::blocks::motion_controller::registers::register_map;
 use motion_hdl::blocks::motion_controller::MotionController;
 use motion_hdl::export::generator;
 use motion_hdl::regmap::c_header;
+use motion_hdl::sim::quadrature_state;
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use motion_hdl::tools::repo_root;
 use rand::rngs::StdRng;
@@ -65,7 +66,6 @@ impl ChaosDriver {
     }
 
     fn encoders(&mut self) -> Vec<(bool, bool, bool)> {
-        const GRAY: [(bool, bool); 4] = [(false, false), (true, false), (true, true), (false, true)];
         let rng = &mut self.rng;
         self.encoder_state
             .iter_mut()
@@ -76,7 +76,7 @@ impl ChaosDriver {
                     35 => *s = (*s + 2) % 4, // illegal: A and B together
                     _ => {}
                 }
-                let (a, b) = GRAY[*s as usize];
+                let (a, b) = quadrature_state(*s as i64);
                 (a, b, rng.gen_ratio(1, 300))
             })
             .collect()
@@ -799,12 +799,11 @@ fn clear_position_in_motion_keeps_counting_every_step() {
 #[test]
 fn snapshot_is_coherent_across_axes() {
     let mut b = Controller3::new();
-    const GRAY: [(bool, bool); 4] = [(false, false), (true, false), (true, true), (false, true)];
     let mut state = 0usize;
     for round in 0..40u64 {
         for _ in 0..(round % 5) {
             state = (state + 1) % 4;
-            let (a, bb) = GRAY[state];
+            let (a, bb) = quadrature_state(state as i64);
             b.encoders = vec![(a, bb, false); 3];
             b.idle(1);
         }

@@ -53,10 +53,7 @@ fn run(h: &mut Harness<Decoder>, i: &QuadratureDecoderInputs) -> QuadratureDecod
     outputs(&h.step_vector(&vector(i)).unwrap())
 }
 
-/// The Gray state after `phase` forward steps from 00: 00, 10, 11, 01.
-fn gray(phase: i64) -> (bool, bool) {
-    [(false, false), (true, false), (true, true), (false, true)][phase.rem_euclid(4) as usize]
-}
+use motion_hdl::sim::quadrature_state as gray;
 
 /// Random encoder walks with everything the field does: reversals at every
 /// state, dwell times from one clock up, glitches on any input shorter and

@@ -9,16 +9,33 @@ use crate::blocks::motion_controller::MotionController;
 use crate::regmap::RegisterMap;
 use crate::sim::{Harness, HarnessError, SimulatedEncoder};
 
-/// A `motion_controller` register bus as firmware sees it.
+/// A `motion_controller` register bus as firmware sees it. An
+/// implementation provides one bus clock; writes, reads (strobe, then the
+/// registered data a clock later) and waits are built on it.
 pub trait ControllerBus {
-    /// Writes a register (word address).
-    fn write(&mut self, address: u32, value: u32);
-    /// Reads a register (word address).
-    fn read(&mut self, address: u32) -> u32;
-    /// Lets `clocks` clocks pass; returns the interrupt line after them.
-    fn wait(&mut self, clocks: u64) -> bool;
+    /// One clock with these bus inputs; returns `bus_read_data` after it.
+    fn clock(&mut self, address: u32, write_data: u32, write: bool, read: bool) -> u32;
+    /// The interrupt line after the last clock.
+    fn irq(&self) -> bool;
     /// Clocks run so far.
     fn cycles(&self) -> u64;
+
+    /// Writes a register (word address).
+    fn write(&mut self, address: u32, value: u32) {
+        self.clock(address, value, true, false);
+    }
+    /// Reads a register (word address).
+    fn read(&mut self, address: u32) -> u32 {
+        self.clock(address, 0, false, true);
+        self.clock(0, 0, false, false)
+    }
+    /// Lets `clocks` clocks pass; returns the interrupt line after them.
+    fn wait(&mut self, clocks: u64) -> bool {
+        for _ in 0..clocks {
+            self.clock(0, 0, false, false);
+        }
+        self.irq()
+    }
 }
 
 /// The 3-axis exported controller (16-entry FIFOs) in RTL simulation, each
@@ -82,6 +99,9 @@ impl RtlBus {
         self.peak_window_steps.map(|n| n as f64 / self.rate_window as f64)
     }
 
+}
+
+impl ControllerBus for RtlBus {
     fn clock(&mut self, address: u32, data: u32, write: bool, read: bool) -> u32 {
         let block = self.harness.block();
         block.bus_address.next = (address as u64).into();
@@ -97,9 +117,8 @@ impl RtlBus {
         }
         self.harness.cycle().expect("the controller settles");
         let block = self.harness.block();
-        let pins: Vec<(bool, bool)> = (0..3)
-            .map(|i| (block.step_a[i].val(), block.step_b[i].val()))
-            .collect();
+        let pins: [(bool, bool); 3] =
+            std::array::from_fn(|i| (block.step_a[i].val(), block.step_b[i].val()));
         self.irq = block.irq.val();
         let read_data = block.bus_read_data.val().to_u64() as u32;
         for (i, e) in self.encoders.iter_mut().enumerate() {
@@ -119,20 +138,7 @@ impl RtlBus {
         }
         read_data
     }
-}
-
-impl ControllerBus for RtlBus {
-    fn write(&mut self, address: u32, value: u32) {
-        self.clock(address, value, true, false);
-    }
-    fn read(&mut self, address: u32) -> u32 {
-        self.clock(address, 0, false, true);
-        self.clock(0, 0, false, false)
-    }
-    fn wait(&mut self, clocks: u64) -> bool {
-        for _ in 0..clocks {
-            self.clock(0, 0, false, false);
-        }
+    fn irq(&self) -> bool {
         self.irq
     }
     fn cycles(&self) -> u64 {
@@ -158,6 +164,9 @@ impl ModelBus {
         }
     }
 
+}
+
+impl ControllerBus for ModelBus {
     fn clock(&mut self, address: u32, write_data: u32, write: bool, read: bool) -> u32 {
         let out = self.model.step(&ControllerInputs {
             reset: false,
@@ -171,30 +180,17 @@ impl ModelBus {
         self.irq = out.irq;
         out.read_data
     }
+    fn irq(&self) -> bool {
+        self.irq
+    }
+    fn cycles(&self) -> u64 {
+        self.cycles
+    }
 }
 
 impl Default for ModelBus {
     fn default() -> Self {
         Self::new()
-    }
-}
-
-impl ControllerBus for ModelBus {
-    fn write(&mut self, address: u32, value: u32) {
-        self.clock(address, value, true, false);
-    }
-    fn read(&mut self, address: u32) -> u32 {
-        self.clock(address, 0, false, true);
-        self.clock(0, 0, false, false)
-    }
-    fn wait(&mut self, clocks: u64) -> bool {
-        for _ in 0..clocks {
-            self.clock(0, 0, false, false);
-        }
-        self.irq
-    }
-    fn cycles(&self) -> u64 {
-        self.cycles
     }
 }
 
@@ -236,20 +232,19 @@ impl<B: ControllerBus> RecordingBus<B> {
 }
 
 impl<B: ControllerBus> ControllerBus for RecordingBus<B> {
-    fn write(&mut self, address: u32, value: u32) {
-        let name = self
-            .names
-            .iter()
-            .find(|(a, _)| *a == address)
-            .map_or_else(|| format!("{address:#04x}"), |(_, n)| n.clone());
-        let _ = writeln!(self.log, "@{:<10} {name} <- {value:#010x}", self.inner.cycles());
-        self.inner.write(address, value);
+    fn clock(&mut self, address: u32, write_data: u32, write: bool, read: bool) -> u32 {
+        if write {
+            let name = self
+                .names
+                .iter()
+                .find(|(a, _)| *a == address)
+                .map_or_else(|| format!("{address:#04x}"), |(_, n)| n.clone());
+            let _ = writeln!(self.log, "@{:<10} {name} <- {write_data:#010x}", self.inner.cycles());
+        }
+        self.inner.clock(address, write_data, write, read)
     }
-    fn read(&mut self, address: u32) -> u32 {
-        self.inner.read(address)
-    }
-    fn wait(&mut self, clocks: u64) -> bool {
-        self.inner.wait(clocks)
+    fn irq(&self) -> bool {
+        self.inner.irq()
     }
     fn cycles(&self) -> u64 {
         self.inner.cycles()

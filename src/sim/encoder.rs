@@ -1,6 +1,12 @@
 //! A simulated quadrature encoder on a step/dir output, for loopback
 //! benches: the motor turns one encoder count per step.
 
+/// The quadrature (A, B) levels after `phase` forward steps from 00:
+/// 00 -> 10 -> 11 -> 01 -> 00 (A leads B going forward).
+pub fn quadrature_state(phase: i64) -> (bool, bool) {
+    [(false, false), (true, false), (true, true), (false, true)][phase.rem_euclid(4) as usize]
+}
+
 /// Follows step/dir pins: each rising edge of the step pin moves the
 /// encoder one Gray state (one count of a 4x decoder) in the direction of
 /// the dir pin. Its A/B outputs change in the clock after the step edge is
@@ -17,11 +23,9 @@ pub struct SimulatedEncoder {
 }
 
 impl SimulatedEncoder {
-    const GRAY: [(bool, bool); 4] = [(false, false), (true, false), (true, true), (false, true)];
-
     /// The encoder's pins now: (a, b, index).
     pub fn outputs(&self) -> (bool, bool, bool) {
-        let (a, b) = Self::GRAY[self.state as usize];
+        let (a, b) = quadrature_state(self.state as i64);
         (a, b, false)
     }
 

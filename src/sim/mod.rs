@@ -10,7 +10,7 @@ mod harness;
 mod ports;
 mod waveform;
 
-pub use encoder::SimulatedEncoder;
+pub use encoder::{quadrature_state, SimulatedEncoder};
 pub use harness::{Harness, HarnessError};
 pub use ports::{PortValue, VectorPorts};
 pub use waveform::{render_svg, WaveformError};
