@@ -906,8 +906,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit6_32 = 32'h40;
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
-    localparam  one32 = 32'h1;
-    localparam  minus_one32 = 32'hffffffff;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
     localparam  above_count = 32'hffff0000;
@@ -1074,6 +1072,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_overflow_prev__d;
     wire  uniform_overflow_prev__q;
     reg  uniform_overflow_prev__clock;
+    reg  saturated__d;
+    wire  saturated__q;
+    reg  saturated__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -1314,6 +1315,11 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .q(uniform_overflow_prev__q),
         .clock(uniform_overflow_prev__clock)
     );
+    motion_controller__axes__0__saturated saturated(
+        .d(saturated__d),
+        .q(saturated__q),
+        .clock(saturated__clock)
+    );
     motion_controller__axes__0__forward forward(
         .d(forward__d),
         .q(forward__q),
@@ -1399,6 +1405,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__clock = clock;
         uniform_overrange_prev__clock = clock;
         uniform_overflow_prev__clock = clock;
+        saturated__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -1429,6 +1436,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__d = dda_overrange_prev__q;
         uniform_overrange_prev__d = uniform_overrange_prev__q;
         uniform_overflow_prev__d = uniform_overflow_prev__q;
+        saturated__d = saturated__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -1505,7 +1513,8 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        if ((popped_valid__q & too_large) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+        saturated__d = popped_valid__q & too_large;
+        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform__overflow & ~uniform_overflow_prev__q) begin
@@ -1573,17 +1582,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = 1'b0;
-        position__load = command & write_data[32'h3];
+        position__clear = command & write_data[32'h3];
+        position__load = 1'b0;
         position__load_value = zero32;
-        if (stage__emitted) begin
-            if (stage__emitted_forward) begin
-                position__load_value = one32;
-            end
-            else begin
-                position__load_value = minus_one32;
-            end
-        end
         position__compare_value = zero32;
         encoder__reset = reset;
         encoder__a = enc_a;
@@ -1607,7 +1608,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__d = dda__overrange;
         uniform_overrange_prev__d = uniform__overrange;
         uniform_overflow_prev__d = uniform__overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | (popped_valid__q & too_large);
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform__running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -1721,6 +1722,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             dda_overrange_prev__d = 1'b0;
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
+            saturated__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -3510,6 +3512,12 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
     reg  underflow_reg__d;
     wire  underflow_reg__q;
     reg  underflow_reg__clock;
+    reg  not_empty_reg__d;
+    wire  not_empty_reg__q;
+    reg  not_empty_reg__clock;
+    reg  full_reg__d;
+    wire  full_reg__q;
+    reg  full_reg__clock;
 
     // Local signals
     reg  is_empty;
@@ -3563,6 +3571,16 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
         .q(underflow_reg__q),
         .clock(underflow_reg__clock)
     );
+    motion_controller__axes__0__fifo__not_empty_reg not_empty_reg(
+        .d(not_empty_reg__d),
+        .q(not_empty_reg__q),
+        .clock(not_empty_reg__clock)
+    );
+    motion_controller__axes__0__fifo__full_reg full_reg(
+        .d(full_reg__d),
+        .q(full_reg__q),
+        .clock(full_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -3573,6 +3591,8 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
         bypass_data__clock = clock;
         overflow_reg__clock = clock;
         underflow_reg__clock = clock;
+        not_empty_reg__clock = clock;
+        full_reg__clock = clock;
         read_pointer__d = read_pointer__q;
         write_pointer__d = write_pointer__q;
         count__d = count__q;
@@ -3580,10 +3600,12 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
         bypass_data__d = bypass_data__q;
         overflow_reg__d = overflow_reg__q;
         underflow_reg__d = underflow_reg__q;
+        not_empty_reg__d = not_empty_reg__q;
+        full_reg__d = full_reg__q;
         ram__read_clock = clock;
         ram__write_clock = clock;
-        is_empty = count__q == zero_c;
-        is_full = count__q == capacity;
+        is_empty = ~not_empty_reg__q;
+        is_full = full_reg__q;
         empty = is_empty;
         full = is_full;
         level = count__q;
@@ -3634,6 +3656,8 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
         end
+        not_empty_reg__d = count__d != zero_c;
+        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller__axes__0__fifo
@@ -3694,6 +3718,44 @@ module motion_controller__axes__0__fifo__count(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__fifo__count
+
+
+module motion_controller__axes__0__fifo__full_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__fifo__full_reg
+
+
+module motion_controller__axes__0__fifo__not_empty_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__fifo__not_empty_reg
 
 
 module motion_controller__axes__0__fifo__overflow_reg(d,q,clock);
@@ -4158,6 +4220,25 @@ module motion_controller__axes__0__sample_rate(d,q,clock);
 endmodule // motion_controller__axes__0__sample_rate
 
 
+module motion_controller__axes__0__saturated(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__saturated
+
+
 module motion_controller__axes__0__settings(d,q,clock);
 
     // Module arguments
@@ -4203,16 +4284,16 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
     localparam  one_t = 16'h1;
     localparam  not_one = 16'hfffe;
     localparam  not_three = 16'hfffc;
-    localparam  zero_p = 16'h0;
-    localparam  one_p = 16'h1;
-    localparam  minus_one_p = 16'hffff;
-    localparam  two_p = 16'h2;
-    localparam  minus_two_p = 16'hfffe;
-    localparam  low_two_p = 16'h3;
-    localparam  high_mask_p = 16'hfffc;
-    localparam  below_max_p = 16'h7ffe;
-    localparam  above_min_p = 16'h8001;
-    localparam  min_p = 16'h8000;
+    localparam  zero_p = 8'h0;
+    localparam  one_p = 8'h1;
+    localparam  minus_one_p = 8'hff;
+    localparam  two_p = 8'h2;
+    localparam  minus_two_p = 8'hfe;
+    localparam  low_two_p = 8'h3;
+    localparam  high_mask_p = 8'hfc;
+    localparam  below_max_p = 8'h7e;
+    localparam  above_min_p = 8'h81;
+    localparam  min_p = 8'h80;
     localparam  low_plus_one = 2'b1;
     localparam  low_two = 2'b10;
     localparam  low_minus_one = 2'b11;
@@ -4220,8 +4301,8 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
     localparam  mode_reserved = 2'b11;
 
     // Stub signals
-    reg  [15:0] pending__d;
-    wire  [15:0] pending__q;
+    reg  [7:0] pending__d;
+    wire  [7:0] pending__q;
     reg  pending__clock;
     reg  nonzero__d;
     wire  nonzero__q;
@@ -4287,7 +4368,7 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
     reg  dir_done_next;
     reg  timing_setup_next;
     reg  request;
-    reg  [15:0] change;
+    reg  [7:0] change;
     reg  high_bits_zero;
     reg  high_bits_ones;
     reg  reaches_zero;
@@ -4837,13 +4918,13 @@ endmodule // motion_controller__axes__0__stage__overrun_reg
 module motion_controller__axes__0__stage__pending(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [7:0] d;
+    output reg  [7:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 8'h0;
     end
 
     always @(posedge clock) begin
@@ -5071,6 +5152,9 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
+    reg  slot_full__d;
+    wire  slot_full__q;
+    reg  slot_full__clock;
     reg  [15:0] slot_period__d;
     wire  [15:0] slot_period__q;
     reg  slot_period__clock;
@@ -5193,6 +5277,11 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         .d(slot_state__d),
         .q(slot_state__q),
         .clock(slot_state__clock)
+    );
+    motion_controller__axes__0__uniform__slot_full slot_full(
+        .d(slot_full__d),
+        .q(slot_full__q),
+        .clock(slot_full__clock)
     );
     motion_controller__axes__0__uniform__slot_period slot_period(
         .d(slot_period__d),
@@ -5363,6 +5452,7 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     // Update code
     always @(*) begin
         slot_state__clock = clock;
+        slot_full__clock = clock;
         slot_period__clock = clock;
         slot_count__clock = clock;
         slot_interleaved__clock = clock;
@@ -5397,6 +5487,7 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         period_small__clock = clock;
         count_too_large__clock = clock;
         slot_state__d = slot_state__q;
+        slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
         slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
@@ -5523,7 +5614,7 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
             if (running_reg__q) begin
                 if (period_last__q) begin
                     period_done_reg__d = 1'b1;
-                    if (slot_state__q == full) begin
+                    if (slot_full__q) begin
                         start = 1'b1;
                     end
                     else begin
@@ -5570,7 +5661,7 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
                     end
                 end
             end
-            else if (slot_state__q == full) begin
+            else if (slot_full__q) begin
                 start = 1'b1;
             end
         end
@@ -5600,6 +5691,7 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
+        slot_full__d = slot_state__d == full;
     end
 
 endmodule // motion_controller__axes__0__uniform
@@ -6309,6 +6401,25 @@ module motion_controller__axes__0__uniform__slot_first_error(d,q,clock);
 endmodule // motion_controller__axes__0__uniform__slot_first_error
 
 
+module motion_controller__axes__0__uniform__slot_full(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__uniform__slot_full
+
+
 module motion_controller__axes__0__uniform__slot_half(d,q,clock);
 
     // Module arguments
@@ -6772,8 +6883,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit6_32 = 32'h40;
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
-    localparam  one32 = 32'h1;
-    localparam  minus_one32 = 32'hffffffff;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
     localparam  above_count = 32'hffff0000;
@@ -6940,6 +7049,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_overflow_prev__d;
     wire  uniform_overflow_prev__q;
     reg  uniform_overflow_prev__clock;
+    reg  saturated__d;
+    wire  saturated__q;
+    reg  saturated__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -7180,6 +7292,11 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .q(uniform_overflow_prev__q),
         .clock(uniform_overflow_prev__clock)
     );
+    motion_controller__axes__1__saturated saturated(
+        .d(saturated__d),
+        .q(saturated__q),
+        .clock(saturated__clock)
+    );
     motion_controller__axes__1__forward forward(
         .d(forward__d),
         .q(forward__q),
@@ -7265,6 +7382,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__clock = clock;
         uniform_overrange_prev__clock = clock;
         uniform_overflow_prev__clock = clock;
+        saturated__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -7295,6 +7413,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__d = dda_overrange_prev__q;
         uniform_overrange_prev__d = uniform_overrange_prev__q;
         uniform_overflow_prev__d = uniform_overflow_prev__q;
+        saturated__d = saturated__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -7371,7 +7490,8 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        if ((popped_valid__q & too_large) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+        saturated__d = popped_valid__q & too_large;
+        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform__overflow & ~uniform_overflow_prev__q) begin
@@ -7439,17 +7559,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = 1'b0;
-        position__load = command & write_data[32'h3];
+        position__clear = command & write_data[32'h3];
+        position__load = 1'b0;
         position__load_value = zero32;
-        if (stage__emitted) begin
-            if (stage__emitted_forward) begin
-                position__load_value = one32;
-            end
-            else begin
-                position__load_value = minus_one32;
-            end
-        end
         position__compare_value = zero32;
         encoder__reset = reset;
         encoder__a = enc_a;
@@ -7473,7 +7585,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__d = dda__overrange;
         uniform_overrange_prev__d = uniform__overrange;
         uniform_overflow_prev__d = uniform__overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | (popped_valid__q & too_large);
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform__running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -7587,6 +7699,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             dda_overrange_prev__d = 1'b0;
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
+            saturated__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -9376,6 +9489,12 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
     reg  underflow_reg__d;
     wire  underflow_reg__q;
     reg  underflow_reg__clock;
+    reg  not_empty_reg__d;
+    wire  not_empty_reg__q;
+    reg  not_empty_reg__clock;
+    reg  full_reg__d;
+    wire  full_reg__q;
+    reg  full_reg__clock;
 
     // Local signals
     reg  is_empty;
@@ -9429,6 +9548,16 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
         .q(underflow_reg__q),
         .clock(underflow_reg__clock)
     );
+    motion_controller__axes__1__fifo__not_empty_reg not_empty_reg(
+        .d(not_empty_reg__d),
+        .q(not_empty_reg__q),
+        .clock(not_empty_reg__clock)
+    );
+    motion_controller__axes__1__fifo__full_reg full_reg(
+        .d(full_reg__d),
+        .q(full_reg__q),
+        .clock(full_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -9439,6 +9568,8 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
         bypass_data__clock = clock;
         overflow_reg__clock = clock;
         underflow_reg__clock = clock;
+        not_empty_reg__clock = clock;
+        full_reg__clock = clock;
         read_pointer__d = read_pointer__q;
         write_pointer__d = write_pointer__q;
         count__d = count__q;
@@ -9446,10 +9577,12 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
         bypass_data__d = bypass_data__q;
         overflow_reg__d = overflow_reg__q;
         underflow_reg__d = underflow_reg__q;
+        not_empty_reg__d = not_empty_reg__q;
+        full_reg__d = full_reg__q;
         ram__read_clock = clock;
         ram__write_clock = clock;
-        is_empty = count__q == zero_c;
-        is_full = count__q == capacity;
+        is_empty = ~not_empty_reg__q;
+        is_full = full_reg__q;
         empty = is_empty;
         full = is_full;
         level = count__q;
@@ -9500,6 +9633,8 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
         end
+        not_empty_reg__d = count__d != zero_c;
+        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller__axes__1__fifo
@@ -9560,6 +9695,44 @@ module motion_controller__axes__1__fifo__count(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__fifo__count
+
+
+module motion_controller__axes__1__fifo__full_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__fifo__full_reg
+
+
+module motion_controller__axes__1__fifo__not_empty_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__fifo__not_empty_reg
 
 
 module motion_controller__axes__1__fifo__overflow_reg(d,q,clock);
@@ -10024,6 +10197,25 @@ module motion_controller__axes__1__sample_rate(d,q,clock);
 endmodule // motion_controller__axes__1__sample_rate
 
 
+module motion_controller__axes__1__saturated(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__saturated
+
+
 module motion_controller__axes__1__settings(d,q,clock);
 
     // Module arguments
@@ -10069,16 +10261,16 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
     localparam  one_t = 16'h1;
     localparam  not_one = 16'hfffe;
     localparam  not_three = 16'hfffc;
-    localparam  zero_p = 16'h0;
-    localparam  one_p = 16'h1;
-    localparam  minus_one_p = 16'hffff;
-    localparam  two_p = 16'h2;
-    localparam  minus_two_p = 16'hfffe;
-    localparam  low_two_p = 16'h3;
-    localparam  high_mask_p = 16'hfffc;
-    localparam  below_max_p = 16'h7ffe;
-    localparam  above_min_p = 16'h8001;
-    localparam  min_p = 16'h8000;
+    localparam  zero_p = 8'h0;
+    localparam  one_p = 8'h1;
+    localparam  minus_one_p = 8'hff;
+    localparam  two_p = 8'h2;
+    localparam  minus_two_p = 8'hfe;
+    localparam  low_two_p = 8'h3;
+    localparam  high_mask_p = 8'hfc;
+    localparam  below_max_p = 8'h7e;
+    localparam  above_min_p = 8'h81;
+    localparam  min_p = 8'h80;
     localparam  low_plus_one = 2'b1;
     localparam  low_two = 2'b10;
     localparam  low_minus_one = 2'b11;
@@ -10086,8 +10278,8 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
     localparam  mode_reserved = 2'b11;
 
     // Stub signals
-    reg  [15:0] pending__d;
-    wire  [15:0] pending__q;
+    reg  [7:0] pending__d;
+    wire  [7:0] pending__q;
     reg  pending__clock;
     reg  nonzero__d;
     wire  nonzero__q;
@@ -10153,7 +10345,7 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
     reg  dir_done_next;
     reg  timing_setup_next;
     reg  request;
-    reg  [15:0] change;
+    reg  [7:0] change;
     reg  high_bits_zero;
     reg  high_bits_ones;
     reg  reaches_zero;
@@ -10703,13 +10895,13 @@ endmodule // motion_controller__axes__1__stage__overrun_reg
 module motion_controller__axes__1__stage__pending(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [7:0] d;
+    output reg  [7:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 8'h0;
     end
 
     always @(posedge clock) begin
@@ -10937,6 +11129,9 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
+    reg  slot_full__d;
+    wire  slot_full__q;
+    reg  slot_full__clock;
     reg  [15:0] slot_period__d;
     wire  [15:0] slot_period__q;
     reg  slot_period__clock;
@@ -11059,6 +11254,11 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         .d(slot_state__d),
         .q(slot_state__q),
         .clock(slot_state__clock)
+    );
+    motion_controller__axes__1__uniform__slot_full slot_full(
+        .d(slot_full__d),
+        .q(slot_full__q),
+        .clock(slot_full__clock)
     );
     motion_controller__axes__1__uniform__slot_period slot_period(
         .d(slot_period__d),
@@ -11229,6 +11429,7 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     // Update code
     always @(*) begin
         slot_state__clock = clock;
+        slot_full__clock = clock;
         slot_period__clock = clock;
         slot_count__clock = clock;
         slot_interleaved__clock = clock;
@@ -11263,6 +11464,7 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         period_small__clock = clock;
         count_too_large__clock = clock;
         slot_state__d = slot_state__q;
+        slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
         slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
@@ -11389,7 +11591,7 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
             if (running_reg__q) begin
                 if (period_last__q) begin
                     period_done_reg__d = 1'b1;
-                    if (slot_state__q == full) begin
+                    if (slot_full__q) begin
                         start = 1'b1;
                     end
                     else begin
@@ -11436,7 +11638,7 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
                     end
                 end
             end
-            else if (slot_state__q == full) begin
+            else if (slot_full__q) begin
                 start = 1'b1;
             end
         end
@@ -11466,6 +11668,7 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
+        slot_full__d = slot_state__d == full;
     end
 
 endmodule // motion_controller__axes__1__uniform
@@ -12175,6 +12378,25 @@ module motion_controller__axes__1__uniform__slot_first_error(d,q,clock);
 endmodule // motion_controller__axes__1__uniform__slot_first_error
 
 
+module motion_controller__axes__1__uniform__slot_full(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__uniform__slot_full
+
+
 module motion_controller__axes__1__uniform__slot_half(d,q,clock);
 
     // Module arguments
@@ -12638,8 +12860,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit6_32 = 32'h40;
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
-    localparam  one32 = 32'h1;
-    localparam  minus_one32 = 32'hffffffff;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
     localparam  above_count = 32'hffff0000;
@@ -12806,6 +13026,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_overflow_prev__d;
     wire  uniform_overflow_prev__q;
     reg  uniform_overflow_prev__clock;
+    reg  saturated__d;
+    wire  saturated__q;
+    reg  saturated__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -13046,6 +13269,11 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .q(uniform_overflow_prev__q),
         .clock(uniform_overflow_prev__clock)
     );
+    motion_controller__axes__2__saturated saturated(
+        .d(saturated__d),
+        .q(saturated__q),
+        .clock(saturated__clock)
+    );
     motion_controller__axes__2__forward forward(
         .d(forward__d),
         .q(forward__q),
@@ -13131,6 +13359,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__clock = clock;
         uniform_overrange_prev__clock = clock;
         uniform_overflow_prev__clock = clock;
+        saturated__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -13161,6 +13390,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__d = dda_overrange_prev__q;
         uniform_overrange_prev__d = uniform_overrange_prev__q;
         uniform_overflow_prev__d = uniform_overflow_prev__q;
+        saturated__d = saturated__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -13237,7 +13467,8 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        if ((popped_valid__q & too_large) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+        saturated__d = popped_valid__q & too_large;
+        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform__overflow & ~uniform_overflow_prev__q) begin
@@ -13305,17 +13536,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = 1'b0;
-        position__load = command & write_data[32'h3];
+        position__clear = command & write_data[32'h3];
+        position__load = 1'b0;
         position__load_value = zero32;
-        if (stage__emitted) begin
-            if (stage__emitted_forward) begin
-                position__load_value = one32;
-            end
-            else begin
-                position__load_value = minus_one32;
-            end
-        end
         position__compare_value = zero32;
         encoder__reset = reset;
         encoder__a = enc_a;
@@ -13339,7 +13562,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         dda_overrange_prev__d = dda__overrange;
         uniform_overrange_prev__d = uniform__overrange;
         uniform_overflow_prev__d = uniform__overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | (popped_valid__q & too_large);
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform__running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -13453,6 +13676,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             dda_overrange_prev__d = 1'b0;
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
+            saturated__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -15242,6 +15466,12 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
     reg  underflow_reg__d;
     wire  underflow_reg__q;
     reg  underflow_reg__clock;
+    reg  not_empty_reg__d;
+    wire  not_empty_reg__q;
+    reg  not_empty_reg__clock;
+    reg  full_reg__d;
+    wire  full_reg__q;
+    reg  full_reg__clock;
 
     // Local signals
     reg  is_empty;
@@ -15295,6 +15525,16 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
         .q(underflow_reg__q),
         .clock(underflow_reg__clock)
     );
+    motion_controller__axes__2__fifo__not_empty_reg not_empty_reg(
+        .d(not_empty_reg__d),
+        .q(not_empty_reg__q),
+        .clock(not_empty_reg__clock)
+    );
+    motion_controller__axes__2__fifo__full_reg full_reg(
+        .d(full_reg__d),
+        .q(full_reg__q),
+        .clock(full_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -15305,6 +15545,8 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
         bypass_data__clock = clock;
         overflow_reg__clock = clock;
         underflow_reg__clock = clock;
+        not_empty_reg__clock = clock;
+        full_reg__clock = clock;
         read_pointer__d = read_pointer__q;
         write_pointer__d = write_pointer__q;
         count__d = count__q;
@@ -15312,10 +15554,12 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
         bypass_data__d = bypass_data__q;
         overflow_reg__d = overflow_reg__q;
         underflow_reg__d = underflow_reg__q;
+        not_empty_reg__d = not_empty_reg__q;
+        full_reg__d = full_reg__q;
         ram__read_clock = clock;
         ram__write_clock = clock;
-        is_empty = count__q == zero_c;
-        is_full = count__q == capacity;
+        is_empty = ~not_empty_reg__q;
+        is_full = full_reg__q;
         empty = is_empty;
         full = is_full;
         level = count__q;
@@ -15366,6 +15610,8 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
         end
+        not_empty_reg__d = count__d != zero_c;
+        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller__axes__2__fifo
@@ -15426,6 +15672,44 @@ module motion_controller__axes__2__fifo__count(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__fifo__count
+
+
+module motion_controller__axes__2__fifo__full_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__fifo__full_reg
+
+
+module motion_controller__axes__2__fifo__not_empty_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__fifo__not_empty_reg
 
 
 module motion_controller__axes__2__fifo__overflow_reg(d,q,clock);
@@ -15890,6 +16174,25 @@ module motion_controller__axes__2__sample_rate(d,q,clock);
 endmodule // motion_controller__axes__2__sample_rate
 
 
+module motion_controller__axes__2__saturated(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__saturated
+
+
 module motion_controller__axes__2__settings(d,q,clock);
 
     // Module arguments
@@ -15935,16 +16238,16 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
     localparam  one_t = 16'h1;
     localparam  not_one = 16'hfffe;
     localparam  not_three = 16'hfffc;
-    localparam  zero_p = 16'h0;
-    localparam  one_p = 16'h1;
-    localparam  minus_one_p = 16'hffff;
-    localparam  two_p = 16'h2;
-    localparam  minus_two_p = 16'hfffe;
-    localparam  low_two_p = 16'h3;
-    localparam  high_mask_p = 16'hfffc;
-    localparam  below_max_p = 16'h7ffe;
-    localparam  above_min_p = 16'h8001;
-    localparam  min_p = 16'h8000;
+    localparam  zero_p = 8'h0;
+    localparam  one_p = 8'h1;
+    localparam  minus_one_p = 8'hff;
+    localparam  two_p = 8'h2;
+    localparam  minus_two_p = 8'hfe;
+    localparam  low_two_p = 8'h3;
+    localparam  high_mask_p = 8'hfc;
+    localparam  below_max_p = 8'h7e;
+    localparam  above_min_p = 8'h81;
+    localparam  min_p = 8'h80;
     localparam  low_plus_one = 2'b1;
     localparam  low_two = 2'b10;
     localparam  low_minus_one = 2'b11;
@@ -15952,8 +16255,8 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
     localparam  mode_reserved = 2'b11;
 
     // Stub signals
-    reg  [15:0] pending__d;
-    wire  [15:0] pending__q;
+    reg  [7:0] pending__d;
+    wire  [7:0] pending__q;
     reg  pending__clock;
     reg  nonzero__d;
     wire  nonzero__q;
@@ -16019,7 +16322,7 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
     reg  dir_done_next;
     reg  timing_setup_next;
     reg  request;
-    reg  [15:0] change;
+    reg  [7:0] change;
     reg  high_bits_zero;
     reg  high_bits_ones;
     reg  reaches_zero;
@@ -16569,13 +16872,13 @@ endmodule // motion_controller__axes__2__stage__overrun_reg
 module motion_controller__axes__2__stage__pending(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [7:0] d;
+    output reg  [7:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 8'h0;
     end
 
     always @(posedge clock) begin
@@ -16803,6 +17106,9 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
+    reg  slot_full__d;
+    wire  slot_full__q;
+    reg  slot_full__clock;
     reg  [15:0] slot_period__d;
     wire  [15:0] slot_period__q;
     reg  slot_period__clock;
@@ -16925,6 +17231,11 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         .d(slot_state__d),
         .q(slot_state__q),
         .clock(slot_state__clock)
+    );
+    motion_controller__axes__2__uniform__slot_full slot_full(
+        .d(slot_full__d),
+        .q(slot_full__q),
+        .clock(slot_full__clock)
     );
     motion_controller__axes__2__uniform__slot_period slot_period(
         .d(slot_period__d),
@@ -17095,6 +17406,7 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     // Update code
     always @(*) begin
         slot_state__clock = clock;
+        slot_full__clock = clock;
         slot_period__clock = clock;
         slot_count__clock = clock;
         slot_interleaved__clock = clock;
@@ -17129,6 +17441,7 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         period_small__clock = clock;
         count_too_large__clock = clock;
         slot_state__d = slot_state__q;
+        slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
         slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
@@ -17255,7 +17568,7 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
             if (running_reg__q) begin
                 if (period_last__q) begin
                     period_done_reg__d = 1'b1;
-                    if (slot_state__q == full) begin
+                    if (slot_full__q) begin
                         start = 1'b1;
                     end
                     else begin
@@ -17302,7 +17615,7 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
                     end
                 end
             end
-            else if (slot_state__q == full) begin
+            else if (slot_full__q) begin
                 start = 1'b1;
             end
         end
@@ -17332,6 +17645,7 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
+        slot_full__d = slot_state__d == full;
     end
 
 endmodule // motion_controller__axes__2__uniform
@@ -18039,6 +18353,25 @@ module motion_controller__axes__2__uniform__slot_first_error(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__uniform__slot_first_error
+
+
+module motion_controller__axes__2__uniform__slot_full(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__uniform__slot_full
 
 
 module motion_controller__axes__2__uniform__slot_half(d,q,clock);

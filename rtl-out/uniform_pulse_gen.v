@@ -75,6 +75,9 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
+    reg  slot_full__d;
+    wire  slot_full__q;
+    reg  slot_full__clock;
     reg  [31:0] slot_period__d;
     wire  [31:0] slot_period__q;
     reg  slot_period__clock;
@@ -197,6 +200,11 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         .d(slot_state__d),
         .q(slot_state__q),
         .clock(slot_state__clock)
+    );
+    uniform_pulse_gen__slot_full slot_full(
+        .d(slot_full__d),
+        .q(slot_full__q),
+        .clock(slot_full__clock)
     );
     uniform_pulse_gen__slot_period slot_period(
         .d(slot_period__d),
@@ -367,6 +375,7 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     // Update code
     always @(*) begin
         slot_state__clock = clock;
+        slot_full__clock = clock;
         slot_period__clock = clock;
         slot_count__clock = clock;
         slot_interleaved__clock = clock;
@@ -401,6 +410,7 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         period_small__clock = clock;
         count_too_large__clock = clock;
         slot_state__d = slot_state__q;
+        slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
         slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
@@ -527,7 +537,7 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
             if (running_reg__q) begin
                 if (period_last__q) begin
                     period_done_reg__d = 1'b1;
-                    if (slot_state__q == full) begin
+                    if (slot_full__q) begin
                         start = 1'b1;
                     end
                     else begin
@@ -574,7 +584,7 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
                     end
                 end
             end
-            else if (slot_state__q == full) begin
+            else if (slot_full__q) begin
                 start = 1'b1;
             end
         end
@@ -604,6 +614,7 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
+        slot_full__d = slot_state__d == full;
     end
 
 endmodule // uniform_pulse_gen
@@ -1311,6 +1322,25 @@ module uniform_pulse_gen__slot_first_error(d,q,clock);
     end
 
 endmodule // uniform_pulse_gen__slot_first_error
+
+
+module uniform_pulse_gen__slot_full(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__slot_full
 
 
 module uniform_pulse_gen__slot_half(d,q,clock);

@@ -82,6 +82,12 @@ pub struct CommandFifo<const N: usize, const NP1: usize> {
     bypass_data: DFF<Bits<32>>,
     overflow_reg: DFF<Bit>,
     underflow_reg: DFF<Bit>,
+    /// `count != 0` and `count == 2^N`, registered from the next count, so
+    /// that `empty` and `full` come straight from flip-flops: in a top they
+    /// feed decisions (all FIFOs ready to pop) that fan back into every
+    /// FIFO's write. Stored as non-empty so power-up (all 0) means empty.
+    not_empty_reg: DFF<Bit>,
+    full_reg: DFF<Bit>,
     is_empty: Signal<Local, Bit>,
     is_full: Signal<Local, Bit>,
     write_taken: Signal<Local, Bit>,
@@ -123,6 +129,8 @@ impl<const N: usize, const NP1: usize> Default for CommandFifo<N, NP1> {
             bypass_data: Default::default(),
             overflow_reg: Default::default(),
             underflow_reg: Default::default(),
+            not_empty_reg: Default::default(),
+            full_reg: Default::default(),
             is_empty: Default::default(),
             is_full: Default::default(),
             write_taken: Default::default(),
@@ -149,12 +157,14 @@ impl<const N: usize, const NP1: usize> Logic for CommandFifo<N, NP1> {
             bypass,
             bypass_data,
             overflow_reg,
-            underflow_reg
+            underflow_reg,
+            not_empty_reg,
+            full_reg
         );
         self.ram.read_clock.next = self.clock.val();
         self.ram.write_clock.next = self.clock.val();
-        self.is_empty.next = self.count.q.val() == self.zero_c.val();
-        self.is_full.next = self.count.q.val() == self.capacity.val();
+        self.is_empty.next = !self.not_empty_reg.q.val();
+        self.is_full.next = self.full_reg.q.val();
         self.empty.next = self.is_empty.val();
         self.full.next = self.is_full.val();
         self.level.next = self.count.q.val();
@@ -211,6 +221,9 @@ impl<const N: usize, const NP1: usize> Logic for CommandFifo<N, NP1> {
             self.overflow_reg.d.next = false;
             self.underflow_reg.d.next = false;
         }
+        // Last: they follow every assignment of the count above.
+        self.not_empty_reg.d.next = self.count.d.val() != self.zero_c.val();
+        self.full_reg.d.next = self.count.d.val() == self.capacity.val();
     }
 }
 

@@ -9,7 +9,7 @@ use rust_hdl::prelude::*;
 
 
 use super::registers::{axis, AXIS_BASE, AXIS_STRIDE};
-use super::PERIOD_BITS;
+use super::{PENDING_BITS, PERIOD_BITS};
 use crate::blocks::command_fifo::CommandFifo;
 use crate::blocks::dda_integrator::DdaIntegrator;
 use crate::blocks::pulse_counter::PulseCounter;
@@ -82,7 +82,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     fifo: CommandFifo<N, NP1>,
     dda: DdaIntegrator<PERIOD_BITS>,
     uniform: UniformPulseGen<PERIOD_BITS>,
-    stage: StepOutput<16, 16>,
+    stage: StepOutput<16, PENDING_BITS>,
     position: PulseCounter<32>,
     encoder: QuadratureDecoder<32, 8, 16>,
 
@@ -116,6 +116,10 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     dda_overrange_prev: DFF<Bit>,
     uniform_overrange_prev: DFF<Bit>,
     uniform_overflow_prev: DFF<Bit>,
+    /// The entry taken at the last edge was saturated. Registered so that
+    /// the magnitude test does not sit in front of the flag and interrupt
+    /// logic: the fault is flagged one clock after the entry is taken.
+    saturated: DFF<Bit>,
     /// The running period's direction (DDA).
     forward: DFF<Bit>,
     /// The direction travels with the DDA's two clocks of latency.
@@ -165,8 +169,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     bit6_32: Constant<Bits<32>>,
     bit7_32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
-    one32: Constant<Bits<32>>,
-    minus_one32: Constant<Bits<32>>,
     zero_count: Constant<Bits<PERIOD_BITS>>,
     max_count: Constant<Bits<PERIOD_BITS>>,
     /// The bits of a magnitude above the interpolators' width.
@@ -252,6 +254,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             dda_overrange_prev: Default::default(),
             uniform_overrange_prev: Default::default(),
             uniform_overflow_prev: Default::default(),
+            saturated: Default::default(),
             forward: Default::default(),
             forward_1: Default::default(),
             forward_2: Default::default(),
@@ -291,8 +294,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             bit6_32: Constant::new((1u64 << 6).into()),
             bit7_32: Constant::new((1u64 << 7).into()),
             zero32: Constant::new(0u64.into()),
-            one32: Constant::new(1u64.into()),
-            minus_one32: Constant::new(0xffff_ffffu64.into()),
             zero_count: Constant::new(0u64.into()),
             max_count: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
             above_count: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into()),
@@ -342,6 +343,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             dda_overrange_prev,
             uniform_overrange_prev,
             uniform_overflow_prev,
+            saturated,
             forward,
             forward_1,
             forward_2,
@@ -432,7 +434,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         }
         // Set by the rises of the sub-blocks' flags (their levels would
         // defeat a CLEAR_FAULTS that clears them on the same clock).
-        if (self.popped_valid.q.val() & self.too_large.val())
+        self.saturated.d.next = self.popped_valid.q.val() & self.too_large.val();
+        if self.saturated.q.val()
             | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
             | (self.uniform.overrange.val() & !self.uniform_overrange_prev.q.val())
         {
@@ -520,18 +523,14 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.position.reset.next = self.reset.val();
         self.position.up.next = self.stage.emitted.val() & self.stage.emitted_forward.val();
         self.position.down.next = self.stage.emitted.val() & !self.stage.emitted_forward.val();
-        // CLEAR_POSITION loads the step emitted on the same clock, if any,
-        // rather than losing it to the clear.
-        self.position.clear.next = false;
-        self.position.load.next = self.command.val() & self.write_data.val().get_bit(3);
+        // CLEAR_POSITION is the counter's clear, which wins over a step on
+        // the same clock: that step ends the old count. A load of +-1
+        // instead would give every bit's adder LUT a fourth input, which
+        // splits the 32-bit carry chain in placement (nextpnr allows 32
+        // LUT inputs per tile) and was the slowest path of the top.
+        self.position.clear.next = self.command.val() & self.write_data.val().get_bit(3);
+        self.position.load.next = false;
         self.position.load_value.next = self.zero32.val();
-        if self.stage.emitted.val() {
-            if self.stage.emitted_forward.val() {
-                self.position.load_value.next = self.one32.val();
-            } else {
-                self.position.load_value.next = self.minus_one32.val();
-            }
-        }
         self.position.compare_value.next = self.zero32.val();
 
         // Encoder.
@@ -565,7 +564,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
             | (self.uniform.overrange.val() & !self.uniform_overrange_prev.q.val())
             | (self.uniform.overflow.val() & !self.uniform_overflow_prev.q.val())
-            | (self.popped_valid.q.val() & self.too_large.val());
+            | self.saturated.q.val();
         self.busy.next = self.stage.busy.val() | self.uniform.running.val();
         self.encoder_error_prev.d.next = self.encoder.error.val();
         self.encoder_error_event.next = self.encoder.error.val() & !self.encoder_error_prev.q.val();
@@ -674,6 +673,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.dda_overrange_prev.d.next = false;
             self.uniform_overrange_prev.d.next = false;
             self.uniform_overflow_prev.d.next = false;
+            self.saturated.d.next = false;
             self.forward.d.next = false;
             self.forward_1.d.next = false;
             self.forward_2.d.next = false;

@@ -107,7 +107,8 @@
 //!   raises `STATUS.AXIS_FAULT`, and the commanded position still counts
 //!   only what was emitted. A DDA axis asked for more steps per period than
 //!   its output stage's timing allows is not flagged until the stage's
-//!   pending count saturates: the steps are delayed, not lost.
+//!   pending count saturates at 127 steps behind (`PENDING_BITS` = 8): up
+//!   to then the steps are delayed, not lost.
 //! * **Reset or a STEP_MODE change in quadrature mode** returns A/B to 00
 //!   from whatever state they were in, which a drive may count as a step:
 //!   change modes and reset only with the drive disabled.
@@ -115,7 +116,12 @@
 //!   addresses return 0.
 //!
 //! * **Entry too large**: |n| > 65535 is saturated to 65535 and
-//!   `INTERP_OVERRANGE` is set (then the interpolator's own clamp applies).
+//!   `INTERP_OVERRANGE` is set one clock after the entry is taken (then the
+//!   interpolator's own clamp applies).
+//! * **`CLEAR_POSITION` in motion**: `CMD_POSITION` becomes 0 at the edge
+//!   that ends the write. A step leaving on that same clock belongs to the
+//!   old count, so `CMD_POSITION` then counts exactly the steps that leave
+//!   after the write's clock. None is counted twice or in neither count.
 //!
 //! ## Latency
 //! A DDA step reaches the pins at the earliest 5 clocks after the base tick
@@ -149,6 +155,13 @@ use registers::{global, ID_VALUE, VERSION_VALUE};
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
+
+/// Width of each output stage's signed pending-step count: a backlog of
+/// up to 127 steps either way, beyond which a request is dropped and
+/// `STEP_OVERRUN` is set. An axis 127 steps behind its commands has long
+/// lost its path; 8 bits rather than 16 also shorten the stage's
+/// emit-to-count adder, one of the top's slowest paths.
+pub const PENDING_BITS: usize = 8;
 
 /// Width of `PERIOD_TICKS` and of both interpolators: a period is at most
 /// 2^16 - 1 base ticks, and an axis emits at most that many steps in one.

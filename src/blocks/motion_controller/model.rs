@@ -108,6 +108,7 @@ pub struct AxisModel {
     dda_overrange_prev: bool,
     uniform_overrange_prev: bool,
     uniform_overflow_prev: bool,
+    saturated: bool,
     forward: bool,
     forward_1: bool,
     forward_2: bool,
@@ -142,7 +143,7 @@ impl AxisModel {
             reset: true,
             ..Default::default()
         });
-        let mut stage = StepOutputModel::new(super::TIMER_BITS, 16);
+        let mut stage = StepOutputModel::new(super::TIMER_BITS, super::PENDING_BITS as u32);
         let stage_out = stage.step(StepOutputInputs {
             reset: true,
             ..Default::default()
@@ -185,6 +186,7 @@ impl AxisModel {
             dda_overrange_prev: false,
             uniform_overrange_prev: false,
             uniform_overflow_prev: false,
+            saturated: false,
             forward: false,
             forward_1: false,
             forward_2: false,
@@ -286,7 +288,7 @@ impl AxisModel {
             overflow_event: fifo_write && self.fifo_out.full && !pop,
             fault_event: {
                 let (a, b, c, d) = self.rises();
-                a || b || c || d || (self.popped_valid && self.too_large())
+                a || b || c || d || self.saturated
             },
             encoder_error_event: self.encoder_out.error && !self.encoder_error_prev,
             read_data,
@@ -324,7 +326,8 @@ impl AxisModel {
             next.overrange_flag = false;
             next.overflow_flag = false;
         }
-        if (self.popped_valid && self.too_large()) || dda_rise || uniform_overrange_rise {
+        next.saturated = self.popped_valid && self.too_large();
+        if self.saturated || dda_rise || uniform_overrange_rise {
             next.overrange_flag = true;
         }
         if uniform_overflow_rise {
@@ -404,13 +407,9 @@ impl AxisModel {
             reset: c.reset,
             up: self.stage_out.emitted && self.stage_out.emitted_forward,
             down: self.stage_out.emitted && !self.stage_out.emitted_forward,
-            clear: false,
-            load: command && c.write_data & 8 != 0,
-            load_value: match (self.stage_out.emitted, self.stage_out.emitted_forward) {
-                (false, _) => 0,
-                (true, true) => 1,
-                (true, false) => 0xffff_ffff,
-            },
+            clear: command && c.write_data & 8 != 0,
+            load: false,
+            load_value: 0,
             compare_value: 0,
         });
         let bit = |n: u32| self.config & (1 << n) != 0;
@@ -453,6 +452,7 @@ impl AxisModel {
             next.dda_overrange_prev = false;
             next.uniform_overrange_prev = false;
             next.uniform_overflow_prev = false;
+            next.saturated = false;
             next.forward = false;
             next.forward_1 = false;
             next.forward_2 = false;

@@ -171,6 +171,10 @@ pub struct UniformPulseGen<const W: usize> {
     divider: SequentialDivider<W, W>,
     // The next-period slot, filled by a small sequencer after a load.
     slot_state: DFF<Bits<3>>,
+    /// `slot_state == full`, registered: the start decision is then one
+    /// LUT of four flip-flops, in front of the load of every period
+    /// register.
+    slot_full: DFF<Bit>,
     slot_period: DFF<Bits<W>>,
     slot_count: DFF<Bits<W>>,
     slot_interleaved: DFF<Bit>,
@@ -248,6 +252,7 @@ impl<const W: usize> Default for UniformPulseGen<W> {
             overflow: Default::default(),
             divider: Default::default(),
             slot_state: Default::default(),
+            slot_full: Default::default(),
             slot_period: Default::default(),
             slot_count: Default::default(),
             slot_interleaved: Default::default(),
@@ -307,6 +312,7 @@ impl<const W: usize> Logic for UniformPulseGen<W> {
             self,
             clock,
             slot_state,
+            slot_full,
             slot_period,
             slot_count,
             slot_interleaved,
@@ -446,7 +452,7 @@ impl<const W: usize> Logic for UniformPulseGen<W> {
             if self.running_reg.q.val() {
                 if self.period_last.q.val() {
                     self.period_done_reg.d.next = true;
-                    if self.slot_state.q.val() == self.full.val() {
+                    if self.slot_full.q.val() {
                         self.start.next = true;
                     } else {
                         self.running_reg.d.next = false;
@@ -489,7 +495,7 @@ impl<const W: usize> Logic for UniformPulseGen<W> {
                         }
                     }
                 }
-            } else if self.slot_state.q.val() == self.full.val() {
+            } else if self.slot_full.q.val() {
                 self.start.next = true;
             }
         }
@@ -520,6 +526,8 @@ impl<const W: usize> Logic for UniformPulseGen<W> {
             self.overrange_reg.d.next = false;
             self.overflow_reg.d.next = false;
         }
+        // Last: it follows every assignment of the slot state above.
+        self.slot_full.d.next = self.slot_state.d.val() == self.full.val();
     }
 }
 
