@@ -13,29 +13,6 @@ use rand::{Rng, SeedableRng};
 
 type Adapter = ExternalBusAdapter<8>;
 
-fn vector(i: &ExternalBusInputs) -> Vec<u64> {
-    vec![
-        i.reset as u64,
-        i.cs_n as u64,
-        i.we_n as u64,
-        i.rd_n as u64,
-        i.address,
-        i.data_in,
-        i.bus_read_data,
-    ]
-}
-
-fn outputs(v: &[u64]) -> ExternalBusOutputs {
-    ExternalBusOutputs {
-        data_out: v[0],
-        data_oe: v[1] != 0,
-        bus_address: v[2],
-        bus_write_data: v[3],
-        bus_write: v[4] != 0,
-        bus_read: v[5] != 0,
-    }
-}
-
 /// Pins that change at random, strobes of every width from one clock
 /// (including the illegal ones), reads and writes overlapping.
 fn random_pins(seed: u64, cycles: usize) -> Vec<ExternalBusInputs> {
@@ -71,7 +48,7 @@ fn rtl_matches_model_on_random_pins() {
     let mut model = ExternalBusModel::new(8);
     let (mut writes, mut reads) = (0, 0);
     for (cycle, i) in random_pins(0xb05, 1_000_000).iter().enumerate() {
-        let rtl = outputs(&h.step_vector(&vector(i)).unwrap());
+        let rtl = ExternalBusOutputs::from_vector(&h.step_vector(&i.to_vector()).unwrap());
         assert_eq!(rtl, model.step(*i), "cycle {cycle}: {i:?}");
         writes += rtl.bus_write as u32;
         reads += rtl.bus_read as u32;
@@ -136,7 +113,7 @@ impl System {
         // Whatever was shown, the pins have their new value from now on.
         self.presented = self.pins;
         shown.bus_read_data = self.slave_data;
-        let out = outputs(&self.h.step_vector(&vector(&shown)).unwrap());
+        let out = ExternalBusOutputs::from_vector(&self.h.step_vector(&shown.to_vector()).unwrap());
         // The slave registers its answer in the clock after bus_read.
         if let Some(address) = self.pending_read.take() {
             self.slave_data = self.registers[address as usize];
@@ -243,7 +220,7 @@ fn a_one_sample_runt_is_ignored() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000).iter().map(vector).collect();
+    let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000).iter().map(ExternalBusInputs::to_vector).collect();
     cross_simulate(
         &CosimDesign::exported("external_bus_adapter"),
         Adapter::default(),

@@ -16,8 +16,8 @@
 //! | `write_data` | in | 32 | the entry to push |
 //! | `pop` | in | 1 | remove the head entry (refused when empty) |
 //! | `head` | out | 32 | the oldest entry, valid while `empty` is low (while empty: 0 after power-up, else a stale word) |
-//! | `empty` | out | 1 | no entry |
-//! | `full` | out | 1 | 2^N entries |
+//! | `empty` | out | 1 | no entry (registered) |
+//! | `full` | out | 1 | 2^N entries (registered) |
 //! | `level` | out | N+1 | entries held |
 //! | `low_water` | in | N+1 | threshold for `low` |
 //! | `low` | out | 1 | `level` <= `low_water` (combinational from the registered level) |

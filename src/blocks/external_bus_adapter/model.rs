@@ -34,6 +34,21 @@ impl Default for ExternalBusInputs {
     }
 }
 
+impl ExternalBusInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.cs_n as u64,
+            self.we_n as u64,
+            self.rd_n as u64,
+            self.address,
+            self.data_in,
+            self.bus_read_data,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExternalBusOutputs {
@@ -49,6 +64,20 @@ pub struct ExternalBusOutputs {
     pub bus_write: bool,
     /// Read strobe.
     pub bus_read: bool,
+}
+
+impl ExternalBusOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            data_out: v[0],
+            data_oe: v[1] != 0,
+            bus_address: v[2],
+            bus_write_data: v[3],
+            bus_write: v[4] != 0,
+            bus_read: v[5] != 0,
+        }
+    }
 }
 
 /// One sample of the pins as the synchronizer stages hold it.
