@@ -8,6 +8,7 @@
 //   K = 3: axes
 //   N = 4: FIFO depth 2^N = 16 periods per axis
 //   T = 16: step timing register width
+//   P = 8: each output stage's pending-step count width: +127 / -128 steps
 //
 // Ports:
 //   name            dir    width  meaning
@@ -1042,6 +1043,15 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] popped__d;
     wire  [31:0] popped__q;
     reg  popped__clock;
+    reg  popped_upper_nonzero__d;
+    wire  popped_upper_nonzero__q;
+    reg  popped_upper_nonzero__clock;
+    reg  popped_upper_ones__d;
+    wire  popped_upper_ones__q;
+    reg  popped_upper_ones__clock;
+    reg  popped_low_nonzero__d;
+    wire  popped_low_nonzero__q;
+    reg  popped_low_nonzero__clock;
     reg  popped_valid__d;
     wire  popped_valid__q;
     reg  popped_valid__clock;
@@ -1075,6 +1085,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  saturated__d;
     wire  saturated__q;
     reg  saturated__clock;
+    reg  clear_position_pending__d;
+    wire  clear_position_pending__q;
+    reg  clear_position_pending__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -1116,6 +1129,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder_error_prev__clock;
 
     // Local signals
+    reg  clear_position;
     reg  selected;
     reg  [3:0] offset;
     reg  command;
@@ -1265,6 +1279,21 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .q(popped__q),
         .clock(popped__clock)
     );
+    motion_controller__axes__0__popped_upper_nonzero popped_upper_nonzero(
+        .d(popped_upper_nonzero__d),
+        .q(popped_upper_nonzero__q),
+        .clock(popped_upper_nonzero__clock)
+    );
+    motion_controller__axes__0__popped_upper_ones popped_upper_ones(
+        .d(popped_upper_ones__d),
+        .q(popped_upper_ones__q),
+        .clock(popped_upper_ones__clock)
+    );
+    motion_controller__axes__0__popped_low_nonzero popped_low_nonzero(
+        .d(popped_low_nonzero__d),
+        .q(popped_low_nonzero__q),
+        .clock(popped_low_nonzero__clock)
+    );
     motion_controller__axes__0__popped_valid popped_valid(
         .d(popped_valid__d),
         .q(popped_valid__q),
@@ -1319,6 +1348,11 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .d(saturated__d),
         .q(saturated__q),
         .clock(saturated__clock)
+    );
+    motion_controller__axes__0__clear_position_pending clear_position_pending(
+        .d(clear_position_pending__d),
+        .q(clear_position_pending__q),
+        .clock(clear_position_pending__clock)
     );
     motion_controller__axes__0__forward forward(
         .d(forward__d),
@@ -1395,6 +1429,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         dir_hold__clock = clock;
         sample_rate__clock = clock;
         popped__clock = clock;
+        popped_upper_nonzero__clock = clock;
+        popped_upper_ones__clock = clock;
+        popped_low_nonzero__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
         tick_d__clock = clock;
@@ -1406,6 +1443,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_overrange_prev__clock = clock;
         uniform_overflow_prev__clock = clock;
         saturated__clock = clock;
+        clear_position_pending__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -1426,6 +1464,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         dir_hold__d = dir_hold__q;
         sample_rate__d = sample_rate__q;
         popped__d = popped__q;
+        popped_upper_nonzero__d = popped_upper_nonzero__q;
+        popped_upper_ones__d = popped_upper_ones__q;
+        popped_low_nonzero__d = popped_low_nonzero__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
@@ -1437,6 +1478,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_overrange_prev__d = uniform_overrange_prev__q;
         uniform_overflow_prev__d = uniform_overflow_prev__q;
         saturated__d = saturated__q;
+        clear_position_pending__d = clear_position_pending__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -1492,18 +1534,21 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
+        upper_ones = (fifo__head & above_count) == above_count;
+        upper_zero = (fifo__head & above_count) == zero32;
         if (pop) begin
             popped__d = fifo__head;
+            popped_upper_nonzero__d = ~upper_zero;
+            popped_upper_ones__d = upper_ones;
+            popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
         end
-        upper_ones = (popped__q & above_count) == above_count;
-        upper_zero = (popped__q & above_count) == zero32;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
-            too_large = ~upper_ones | (low_half == zero_count);
+            too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
             count = zero_count - low_half;
         end
         else begin
-            too_large = ~upper_zero;
+            too_large = popped_upper_nonzero__q;
             count = low_half;
         end
         if (too_large) begin
@@ -1582,7 +1627,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = command & write_data[32'h3];
+        clear_position = (command & write_data[32'h3]) | clear_position_pending__q;
+        position__clear = clear_position & ~stage__emitted;
+        clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
         position__load_value = zero32;
         position__compare_value = zero32;
@@ -1712,6 +1759,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             dir_hold__d = zero32;
             sample_rate__d = zero32;
             popped__d = zero32;
+            popped_upper_nonzero__d = 1'b0;
+            popped_upper_ones__d = 1'b0;
+            popped_low_nonzero__d = 1'b0;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
@@ -1723,6 +1773,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
             saturated__d = 1'b0;
+            clear_position_pending__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -1759,6 +1810,25 @@ module motion_controller__axes__0__act_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__act_snapshot
+
+
+module motion_controller__axes__0__clear_position_pending(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__clear_position_pending
 
 
 module motion_controller__axes__0__cmd_snapshot(d,q,clock);
@@ -4031,6 +4101,63 @@ module motion_controller__axes__0__popped(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__popped
+
+
+module motion_controller__axes__0__popped_low_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__popped_low_nonzero
+
+
+module motion_controller__axes__0__popped_upper_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__popped_upper_nonzero
+
+
+module motion_controller__axes__0__popped_upper_ones(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__popped_upper_ones
 
 
 module motion_controller__axes__0__popped_valid(d,q,clock);
@@ -7019,6 +7146,15 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] popped__d;
     wire  [31:0] popped__q;
     reg  popped__clock;
+    reg  popped_upper_nonzero__d;
+    wire  popped_upper_nonzero__q;
+    reg  popped_upper_nonzero__clock;
+    reg  popped_upper_ones__d;
+    wire  popped_upper_ones__q;
+    reg  popped_upper_ones__clock;
+    reg  popped_low_nonzero__d;
+    wire  popped_low_nonzero__q;
+    reg  popped_low_nonzero__clock;
     reg  popped_valid__d;
     wire  popped_valid__q;
     reg  popped_valid__clock;
@@ -7052,6 +7188,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  saturated__d;
     wire  saturated__q;
     reg  saturated__clock;
+    reg  clear_position_pending__d;
+    wire  clear_position_pending__q;
+    reg  clear_position_pending__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -7093,6 +7232,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder_error_prev__clock;
 
     // Local signals
+    reg  clear_position;
     reg  selected;
     reg  [3:0] offset;
     reg  command;
@@ -7242,6 +7382,21 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .q(popped__q),
         .clock(popped__clock)
     );
+    motion_controller__axes__1__popped_upper_nonzero popped_upper_nonzero(
+        .d(popped_upper_nonzero__d),
+        .q(popped_upper_nonzero__q),
+        .clock(popped_upper_nonzero__clock)
+    );
+    motion_controller__axes__1__popped_upper_ones popped_upper_ones(
+        .d(popped_upper_ones__d),
+        .q(popped_upper_ones__q),
+        .clock(popped_upper_ones__clock)
+    );
+    motion_controller__axes__1__popped_low_nonzero popped_low_nonzero(
+        .d(popped_low_nonzero__d),
+        .q(popped_low_nonzero__q),
+        .clock(popped_low_nonzero__clock)
+    );
     motion_controller__axes__1__popped_valid popped_valid(
         .d(popped_valid__d),
         .q(popped_valid__q),
@@ -7296,6 +7451,11 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .d(saturated__d),
         .q(saturated__q),
         .clock(saturated__clock)
+    );
+    motion_controller__axes__1__clear_position_pending clear_position_pending(
+        .d(clear_position_pending__d),
+        .q(clear_position_pending__q),
+        .clock(clear_position_pending__clock)
     );
     motion_controller__axes__1__forward forward(
         .d(forward__d),
@@ -7372,6 +7532,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         dir_hold__clock = clock;
         sample_rate__clock = clock;
         popped__clock = clock;
+        popped_upper_nonzero__clock = clock;
+        popped_upper_ones__clock = clock;
+        popped_low_nonzero__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
         tick_d__clock = clock;
@@ -7383,6 +7546,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_overrange_prev__clock = clock;
         uniform_overflow_prev__clock = clock;
         saturated__clock = clock;
+        clear_position_pending__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -7403,6 +7567,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         dir_hold__d = dir_hold__q;
         sample_rate__d = sample_rate__q;
         popped__d = popped__q;
+        popped_upper_nonzero__d = popped_upper_nonzero__q;
+        popped_upper_ones__d = popped_upper_ones__q;
+        popped_low_nonzero__d = popped_low_nonzero__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
@@ -7414,6 +7581,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_overrange_prev__d = uniform_overrange_prev__q;
         uniform_overflow_prev__d = uniform_overflow_prev__q;
         saturated__d = saturated__q;
+        clear_position_pending__d = clear_position_pending__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -7469,18 +7637,21 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
+        upper_ones = (fifo__head & above_count) == above_count;
+        upper_zero = (fifo__head & above_count) == zero32;
         if (pop) begin
             popped__d = fifo__head;
+            popped_upper_nonzero__d = ~upper_zero;
+            popped_upper_ones__d = upper_ones;
+            popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
         end
-        upper_ones = (popped__q & above_count) == above_count;
-        upper_zero = (popped__q & above_count) == zero32;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
-            too_large = ~upper_ones | (low_half == zero_count);
+            too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
             count = zero_count - low_half;
         end
         else begin
-            too_large = ~upper_zero;
+            too_large = popped_upper_nonzero__q;
             count = low_half;
         end
         if (too_large) begin
@@ -7559,7 +7730,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = command & write_data[32'h3];
+        clear_position = (command & write_data[32'h3]) | clear_position_pending__q;
+        position__clear = clear_position & ~stage__emitted;
+        clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
         position__load_value = zero32;
         position__compare_value = zero32;
@@ -7689,6 +7862,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             dir_hold__d = zero32;
             sample_rate__d = zero32;
             popped__d = zero32;
+            popped_upper_nonzero__d = 1'b0;
+            popped_upper_ones__d = 1'b0;
+            popped_low_nonzero__d = 1'b0;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
@@ -7700,6 +7876,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
             saturated__d = 1'b0;
+            clear_position_pending__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -7736,6 +7913,25 @@ module motion_controller__axes__1__act_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__act_snapshot
+
+
+module motion_controller__axes__1__clear_position_pending(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__clear_position_pending
 
 
 module motion_controller__axes__1__cmd_snapshot(d,q,clock);
@@ -10008,6 +10204,63 @@ module motion_controller__axes__1__popped(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__popped
+
+
+module motion_controller__axes__1__popped_low_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__popped_low_nonzero
+
+
+module motion_controller__axes__1__popped_upper_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__popped_upper_nonzero
+
+
+module motion_controller__axes__1__popped_upper_ones(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__popped_upper_ones
 
 
 module motion_controller__axes__1__popped_valid(d,q,clock);
@@ -12996,6 +13249,15 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] popped__d;
     wire  [31:0] popped__q;
     reg  popped__clock;
+    reg  popped_upper_nonzero__d;
+    wire  popped_upper_nonzero__q;
+    reg  popped_upper_nonzero__clock;
+    reg  popped_upper_ones__d;
+    wire  popped_upper_ones__q;
+    reg  popped_upper_ones__clock;
+    reg  popped_low_nonzero__d;
+    wire  popped_low_nonzero__q;
+    reg  popped_low_nonzero__clock;
     reg  popped_valid__d;
     wire  popped_valid__q;
     reg  popped_valid__clock;
@@ -13029,6 +13291,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  saturated__d;
     wire  saturated__q;
     reg  saturated__clock;
+    reg  clear_position_pending__d;
+    wire  clear_position_pending__q;
+    reg  clear_position_pending__clock;
     reg  forward__d;
     wire  forward__q;
     reg  forward__clock;
@@ -13070,6 +13335,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder_error_prev__clock;
 
     // Local signals
+    reg  clear_position;
     reg  selected;
     reg  [3:0] offset;
     reg  command;
@@ -13219,6 +13485,21 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .q(popped__q),
         .clock(popped__clock)
     );
+    motion_controller__axes__2__popped_upper_nonzero popped_upper_nonzero(
+        .d(popped_upper_nonzero__d),
+        .q(popped_upper_nonzero__q),
+        .clock(popped_upper_nonzero__clock)
+    );
+    motion_controller__axes__2__popped_upper_ones popped_upper_ones(
+        .d(popped_upper_ones__d),
+        .q(popped_upper_ones__q),
+        .clock(popped_upper_ones__clock)
+    );
+    motion_controller__axes__2__popped_low_nonzero popped_low_nonzero(
+        .d(popped_low_nonzero__d),
+        .q(popped_low_nonzero__q),
+        .clock(popped_low_nonzero__clock)
+    );
     motion_controller__axes__2__popped_valid popped_valid(
         .d(popped_valid__d),
         .q(popped_valid__q),
@@ -13273,6 +13554,11 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .d(saturated__d),
         .q(saturated__q),
         .clock(saturated__clock)
+    );
+    motion_controller__axes__2__clear_position_pending clear_position_pending(
+        .d(clear_position_pending__d),
+        .q(clear_position_pending__q),
+        .clock(clear_position_pending__clock)
     );
     motion_controller__axes__2__forward forward(
         .d(forward__d),
@@ -13349,6 +13635,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         dir_hold__clock = clock;
         sample_rate__clock = clock;
         popped__clock = clock;
+        popped_upper_nonzero__clock = clock;
+        popped_upper_ones__clock = clock;
+        popped_low_nonzero__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
         tick_d__clock = clock;
@@ -13360,6 +13649,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_overrange_prev__clock = clock;
         uniform_overflow_prev__clock = clock;
         saturated__clock = clock;
+        clear_position_pending__clock = clock;
         forward__clock = clock;
         forward_1__clock = clock;
         forward_2__clock = clock;
@@ -13380,6 +13670,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         dir_hold__d = dir_hold__q;
         sample_rate__d = sample_rate__q;
         popped__d = popped__q;
+        popped_upper_nonzero__d = popped_upper_nonzero__q;
+        popped_upper_ones__d = popped_upper_ones__q;
+        popped_low_nonzero__d = popped_low_nonzero__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
@@ -13391,6 +13684,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_overrange_prev__d = uniform_overrange_prev__q;
         uniform_overflow_prev__d = uniform_overflow_prev__q;
         saturated__d = saturated__q;
+        clear_position_pending__d = clear_position_pending__q;
         forward__d = forward__q;
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
@@ -13446,18 +13740,21 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
+        upper_ones = (fifo__head & above_count) == above_count;
+        upper_zero = (fifo__head & above_count) == zero32;
         if (pop) begin
             popped__d = fifo__head;
+            popped_upper_nonzero__d = ~upper_zero;
+            popped_upper_ones__d = upper_ones;
+            popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
         end
-        upper_ones = (popped__q & above_count) == above_count;
-        upper_zero = (popped__q & above_count) == zero32;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
-            too_large = ~upper_ones | (low_half == zero_count);
+            too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
             count = zero_count - low_half;
         end
         else begin
-            too_large = ~upper_zero;
+            too_large = popped_upper_nonzero__q;
             count = low_half;
         end
         if (too_large) begin
@@ -13536,7 +13833,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        position__clear = command & write_data[32'h3];
+        clear_position = (command & write_data[32'h3]) | clear_position_pending__q;
+        position__clear = clear_position & ~stage__emitted;
+        clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
         position__load_value = zero32;
         position__compare_value = zero32;
@@ -13666,6 +13965,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             dir_hold__d = zero32;
             sample_rate__d = zero32;
             popped__d = zero32;
+            popped_upper_nonzero__d = 1'b0;
+            popped_upper_ones__d = 1'b0;
+            popped_low_nonzero__d = 1'b0;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
@@ -13677,6 +13979,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
             saturated__d = 1'b0;
+            clear_position_pending__d = 1'b0;
             forward__d = 1'b0;
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
@@ -13713,6 +14016,25 @@ module motion_controller__axes__2__act_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__act_snapshot
+
+
+module motion_controller__axes__2__clear_position_pending(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__clear_position_pending
 
 
 module motion_controller__axes__2__cmd_snapshot(d,q,clock);
@@ -15985,6 +16307,63 @@ module motion_controller__axes__2__popped(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__popped
+
+
+module motion_controller__axes__2__popped_low_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__popped_low_nonzero
+
+
+module motion_controller__axes__2__popped_upper_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__popped_upper_nonzero
+
+
+module motion_controller__axes__2__popped_upper_ones(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__popped_upper_ones
 
 
 module motion_controller__axes__2__popped_valid(d,q,clock);

@@ -375,7 +375,7 @@
 #define MC_AXIS_COMMAND_REARM_INDEX_SHIFT 2UL /* WO clear INDEX_SEEN (re-arm a once-only index) */
 #define MC_AXIS_COMMAND_REARM_INDEX_MASK 0x00000004UL
 #define MC_AXIS_COMMAND_REARM_INDEX_RESET 0x0UL
-#define MC_AXIS_COMMAND_CLEAR_POSITION_SHIFT 3UL /* WO CMD_POSITION <- 0; a step leaving on the write's own clock belongs to the old count */
+#define MC_AXIS_COMMAND_CLEAR_POSITION_SHIFT 3UL /* WO CMD_POSITION <- 0 at the first clock, from this write on, that counts no step (no step is lost) */
 #define MC_AXIS_COMMAND_CLEAR_POSITION_MASK 0x00000008UL
 #define MC_AXIS_COMMAND_CLEAR_POSITION_RESET 0x0UL
 #define MC_AXIS_COMMAND_CLEAR_ENCODER_ERROR_SHIFT 4UL /* WO ENCODER_ERROR <- 0, keeping ACT_POSITION (an error on the same clock keeps it set) */

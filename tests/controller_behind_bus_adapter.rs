@@ -16,7 +16,7 @@ use motion_hdl::blocks::external_bus_adapter::model::{
 };
 use motion_hdl::blocks::external_bus_adapter::ExternalBusAdapter;
 use motion_hdl::blocks::motion_controller::registers::ID_VALUE;
-use motion_hdl::sim::Harness;
+use motion_hdl::sim::{Harness, VectorPorts};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -55,6 +55,7 @@ impl Board {
     fn clock(&mut self) {
         let mut inputs = self.pins;
         inputs.bus_read_data = self.controller.last.read_data as u64;
+        debug_assert_eq!(inputs.to_vector().len(), ExternalBusAdapter::<8>::input_names().len());
         let out = ExternalBusOutputs::from_vector(&self.adapter.step_vector(&inputs.to_vector()).unwrap());
         assert_eq!(out, self.adapter_model.step(inputs), "adapter RTL and model differ");
         let bus = self.bus;
@@ -109,9 +110,10 @@ impl Board {
 
 /// A DSP configures the controller, queues random moves on three axes and
 /// polls it to rest, all through the asynchronous pins. Every access
-/// reaches the controller exactly once, every read returns the register's
-/// value, and at the end each axis's commanded and actual positions equal
-/// the sum of its queued counts.
+/// reaches the controller exactly once; ID, the registers written and read
+/// back, and at the end each axis's commanded and actual positions (equal
+/// to the sum of its queued counts) arrive at the pins. (The controller's
+/// own read data is checked against its model on every clock.)
 #[test]
 fn a_dsp_runs_moves_through_the_bus_adapter() {
     let mut board = Board::new();

@@ -3,7 +3,7 @@
 //! running paths end to end through the RTL controller.
 
 use motion_hdl::host::{
-    interpolate, plan, ControllerBus, Driver, DriverConfig, ModelBus, Path, PathError, RecordingBus, RtlBus,
+    interpolate, plan, Driver, DriverConfig, ModelBus, Path, PathError, RecordingBus, RtlBus,
 };
 use motion_hdl::host::planner::junction_speed;
 use rand::rngs::StdRng;

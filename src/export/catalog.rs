@@ -190,6 +190,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
                 ("K", "3", "axes"),
                 ("N", "4", "FIFO depth 2^N = 16 periods per axis"),
                 ("T", "16", "step timing register width"),
+                ("P", "8", "each output stage's pending-step count width: +127 / -128 steps"),
             ],
             port_docs: motion_controller::PORT_DOCS,
             fmax_target_mhz: 100.0,

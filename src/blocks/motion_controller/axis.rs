@@ -9,7 +9,7 @@ use rust_hdl::prelude::*;
 
 
 use super::registers::{axis, AXIS_BASE, AXIS_STRIDE};
-use super::{PENDING_BITS, PERIOD_BITS};
+use super::{PERIOD_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
 use crate::blocks::dda_integrator::DdaIntegrator;
 use crate::blocks::pulse_counter::PulseCounter;
@@ -82,7 +82,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     fifo: CommandFifo<N, NP1>,
     dda: DdaIntegrator<PERIOD_BITS>,
     uniform: UniformPulseGen<PERIOD_BITS>,
-    stage: StepOutput<16, PENDING_BITS>,
+    stage: StepOutput<16, STAGE_PENDING_BITS>,
     position: PulseCounter<32>,
     encoder: QuadratureDecoder<32, 8, 16>,
 
@@ -96,6 +96,13 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// happened then: the interpolators take it one clock after the
     /// boundary, so the block RAM's read path ends in a flip-flop.
     popped: DFF<Bits<32>>,
+    /// Range tests of the popped entry, taken from the head at the pop so
+    /// that its saturation is one LUT deep: bits 31..16 not all zero, bits
+    /// 31..16 all one, bits 15..0 not all zero. (All 0 for an entry of 0,
+    /// as after power-up and reset.)
+    popped_upper_nonzero: DFF<Bit>,
+    popped_upper_ones: DFF<Bit>,
+    popped_low_nonzero: DFF<Bit>,
     popped_valid: DFF<Bit>,
     underrun_d: DFF<Bit>,
     /// The base tick one clock late: the interpolators see each tick after
@@ -120,6 +127,10 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// the magnitude test does not sit in front of the flag and interrupt
     /// logic: the fault is flagged one clock after the entry is taken.
     saturated: DFF<Bit>,
+    /// A CLEAR_POSITION waiting for a clock on which no step is counted.
+    clear_position_pending: DFF<Bit>,
+    /// CLEAR_POSITION written now or still waiting.
+    clear_position: Signal<Local, Bit>,
     /// The running period's direction (DDA).
     forward: DFF<Bit>,
     /// The direction travels with the DDA's two clocks of latency.
@@ -244,6 +255,9 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             dir_hold: Default::default(),
             sample_rate: Default::default(),
             popped: Default::default(),
+            popped_upper_nonzero: Default::default(),
+            popped_upper_ones: Default::default(),
+            popped_low_nonzero: Default::default(),
             popped_valid: Default::default(),
             underrun_d: Default::default(),
             tick_d: Default::default(),
@@ -255,6 +269,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             uniform_overrange_prev: Default::default(),
             uniform_overflow_prev: Default::default(),
             saturated: Default::default(),
+            clear_position_pending: Default::default(),
+            clear_position: Default::default(),
             forward: Default::default(),
             forward_1: Default::default(),
             forward_2: Default::default(),
@@ -333,6 +349,9 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             dir_hold,
             sample_rate,
             popped,
+            popped_upper_nonzero,
+            popped_upper_ones,
+            popped_low_nonzero,
             popped_valid,
             underrun_d,
             tick_d,
@@ -344,6 +363,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             uniform_overrange_prev,
             uniform_overflow_prev,
             saturated,
+            clear_position_pending,
             forward,
             forward_1,
             forward_2,
@@ -409,20 +429,24 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.popped_valid.d.next = self.pop.val();
         self.underrun_d.d.next = self.underrun.val();
         self.tick_d.d.next = self.tick.val();
-        if self.pop.val() {
-            self.popped.d.next = self.fifo.head.val();
-        }
         // |entry| saturated to the interpolators' width, without a 32-bit
         // negation: too large is decided on the upper half alone (and
         // -2^16 itself), the count negates only the lower half.
-        self.upper_ones.next = (self.popped.q.val() & self.above_count.val()) == self.above_count.val();
-        self.upper_zero.next = (self.popped.q.val() & self.above_count.val()) == self.zero32.val();
+        self.upper_ones.next = (self.fifo.head.val() & self.above_count.val()) == self.above_count.val();
+        self.upper_zero.next = (self.fifo.head.val() & self.above_count.val()) == self.zero32.val();
+        if self.pop.val() {
+            self.popped.d.next = self.fifo.head.val();
+            self.popped_upper_nonzero.d.next = !self.upper_zero.val();
+            self.popped_upper_ones.d.next = self.upper_ones.val();
+            self.popped_low_nonzero.d.next =
+                self.fifo.head.val().get_bits::<PERIOD_BITS>(0) != self.zero_count.val();
+        }
         self.low_half.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
         if self.popped.q.val().get_bit(31) {
-            self.too_large.next = !self.upper_ones.val() | (self.low_half.val() == self.zero_count.val());
+            self.too_large.next = !self.popped_upper_ones.q.val() | !self.popped_low_nonzero.q.val();
             self.count.next = self.zero_count.val() - self.low_half.val();
         } else {
-            self.too_large.next = !self.upper_zero.val();
+            self.too_large.next = self.popped_upper_nonzero.q.val();
             self.count.next = self.low_half.val();
         }
         if self.too_large.val() {
@@ -523,12 +547,16 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.position.reset.next = self.reset.val();
         self.position.up.next = self.stage.emitted.val() & self.stage.emitted_forward.val();
         self.position.down.next = self.stage.emitted.val() & !self.stage.emitted_forward.val();
-        // CLEAR_POSITION is the counter's clear, which wins over a step on
-        // the same clock: that step ends the old count. A load of +-1
-        // instead would give every bit's adder LUT a fourth input, which
-        // splits the 32-bit carry chain in placement (nextpnr allows 32
-        // LUT inputs per tile) and was the slowest path of the top.
-        self.position.clear.next = self.command.val() & self.write_data.val().get_bit(3);
+        // CLEAR_POSITION waits for a clock on which no step is counted,
+        // since the counter's clear would win over that step: every step
+        // then lands in the old count or the new one. (Loading +-1 instead
+        // gives every bit's adder LUT a fourth input, which splits the
+        // 32-bit carry chain in placement: nextpnr allows 32 LUT inputs per
+        // tile. It was the slowest path of the top.)
+        self.clear_position.next = (self.command.val() & self.write_data.val().get_bit(3))
+            | self.clear_position_pending.q.val();
+        self.position.clear.next = self.clear_position.val() & !self.stage.emitted.val();
+        self.clear_position_pending.d.next = self.clear_position.val() & self.stage.emitted.val();
         self.position.load.next = false;
         self.position.load_value.next = self.zero32.val();
         self.position.compare_value.next = self.zero32.val();
@@ -663,6 +691,9 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.dir_hold.d.next = self.zero32.val();
             self.sample_rate.d.next = self.zero32.val();
             self.popped.d.next = self.zero32.val();
+            self.popped_upper_nonzero.d.next = false;
+            self.popped_upper_ones.d.next = false;
+            self.popped_low_nonzero.d.next = false;
             self.popped_valid.d.next = false;
             self.underrun_d.d.next = false;
             self.tick_d.d.next = false;
@@ -674,6 +705,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.uniform_overrange_prev.d.next = false;
             self.uniform_overflow_prev.d.next = false;
             self.saturated.d.next = false;
+            self.clear_position_pending.d.next = false;
             self.forward.d.next = false;
             self.forward_1.d.next = false;
             self.forward_2.d.next = false;

@@ -107,8 +107,8 @@
 //!   raises `STATUS.AXIS_FAULT`, and the commanded position still counts
 //!   only what was emitted. A DDA axis asked for more steps per period than
 //!   its output stage's timing allows is not flagged until the stage's
-//!   pending count saturates at 127 steps behind (`PENDING_BITS` = 8): up
-//!   to then the steps are delayed, not lost.
+//!   pending count saturates at +127 or -128 steps behind
+//!   (`STAGE_PENDING_BITS` = 8): up to then the steps are delayed, not lost.
 //! * **Reset or a STEP_MODE change in quadrature mode** returns A/B to 00
 //!   from whatever state they were in, which a drive may count as a step:
 //!   change modes and reset only with the drive disabled.
@@ -118,10 +118,13 @@
 //! * **Entry too large**: |n| > 65535 is saturated to 65535 and
 //!   `INTERP_OVERRANGE` is set one clock after the entry is taken (then the
 //!   interpolator's own clamp applies).
-//! * **`CLEAR_POSITION` in motion**: `CMD_POSITION` becomes 0 at the edge
-//!   that ends the write. A step leaving on that same clock belongs to the
-//!   old count, so `CMD_POSITION` then counts exactly the steps that leave
-//!   after the write's clock. None is counted twice or in neither count.
+//! * **`CLEAR_POSITION` in motion**: `CMD_POSITION` becomes 0 at the first
+//!   edge, from the one that ends the write on, at which no step is
+//!   counted: one clock later if a step is counted on the write's own
+//!   clock (steps are at least 2 clocks apart unless a quadrature output
+//!   runs at one state per clock, which postpones the clear until it
+//!   pauses). Each step is thus in the old count, as read before the clear
+//!   takes effect, or in the new one: none is lost or counted twice.
 //!
 //! ## Latency
 //! A DDA step reaches the pins at the earliest 5 clocks after the base tick
@@ -157,11 +160,11 @@ use registers::{global, ID_VALUE, VERSION_VALUE};
 pub const TIMER_BITS: u32 = 16;
 
 /// Width of each output stage's signed pending-step count: a backlog of
-/// up to 127 steps either way, beyond which a request is dropped and
-/// `STEP_OVERRUN` is set. An axis 127 steps behind its commands has long
-/// lost its path; 8 bits rather than 16 also shorten the stage's
-/// emit-to-count adder, one of the top's slowest paths.
-pub const PENDING_BITS: usize = 8;
+/// up to +127 or -128 steps, beyond which a request is dropped and
+/// `STEP_OVERRUN` is set. An axis that far behind its commands has long
+/// lost its path; 8 bits rather than the standalone stage's 16 also
+/// shorten the stage's emit-to-count adder, one of the top's slowest paths.
+pub const STAGE_PENDING_BITS: usize = 8;
 
 /// Width of `PERIOD_TICKS` and of both interpolators: a period is at most
 /// 2^16 - 1 base ticks, and an axis emits at most that many steps in one.

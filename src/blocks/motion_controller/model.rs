@@ -109,6 +109,7 @@ pub struct AxisModel {
     uniform_overrange_prev: bool,
     uniform_overflow_prev: bool,
     saturated: bool,
+    clear_position_pending: bool,
     forward: bool,
     forward_1: bool,
     forward_2: bool,
@@ -143,7 +144,7 @@ impl AxisModel {
             reset: true,
             ..Default::default()
         });
-        let mut stage = StepOutputModel::new(super::TIMER_BITS, super::PENDING_BITS as u32);
+        let mut stage = StepOutputModel::new(super::TIMER_BITS, super::STAGE_PENDING_BITS as u32);
         let stage_out = stage.step(StepOutputInputs {
             reset: true,
             ..Default::default()
@@ -187,6 +188,7 @@ impl AxisModel {
             uniform_overrange_prev: false,
             uniform_overflow_prev: false,
             saturated: false,
+            clear_position_pending: false,
             forward: false,
             forward_1: false,
             forward_2: false,
@@ -403,11 +405,14 @@ impl AxisModel {
             dir_hold: self.dir_hold as u64,
             clear_overrun: clear_faults,
         });
+        // CLEAR_POSITION waits for a clock without a counted step.
+        let clear_position = (command && c.write_data & 8 != 0) || self.clear_position_pending;
+        next.clear_position_pending = clear_position && self.stage_out.emitted;
         next.position_out = next.position.step(PulseCounterInputs {
             reset: c.reset,
             up: self.stage_out.emitted && self.stage_out.emitted_forward,
             down: self.stage_out.emitted && !self.stage_out.emitted_forward,
-            clear: command && c.write_data & 8 != 0,
+            clear: clear_position && !self.stage_out.emitted,
             load: false,
             load_value: 0,
             compare_value: 0,
@@ -453,6 +458,7 @@ impl AxisModel {
             next.uniform_overrange_prev = false;
             next.uniform_overflow_prev = false;
             next.saturated = false;
+            next.clear_position_pending = false;
             next.forward = false;
             next.forward_1 = false;
             next.forward_2 = false;

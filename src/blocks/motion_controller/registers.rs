@@ -303,7 +303,7 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                     field("CLEAR_FAULTS", 0, 1, WriteOnly, "clear STEP_OVERRUN, INTERP_OVERRANGE and INTERP_OVERFLOW"),
                     field("CLEAR_ENCODER", 1, 1, WriteOnly, "ACT_POSITION <- 0 and ENCODER_ERROR <- 0"),
                     field("REARM_INDEX", 2, 1, WriteOnly, "clear INDEX_SEEN (re-arm a once-only index)"),
-                    field("CLEAR_POSITION", 3, 1, WriteOnly, "CMD_POSITION <- 0; a step leaving on the write's own clock belongs to the old count"),
+                    field("CLEAR_POSITION", 3, 1, WriteOnly, "CMD_POSITION <- 0 at the first clock, from this write on, that counts no step (no step is lost)"),
                     field("CLEAR_ENCODER_ERROR", 4, 1, WriteOnly, "ENCODER_ERROR <- 0, keeping ACT_POSITION (an error on the same clock keeps it set)"),
                 ],
             )),

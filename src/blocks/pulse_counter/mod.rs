@@ -33,7 +33,8 @@
 //!   (the port contract) and that clock's pulse is not counted, but never
 //!   silently: `pulse_overridden` strobes one clock later. A design that must
 //!   keep such a pulse adds it back (for example with a `load` of the
-//!   cleared value ±1); a CPU clearing a position register can read the flag.
+//!   cleared value ±1) or holds the clear until a clock without a pulse (as
+//!   `motion_controller` does).
 //! * Overflow wraps (two's complement), as position registers do; the CPU
 //!   extends the count in software from successive reads.
 //! * `up` and `down` are sampled every clock as levels: a pulse held high for

@@ -7,9 +7,9 @@
 //!
 //! ## Ports (`T` = 16-bit timers and `P` = 16-bit pending count in the exported `step_output`)
 //! `P` (3 to 32) sets the slack for steps the timing holds back: the count
-//! runs from -2^(P-1) to 2^(P-1) - 1. A controller build that never
-//! requests faster than its timing allows can use P = 8 (about 15 LUT4
-//! less).
+//! runs from -2^(P-1) to 2^(P-1) - 1; a request beyond it is dropped and
+//! flagged (`overrun`). P = 8 saves about 15 LUT4 and shortens the
+//! emit-to-count adder; `motion_controller` uses it.
 //! | port | dir | width | meaning |
 //! |---|---|---|---|
 //! | `clock` | in | 1 | rising-edge clock |
