@@ -808,6 +808,28 @@ fn clear_position_in_motion_loses_no_step() {
     assert!(coincident > 0, "no phase put a step on the clear's own clock");
 }
 
+/// Each output stage holds a backlog of +127 / -128 steps
+/// (`STAGE_PENDING_BITS` = 8). With a step pulse far longer than the
+/// period the stage emits one step, so a period of n steps leaves n - 1
+/// pending: one step more than the count holds is dropped and flagged.
+#[test]
+fn a_stage_backlog_beyond_its_limit_is_flagged() {
+    for (n, overrun) in [(128, false), (129, true), (-129, false), (-130, true)] {
+        let mut b = Controller3::new();
+        configure(&mut b, 200, [false; 3]);
+        b.write("STEP_LEN", 0, 60_000);
+        b.write("STEP_SPACE", 0, 60_000);
+        queue(&mut b, 0, &[n]);
+        queue(&mut b, 1, &[0]);
+        queue(&mut b, 2, &[0]);
+        b.write("CONTROL", 0, 1);
+        b.idle(600);
+        let status = b.read("AXIS_STATUS", 0);
+        assert_eq!(b.field("AXIS_STATUS", "STEP_OVERRUN", status), overrun as u64, "{n} steps");
+        assert_eq!(b.read("CMD_POSITION", 0) as i32, n.signum(), "{n} steps: one emitted");
+    }
+}
+
 /// One SNAPSHOT write latches every axis on the same clock: identical
 /// encoder patterns on all axes give identical snapshots at any phase.
 #[test]
