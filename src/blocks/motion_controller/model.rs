@@ -91,6 +91,14 @@ pub struct AxisModel {
     position_out: PulseCounterOutputs,
     encoder: QuadratureDecoderModel,
     encoder_out: QuadratureDecoderOutputs,
+    /// The axis's own registers (everything but the sub-blocks).
+    glue: AxisGlue,
+}
+
+/// The registers of an axis outside its sub-blocks: all 0 at power-up and
+/// after reset (the sub-blocks take the reset themselves).
+#[derive(Clone, Debug, Default)]
+struct AxisGlue {
     config: u32,
     step_len: u32,
     step_space: u32,
@@ -170,38 +178,7 @@ impl AxisModel {
             position_out,
             encoder_out: encoder.outputs(),
             encoder,
-            config: 0,
-            step_len: 0,
-            step_space: 0,
-            dir_setup: 0,
-            dir_hold: 0,
-            sample_rate: 0,
-            popped: 0,
-            popped_valid: false,
-            underrun_d: false,
-            tick_d: false,
-            integrand: 0,
-            overrange_flag: false,
-            overflow_flag: false,
-            overrun_prev: false,
-            dda_overrange_prev: false,
-            uniform_overrange_prev: false,
-            uniform_overflow_prev: false,
-            saturated: false,
-            clear_position_pending: false,
-            forward: false,
-            forward_1: false,
-            forward_2: false,
-            uniform_active: false,
-            uniform_loaded_forward: false,
-            uniform_running_forward: false,
-            uniform_ready_prev: false,
-            uniform_pulse_prev: false,
-            request: false,
-            request_forward: false,
-            cmd_snapshot: 0,
-            act_snapshot: 0,
-            encoder_error_prev: false,
+            glue: AxisGlue::default(),
         }
     }
 
@@ -225,7 +202,7 @@ impl AxisModel {
     }
 
     fn popped_magnitude(&self) -> u64 {
-        (self.popped as i32).unsigned_abs() as u64
+        (self.glue.popped as i32).unsigned_abs() as u64
     }
 
     fn too_large(&self) -> bool {
@@ -235,10 +212,10 @@ impl AxisModel {
     /// Rises of the sub-blocks' sticky flags in this clock.
     fn rises(&self) -> (bool, bool, bool, bool) {
         (
-            self.stage_out.overrun && !self.overrun_prev,
-            self.dda_out.overrange && !self.dda_overrange_prev,
-            self.uniform_out.overrange && !self.uniform_overrange_prev,
-            self.uniform_out.overflow && !self.uniform_overflow_prev,
+            self.stage_out.overrun && !self.glue.overrun_prev,
+            self.dda_out.overrange && !self.glue.dda_overrange_prev,
+            self.uniform_out.overrange && !self.glue.uniform_overrange_prev,
+            self.uniform_out.overflow && !self.glue.uniform_overflow_prev,
         )
     }
 
@@ -261,25 +238,25 @@ impl AxisModel {
                         | (self.fifo_out.full as u32) << 17
                         | (low as u32) << 18
                 }
-                axis::AXIS_CONFIG => self.config,
-                axis::STEP_LEN => self.step_len,
-                axis::STEP_SPACE => self.step_space,
-                axis::DIR_SETUP => self.dir_setup,
-                axis::DIR_HOLD => self.dir_hold,
-                axis::ENC_SAMPLE_RATE => self.sample_rate,
+                axis::AXIS_CONFIG => self.glue.config,
+                axis::STEP_LEN => self.glue.step_len,
+                axis::STEP_SPACE => self.glue.step_space,
+                axis::DIR_SETUP => self.glue.dir_setup,
+                axis::DIR_HOLD => self.glue.dir_hold,
+                axis::ENC_SAMPLE_RATE => self.glue.sample_rate,
                 axis::CMD_POSITION => self.position_out.count as u32,
                 axis::ACT_POSITION => self.encoder_out.count as u32,
-                axis::CMD_SNAPSHOT => self.cmd_snapshot,
-                axis::ACT_SNAPSHOT => self.act_snapshot,
+                axis::CMD_SNAPSHOT => self.glue.cmd_snapshot,
+                axis::ACT_SNAPSHOT => self.glue.act_snapshot,
                 axis::AXIS_STATUS => {
                     self.stage_out.overrun as u32
-                        | (self.overrange_flag as u32) << 1
-                        | (self.overflow_flag as u32) << 2
+                        | (self.glue.overrange_flag as u32) << 1
+                        | (self.glue.overflow_flag as u32) << 2
                         | (self.encoder_out.error as u32) << 3
                         | (self.encoder_out.index_seen as u32) << 4
                         | (self.stage_out.busy as u32) << 5
                         | (self.uniform_out.running as u32) << 6
-                        | ((((self.config >> 2) & 3) == 3) as u32) << 7
+                        | ((((self.glue.config >> 2) & 3) == 3) as u32) << 7
                 }
                 axis::INDEX_POSITION => self.encoder_out.index_count as u32,
                 _ => 0,
@@ -290,9 +267,9 @@ impl AxisModel {
             overflow_event: fifo_write && self.fifo_out.full && !pop,
             fault_event: {
                 let (a, b, c, d) = self.rises();
-                a || b || c || d || self.saturated
+                a || b || c || d || self.glue.saturated
             },
-            encoder_error_event: self.encoder_out.error && !self.encoder_error_prev,
+            encoder_error_event: self.encoder_out.error && !self.glue.encoder_error_prev,
             read_data,
         }
     }
@@ -305,52 +282,52 @@ impl AxisModel {
         let mut next = self.clone();
         if c.write && selected {
             match offset {
-                axis::AXIS_CONFIG => next.config = c.write_data & 0x1fff,
-                axis::STEP_LEN => next.step_len = c.write_data & 0xffff,
-                axis::STEP_SPACE => next.step_space = c.write_data & 0xffff,
-                axis::DIR_SETUP => next.dir_setup = c.write_data & 0xffff,
-                axis::DIR_HOLD => next.dir_hold = c.write_data & 0xffff,
-                axis::ENC_SAMPLE_RATE => next.sample_rate = c.write_data & 0xff,
+                axis::AXIS_CONFIG => next.glue.config = c.write_data & 0x1fff,
+                axis::STEP_LEN => next.glue.step_len = c.write_data & 0xffff,
+                axis::STEP_SPACE => next.glue.step_space = c.write_data & 0xffff,
+                axis::DIR_SETUP => next.glue.dir_setup = c.write_data & 0xffff,
+                axis::DIR_HOLD => next.glue.dir_hold = c.write_data & 0xffff,
+                axis::ENC_SAMPLE_RATE => next.glue.sample_rate = c.write_data & 0xff,
                 _ => {}
             }
         }
         // The entry popped at the last edge is taken now.
-        next.popped_valid = c.pop;
-        next.underrun_d = c.underrun;
-        next.tick_d = c.tick;
+        next.glue.popped_valid = c.pop;
+        next.glue.underrun_d = c.underrun;
+        next.glue.tick_d = c.tick;
         if c.pop {
-            next.popped = self.fifo_out.head as u32;
+            next.glue.popped = self.fifo_out.head as u32;
         }
         let magnitude = self.popped_magnitude().min(COUNT_MAX);
-        let popped_forward = self.popped & (1 << 31) == 0;
+        let popped_forward = self.glue.popped & (1 << 31) == 0;
         let (_, dda_rise, uniform_overrange_rise, uniform_overflow_rise) = self.rises();
         if clear_faults {
-            next.overrange_flag = false;
-            next.overflow_flag = false;
+            next.glue.overrange_flag = false;
+            next.glue.overflow_flag = false;
         }
-        next.saturated = self.popped_valid && self.too_large();
-        if self.saturated || dda_rise || uniform_overrange_rise {
-            next.overrange_flag = true;
+        next.glue.saturated = self.glue.popped_valid && self.too_large();
+        if self.glue.saturated || dda_rise || uniform_overrange_rise {
+            next.glue.overrange_flag = true;
         }
         if uniform_overflow_rise {
-            next.overflow_flag = true;
+            next.glue.overflow_flag = true;
         }
-        next.overrun_prev = self.stage_out.overrun;
-        next.dda_overrange_prev = self.dda_out.overrange;
-        next.uniform_overrange_prev = self.uniform_out.overrange;
-        next.uniform_overflow_prev = self.uniform_out.overflow;
+        next.glue.overrun_prev = self.stage_out.overrun;
+        next.glue.dda_overrange_prev = self.dda_out.overrange;
+        next.glue.uniform_overrange_prev = self.uniform_out.overrange;
+        next.glue.uniform_overflow_prev = self.uniform_out.overflow;
         if c.start && !self.uniform_out.running {
-            next.uniform_active = self.config & 1 != 0;
+            next.glue.uniform_active = self.glue.config & 1 != 0;
         }
-        if self.popped_valid {
-            next.forward = popped_forward;
-            next.integrand = if self.uniform_active { 0 } else { magnitude };
+        if self.glue.popped_valid {
+            next.glue.forward = popped_forward;
+            next.glue.integrand = if self.glue.uniform_active { 0 } else { magnitude };
         }
-        if self.underrun_d || c.halt {
-            next.integrand = 0;
+        if self.glue.underrun_d || c.halt {
+            next.glue.integrand = 0;
         }
-        next.forward_1 = self.forward;
-        next.forward_2 = self.forward_1;
+        next.glue.forward_1 = self.glue.forward;
+        next.glue.forward_2 = self.glue.forward_1;
 
         next.fifo_out = next.fifo.step(
             c.reset || c.flush,
@@ -362,52 +339,52 @@ impl AxisModel {
         );
         next.dda_out = next.dda.step(DdaIntegratorInputs {
             reset: c.reset || c.halt,
-            tick: self.tick_d,
-            integrand: self.integrand,
+            tick: self.glue.tick_d,
+            integrand: self.glue.integrand,
             modulus: c.modulus,
             clear_overrange: clear_faults,
         });
         next.uniform_out = next.uniform.step(UniformPulseGenInputs {
             reset: c.reset || c.halt,
-            tick: self.tick_d,
+            tick: self.glue.tick_d,
             period: c.period_active,
             count: magnitude,
-            mode: self.config & 2 != 0,
-            load: self.popped_valid && self.uniform_active,
+            mode: self.glue.config & 2 != 0,
+            load: self.glue.popped_valid && self.glue.uniform_active,
             clear_flags: clear_faults || c.start,
         });
-        if self.popped_valid && self.uniform_active && self.uniform_out.ready {
-            next.uniform_loaded_forward = popped_forward;
+        if self.glue.popped_valid && self.glue.uniform_active && self.uniform_out.ready {
+            next.glue.uniform_loaded_forward = popped_forward;
         }
-        next.uniform_ready_prev = self.uniform_out.ready;
-        next.uniform_pulse_prev = self.uniform_out.pulse;
-        let uniform_started = self.uniform_out.ready && !self.uniform_ready_prev;
+        next.glue.uniform_ready_prev = self.uniform_out.ready;
+        next.glue.uniform_pulse_prev = self.uniform_out.pulse;
+        let uniform_started = self.uniform_out.ready && !self.glue.uniform_ready_prev;
         let uniform_forward = if uniform_started {
-            self.uniform_loaded_forward
+            self.glue.uniform_loaded_forward
         } else {
-            self.uniform_running_forward
+            self.glue.uniform_running_forward
         };
-        next.uniform_running_forward = uniform_forward;
-        (next.request, next.request_forward) = if self.uniform_active {
-            (self.uniform_out.pulse && !self.uniform_pulse_prev, uniform_forward)
+        next.glue.uniform_running_forward = uniform_forward;
+        (next.glue.request, next.glue.request_forward) = if self.glue.uniform_active {
+            (self.uniform_out.pulse && !self.glue.uniform_pulse_prev, uniform_forward)
         } else {
-            (self.dda_out.pulse, self.forward_2)
+            (self.dda_out.pulse, self.glue.forward_2)
         };
-        let (step, dir) = (self.request, self.request_forward);
+        let (step, dir) = (self.glue.request, self.glue.request_forward);
         next.stage_out = next.stage.step(StepOutputInputs {
             reset: c.reset,
             step,
             dir,
-            mode: ((self.config >> 2) & 3) as u8,
-            step_len: self.step_len as u64,
-            step_space: self.step_space as u64,
-            dir_setup: self.dir_setup as u64,
-            dir_hold: self.dir_hold as u64,
+            mode: ((self.glue.config >> 2) & 3) as u8,
+            step_len: self.glue.step_len as u64,
+            step_space: self.glue.step_space as u64,
+            dir_setup: self.glue.dir_setup as u64,
+            dir_hold: self.glue.dir_hold as u64,
             clear_overrun: clear_faults,
         });
         // CLEAR_POSITION waits for a clock without a counted step.
-        let clear_position = (command && c.write_data & 8 != 0) || self.clear_position_pending;
-        next.clear_position_pending = clear_position && self.stage_out.emitted;
+        let clear_position = (command && c.write_data & 8 != 0) || self.glue.clear_position_pending;
+        next.glue.clear_position_pending = clear_position && self.stage_out.emitted;
         next.position_out = next.position.step(PulseCounterInputs {
             reset: c.reset,
             up: self.stage_out.emitted && self.stage_out.emitted_forward,
@@ -417,15 +394,15 @@ impl AxisModel {
             load_value: 0,
             compare_value: 0,
         });
-        let bit = |n: u32| self.config & (1 << n) != 0;
+        let bit = |n: u32| self.glue.config & (1 << n) != 0;
         next.encoder_out = next.encoder.step(QuadratureDecoderInputs {
             reset: c.reset,
             a,
             b,
             index,
-            filter: ((self.config >> 4) & 0xf) as u8,
+            filter: ((self.glue.config >> 4) & 0xf) as u8,
             clear: command && c.write_data & 2 != 0,
-            sample_rate: self.sample_rate as u64,
+            sample_rate: self.glue.sample_rate as u64,
             counter_mode: bit(8),
             index_invert: bit(9),
             index_clear: bit(10),
@@ -435,43 +412,12 @@ impl AxisModel {
             clear_error: command && c.write_data & 16 != 0,
         });
         if c.snapshot {
-            next.cmd_snapshot = self.position_out.count as u32;
-            next.act_snapshot = self.encoder_out.count as u32;
+            next.glue.cmd_snapshot = self.position_out.count as u32;
+            next.glue.act_snapshot = self.encoder_out.count as u32;
         }
-        next.encoder_error_prev = self.encoder_out.error;
+        next.glue.encoder_error_prev = self.encoder_out.error;
         if c.reset {
-            next.config = 0;
-            next.step_len = 0;
-            next.step_space = 0;
-            next.dir_setup = 0;
-            next.dir_hold = 0;
-            next.sample_rate = 0;
-            next.popped = 0;
-            next.popped_valid = false;
-            next.underrun_d = false;
-            next.tick_d = false;
-            next.integrand = 0;
-            next.overrange_flag = false;
-            next.overflow_flag = false;
-            next.overrun_prev = false;
-            next.dda_overrange_prev = false;
-            next.uniform_overrange_prev = false;
-            next.uniform_overflow_prev = false;
-            next.saturated = false;
-            next.clear_position_pending = false;
-            next.forward = false;
-            next.forward_1 = false;
-            next.forward_2 = false;
-            next.uniform_active = false;
-            next.uniform_loaded_forward = false;
-            next.uniform_running_forward = false;
-            next.uniform_ready_prev = false;
-            next.uniform_pulse_prev = false;
-            next.request = false;
-            next.request_forward = false;
-            next.cmd_snapshot = 0;
-            next.act_snapshot = 0;
-            next.encoder_error_prev = false;
+            next.glue = AxisGlue::default();
         }
         *self = next;
     }
