@@ -310,14 +310,20 @@ fn latency_from_idle<const W: usize>() {
     }
 }
 
-#[test]
-fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let mut rng = StdRng::seed_from_u64(0xc0c0);
-    let mut model = UniformPulseGenModel::new();
+/// Random cross-simulation vectors: periods from `period`, counts up to
+/// just past T/2, loads mostly while the model's slot is free, rare flag
+/// clears and resets.
+fn cosim_stimulus(
+    seed: u64,
+    mut model: UniformPulseGenModel,
+    cycles: usize,
+    mut period: impl FnMut(&mut StdRng) -> u64,
+) -> Vec<Vec<u64>> {
+    let mut rng = StdRng::seed_from_u64(seed);
     let mut ready = true;
-    let stimulus: Vec<Vec<u64>> = (0..40_000)
+    (0..cycles)
         .map(|_| {
-            let period = rng.gen_range(0..300);
+            let period = period(&mut rng);
             let i = UniformPulseGenInputs {
                 tick: rng.gen_ratio(9, 10),
                 period,
@@ -330,7 +336,12 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
             ready = model.step(i).ready;
             vector(&i)
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn exported_verilog_matches_rust_in_icarus_and_verilator() {
+    let stimulus = cosim_stimulus(0xc0c0, UniformPulseGenModel::new(), 40_000, |rng| rng.gen_range(0..300));
     cross_simulate(
         &CosimDesign::exported("uniform_pulse_gen"),
         UniformPulseGen::<32>::default(),
@@ -343,25 +354,9 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
 /// the sign bit of a 12-bit Bresenham error.
 #[test]
 fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
-    let mut rng = StdRng::seed_from_u64(0x12b);
-    let mut model = UniformPulseGenModel::with_width(12);
-    let mut ready = true;
-    let stimulus: Vec<Vec<u64>> = (0..30_000)
-        .map(|_| {
-            let period = [rng.gen_range(0..300), rng.gen_range(0..5000)][rng.gen_range(0..2)];
-            let i = UniformPulseGenInputs {
-                tick: rng.gen_ratio(9, 10),
-                period,
-                count: rng.gen_range(0..=period / 2 + 2),
-                mode: rng.gen_bool(0.5),
-                load: rng.gen_ratio(1, if ready { 20 } else { 300 }),
-                clear_flags: rng.gen_ratio(1, 2000),
-                reset: rng.gen_ratio(1, 20_000),
-            };
-            ready = model.step(i).ready;
-            vector(&i)
-        })
-        .collect();
+    let stimulus = cosim_stimulus(0x12b, UniformPulseGenModel::with_width(12), 30_000, |rng| {
+        [rng.gen_range(0..300), rng.gen_range(0..5000)][rng.gen_range(0..2)]
+    });
     cross_simulate_generated("uniform_pulse_gen_12", UniformPulseGen::<12>::default(), &stimulus)
         .unwrap_or_else(|e| panic!("{e}"));
 }
