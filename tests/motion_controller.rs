@@ -11,6 +11,7 @@ use bench::Bench;
 use motion_hdl::blocks::motion_controller::registers::register_map;
 use motion_hdl::blocks::motion_controller::MotionController;
 use motion_hdl::export::generator;
+use motion_hdl::host::driver::SERVICED_INTERRUPTS;
 use motion_hdl::regmap::c_header;
 use motion_hdl::sim::quadrature_state;
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
@@ -181,15 +182,6 @@ fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
     );
 }
 
-const IRQ_ALL_FAULTS: &[(&str, u64)] = &[
-    ("FIFO_LOW", 1),
-    ("UNDERRUN", 1),
-    ("OVERFLOW", 1),
-    ("ENCODER_ERROR", 1),
-    ("WATCHDOG", 1),
-    ("AXIS_FAULT", 1),
-];
-
 /// Firmware set-up: base tick every clock, `period` clocks per period,
 /// step/dir outputs with 1-clock timing, axis `i` uniform if `uniform[i]`.
 fn configure(b: &mut Controller3, period: u32, uniform: [bool; 3]) {
@@ -200,7 +192,8 @@ fn configure_with_tick(b: &mut Controller3, tick_divisor: u32, period: u32, unif
     b.write("TICK_DIVISOR", 0, tick_divisor);
     b.write("PERIOD_TICKS", 0, period);
     b.write("FIFO_LOW_WATER", 0, 4);
-    let enable = b.pack("IRQ_ENABLE", IRQ_ALL_FAULTS);
+    // The interrupts the host driver enables.
+    let enable = b.pack("IRQ_ENABLE", SERVICED_INTERRUPTS);
     b.write("IRQ_ENABLE", 0, enable);
     for (axis, u) in uniform.iter().enumerate() {
         let config = b.pack("AXIS_CONFIG", &[("UNIFORM", *u as u64), ("INTERLEAVED", 1)]);

@@ -9,6 +9,17 @@ use super::bus::ControllerBus;
 use crate::blocks::motion_controller::registers::register_map;
 use crate::regmap::{RegMapError, RegisterMap};
 
+/// The `IRQ_ENABLE` fields the driver turns on: FIFO_LOW for refills and
+/// every fault source; PERIOD_DONE stays off.
+pub const SERVICED_INTERRUPTS: &[(&str, u64)] = &[
+    ("FIFO_LOW", 1),
+    ("UNDERRUN", 1),
+    ("OVERFLOW", 1),
+    ("ENCODER_ERROR", 1),
+    ("WATCHDOG", 1),
+    ("AXIS_FAULT", 1),
+];
+
 /// How the driver sets the controller up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DriverConfig {
@@ -191,17 +202,7 @@ impl<B: ControllerBus> Driver<B> {
             self.write("DIR_SETUP", axis, c.dir_time)?;
             self.write("DIR_HOLD", axis, c.dir_time)?;
         }
-        let enable = self.pack(
-            "IRQ_ENABLE",
-            &[
-                ("FIFO_LOW", 1),
-                ("UNDERRUN", 1),
-                ("OVERFLOW", 1),
-                ("ENCODER_ERROR", 1),
-                ("WATCHDOG", 1),
-                ("AXIS_FAULT", 1),
-            ],
-        )?;
+        let enable = self.pack("IRQ_ENABLE", SERVICED_INTERRUPTS)?;
         self.write("IRQ_ENABLE", 0, enable)?;
         let status = self.read("STATUS", 0)?;
         self.write("STATUS", 0, status)
