@@ -33,9 +33,12 @@ module freq_divider(clock,reset,enable,divisor,strobe);
     localparam  high_bits = 32'hfffffffe;
 
     // Stub signals
-    reg  [31:0] remaining__d;
-    wire  [31:0] remaining__q;
-    reg  remaining__clock;
+    reg  [31:0] latched_divisor__d;
+    wire  [31:0] latched_divisor__q;
+    reg  latched_divisor__clock;
+    reg  [31:0] count__d;
+    wire  [31:0] count__q;
+    reg  count__clock;
     reg  mid_interval__d;
     wire  mid_interval__q;
     reg  mid_interval__clock;
@@ -47,10 +50,15 @@ module freq_divider(clock,reset,enable,divisor,strobe);
     reg  divisor_at_most_one;
 
     // Sub module instances
-    freq_divider__remaining remaining(
-        .d(remaining__d),
-        .q(remaining__q),
-        .clock(remaining__clock)
+    freq_divider__latched_divisor latched_divisor(
+        .d(latched_divisor__d),
+        .q(latched_divisor__q),
+        .clock(latched_divisor__clock)
+    );
+    freq_divider__count count(
+        .d(count__d),
+        .q(count__q),
+        .clock(count__clock)
     );
     freq_divider__mid_interval mid_interval(
         .d(mid_interval__d),
@@ -65,10 +73,12 @@ module freq_divider(clock,reset,enable,divisor,strobe);
 
     // Update code
     always @(*) begin
-        remaining__clock = clock;
+        latched_divisor__clock = clock;
+        count__clock = clock;
         mid_interval__clock = clock;
         strobe_reg__clock = clock;
-        remaining__d = remaining__q;
+        latched_divisor__d = latched_divisor__q;
+        count__d = count__q;
         mid_interval__d = mid_interval__q;
         strobe_reg__d = strobe_reg__q;
         strobe = strobe_reg__q;
@@ -76,23 +86,61 @@ module freq_divider(clock,reset,enable,divisor,strobe);
         strobe_reg__d = 1'b0;
         if (enable) begin
             if (~mid_interval__q) begin
-                remaining__d = divisor;
+                latched_divisor__d = divisor;
+                count__d = two;
                 mid_interval__d = ~divisor_at_most_one;
-                strobe_reg__d = divisor != zero;
+                strobe_reg__d = ~divisor_at_most_one | divisor[32'h0];
             end
             else begin
-                remaining__d = remaining__q - one;
-                mid_interval__d = remaining__q != two;
+                count__d = count__q + one;
+                mid_interval__d = count__q != latched_divisor__q;
             end
         end
         if (reset) begin
-            remaining__d = zero;
             mid_interval__d = 1'b0;
             strobe_reg__d = 1'b0;
         end
     end
 
 endmodule // freq_divider
+
+
+module freq_divider__count(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // freq_divider__count
+
+
+module freq_divider__latched_divisor(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // freq_divider__latched_divisor
 
 
 module freq_divider__mid_interval(d,q,clock);
@@ -112,25 +160,6 @@ module freq_divider__mid_interval(d,q,clock);
     end
 
 endmodule // freq_divider__mid_interval
-
-
-module freq_divider__remaining(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // freq_divider__remaining
 
 
 module freq_divider__strobe_reg(d,q,clock);

@@ -21,9 +21,11 @@
 //! clock in which `enable` is low (it belongs to the last enabled edge); no
 //! edge with `enable` low ever produces one.
 //!
-//! Reset and power-up are the same state (every flip-flop 0), so a design
-//! that ties `reset` low and relies on the FPGA's initial values behaves
-//! exactly like one that resets.
+//! Reset and power-up are the same state as seen from the ports (the two
+//! control flip-flops are 0; the count and the latched D are not read again
+//! before the next enabled edge reloads them), so a design that ties `reset`
+//! low and relies on the FPGA's initial values behaves exactly like one that
+//! resets.
 //!
 //! ```text
 //! D = 3       edge:  1   2   3   4   5   6   7
@@ -50,12 +52,20 @@
 //! therefore only be cut short by `reset`.
 //!
 //! ## Resources
-//! A W-bit down-counter with a reload mux and a registered end-of-interval
-//! flag, so the reload select comes straight from a flip-flop and the only
-//! carry chain is the decrement. D is never compared by magnitude: the
-//! control needs only equality tests (D <= 1, D != 0, counter == 2), which
-//! map to LUT trees. Figures for the exported 32-bit module are in
-//! `rtl-out/synthesis-report.md`.
+//! The D of the interval in progress is latched at the interval's first edge
+//! and compared for equality with an up-counter that restarts at 2. That
+//! makes the end-of-interval flag a registered equality of two flip-flop
+//! vectors (a LUT tree, no carry chain), and the restart the counter's own
+//! synchronous set/reset, so the count needs one LUT per bit. A loadable
+//! down-counter, the obvious design, needs two on iCE40 (the load
+//! multiplexer cannot share the carry cell's LUT).
+//!
+//! The trade: the latched D is W flip-flops with no logic in front of them.
+//! On iCE40 each takes a logic cell of its own (with a pass-through LUT that
+//! yosys does not count as a LUT4), so for W = 32 the block is 71 LUT4 and 66
+//! flip-flops in 106 logic cells; the down-counter design was 90 LUT4 and 34
+//! flip-flops in 93 logic cells. Current figures for the exported 32-bit
+//! module are in `rtl-out/synthesis-report.md`.
 
 pub mod model;
 
@@ -81,6 +91,8 @@ use rust_hdl::prelude::*;
 
 /// Runtime clock-enable generator: one `strobe` every `divisor` enabled clocks.
 /// See the [module documentation](self) for the datasheet.
+///
+/// `W` must be at least 2 (the count restarts at 2).
 #[derive(Clone, Debug, LogicBlock)]
 pub struct FreqDivider<const W: usize> {
     /// Rising-edge clock.
@@ -93,26 +105,32 @@ pub struct FreqDivider<const W: usize> {
     pub divisor: Signal<In, Bits<W>>,
     /// One-clock strobe.
     pub strobe: Signal<Out, Bit>,
-    /// Enabled clocks left in the current interval, counting down to 1.
-    remaining: DFF<Bits<W>>,
-    /// Registered `remaining > 1`: the next enabled clock does not end the
-    /// interval. A flip-flop takes the zero test off the reload path; it is
-    /// stored in this sense so that power-up (all flip-flops 0) and reset
-    /// give the same state.
+    /// The D of the interval in progress, taken at its first edge.
+    latched_divisor: DFF<Bits<W>>,
+    /// Enabled edges of the interval in progress, plus 1. It restarts at 2
+    /// rather than 0 so that `count == latched_divisor` one edge early is
+    /// exactly "the next edge ends the interval": the end test then reads
+    /// only flip-flops, and the restart is the flip-flops' own synchronous
+    /// set/reset (no load multiplexer in front of the increment).
+    count: DFF<Bits<W>>,
+    /// Registered "the next enabled edge does not end the interval". Stored in
+    /// this sense so that power-up (all flip-flops 0) and reset give the same
+    /// state: the next enabled edge starts an interval.
     mid_interval: DFF<Bit>,
     strobe_reg: DFF<Bit>,
-    /// D <= 1 (the next interval is a single clock).
+    /// D <= 1: an interval starting now is a single clock (or none, D = 0).
     divisor_at_most_one: Signal<Local, Bit>,
     zero: Constant<Bits<W>>,
     one: Constant<Bits<W>>,
     two: Constant<Bits<W>>,
-    /// All bits but bit 0: equality tests map to LUT trees, where `<=`
+    /// All bits but bit 0: an equality test maps to a LUT tree, where `<=`
     /// would cost a second carry chain.
     high_bits: Constant<Bits<W>>,
 }
 
 impl<const W: usize> Default for FreqDivider<W> {
     fn default() -> Self {
+        assert!(W >= 2, "FreqDivider needs W >= 2");
         let all_ones = if W >= 64 { u64::MAX } else { (1u64 << W) - 1 };
         Self {
             clock: Default::default(),
@@ -120,7 +138,8 @@ impl<const W: usize> Default for FreqDivider<W> {
             enable: Default::default(),
             divisor: Default::default(),
             strobe: Default::default(),
-            remaining: Default::default(),
+            latched_divisor: Default::default(),
+            count: Default::default(),
             mid_interval: Default::default(),
             strobe_reg: Default::default(),
             divisor_at_most_one: Default::default(),
@@ -135,23 +154,27 @@ impl<const W: usize> Default for FreqDivider<W> {
 impl<const W: usize> Logic for FreqDivider<W> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, remaining, mid_interval, strobe_reg);
+        dff_setup!(self, clock, latched_divisor, count, mid_interval, strobe_reg);
         self.strobe.next = self.strobe_reg.q.val();
         self.divisor_at_most_one.next =
             (self.divisor.val() & self.high_bits.val()) == self.zero.val();
         self.strobe_reg.d.next = false;
         if self.enable.val() {
             if !self.mid_interval.q.val() {
-                self.remaining.d.next = self.divisor.val();
+                self.latched_divisor.d.next = self.divisor.val();
+                self.count.d.next = self.two.val();
                 self.mid_interval.d.next = !self.divisor_at_most_one.val();
-                self.strobe_reg.d.next = self.divisor.val() != self.zero.val();
+                // D != 0, from the D <= 1 tree rather than a second one.
+                self.strobe_reg.d.next =
+                    !self.divisor_at_most_one.val() | self.divisor.val().get_bit(0);
             } else {
-                self.remaining.d.next = self.remaining.q.val() - self.one.val();
-                self.mid_interval.d.next = self.remaining.q.val() != self.two.val();
+                self.count.d.next = self.count.q.val() + self.one.val();
+                self.mid_interval.d.next = self.count.q.val() != self.latched_divisor.q.val();
             }
         }
+        // count and latched_divisor are left alone: with mid_interval low
+        // they are not read before the next edge reloads them.
         if self.reset.val() {
-            self.remaining.d.next = self.zero.val();
             self.mid_interval.d.next = false;
             self.strobe_reg.d.next = false;
         }
