@@ -89,7 +89,7 @@ fn records_a_vcd_and_renders_chosen_signals_to_svg() {
     drop(harness.finish());
     let text = std::fs::read_to_string(&vcd).unwrap();
     assert!(
-        text.contains("strobe") && text.contains("remaining"),
+        text.contains("strobe") && text.contains("latched_divisor"),
         "VCD lacks the block's signals"
     );
     render_svg(
