@@ -149,25 +149,41 @@ impl ChaosDriver {
     }
 }
 
-#[test]
-fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
-    let mut b = Controller3::new();
-    let mut driver = ChaosDriver::new(0xc0_ffee, 3);
+/// What a chaos run exercised, to show that it was not idle.
+struct ChaosRun {
+    /// STATUS bits seen set in reads of STATUS.
+    status_seen: u32,
+    running_cycles: u64,
+    /// Step edges at the pins, all axes.
+    steps: u64,
+    irq_rises: u64,
+}
+
+/// `cycles` clocks of [`ChaosDriver`] traffic on a K-axis controller with
+/// 2^N-entry FIFOs; the bench compares RTL and model after every clock.
+fn chaos_run<const K: usize, const N: usize, const NP1: usize>(seed: u64, cycles: u64) -> ChaosRun {
+    let mut b = Bench::<K, N, NP1>::new();
+    let mut driver = ChaosDriver::new(seed, K);
     let status_address = b.address("STATUS", 0);
-    let (mut status_seen, mut running_cycles, mut steps, mut irq_rises) = (0u32, 0u64, 0u64, 0u64);
+    let mut run = ChaosRun {
+        status_seen: 0,
+        running_cycles: 0,
+        steps: 0,
+        irq_rises: 0,
+    };
     let mut last_read = None;
     let mut previous = b.last.clone();
-    for _ in 0..400_000 {
+    for _ in 0..cycles {
         b.encoders = driver.encoders();
         let (reset, address, data, write, read) = driver.bus(&b);
         let out = b.clock(reset, address, data, write, read).clone();
         if last_read == Some(status_address) {
-            status_seen |= out.read_data;
+            run.status_seen |= out.read_data;
         }
         last_read = read.then_some(address);
-        running_cycles += out.running as u64;
-        irq_rises += (out.irq && !previous.irq) as u64;
-        steps += out
+        run.running_cycles += out.running as u64;
+        run.irq_rises += (out.irq && !previous.irq) as u64;
+        run.steps += out
             .steps
             .iter()
             .zip(&previous.steps)
@@ -175,11 +191,40 @@ fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
             .count() as u64;
         previous = out;
     }
-    assert_eq!(status_seen, 0x7f, "every STATUS bit seen set: {status_seen:#x}");
+    run
+}
+
+#[test]
+fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
+    let run = chaos_run::<3, 4, 5>(0xc0_ffee, 400_000);
+    assert_eq!(run.status_seen, 0x7f, "every STATUS bit seen set: {:#x}", run.status_seen);
     assert!(
-        running_cycles > 100_000 && steps > 5_000 && irq_rises > 100,
-        "{running_cycles} running cycles, {steps} steps, {irq_rises} interrupts"
+        run.running_cycles > 100_000 && run.steps > 5_000 && run.irq_rises > 100,
+        "{} running cycles, {} steps, {} interrupts",
+        run.running_cycles,
+        run.steps,
+        run.irq_rises
     );
+}
+
+/// K is a Rust parameter and the FIFO depth may be up to 256: the exported
+/// K = 3, 16-entry build is not the only one users make. One axis with
+/// 256-entry FIFOs and two axes with 32-entry FIFOs, in lockstep with the
+/// model (which takes K and the depth at run time).
+#[test]
+fn other_axis_counts_and_fifo_depths_match_the_model() {
+    for (name, run) in [
+        ("K=1, 256 entries", chaos_run::<1, 8, 9>(0x1_a515, 150_000)),
+        ("K=2, 32 entries", chaos_run::<2, 5, 6>(0x2_a515, 150_000)),
+    ] {
+        assert!(
+            run.running_cycles > 30_000 && run.steps > 1_000 && run.irq_rises > 30,
+            "{name}: {} running cycles, {} steps, {} interrupts",
+            run.running_cycles,
+            run.steps,
+            run.irq_rises
+        );
+    }
 }
 
 /// Firmware set-up: base tick every clock, `period` clocks per period,
