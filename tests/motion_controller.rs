@@ -711,6 +711,45 @@ fn a_restart_right_after_an_underrun_loses_nothing() {
     }
 }
 
+/// Clocks from the start write to the first clock with `irq` high, with
+/// only the interrupts `enabled`, on DDA axes with 100-tick periods (one
+/// tick per clock) and axis 0 fed 10, `second`, 10.
+fn clocks_to_first_irq(second: i32, enabled: &[(&str, u64)]) -> u64 {
+    let mut b = Controller3::new();
+    configure(&mut b, 100, [false; 3]);
+    let enable = b.pack("IRQ_ENABLE", enabled);
+    b.write("IRQ_ENABLE", 0, enable);
+    queue(&mut b, 0, &[10, second, 10]);
+    for axis in 1..3 {
+        queue(&mut b, axis, &[0; 3]);
+    }
+    b.write("CONTROL", 0, 1);
+    for clock in 1..=1000 {
+        if b.clock(false, 0, 0, false, false).irq {
+            return clock;
+        }
+    }
+    panic!("no interrupt");
+}
+
+/// The datasheet's timing of an oversized entry, measured at the pins
+/// against the period boundary rather than against the model: the entry is
+/// taken one clock after the boundary (whose PERIOD_DONE shows in `irq` one
+/// clock after it), and INTERP_OVERRANGE with its AXIS_FAULT event comes
+/// one clock after that. So the fault's interrupt is exactly 2 clocks after
+/// the boundary's, and it appears at all only for an entry beyond 65535.
+#[test]
+fn an_oversized_entry_is_flagged_one_clock_after_it_is_taken() {
+    let boundary = clocks_to_first_irq(70_000, &[("PERIOD_DONE", 1)]);
+    let fault = clocks_to_first_irq(70_000, &[("AXIS_FAULT", 1)]);
+    assert_eq!(fault, boundary + 2, "boundary irq at {boundary}, fault irq at {fault}");
+    let in_range = clocks_to_first_irq(65_535, &[("AXIS_FAULT", 1)]);
+    assert!(
+        in_range > fault,
+        "65535 is not saturated: its first fault is the DDA's own clamp, later"
+    );
+}
+
 /// Lost or clamped steps are flagged per axis, raise AXIS_FAULT once per
 /// fault, and stay flagged through stops and restarts until CLEAR_FAULTS.
 #[test]
