@@ -172,6 +172,9 @@ fn narrow_rtl_matches_model_and_contract() {
     let mut rng = StdRng::seed_from_u64(12);
     run_against_model::<12>(&random_stimulus(&mut rng, 200_000, 12));
     run_against_model::<4>(&random_stimulus(&mut rng, 200_000, 4));
+    // The narrowest legal width: D = 3 ends each interval on the edge where
+    // the count wraps.
+    run_against_model::<2>(&random_stimulus(&mut rng, 100_000, 2));
 }
 
 /// Every pair of old and new divisor of a 4-bit divider, with the change
