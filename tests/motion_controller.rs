@@ -159,6 +159,20 @@ struct ChaosRun {
     irq_rises: u64,
 }
 
+impl ChaosRun {
+    /// Fails unless the run was busy: at least `running` clocks with RUN
+    /// set, `steps` step edges and `irqs` interrupts.
+    fn assert_busy(&self, name: &str, running: u64, steps: u64, irqs: u64) {
+        assert!(
+            self.running_cycles > running && self.steps > steps && self.irq_rises > irqs,
+            "{name}: {} running cycles, {} steps, {} interrupts",
+            self.running_cycles,
+            self.steps,
+            self.irq_rises
+        );
+    }
+}
+
 /// `cycles` clocks of [`ChaosDriver`] traffic on a K-axis controller with
 /// 2^N-entry FIFOs; the bench compares RTL and model after every clock.
 fn chaos_run<const K: usize, const N: usize, const NP1: usize>(seed: u64, cycles: u64) -> ChaosRun {
@@ -198,13 +212,7 @@ fn chaos_run<const K: usize, const N: usize, const NP1: usize>(seed: u64, cycles
 fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
     let run = chaos_run::<3, 4, 5>(0xc0_ffee, 400_000);
     assert_eq!(run.status_seen, 0x7f, "every STATUS bit seen set: {:#x}", run.status_seen);
-    assert!(
-        run.running_cycles > 100_000 && run.steps > 5_000 && run.irq_rises > 100,
-        "{} running cycles, {} steps, {} interrupts",
-        run.running_cycles,
-        run.steps,
-        run.irq_rises
-    );
+    run.assert_busy("K=3, 16 entries", 100_000, 5_000, 100);
 }
 
 /// K is a Rust parameter and the FIFO depth may be up to 256: the exported
@@ -217,13 +225,7 @@ fn other_axis_counts_and_fifo_depths_match_the_model() {
         ("K=1, 256 entries", chaos_run::<1, 8, 9>(0x1_a515, 150_000)),
         ("K=2, 32 entries", chaos_run::<2, 5, 6>(0x2_a515, 150_000)),
     ] {
-        assert!(
-            run.running_cycles > 30_000 && run.steps > 1_000 && run.irq_rises > 30,
-            "{name}: {} running cycles, {} steps, {} interrupts",
-            run.running_cycles,
-            run.steps,
-            run.irq_rises
-        );
+        run.assert_busy(name, 30_000, 1_000, 30);
     }
 }
 
