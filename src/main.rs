@@ -45,9 +45,6 @@ enum Command {
         #[arg(long = "module")]
         modules: Vec<String>,
     },
-    /// Draw the uniform pulse generator's figures as SVG: one period of
-    /// (T, N) in single-period, paper-order and interleaved form, and the
-    /// single-period unevenness mu against N for this T.
     /// Run a path file (format: `cargo doc`, module host::path; examples in
     /// examples/) through the simulated 3-axis controller (RTL, steps looped
     /// back into the encoders): final positions, peak step rates,
@@ -78,6 +75,9 @@ enum Command {
         #[arg(long)]
         vcd: Option<PathBuf>,
     },
+    /// Draw the uniform pulse generator's figures as SVG: one period of
+    /// (T, N) in single-period, paper-order and interleaved form, and the
+    /// single-period unevenness mu against N for this T.
     PlotPulses {
         /// T: the interpolation period in ticks (even, at least 2).
         #[arg(long)]

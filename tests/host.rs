@@ -229,6 +229,26 @@ fn simulate_rejects_a_malformed_path_file_with_a_clear_message() {
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
+/// Each subcommand's help is its own: `simulate` once took over the doc
+/// comment of `plot-pulses`, which was left with none.
+#[test]
+fn every_subcommand_has_its_own_help_line() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
+        .arg("--help")
+        .output()
+        .unwrap();
+    let help = String::from_utf8_lossy(&out.stdout);
+    let line = |command: &str| {
+        help.lines()
+            .find(|l| l.trim_start().starts_with(&format!("{command} ")))
+            .unwrap_or_else(|| panic!("no `{command}` in:\n{help}"))
+            .to_string()
+    };
+    assert!(line("simulate").contains("Run a path file"), "{help}");
+    assert!(!line("simulate").contains("uniform pulse generator's figures"), "{help}");
+    assert!(line("plot-pulses").contains("uniform pulse generator's figures"), "{help}");
+}
+
 /// The long run: a 2000-segment circle approximation through the RTL
 /// controller. Not in the default suite (about a minute):
 /// `cargo test --release --test host -- --ignored`.
