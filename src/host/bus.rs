@@ -98,7 +98,6 @@ impl RtlBus {
     pub fn peak_steps_per_clock(&self) -> [f64; 3] {
         self.peak_window_steps.map(|n| n as f64 / self.rate_window as f64)
     }
-
 }
 
 impl ControllerBus for RtlBus {
@@ -163,7 +162,6 @@ impl ModelBus {
             cycles: 0,
         }
     }
-
 }
 
 impl ControllerBus for ModelBus {

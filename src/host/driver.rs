@@ -27,7 +27,7 @@ pub struct DriverConfig {
     pub tick_divisor: u32,
     /// Base ticks per interpolation period (`PERIOD_TICKS`, 1 to 65535).
     pub period_ticks: u32,
-    /// Step pulse high and low times and direction setup/hold, clocks.
+    /// Step pulse high time, clocks.
     pub step_len: u32,
     /// Minimum step low time, clocks.
     pub step_space: u32,

@@ -16,7 +16,7 @@ pub struct SimulationOptions {
     pub clock_hz: f64,
     /// Per axis: the uniform pulse generator instead of the DDA.
     pub uniform: [bool; 3],
-    /// Step pulse high time and minimum low time, clocks.
+    /// Step pulse high time, clocks (also the direction setup and hold).
     pub step_len: u32,
     /// Minimum step low time, clocks.
     pub step_space: u32,
@@ -43,7 +43,7 @@ pub struct SimulationReport {
     pub underruns: usize,
     /// Interpolation periods.
     pub periods: usize,
-    /// Clock cycles simulated, and the wall time in seconds.
+    /// Clock cycles simulated.
     pub cycles: u64,
     /// Wall time, seconds.
     pub seconds: f64,
