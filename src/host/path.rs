@@ -129,10 +129,15 @@ impl Path {
             }
             let mut words = content.split_whitespace();
             let keyword = words.next().unwrap_or_default();
-            if keyword == "units" {
-                if !lines.is_empty() {
-                    return Err(err("`units` must come before the first `line`".into()));
+            let settings_before_lines = |lines: &Vec<(usize, [f64; 3])>| {
+                if lines.is_empty() {
+                    Ok(())
+                } else {
+                    Err(err(format!("`{keyword}` must come before the first `line`")))
                 }
+            };
+            if keyword == "units" {
+                settings_before_lines(&lines)?;
                 mm = match words.next().unwrap_or("") {
                     "mm" => true,
                     "steps" => false,
@@ -153,13 +158,6 @@ impl Path {
                     Ok(())
                 } else {
                     Err(err(format!("`{keyword}` takes {n} number(s), found {}", numbers.len())))
-                }
-            };
-            let settings_before_lines = |lines: &Vec<(usize, [f64; 3])>| {
-                if lines.is_empty() {
-                    Ok(())
-                } else {
-                    Err(err(format!("`{keyword}` must come before the first `line`")))
                 }
             };
             match keyword {
