@@ -4473,6 +4473,9 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
     reg  [1:0] active_mode__d;
     wire  [1:0] active_mode__q;
     reg  active_mode__clock;
+    reg  mode_taken__d;
+    wire  mode_taken__q;
+    reg  mode_taken__clock;
     reg  overrun_reg__d;
     wire  overrun_reg__q;
     reg  overrun_reg__clock;
@@ -4577,6 +4580,11 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
         .q(active_mode__q),
         .clock(active_mode__clock)
     );
+    motion_controller__axes__0__stage__mode_taken mode_taken(
+        .d(mode_taken__d),
+        .q(mode_taken__q),
+        .clock(mode_taken__clock)
+    );
     motion_controller__axes__0__stage__overrun_reg overrun_reg(
         .d(overrun_reg__d),
         .q(overrun_reg__q),
@@ -4610,6 +4618,7 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
         timing_setup__clock = clock;
         setup_wait__clock = clock;
         active_mode__clock = clock;
+        mode_taken__clock = clock;
         overrun_reg__clock = clock;
         emitted_reg__clock = clock;
         emitted_forward_reg__clock = clock;
@@ -4628,6 +4637,7 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
         timing_setup__d = timing_setup__q;
         setup_wait__d = setup_wait__q;
         active_mode__d = active_mode__q;
+        mode_taken__d = mode_taken__q;
         overrun_reg__d = overrun_reg__q;
         emitted_reg__d = emitted_reg__q;
         emitted_forward_reg__d = emitted_forward_reg__q;
@@ -4641,6 +4651,10 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
+        requested_mode = mode;
+        if (mode == mode_reserved) begin
+            requested_mode = mode_step_dir;
+        end
         quadrature = active_mode__q[32'h1];
         up_down = active_mode__q[32'h0];
         emit = 1'b0;
@@ -4774,11 +4788,8 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
             end
         end
         nonzero__d = ~reaches_zero;
-        requested_mode = mode;
-        if (mode == mode_reserved) begin
-            requested_mode = mode_step_dir;
-        end
-        if (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q)) begin
+        mode_taken__d = 1'b1;
+        if (~mode_taken__q | (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q))) begin
             active_mode__d = requested_mode;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;
@@ -4804,7 +4815,8 @@ module motion_controller__axes__0__stage(clock,reset,step,dir,mode,step_len,step
             dir_done__d = 1'b0;
             timing_setup__d = 1'b0;
             setup_wait__d = 1'b0;
-            active_mode__d = mode_step_dir;
+            active_mode__d = requested_mode;
+            mode_taken__d = 1'b1;
             overrun_reg__d = 1'b0;
             emitted_reg__d = 1'b0;
             emitted_forward_reg__d = 1'b0;
@@ -5002,6 +5014,25 @@ module motion_controller__axes__0__stage__high(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__stage__high
+
+
+module motion_controller__axes__0__stage__mode_taken(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__stage__mode_taken
 
 
 module motion_controller__axes__0__stage__nonzero(d,q,clock);
@@ -10576,6 +10607,9 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
     reg  [1:0] active_mode__d;
     wire  [1:0] active_mode__q;
     reg  active_mode__clock;
+    reg  mode_taken__d;
+    wire  mode_taken__q;
+    reg  mode_taken__clock;
     reg  overrun_reg__d;
     wire  overrun_reg__q;
     reg  overrun_reg__clock;
@@ -10680,6 +10714,11 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
         .q(active_mode__q),
         .clock(active_mode__clock)
     );
+    motion_controller__axes__1__stage__mode_taken mode_taken(
+        .d(mode_taken__d),
+        .q(mode_taken__q),
+        .clock(mode_taken__clock)
+    );
     motion_controller__axes__1__stage__overrun_reg overrun_reg(
         .d(overrun_reg__d),
         .q(overrun_reg__q),
@@ -10713,6 +10752,7 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
         timing_setup__clock = clock;
         setup_wait__clock = clock;
         active_mode__clock = clock;
+        mode_taken__clock = clock;
         overrun_reg__clock = clock;
         emitted_reg__clock = clock;
         emitted_forward_reg__clock = clock;
@@ -10731,6 +10771,7 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
         timing_setup__d = timing_setup__q;
         setup_wait__d = setup_wait__q;
         active_mode__d = active_mode__q;
+        mode_taken__d = mode_taken__q;
         overrun_reg__d = overrun_reg__q;
         emitted_reg__d = emitted_reg__q;
         emitted_forward_reg__d = emitted_forward_reg__q;
@@ -10744,6 +10785,10 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
+        requested_mode = mode;
+        if (mode == mode_reserved) begin
+            requested_mode = mode_step_dir;
+        end
         quadrature = active_mode__q[32'h1];
         up_down = active_mode__q[32'h0];
         emit = 1'b0;
@@ -10877,11 +10922,8 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
             end
         end
         nonzero__d = ~reaches_zero;
-        requested_mode = mode;
-        if (mode == mode_reserved) begin
-            requested_mode = mode_step_dir;
-        end
-        if (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q)) begin
+        mode_taken__d = 1'b1;
+        if (~mode_taken__q | (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q))) begin
             active_mode__d = requested_mode;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;
@@ -10907,7 +10949,8 @@ module motion_controller__axes__1__stage(clock,reset,step,dir,mode,step_len,step
             dir_done__d = 1'b0;
             timing_setup__d = 1'b0;
             setup_wait__d = 1'b0;
-            active_mode__d = mode_step_dir;
+            active_mode__d = requested_mode;
+            mode_taken__d = 1'b1;
             overrun_reg__d = 1'b0;
             emitted_reg__d = 1'b0;
             emitted_forward_reg__d = 1'b0;
@@ -11105,6 +11148,25 @@ module motion_controller__axes__1__stage__high(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__stage__high
+
+
+module motion_controller__axes__1__stage__mode_taken(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__stage__mode_taken
 
 
 module motion_controller__axes__1__stage__nonzero(d,q,clock);
@@ -16679,6 +16741,9 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
     reg  [1:0] active_mode__d;
     wire  [1:0] active_mode__q;
     reg  active_mode__clock;
+    reg  mode_taken__d;
+    wire  mode_taken__q;
+    reg  mode_taken__clock;
     reg  overrun_reg__d;
     wire  overrun_reg__q;
     reg  overrun_reg__clock;
@@ -16783,6 +16848,11 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
         .q(active_mode__q),
         .clock(active_mode__clock)
     );
+    motion_controller__axes__2__stage__mode_taken mode_taken(
+        .d(mode_taken__d),
+        .q(mode_taken__q),
+        .clock(mode_taken__clock)
+    );
     motion_controller__axes__2__stage__overrun_reg overrun_reg(
         .d(overrun_reg__d),
         .q(overrun_reg__q),
@@ -16816,6 +16886,7 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
         timing_setup__clock = clock;
         setup_wait__clock = clock;
         active_mode__clock = clock;
+        mode_taken__clock = clock;
         overrun_reg__clock = clock;
         emitted_reg__clock = clock;
         emitted_forward_reg__clock = clock;
@@ -16834,6 +16905,7 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
         timing_setup__d = timing_setup__q;
         setup_wait__d = setup_wait__q;
         active_mode__d = active_mode__q;
+        mode_taken__d = mode_taken__q;
         overrun_reg__d = overrun_reg__q;
         emitted_reg__d = emitted_reg__q;
         emitted_forward_reg__d = emitted_forward_reg__q;
@@ -16847,6 +16919,10 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
+        requested_mode = mode;
+        if (mode == mode_reserved) begin
+            requested_mode = mode_step_dir;
+        end
         quadrature = active_mode__q[32'h1];
         up_down = active_mode__q[32'h0];
         emit = 1'b0;
@@ -16980,11 +17056,8 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
             end
         end
         nonzero__d = ~reaches_zero;
-        requested_mode = mode;
-        if (mode == mode_reserved) begin
-            requested_mode = mode_step_dir;
-        end
-        if (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q)) begin
+        mode_taken__d = 1'b1;
+        if (~mode_taken__q | (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q))) begin
             active_mode__d = requested_mode;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;
@@ -17010,7 +17083,8 @@ module motion_controller__axes__2__stage(clock,reset,step,dir,mode,step_len,step
             dir_done__d = 1'b0;
             timing_setup__d = 1'b0;
             setup_wait__d = 1'b0;
-            active_mode__d = mode_step_dir;
+            active_mode__d = requested_mode;
+            mode_taken__d = 1'b1;
             overrun_reg__d = 1'b0;
             emitted_reg__d = 1'b0;
             emitted_forward_reg__d = 1'b0;
@@ -17208,6 +17282,25 @@ module motion_controller__axes__2__stage__high(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__stage__high
+
+
+module motion_controller__axes__2__stage__mode_taken(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__stage__mode_taken
 
 
 module motion_controller__axes__2__stage__nonzero(d,q,clock);

@@ -618,6 +618,9 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
     reg  [1:0] active_mode__d;
     wire  [1:0] active_mode__q;
     reg  active_mode__clock;
+    reg  mode_taken__d;
+    wire  mode_taken__q;
+    reg  mode_taken__clock;
     reg  overrun_reg__d;
     wire  overrun_reg__q;
     reg  overrun_reg__clock;
@@ -722,6 +725,11 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         .q(active_mode__q),
         .clock(active_mode__clock)
     );
+    step_channel__stage__mode_taken mode_taken(
+        .d(mode_taken__d),
+        .q(mode_taken__q),
+        .clock(mode_taken__clock)
+    );
     step_channel__stage__overrun_reg overrun_reg(
         .d(overrun_reg__d),
         .q(overrun_reg__q),
@@ -755,6 +763,7 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         timing_setup__clock = clock;
         setup_wait__clock = clock;
         active_mode__clock = clock;
+        mode_taken__clock = clock;
         overrun_reg__clock = clock;
         emitted_reg__clock = clock;
         emitted_forward_reg__clock = clock;
@@ -773,6 +782,7 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         timing_setup__d = timing_setup__q;
         setup_wait__d = setup_wait__q;
         active_mode__d = active_mode__q;
+        mode_taken__d = mode_taken__q;
         overrun_reg__d = overrun_reg__q;
         emitted_reg__d = emitted_reg__q;
         emitted_forward_reg__d = emitted_forward_reg__q;
@@ -786,6 +796,10 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
+        requested_mode = mode;
+        if (mode == mode_reserved) begin
+            requested_mode = mode_step_dir;
+        end
         quadrature = active_mode__q[32'h1];
         up_down = active_mode__q[32'h0];
         emit = 1'b0;
@@ -919,11 +933,8 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
             end
         end
         nonzero__d = ~reaches_zero;
-        requested_mode = mode;
-        if (mode == mode_reserved) begin
-            requested_mode = mode_step_dir;
-        end
-        if (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q)) begin
+        mode_taken__d = 1'b1;
+        if (~mode_taken__q | (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q))) begin
             active_mode__d = requested_mode;
             a_reg__d = 1'b0;
             b_reg__d = 1'b0;
@@ -949,7 +960,8 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
             dir_done__d = 1'b0;
             timing_setup__d = 1'b0;
             setup_wait__d = 1'b0;
-            active_mode__d = mode_step_dir;
+            active_mode__d = requested_mode;
+            mode_taken__d = 1'b1;
             overrun_reg__d = 1'b0;
             emitted_reg__d = 1'b0;
             emitted_forward_reg__d = 1'b0;
@@ -1147,6 +1159,25 @@ module step_channel__stage__high(d,q,clock);
     end
 
 endmodule // step_channel__stage__high
+
+
+module step_channel__stage__mode_taken(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // step_channel__stage__mode_taken
 
 
 module step_channel__stage__nonzero(d,q,clock);

@@ -41,7 +41,8 @@ enum Command {
         /// Placement seeds; Fmax is the median over them.
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=50))]
         seeds: u64,
-        /// Only these modules (default: all).
+        /// Only these modules (default: all); the report keeps the other
+        /// modules' rows from the existing file.
         #[arg(long = "module")]
         modules: Vec<String>,
     },
@@ -201,7 +202,12 @@ fn run(cli: Cli) -> Result<(), String> {
                 .collect();
             let seeds: Vec<u64> = (1..=seeds).collect();
             let rows = report::measure(&specs, &rtl, &seeds).map_err(|e| e.to_string())?;
-            let text = report::render(&rows, &seeds).map_err(|e| e.to_string())?;
+            let mut text = report::render(&rows, &seeds).map_err(|e| e.to_string())?;
+            if !modules.is_empty() {
+                if let Ok(previous) = std::fs::read_to_string(&out) {
+                    text = report::merge(&previous, &text, &known);
+                }
+            }
             std::fs::write(&out, text)
                 .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
             println!("wrote {}", out.display());

@@ -6,35 +6,14 @@ use motion_hdl::blocks::step_output::model::{
     pending_limits, StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX, PENDING_MIN,
 };
 use motion_hdl::blocks::step_output::StepOutput;
-use motion_hdl::sim::Harness;
+use motion_hdl::sim::{Harness, VectorPorts};
 use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-fn vector(i: &StepOutputInputs) -> Vec<u64> {
-    vec![
-        i.reset as u64,
-        i.step as u64,
-        i.dir as u64,
-        i.mode as u64,
-        i.step_len,
-        i.step_space,
-        i.dir_setup,
-        i.dir_hold,
-        i.clear_overrun as u64,
-    ]
-}
-
-fn outputs(v: &[u64]) -> StepOutputOutputs {
-    StepOutputOutputs {
-        out_a: v[0] != 0,
-        out_b: v[1] != 0,
-        overrun: v[2] != 0,
-        mode_invalid: v[3] != 0,
-        busy: v[4] != 0,
-        emitted: v[5] != 0,
-        emitted_forward: v[6] != 0,
-    }
+/// One clock of the RTL with `inputs` applied.
+fn rtl_clock<B: VectorPorts>(harness: &mut Harness<B>, inputs: &StepOutputInputs) -> StepOutputOutputs {
+    StepOutputOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap())
 }
 
 /// Runs of requests, each with one mode and one set of timings: bursts of
@@ -113,7 +92,7 @@ fn rtl_matches_model_cycle_by_cycle_in_every_mode() {
     for cycle in 0..1_000_000 {
         let mut inputs = driver.next(busy);
         inputs.reset = cycle % 250_000 == 249_999;
-        let rtl = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+        let rtl = rtl_clock(&mut harness, &inputs);
         assert_eq!(rtl, model.step(inputs), "cycle {cycle}: {inputs:?}");
         busy = rtl.busy;
     }
@@ -130,7 +109,7 @@ fn narrow_pending_count_saturates_and_clears_like_the_model() {
     let (mut busy, mut before, mut overruns, mut clears) = (false, false, 0, 0);
     for cycle in 0..300_000 {
         let inputs = driver.next(busy);
-        let rtl = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+        let rtl = rtl_clock(&mut harness, &inputs);
         let expected = model.step(inputs);
         assert_eq!(rtl, expected, "cycle {cycle}: {inputs:?}");
         overruns += (!before && rtl.overrun) as u32;
@@ -291,7 +270,7 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
         let mut runs_checked = 0;
         for cycle in 0..1_000_000u64 {
             let inputs = driver.next(busy);
-            let out = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+            let out = rtl_clock(&mut harness, &inputs);
             let pins = (out.out_a, out.out_b);
             // A new run starts when the settings change; the stage takes the
             // mode while idle, so the previous run must be complete.
@@ -333,7 +312,7 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
             ..driver.settings
         };
         for cycle in 1_000_000..1_300_000u64 {
-            let out = outputs(&harness.step_vector(&vector(&idle)).unwrap());
+            let out = rtl_clock(&mut harness, &idle);
             m.sample(cycle, (out.out_a, out.out_b));
             m.strobe(&out);
             if !out.busy {
@@ -374,7 +353,7 @@ fn saturate_and_drain<const P: usize>(dir: bool, capacity: i64) {
     };
     let mut after_overrun = 0;
     while after_overrun < 100 {
-        let out = outputs(&harness.step_vector(&vector(&slow)).unwrap());
+        let out = rtl_clock(&mut harness, &slow);
         rises += count(out, &mut last_a);
         if out.overrun {
             after_overrun += 1;
@@ -387,7 +366,7 @@ fn saturate_and_drain<const P: usize>(dir: bool, capacity: i64) {
     let started_during_fill = rises;
     let fast = StepOutputInputs::default();
     for _ in 0..200_000 {
-        let out = outputs(&harness.step_vector(&vector(&fast)).unwrap());
+        let out = rtl_clock(&mut harness, &fast);
         rises += count(out, &mut last_a);
         if !out.busy {
             break;
@@ -425,7 +404,7 @@ fn cosim_stimulus(
         .map(|_| {
             let inputs = driver.next(busy);
             busy = model.step(inputs).busy;
-            vector(&inputs)
+            inputs.to_vector()
         })
         .collect()
 }
@@ -450,8 +429,9 @@ fn narrow_6_bit_timers_match_rust_in_icarus_and_verilator() {
 
 /// The timing diagram in the datasheet (`src/blocks/step_output/timing.txt`,
 /// included into the rustdoc) is this simulation, not a drawing: step/dir,
-/// step_len 2, step_space 3, dir_setup 2, dir_hold 2; three forward steps
-/// requested on clocks 1 to 3, then two backward steps on clocks 14 and 15.
+/// step_len 2, step_space 3, dir_setup 2, dir_hold 2, after a reset; three
+/// forward steps requested on clocks 1 to 3, then two backward steps on
+/// clocks 14 and 15.
 fn timing_diagram() -> String {
     let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
     let settings = StepOutputInputs {
@@ -461,12 +441,14 @@ fn timing_diagram() -> String {
         dir_hold: 2,
         ..Default::default()
     };
+    // Clock 0 is the reset the diagram starts after.
+    rtl_clock(&mut harness, &StepOutputInputs { reset: true, ..settings });
     let (mut a, mut b, mut req) = (String::new(), String::new(), String::new());
     for clock in 1..=36 {
         let mut inputs = settings;
         inputs.step = clock <= 3 || clock == 14 || clock == 15;
         inputs.dir = clock <= 3;
-        let out = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+        let out = rtl_clock(&mut harness, &inputs);
         req.push(if inputs.step {
             if inputs.dir {
                 '+'
@@ -516,4 +498,167 @@ fn an_8_bit_pending_count_matches_its_model_and_verilog() {
     let stimulus = cosim_stimulus(0x8b17, vec![0, 1, 2], 16, 8, 30_000);
     cross_simulate_generated("step_output_p8", StepOutput::<16, 8>::default(), &stimulus)
         .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// How a stage reaches the clock from which one step is requested.
+#[derive(Clone, Copy, Debug)]
+enum Start {
+    /// Power-up state, no reset pulse.
+    PowerUp,
+    /// Three idle clocks, then a one-clock reset.
+    Reset,
+    /// A burst of steps in another mode, then a reset mid-pulse with the
+    /// mode input changing to this run's mode at the reset.
+    ResetMidPulseInAnotherMode,
+}
+
+/// Pin transitions of one run: rising edges of `out_a` and `out_b`, the
+/// level of `out_b` at each `out_a` rise, and every (a, b) change.
+#[derive(Debug, Default, PartialEq, Eq)]
+struct PinLog {
+    a_rises: u32,
+    b_rises: u32,
+    b_at_a_rise: Vec<bool>,
+    changes: Vec<(bool, bool)>,
+}
+
+/// The issue-24 scenario: `mode` tied from time 0 (step_len 4, step_space 4,
+/// dir_setup 6, dir_hold 2), one step requested `delay` clocks after the
+/// start. Returns the pins seen from the start on; RTL and model are
+/// compared on every clock as well.
+fn one_early_step(mode: u8, forward: bool, start: Start, delay: u32) -> PinLog {
+    let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
+    let mut model = StepOutputModel::new(16, 16);
+    let tied = StepOutputInputs {
+        mode,
+        step_len: 4,
+        step_space: 4,
+        dir_setup: 6,
+        dir_hold: 2,
+        ..Default::default()
+    };
+    let mut clock = |inputs: StepOutputInputs| {
+        let rtl = rtl_clock(&mut harness, &inputs);
+        assert_eq!(rtl, model.step(inputs), "{start:?} mode {mode}: {inputs:?}");
+        rtl
+    };
+    match start {
+        Start::PowerUp => {}
+        Start::Reset => {
+            for _ in 0..3 {
+                clock(tied);
+            }
+            clock(StepOutputInputs { reset: true, ..tied });
+        }
+        Start::ResetMidPulseInAnotherMode => {
+            let other = StepOutputInputs {
+                mode: (mode + 1) % 3,
+                step_len: 4,
+                step_space: 1,
+                dir_setup: 1,
+                dir_hold: 1,
+                ..Default::default()
+            };
+            // Reset on the first clock a pin is high in the other mode.
+            let in_pulse = (0..60).any(|_| {
+                let out = clock(StepOutputInputs { step: true, dir: true, ..other });
+                out.out_a || out.out_b
+            });
+            assert!(in_pulse, "the other mode never drove a pin");
+            clock(StepOutputInputs { reset: true, ..tied });
+        }
+    }
+    let mut log = PinLog::default();
+    let mut last = (false, false);
+    for clk in 1..=120u32 {
+        let request = clk == delay;
+        let out = clock(StepOutputInputs {
+            step: request,
+            dir: forward,
+            ..tied
+        });
+        let pins = (out.out_a, out.out_b);
+        if pins != last {
+            log.changes.push(pins);
+            if pins.0 && !last.0 {
+                log.a_rises += 1;
+                log.b_at_a_rise.push(pins.1);
+            }
+            if pins.1 && !last.1 {
+                log.b_rises += 1;
+            }
+        }
+        last = pins;
+    }
+    assert!(!clock(tied).busy, "still busy after 120 clocks");
+    log
+}
+
+/// What one step looks like at the pins in each mode, from outputs low.
+fn one_step_pins(mode: u8, forward: bool) -> PinLog {
+    match (mode, forward) {
+        // Step/dir: dir turns first (forward only), then one step pulse.
+        (0 | 3, true) => PinLog {
+            a_rises: 1,
+            b_rises: 1,
+            b_at_a_rise: vec![true],
+            changes: vec![(false, true), (true, true), (false, true)],
+        },
+        (0 | 3, false) => PinLog {
+            a_rises: 1,
+            b_rises: 0,
+            b_at_a_rise: vec![false],
+            changes: vec![(true, false), (false, false)],
+        },
+        // Up/down: one pulse on up or on down, the other pin quiet.
+        (1, true) => PinLog {
+            a_rises: 1,
+            b_rises: 0,
+            b_at_a_rise: vec![false],
+            changes: vec![(true, false), (false, false)],
+        },
+        (1, false) => PinLog {
+            a_rises: 0,
+            b_rises: 1,
+            b_at_a_rise: vec![],
+            changes: vec![(false, true), (false, false)],
+        },
+        // Quadrature: one Gray state, 00 -> 10 forward, 00 -> 01 backward.
+        (_, true) => PinLog {
+            a_rises: 1,
+            b_rises: 0,
+            b_at_a_rise: vec![false],
+            changes: vec![(true, false)],
+        },
+        (_, false) => PinLog {
+            a_rises: 0,
+            b_rises: 1,
+            b_at_a_rise: vec![],
+            changes: vec![(false, true)],
+        },
+    }
+}
+
+/// Issue 24: `mode` held from time 0 applies to the first step, whichever
+/// of the first 20 clocks after power-up or reset requests it, and a reset
+/// takes the mode input even in the middle of another mode's pulse.
+#[test]
+fn a_mode_tied_from_time_0_holds_for_a_step_on_each_of_the_first_20_clocks() {
+    let mut runs = 0;
+    for mode in 0..4u8 {
+        for forward in [true, false] {
+            for start in [Start::PowerUp, Start::Reset, Start::ResetMidPulseInAnotherMode] {
+                for delay in 1..=20 {
+                    let seen = one_early_step(mode, forward, start, delay);
+                    assert_eq!(
+                        seen,
+                        one_step_pins(mode, forward),
+                        "mode {mode}, forward {forward}, {start:?}, step on clock {delay}"
+                    );
+                    runs += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(runs, 4 * 2 * 3 * 20);
 }

@@ -117,6 +117,30 @@ pub fn cell_counts(report: &str, module: &str) -> Option<(u32, u32, u32, u32)> {
     Some((number(2)?, number(4)?, number(5)?, number(6)?))
 }
 
+/// `fresh` (a report of some modules) with the rows of `previous` kept for
+/// the modules it did not measure, in `order`: re-measuring a few modules
+/// updates their rows and leaves the others.
+pub fn merge(previous: &str, fresh: &str, order: &[&str]) -> String {
+    let row = |report: &str, module: &str| {
+        report
+            .lines()
+            .find(|l| l.starts_with(&format!("| `{module}` |")))
+            .map(str::to_string)
+    };
+    let mut merged: String = fresh
+        .lines()
+        .take_while(|l| !l.starts_with("| `"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    for module in order {
+        if let Some(line) = row(fresh, module).or_else(|| row(previous, module)) {
+            merged.push_str(&line);
+            merged.push('\n');
+        }
+    }
+    merged
+}
+
 /// The modules a rendered report has rows for, in order.
 pub fn listed_modules(report: &str) -> Vec<String> {
     report

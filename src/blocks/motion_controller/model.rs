@@ -56,6 +56,45 @@ pub struct ControllerOutputs {
     pub steps: Vec<(bool, bool)>,
 }
 
+impl ControllerInputs {
+    /// The RTL's input vector, in its port order (`VectorPorts`).
+    pub fn to_vector(&self) -> Vec<u64> {
+        let mut vector = Vec::with_capacity(5 + 3 * self.encoders.len());
+        self.write_vector(&mut vector);
+        vector
+    }
+
+    /// [`ControllerInputs::to_vector`] into `vector` (cleared first), so a
+    /// per-clock caller reuses one buffer.
+    pub fn write_vector(&self, vector: &mut Vec<u64>) {
+        vector.clear();
+        vector.extend([
+            self.reset as u64,
+            self.address as u64,
+            self.write_data as u64,
+            self.write as u64,
+            self.read as u64,
+        ]);
+        vector.extend(self.encoders.iter().map(|e| e.0 as u64));
+        vector.extend(self.encoders.iter().map(|e| e.1 as u64));
+        vector.extend(self.encoders.iter().map(|e| e.2 as u64));
+    }
+}
+
+impl ControllerOutputs {
+    /// Reads the RTL's output vector of a `axes`-axis controller, in its port
+    /// order.
+    pub fn from_vector(v: &[u64], axes: usize) -> Self {
+        Self {
+            read_data: v[0] as u32,
+            irq: v[1] != 0,
+            running: v[2] != 0,
+            active: v[3] != 0,
+            steps: (0..axes).map(|i| (v[4 + i] != 0, v[4 + axes + i] != 0)).collect(),
+        }
+    }
+}
+
 /// Glue inputs an axis receives from the controller in one clock.
 #[derive(Clone, Copy, Debug, Default)]
 struct AxisControl {
@@ -152,11 +191,10 @@ impl AxisModel {
             reset: true,
             ..Default::default()
         });
-        let mut stage = StepOutputModel::new(super::TIMER_BITS, super::STAGE_PENDING_BITS as u32);
-        let stage_out = stage.step(StepOutputInputs {
-            reset: true,
-            ..Default::default()
-        });
+        // Its power-up state, not its reset state: the stage takes its mode
+        // in its first clock after power-up.
+        let stage = StepOutputModel::new(super::TIMER_BITS, super::STAGE_PENDING_BITS as u32);
+        let stage_out = stage.outputs(0);
         let mut position = PulseCounterModel::new(32);
         let position_out = position.step(PulseCounterInputs {
             reset: true,

@@ -13,7 +13,7 @@
 //! | port | dir | width | meaning |
 //! |---|---|---|---|
 //! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: nothing pending, outputs low, flags 0, mode 0 |
+//! | `reset` | in | 1 | synchronous, active high: nothing pending, outputs low, flags 0; the mode is taken from `mode` |
 //! | `step` | in | 1 | request one step (one-clock pulse; a level requests one step per clock) |
 //! | `dir` | in | 1 | direction of that request: 1 = forward |
 //! | `mode` | in | 2 | 0 step/dir, 1 up/down (CW/CCW), 2 quadrature, 3 reserved (acts as 0, `mode_invalid` high) |
@@ -61,10 +61,13 @@
 //! * Mode 2: each step moves (out_a, out_b) one Gray state forward
 //!   (00 -> 10 -> 11 -> 01 -> 00) or backward, and every state is held at
 //!   least step_len clocks. step_space, dir_setup and dir_hold do not apply.
-//! * After reset (and after a mode change) the outputs are low; the next
-//!   clock loads the timers as if a pulse had just ended and `out_b` had just
-//!   turned, so the first pulse rises step_space and dir_setup clocks later
-//!   at the earliest (quadrature: step_len).
+//! * After reset and after a mode change the outputs are low; the next
+//!   clock (the start clock) loads the timers as if a pulse had just ended
+//!   and `out_b` had just turned, so the first pulse rises step_space and
+//!   dir_setup clocks later at the earliest (quadrature: step_len). Reset
+//!   takes `mode`; after power-up with no reset, the first clock takes it
+//!   and the second is the start clock. A `mode` held from time 0
+//!   therefore applies to the very first step, whichever clock requests it.
 //!
 //! ## Implementation
 //! Two loadable down-counters, one for the current level (step_len or
@@ -80,11 +83,14 @@
 //!   request that arrives with the count at its maximum, or a backward one
 //!   at its minimum, is dropped, even if a step leaves at the same edge, and
 //!   the sticky `overrun` is set. No other request is ever lost.
-//! * `mode` is taken only while `busy` is low (nothing pending, no pulse,
-//!   every interval over), so a change never cuts a pulse, a quadrature
-//!   state or a direction hold short; a change resets both outputs to 0 and
-//!   restarts the timers. Change it with the drive disabled: the pins'
-//!   meaning changes with it.
+//! * `mode` is taken at reset and in the first clock after power-up
+//!   (nothing can be emitted before the start clock that follows), and
+//!   after that only while `busy` is low (nothing pending, no pulse, every interval over), so a
+//!   change never cuts a pulse, a quadrature state or a direction hold
+//!   short; a change resets both outputs to 0 and restarts the timers.
+//!   Change it with the drive disabled: the pins' meaning changes with it.
+//!   A step requested in those first clocks is counted and waits for its
+//!   timers, in the mode taken then.
 //! * Timer values of 0 where a minimum of 1 is needed act as 1 (documented
 //!   per port above).
 
@@ -107,7 +113,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("clock", "rising-edge clock"),
     (
         "reset",
-        "synchronous reset, active high: nothing pending, outputs low, flags 0, mode 0",
+        "synchronous reset, active high: nothing pending, outputs low, flags 0; mode taken from the mode input",
     ),
     ("step", "request one step (one-clock pulse)"),
     ("dir", "direction of that request: 1 = forward"),
@@ -226,6 +232,9 @@ pub struct StepOutput<const T: usize, const P: usize> {
     /// rise decision, and the pending adder behind it, one level shallower.
     setup_wait: DFF<Bit>,
     active_mode: DFF<Bits<2>>,
+    /// Low from power-up until the first clock has taken `mode` (reset
+    /// takes it too). Keeps the mode input out of the timers' load logic.
+    mode_taken: DFF<Bit>,
     overrun_reg: DFF<Bit>,
     /// `emit` and its direction, registered for the `emitted` outputs.
     emitted_reg: DFF<Bit>,
@@ -321,6 +330,7 @@ impl<const T: usize, const P: usize> Default for StepOutput<T, P> {
             timing_setup: Default::default(),
             setup_wait: Default::default(),
             active_mode: Default::default(),
+            mode_taken: Default::default(),
             overrun_reg: Default::default(),
             emitted_reg: Default::default(),
             emitted_forward_reg: Default::default(),
@@ -384,6 +394,7 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
             timing_setup,
             setup_wait,
             active_mode,
+            mode_taken,
             overrun_reg,
             emitted_reg,
             emitted_forward_reg
@@ -404,6 +415,10 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
 
         self.negative.next = (self.pending.q.val() & self.min_p.val()) != self.zero_p.val();
         self.positive.next = self.nonzero.q.val() & !self.negative.val();
+        self.requested_mode.next = self.mode.val();
+        if self.mode.val() == self.mode_reserved.val() {
+            self.requested_mode.next = self.mode_step_dir.val();
+        }
         // The active mode is never 3, so each of its bits is one mode.
         self.quadrature.next = self.active_mode.q.val().get_bit(1);
         self.up_down.next = self.active_mode.q.val().get_bit(0);
@@ -584,17 +599,17 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
         }
         self.nonzero.d.next = !self.reaches_zero.val();
 
-        // The mode is taken only while idle; a change resets the outputs
-        // and restarts the timers.
-        self.requested_mode.next = self.mode.val();
-        if self.mode.val() == self.mode_reserved.val() {
-            self.requested_mode.next = self.mode_step_dir.val();
-        }
-        if !self.nonzero.q.val()
-            & !self.high.q.val()
-            & self.phase_done.q.val()
-            & self.dir_done.q.val()
-            & (self.requested_mode.val() != self.active_mode.q.val())
+        // The mode is taken at reset and in the first clock after power-up
+        // (a mode change: the start clock follows), so a mode tied from
+        // time 0 holds from the first step. After that it is taken only
+        // while idle; a change resets the outputs and restarts the timers.
+        self.mode_taken.d.next = true;
+        if !self.mode_taken.q.val()
+            | (!self.nonzero.q.val()
+                & !self.high.q.val()
+                & self.phase_done.q.val()
+                & self.dir_done.q.val()
+                & (self.requested_mode.val() != self.active_mode.q.val()))
         {
             self.active_mode.d.next = self.requested_mode.val();
             self.a_reg.d.next = false;
@@ -621,7 +636,8 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
             self.dir_done.d.next = false;
             self.timing_setup.d.next = false;
             self.setup_wait.d.next = false;
-            self.active_mode.d.next = self.mode_step_dir.val();
+            self.active_mode.d.next = self.requested_mode.val();
+            self.mode_taken.d.next = true;
             self.overrun_reg.d.next = false;
             self.emitted_reg.d.next = false;
             self.emitted_forward_reg.d.next = false;

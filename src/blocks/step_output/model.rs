@@ -28,6 +28,23 @@ pub struct StepOutputInputs {
     pub clear_overrun: bool,
 }
 
+impl StepOutputInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.step as u64,
+            self.dir as u64,
+            self.mode as u64,
+            self.step_len,
+            self.step_space,
+            self.dir_setup,
+            self.dir_hold,
+            self.clear_overrun as u64,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct StepOutputOutputs {
@@ -45,6 +62,21 @@ pub struct StepOutputOutputs {
     pub emitted: bool,
     /// Its direction: true = forward.
     pub emitted_forward: bool,
+}
+
+impl StepOutputOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            out_a: v[0] != 0,
+            out_b: v[1] != 0,
+            overrun: v[2] != 0,
+            mode_invalid: v[3] != 0,
+            busy: v[4] != 0,
+            emitted: v[5] != 0,
+            emitted_forward: v[6] != 0,
+        }
+    }
 }
 
 /// The most positive pending count of the exported 16-bit count, 2^15 - 1.
@@ -82,6 +114,9 @@ pub struct StepOutputModel {
     /// hold (after a fall).
     timing_setup: bool,
     active_mode: u8,
+    /// False from power-up until the first clock has taken the mode input
+    /// (reset takes it too).
+    mode_taken: bool,
     overrun: bool,
     emitted: bool,
     emitted_forward: bool,
@@ -103,6 +138,7 @@ impl StepOutputModel {
             dir_left: 0,
             timing_setup: false,
             active_mode: 0,
+            mode_taken: false,
             overrun: false,
             emitted: false,
             emitted_forward: false,
@@ -120,7 +156,9 @@ impl StepOutputModel {
         self.pending != 0 || self.high || !self.started || self.phase_left > 0 || self.dir_left > 0
     }
 
-    fn outputs(&self, mode: u8) -> StepOutputOutputs {
+    /// The outputs of the present state (before the next edge), with the
+    /// `mode` input at `mode`.
+    pub fn outputs(&self, mode: u8) -> StepOutputOutputs {
         StepOutputOutputs {
             out_a: self.a,
             out_b: self.b,
@@ -139,6 +177,7 @@ impl StepOutputModel {
         let wait = |v: u64| (v & self.timer_mask).max(1) - 1;
         let positive = self.pending > 0;
         let nonzero = self.pending != 0;
+        let requested_mode = if i.mode == 3 { 0 } else { i.mode };
         let quadrature = self.active_mode == 2;
         let up_down = self.active_mode == 1;
         let phase_done = self.phase_left == 0;
@@ -147,6 +186,7 @@ impl StepOutputModel {
         next.phase_left = self.phase_left.saturating_sub(1);
         next.dir_left = self.dir_left.saturating_sub(1);
         next.started = true;
+        next.mode_taken = true;
 
         let (mut emit, mut fall, mut dir_change) = (false, false, false);
         if !self.started {
@@ -224,8 +264,8 @@ impl StepOutputModel {
         };
         next.pending = self.pending + emitted + requested;
 
-        let requested_mode = if i.mode == 3 { 0 } else { i.mode };
-        if !self.busy() && requested_mode != self.active_mode {
+        // The first clock after power-up takes the mode as a change does.
+        if !self.mode_taken || (!self.busy() && requested_mode != self.active_mode) {
             next.active_mode = requested_mode;
             next.a = false;
             next.b = false;
@@ -234,6 +274,8 @@ impl StepOutputModel {
         }
         if i.reset {
             next = Self::new(self.timer_mask.count_ones(), self.pending_bits);
+            next.active_mode = requested_mode;
+            next.mode_taken = true;
         }
         *self = next;
         self.outputs(i.mode)
