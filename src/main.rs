@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export};
 use motion_hdl::host::simulation::{simulate, SimulationOptions};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
+use motion_hdl::sim::Backend;
 use motion_hdl::tools::report;
 
 /// motion-hdl: FPGA motion-control blocks, exported to Verilog.
@@ -53,12 +54,17 @@ enum Command {
     Simulate {
         /// The path file.
         path_file: PathBuf,
-        /// System clock in MHz. The simulation runs about 25,000 clocks per
-        /// second, so the default 1 MHz simulates about 1/40 of real time;
-        /// the controller's behavior is the same at any clock (its timing
-        /// registers count clocks).
-        #[arg(long, default_value_t = 1.0)]
-        clock_mhz: f64,
+        /// System clock in MHz (default: 48, the board example's clock, on
+        /// verilator; 1 on rust-hdl). The controller's behavior is the same
+        /// at any clock (its timing registers count clocks); a lower clock
+        /// simulates fewer clocks.
+        #[arg(long)]
+        clock_mhz: Option<f64>,
+        /// Simulator of the controller: verilator (its exported Verilog,
+        /// compiled; the default when Verilator and g++ are installed) or
+        /// rust-hdl (the Rust RTL stepped directly, about 70 times slower).
+        #[arg(long)]
+        backend: Option<String>,
         /// Axes driven by the uniform pulse generator instead of the DDA
         /// (any of x, y, z, comma separated).
         #[arg(long, value_delimiter = ',')]
@@ -112,7 +118,30 @@ fn run(cli: Cli) -> Result<(), String> {
             step_space,
             out_dir,
             vcd,
+            backend,
         } => {
+            let backend = match backend {
+                Some(name) => Backend::parse(&name).map_err(|e| e.to_string())?,
+                None if Backend::Verilator.available() => Backend::Verilator,
+                None => {
+                    eprintln!(
+                        "motion-hdl: Verilator or g++ is not installed ({}), so the controller runs on rust-hdl",
+                        motion_hdl::sim::compiled::INSTALL_LINE
+                    );
+                    Backend::RustHdl
+                }
+            };
+            if backend == Backend::RustHdl {
+                eprintln!(
+                    "motion-hdl: on rust-hdl every clock re-evaluates the whole controller through \
+                     Rust's signal objects (about 7,000 cycles/s); the verilator backend runs the same \
+                     RTL as compiled C++, about 70 times faster"
+                );
+            }
+            let clock_mhz = clock_mhz.unwrap_or(match backend {
+                Backend::Verilator => 48.0,
+                Backend::RustHdl => 1.0,
+            });
             let mut uniform_axes = [false; 3];
             for axis in &uniform {
                 match axis.to_ascii_lowercase().as_str() {
@@ -133,6 +162,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 out_dir: Some(out_dir),
                 vcd,
                 progress: true,
+                backend,
             };
             let r = simulate(&path_file, &options)?;
             println!("target     {:?}", r.target);

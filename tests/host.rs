@@ -6,6 +6,7 @@ use motion_hdl::host::{
     interpolate, plan, Driver, DriverConfig, ModelBus, Path, PathError, RecordingBus, RtlBus,
 };
 use motion_hdl::host::planner::junction_speed;
+use motion_hdl::sim::Backend;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -36,7 +37,8 @@ fn a_closed_50_segment_polygon_through_the_rtl_ends_exactly_at_its_start() {
     let path = Path::new([0, 0, 0], &polygon(50, 400.0), 1e7, 2e10, 2.0, period).unwrap();
     let segments = plan(&path);
     let interpolation = interpolate(path.start, &segments, path.period);
-    let mut driver = Driver::new(RtlBus::new().unwrap(), config).unwrap();
+    let bus = RtlBus::new(Backend::from_env_or(Backend::RustHdl).unwrap(), None).unwrap();
+    let mut driver = Driver::new(bus, config).unwrap();
     let report = driver.run(&interpolation.counts, |_| {}).unwrap();
     assert_eq!(report.underruns, 0, "{report:?}");
     assert_eq!(report.commanded, [0, 0, 0], "{report:?}");
@@ -229,6 +231,33 @@ fn simulate_rejects_a_malformed_path_file_with_a_clear_message() {
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
+/// The CLI without Verilator on PATH: `--backend verilator` stops with the
+/// install line and a non-zero exit status (no silent fall-back), and an
+/// unknown backend is named.
+#[test]
+fn simulate_names_the_install_line_when_verilator_is_missing() {
+    let square = motion_hdl::tools::repo_root().join("examples/square.path");
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
+            .arg("simulate")
+            .arg(&square)
+            .args(args)
+            .env("PATH", "/nonexistent")
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{args:?} succeeded");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let stderr = run(&["--backend", "verilator"]);
+    assert!(
+        stderr.contains("needs `verilator`") && stderr.contains("apt-get install -y verilator g++"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let stderr = run(&["--backend", "icarus"]);
+    assert!(stderr.contains("unknown simulation backend `icarus`"), "{stderr}");
+}
+
 /// Each subcommand's help is its own: `simulate` once took over the doc
 /// comment of `plot-pulses`, which was left with none.
 #[test]
@@ -249,17 +278,18 @@ fn every_subcommand_has_its_own_help_line() {
     assert!(line("plot-pulses").contains("uniform pulse generator's figures"), "{help}");
 }
 
-/// The long run: a 2000-segment circle approximation through the RTL
-/// controller. Not in the default suite (about a minute):
-/// `cargo test --release --test host -- --ignored`.
+/// The long run: a 2000-segment circle approximation through the exported
+/// controller compiled by Verilator, at the board example's 48 MHz. Not in
+/// the default suite: `cargo test --release --test host -- --ignored`.
 #[test]
 #[ignore]
 fn a_2000_segment_circle_through_the_rtl_ends_exactly() {
     let config = DriverConfig::default();
-    let period = config.period_ticks as f64 * config.tick_divisor as f64 / 50e6;
+    let period = config.period_ticks as f64 * config.tick_divisor as f64 / 48e6;
     let path = Path::new([0, 0, 0], &polygon(2000, 3000.0), 1e7, 2e10, 2.0, period).unwrap();
     let interpolation = interpolate(path.start, &plan(&path), path.period);
-    let mut driver = Driver::new(RtlBus::new().unwrap(), config).unwrap();
+    let bus = RtlBus::new(Backend::from_env_or(Backend::Verilator).unwrap(), None).unwrap();
+    let mut driver = Driver::new(bus, config).unwrap();
     let started = std::time::Instant::now();
     let report = driver.run(&interpolation.counts, |_| {}).unwrap();
     let seconds = started.elapsed().as_secs_f64();

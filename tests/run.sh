@@ -2,17 +2,18 @@
 # The whole motion-hdl test suite, on a fresh machine: installs the FPGA
 # tools it needs (Debian, as root) or stops with the exact install line,
 # then runs every test. `.ci/run` calls this script. gcc compiles the
-# generated C register headers in the register-map tests.
+# generated C register headers in the register-map tests; g++ builds the
+# Verilator models of the compiled simulation backend.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-tools=(yosys iverilog vvp verilator nextpnr-ice40 gcc)
+tools=(yosys iverilog vvp verilator nextpnr-ice40 gcc g++)
 missing=()
 for tool in "${tools[@]}"; do
   command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 done
 if [ ${#missing[@]} -gt 0 ]; then
-  install_line="apt-get install -y yosys iverilog verilator nextpnr-ice40 gcc"
+  install_line="apt-get install -y yosys iverilog verilator nextpnr-ice40 gcc g++"
   if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing missing FPGA tools: ${missing[*]}"
     apt-get update -qq

@@ -1,13 +1,18 @@
 //! The register bus the driver talks to, and its implementations: the RTL
-//! simulation of `motion_controller` (with each axis's steps looped back
-//! into its encoder), and a recorder of register writes.
+//! simulation of `motion_controller` on either simulation backend (with each
+//! axis's steps looped back into its encoder), the reference model, and a
+//! recorder of register writes.
 
 use std::fmt::Write as _;
 
-use crate::blocks::motion_controller::model::{ControllerInputs, MotionControllerModel};
+use std::path::Path;
+
+use crate::blocks::motion_controller::model::{
+    ControllerInputs, ControllerOutputs, MotionControllerModel,
+};
 use crate::blocks::motion_controller::MotionController;
 use crate::regmap::RegisterMap;
-use crate::sim::{Harness, HarnessError, SimulatedEncoder};
+use crate::sim::{stepper, Backend, SimError, SimulatedEncoder, Stepper, VectorPorts};
 
 /// A `motion_controller` register bus as firmware sees it. An
 /// implementation provides one bus clock; writes, reads (strobe, then the
@@ -38,11 +43,14 @@ pub trait ControllerBus {
     }
 }
 
-/// The 3-axis exported controller (16-entry FIFOs) in RTL simulation, each
-/// axis's step/dir pins driving a [`SimulatedEncoder`] on its encoder
-/// inputs.
+/// The 3-axis exported controller (16-entry FIFOs) in RTL simulation, on
+/// either backend, each axis's step/dir pins driving a [`SimulatedEncoder`]
+/// on its encoder inputs.
 pub struct RtlBus {
-    harness: Harness<MotionController<3, 4, 5>>,
+    rtl: Box<dyn Stepper>,
+    inputs: ControllerInputs,
+    vector: Vec<u64>,
+    outputs: Vec<u64>,
     encoders: [SimulatedEncoder; 3],
     irq: bool,
     /// Largest pin step rate seen per axis: steps in the busiest window of
@@ -57,10 +65,17 @@ pub struct RtlBus {
 }
 
 impl RtlBus {
-    /// A controller in its power-up state.
-    pub fn new() -> Result<Self, HarnessError> {
+    /// A controller in its power-up state on `backend`; with `vcd`, every
+    /// signal goes to that file (on Verilator, a build with its tracer).
+    pub fn new(backend: Backend, vcd: Option<&Path>) -> Result<Self, SimError> {
         Ok(Self {
-            harness: Harness::new("motion_controller", MotionController::<3, 4, 5>::default())?,
+            rtl: stepper(backend, "motion_controller", MotionController::<3, 4, 5>::default(), vcd)?,
+            inputs: ControllerInputs {
+                encoders: vec![(false, false, false); 3],
+                ..Default::default()
+            },
+            vector: Vec::new(),
+            outputs: vec![0; MotionController::<3, 4, 5>::output_names().len()],
             encoders: [SimulatedEncoder::default(); 3],
             irq: false,
             window_steps: [0; 3],
@@ -70,11 +85,6 @@ impl RtlBus {
             samples: Vec::new(),
             sample_every: 0,
         })
-    }
-
-    /// Records every signal to a VCD file from now on.
-    pub fn record_vcd(&mut self, path: &std::path::Path) -> Result<(), HarnessError> {
-        self.harness.record_vcd(path)
     }
 
     /// Samples the motor positions (net steps at the pins) every `clocks`
@@ -93,8 +103,14 @@ impl RtlBus {
         &self.encoders
     }
 
+    /// Measures the peak step rates over windows of `clocks` clocks from
+    /// now on (default 10,000).
+    pub fn set_rate_window(&mut self, clocks: u64) {
+        self.rate_window = clocks.max(1);
+    }
+
     /// Peak step rate per axis at the pins, in steps per clock, measured
-    /// over windows of 10,000 clocks.
+    /// over windows of [`RtlBus::set_rate_window`] clocks.
     pub fn peak_steps_per_clock(&self) -> [f64; 3] {
         self.peak_window_steps.map(|n| n as f64 / self.rate_window as f64)
     }
@@ -102,46 +118,42 @@ impl RtlBus {
 
 impl ControllerBus for RtlBus {
     fn clock(&mut self, address: u32, data: u32, write: bool, read: bool) -> u32 {
-        let block = self.harness.block();
-        block.bus_address.next = (address as u64).into();
-        block.bus_write_data.next = (data as u64).into();
-        block.bus_write.next = write;
-        block.bus_read.next = read;
-        block.reset.next = false;
-        for (i, e) in self.encoders.iter().enumerate() {
-            let (a, b, index) = e.outputs();
-            block.enc_a[i].next = a;
-            block.enc_b[i].next = b;
-            block.enc_index[i].next = index;
+        self.inputs.address = address;
+        self.inputs.write_data = data;
+        self.inputs.write = write;
+        self.inputs.read = read;
+        for (pins, e) in self.inputs.encoders.iter_mut().zip(&self.encoders) {
+            *pins = e.outputs();
         }
-        self.harness.cycle().expect("the controller settles");
-        let block = self.harness.block();
-        let pins: [(bool, bool); 3] =
-            std::array::from_fn(|i| (block.step_a[i].val(), block.step_b[i].val()));
-        self.irq = block.irq.val();
-        let read_data = block.bus_read_data.val().to_u64() as u32;
+        self.inputs.write_vector(&mut self.vector);
+        self.rtl
+            .step_into(&self.vector, &mut self.outputs)
+            .expect("the controller steps");
+        let out = ControllerOutputs::from_vector(&self.outputs, 3);
+        self.irq = out.irq;
         for (i, e) in self.encoders.iter_mut().enumerate() {
             let before = e.total;
-            e.follow(pins[i]);
+            e.follow(out.steps[i]);
             self.window_steps[i] += e.total - before;
         }
-        if self.sample_every > 0 && self.harness.cycles() % self.sample_every == 0 {
+        let cycles = self.rtl.cycles();
+        if self.sample_every > 0 && cycles % self.sample_every == 0 {
             self.samples.push(self.encoders.map(|e| e.net));
         }
-        if self.harness.cycles() - self.window_start >= self.rate_window {
+        if cycles - self.window_start >= self.rate_window {
             for i in 0..3 {
                 self.peak_window_steps[i] = self.peak_window_steps[i].max(self.window_steps[i]);
             }
             self.window_steps = [0; 3];
-            self.window_start = self.harness.cycles();
+            self.window_start = cycles;
         }
-        read_data
+        out.read_data
     }
     fn irq(&self) -> bool {
         self.irq
     }
     fn cycles(&self) -> u64 {
-        self.harness.cycles()
+        self.rtl.cycles()
     }
 }
 

@@ -8,6 +8,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{interpolate, plan, Driver, DriverConfig, Path, RtlBus};
 use crate::plots::{plot_path_xy, plot_speed};
+use crate::sim::Backend;
 
 /// Settings of a simulation run.
 #[derive(Clone, Debug)]
@@ -26,6 +27,8 @@ pub struct SimulationOptions {
     pub vcd: Option<PathBuf>,
     /// Show a progress bar.
     pub progress: bool,
+    /// The simulator of the controller.
+    pub backend: Backend,
 }
 
 /// What a simulation run found.
@@ -37,7 +40,8 @@ pub struct SimulationReport {
     pub commanded: [i32; 3],
     /// Final actual (encoder) positions.
     pub actual: [i32; 3],
-    /// Peak step rate per axis at the pins, steps per second.
+    /// Peak step rate per axis at the pins, steps per second, over 10 ms
+    /// windows.
     pub peak_rate: [f64; 3],
     /// Underruns while periods were still to come.
     pub underruns: usize,
@@ -83,11 +87,10 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         dir_time: options.step_len.max(1),
         uniform: options.uniform,
     };
-    let mut bus = RtlBus::new().map_err(|e| e.to_string())?;
-    if let Some(vcd) = &options.vcd {
-        bus.record_vcd(vcd).map_err(|e| e.to_string())?;
-    }
+    let mut bus = RtlBus::new(options.backend, options.vcd.as_deref()).map_err(|e| e.to_string())?;
     bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
+    // 10 ms windows: at a real clock, 10,000 clocks hold only a step or two.
+    bus.set_rate_window((options.clock_hz / 100.0).round() as u64);
     let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
     // The controller starts at 0: the counts move it by (end - start).
     let bar = if options.progress {

@@ -6,26 +6,31 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use super::{repo_root, run, work_dir, ToolError};
-use crate::export::{generator, module_verilog, testbench_verilog, top_ports, PortDirection};
-use crate::sim::{Harness, HarnessError, VectorPorts};
+use crate::export::{generator, module_verilog, testbench_verilog, top_ports, Port, PortDirection};
+use crate::sim::{CompiledModel, CompiledStepper, Harness, HarnessError, Stepper, VectorPorts};
 
 /// A Verilog simulator.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Simulator {
-    /// Icarus Verilog (`iverilog` + `vvp`).
+    /// Icarus Verilog (`iverilog` + `vvp`) running the vector testbench.
     Icarus,
-    /// Verilator (`--binary`).
+    /// Verilator (`--binary`) running the vector testbench.
     Verilator,
+    /// Verilator's C++ model stepped from Rust: the compiled simulation
+    /// backend ([`crate::sim::CompiledModel`]).
+    Compiled,
 }
 
 impl Simulator {
-    /// Both simulators.
-    pub const ALL: [Simulator; 2] = [Simulator::Icarus, Simulator::Verilator];
+    /// The simulators that run the generated vector testbench.
+    pub const TESTBENCH: [Simulator; 2] = [Simulator::Icarus, Simulator::Verilator];
+    /// Every simulator a cross-simulation runs.
+    pub const ALL: [Simulator; 3] = [Simulator::Icarus, Simulator::Verilator, Simulator::Compiled];
 
     fn arg(self) -> &'static str {
         match self {
             Simulator::Icarus => "icarus",
-            Simulator::Verilator => "verilator",
+            Simulator::Verilator | Simulator::Compiled => "verilator",
         }
     }
 }
@@ -136,10 +141,12 @@ pub fn cross_simulate<B: VectorPorts>(
     block: B,
     stimulus: &[Vec<u64>],
 ) -> Result<CosimPass, CosimError> {
+    let ports = top_ports(&block);
     let expected = rust_outputs(&design.module, block, stimulus)?;
-    for simulator in Simulator::ALL {
+    for simulator in Simulator::TESTBENCH {
         compare_in(simulator, design, stimulus, &expected)?;
     }
+    compare_compiled::<B>(design, &ports, stimulus, &expected)?;
     Ok(CosimPass {
         cycles: stimulus.len(),
         simulators: Simulator::ALL.to_vec(),
@@ -174,6 +181,41 @@ pub fn rust_outputs<B: VectorPorts>(
         .iter()
         .map(|inputs| harness.step_vector(inputs).map_err(CosimError::from))
         .collect()
+}
+
+/// Runs `design` compiled by Verilator and stepped from Rust (the compiled
+/// backend) on `stimulus`, with `B`'s vector ports (matched by name), and
+/// compares its outputs with `expected` on every cycle; `ports` are the
+/// design's ports (as [`top_ports`] gives them).
+pub fn compare_compiled<B: VectorPorts>(
+    design: &CosimDesign,
+    ports: &[Port],
+    stimulus: &[Vec<u64>],
+    expected: &[Vec<u64>],
+) -> Result<usize, CosimError> {
+    let setup = |e: &dyn std::fmt::Display| CosimError::Setup(e.to_string());
+    let verilog = std::fs::read_to_string(&design.rtl).map_err(|source| ToolError::Io {
+        context: format!("reading {}", design.rtl.display()),
+        source,
+    })?;
+    let model = CompiledModel::from_verilog(&design.module, &verilog, "clock", ports, false)
+        .map_err(|e| setup(&e))?;
+    let mut compiled = CompiledStepper::ordered::<B>(model).map_err(|e| setup(&e))?;
+    let names = B::output_names();
+    let mut outputs = vec![0; names.len()];
+    for (cycle, (inputs, want)) in stimulus.iter().zip(expected).enumerate() {
+        compiled.step_into(inputs, &mut outputs).map_err(|e| setup(&e))?;
+        if let Some(index) = (0..names.len()).find(|&i| outputs[i] != want[i]) {
+            return Err(CosimError::Mismatch(Mismatch {
+                simulator: Simulator::Compiled,
+                cycle: cycle as u64,
+                signal: names[index].clone(),
+                expected: format!("{:x}", want[index]),
+                got: format!("{:x}", outputs[index]),
+            }));
+        }
+    }
+    Ok(stimulus.len())
 }
 
 /// Runs `design` in `simulator` on `stimulus` and compares its outputs with

@@ -10,11 +10,13 @@ use motion_hdl::blocks::motion_controller::model::{
 use motion_hdl::blocks::motion_controller::registers::register_map;
 use motion_hdl::blocks::motion_controller::MotionController;
 use motion_hdl::regmap::RegisterMap;
-use motion_hdl::sim::{Harness, SimulatedEncoder, VectorPorts};
+use motion_hdl::sim::{stepper, Backend, SimulatedEncoder, Stepper, VectorPorts};
 
 /// RTL and model of a K-axis controller with 2^N-entry FIFOs, in lockstep.
 pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
-    harness: Harness<MotionController<K, N, NP1>>,
+    rtl: Box<dyn Stepper>,
+    vector: Vec<u64>,
+    rtl_outputs: Vec<u64>,
     /// The reference model.
     pub model: MotionControllerModel,
     /// The controller's register map.
@@ -34,13 +36,22 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
 }
 
 impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
-    /// A bench in the power-up state.
+    /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
+    /// names (rust-hdl by default).
     pub fn new() -> Self {
+        Self::on(Backend::from_env_or(Backend::RustHdl).unwrap())
+    }
+
+    /// A bench in the power-up state with the RTL on `backend`.
+    pub fn on(backend: Backend) -> Self {
         let map = register_map(K, N as u32).unwrap();
         let model = MotionControllerModel::new(K, N as u32).unwrap();
-        let harness = Harness::new("motion_controller", MotionController::<K, N, NP1>::default()).unwrap();
+        let rtl = stepper(backend, "motion_controller", MotionController::<K, N, NP1>::default(), None)
+            .unwrap_or_else(|e| panic!("{e}"));
         Self {
-            harness,
+            rtl,
+            vector: Vec::new(),
+            rtl_outputs: vec![0; MotionController::<K, N, NP1>::output_names().len()],
             model,
             map,
             encoders: vec![(false, false, false); K],
@@ -87,23 +98,14 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
             read,
             encoders: self.encoders.clone(),
         };
-        let mut vector = vec![reset as u64, address as u64, write_data as u64, write as u64, read as u64];
-        vector.extend(self.encoders.iter().map(|e| e.0 as u64));
-        vector.extend(self.encoders.iter().map(|e| e.1 as u64));
-        vector.extend(self.encoders.iter().map(|e| e.2 as u64));
-        debug_assert_eq!(vector.len(), MotionController::<K, N, NP1>::input_names().len());
-        let rtl = self.harness.step_vector(&vector).unwrap();
+        inputs.write_vector(&mut self.vector);
+        debug_assert_eq!(self.vector.len(), MotionController::<K, N, NP1>::input_names().len());
+        self.rtl.step_into(&self.vector, &mut self.rtl_outputs).unwrap();
         if let Some(recording) = self.recording.as_mut() {
-            recording.push(vector);
+            recording.push(self.vector.clone());
         }
         let expected = self.model.step(&inputs);
-        let got = ControllerOutputs {
-            read_data: rtl[0] as u32,
-            irq: rtl[1] != 0,
-            running: rtl[2] != 0,
-            active: rtl[3] != 0,
-            steps: (0..K).map(|i| (rtl[4 + i] != 0, rtl[4 + K + i] != 0)).collect(),
-        };
+        let got = ControllerOutputs::from_vector(&self.rtl_outputs, K);
         assert_eq!(got, expected, "cycle {}: RTL and model differ ({inputs:?})", self.cycles);
         self.cycles += 1;
         if let Some(encoders) = self.loopback.as_mut() {

@@ -125,6 +125,21 @@ pub struct UniformPulseGenInputs {
     pub clear_flags: bool,
 }
 
+impl UniformPulseGenInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.tick as u64,
+            self.period,
+            self.count,
+            self.mode as u64,
+            self.load as u64,
+            self.clear_flags as u64,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct UniformPulseGenOutputs {
@@ -142,6 +157,21 @@ pub struct UniformPulseGenOutputs {
     pub overrange: bool,
     /// Sticky: a load arrived while `ready` was low and was ignored.
     pub overflow: bool,
+}
+
+impl UniformPulseGenOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            pulse: v[0] != 0,
+            period_done: v[1] != 0,
+            ready: v[2] != 0,
+            running: v[3] != 0,
+            underrun: v[4] != 0,
+            overrange: v[5] != 0,
+            overflow: v[6] != 0,
+        }
+    }
 }
 
 /// Clocks from the edge that accepts a load to the edge after which the

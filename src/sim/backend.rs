@@ -1,0 +1,202 @@
+//! One stepping interface over two simulators of the same RTL: rust-hdl's
+//! own (through [`Harness`]) and the exported Verilog compiled by Verilator
+//! (through [`CompiledModel`]), chosen at run time.
+
+use std::path::Path;
+
+use super::compiled::{CompiledError, CompiledModel};
+use super::{Harness, HarnessError, VectorPorts};
+
+/// The environment variable that picks the backend of tests and tools that
+/// do not pick one themselves: `rust-hdl` or `verilator`.
+pub const BACKEND_VARIABLE: &str = "MOTION_HDL_BACKEND";
+
+/// Which simulator steps the RTL.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// rust-hdl's event-free stepping of the Rust block ([`Harness`]): no
+    /// tools needed, every internal signal visible, slow on big designs.
+    RustHdl,
+    /// The block's Verilog compiled by Verilator ([`CompiledModel`]): about
+    /// 70 times faster on the controller; needs Verilator and g++.
+    Verilator,
+}
+
+impl Backend {
+    /// Both backends.
+    pub const ALL: [Backend; 2] = [Backend::RustHdl, Backend::Verilator];
+
+    /// The backend's name on the command line and in [`BACKEND_VARIABLE`].
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::RustHdl => "rust-hdl",
+            Backend::Verilator => "verilator",
+        }
+    }
+
+    /// Parses a backend name.
+    pub fn parse(name: &str) -> Result<Self, SimError> {
+        Self::ALL
+            .into_iter()
+            .find(|b| b.name() == name)
+            .ok_or_else(|| SimError::UnknownBackend(name.to_string()))
+    }
+
+    /// The backend named by [`BACKEND_VARIABLE`], else `default`.
+    pub fn from_env_or(default: Backend) -> Result<Self, SimError> {
+        match std::env::var(BACKEND_VARIABLE) {
+            Ok(name) => Self::parse(&name),
+            Err(_) => Ok(default),
+        }
+    }
+
+    /// Whether the tools this backend needs are installed.
+    pub fn available(self) -> bool {
+        match self {
+            Backend::RustHdl => true,
+            Backend::Verilator => ["verilator", "g++"]
+                .iter()
+                .all(|tool| super::compiled::tool_version(tool, &["--version"]).is_ok()),
+        }
+    }
+}
+
+/// Why a stepper could not be made or stepped.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    /// The rust-hdl harness failed.
+    #[error(transparent)]
+    Harness(#[from] HarnessError),
+    /// The compiled model failed.
+    #[error(transparent)]
+    Compiled(#[from] CompiledError),
+    /// A backend name that is not `rust-hdl` or `verilator`.
+    #[error("unknown simulation backend `{0}` (use rust-hdl or verilator)")]
+    UnknownBackend(String),
+}
+
+/// A clocked block driven by port vectors, whichever simulator runs it.
+///
+/// Vectors hold one value per port, in [`VectorPorts::input_names`] and
+/// [`VectorPorts::output_names`] order (ports up to 64 bits; the
+/// [`CompiledModel`] itself also takes wider ones).
+pub trait Stepper {
+    /// Applies `inputs`, runs one clock cycle and writes the outputs after
+    /// its rising edge into `outputs`.
+    fn step_into(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), SimError>;
+    /// Clock cycles run so far.
+    fn cycles(&self) -> u64;
+    /// Which simulator this is.
+    fn backend(&self) -> Backend;
+
+    /// [`Stepper::step_into`], returning a new output vector.
+    fn step_vector(&mut self, inputs: &[u64]) -> Result<Vec<u64>, SimError> {
+        let mut outputs = vec![0; self.output_count()];
+        self.step_into(inputs, &mut outputs)?;
+        Ok(outputs)
+    }
+    /// Output ports per vector.
+    fn output_count(&self) -> usize;
+}
+
+impl<B: VectorPorts> Stepper for Harness<B> {
+    fn step_into(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), SimError> {
+        outputs.copy_from_slice(&self.step_vector(inputs)?);
+        Ok(())
+    }
+    fn cycles(&self) -> u64 {
+        Harness::cycles(self)
+    }
+    fn backend(&self) -> Backend {
+        Backend::RustHdl
+    }
+    fn output_count(&self) -> usize {
+        B::output_names().len()
+    }
+}
+
+/// A [`CompiledModel`] with its ports in a block's [`VectorPorts`] order.
+pub struct CompiledStepper {
+    model: CompiledModel,
+    inputs: Vec<usize>,
+    outputs: Vec<usize>,
+}
+
+impl CompiledStepper {
+    /// The Verilog of `block` as generated now, compiled; ports ordered as
+    /// `B`'s vectors. `trace` builds in VCD support.
+    pub fn new<B: VectorPorts>(module: &str, mut block: B, trace: bool) -> Result<Self, SimError> {
+        let model = CompiledModel::from_block(module, &mut block, trace)?;
+        Self::ordered::<B>(model)
+    }
+
+    /// A compiled model whose ports are `B`'s, in `B`'s vector order.
+    pub fn ordered<B: VectorPorts>(model: CompiledModel) -> Result<Self, SimError> {
+        let inputs = B::input_names()
+            .iter()
+            .map(|n| model.input_index(n))
+            .collect::<Result<Vec<_>, _>>()?;
+        let outputs = B::output_names()
+            .iter()
+            .map(|n| model.output_index(n))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self {
+            model,
+            inputs,
+            outputs,
+        })
+    }
+
+    /// The model, for wide ports and the VCD.
+    pub fn model(&mut self) -> &mut CompiledModel {
+        &mut self.model
+    }
+}
+
+impl Stepper for CompiledStepper {
+    fn step_into(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), SimError> {
+        for (&port, &value) in self.inputs.iter().zip(inputs) {
+            self.model.set(port, value);
+        }
+        self.model.cycle();
+        for (out, &port) in outputs.iter_mut().zip(&self.outputs) {
+            *out = self.model.get(port);
+        }
+        Ok(())
+    }
+    fn cycles(&self) -> u64 {
+        self.model.cycles()
+    }
+    fn backend(&self) -> Backend {
+        Backend::Verilator
+    }
+    fn output_count(&self) -> usize {
+        self.outputs.len()
+    }
+}
+
+/// `block` on `backend`, as a [`Stepper`] in its power-up state; with
+/// `vcd`, every signal is written to that file from the first clock on.
+pub fn stepper<B: VectorPorts + 'static>(
+    backend: Backend,
+    module: &str,
+    block: B,
+    vcd: Option<&Path>,
+) -> Result<Box<dyn Stepper>, SimError> {
+    match backend {
+        Backend::RustHdl => {
+            let mut harness = Harness::new(module, block)?;
+            if let Some(path) = vcd {
+                harness.record_vcd(path)?;
+            }
+            Ok(Box::new(harness))
+        }
+        Backend::Verilator => {
+            let mut compiled = CompiledStepper::new(module, block, vcd.is_some())?;
+            if let Some(path) = vcd {
+                compiled.model().record_vcd(path)?;
+            }
+            Ok(Box::new(compiled))
+        }
+    }
+}
