@@ -4,7 +4,7 @@
 
 use motion_hdl::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
 use motion_hdl::blocks::command_fifo::CommandFifo;
-use motion_hdl::sim::Harness;
+use motion_hdl::sim::{stepper, Backend};
 use motion_hdl::tools::cosim::cross_simulate_generated;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -47,9 +47,13 @@ fn outputs(v: &[u64]) -> CommandFifoOutputs {
     }
 }
 
+/// `cycles` random clocks against the model, on the backend
+/// `MOTION_HDL_BACKEND` names (default: Verilator, for speed).
 fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
     let capacity = 1u64 << N;
-    let mut h = Harness::new("command_fifo", CommandFifo::<N, NP1>::default()).unwrap();
+    let backend = Backend::from_env_or(Backend::Verilator).unwrap();
+    let mut h = stepper(backend, "command_fifo", CommandFifo::<N, NP1>::default(), None)
+        .unwrap_or_else(|e| panic!("{e}"));
     let mut model = CommandFifoModel::new(capacity as usize);
     let (mut fulls, mut empties, mut overflows, mut underflows, mut heads) = (0, 0, 0, 0, 0);
     // The three read-during-write cases of the head bypass, counted from

@@ -8,7 +8,7 @@ use motion_hdl::blocks::dda_interpolator::model::{
     InterpolatorInputs, InterpolatorModel, InterpolatorOutputs,
 };
 use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
-use motion_hdl::sim::Harness;
+use motion_hdl::sim::{stepper, Backend, Harness, Stepper};
 use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -133,10 +133,18 @@ impl Driver {
     }
 }
 
+/// The RTL for the long runs, on the backend `MOTION_HDL_BACKEND` names
+/// (default: Verilator, for speed).
+fn long_run_rtl() -> Box<dyn Stepper> {
+    let backend = Backend::from_env_or(Backend::Verilator).unwrap();
+    stepper(backend, "dda_interpolator", DdaInterpolator::<K>::default(), None)
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
 #[test]
 fn rtl_matches_model_cycle_by_cycle_over_a_thousand_periods() {
     let mut driver = Driver::new(0x1e7, K);
-    let mut harness = Harness::new("dda_interpolator", DdaInterpolator::<K>::default()).unwrap();
+    let mut harness = long_run_rtl();
     let mut model = InterpolatorModel::new(K);
     let mut periods = 0;
     let mut cycle = 0u64;
@@ -167,7 +175,7 @@ struct Command {
 #[test]
 fn every_step_is_where_exact_arithmetic_puts_it() {
     let mut driver = Driver::new(0xa11, K);
-    let mut harness = Harness::new("dda_interpolator", DdaInterpolator::<K>::default()).unwrap();
+    let mut harness = long_run_rtl();
     let mut queue: VecDeque<Command> = VecDeque::new();
     let mut current: Option<(Command, u64)> = None; // command, ticks used so far
     let mut base = [0i64; K]; // position in 2^-16 steps at the current period's start

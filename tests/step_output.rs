@@ -6,14 +6,21 @@ use motion_hdl::blocks::step_output::model::{
     pending_limits, StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX, PENDING_MIN,
 };
 use motion_hdl::blocks::step_output::StepOutput;
-use motion_hdl::sim::{Harness, VectorPorts};
+use motion_hdl::sim::{stepper, Backend, Harness, Stepper};
 use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
 /// One clock of the RTL with `inputs` applied.
-fn rtl_clock<B: VectorPorts>(harness: &mut Harness<B>, inputs: &StepOutputInputs) -> StepOutputOutputs {
-    StepOutputOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap())
+fn rtl_clock(rtl: &mut dyn Stepper, inputs: &StepOutputInputs) -> StepOutputOutputs {
+    StepOutputOutputs::from_vector(&rtl.step_vector(&inputs.to_vector()).unwrap())
+}
+
+/// The exported configuration for the million-clock runs, on the backend
+/// `MOTION_HDL_BACKEND` names (default: Verilator, for speed).
+fn long_run_rtl() -> Box<dyn Stepper> {
+    let backend = Backend::from_env_or(Backend::Verilator).unwrap();
+    stepper(backend, "step_output", StepOutput::<16, 16>::default(), None).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Runs of requests, each with one mode and one set of timings: bursts of
@@ -86,13 +93,13 @@ impl Driver {
 #[test]
 fn rtl_matches_model_cycle_by_cycle_in_every_mode() {
     let mut driver = Driver::new(0x57e9, vec![0, 1, 2, 3]);
-    let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
+    let mut dut = long_run_rtl();
     let mut model = StepOutputModel::new(16, 16);
     let mut busy = false;
     for cycle in 0..1_000_000 {
         let mut inputs = driver.next(busy);
         inputs.reset = cycle % 250_000 == 249_999;
-        let rtl = rtl_clock(&mut harness, &inputs);
+        let rtl = rtl_clock(dut.as_mut(), &inputs);
         assert_eq!(rtl, model.step(inputs), "cycle {cycle}: {inputs:?}");
         busy = rtl.busy;
     }
@@ -263,14 +270,14 @@ impl PinMonitor {
 fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
     for mode in 0..4u8 {
         let mut driver = Driver::new(0x9e0 + mode as u64, vec![mode]);
-        let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
+        let mut dut = long_run_rtl();
         let mut monitor: Option<PinMonitor> = None;
         let mut busy = false;
         let mut checks = 0;
         let mut runs_checked = 0;
         for cycle in 0..1_000_000u64 {
             let inputs = driver.next(busy);
-            let out = rtl_clock(&mut harness, &inputs);
+            let out = rtl_clock(dut.as_mut(), &inputs);
             let pins = (out.out_a, out.out_b);
             // A new run starts when the settings change; the stage takes the
             // mode while idle, so the previous run must be complete.
@@ -312,7 +319,7 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
             ..driver.settings
         };
         for cycle in 1_000_000..1_300_000u64 {
-            let out = rtl_clock(&mut harness, &idle);
+            let out = rtl_clock(dut.as_mut(), &idle);
             m.sample(cycle, (out.out_a, out.out_b));
             m.strobe(&out);
             if !out.busy {

@@ -37,9 +37,10 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
 
 impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
-    /// names (rust-hdl by default).
+    /// names (by default Verilator: the exported Verilog is the product, and
+    /// it runs 70 times faster).
     pub fn new() -> Self {
-        Self::on(Backend::from_env_or(Backend::RustHdl).unwrap())
+        Self::on(Backend::from_env_or(Backend::Verilator).unwrap())
     }
 
     /// A bench in the power-up state with the RTL on `backend`.
