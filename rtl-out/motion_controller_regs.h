@@ -19,13 +19,13 @@
 /* VERSION: core version */
 #define MC_VERSION_INDEX 0x0001UL
 #define MC_VERSION_OFFSET 0x0004UL
-#define MC_VERSION_RESET 0x00000100UL
+#define MC_VERSION_RESET 0x00000200UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
 #define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x1UL
+#define MC_VERSION_MINOR_RESET 0x2UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -51,7 +51,7 @@
 #define MC_CONTROL_INDEX 0x0003UL
 #define MC_CONTROL_OFFSET 0x000cUL
 #define MC_CONTROL_RESET 0x00000000UL
-#define MC_CONTROL_RUN_SHIFT 0UL /* RW write 1 to start (refused while WATCHDOG_EXPIRED); write 0 to stop at once; cleared by an underrun or the watchdog */
+#define MC_CONTROL_RUN_SHIFT 0UL /* RW write 1 to start (refused while STATE.ABORTED, the E-stop input is active or the inputs are not ready); write 0 to stop at once; cleared by an underrun or an abort (STOP_CAUSE) */
 #define MC_CONTROL_RUN_MASK 0x00000001UL
 #define MC_CONTROL_RUN_RESET 0x0UL
 #define MC_CONTROL_FLUSH_SHIFT 1UL /* WO write 1 to empty every FIFO at once (with RUN 0: stop and discard the queued periods) */
@@ -62,7 +62,7 @@
 #define MC_STATUS_INDEX 0x0004UL
 #define MC_STATUS_OFFSET 0x0010UL
 #define MC_STATUS_RESET 0x00000000UL
-#define MC_STATUS_W1C_MASK 0x0000007fUL /* write 1 to clear; write 0 here in a read-modify-write */
+#define MC_STATUS_W1C_MASK 0x00000fffUL /* write 1 to clear; write 0 here in a read-modify-write */
 #define MC_STATUS_PERIOD_DONE_SHIFT 0UL /* W1C a period ended and the next began */
 #define MC_STATUS_PERIOD_DONE_MASK 0x00000001UL
 #define MC_STATUS_PERIOD_DONE_RESET 0x0UL
@@ -84,6 +84,21 @@
 #define MC_STATUS_AXIS_FAULT_SHIFT 6UL /* W1C an axis dropped or clamped steps: see AXIS_STATUS */
 #define MC_STATUS_AXIS_FAULT_MASK 0x00000040UL
 #define MC_STATUS_AXIS_FAULT_RESET 0x0UL
+#define MC_STATUS_LIMIT_SHIFT 7UL /* W1C a step toward an active limit was cut: all axes stopped; see IO_STATUS */
+#define MC_STATUS_LIMIT_MASK 0x00000080UL
+#define MC_STATUS_LIMIT_RESET 0x0UL
+#define MC_STATUS_ALARM_SHIFT 8UL /* W1C a drive alarm: all axes stopped, that drive disabled; see IO_STATUS */
+#define MC_STATUS_ALARM_MASK 0x00000100UL
+#define MC_STATUS_ALARM_RESET 0x0UL
+#define MC_STATUS_ESTOP_SHIFT 9UL /* W1C E-stop: all axes stopped, every drive disabled; clearing it (with estop released) clears STATE.ESTOP_LATCHED */
+#define MC_STATUS_ESTOP_MASK 0x00000200UL
+#define MC_STATUS_ESTOP_RESET 0x0UL
+#define MC_STATUS_HOME_SHIFT 10UL /* W1C a home switch edge latched the positions; see IO_STATUS.HOME_SEEN */
+#define MC_STATUS_HOME_MASK 0x00000400UL
+#define MC_STATUS_HOME_RESET 0x0UL
+#define MC_STATUS_GPIO_SHIFT 11UL /* W1C an enabled general-input edge; see GPIO_EDGES */
+#define MC_STATUS_GPIO_MASK 0x00000800UL
+#define MC_STATUS_GPIO_RESET 0x0UL
 
 /* IRQ_ENABLE: interrupt enable mask: irq is high while an enabled STATUS bit is set */
 #define MC_IRQ_ENABLE_INDEX 0x0005UL
@@ -110,6 +125,21 @@
 #define MC_IRQ_ENABLE_AXIS_FAULT_SHIFT 6UL /* RW an axis dropped or clamped steps: see AXIS_STATUS */
 #define MC_IRQ_ENABLE_AXIS_FAULT_MASK 0x00000040UL
 #define MC_IRQ_ENABLE_AXIS_FAULT_RESET 0x0UL
+#define MC_IRQ_ENABLE_LIMIT_SHIFT 7UL /* RW a step toward an active limit was cut: all axes stopped; see IO_STATUS */
+#define MC_IRQ_ENABLE_LIMIT_MASK 0x00000080UL
+#define MC_IRQ_ENABLE_LIMIT_RESET 0x0UL
+#define MC_IRQ_ENABLE_ALARM_SHIFT 8UL /* RW a drive alarm: all axes stopped, that drive disabled; see IO_STATUS */
+#define MC_IRQ_ENABLE_ALARM_MASK 0x00000100UL
+#define MC_IRQ_ENABLE_ALARM_RESET 0x0UL
+#define MC_IRQ_ENABLE_ESTOP_SHIFT 9UL /* RW E-stop: all axes stopped, every drive disabled; clearing it (with estop released) clears STATE.ESTOP_LATCHED */
+#define MC_IRQ_ENABLE_ESTOP_MASK 0x00000200UL
+#define MC_IRQ_ENABLE_ESTOP_RESET 0x0UL
+#define MC_IRQ_ENABLE_HOME_SHIFT 10UL /* RW a home switch edge latched the positions; see IO_STATUS.HOME_SEEN */
+#define MC_IRQ_ENABLE_HOME_MASK 0x00000400UL
+#define MC_IRQ_ENABLE_HOME_RESET 0x0UL
+#define MC_IRQ_ENABLE_GPIO_SHIFT 11UL /* RW an enabled general-input edge; see GPIO_EDGES */
+#define MC_IRQ_ENABLE_GPIO_MASK 0x00000800UL
+#define MC_IRQ_ENABLE_GPIO_RESET 0x0UL
 
 /* TICK_DIVISOR: base tick = one every n clocks; 0 stops the tick (pauses everything) */
 #define MC_TICK_DIVISOR_INDEX 0x0006UL
@@ -162,7 +192,7 @@
 /* STATE: live state */
 #define MC_STATE_INDEX 0x000cUL
 #define MC_STATE_OFFSET 0x0030UL
-#define MC_STATE_RESET 0x00000000UL
+#define MC_STATE_RESET 0x00000040UL
 #define MC_STATE_RUNNING_SHIFT 0UL /* RO periods are running */
 #define MC_STATE_RUNNING_MASK 0x00000001UL
 #define MC_STATE_RUNNING_RESET 0x0UL
@@ -172,6 +202,18 @@
 #define MC_STATE_WATCHDOG_EXPIRED_SHIFT 2UL /* RO the watchdog expired; cleared with STATUS.WATCHDOG */
 #define MC_STATE_WATCHDOG_EXPIRED_MASK 0x00000004UL
 #define MC_STATE_WATCHDOG_EXPIRED_RESET 0x0UL
+#define MC_STATE_ESTOP_INPUT_SHIFT 3UL /* RO the E-stop input is active (filtered) */
+#define MC_STATE_ESTOP_INPUT_MASK 0x00000008UL
+#define MC_STATE_ESTOP_INPUT_RESET 0x0UL
+#define MC_STATE_ESTOP_LATCHED_SHIFT 4UL /* RO E-stop latched; cleared with STATUS.ESTOP once the input is released */
+#define MC_STATE_ESTOP_LATCHED_MASK 0x00000010UL
+#define MC_STATE_ESTOP_LATCHED_RESET 0x0UL
+#define MC_STATE_ABORTED_SHIFT 5UL /* RO a stop cause is held (E-stop, watchdog, alarm, limit or home trip): every axis flushed, RUN refused */
+#define MC_STATE_ABORTED_MASK 0x00000020UL
+#define MC_STATE_ABORTED_RESET 0x0UL
+#define MC_STATE_INPUTS_READY_SHIFT 6UL /* RO the switch filters are primed: 0 for the 3 clocks after reset, in which RUN is refused */
+#define MC_STATE_INPUTS_READY_MASK 0x00000040UL
+#define MC_STATE_INPUTS_READY_RESET 0x1UL
 
 /* PERIOD_COUNT: periods started since reset, wrapping */
 #define MC_PERIOD_COUNT_INDEX 0x000dUL
@@ -181,9 +223,98 @@
 #define MC_PERIOD_COUNT_VALUE_MASK 0xffffffffUL
 #define MC_PERIOD_COUNT_VALUE_RESET 0x0UL
 
+/* INPUT_FILTER: filter of the switch, alarm, E-stop and general inputs */
+#define MC_INPUT_FILTER_INDEX 0x000eUL
+#define MC_INPUT_FILTER_OFFSET 0x0038UL
+#define MC_INPUT_FILTER_RESET 0x00000004UL
+#define MC_INPUT_FILTER_LENGTH_SHIFT 0UL /* RW samples a new level must hold (0 and 1: the first sample) */
+#define MC_INPUT_FILTER_LENGTH_MASK 0x0000000fUL
+#define MC_INPUT_FILTER_LENGTH_RESET 0x4UL
+#define MC_INPUT_FILTER_SAMPLE_RATE_SHIFT 8UL /* RW a filter sample every n + 1 clocks */
+#define MC_INPUT_FILTER_SAMPLE_RATE_MASK 0x0000ff00UL
+#define MC_INPUT_FILTER_SAMPLE_RATE_RESET 0x0UL
+
+/* INPUT_POLARITY: 1 = the input class is active low (normally-open wiring); E-stop has no polarity: it is always active high (fail-safe) */
+#define MC_INPUT_POLARITY_INDEX 0x000fUL
+#define MC_INPUT_POLARITY_OFFSET 0x003cUL
+#define MC_INPUT_POLARITY_RESET 0x00000000UL
+#define MC_INPUT_POLARITY_LIMIT_POS_SHIFT 0UL /* RW limit_pos inputs active low */
+#define MC_INPUT_POLARITY_LIMIT_POS_MASK 0x00000001UL
+#define MC_INPUT_POLARITY_LIMIT_POS_RESET 0x0UL
+#define MC_INPUT_POLARITY_LIMIT_NEG_SHIFT 1UL /* RW limit_neg inputs active low */
+#define MC_INPUT_POLARITY_LIMIT_NEG_MASK 0x00000002UL
+#define MC_INPUT_POLARITY_LIMIT_NEG_RESET 0x0UL
+#define MC_INPUT_POLARITY_HOME_SHIFT 2UL /* RW home inputs active low */
+#define MC_INPUT_POLARITY_HOME_MASK 0x00000004UL
+#define MC_INPUT_POLARITY_HOME_RESET 0x0UL
+#define MC_INPUT_POLARITY_DRIVE_ALARM_SHIFT 3UL /* RW drive_alarm inputs active low */
+#define MC_INPUT_POLARITY_DRIVE_ALARM_MASK 0x00000008UL
+#define MC_INPUT_POLARITY_DRIVE_ALARM_RESET 0x0UL
+#define MC_INPUT_POLARITY_GPIO_SHIFT 8UL /* RW per general input: active low */
+#define MC_INPUT_POLARITY_GPIO_MASK 0x0000ff00UL
+#define MC_INPUT_POLARITY_GPIO_RESET 0x0UL
+
+/* STOP_CAUSE: why RUN last fell (kept until the next stop) */
+#define MC_STOP_CAUSE_INDEX 0x0010UL
+#define MC_STOP_CAUSE_OFFSET 0x0040UL
+#define MC_STOP_CAUSE_RESET 0x00000000UL
+#define MC_STOP_CAUSE_CAUSE_SHIFT 0UL /* RO 0 none, 1 RUN written 0, 2 underrun, 3 watchdog, 4 home, 5 limit, 6 drive alarm, 7 E-stop (the highest of simultaneous causes) */
+#define MC_STOP_CAUSE_CAUSE_MASK 0x0000000fUL
+#define MC_STOP_CAUSE_CAUSE_RESET 0x0UL
+#define MC_STOP_CAUSE_AXIS_SHIFT 8UL /* RO home, limit, drive alarm: the lowest axis holding that cause */
+#define MC_STOP_CAUSE_AXIS_MASK 0x00000f00UL
+#define MC_STOP_CAUSE_AXIS_RESET 0x0UL
+
+/* GPIO_IN: general inputs */
+#define MC_GPIO_IN_INDEX 0x0011UL
+#define MC_GPIO_IN_OFFSET 0x0044UL
+#define MC_GPIO_IN_RESET 0x00000000UL
+#define MC_GPIO_IN_LEVEL_SHIFT 0UL /* RO filtered levels, polarity applied (0 until the inputs are ready) */
+#define MC_GPIO_IN_LEVEL_MASK 0x000000ffUL
+#define MC_GPIO_IN_LEVEL_RESET 0x0UL
+
+/* GPIO_OUT: general outputs */
+#define MC_GPIO_OUT_INDEX 0x0012UL
+#define MC_GPIO_OUT_OFFSET 0x0048UL
+#define MC_GPIO_OUT_RESET 0x00000000UL
+#define MC_GPIO_OUT_LEVEL_SHIFT 0UL /* RW gpio_out pins; the GPIO_SAFE ones are cleared (and held 0) while E-stop is latched or the watchdog expired */
+#define MC_GPIO_OUT_LEVEL_MASK 0x000000ffUL
+#define MC_GPIO_OUT_LEVEL_RESET 0x0UL
+
+/* GPIO_SAFE: outputs that drop on E-stop or watchdog expiry */
+#define MC_GPIO_SAFE_INDEX 0x0013UL
+#define MC_GPIO_SAFE_OFFSET 0x004cUL
+#define MC_GPIO_SAFE_RESET 0x00000000UL
+#define MC_GPIO_SAFE_MASK_SHIFT 0UL /* RW 1 = this output drops to 0 (spindle, coolant) */
+#define MC_GPIO_SAFE_MASK_MASK 0x000000ffUL
+#define MC_GPIO_SAFE_MASK_RESET 0x0UL
+
+/* GPIO_IRQ_ENABLE: general-input edges that raise STATUS.GPIO */
+#define MC_GPIO_IRQ_ENABLE_INDEX 0x0014UL
+#define MC_GPIO_IRQ_ENABLE_OFFSET 0x0050UL
+#define MC_GPIO_IRQ_ENABLE_RESET 0x00000000UL
+#define MC_GPIO_IRQ_ENABLE_RISE_SHIFT 0UL /* RW per input: a rise (becoming active) */
+#define MC_GPIO_IRQ_ENABLE_RISE_MASK 0x000000ffUL
+#define MC_GPIO_IRQ_ENABLE_RISE_RESET 0x0UL
+#define MC_GPIO_IRQ_ENABLE_FALL_SHIFT 8UL /* RW per input: a fall */
+#define MC_GPIO_IRQ_ENABLE_FALL_MASK 0x0000ff00UL
+#define MC_GPIO_IRQ_ENABLE_FALL_RESET 0x0UL
+
+/* GPIO_EDGES: general-input edges seen since cleared, write 1 to clear (every edge, enabled or not) */
+#define MC_GPIO_EDGES_INDEX 0x0015UL
+#define MC_GPIO_EDGES_OFFSET 0x0054UL
+#define MC_GPIO_EDGES_RESET 0x00000000UL
+#define MC_GPIO_EDGES_W1C_MASK 0x0000ffffUL /* write 1 to clear; write 0 here in a read-modify-write */
+#define MC_GPIO_EDGES_RISE_SHIFT 0UL /* W1C per input: rose */
+#define MC_GPIO_EDGES_RISE_MASK 0x000000ffUL
+#define MC_GPIO_EDGES_RISE_RESET 0x0UL
+#define MC_GPIO_EDGES_FALL_SHIFT 8UL /* W1C per input: fell */
+#define MC_GPIO_EDGES_FALL_MASK 0x0000ff00UL
+#define MC_GPIO_EDGES_FALL_RESET 0x0UL
+
 /* FIFO_WRITE: push one period's signed step count (refused when full); a magnitude above 65535 is saturated and flagged */
 #define MC_FIFO_WRITE_COUNT 3UL
-#define MC_FIFO_WRITE_INDEX(n) (0x0010UL + (unsigned long)(n) * 0x10UL)
+#define MC_FIFO_WRITE_INDEX(n) (0x0020UL + (unsigned long)(n) * 0x20UL)
 #define MC_FIFO_WRITE_OFFSET(n) (MC_FIFO_WRITE_INDEX(n) * 4UL)
 #define MC_FIFO_WRITE_RESET 0x00000000UL
 #define MC_FIFO_WRITE_VALUE_SHIFT 0UL /* WO push one period's signed step count (refused when full); a magnitude above 65535 is saturated and flagged */
@@ -192,7 +323,7 @@
 
 /* FIFO_STATUS: FIFO level and flags */
 #define MC_FIFO_STATUS_COUNT 3UL
-#define MC_FIFO_STATUS_INDEX(n) (0x0011UL + (unsigned long)(n) * 0x10UL)
+#define MC_FIFO_STATUS_INDEX(n) (0x0021UL + (unsigned long)(n) * 0x20UL)
 #define MC_FIFO_STATUS_OFFSET(n) (MC_FIFO_STATUS_INDEX(n) * 4UL)
 #define MC_FIFO_STATUS_RESET 0x00050000UL
 #define MC_FIFO_STATUS_LEVEL_SHIFT 0UL /* RO periods queued */
@@ -210,7 +341,7 @@
 
 /* AXIS_CONFIG: interpolator, output mode and encoder settings */
 #define MC_AXIS_CONFIG_COUNT 3UL
-#define MC_AXIS_CONFIG_INDEX(n) (0x0012UL + (unsigned long)(n) * 0x10UL)
+#define MC_AXIS_CONFIG_INDEX(n) (0x0022UL + (unsigned long)(n) * 0x20UL)
 #define MC_AXIS_CONFIG_OFFSET(n) (MC_AXIS_CONFIG_INDEX(n) * 4UL)
 #define MC_AXIS_CONFIG_RESET 0x00000000UL
 #define MC_AXIS_CONFIG_UNIFORM_SHIFT 0UL /* RW 0 = DDA, 1 = dual-period uniform pulse generator; taken when RUN starts and the axis's uniform generator is idle */
@@ -243,7 +374,7 @@
 
 /* STEP_LEN: step pulse high time in clocks (0 acts as 1) */
 #define MC_STEP_LEN_COUNT 3UL
-#define MC_STEP_LEN_INDEX(n) (0x0013UL + (unsigned long)(n) * 0x10UL)
+#define MC_STEP_LEN_INDEX(n) (0x0023UL + (unsigned long)(n) * 0x20UL)
 #define MC_STEP_LEN_OFFSET(n) (MC_STEP_LEN_INDEX(n) * 4UL)
 #define MC_STEP_LEN_RESET 0x00000000UL
 #define MC_STEP_LEN_VALUE_SHIFT 0UL /* RW step pulse high time in clocks (0 acts as 1) */
@@ -252,7 +383,7 @@
 
 /* STEP_SPACE: minimum step low time in clocks (0 acts as 1) */
 #define MC_STEP_SPACE_COUNT 3UL
-#define MC_STEP_SPACE_INDEX(n) (0x0014UL + (unsigned long)(n) * 0x10UL)
+#define MC_STEP_SPACE_INDEX(n) (0x0024UL + (unsigned long)(n) * 0x20UL)
 #define MC_STEP_SPACE_OFFSET(n) (MC_STEP_SPACE_INDEX(n) * 4UL)
 #define MC_STEP_SPACE_RESET 0x00000000UL
 #define MC_STEP_SPACE_VALUE_SHIFT 0UL /* RW minimum step low time in clocks (0 acts as 1) */
@@ -261,7 +392,7 @@
 
 /* DIR_SETUP: dir stable before a step rises, clocks (0 acts as 1) */
 #define MC_DIR_SETUP_COUNT 3UL
-#define MC_DIR_SETUP_INDEX(n) (0x0015UL + (unsigned long)(n) * 0x10UL)
+#define MC_DIR_SETUP_INDEX(n) (0x0025UL + (unsigned long)(n) * 0x20UL)
 #define MC_DIR_SETUP_OFFSET(n) (MC_DIR_SETUP_INDEX(n) * 4UL)
 #define MC_DIR_SETUP_RESET 0x00000000UL
 #define MC_DIR_SETUP_VALUE_SHIFT 0UL /* RW dir stable before a step rises, clocks (0 acts as 1) */
@@ -270,7 +401,7 @@
 
 /* DIR_HOLD: dir stable after a step falls, clocks (0 acts as 1) */
 #define MC_DIR_HOLD_COUNT 3UL
-#define MC_DIR_HOLD_INDEX(n) (0x0016UL + (unsigned long)(n) * 0x10UL)
+#define MC_DIR_HOLD_INDEX(n) (0x0026UL + (unsigned long)(n) * 0x20UL)
 #define MC_DIR_HOLD_OFFSET(n) (MC_DIR_HOLD_INDEX(n) * 4UL)
 #define MC_DIR_HOLD_RESET 0x00000000UL
 #define MC_DIR_HOLD_VALUE_SHIFT 0UL /* RW dir stable after a step falls, clocks (0 acts as 1) */
@@ -279,7 +410,7 @@
 
 /* ENC_SAMPLE_RATE: encoder sample every n + 1 clocks */
 #define MC_ENC_SAMPLE_RATE_COUNT 3UL
-#define MC_ENC_SAMPLE_RATE_INDEX(n) (0x0017UL + (unsigned long)(n) * 0x10UL)
+#define MC_ENC_SAMPLE_RATE_INDEX(n) (0x0027UL + (unsigned long)(n) * 0x20UL)
 #define MC_ENC_SAMPLE_RATE_OFFSET(n) (MC_ENC_SAMPLE_RATE_INDEX(n) * 4UL)
 #define MC_ENC_SAMPLE_RATE_RESET 0x00000000UL
 #define MC_ENC_SAMPLE_RATE_VALUE_SHIFT 0UL /* RW encoder sample every n + 1 clocks */
@@ -288,7 +419,7 @@
 
 /* CMD_POSITION: commanded position: steps emitted at the pins, signed */
 #define MC_CMD_POSITION_COUNT 3UL
-#define MC_CMD_POSITION_INDEX(n) (0x0018UL + (unsigned long)(n) * 0x10UL)
+#define MC_CMD_POSITION_INDEX(n) (0x0028UL + (unsigned long)(n) * 0x20UL)
 #define MC_CMD_POSITION_OFFSET(n) (MC_CMD_POSITION_INDEX(n) * 4UL)
 #define MC_CMD_POSITION_RESET 0x00000000UL
 #define MC_CMD_POSITION_VALUE_SHIFT 0UL /* RO commanded position: steps emitted at the pins, signed */
@@ -297,7 +428,7 @@
 
 /* ACT_POSITION: actual position: encoder count, signed */
 #define MC_ACT_POSITION_COUNT 3UL
-#define MC_ACT_POSITION_INDEX(n) (0x0019UL + (unsigned long)(n) * 0x10UL)
+#define MC_ACT_POSITION_INDEX(n) (0x0029UL + (unsigned long)(n) * 0x20UL)
 #define MC_ACT_POSITION_OFFSET(n) (MC_ACT_POSITION_INDEX(n) * 4UL)
 #define MC_ACT_POSITION_RESET 0x00000000UL
 #define MC_ACT_POSITION_VALUE_SHIFT 0UL /* RO actual position: encoder count, signed */
@@ -306,7 +437,7 @@
 
 /* CMD_SNAPSHOT: CMD_POSITION at the last SNAPSHOT write */
 #define MC_CMD_SNAPSHOT_COUNT 3UL
-#define MC_CMD_SNAPSHOT_INDEX(n) (0x001aUL + (unsigned long)(n) * 0x10UL)
+#define MC_CMD_SNAPSHOT_INDEX(n) (0x002aUL + (unsigned long)(n) * 0x20UL)
 #define MC_CMD_SNAPSHOT_OFFSET(n) (MC_CMD_SNAPSHOT_INDEX(n) * 4UL)
 #define MC_CMD_SNAPSHOT_RESET 0x00000000UL
 #define MC_CMD_SNAPSHOT_VALUE_SHIFT 0UL /* RO CMD_POSITION at the last SNAPSHOT write */
@@ -315,7 +446,7 @@
 
 /* ACT_SNAPSHOT: ACT_POSITION at the last SNAPSHOT write */
 #define MC_ACT_SNAPSHOT_COUNT 3UL
-#define MC_ACT_SNAPSHOT_INDEX(n) (0x001bUL + (unsigned long)(n) * 0x10UL)
+#define MC_ACT_SNAPSHOT_INDEX(n) (0x002bUL + (unsigned long)(n) * 0x20UL)
 #define MC_ACT_SNAPSHOT_OFFSET(n) (MC_ACT_SNAPSHOT_INDEX(n) * 4UL)
 #define MC_ACT_SNAPSHOT_RESET 0x00000000UL
 #define MC_ACT_SNAPSHOT_VALUE_SHIFT 0UL /* RO ACT_POSITION at the last SNAPSHOT write */
@@ -324,7 +455,7 @@
 
 /* AXIS_STATUS: axis flags (sticky ones are cleared with AXIS_COMMAND) */
 #define MC_AXIS_STATUS_COUNT 3UL
-#define MC_AXIS_STATUS_INDEX(n) (0x001cUL + (unsigned long)(n) * 0x10UL)
+#define MC_AXIS_STATUS_INDEX(n) (0x002cUL + (unsigned long)(n) * 0x20UL)
 #define MC_AXIS_STATUS_OFFSET(n) (MC_AXIS_STATUS_INDEX(n) * 4UL)
 #define MC_AXIS_STATUS_RESET 0x00000000UL
 #define MC_AXIS_STATUS_STEP_OVERRUN_SHIFT 0UL /* RO sticky until CLEAR_FAULTS: the output stage's pending count saturated and a step was dropped */
@@ -354,7 +485,7 @@
 
 /* INDEX_POSITION: ACT_POSITION latched at the last index event */
 #define MC_INDEX_POSITION_COUNT 3UL
-#define MC_INDEX_POSITION_INDEX(n) (0x001dUL + (unsigned long)(n) * 0x10UL)
+#define MC_INDEX_POSITION_INDEX(n) (0x002dUL + (unsigned long)(n) * 0x20UL)
 #define MC_INDEX_POSITION_OFFSET(n) (MC_INDEX_POSITION_INDEX(n) * 4UL)
 #define MC_INDEX_POSITION_RESET 0x00000000UL
 #define MC_INDEX_POSITION_VALUE_SHIFT 0UL /* RO ACT_POSITION latched at the last index event */
@@ -363,7 +494,7 @@
 
 /* AXIS_COMMAND: axis commands: write 1 to act */
 #define MC_AXIS_COMMAND_COUNT 3UL
-#define MC_AXIS_COMMAND_INDEX(n) (0x001eUL + (unsigned long)(n) * 0x10UL)
+#define MC_AXIS_COMMAND_INDEX(n) (0x002eUL + (unsigned long)(n) * 0x20UL)
 #define MC_AXIS_COMMAND_OFFSET(n) (MC_AXIS_COMMAND_INDEX(n) * 4UL)
 #define MC_AXIS_COMMAND_RESET 0x00000000UL
 #define MC_AXIS_COMMAND_CLEAR_FAULTS_SHIFT 0UL /* WO clear STEP_OVERRUN, INTERP_OVERRANGE and INTERP_OVERFLOW */
@@ -381,5 +512,89 @@
 #define MC_AXIS_COMMAND_CLEAR_ENCODER_ERROR_SHIFT 4UL /* WO ENCODER_ERROR <- 0, keeping ACT_POSITION (an error on the same clock keeps it set) */
 #define MC_AXIS_COMMAND_CLEAR_ENCODER_ERROR_MASK 0x00000010UL
 #define MC_AXIS_COMMAND_CLEAR_ENCODER_ERROR_RESET 0x0UL
+
+/* IO_CONFIG: limit, alarm, home and drive-enable settings */
+#define MC_IO_CONFIG_COUNT 3UL
+#define MC_IO_CONFIG_INDEX(n) (0x0030UL + (unsigned long)(n) * 0x20UL)
+#define MC_IO_CONFIG_OFFSET(n) (MC_IO_CONFIG_INDEX(n) * 4UL)
+#define MC_IO_CONFIG_RESET 0x00000003UL
+#define MC_IO_CONFIG_LIMIT_ENABLE_SHIFT 0UL /* RW the limit_pos / limit_neg inputs block steps toward them */
+#define MC_IO_CONFIG_LIMIT_ENABLE_MASK 0x00000001UL
+#define MC_IO_CONFIG_LIMIT_ENABLE_RESET 0x1UL
+#define MC_IO_CONFIG_ALARM_ENABLE_SHIFT 1UL /* RW the drive_alarm input aborts and disables this drive */
+#define MC_IO_CONFIG_ALARM_ENABLE_MASK 0x00000002UL
+#define MC_IO_CONFIG_ALARM_ENABLE_RESET 0x1UL
+#define MC_IO_CONFIG_STOP_ON_HOME_SHIFT 2UL /* RW the home edge aborts the motion (homing moves) */
+#define MC_IO_CONFIG_STOP_ON_HOME_MASK 0x00000004UL
+#define MC_IO_CONFIG_STOP_ON_HOME_RESET 0x0UL
+#define MC_IO_CONFIG_DRIVE_ENABLE_SHIFT 3UL /* RW drive_enable pin, when no E-stop, watchdog expiry or alarm of this axis forces it low */
+#define MC_IO_CONFIG_DRIVE_ENABLE_MASK 0x00000008UL
+#define MC_IO_CONFIG_DRIVE_ENABLE_RESET 0x0UL
+
+/* IO_STATUS: switch levels (filtered, polarity applied, 1 = active) and sticky trips */
+#define MC_IO_STATUS_COUNT 3UL
+#define MC_IO_STATUS_INDEX(n) (0x0031UL + (unsigned long)(n) * 0x20UL)
+#define MC_IO_STATUS_OFFSET(n) (MC_IO_STATUS_INDEX(n) * 4UL)
+#define MC_IO_STATUS_RESET 0x00000000UL
+#define MC_IO_STATUS_LIMIT_POS_SHIFT 0UL /* RO limit_pos active */
+#define MC_IO_STATUS_LIMIT_POS_MASK 0x00000001UL
+#define MC_IO_STATUS_LIMIT_POS_RESET 0x0UL
+#define MC_IO_STATUS_LIMIT_NEG_SHIFT 1UL /* RO limit_neg active */
+#define MC_IO_STATUS_LIMIT_NEG_MASK 0x00000002UL
+#define MC_IO_STATUS_LIMIT_NEG_RESET 0x0UL
+#define MC_IO_STATUS_HOME_SHIFT 2UL /* RO home active */
+#define MC_IO_STATUS_HOME_MASK 0x00000004UL
+#define MC_IO_STATUS_HOME_RESET 0x0UL
+#define MC_IO_STATUS_DRIVE_ALARM_SHIFT 3UL /* RO drive_alarm active */
+#define MC_IO_STATUS_DRIVE_ALARM_MASK 0x00000008UL
+#define MC_IO_STATUS_DRIVE_ALARM_RESET 0x0UL
+#define MC_IO_STATUS_LIMIT_POS_TRIPPED_SHIFT 8UL /* RO sticky: a step toward the active positive limit was cut (aborts, refuses RUN); cleared with CLEAR_LIMITS */
+#define MC_IO_STATUS_LIMIT_POS_TRIPPED_MASK 0x00000100UL
+#define MC_IO_STATUS_LIMIT_POS_TRIPPED_RESET 0x0UL
+#define MC_IO_STATUS_LIMIT_NEG_TRIPPED_SHIFT 9UL /* RO sticky: the same toward the negative limit */
+#define MC_IO_STATUS_LIMIT_NEG_TRIPPED_MASK 0x00000200UL
+#define MC_IO_STATUS_LIMIT_NEG_TRIPPED_RESET 0x0UL
+#define MC_IO_STATUS_ALARM_TRIPPED_SHIFT 10UL /* RO sticky: the enabled drive alarm was active (aborts, refuses RUN, drive disabled); CLEAR_ALARM clears it once the alarm is gone */
+#define MC_IO_STATUS_ALARM_TRIPPED_MASK 0x00000400UL
+#define MC_IO_STATUS_ALARM_TRIPPED_RESET 0x0UL
+#define MC_IO_STATUS_HOME_SEEN_SHIFT 11UL /* RO sticky: a home edge latched HOME_*_POSITION (with STOP_ON_HOME: aborts, refuses RUN); cleared with CLEAR_HOME */
+#define MC_IO_STATUS_HOME_SEEN_MASK 0x00000800UL
+#define MC_IO_STATUS_HOME_SEEN_RESET 0x0UL
+#define MC_IO_STATUS_DRIVE_ENABLE_SHIFT 16UL /* RO the drive_enable pin */
+#define MC_IO_STATUS_DRIVE_ENABLE_MASK 0x00010000UL
+#define MC_IO_STATUS_DRIVE_ENABLE_RESET 0x0UL
+
+/* IO_COMMAND: machine I/O commands: write 1 to act */
+#define MC_IO_COMMAND_COUNT 3UL
+#define MC_IO_COMMAND_INDEX(n) (0x0032UL + (unsigned long)(n) * 0x20UL)
+#define MC_IO_COMMAND_OFFSET(n) (MC_IO_COMMAND_INDEX(n) * 4UL)
+#define MC_IO_COMMAND_RESET 0x00000000UL
+#define MC_IO_COMMAND_CLEAR_LIMITS_SHIFT 0UL /* WO clear LIMIT_POS_TRIPPED and LIMIT_NEG_TRIPPED (steps away from an active limit are then allowed) */
+#define MC_IO_COMMAND_CLEAR_LIMITS_MASK 0x00000001UL
+#define MC_IO_COMMAND_CLEAR_LIMITS_RESET 0x0UL
+#define MC_IO_COMMAND_CLEAR_ALARM_SHIFT 1UL /* WO clear ALARM_TRIPPED (stays set while the alarm is active) */
+#define MC_IO_COMMAND_CLEAR_ALARM_MASK 0x00000002UL
+#define MC_IO_COMMAND_CLEAR_ALARM_RESET 0x0UL
+#define MC_IO_COMMAND_CLEAR_HOME_SHIFT 2UL /* WO clear HOME_SEEN: the next home edge latches again */
+#define MC_IO_COMMAND_CLEAR_HOME_MASK 0x00000004UL
+#define MC_IO_COMMAND_CLEAR_HOME_RESET 0x0UL
+
+/* HOME_CMD_POSITION: CMD_POSITION on the clock of the home edge */
+#define MC_HOME_CMD_POSITION_COUNT 3UL
+#define MC_HOME_CMD_POSITION_INDEX(n) (0x0033UL + (unsigned long)(n) * 0x20UL)
+#define MC_HOME_CMD_POSITION_OFFSET(n) (MC_HOME_CMD_POSITION_INDEX(n) * 4UL)
+#define MC_HOME_CMD_POSITION_RESET 0x00000000UL
+#define MC_HOME_CMD_POSITION_VALUE_SHIFT 0UL /* RO CMD_POSITION on the clock of the home edge */
+#define MC_HOME_CMD_POSITION_VALUE_MASK 0xffffffffUL
+#define MC_HOME_CMD_POSITION_VALUE_RESET 0x0UL
+
+/* HOME_ACT_POSITION: ACT_POSITION on the clock of the home edge */
+#define MC_HOME_ACT_POSITION_COUNT 3UL
+#define MC_HOME_ACT_POSITION_INDEX(n) (0x0034UL + (unsigned long)(n) * 0x20UL)
+#define MC_HOME_ACT_POSITION_OFFSET(n) (MC_HOME_ACT_POSITION_INDEX(n) * 4UL)
+#define MC_HOME_ACT_POSITION_RESET 0x00000000UL
+#define MC_HOME_ACT_POSITION_VALUE_SHIFT 0UL /* RO ACT_POSITION on the clock of the home edge */
+#define MC_HOME_ACT_POSITION_VALUE_MASK 0xffffffffUL
+#define MC_HOME_ACT_POSITION_VALUE_RESET 0x0UL
 
 #endif /* MC_REGS_H */

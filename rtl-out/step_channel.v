@@ -79,6 +79,9 @@ module step_channel(clock,reset,tick,integrand,modulus,dir,clear_overrange,mode,
     reg  stage__clear_overrun;
     wire  stage__emitted;
     wire  stage__emitted_forward;
+    reg  stage__flush;
+    wire  stage__pending_forward;
+    wire  stage__pending_backward;
     reg  dir_sampled__d;
     wire  dir_sampled__q;
     reg  dir_sampled__clock;
@@ -114,7 +117,10 @@ module step_channel(clock,reset,tick,integrand,modulus,dir,clear_overrange,mode,
         .busy(stage__busy),
         .clear_overrun(stage__clear_overrun),
         .emitted(stage__emitted),
-        .emitted_forward(stage__emitted_forward)
+        .emitted_forward(stage__emitted_forward),
+        .flush(stage__flush),
+        .pending_forward(stage__pending_forward),
+        .pending_backward(stage__pending_backward)
     );
     step_channel__dir_sampled dir_sampled(
         .d(dir_sampled__d),
@@ -155,6 +161,7 @@ module step_channel(clock,reset,tick,integrand,modulus,dir,clear_overrange,mode,
         stage__dir_setup = dir_setup;
         stage__dir_hold = dir_hold;
         stage__clear_overrun = 1'b0;
+        stage__flush = 1'b0;
         out_a = stage__out_a;
         out_b = stage__out_b;
         overrun = stage__overrun;
@@ -530,7 +537,7 @@ module step_channel__dir_sampled(d,q,clock);
 endmodule // step_channel__dir_sampled
 
 
-module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward);
+module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward,flush,pending_forward,pending_backward);
 
     // Module arguments
     input wire  clock;
@@ -550,6 +557,9 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
     input wire  clear_overrun;
     output reg  emitted;
     output reg  emitted_forward;
+    input wire  flush;
+    output reg  pending_forward;
+    output reg  pending_backward;
 
     // Constant declarations
     localparam  zero_t = 16'h0;
@@ -796,6 +806,8 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
+        pending_forward = positive;
+        pending_backward = negative;
         requested_mode = mode;
         if (mode == mode_reserved) begin
             requested_mode = mode_step_dir;
@@ -933,6 +945,12 @@ module step_channel__stage(clock,reset,step,dir,mode,step_len,step_space,dir_set
             end
         end
         nonzero__d = ~reaches_zero;
+        if (flush) begin
+            pending__d = zero_p;
+            nonzero__d = 1'b0;
+            at_max__d = 1'b0;
+            at_min__d = 1'b0;
+        end
         mode_taken__d = 1'b1;
         if (~mode_taken__q | (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q))) begin
             active_mode__d = requested_mode;

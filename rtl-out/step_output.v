@@ -9,28 +9,31 @@
 //   P = 16: signed pending-step count width (-32768 to 32767)
 //
 // Ports:
-//   name             dir    width  meaning
-//   clock            in         1  rising-edge clock
-//   reset            in         1  synchronous reset, active high: nothing pending, outputs low, flags 0; mode taken from the mode input
-//   step             in         1  request one step (one-clock pulse)
-//   dir              in         1  direction of that request: 1 = forward
-//   mode             in         2  0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)
-//   step_len         in        16  step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state
-//   step_space       in        16  minimum low time between step pulses in clocks (0 acts as 1)
-//   dir_setup        in        16  dir stable at least this many clocks before a step's rising edge (0 acts as 1)
-//   dir_hold         in        16  dir stable at least this many clocks after a step's falling edge (0 acts as 1)
-//   out_a            out        1  step (mode 0), up (mode 1), A (mode 2)
-//   out_b            out        1  dir (mode 0), down (mode 1), B (mode 2)
-//   overrun          out        1  sticky: a request arrived with the pending count saturated and was dropped
-//   mode_invalid     out        1  mode is 3 (reserved); the stage runs as step/dir
-//   busy             out        1  steps pending, a pulse in progress, or a timing interval still running
-//   clear_overrun    in         1  clears overrun (a drop on the same clock keeps it set); tie to 0 if unused
-//   emitted          out        1  a step left at the last edge (its first pin edge is out now); registered
-//   emitted_forward  out        1  direction of that step: 1 = forward
+//   name              dir    width  meaning
+//   clock             in         1  rising-edge clock
+//   reset             in         1  synchronous reset, active high: nothing pending, outputs low, flags 0; mode taken from the mode input
+//   step              in         1  request one step (one-clock pulse)
+//   dir               in         1  direction of that request: 1 = forward
+//   mode              in         2  0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)
+//   step_len          in        16  step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state
+//   step_space        in        16  minimum low time between step pulses in clocks (0 acts as 1)
+//   dir_setup         in        16  dir stable at least this many clocks before a step's rising edge (0 acts as 1)
+//   dir_hold          in        16  dir stable at least this many clocks after a step's falling edge (0 acts as 1)
+//   out_a             out        1  step (mode 0), up (mode 1), A (mode 2)
+//   out_b             out        1  dir (mode 0), down (mode 1), B (mode 2)
+//   overrun           out        1  sticky: a request arrived with the pending count saturated and was dropped
+//   mode_invalid      out        1  mode is 3 (reserved); the stage runs as step/dir
+//   busy              out        1  steps pending, a pulse in progress, or a timing interval still running
+//   clear_overrun     in         1  clears overrun (a drop on the same clock keeps it set); tie to 0 if unused
+//   emitted           out        1  a step left at the last edge (its first pin edge is out now); registered
+//   emitted_forward   out        1  direction of that step: 1 = forward
+//   flush             in         1  drop every pending step and this clock's request; a pulse already high completes; tie to 0 if unused
+//   pending_forward   out        1  the next step to leave is forward (pending count above 0)
+//   pending_backward  out        1  the next step to leave is backward (pending count below 0)
 // ============================================================================
 
 `default_nettype none
-module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward);
+module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward,flush,pending_forward,pending_backward);
 
     // Module arguments
     input wire  clock;
@@ -50,6 +53,9 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
     input wire  clear_overrun;
     output reg  emitted;
     output reg  emitted_forward;
+    input wire  flush;
+    output reg  pending_forward;
+    output reg  pending_backward;
 
     // Constant declarations
     localparam  zero_t = 16'h0;
@@ -296,6 +302,8 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
         started__d = 1'b1;
         negative = (pending__q & min_p) != zero_p;
         positive = nonzero__q & ~negative;
+        pending_forward = positive;
+        pending_backward = negative;
         requested_mode = mode;
         if (mode == mode_reserved) begin
             requested_mode = mode_step_dir;
@@ -433,6 +441,12 @@ module step_output(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_h
             end
         end
         nonzero__d = ~reaches_zero;
+        if (flush) begin
+            pending__d = zero_p;
+            nonzero__d = 1'b0;
+            at_max__d = 1'b0;
+            at_min__d = 1'b0;
+        end
         mode_taken__d = 1'b1;
         if (~mode_taken__q | (~nonzero__q & ~high__q & phase_done__q & dir_done__q & (requested_mode != active_mode__q))) begin
             active_mode__d = requested_mode;

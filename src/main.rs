@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export};
-use motion_hdl::host::simulation::{simulate, SimulationOptions};
+use motion_hdl::host::simulation::{simulate, SimulationOptions, Trip};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
 use motion_hdl::tools::report;
@@ -50,7 +50,8 @@ enum Command {
     /// Run a path file (format: `cargo doc`, module host::path; examples in
     /// examples/) through the simulated 3-axis controller (RTL, steps looped
     /// back into the encoders): final positions, peak step rates,
-    /// underruns, and SVG plots of the path and of the speed.
+    /// underruns, and SVG plots of the path and of the speed. An abort
+    /// (E-stop, limit switch, drive alarm) fails naming its cause.
     Simulate {
         /// The path file.
         path_file: PathBuf,
@@ -81,6 +82,12 @@ enum Command {
         /// Also write every controller signal to this VCD file (large).
         #[arg(long)]
         vcd: Option<PathBuf>,
+        /// Drive a machine input active from a time on, as INPUT@MS:
+        /// `estop`, or `x`, `y` or `z` with `-limit-pos`, `-limit-neg` or
+        /// `-alarm` (e.g. y-limit-neg@1.5); milliseconds of simulated time
+        /// from power-up. Repeatable.
+        #[arg(long, value_name = "INPUT@MS")]
+        trip: Vec<String>,
     },
     /// Draw the uniform pulse generator's figures as SVG: one period of
     /// (T, N) in single-period, paper-order and interleaved form, and the
@@ -119,7 +126,9 @@ fn run(cli: Cli) -> Result<(), String> {
             out_dir,
             vcd,
             backend,
+            trip,
         } => {
+            let trips = trip.iter().map(|t| Trip::parse(t)).collect::<Result<Vec<_>, _>>()?;
             let backend = match backend {
                 Some(name) => Backend::parse(&name).map_err(|e| e.to_string())?,
                 None if Backend::Verilator.available() => Backend::Verilator,
@@ -163,6 +172,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 vcd,
                 progress: true,
                 backend,
+                trips,
             };
             let r = simulate(&path_file, &options)?;
             println!("target     {:?}", r.target);

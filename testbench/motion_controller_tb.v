@@ -13,24 +13,24 @@ module motion_controller_tb;
   reg vector_bus_write;
   reg bus_read = 0;
   reg vector_bus_read;
-  reg enc_a__0 = 0;
-  reg vector_enc_a__0;
-  reg enc_a__1 = 0;
-  reg vector_enc_a__1;
-  reg enc_a__2 = 0;
-  reg vector_enc_a__2;
-  reg enc_b__0 = 0;
-  reg vector_enc_b__0;
-  reg enc_b__1 = 0;
-  reg vector_enc_b__1;
-  reg enc_b__2 = 0;
-  reg vector_enc_b__2;
-  reg enc_index__0 = 0;
-  reg vector_enc_index__0;
-  reg enc_index__1 = 0;
-  reg vector_enc_index__1;
-  reg enc_index__2 = 0;
-  reg vector_enc_index__2;
+  reg [2:0] enc_a = 0;
+  reg [2:0] vector_enc_a;
+  reg [2:0] enc_b = 0;
+  reg [2:0] vector_enc_b;
+  reg [2:0] enc_index = 0;
+  reg [2:0] vector_enc_index;
+  reg [2:0] limit_pos = 0;
+  reg [2:0] vector_limit_pos;
+  reg [2:0] limit_neg = 0;
+  reg [2:0] vector_limit_neg;
+  reg [2:0] home = 0;
+  reg [2:0] vector_home;
+  reg [2:0] drive_alarm = 0;
+  reg [2:0] vector_drive_alarm;
+  reg estop = 0;
+  reg vector_estop;
+  reg [7:0] gpio_in = 0;
+  reg [7:0] vector_gpio_in;
   wire [31:0] bus_read_data;
   reg [31:0] expected_bus_read_data;
   wire irq;
@@ -39,23 +39,19 @@ module motion_controller_tb;
   reg expected_running;
   wire active;
   reg expected_active;
-  wire step_a__0;
-  reg expected_step_a__0;
-  wire step_a__1;
-  reg expected_step_a__1;
-  wire step_a__2;
-  reg expected_step_a__2;
-  wire step_b__0;
-  reg expected_step_b__0;
-  wire step_b__1;
-  reg expected_step_b__1;
-  wire step_b__2;
-  reg expected_step_b__2;
+  wire [2:0] step_a;
+  reg [2:0] expected_step_a;
+  wire [2:0] step_b;
+  reg [2:0] expected_step_b;
+  wire [2:0] drive_enable;
+  reg [2:0] expected_drive_enable;
+  wire [7:0] gpio_out;
+  reg [7:0] expected_gpio_out;
   integer vectors;
   integer fields;
   integer cycle;
   reg [8*1024-1:0] vector_path;
-  motion_controller uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a__0(enc_a__0), .enc_a__1(enc_a__1), .enc_a__2(enc_a__2), .enc_b__0(enc_b__0), .enc_b__1(enc_b__1), .enc_b__2(enc_b__2), .enc_index__0(enc_index__0), .enc_index__1(enc_index__1), .enc_index__2(enc_index__2), .bus_read_data(bus_read_data), .irq(irq), .running(running), .active(active), .step_a__0(step_a__0), .step_a__1(step_a__1), .step_a__2(step_a__2), .step_b__0(step_b__0), .step_b__1(step_b__1), .step_b__2(step_b__2));
+  motion_controller uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a(enc_a), .enc_b(enc_b), .enc_index(enc_index), .limit_pos(limit_pos), .limit_neg(limit_neg), .home(home), .drive_alarm(drive_alarm), .estop(estop), .gpio_in(gpio_in), .bus_read_data(bus_read_data), .irq(irq), .running(running), .active(active), .step_a(step_a), .step_b(step_b), .drive_enable(drive_enable), .gpio_out(gpio_out));
   initial begin
     if (!$value$plusargs("vectors=%s", vector_path)) begin
       $display("ERROR missing +vectors=FILE");
@@ -68,22 +64,22 @@ module motion_controller_tb;
     end
     cycle = 0;
     while (!$feof(vectors)) begin
-      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a__0, vector_enc_a__1, vector_enc_a__2, vector_enc_b__0, vector_enc_b__1, vector_enc_b__2, vector_enc_index__0, vector_enc_index__1, vector_enc_index__2, expected_bus_read_data, expected_irq, expected_running, expected_active, expected_step_a__0, expected_step_a__1, expected_step_a__2, expected_step_b__0, expected_step_b__1, expected_step_b__2);
-      if (fields == 24) begin
+      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a, vector_enc_b, vector_enc_index, vector_limit_pos, vector_limit_neg, vector_home, vector_drive_alarm, vector_estop, vector_gpio_in, expected_bus_read_data, expected_irq, expected_running, expected_active, expected_step_a, expected_step_b, expected_drive_enable, expected_gpio_out);
+      if (fields == 22) begin
         reset = vector_reset;
         bus_address = vector_bus_address;
         bus_write_data = vector_bus_write_data;
         bus_write = vector_bus_write;
         bus_read = vector_bus_read;
-        enc_a__0 = vector_enc_a__0;
-        enc_a__1 = vector_enc_a__1;
-        enc_a__2 = vector_enc_a__2;
-        enc_b__0 = vector_enc_b__0;
-        enc_b__1 = vector_enc_b__1;
-        enc_b__2 = vector_enc_b__2;
-        enc_index__0 = vector_enc_index__0;
-        enc_index__1 = vector_enc_index__1;
-        enc_index__2 = vector_enc_index__2;
+        enc_a = vector_enc_a;
+        enc_b = vector_enc_b;
+        enc_index = vector_enc_index;
+        limit_pos = vector_limit_pos;
+        limit_neg = vector_limit_neg;
+        home = vector_home;
+        drive_alarm = vector_drive_alarm;
+        estop = vector_estop;
+        gpio_in = vector_gpio_in;
         #5 clock = 1'b1;
         #1;
         if (bus_read_data !== expected_bus_read_data) begin
@@ -102,28 +98,20 @@ module motion_controller_tb;
           $display("MISMATCH cycle=%0d signal=active expected=%h got=%h", cycle, expected_active, active);
           $finish;
         end
-        if (step_a__0 !== expected_step_a__0) begin
-          $display("MISMATCH cycle=%0d signal=step_a__0 expected=%h got=%h", cycle, expected_step_a__0, step_a__0);
+        if (step_a !== expected_step_a) begin
+          $display("MISMATCH cycle=%0d signal=step_a expected=%h got=%h", cycle, expected_step_a, step_a);
           $finish;
         end
-        if (step_a__1 !== expected_step_a__1) begin
-          $display("MISMATCH cycle=%0d signal=step_a__1 expected=%h got=%h", cycle, expected_step_a__1, step_a__1);
+        if (step_b !== expected_step_b) begin
+          $display("MISMATCH cycle=%0d signal=step_b expected=%h got=%h", cycle, expected_step_b, step_b);
           $finish;
         end
-        if (step_a__2 !== expected_step_a__2) begin
-          $display("MISMATCH cycle=%0d signal=step_a__2 expected=%h got=%h", cycle, expected_step_a__2, step_a__2);
+        if (drive_enable !== expected_drive_enable) begin
+          $display("MISMATCH cycle=%0d signal=drive_enable expected=%h got=%h", cycle, expected_drive_enable, drive_enable);
           $finish;
         end
-        if (step_b__0 !== expected_step_b__0) begin
-          $display("MISMATCH cycle=%0d signal=step_b__0 expected=%h got=%h", cycle, expected_step_b__0, step_b__0);
-          $finish;
-        end
-        if (step_b__1 !== expected_step_b__1) begin
-          $display("MISMATCH cycle=%0d signal=step_b__1 expected=%h got=%h", cycle, expected_step_b__1, step_b__1);
-          $finish;
-        end
-        if (step_b__2 !== expected_step_b__2) begin
-          $display("MISMATCH cycle=%0d signal=step_b__2 expected=%h got=%h", cycle, expected_step_b__2, step_b__2);
+        if (gpio_out !== expected_gpio_out) begin
+          $display("MISMATCH cycle=%0d signal=gpio_out expected=%h got=%h", cycle, expected_gpio_out, gpio_out);
           $finish;
         end
         #4 clock = 1'b0;

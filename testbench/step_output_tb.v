@@ -21,6 +21,8 @@ module step_output_tb;
   reg [15:0] vector_dir_hold;
   reg clear_overrun = 0;
   reg vector_clear_overrun;
+  reg flush = 0;
+  reg vector_flush;
   wire out_a;
   reg expected_out_a;
   wire out_b;
@@ -35,11 +37,15 @@ module step_output_tb;
   reg expected_emitted;
   wire emitted_forward;
   reg expected_emitted_forward;
+  wire pending_forward;
+  reg expected_pending_forward;
+  wire pending_backward;
+  reg expected_pending_backward;
   integer vectors;
   integer fields;
   integer cycle;
   reg [8*1024-1:0] vector_path;
-  step_output uut (.clock(clock), .reset(reset), .step(step), .dir(dir), .mode(mode), .step_len(step_len), .step_space(step_space), .dir_setup(dir_setup), .dir_hold(dir_hold), .out_a(out_a), .out_b(out_b), .overrun(overrun), .mode_invalid(mode_invalid), .busy(busy), .clear_overrun(clear_overrun), .emitted(emitted), .emitted_forward(emitted_forward));
+  step_output uut (.clock(clock), .reset(reset), .step(step), .dir(dir), .mode(mode), .step_len(step_len), .step_space(step_space), .dir_setup(dir_setup), .dir_hold(dir_hold), .out_a(out_a), .out_b(out_b), .overrun(overrun), .mode_invalid(mode_invalid), .busy(busy), .clear_overrun(clear_overrun), .emitted(emitted), .emitted_forward(emitted_forward), .flush(flush), .pending_forward(pending_forward), .pending_backward(pending_backward));
   initial begin
     if (!$value$plusargs("vectors=%s", vector_path)) begin
       $display("ERROR missing +vectors=FILE");
@@ -52,8 +58,8 @@ module step_output_tb;
     end
     cycle = 0;
     while (!$feof(vectors)) begin
-      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_step, vector_dir, vector_mode, vector_step_len, vector_step_space, vector_dir_setup, vector_dir_hold, vector_clear_overrun, expected_out_a, expected_out_b, expected_overrun, expected_mode_invalid, expected_busy, expected_emitted, expected_emitted_forward);
-      if (fields == 16) begin
+      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_step, vector_dir, vector_mode, vector_step_len, vector_step_space, vector_dir_setup, vector_dir_hold, vector_clear_overrun, vector_flush, expected_out_a, expected_out_b, expected_overrun, expected_mode_invalid, expected_busy, expected_emitted, expected_emitted_forward, expected_pending_forward, expected_pending_backward);
+      if (fields == 19) begin
         reset = vector_reset;
         step = vector_step;
         dir = vector_dir;
@@ -63,6 +69,7 @@ module step_output_tb;
         dir_setup = vector_dir_setup;
         dir_hold = vector_dir_hold;
         clear_overrun = vector_clear_overrun;
+        flush = vector_flush;
         #5 clock = 1'b1;
         #1;
         if (out_a !== expected_out_a) begin
@@ -91,6 +98,14 @@ module step_output_tb;
         end
         if (emitted_forward !== expected_emitted_forward) begin
           $display("MISMATCH cycle=%0d signal=emitted_forward expected=%h got=%h", cycle, expected_emitted_forward, emitted_forward);
+          $finish;
+        end
+        if (pending_forward !== expected_pending_forward) begin
+          $display("MISMATCH cycle=%0d signal=pending_forward expected=%h got=%h", cycle, expected_pending_forward, pending_forward);
+          $finish;
+        end
+        if (pending_backward !== expected_pending_backward) begin
+          $display("MISMATCH cycle=%0d signal=pending_backward expected=%h got=%h", cycle, expected_pending_backward, pending_backward);
           $finish;
         end
         #4 clock = 1'b0;

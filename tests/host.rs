@@ -1,9 +1,13 @@
 //! The host side: planner and coarse interpolator against closed-form
-//! cases and random paths, the path file parser's errors, and the driver
-//! running paths end to end through the RTL controller.
+//! cases and random paths, the path file parser's errors, the driver
+//! running paths end to end through the RTL controller, and aborts (E-stop,
+//! limit switch, drive alarm) reported by their cause.
 
+use motion_hdl::blocks::motion_controller::io_model::MachinePins;
+use motion_hdl::blocks::motion_controller::registers::{register_map, StopCause};
 use motion_hdl::host::{
-    interpolate, plan, Driver, DriverConfig, ModelBus, Path, PathError, RecordingBus, RtlBus,
+    interpolate, plan, ControllerBus, Driver, DriverConfig, DriverError, ModelBus, Path, PathError,
+    RecordingBus, RtlBus,
 };
 use motion_hdl::host::planner::junction_speed;
 use motion_hdl::sim::Backend;
@@ -211,6 +215,135 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
     assert!(log.contains("PERIOD_TICKS <- 0x000000c8"), "{log}");
     assert!(log.contains("FIFO_WRITE[1] <- 0xfffffffe"), "{log}");
     assert!(log.contains("CONTROL <- 0x00000001"), "{log}");
+    // Every drive enabled, limits and alarms kept enabled.
+    assert!(log.contains("IO_CONFIG[2] <- 0x0000000b"), "{log}");
+}
+
+/// Writes `fields` of register `name` (index `index`) through the map.
+fn write_fields(bus: &mut impl ControllerBus, name: &str, index: u32, fields: &[(&str, u64)]) {
+    let map = register_map(3, 4).unwrap();
+    let register = map.register(name).unwrap();
+    bus.write(register.address_of(index).unwrap(), register.pack(fields).unwrap());
+}
+
+/// An E-stop in the middle of a move through the RTL: the run fails naming
+/// the E-stop, every step counted left the pins, and the controller refuses
+/// the next run, saying why, until the E-stop is released and its latch
+/// cleared; then it runs again from where it stopped.
+#[test]
+fn an_e_stop_in_the_middle_of_a_move_is_reported_by_its_cause() {
+    let counts = vec![[20, -10, 5]; 30];
+    let mut bus = RtlBus::new(Backend::from_env_or(Backend::RustHdl).unwrap(), None).unwrap();
+    // Configuration and the first FIFO fill take about 150 clocks; the
+    // 30 periods 6000 more.
+    let estop = MachinePins {
+        estop: true,
+        ..Default::default()
+    };
+    bus.set_pins_at(2500, estop);
+    let mut driver = Driver::new(bus, DriverConfig::default()).unwrap();
+    let error = driver.run(&counts, |_| {}).unwrap_err();
+    let message = error.to_string();
+    assert!(message.starts_with("motion stopped: E-stop"), "{message}");
+    let DriverError::Stopped { cause, axis, commanded, .. } = error else {
+        panic!("not a stop: {message}")
+    };
+    assert_eq!((cause, axis), (StopCause::Estop, None));
+    let pins = driver.bus().encoders().map(|e| e.net as i32);
+    assert_eq!(commanded, pins, "the commanded position is the steps at the pins");
+    assert!(commanded[0] > 0 && commanded[0] < 20 * 30, "stopped part way: {commanded:?}");
+
+    // Held: the input is still active.
+    let error = driver.run(&[[1, 0, 0]], |_| {}).unwrap_err().to_string();
+    assert!(error.starts_with("RUN refused: the E-stop input is active"), "{error}");
+    // Released, but latched until STATUS.ESTOP is cleared.
+    driver.bus_mut().set_pins(MachinePins::default());
+    driver.bus_mut().wait(20);
+    let error = driver.run(&[[1, 0, 0]], |_| {}).unwrap_err().to_string();
+    assert!(error.contains("E-stop latched"), "{error}");
+    assert!(!error.contains("input is active"), "{error}");
+    write_fields(driver.bus_mut(), "STATUS", 0, &[("ESTOP", 1)]);
+    write_fields(driver.bus_mut(), "CONTROL", 0, &[("FLUSH", 1)]);
+    let report = driver.run(&[[3, 2, 1], [0, 0, 0]], |_| {}).unwrap();
+    assert_eq!(report.commanded, [commanded[0] + 3, commanded[1] + 2, commanded[2] + 1]);
+    assert_eq!(report.actual, report.commanded);
+}
+
+/// A limit switch and a drive alarm (on the model, fast): each stops the
+/// move, and the error names the cause and the axis. After the limit, a
+/// run toward it is refused until CLEAR_LIMITS; then a move away from the
+/// still-active switch runs to its end.
+#[test]
+fn a_limit_switch_or_a_drive_alarm_is_reported_with_its_axis() {
+    // Axis 1 moves toward its negative limit.
+    let toward = vec![[0, -10, 0]; 30];
+    let mut bus = ModelBus::new();
+    let limit = MachinePins {
+        limit_neg: 1 << 1,
+        ..Default::default()
+    };
+    bus.set_pins_at(2500, limit);
+    let mut driver = Driver::new(bus, DriverConfig::default()).unwrap();
+    let error = driver.run(&toward, |_| {}).unwrap_err();
+    let message = error.to_string();
+    assert!(message.starts_with("motion stopped: limit switch on axis 1"), "{message}");
+    assert!(message.contains("negative limit"), "{message}");
+    let DriverError::Stopped { cause, axis, commanded, .. } = error else {
+        panic!("not a stop: {message}")
+    };
+    assert_eq!((cause, axis), (StopCause::Limit, Some(1)));
+    assert!(commanded[1] < 0 && commanded[1] > -300, "{commanded:?}");
+
+    let error = driver.run(&[[0, 5, 0]], |_| {}).unwrap_err().to_string();
+    assert!(error.starts_with("RUN refused: axis 1: negative limit"), "{error}");
+    // Back off: clear the trip, flush, move away (the switch still active).
+    write_fields(driver.bus_mut(), "IO_COMMAND", 1, &[("CLEAR_LIMITS", 1)]);
+    write_fields(driver.bus_mut(), "CONTROL", 0, &[("FLUSH", 1)]);
+    let report = driver.run(&[[0, 5, 0], [0, 5, 0], [0, 0, 0]], |_| {}).unwrap();
+    assert_eq!(report.commanded, [0, commanded[1] + 10, 0]);
+
+    // A drive alarm on axis 2 stops every axis.
+    let mut bus = ModelBus::new();
+    let alarm = MachinePins {
+        drive_alarm: 1 << 2,
+        ..Default::default()
+    };
+    bus.set_pins_at(2500, alarm);
+    let mut driver = Driver::new(bus, DriverConfig::default()).unwrap();
+    let error = driver.run(&vec![[10, 10, 0]; 30], |_| {}).unwrap_err();
+    let message = error.to_string();
+    assert!(message.starts_with("motion stopped: drive alarm on axis 2"), "{message}");
+    let DriverError::Stopped { cause, axis, commanded, .. } = error else {
+        panic!("not a stop: {message}")
+    };
+    assert_eq!((cause, axis), (StopCause::DriveAlarm, Some(2)));
+    assert!(commanded[0] > 0 && commanded[0] < 300, "{commanded:?}");
+}
+
+/// The CLI on an abort: `simulate --trip estop@2` stops with the cause and
+/// a non-zero exit status; a bad `--trip` is named.
+#[test]
+fn simulate_reports_an_abort_by_its_cause_and_fails() {
+    let square = motion_hdl::tools::repo_root().join("examples/square.path");
+    let dir = tempfile::tempdir().unwrap();
+    let run = |trip: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
+            .arg("simulate")
+            .arg(&square)
+            .args(["--backend", "rust-hdl", "--trip", trip, "--out-dir"])
+            .arg(dir.path())
+            .output()
+            .unwrap()
+    };
+    let out = run("estop@2");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("motion-hdl: motion stopped: E-stop"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let out = run("w-limit-pos@2");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("--trip `w-limit-pos@2`: unknown axis `w`"), "{stderr}");
 }
 
 /// The CLI: a malformed path file stops with the file, line and problem,

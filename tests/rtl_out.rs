@@ -105,3 +105,48 @@ fn committed_synthesis_report_covers_every_exported_module() {
         "synthesis-report.md is stale: run `cargo run --release -- report`"
     );
 }
+
+/// Port names in the first column of a block's rustdoc port table (the
+/// rows of the first `| port | dir |` table of its `mod.rs`).
+fn rustdoc_ports(source: &str) -> BTreeSet<String> {
+    let mut ports = BTreeSet::new();
+    let mut in_table = false;
+    for line in source.lines() {
+        let Some(row) = line.strip_prefix("//! |") else {
+            if in_table {
+                break;
+            }
+            continue;
+        };
+        if row.trim_start().starts_with("port |") {
+            in_table = true;
+            continue;
+        }
+        if !in_table || row.starts_with("---") {
+            continue;
+        }
+        let first = row.split('|').next().unwrap_or("");
+        ports.extend(first.split('`').skip(1).step_by(2).map(str::to_string));
+    }
+    ports
+}
+
+/// One fact, one place: a block's `PORT_DOCS` (the export header and the
+/// `rtl-out` index) names exactly the exported top's ports, and its
+/// rustdoc port table names the same ones. Checked for the blocks whose
+/// ports are all plain names (`dda_interpolator` still has per-axis
+/// `__k` ports, documented once as `__i`).
+#[test]
+fn port_docs_and_the_rustdoc_port_table_name_the_exported_ports() {
+    for spec in catalog().into_iter().filter(|s| s.name != "dda_interpolator") {
+        let block = (spec.build)();
+        let top: BTreeSet<String> =
+            motion_hdl::export::top_ports(block.as_ref()).into_iter().map(|p| p.name).collect();
+        let documented: BTreeSet<String> = spec.port_docs.iter().map(|(name, _)| name.to_string()).collect();
+        assert!(top.len() > 3, "{}: {top:?}", spec.name);
+        assert_eq!(documented, top, "{}: PORT_DOCS against the exported ports", spec.name);
+        let source = std::fs::read_to_string(repo_root().join(format!("src/blocks/{}/mod.rs", spec.name))).unwrap();
+        assert_eq!(rustdoc_ports(&source), top, "{}: rustdoc port table against the exported ports", spec.name);
+        assert!(top.iter().all(|p| !p.contains("__")), "{}: a port name with `__`: {top:?}", spec.name);
+    }
+}

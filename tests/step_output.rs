@@ -1,6 +1,6 @@
 //! `step_output`: RTL against the model, an independent monitor of the
-//! output pins for every timing rule and the net step count in each mode,
-//! saturation, and cross-simulation.
+//! output pins for every timing rule and the net step count in each mode
+//! (with random flushes), flush, saturation, and cross-simulation.
 
 use motion_hdl::blocks::step_output::model::{
     pending_limits, StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX, PENDING_MIN,
@@ -26,8 +26,10 @@ fn long_run_rtl() -> Box<dyn Stepper> {
 /// Runs of requests, each with one mode and one set of timings: bursts of
 /// random density, direction reversals at random points (so they land at
 /// every point of the timing sequence), then a drain until the stage is idle,
-/// when the next run may change the mode and timings. `busy` comes from
-/// the caller, so the same driver runs against the model or the RTL.
+/// when the next run may change the mode and timings. A `flush` comes about
+/// once in 200 clocks, more often while a pulse is high. The last outputs
+/// come from the caller, so the same driver runs against the model or the
+/// RTL.
 struct Driver {
     rng: StdRng,
     settings: StepOutputInputs,
@@ -59,9 +61,9 @@ impl Driver {
         }
     }
 
-    fn next(&mut self, busy: bool) -> StepOutputInputs {
+    fn next(&mut self, last: &StepOutputOutputs) -> StepOutputInputs {
         let rng = &mut self.rng;
-        if self.burst_left == 0 && !busy && rng.gen_ratio(1, 3) {
+        if self.burst_left == 0 && !last.busy && rng.gen_ratio(1, 3) {
             // A new run: settings change only while idle.
             self.runs += 1;
             self.settings = StepOutputInputs {
@@ -78,6 +80,8 @@ impl Driver {
         }
         let mut inputs = self.settings;
         inputs.clear_overrun = rng.gen_ratio(1, 300);
+        inputs.flush =
+            rng.gen_ratio(1, 200) || (pulse_high(inputs.mode, last) && rng.gen_ratio(1, 60));
         if self.burst_left > 0 {
             self.burst_left -= 1;
             inputs.step = rng.gen_bool(self.density);
@@ -90,20 +94,84 @@ impl Driver {
     }
 }
 
+/// A step pulse is high at the pins (step/dir: step; up/down: either).
+fn pulse_high(mode: u8, out: &StepOutputOutputs) -> bool {
+    match mode {
+        0 | 3 => out.out_a,
+        1 => out.out_a || out.out_b,
+        _ => false,
+    }
+}
+
+/// Where the flushes of a run landed, so a run that never flushes at an
+/// interesting point cannot pass.
+#[derive(Debug, Default)]
+struct Flushes {
+    total: u32,
+    /// While a step pulse was high.
+    in_pulse: u32,
+    /// With a request on the same clock.
+    with_request: u32,
+    /// With steps pending.
+    with_pending: u32,
+    /// On the clock a step left.
+    with_emit: u32,
+}
+
+impl Flushes {
+    fn count(
+        &mut self,
+        inputs: &StepOutputInputs,
+        before: &StepOutputOutputs,
+        after: &StepOutputOutputs,
+    ) {
+        if inputs.flush {
+            self.total += 1;
+            self.in_pulse += pulse_high(inputs.mode, before) as u32;
+            self.with_request += inputs.step as u32;
+            self.with_pending += (before.pending_forward || before.pending_backward) as u32;
+            self.with_emit += after.emitted as u32;
+        }
+    }
+
+    /// Each kind of flush came at least `n` times (`in_pulse` only where
+    /// the mode has pulses).
+    fn assert_at_least(&self, n: u32, pulses: bool) {
+        println!("flushes: {self:?}");
+        assert!(
+            (self.in_pulse >= n || !pulses)
+                && self.with_request >= n
+                && self.with_pending >= n
+                && self.with_emit >= n,
+            "flushes: {self:?}"
+        );
+    }
+}
+
 #[test]
 fn rtl_matches_model_cycle_by_cycle_in_every_mode() {
     let mut driver = Driver::new(0x57e9, vec![0, 1, 2, 3]);
     let mut dut = long_run_rtl();
     let mut model = StepOutputModel::new(16, 16);
-    let mut busy = false;
+    let mut last = StepOutputOutputs::default();
+    let mut flushes = Flushes::default();
+    let mut pending_flags = (0, 0);
     for cycle in 0..1_000_000 {
-        let mut inputs = driver.next(busy);
+        let mut inputs = driver.next(&last);
         inputs.reset = cycle % 250_000 == 249_999;
         let rtl = rtl_clock(dut.as_mut(), &inputs);
         assert_eq!(rtl, model.step(inputs), "cycle {cycle}: {inputs:?}");
-        busy = rtl.busy;
+        flushes.count(&inputs, &last, &rtl);
+        pending_flags.0 += rtl.pending_forward as u32;
+        pending_flags.1 += rtl.pending_backward as u32;
+        last = rtl;
     }
     assert!(driver.runs > 500, "only {} runs", driver.runs);
+    flushes.assert_at_least(100, true);
+    assert!(
+        pending_flags.0 > 10_000 && pending_flags.1 > 10_000,
+        "{pending_flags:?}"
+    );
 }
 
 /// A 4-bit pending count (-8..7) saturates often under the same stimulus:
@@ -113,22 +181,32 @@ fn narrow_pending_count_saturates_and_clears_like_the_model() {
     let mut driver = Driver::new(0x4a7, vec![0, 1, 2]);
     let mut harness = Harness::new("step_output", StepOutput::<16, 4>::default()).unwrap();
     let mut model = StepOutputModel::new(16, 4);
-    let (mut busy, mut before, mut overruns, mut clears) = (false, false, 0, 0);
+    let (mut last, mut overruns, mut clears) = (StepOutputOutputs::default(), 0, 0);
+    let mut flushes = Flushes::default();
+    let mut saturated_flushes = 0;
     for cycle in 0..300_000 {
-        let inputs = driver.next(busy);
+        let before = model.pending();
+        let inputs = driver.next(&last);
         let rtl = rtl_clock(&mut harness, &inputs);
         let expected = model.step(inputs);
         assert_eq!(rtl, expected, "cycle {cycle}: {inputs:?}");
-        overruns += (!before && rtl.overrun) as u32;
-        clears += (before && inputs.clear_overrun && !rtl.overrun) as u32;
-        busy = rtl.busy;
-        before = rtl.overrun;
+        overruns += (!last.overrun && rtl.overrun) as u32;
+        clears += (last.overrun && inputs.clear_overrun && !rtl.overrun) as u32;
+        flushes.count(&inputs, &last, &rtl);
+        saturated_flushes += (inputs.flush && (before == 7 || before == -8)) as u32;
+        last = rtl;
     }
     assert!(overruns > 50 && clears > 50, "{overruns} overruns, {clears} clears");
+    flushes.assert_at_least(20, true);
+    assert!(
+        saturated_flushes > 20,
+        "{saturated_flushes} flushes of a saturated count"
+    );
 }
 
 /// Checks the output pins against the port contract of one mode, knowing
-/// only the settings, the requests and the pins (not the model).
+/// only the settings, the requests, the flushes and the pins (not the
+/// model).
 struct PinMonitor {
     mode: u8,
     len: u64,
@@ -144,6 +222,12 @@ struct PinMonitor {
     /// Net steps signalled on `emitted` / `emitted_forward`.
     strobed: i64,
     requested: i64,
+    /// Net requested steps a flush dropped before they left.
+    flushed: i64,
+    /// Requested, not yet emitted, not flushed (signed).
+    pending: i64,
+    /// A flush came and no request since: no step may leave.
+    flushed_idle: bool,
     checks: u64,
 }
 
@@ -164,8 +248,58 @@ impl PinMonitor {
             emitted: 0,
             strobed: 0,
             requested: 0,
+            flushed: 0,
+            pending: 0,
+            flushed_idle: false,
             checks: 0,
         }
+    }
+
+    /// Counts the request and flush of one clock against the step that
+    /// left at its edge (`out.emitted`): the steps still pending, which
+    /// `pending_forward`/`pending_backward` must show; a flush drops them
+    /// and this clock's request, and then no step leaves until a new
+    /// request. The stage is never saturated here.
+    fn count(&mut self, cycle: u64, inputs: &StepOutputInputs, out: &StepOutputOutputs) {
+        let sign = |forward: bool| if forward { 1 } else { -1 };
+        if out.emitted {
+            assert!(
+                !self.flushed_idle,
+                "cycle {cycle}: a step left after a flush with no request since"
+            );
+        }
+        let requested = if inputs.step { sign(inputs.dir) } else { 0 };
+        let left = if out.emitted {
+            sign(out.emitted_forward)
+        } else {
+            0
+        };
+        self.requested += requested;
+        self.pending += requested - left;
+        if inputs.flush {
+            self.flushed += self.pending;
+            self.pending = 0;
+            self.flushed_idle = true;
+        } else if inputs.step {
+            self.flushed_idle = false;
+        }
+        assert_eq!(
+            (out.pending_forward, out.pending_backward),
+            (self.pending > 0, self.pending < 0),
+            "cycle {cycle}: pending flags with {} steps pending",
+            self.pending
+        );
+    }
+
+    /// At the end of a run, idle: every step requested and not flushed
+    /// came out at the pins, net.
+    fn assert_net_count(&self, what: &str) {
+        assert_eq!(self.pending, 0, "{what}: steps still pending when idle");
+        assert_eq!(
+            self.emitted,
+            self.requested - self.flushed,
+            "{what}: net emitted steps != net requested - net flushed"
+        );
     }
 
     /// The `emitted` strobe must mark each step seen at the pins, in the
@@ -272,12 +406,15 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
         let mut driver = Driver::new(0x9e0 + mode as u64, vec![mode]);
         let mut dut = long_run_rtl();
         let mut monitor: Option<PinMonitor> = None;
-        let mut busy = false;
+        let mut last = StepOutputOutputs::default();
         let mut checks = 0;
         let mut runs_checked = 0;
+        let mut flushes = Flushes::default();
+        let mut flushed_steps = 0;
         for cycle in 0..1_000_000u64 {
-            let inputs = driver.next(busy);
+            let inputs = driver.next(&last);
             let out = rtl_clock(dut.as_mut(), &inputs);
+            flushes.count(&inputs, &last, &out);
             let pins = (out.out_a, out.out_b);
             // A new run starts when the settings change; the stage takes the
             // mode while idle, so the previous run must be complete.
@@ -292,25 +429,21 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
             });
             if !same {
                 if let Some(m) = monitor.take() {
-                    assert!(!busy, "settings changed while busy");
-                    assert_eq!(
-                        m.emitted, m.requested,
-                        "mode {mode}: net emitted steps != net requested"
-                    );
+                    assert!(!last.busy, "settings changed while busy");
+                    m.assert_net_count(&format!("mode {mode}, cycle {cycle}"));
                     checks += m.checks;
                     runs_checked += 1;
+                    flushed_steps += m.flushed.abs();
                 }
                 monitor = Some(PinMonitor::new(&inputs, pins));
             }
             let m = monitor.as_mut().unwrap();
-            if inputs.step {
-                m.requested += if inputs.dir { 1 } else { -1 };
-            }
             m.sample(cycle, pins);
             m.strobe(&out);
+            m.count(cycle, &inputs, &out);
             assert!(!out.overrun, "mode {mode}: overrun without saturation");
             assert_eq!(out.mode_invalid, mode == 3);
-            busy = out.busy;
+            last = out;
         }
         // The last run: drain it with its own settings and check it too.
         let mut m = monitor.take().unwrap();
@@ -322,18 +455,20 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
             let out = rtl_clock(dut.as_mut(), &idle);
             m.sample(cycle, (out.out_a, out.out_b));
             m.strobe(&out);
+            m.count(cycle, &idle, &out);
             if !out.busy {
                 break;
             }
         }
-        assert_eq!(
-            m.emitted, m.requested,
-            "mode {mode}: the last run's net count"
-        );
+        m.assert_net_count(&format!("mode {mode}: the last run"));
         assert!(
             runs_checked > 300 && checks > 50_000,
             "mode {mode}: {runs_checked} runs, {checks} checks"
         );
+        // Quadrature has no pulse to flush in.
+        flushes.assert_at_least(100, mode != 2);
+        println!("mode {mode}: {runs_checked} runs, {checks} checks, {flushed_steps} steps flushed");
+        assert!(flushed_steps > 1000, "mode {mode}: {flushed_steps} steps flushed");
     }
 }
 
@@ -406,11 +541,11 @@ fn cosim_stimulus(
 ) -> Vec<Vec<u64>> {
     let mut driver = Driver::new(seed, modes);
     let mut model = StepOutputModel::new(timer_bits, pending_bits);
-    let mut busy = false;
+    let mut last = StepOutputOutputs::default();
     (0..cycles)
         .map(|_| {
-            let inputs = driver.next(busy);
-            busy = model.step(inputs).busy;
+            let inputs = driver.next(&last);
+            last = model.step(inputs);
             inputs.to_vector()
         })
         .collect()
@@ -668,4 +803,286 @@ fn a_mode_tied_from_time_0_holds_for_a_step_on_each_of_the_first_20_clocks() {
         }
     }
     assert_eq!(runs, 4 * 2 * 3 * 20);
+}
+
+/// Where a flush landed in a directed run.
+#[derive(Debug, Default)]
+struct FlushLanding {
+    in_pulse: u32,
+    on_emit: u32,
+    between_pulses: u32,
+    after_the_steps: u32,
+}
+
+/// Forward steps requested on clocks 1 to 3 after a reset (up to the flush),
+/// a flush on clock `flush_at`, and one more step (`forward_after`) requested `gap`
+/// clocks after the flush, against the model and the pin monitor: the pulse
+/// the flush meets keeps its full `step_len` (the monitor checks every
+/// pulse length), nothing leaves from the flush until the new request, the
+/// new step leaves, alone, and its pulse keeps step_space, dir_hold and
+/// dir_setup after the last pulse (the monitor's rules).
+fn flush_then_one_step(
+    mode: u8,
+    flush_at: u64,
+    gap: u64,
+    forward_after: bool,
+    landing: &mut FlushLanding,
+) {
+    let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
+    let mut model = StepOutputModel::new(16, 16);
+    let settings = StepOutputInputs {
+        mode,
+        step_len: 5,
+        step_space: 7,
+        dir_setup: 4,
+        dir_hold: 3,
+        ..Default::default()
+    };
+    let what = format!(
+        "mode {mode}, flush on clock {flush_at}, step {gap} later (forward {forward_after})"
+    );
+    let reset = StepOutputInputs {
+        reset: true,
+        ..settings
+    };
+    let mut last = rtl_clock(&mut harness, &reset);
+    assert_eq!(last, model.step(reset), "{what}: reset");
+    let mut m = PinMonitor::new(&settings, (false, false));
+    // The model is compared after the run, so that the checks here, which
+    // do not use it, are the ones that catch a broken flush.
+    let mut model_differs = None;
+    let mut left_before_flush = 0;
+    let mut left_after_request = Vec::new();
+    for clock in 1..=150u64 {
+        let mut inputs = settings;
+        if clock <= 3.min(flush_at) {
+            (inputs.step, inputs.dir) = (true, true);
+        }
+        if clock == flush_at + gap {
+            (inputs.step, inputs.dir) = (true, forward_after);
+        }
+        inputs.flush = clock == flush_at;
+        let out = rtl_clock(&mut harness, &inputs);
+        let expected = model.step(inputs);
+        if out != expected && model_differs.is_none() {
+            model_differs = Some(format!("clock {clock}: RTL {out:?}, model {expected:?}"));
+        }
+        m.sample(clock, (out.out_a, out.out_b));
+        m.strobe(&out);
+        m.count(clock, &inputs, &out);
+        if inputs.flush {
+            let pending = last.pending_forward || last.pending_backward;
+            if pulse_high(mode, &last) {
+                landing.in_pulse += 1;
+            } else if out.emitted {
+                landing.on_emit += 1;
+            } else if pending {
+                landing.between_pulses += 1;
+            } else {
+                landing.after_the_steps += 1;
+            }
+        }
+        if out.emitted {
+            if clock <= flush_at {
+                left_before_flush += 1;
+                assert!(out.emitted_forward, "{what}: clock {clock}");
+            } else {
+                assert!(
+                    clock > flush_at + gap,
+                    "{what}: a step left on clock {clock}, after the flush, before the request"
+                );
+                left_after_request.push(out.emitted_forward);
+            }
+        }
+        last = out;
+    }
+    assert!(!last.busy, "{what}: still busy");
+    let requested = 3.min(flush_at) as i64;
+    assert!(
+        left_before_flush <= requested,
+        "{what}: {left_before_flush} left"
+    );
+    assert_eq!(
+        left_after_request,
+        vec![forward_after],
+        "{what}: the step after the flush"
+    );
+    assert_eq!(
+        m.flushed,
+        requested - left_before_flush,
+        "{what}: steps flushed"
+    );
+    m.assert_net_count(&what);
+    assert_eq!(model_differs, None, "{what}: RTL and model");
+}
+
+#[test]
+fn a_flush_completes_the_pulse_it_meets_and_the_next_step_keeps_every_interval() {
+    let mut landing = FlushLanding::default();
+    for mode in 0..3u8 {
+        for flush_at in 1..=45 {
+            for gap in [1, 2, 3, 4, 6, 9, 14] {
+                for forward_after in [true, false] {
+                    flush_then_one_step(mode, flush_at, gap, forward_after, &mut landing);
+                }
+            }
+        }
+    }
+    println!("{landing:?}");
+    assert!(
+        landing.in_pulse >= 100
+            && landing.on_emit >= 10
+            && landing.between_pulses >= 100
+            && landing.after_the_steps >= 100,
+        "{landing:?}"
+    );
+}
+
+/// A request on the flush clock is dropped with the pending steps (and is
+/// an overrun only if it met a saturated count); one on the next clock is
+/// kept.
+#[test]
+fn a_flush_drops_the_request_of_its_own_clock() {
+    for mode in 0..3u8 {
+        for pending_before in [0u32, 1, 5] {
+            for forward in [true, false] {
+                let what = format!("mode {mode}, {pending_before} pending, forward {forward}");
+                let mut harness =
+                    Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
+                let mut model = StepOutputModel::new(16, 16);
+                let mut model_differs = None;
+                // Long enough that the requested steps are still pending.
+                let settings = StepOutputInputs {
+                    mode,
+                    dir: forward,
+                    step_len: 30,
+                    step_space: 30,
+                    dir_setup: 2,
+                    dir_hold: 2,
+                    ..Default::default()
+                };
+                // The model is compared last, after the checks that do not use it.
+                let mut clock = |inputs: StepOutputInputs| {
+                    let out = rtl_clock(&mut harness, &inputs);
+                    let expected = model.step(inputs);
+                    if out != expected && model_differs.is_none() {
+                        model_differs =
+                            Some(format!("{inputs:?}: RTL {out:?}, model {expected:?}"));
+                    }
+                    out
+                };
+                let mut emitted = 0;
+                for _ in 0..pending_before {
+                    emitted += clock(StepOutputInputs {
+                        step: true,
+                        ..settings
+                    })
+                    .emitted as u32;
+                }
+                let out = clock(StepOutputInputs {
+                    step: true,
+                    flush: true,
+                    ..settings
+                });
+                emitted += out.emitted as u32;
+                assert!(
+                    !out.pending_forward && !out.pending_backward,
+                    "{what}: pending after the flush"
+                );
+                assert!(!out.overrun, "{what}");
+                let before_flush = emitted;
+                for _ in 0..200 {
+                    let out = clock(settings);
+                    assert!(!out.emitted, "{what}: a step left after the flush");
+                    assert!(!out.pending_forward && !out.pending_backward, "{what}");
+                }
+                assert!(before_flush <= 1, "{what}: {before_flush} steps left");
+                // The next request after the flush is kept.
+                clock(StepOutputInputs {
+                    step: true,
+                    ..settings
+                });
+                let mut left = 0;
+                for _ in 0..200 {
+                    let out = clock(settings);
+                    if out.emitted {
+                        assert_eq!(out.emitted_forward, forward, "{what}");
+                        left += 1;
+                    }
+                }
+                assert_eq!(left, 1, "{what}: the request after the flush");
+                assert_eq!(model_differs, None, "{what}: RTL and model");
+            }
+        }
+    }
+}
+
+/// A flush with a request that meets a saturated count: the request is
+/// dropped with the rest and flags `overrun`, as it would without the flush;
+/// the count is empty after it.
+#[test]
+fn a_flush_with_a_request_at_a_saturated_count_flags_overrun() {
+    let (min, max) = pending_limits(4);
+    for forward in [true, false] {
+        let mut harness = Harness::new("step_output", StepOutput::<16, 4>::default()).unwrap();
+        let mut model = StepOutputModel::new(16, 4);
+        let mut model_differs = None;
+        let slow = StepOutputInputs {
+            dir: forward,
+            step_len: 1000,
+            step_space: 1000,
+            ..Default::default()
+        };
+        // The model is compared last, after the checks that do not use it.
+        let mut clock = |inputs: StepOutputInputs| {
+            let out = rtl_clock(&mut harness, &inputs);
+            let expected = model.step(inputs);
+            if out != expected && model_differs.is_none() {
+                model_differs = Some(format!("{inputs:?}: RTL {out:?}, model {expected:?}"));
+            }
+            out
+        };
+        // Fill to the limit without an overrun (the first step leaves).
+        // The first step leaves at once; then the count fills to its limit.
+        let sign = if forward { 1 } else { -1 };
+        let limit = if forward { max } else { min };
+        let mut pending = 0;
+        while pending != limit {
+            let out = clock(StepOutputInputs { step: true, ..slow });
+            assert!(
+                !out.overrun,
+                "forward {forward}: overrun at {pending} pending"
+            );
+            pending += sign - if out.emitted { sign } else { 0 };
+            assert_eq!(
+                (out.pending_forward, out.pending_backward),
+                (pending > 0, pending < 0)
+            );
+        }
+        let out = clock(StepOutputInputs {
+            step: true,
+            flush: true,
+            ..slow
+        });
+        assert!(
+            out.overrun,
+            "forward {forward}: the dropped request at the limit"
+        );
+        assert!(!out.pending_forward && !out.pending_backward);
+        // The pulse in flight completes; nothing follows it.
+        let mut rises = 0;
+        let mut last_a = out.out_a;
+        for _ in 0..5000 {
+            let out = clock(StepOutputInputs {
+                clear_overrun: true,
+                ..slow
+            });
+            rises += (out.out_a && !last_a) as u32;
+            last_a = out.out_a;
+            assert!(!out.overrun && !out.emitted);
+            assert!(!out.pending_forward && !out.pending_backward);
+        }
+        assert_eq!(rises, 0, "forward {forward}: a step after the flush");
+        assert_eq!(model_differs, None, "forward {forward}: RTL and model");
+    }
 }

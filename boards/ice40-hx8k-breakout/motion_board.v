@@ -3,9 +3,15 @@
 // interface. Build (pins in motion_board.pcf):
 //
 //   yosys -p 'read_verilog motion_board.v ../../rtl-out/motion_controller.v \
-//             ../../rtl-out/external_bus_adapter.v; synth_ice40 -top motion_board -json board.json'
+//             ../../rtl-out/external_bus_adapter.v; \
+//             synth_ice40 -dffe_min_ce_use 4 -top motion_board -json board.json'
 //   nextpnr-ice40 --hx8k --package ct256 --pcf motion_board.pcf --json board.json --asc board.asc --freq 48
 //   icepack board.asc board.bin
+//
+// The design fills about 96 % of the HX8K's logic cells. Without
+// `-dffe_min_ce_use 4` (an enable shared by fewer than 4 flip-flops goes
+// into their LUTs rather than onto the clock enable, which the 8 cells of
+// a tile share) nextpnr could not legalise the placement.
 //
 // Clocking: the board's 12 MHz oscillator feeds the PLL, which makes the
 // one 48 MHz system clock (icepll -i 12 -o 48). Everything runs on it; the
@@ -14,9 +20,20 @@
 // that file's header, in system clocks).
 //
 // Reset: held while the PLL is unlocked or RESET_N_PIN is low, released
-// synchronously. At reset every axis output is low and the controller is
-// stopped; the DSP then configures it through the register map in
+// synchronously. At reset every axis output, every drive enable and every
+// general output is low and the controller is stopped; the DSP then
+// configures it through the register map in
 // rtl-out/motion_controller_regs.h.
+//
+// Machine I/O: the limit, home, drive-alarm and E-stop inputs are active
+// high (high = tripped, in alarm, stopped). The pin file pulls every one of
+// them up, so normally-closed switches wired to ground read low while closed
+// and an open or broken wire reads tripped (fail-safe). For normally-open
+// wiring set INPUT_POLARITY (estop has no polarity bit: wire it NC). A
+// machine without some switch disables it by register (IO_CONFIG) or ties
+// the input low here; estop cannot be disabled. Each drive's enable is
+// X/Y/Z_DRIVE_ENABLE, set per axis with IO_CONFIG.DRIVE_ENABLE and dropped
+// by the controller on E-stop, watchdog expiry or that drive's alarm.
 
 `default_nettype none
 
@@ -35,7 +52,15 @@ module motion_board (
     input  wire        X_ENC_A, X_ENC_B, X_ENC_Z,
     input  wire        Y_ENC_A, Y_ENC_B, Y_ENC_Z,
     input  wire        Z_ENC_A, Z_ENC_B, Z_ENC_Z,
-    output wire        DRIVE_ENABLE,
+    // Machine I/O: switches and alarms (active high, pulled up: fail-safe)
+    input  wire        X_LIMIT_POS, X_LIMIT_NEG, X_HOME, X_ALARM,
+    input  wire        Y_LIMIT_POS, Y_LIMIT_NEG, Y_HOME, Y_ALARM,
+    input  wire        Z_LIMIT_POS, Z_LIMIT_NEG, Z_HOME, Z_ALARM,
+    input  wire        ESTOP,
+    output wire        X_DRIVE_ENABLE, Y_DRIVE_ENABLE, Z_DRIVE_ENABLE,
+    // General I/O (spindle, coolant, probe, ...)
+    input  wire [7:0]  GPIO_IN,
+    output wire [7:0]  GPIO_OUT,
     output wire        LED_RUNNING,
     output wire        LED_IRQ
 );
@@ -86,23 +111,35 @@ module motion_board (
     wire irq;
     wire running;
     wire active;
+    // Bit k of each vector is axis k: X = 0, Y = 1, Z = 2.
+    wire [2:0] step_a;
+    wire [2:0] step_b;
+    wire [2:0] drive_enable;
     motion_controller controller (
         .clock(clock), .reset(reset),
         .bus_address(reg_address), .bus_write_data(reg_write_data),
         .bus_write(reg_write), .bus_read(reg_read), .bus_read_data(reg_read_data),
         .irq(irq), .running(running), .active(active),
-        .enc_a__0(X_ENC_A), .enc_b__0(X_ENC_B), .enc_index__0(X_ENC_Z),
-        .enc_a__1(Y_ENC_A), .enc_b__1(Y_ENC_B), .enc_index__1(Y_ENC_Z),
-        .enc_a__2(Z_ENC_A), .enc_b__2(Z_ENC_B), .enc_index__2(Z_ENC_Z),
-        .step_a__0(X_STEP), .step_b__0(X_DIR),
-        .step_a__1(Y_STEP), .step_b__1(Y_DIR),
-        .step_a__2(Z_STEP), .step_b__2(Z_DIR)
+        .enc_a({Z_ENC_A, Y_ENC_A, X_ENC_A}),
+        .enc_b({Z_ENC_B, Y_ENC_B, X_ENC_B}),
+        .enc_index({Z_ENC_Z, Y_ENC_Z, X_ENC_Z}),
+        .limit_pos({Z_LIMIT_POS, Y_LIMIT_POS, X_LIMIT_POS}),
+        .limit_neg({Z_LIMIT_NEG, Y_LIMIT_NEG, X_LIMIT_NEG}),
+        .home({Z_HOME, Y_HOME, X_HOME}),
+        .drive_alarm({Z_ALARM, Y_ALARM, X_ALARM}),
+        .estop(ESTOP),
+        .gpio_in(GPIO_IN),
+        .step_a(step_a), .step_b(step_b),
+        .drive_enable(drive_enable),
+        .gpio_out(GPIO_OUT)
     );
 
+    assign {Z_STEP, Y_STEP, X_STEP} = step_a;
+    assign {Z_DIR, Y_DIR, X_DIR}    = step_b;
+    assign {Z_DRIVE_ENABLE, Y_DRIVE_ENABLE, X_DRIVE_ENABLE} = drive_enable;
     assign DSP_IRQ_N    = ~irq;
-    // `active`, not `running`: the last steps of a move leave after the
-    // periods stop.
-    assign DRIVE_ENABLE = active;
+    // `active` (steps still leaving after `running` falls) is not brought
+    // out: the drive enables are the controller's drive_enable outputs.
     assign LED_RUNNING  = running;
     assign LED_IRQ      = irq;
 endmodule

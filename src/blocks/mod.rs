@@ -9,6 +9,7 @@ pub mod dda_interpolator;
 pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;
+pub mod input_conditioner;
 pub mod interrupt_controller;
 pub mod motion_controller;
 pub mod pulse_counter;

@@ -7,7 +7,7 @@ use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
-use crate::blocks::motion_controller::{self, MotionController};
+use crate::blocks::motion_controller::{self, MotionController3};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
@@ -196,7 +196,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
             fmax_target_mhz: 100.0,
             lut4_budget: None,
             logic_cell_budget: Some(2500),
-            build: || Box::new(MotionController::<3, 4, 5>::default()),
+            build: || Box::new(MotionController3::default()),
         },
     ]
 }

@@ -1,12 +1,16 @@
 //! The register bus the driver talks to, and its implementations: the RTL
 //! simulation of `motion_controller` on either simulation backend (with each
 //! axis's steps looped back into its encoder), the reference model, and a
-//! recorder of register writes.
+//! recorder of register writes. The two simulated controllers also drive
+//! the machine-I/O pins (limits, home, drive alarms, E-stop, general
+//! inputs), now or from a given clock on, so that a test or `simulate` can
+//! trip a switch in the middle of a move.
 
 use std::fmt::Write as _;
 
 use std::path::Path;
 
+use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
@@ -43,6 +47,30 @@ pub trait ControllerBus {
     }
 }
 
+/// Machine-I/O pin levels scheduled by clock: the pins take each entry's
+/// levels from the clock that entry names on.
+#[derive(Clone, Debug, Default)]
+struct PinSchedule {
+    /// (clock, pins), in clock order.
+    pending: Vec<(u64, MachinePins)>,
+}
+
+impl PinSchedule {
+    fn add(&mut self, clock: u64, pins: MachinePins) {
+        let at = self.pending.partition_point(|(c, _)| *c <= clock);
+        self.pending.insert(at, (clock, pins));
+    }
+
+    /// Applies to `pins` every entry due at clock `now`.
+    fn apply(&mut self, now: u64, pins: &mut MachinePins) {
+        let due = self.pending.partition_point(|(c, _)| *c <= now);
+        if due > 0 {
+            *pins = self.pending[due - 1].1;
+            self.pending.drain(..due);
+        }
+    }
+}
+
 /// The 3-axis exported controller (16-entry FIFOs) in RTL simulation, on
 /// either backend, each axis's step/dir pins driving a [`SimulatedEncoder`]
 /// on its encoder inputs.
@@ -62,6 +90,7 @@ pub struct RtlBus {
     /// Motor positions (net pin steps) sampled every `sample_every` clocks.
     samples: Vec<[i64; 3]>,
     sample_every: u64,
+    schedule: PinSchedule,
 }
 
 impl RtlBus {
@@ -84,7 +113,26 @@ impl RtlBus {
             rate_window: 10_000,
             samples: Vec::new(),
             sample_every: 0,
+            schedule: PinSchedule::default(),
         })
+    }
+
+    /// Drives the machine-I/O pins with `pins` from the next clock on. At
+    /// power-up every pin is low: no switch tripped, no alarm, no E-stop.
+    pub fn set_pins(&mut self, pins: MachinePins) {
+        self.inputs.pins = pins;
+    }
+
+    /// Drives the machine-I/O pins with `pins` from clock `clock` on
+    /// ([`ControllerBus::cycles`] counts the clocks run): a switch tripped
+    /// in the middle of a move.
+    pub fn set_pins_at(&mut self, clock: u64, pins: MachinePins) {
+        self.schedule.add(clock, pins);
+    }
+
+    /// The machine-I/O pins driven now.
+    pub fn pins(&self) -> MachinePins {
+        self.inputs.pins
     }
 
     /// Samples the motor positions (net steps at the pins) every `clocks`
@@ -125,6 +173,7 @@ impl ControllerBus for RtlBus {
         for (pins, e) in self.inputs.encoders.iter_mut().zip(&self.encoders) {
             *pins = e.outputs();
         }
+        self.schedule.apply(self.rtl.cycles(), &mut self.inputs.pins);
         self.inputs.write_vector(&mut self.vector);
         self.rtl
             .step_into(&self.vector, &mut self.outputs)
@@ -163,6 +212,8 @@ pub struct ModelBus {
     model: MotionControllerModel,
     irq: bool,
     cycles: u64,
+    pins: MachinePins,
+    schedule: PinSchedule,
 }
 
 impl ModelBus {
@@ -172,12 +223,31 @@ impl ModelBus {
             model: MotionControllerModel::new(3, 4).expect("3 axes fit"),
             irq: false,
             cycles: 0,
+            pins: MachinePins::default(),
+            schedule: PinSchedule::default(),
         }
+    }
+
+    /// Drives the machine-I/O pins with `pins` from the next clock on (at
+    /// power-up every pin is low).
+    pub fn set_pins(&mut self, pins: MachinePins) {
+        self.pins = pins;
+    }
+
+    /// Drives the machine-I/O pins with `pins` from clock `clock` on.
+    pub fn set_pins_at(&mut self, clock: u64, pins: MachinePins) {
+        self.schedule.add(clock, pins);
+    }
+
+    /// The machine-I/O pins driven now.
+    pub fn pins(&self) -> MachinePins {
+        self.pins
     }
 }
 
 impl ControllerBus for ModelBus {
     fn clock(&mut self, address: u32, write_data: u32, write: bool, read: bool) -> u32 {
+        self.schedule.apply(self.cycles, &mut self.pins);
         let out = self.model.step(&ControllerInputs {
             reset: false,
             address,
@@ -185,6 +255,7 @@ impl ControllerBus for ModelBus {
             write,
             read,
             encoders: vec![(false, false, false); 3],
+            pins: self.pins,
         });
         self.cycles += 1;
         self.irq = out.irq;

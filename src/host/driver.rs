@@ -1,16 +1,28 @@
 //! The firmware half in Rust: programs `motion_controller` through its
 //! generated register map over any [`ControllerBus`], streams per-period
 //! step counts into the FIFOs from the low-water interrupt, and reports
-//! underruns and faults.
+//! underruns, faults and aborts.
+//!
+//! A run ends normally with the underrun of the empty FIFOs after the last
+//! period. When `RUN` falls any other way (an E-stop, a limit switch, a
+//! drive alarm, a home switch with `STOP_ON_HOME`, the watchdog, or `RUN`
+//! written 0), the run fails with [`DriverError::Stopped`], which names the
+//! cause from `STOP_CAUSE` and, for a switch or an alarm, the axis. The
+//! driver sees the stop by its interrupt (`LIMIT`, `ALARM`, `ESTOP`,
+//! `WATCHDOG`) or, for a cause without one, by polling `STATE` every
+//! [`POLL_CLOCKS`] clocks. A run the controller would refuse (E-stop
+//! active or latched, a trip held) fails at once with
+//! [`DriverError::Refused`], naming what holds it.
 
 use thiserror::Error;
 
 use super::bus::ControllerBus;
-use crate::blocks::motion_controller::registers::register_map;
+use crate::blocks::motion_controller::registers::{register_map, StopCause};
 use crate::regmap::{RegMapError, RegisterMap};
 
-/// The `IRQ_ENABLE` fields the driver turns on: FIFO_LOW for refills and
-/// every fault source; PERIOD_DONE stays off.
+/// The `IRQ_ENABLE` fields the driver turns on: FIFO_LOW for refills, every
+/// fault source and every abort (limit, drive alarm, E-stop); PERIOD_DONE,
+/// HOME (any home edge) and GPIO stay off.
 pub const SERVICED_INTERRUPTS: &[(&str, u64)] = &[
     ("FIFO_LOW", 1),
     ("UNDERRUN", 1),
@@ -18,7 +30,23 @@ pub const SERVICED_INTERRUPTS: &[(&str, u64)] = &[
     ("ENCODER_ERROR", 1),
     ("WATCHDOG", 1),
     ("AXIS_FAULT", 1),
+    ("LIMIT", 1),
+    ("ALARM", 1),
+    ("ESTOP", 1),
 ];
+
+/// Clocks between two reads of `STATE` while no interrupt comes: a stop
+/// without an enabled interrupt (a home stop, `RUN` written 0 elsewhere) is
+/// seen within this.
+pub const POLL_CLOCKS: u64 = 1024;
+
+/// The sentence of a stop: "motion stopped: limit switch on axis 1".
+fn stop_sentence(cause: &StopCause, axis: &Option<usize>) -> String {
+    match axis {
+        Some(axis) => format!("motion stopped: {} on axis {axis}", cause.describe()),
+        None => format!("motion stopped: {}", cause.describe()),
+    }
+}
 
 /// How the driver sets the controller up.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,6 +132,27 @@ pub enum DriverError {
     /// The controller never came to rest.
     #[error("the axes did not come to rest after the last period")]
     Timeout,
+    /// `RUN` fell before the end of the path: an abort (E-stop, limit
+    /// switch, drive alarm, home stop, watchdog) or `RUN` written 0.
+    #[error("{} ({detail}); commanded position {commanded:?}, {periods_queued} of {periods} periods queued", stop_sentence(.cause, .axis))]
+    Stopped {
+        /// `STOP_CAUSE.CAUSE`.
+        cause: StopCause,
+        /// `STOP_CAUSE.AXIS`, for a home, limit or drive-alarm stop.
+        axis: Option<usize>,
+        /// What the axis's `IO_STATUS` or `STATE` adds (which limit, what
+        /// to clear before the next run).
+        detail: String,
+        /// Each axis's `CMD_POSITION` (the steps that left the pins).
+        commanded: [i32; 3],
+        /// Periods written to the FIFOs before the stop.
+        periods_queued: usize,
+        /// Periods of the path.
+        periods: usize,
+    },
+    /// The controller would refuse `RUN`: why.
+    #[error("RUN refused: {0}")]
+    Refused(String),
 }
 
 /// The driver for a 3-axis `motion_controller`.
@@ -162,6 +211,12 @@ impl<B: ControllerBus> Driver<B> {
         &self.bus
     }
 
+    /// The bus, to drive it directly (a simulated machine input, a register
+    /// the driver does not touch).
+    pub fn bus_mut(&mut self) -> &mut B {
+        &mut self.bus
+    }
+
     fn address(&self, name: &str, index: u32) -> Result<u32, DriverError> {
         Ok(self.map.register(name)?.address_of(index)?)
     }
@@ -201,6 +256,14 @@ impl<B: ControllerBus> Driver<B> {
             self.write("STEP_SPACE", axis, c.step_space)?;
             self.write("DIR_SETUP", axis, c.dir_time)?;
             self.write("DIR_HOLD", axis, c.dir_time)?;
+            // Limits and alarms stay enabled (their reset value); the drive
+            // is enabled (the controller still drops it on E-stop, watchdog
+            // expiry or its alarm).
+            let io = self.pack(
+                "IO_CONFIG",
+                &[("LIMIT_ENABLE", 1), ("ALARM_ENABLE", 1), ("DRIVE_ENABLE", 1)],
+            )?;
+            self.write("IO_CONFIG", axis, io)?;
         }
         let enable = self.pack("IRQ_ENABLE", SERVICED_INTERRUPTS)?;
         self.write("IRQ_ENABLE", 0, enable)?;
@@ -267,15 +330,120 @@ impl<B: ControllerBus> Driver<B> {
         Ok(DriverError::Fault { status, axis_status })
     }
 
+    /// What holds `RUN` refused now (empty: nothing). Waits first for the
+    /// inputs to become ready (3 clocks after reset).
+    fn refusal(&mut self) -> Result<Vec<String>, DriverError> {
+        let mut state = self.read("STATE", 0)?;
+        for _ in 0..16 {
+            if self.field("STATE", "INPUTS_READY", state)? == 1 {
+                break;
+            }
+            self.bus.wait(1);
+            state = self.read("STATE", 0)?;
+        }
+        let mut reasons = Vec::new();
+        if self.field("STATE", "INPUTS_READY", state)? == 0 {
+            reasons.push("the switch inputs are not ready (STATE.INPUTS_READY)".to_string());
+        }
+        if self.field("STATE", "ESTOP_INPUT", state)? == 1 {
+            reasons.push("the E-stop input is active".to_string());
+        }
+        if self.field("STATE", "ESTOP_LATCHED", state)? == 1 {
+            reasons.push("E-stop latched (release it, then clear STATUS.ESTOP)".to_string());
+        }
+        if self.field("STATE", "WATCHDOG_EXPIRED", state)? == 1 {
+            reasons.push("the watchdog expired (clear STATUS.WATCHDOG)".to_string());
+        }
+        for axis in 0..3u32 {
+            reasons.extend(self.axis_trips(axis)?.into_iter().map(|t| format!("axis {axis}: {t}")));
+        }
+        Ok(reasons)
+    }
+
+    /// The trips an axis holds (each one refuses RUN), with what clears it.
+    fn axis_trips(&mut self, axis: u32) -> Result<Vec<String>, DriverError> {
+        let status = self.read("IO_STATUS", axis)?;
+        let config = self.read("IO_CONFIG", axis)?;
+        let mut trips = Vec::new();
+        for (flag, what) in [
+            ("LIMIT_POS_TRIPPED", "positive limit (limit_pos) tripped; clear with IO_COMMAND.CLEAR_LIMITS, then move away"),
+            ("LIMIT_NEG_TRIPPED", "negative limit (limit_neg) tripped; clear with IO_COMMAND.CLEAR_LIMITS, then move away"),
+            ("ALARM_TRIPPED", "drive alarm tripped; clear with IO_COMMAND.CLEAR_ALARM once the alarm is gone"),
+        ] {
+            if self.field("IO_STATUS", flag, status)? == 1 {
+                trips.push(what.to_string());
+            }
+        }
+        if self.field("IO_STATUS", "HOME_SEEN", status)? == 1 && self.field("IO_CONFIG", "STOP_ON_HOME", config)? == 1 {
+            trips.push("home switch seen with STOP_ON_HOME; clear with IO_COMMAND.CLEAR_HOME".to_string());
+        }
+        Ok(trips)
+    }
+
+    /// `STOP_CAUSE`: the cause and, for a home, limit or alarm stop, the axis.
+    fn stop_cause(&mut self) -> Result<(StopCause, Option<usize>), DriverError> {
+        let word = self.read("STOP_CAUSE", 0)?;
+        let cause = StopCause::from_code(self.field("STOP_CAUSE", "CAUSE", word)? as u32);
+        let axis = self.field("STOP_CAUSE", "AXIS", word)? as usize;
+        let per_axis = matches!(cause, StopCause::Home | StopCause::Limit | StopCause::DriveAlarm);
+        Ok((cause, per_axis.then_some(axis)))
+    }
+
+    /// The error of a run that `cause` stopped before its end.
+    fn stopped(
+        &mut self,
+        cause: StopCause,
+        axis: Option<usize>,
+        periods_queued: usize,
+        periods: usize,
+    ) -> Result<DriverError, DriverError> {
+        let mut details = Vec::new();
+        if let Some(axis) = axis {
+            details.extend(self.axis_trips(axis as u32)?);
+            if cause == StopCause::Home {
+                let cmd = self.read("HOME_CMD_POSITION", axis as u32)? as i32;
+                let act = self.read("HOME_ACT_POSITION", axis as u32)? as i32;
+                details.push(format!("home edge at commanded {cmd}, actual {act}"));
+            }
+        }
+        if cause == StopCause::Estop {
+            details.push("every drive disabled; release the E-stop, then clear STATUS.ESTOP".to_string());
+        }
+        if cause == StopCause::Watchdog {
+            details.push("clear STATUS.WATCHDOG".to_string());
+        }
+        if details.is_empty() {
+            details.push("the FIFOs keep the periods not taken; CONTROL.FLUSH empties them".to_string());
+        }
+        let mut commanded = [0; 3];
+        for (k, c) in commanded.iter_mut().enumerate() {
+            *c = self.read("CMD_POSITION", k as u32)? as i32;
+        }
+        Ok(DriverError::Stopped {
+            cause,
+            axis,
+            detail: details.join("; "),
+            commanded,
+            periods_queued,
+            periods,
+        })
+    }
+
     /// Streams `counts` (one entry per period) and waits until every step
     /// has left and the encoders have settled. `progress` gets the number
-    /// of periods queued so far.
+    /// of periods queued so far. Fails with [`DriverError::Refused`] when
+    /// the controller would not start, and with [`DriverError::Stopped`]
+    /// when it stops before the last period (an abort), naming the cause.
     pub fn run(
         &mut self,
         counts: &[[i32; 3]],
         mut progress: impl FnMut(usize),
     ) -> Result<RunReport, DriverError> {
         self.check(counts)?;
+        let reasons = self.refusal()?;
+        if !reasons.is_empty() {
+            return Err(DriverError::Refused(reasons.join("; ")));
+        }
         let mut report = RunReport {
             periods: counts.len(),
             ..Default::default()
@@ -283,29 +451,56 @@ impl<B: ControllerBus> Driver<B> {
         let mut next = 0;
         self.queue(counts, &mut next)?;
         self.write("CONTROL", 0, 1)?;
-        let faults = self.pack(
-            "STATUS",
-            &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("WATCHDOG", 1), ("AXIS_FAULT", 1)],
-        )?;
-        let underrun = self.pack("STATUS", &[("UNDERRUN", 1)])?;
+        let faults = self.pack("STATUS", &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("AXIS_FAULT", 1)])?;
+        let mut quiet = 0;
         loop {
-            if !self.bus.wait(8) {
-                continue;
+            if self.bus.wait(8) {
+                report.interrupts += 1;
+            } else {
+                quiet += 8;
+                if quiet < POLL_CLOCKS {
+                    continue;
+                }
             }
-            report.interrupts += 1;
+            quiet = 0;
             let status = self.read("STATUS", 0)?;
-            self.write("STATUS", 0, status)?;
+            if status != 0 {
+                self.write("STATUS", 0, status)?;
+            }
+            let state = self.read("STATE", 0)?;
+            let running = self.field("STATE", "RUNNING", state)? == 1;
+            let mut underrun = false;
+            if !running {
+                match self.stop_cause()? {
+                    (StopCause::Underrun, _) => underrun = true,
+                    (StopCause::None, _) => {
+                        // RUN never rose: refused after all.
+                        let reasons = self.refusal()?;
+                        return Err(DriverError::Refused(if reasons.is_empty() {
+                            "CONTROL.RUN did not start".into()
+                        } else {
+                            reasons.join("; ")
+                        }));
+                    }
+                    (cause, axis) => return Err(self.stopped(cause, axis, next, counts.len())?),
+                }
+            }
             if status & faults != 0 {
                 return Err(self.fault(status)?);
             }
             self.queue(counts, &mut next)?;
             progress(next);
-            if status & underrun != 0 {
+            if underrun {
                 let level = self.read("FIFO_STATUS", 0)?;
                 if self.field("FIFO_STATUS", "EMPTY", level)? == 1 {
                     break; // the end: every period has been taken
                 }
-                // Data came too late: restart from where it stopped.
+                // Data came too late: restart from where it stopped, unless
+                // an abort came since (then RUN would be refused).
+                let reasons = self.refusal()?;
+                if !reasons.is_empty() {
+                    return Err(DriverError::Refused(reasons.join("; ")));
+                }
                 report.underruns += 1;
                 self.write("CONTROL", 0, 1)?;
             }

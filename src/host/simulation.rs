@@ -1,5 +1,8 @@
 //! `motion-hdl simulate`: a path file through the simulated 3-axis
-//! controller (RTL, every step looped back into its axis's encoder).
+//! controller (RTL, every step looped back into its axis's encoder), with
+//! optional machine-input events ([`Trip`]: an E-stop, a limit switch or a
+//! drive alarm at a given time). A run the controller aborts fails with the
+//! cause, as the driver reports it ("motion stopped: E-stop ...").
 
 use std::path::{Path as FsPath, PathBuf};
 use std::time::Instant;
@@ -7,6 +10,7 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{interpolate, plan, Driver, DriverConfig, Path, RtlBus};
+use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::plots::{plot_path_xy, plot_speed};
 use crate::sim::Backend;
 
@@ -29,6 +33,79 @@ pub struct SimulationOptions {
     pub progress: bool,
     /// The simulator of the controller.
     pub backend: Backend,
+    /// Machine inputs that go active during the run.
+    pub trips: Vec<Trip>,
+}
+
+/// A machine input the simulation drives active (high: tripped, in alarm,
+/// stopped) from a given time on, until the end of the run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trip {
+    /// When, in seconds of simulated time from power-up (the driver's
+    /// configuration takes the first few hundred clocks).
+    pub at_s: f64,
+    /// The pins it raises (bit k of a per-axis input: axis k).
+    pub pins: MachinePins,
+}
+
+impl Trip {
+    /// Parses `INPUT@MS`: `estop`, or an axis (`x`, `y`, `z`) and one of
+    /// `limit-pos`, `limit-neg`, `alarm` (`y-limit-neg@1.5`), active from
+    /// that many milliseconds on.
+    pub fn parse(text: &str) -> Result<Trip, String> {
+        let usage = "estop, or x|y|z-limit-pos, -limit-neg or -alarm, then @ and milliseconds (y-limit-neg@1.5)";
+        let (input, ms) = text
+            .split_once('@')
+            .ok_or_else(|| format!("--trip `{text}`: expected INPUT@MS: {usage}"))?;
+        let ms: f64 = ms
+            .trim_end_matches("ms")
+            .parse()
+            .ok()
+            .filter(|ms: &f64| ms.is_finite() && *ms >= 0.0)
+            .ok_or_else(|| format!("--trip `{text}`: `{ms}` is not a time in milliseconds"))?;
+        let input = input.to_ascii_lowercase();
+        let mut pins = MachinePins::default();
+        if input == "estop" {
+            pins.estop = true;
+        } else {
+            let (axis, what) = input
+                .split_once('-')
+                .ok_or_else(|| format!("--trip `{text}`: unknown input `{input}`: {usage}"))?;
+            let bit = match axis {
+                "x" => 1,
+                "y" => 2,
+                "z" => 4,
+                _ => return Err(format!("--trip `{text}`: unknown axis `{axis}` (x, y or z)")),
+            };
+            match what {
+                "limit-pos" => pins.limit_pos = bit,
+                "limit-neg" => pins.limit_neg = bit,
+                "alarm" => pins.drive_alarm = bit,
+                _ => return Err(format!("--trip `{text}`: unknown input `{input}`: {usage}")),
+            }
+        }
+        Ok(Trip { at_s: ms * 1e-3, pins })
+    }
+}
+
+/// Each trip's time with the pins from then on (a trip stays active), in
+/// time order.
+fn trip_schedule(trips: &[Trip]) -> Vec<(f64, MachinePins)> {
+    let mut sorted: Vec<&Trip> = trips.iter().collect();
+    sorted.sort_by(|a, b| a.at_s.total_cmp(&b.at_s));
+    let mut pins = MachinePins::default();
+    sorted
+        .into_iter()
+        .map(|t| {
+            pins.limit_pos |= t.pins.limit_pos;
+            pins.limit_neg |= t.pins.limit_neg;
+            pins.home |= t.pins.home;
+            pins.drive_alarm |= t.pins.drive_alarm;
+            pins.estop |= t.pins.estop;
+            pins.gpio_in |= t.pins.gpio_in;
+            (t.at_s, pins)
+        })
+        .collect()
 }
 
 /// What a simulation run found.
@@ -91,6 +168,9 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
     bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
     // 10 ms windows: at a real clock, 10,000 clocks hold only a step or two.
     bus.set_rate_window((options.clock_hz / 100.0).round() as u64);
+    for (at_s, pins) in trip_schedule(&options.trips) {
+        bus.set_pins_at((at_s * options.clock_hz).round() as u64, pins);
+    }
     let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
     // The controller starts at 0: the counts move it by (end - start).
     let bar = if options.progress {
@@ -104,13 +184,18 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         None
     };
     let started = Instant::now();
-    let report = driver
-        .run(&interpolation.counts, |queued| {
-            if let Some(bar) = &bar {
-                bar.set_position(queued as u64);
-            }
-        })
-        .map_err(|e| e.to_string())?;
+    let report = driver.run(&interpolation.counts, |queued| {
+        if let Some(bar) = &bar {
+            bar.set_position(queued as u64);
+        }
+    });
+    if let Some(bar) = &bar {
+        if report.is_err() {
+            bar.abandon();
+        }
+    }
+    // An abort: the driver names the cause ("motion stopped: E-stop ...").
+    let report = report.map_err(|e| e.to_string())?;
     let seconds = started.elapsed().as_secs_f64();
     if let Some(bar) = bar {
         bar.finish();

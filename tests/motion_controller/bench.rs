@@ -4,6 +4,7 @@
 //! axis's step pins can drive a simulated encoder on that axis's encoder
 //! inputs.
 
+use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
@@ -23,6 +24,9 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
     pub map: RegisterMap,
     /// Encoder inputs applied in the next clock.
     pub encoders: Vec<(bool, bool, bool)>,
+    /// Limit, home, alarm, E-stop and general-input pins applied in the
+    /// next clock.
+    pub pins: MachinePins,
     /// Drive each axis's encoder from its own step/dir pins.
     pub loopback: Option<Vec<SimulatedEncoder>>,
     /// Outputs after the last clock.
@@ -56,6 +60,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
             model,
             map,
             encoders: vec![(false, false, false); K],
+            pins: MachinePins::default(),
             loopback: None,
             last: ControllerOutputs {
                 steps: vec![(false, false); K],
@@ -98,6 +103,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
             write,
             read,
             encoders: self.encoders.clone(),
+            pins: self.pins,
         };
         inputs.write_vector(&mut self.vector);
         debug_assert_eq!(self.vector.len(), MotionController::<K, N, NP1>::input_names().len());

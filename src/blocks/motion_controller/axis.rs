@@ -8,7 +8,8 @@
 use rust_hdl::prelude::*;
 
 
-use super::registers::{axis, AXIS_BASE, AXIS_STRIDE};
+use super::axis_io::AxisIo;
+use super::registers::{axis, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2};
 use super::{PERIOD_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
 use crate::blocks::dda_integrator::DdaIntegrator;
@@ -78,6 +79,35 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub busy: Signal<Out, Bit>,
     /// Empty the FIFO.
     pub flush: Signal<In, Bit>,
+    /// Abort: no new step request, the output stage flushed (a pulse
+    /// already high completes).
+    pub abort: Signal<In, Bit>,
+    /// limit_pos of this axis, filtered, 1 = active.
+    pub limit_forward: Signal<In, Bit>,
+    /// limit_neg of this axis, filtered, 1 = active.
+    pub limit_backward: Signal<In, Bit>,
+    /// home of this axis, filtered, 1 = active.
+    pub home: Signal<In, Bit>,
+    /// home became active at the last edge.
+    pub home_rise: Signal<In, Bit>,
+    /// drive_alarm of this axis, filtered, 1 = active.
+    pub alarm: Signal<In, Bit>,
+    /// No E-stop latched from the next edge on, no watchdog expiry.
+    pub drive_allowed: Signal<In, Bit>,
+    /// drive_enable pin of this axis.
+    pub drive_enable: Signal<Out, Bit>,
+    /// A limit trip is held.
+    pub limit_held: Signal<Out, Bit>,
+    /// A drive alarm trip is held.
+    pub alarm_held: Signal<Out, Bit>,
+    /// A stop on home is held.
+    pub home_held: Signal<Out, Bit>,
+    /// A limit trip flag rose.
+    pub limit_event: Signal<Out, Bit>,
+    /// The alarm trip flag rose.
+    pub alarm_event: Signal<Out, Bit>,
+    /// HOME_SEEN rose.
+    pub home_event: Signal<Out, Bit>,
 
     fifo: CommandFifo<N, NP1>,
     dda: DdaIntegrator<PERIOD_BITS>,
@@ -85,6 +115,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     stage: StepOutput<16, STAGE_PENDING_BITS>,
     position: PulseCounter<32>,
     encoder: QuadratureDecoder<32, 8, 16>,
+    io: AxisIo,
 
     settings: DFF<Bits<32>>,
     step_len: DFF<Bits<32>>,
@@ -153,6 +184,11 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
 
     selected: Signal<Local, Bit>,
     offset: Signal<Local, Bits<4>>,
+    /// The interpolator's step offered to the request register, and its
+    /// direction.
+    candidate: Signal<Local, Bit>,
+    candidate_forward: Signal<Local, Bit>,
+    candidate_blocked: Signal<Local, Bit>,
     command: Signal<Local, Bit>,
     clear_faults: Signal<Local, Bit>,
     upper_ones: Signal<Local, Bit>,
@@ -167,7 +203,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     fifo_status: Signal<Local, Bits<32>>,
     axis_status: Signal<Local, Bits<32>>,
 
-    window: Constant<Bits<4>>,
+    window: Constant<Bits<3>>,
     bit0_32: Constant<Bits<32>>,
     bit16_32: Constant<Bits<32>>,
     bit17_32: Constant<Bits<32>>,
@@ -212,7 +248,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
     /// Axis number `index` (its register window is at
     /// `AXIS_BASE + index * AXIS_STRIDE`).
     pub fn new(index: usize) -> Self {
-        let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> 4;
+        let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2;
         let c4 = |v: u32| Constant::new((v as u64).into());
         Self {
             clock: Default::default(),
@@ -242,12 +278,27 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             encoder_error_event: Default::default(),
             busy: Default::default(),
             flush: Default::default(),
+            abort: Default::default(),
+            limit_forward: Default::default(),
+            limit_backward: Default::default(),
+            home: Default::default(),
+            home_rise: Default::default(),
+            alarm: Default::default(),
+            drive_allowed: Default::default(),
+            drive_enable: Default::default(),
+            limit_held: Default::default(),
+            alarm_held: Default::default(),
+            home_held: Default::default(),
+            limit_event: Default::default(),
+            alarm_event: Default::default(),
+            home_event: Default::default(),
             fifo: Default::default(),
             dda: Default::default(),
             uniform: Default::default(),
             stage: Default::default(),
             position: Default::default(),
             encoder: Default::default(),
+            io: Default::default(),
             settings: Default::default(),
             step_len: Default::default(),
             step_space: Default::default(),
@@ -286,6 +337,9 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             encoder_error_prev: Default::default(),
             selected: Default::default(),
             offset: Default::default(),
+            candidate: Default::default(),
+            candidate_forward: Default::default(),
+            candidate_blocked: Default::default(),
             command: Default::default(),
             clear_faults: Default::default(),
             upper_ones: Default::default(),
@@ -297,7 +351,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             uniform_forward: Default::default(),
             fifo_status: Default::default(),
             axis_status: Default::default(),
-            window: c4(window),
+            window: Constant::new((window as u64).into()),
             bit0_32: Constant::new((1u64 << 0).into()),
             bit16_32: Constant::new((1u64 << 16).into()),
             bit17_32: Constant::new((1u64 << 17).into()),
@@ -384,9 +438,12 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.stage.clock.next = self.clock.val();
         self.position.clock.next = self.clock.val();
         self.encoder.clock.next = self.clock.val();
+        self.io.clock.next = self.clock.val();
 
-        // Register window decode.
-        self.selected.next = self.address.val().get_bits::<4>(4) == self.window.val();
+        // Register window decode: bits 7..5 the window (AXIS_STRIDE_LOG2 =
+        // 5), bit 4 the half (motion core or machine I/O), 3..0 the offset.
+        self.selected.next =
+            (self.address.val().get_bits::<3>(5) == self.window.val()) & !self.address.val().get_bit(4);
         self.offset.next = self.address.val().get_bits::<4>(0);
         self.command.next =
             self.write.val() & self.selected.val() & (self.offset.val() == self.off_command.val());
@@ -524,16 +581,26 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // Output stage.
         self.stage.reset.next = self.reset.val();
         // The request is registered: the interpolators' decode and the
-        // stage's pending-count logic are each a clock deep.
+        // stage's pending-count logic are each a clock deep. An abort or a
+        // blocked direction keeps a step out of it; a step already in it or
+        // pending in the stage is dropped by the stage's flush.
         if self.uniform_active.q.val() {
-            self.request.d.next = self.uniform.pulse.val() & !self.uniform_pulse_prev.q.val();
-            self.request_forward.d.next = self.uniform_forward.val();
+            self.candidate.next = self.uniform.pulse.val() & !self.uniform_pulse_prev.q.val();
+            self.candidate_forward.next = self.uniform_forward.val();
         } else {
-            self.request.d.next = self.dda.pulse.val();
-            self.request_forward.d.next = self.forward_2.q.val();
+            self.candidate.next = self.dda.pulse.val();
+            self.candidate_forward.next = self.forward_2.q.val();
         }
+        self.candidate_blocked.next = self.io.block_backward.val();
+        if self.candidate_forward.val() {
+            self.candidate_blocked.next = self.io.block_forward.val();
+        }
+        self.request.d.next =
+            self.candidate.val() & !self.abort.val() & !self.candidate_blocked.val();
+        self.request_forward.d.next = self.candidate_forward.val();
         self.stage.step.next = self.request.q.val();
         self.stage.dir.next = self.request_forward.q.val();
+        self.stage.flush.next = self.abort.val() | self.io.cut.val();
         self.stage.mode.next = self.settings.q.val().get_bits::<2>(2);
         self.stage.step_len.next = self.step_len.q.val().get_bits::<16>(0);
         self.stage.step_space.next = self.step_space.q.val().get_bits::<16>(0);
@@ -576,6 +643,35 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder.clear.next = self.command.val() & self.write_data.val().get_bit(1);
         self.encoder.index_rearm.next = self.command.val() & self.write_data.val().get_bit(2);
         self.encoder.clear_error.next = self.command.val() & self.write_data.val().get_bit(4);
+
+        // Machine I/O: limits, alarm, home and drive enable.
+        self.io.reset.next = self.reset.val();
+        self.io.selected.next =
+            (self.address.val().get_bits::<3>(5) == self.window.val()) & self.address.val().get_bit(4);
+        self.io.offset.next = self.address.val().get_bits::<4>(0);
+        self.io.write.next = self.write.val();
+        self.io.write_data.next = self.write_data.val();
+        self.io.limit_forward.next = self.limit_forward.val();
+        self.io.limit_backward.next = self.limit_backward.val();
+        self.io.home.next = self.home.val();
+        self.io.home_rise.next = self.home_rise.val();
+        self.io.alarm.next = self.alarm.val();
+        self.io.drive_allowed.next = self.drive_allowed.val();
+        self.io.pending_forward.next = self.stage.pending_forward.val();
+        self.io.pending_backward.next = self.stage.pending_backward.val();
+        self.io.request.next = self.request.q.val();
+        self.io.request_forward.next = self.request_forward.q.val();
+        self.io.pulse.next = self.candidate.val();
+        self.io.pulse_forward.next = self.candidate_forward.val();
+        self.io.cmd_position.next = self.position.count.val();
+        self.io.act_position.next = self.encoder.count.val();
+        self.drive_enable.next = self.io.drive_enable.val();
+        self.limit_held.next = self.io.limit_held.val();
+        self.alarm_held.next = self.io.alarm_held.val();
+        self.home_held.next = self.io.home_held.val();
+        self.limit_event.next = self.io.limit_event.val();
+        self.alarm_event.next = self.io.alarm_event.val();
+        self.home_event.next = self.io.home_event.val();
 
         if self.snapshot.val() {
             self.cmd_snapshot.d.next = self.position.count.val();
@@ -640,7 +736,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.stage.mode_invalid.val() {
             self.axis_status.next = self.axis_status.val() | self.bit7_32.val();
         }
-        self.read_data.next = self.zero32.val();
+        self.read_data.next = self.io.read_data.val();
         if self.selected.val() {
             if self.offset.val() == self.off_fifo_status.val() {
                 self.read_data.next = self.fifo_status.val();

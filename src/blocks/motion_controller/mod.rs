@@ -34,10 +34,24 @@
 //! | `bus_read_data` | out | 32 | the addressed register, registered: valid in the clock after `bus_read`, held until the next read |
 //! | `irq` | out | 1 | level interrupt: an enabled `STATUS` bit is set; registered |
 //! | `running` | out | 1 | periods are running (`STATE.RUNNING`) |
-//! | `active` | out | 1 | `running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls, so this, not `running`, is the drive enable |
-//! | `step_a__k` | out | 1 | axis k: step (step/dir), up (up/down) or A (quadrature); registered |
-//! | `step_b__k` | out | 1 | axis k: dir, down or B; registered |
-//! | `enc_a__k`, `enc_b__k`, `enc_index__k` | in | 1 | axis k encoder, asynchronous (synchronized inside) |
+//! | `active` | out | 1 | `running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls (the drives' enables are `drive_enable`) |
+//! | `step_a` | out | K | bit k: axis k's step (step/dir), up (up/down) or A (quadrature); registered |
+//! | `step_b` | out | K | bit k: axis k's dir, down or B; registered |
+//! | `enc_a`, `enc_b`, `enc_index` | in | K | bit k: axis k's encoder, asynchronous (synchronized inside) |
+//! | `limit_pos`, `limit_neg` | in | K | bit k: hard limit switch at the positive / negative end of axis k, 1 = tripped, asynchronous |
+//! | `home` | in | K | bit k: home switch of axis k, 1 = active, asynchronous |
+//! | `drive_alarm` | in | K | bit k: alarm output of axis k's drive, 1 = in alarm, asynchronous |
+//! | `estop` | in | 1 | emergency stop chain, 1 = stopped, asynchronous; no polarity setting |
+//! | `gpio_in` | in | 8 | general inputs, asynchronous |
+//! | `drive_enable` | out | K | bit k: enable (servo-on) of axis k's drive; registered |
+//! | `gpio_out` | out | 8 | general outputs (`GPIO_OUT`); registered |
+//!
+//! Every switch, alarm and E-stop input is active high at reset: with the
+//! FPGA's pull-ups and normally-closed contacts to ground, an open or
+//! broken wire reads as tripped. `INPUT_POLARITY` makes a class active low
+//! for normally-open wiring (not `estop`: an E-stop chain must fail safe).
+//! A board without a switch ties the input low in its own top, or clears
+//! `IO_CONFIG.LIMIT_ENABLE` / `ALARM_ENABLE`; `estop` cannot be disabled.
 //!
 //! This is the synchronous register bus of
 //! [`external_bus_adapter`](crate::blocks::external_bus_adapter), so a DSP's
@@ -84,11 +98,14 @@
 //!   unchanged and `STATUS.OVERFLOW` is raised.
 //! * **Watchdog**: with `WATCHDOG_TIMEOUT` != 0, the first `WATCHDOG_KICK`
 //!   arms it; if `WATCHDOG_TIMEOUT` base ticks pass without a kick, every
-//!   axis stops at once (interpolators reset; steps already requested to an
-//!   output stage still leave with correct timing, so no pulse is cut),
-//!   `RUN` clears, `STATUS.WATCHDOG` is raised and `RUN` cannot be set
-//!   until `STATUS.WATCHDOG` is written 1.
-//! * **Stop**: `RUN` written 0 stops like the watchdog. `CONTROL.FLUSH`
+//!   axis is aborted (see "Machine I/O and safety": interpolators reset,
+//!   output stages flushed, a pulse already high keeps its full length),
+//!   `RUN` clears, `STATUS.WATCHDOG` is raised, every `drive_enable` and
+//!   the `GPIO_SAFE` outputs drop, and `RUN` cannot be set until
+//!   `STATUS.WATCHDOG` is written 1.
+//! * **Stop**: `RUN` written 0 stops the interpolators at once; steps
+//!   already requested to an output stage still leave with correct timing
+//!   (a stop is not an abort: nothing is flushed). `CONTROL.FLUSH`
 //!   empties every FIFO at once, so a restart does not run stale periods.
 //! * **Interpolator choice** (`AXIS_CONFIG.UNIFORM`) is taken at a start,
 //!   for an axis whose uniform generator is idle; an axis still finishing
@@ -126,6 +143,70 @@
 //!   pauses). Each step is thus in the old count, as read before the clear
 //!   takes effect, or in the new one: none is lost or counted twice.
 //!
+//! ## Machine I/O and safety
+//! Limits, drive alarms and the E-stop act in hardware, within the clocks
+//! given in [`latency`] (each measured at the pins by `tests/machine_io.rs`).
+//! * **Inputs.** Every switch, alarm, E-stop and general input passes an
+//!   [`InputConditioner`](crate::blocks::input_conditioner): a 2-flip-flop
+//!   synchronizer and a glitch filter of `INPUT_FILTER.LENGTH` samples
+//!   (reset 4), one sample every `INPUT_FILTER.SAMPLE_RATE` + 1 clocks. A
+//!   level held from clock c is acted on from c + [`latency::switch`]
+//!   (LENGTH 4, rate 0: 5 clocks); a shorter pulse is never seen. For 3
+//!   clocks after reset the inputs read inactive and `RUN` is refused
+//!   (`STATE.INPUTS_READY`).
+//! * **Abort** (E-stop, an enabled drive alarm, a limit cut, a home with
+//!   `STOP_ON_HOME`, the watchdog): every interpolator is reset, every
+//!   output stage is flushed (its pending steps dropped: they never left,
+//!   so `CMD_POSITION` stays the pins' count), and no new step enters one.
+//!   A pulse already high keeps its full `STEP_LEN`, and the space, hold
+//!   and setup that follow still apply. `RUN` clears; `STOP_CAUSE` tells
+//!   why (and which axis); the FIFOs keep their entries until
+//!   `CONTROL.FLUSH`. The last step of any axis rises at most
+//!   [`latency::ABORT_ALL_AXES`] = 3 clocks after the cause is seen (1 for
+//!   the watchdog). While a cause is latched (`STATE.ABORTED`) every axis
+//!   stays flushed and `RUN` is refused; the E-stop input itself refuses
+//!   `RUN` too.
+//! * **Limits** (`IO_CONFIG.LIMIT_ENABLE`, reset 1). A step toward an
+//!   enabled, active limit never leaves: offered by the interpolator, in
+//!   the request register or pending in the stage, it is *cut* (dropped)
+//!   in the clock it is seen, and a step toward the limit can rise at most
+//!   [`latency::LIMIT_OWN_AXIS`] = 1 clock after the limit's filtered level
+//!   is set (a step whose pulse started in that clock). A cut sets the
+//!   sticky `IO_STATUS.LIMIT_POS_TRIPPED` or `LIMIT_NEG_TRIPPED`, raises
+//!   `STATUS.LIMIT` and aborts all axes. A limit that closes while its axis
+//!   moves away, or stands still, cuts nothing. After
+//!   `IO_COMMAND.CLEAR_LIMITS` the axis may move away from a limit still
+//!   active: that is how firmware backs off a switch.
+//! * **Drive alarm** (`IO_CONFIG.ALARM_ENABLE`, reset 1): an active alarm
+//!   sets the sticky `ALARM_TRIPPED` (held while the alarm lasts:
+//!   `CLEAR_ALARM` works only once it is gone), raises `STATUS.ALARM`,
+//!   aborts all axes and drops that axis's `drive_enable`.
+//! * **E-stop**: an active `estop` sets `STATE.ESTOP_LATCHED`, raises
+//!   `STATUS.ESTOP`, aborts all axes and drops every `drive_enable` and the
+//!   `GPIO_SAFE` outputs. Writing `STATUS.ESTOP` = 1 releases the latch once
+//!   the input is inactive.
+//! * **Drive enable**: `drive_enable[k]` = `IO_CONFIG.DRIVE_ENABLE` AND no
+//!   E-stop latched AND no watchdog expiry AND no alarm of axis k. It falls
+//!   at the edge that latches the E-stop or the alarm
+//!   ([`latency::DRIVE_ENABLE`] = 1 clock after the filtered level), and one
+//!   clock after the watchdog expires.
+//! * **Home**: the first active edge of `home[k]` after `CLEAR_HOME` latches
+//!   `HOME_CMD_POSITION` and `HOME_ACT_POSITION` as they are in the clock
+//!   the edge is acted on (c + `latency::switch`: the steps whose first pin
+//!   edge came before that clock), sets `HOME_SEEN` and raises
+//!   `STATUS.HOME`; later edges do not overwrite it. With
+//!   `IO_CONFIG.STOP_ON_HOME` the edge also aborts (homing moves) until
+//!   `CLEAR_HOME`.
+//! * **General I/O**: `GPIO_IN` reads the 8 filtered inputs; every edge is
+//!   recorded in `GPIO_EDGES` (write 1 to clear) and the ones enabled in
+//!   `GPIO_IRQ_ENABLE` raise `STATUS.GPIO`. `gpio_out` is `GPIO_OUT`; the
+//!   bits of `GPIO_SAFE` are cleared, and held 0, from the edge that latches
+//!   an E-stop and from the clock after a watchdog expiry (spindle,
+//!   coolant): firmware must turn them on again after the recovery.
+//! * Power-up without a reset: `IO_CONFIG` and `INPUT_FILTER` read their
+//!   reset values (their flip-flops hold the value XOR the reset value), so
+//!   limits and alarms are enabled from the first clock.
+//!
 //! ## Latency
 //! A DDA step reaches the pins at the earliest 5 clocks after the base tick
 //! that produced it (1 tick delay, 2 in the DDA, 1 request register, 1 in
@@ -136,14 +217,17 @@
 //! latency (5 clocks with the filter off).
 //!
 //! ## Resources (iCE40 HX8K, K = 3, 16-entry FIFOs)
-//! See `rtl-out/synthesis-report.md`. The issue's budget of 2500 logic
-//! cells is not met: each axis carries a complete uniform pulse generator
-//! (its own divider and a double-buffered period plan), a DDA, an output
-//! stage with four 16-bit timers, a 32-bit position counter, a quadrature
-//! decoder with timestamps and a FIFO, and the register file and read
-//! multiplexer are 32 bits wide.
+//! See `rtl-out/synthesis-report.md`. Each axis carries a complete uniform
+//! pulse generator (its own divider and a double-buffered period plan), a
+//! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
+//! a quadrature decoder with timestamps, a FIFO, its machine I/O (two
+//! 32-bit home latches) and a 32-bit register file; issue #19 is the area
+//! work.
 
 pub mod axis;
+pub mod axis_io;
+pub mod io_model;
+pub mod machine_io;
 pub mod model;
 pub mod registers;
 
@@ -154,7 +238,44 @@ use crate::blocks::freq_divider::FreqDivider;
 use crate::blocks::interrupt_controller::InterruptController;
 use crate::blocks::watchdog::Watchdog;
 use axis::MotionAxis;
-use registers::{global, ID_VALUE, VERSION_VALUE};
+use machine_io::MachineIo;
+use registers::{fields, global, irq, StopCause, ID_VALUE, VERSION_VALUE};
+
+/// The machine-I/O latencies in clocks, as the tests measure them. Clock
+/// c is the first clock whose inputs carry a pin's new level; "at c + n"
+/// means in the outputs after the edge of clock c + n.
+pub mod latency {
+    /// A switch, alarm, E-stop or general input held from clock c is
+    /// acted on from c + `switch(length, rate)` on (its filtered level is
+    /// set then), with `INPUT_FILTER` LENGTH = `length` and SAMPLE_RATE =
+    /// `rate`: 2 synchronizer clocks, then max(length, 1) samples, one every
+    /// rate + 1 clocks. Exact for rate 0; at most this for rate > 0.
+    pub const fn switch(length: u64, rate: u64) -> u64 {
+        let samples = if length > 1 { length } else { 1 };
+        1 + samples * (rate + 1) + rate
+    }
+    /// After the filtered limit level is set (at s = c + `switch`), the
+    /// last step toward the limit on its own axis can rise at s +
+    /// `LIMIT_OWN_AXIS`; later ones are cut.
+    pub const LIMIT_OWN_AXIS: u64 = 1;
+    /// After an abort cause is seen (a filtered E-stop or enabled alarm
+    /// level at s, a cut step, a stop-on-home edge), the last step of any
+    /// axis can rise at s + `ABORT_ALL_AXES`.
+    pub const ABORT_ALL_AXES: u64 = 3;
+    /// `drive_enable` is low from s + `DRIVE_ENABLE` after a filtered
+    /// E-stop or enabled alarm level at s, and from the clock after the
+    /// watchdog expires.
+    pub const DRIVE_ENABLE: u64 = 1;
+    /// After the watchdog expires (STATE.WATCHDOG_EXPIRED set at x), the
+    /// last step of any axis can rise at x + `WATCHDOG_ALL_AXES`.
+    pub const WATCHDOG_ALL_AXES: u64 = 1;
+}
+
+/// Number of interrupt sources (`STATUS` bits).
+const IRQ_COUNT: usize = irq::COUNT;
+
+/// The exported configuration: 3 axes, 16-entry FIFOs.
+pub type MotionController3 = MotionController<3, 4, 5>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -173,7 +294,7 @@ pub const PERIOD_BITS: usize = 16;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
-    "motion controller: K step/encoder axes, command FIFOs, synchronized periods, interrupt, watchdog, register bus";
+    "motion controller: K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
 pub const PORT_DOCS: &[(&str, &str)] = &[
@@ -194,13 +315,21 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("running", "periods are running (STATE.RUNNING)"),
     (
         "active",
-        "steps are still leaving (running, or an output stage or uniform generator busy): the drive enable",
+        "steps are still leaving (running, or an output stage or uniform generator busy)",
     ),
-    ("step_a__i", "axis i's step (step/dir), up (up/down) or A (quadrature)"),
-    ("step_b__i", "axis i's dir, down or B"),
-    ("enc_a__i", "axis i's encoder A, asynchronous"),
-    ("enc_b__i", "axis i's encoder B, asynchronous"),
-    ("enc_index__i", "axis i's encoder index, asynchronous"),
+    ("step_a", "bit k: axis k's step (step/dir), up (up/down) or A (quadrature)"),
+    ("step_b", "bit k: axis k's dir, down or B"),
+    ("enc_a", "bit k: axis k's encoder A, asynchronous"),
+    ("enc_b", "bit k: axis k's encoder B, asynchronous"),
+    ("enc_index", "bit k: axis k's encoder index, asynchronous"),
+    ("limit_pos", "bit k: positive-end limit switch of axis k, 1 = tripped, asynchronous"),
+    ("limit_neg", "bit k: negative-end limit switch of axis k, 1 = tripped, asynchronous"),
+    ("home", "bit k: home switch of axis k, 1 = active, asynchronous"),
+    ("drive_alarm", "bit k: alarm of axis k's drive, 1 = in alarm, asynchronous"),
+    ("estop", "emergency stop chain, 1 = stopped, asynchronous (no polarity setting)"),
+    ("gpio_in", "general inputs, asynchronous"),
+    ("drive_enable", "bit k: enable (servo-on) of axis k's drive"),
+    ("gpio_out", "general outputs (GPIO_OUT)"),
 ];
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
@@ -219,12 +348,24 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     pub bus_write: Signal<In, Bit>,
     /// Bus read strobe.
     pub bus_read: Signal<In, Bit>,
-    /// Per axis: encoder A.
-    pub enc_a: [Signal<In, Bit>; K],
+    /// Per axis (bit k): encoder A.
+    pub enc_a: Signal<In, Bits<K>>,
     /// Per axis: encoder B.
-    pub enc_b: [Signal<In, Bit>; K],
+    pub enc_b: Signal<In, Bits<K>>,
     /// Per axis: encoder index.
-    pub enc_index: [Signal<In, Bit>; K],
+    pub enc_index: Signal<In, Bits<K>>,
+    /// Per axis: positive-end limit switch, 1 = tripped (asynchronous).
+    pub limit_pos: Signal<In, Bits<K>>,
+    /// Per axis: negative-end limit switch.
+    pub limit_neg: Signal<In, Bits<K>>,
+    /// Per axis: home switch.
+    pub home: Signal<In, Bits<K>>,
+    /// Per axis: drive alarm, 1 = in alarm.
+    pub drive_alarm: Signal<In, Bits<K>>,
+    /// Emergency stop chain, 1 = stopped.
+    pub estop: Signal<In, Bit>,
+    /// General inputs.
+    pub gpio_in: Signal<In, Bits<8>>,
     /// Bus read data.
     pub bus_read_data: Signal<Out, Bits<32>>,
     /// Level interrupt.
@@ -232,17 +373,27 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     /// Periods are running.
     pub running: Signal<Out, Bit>,
     /// Steps are still leaving (running, or an output stage or uniform
-    /// generator still busy): the drive-enable output.
+    /// generator still busy).
     pub active: Signal<Out, Bit>,
     /// Per axis: step / up / A.
-    pub step_a: [Signal<Out, Bit>; K],
+    pub step_a: Signal<Out, Bits<K>>,
     /// Per axis: dir / down / B.
-    pub step_b: [Signal<Out, Bit>; K],
+    pub step_b: Signal<Out, Bits<K>>,
+    /// Per axis: drive enable (servo-on).
+    pub drive_enable: Signal<Out, Bits<K>>,
+    /// General outputs.
+    pub gpio_out: Signal<Out, Bits<8>>,
 
     axes: [MotionAxis<N, NP1>; K],
     tick_divider: FreqDivider<32>,
     watchdog: Watchdog<32>,
-    interrupts: InterruptController<7>,
+    interrupts: InterruptController<IRQ_COUNT>,
+    io: MachineIo<K>,
+    /// A stop cause is held (registered OR of every latch): every axis
+    /// flushed, interpolators halted.
+    abort_hold: DFF<Bit>,
+    /// STOP_CAUSE.
+    stop_cause: DFF<Bits<32>>,
 
     run: DFF<Bit>,
     irq_enable: DFF<Bits<32>>,
@@ -284,8 +435,27 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     flush: Signal<Local, Bit>,
     axes_read: Signal<Local, Bits<32>>,
     global_read: Signal<Local, Bits<32>>,
-    events: Signal<Local, Bits<7>>,
+    events: Signal<Local, Bits<IRQ_COUNT>>,
     state_word: Signal<Local, Bits<32>>,
+    abort: Signal<Local, Bit>,
+    refuse_run: Signal<Local, Bit>,
+    any_limit_held: Signal<Local, Bit>,
+    any_alarm_held: Signal<Local, Bit>,
+    any_home_held: Signal<Local, Bit>,
+    any_limit_event: Signal<Local, Bit>,
+    any_alarm_event: Signal<Local, Bit>,
+    any_home_event: Signal<Local, Bit>,
+    drive_allowed: Signal<Local, Bit>,
+    cause_now: Signal<Local, Bits<32>>,
+    limit_axis: Signal<Local, Bits<32>>,
+    alarm_axis: Signal<Local, Bits<32>>,
+    home_axis: Signal<Local, Bits<32>>,
+    limit_found: Signal<Local, Bit>,
+    alarm_found: Signal<Local, Bit>,
+    home_found: Signal<Local, Bit>,
+    steps_a: Signal<Local, Bits<K>>,
+    steps_b: Signal<Local, Bits<K>>,
+    enables: Signal<Local, Bits<K>>,
 
     a_id: Constant<Bits<8>>,
     a_version: Constant<Bits<8>>,
@@ -301,27 +471,56 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     a_snapshot: Constant<Bits<8>>,
     a_state: Constant<Bits<8>>,
     a_period_count: Constant<Bits<8>>,
+    a_stop_cause: Constant<Bits<8>>,
     id_value: Constant<Bits<32>>,
     version_value: Constant<Bits<32>>,
     config_value: Constant<Bits<32>>,
     bit0_32: Constant<Bits<32>>,
-    bit0_7: Constant<Bits<7>>,
     bit1_32: Constant<Bits<32>>,
-    bit1_7: Constant<Bits<7>>,
     bit2_32: Constant<Bits<32>>,
-    bit2_7: Constant<Bits<7>>,
-    bit3_7: Constant<Bits<7>>,
-    bit4_7: Constant<Bits<7>>,
-    bit5_7: Constant<Bits<7>>,
-    bit6_7: Constant<Bits<7>>,
     zero32: Constant<Bits<32>>,
     one32: Constant<Bits<32>>,
     zero_p: Constant<Bits<PERIOD_BITS>>,
     one_p: Constant<Bits<PERIOD_BITS>>,
     two_p: Constant<Bits<PERIOD_BITS>>,
     not_one_p: Constant<Bits<PERIOD_BITS>>,
-    zero7: Constant<Bits<7>>,
-    mask7: Constant<Bits<32>>,
+    /// The event bit of each interrupt source, by name.
+    ev_period_done: Constant<Bits<IRQ_COUNT>>,
+    ev_fifo_low: Constant<Bits<IRQ_COUNT>>,
+    ev_underrun: Constant<Bits<IRQ_COUNT>>,
+    ev_overflow: Constant<Bits<IRQ_COUNT>>,
+    ev_encoder_error: Constant<Bits<IRQ_COUNT>>,
+    ev_watchdog: Constant<Bits<IRQ_COUNT>>,
+    ev_axis_fault: Constant<Bits<IRQ_COUNT>>,
+    ev_limit: Constant<Bits<IRQ_COUNT>>,
+    ev_alarm: Constant<Bits<IRQ_COUNT>>,
+    ev_estop: Constant<Bits<IRQ_COUNT>>,
+    ev_home: Constant<Bits<IRQ_COUNT>>,
+    ev_gpio: Constant<Bits<IRQ_COUNT>>,
+    zero_ev: Constant<Bits<IRQ_COUNT>>,
+    /// IRQ_ENABLE's implemented bits.
+    irq_mask: Constant<Bits<32>>,
+    /// STATUS.WATCHDOG and STATUS.ESTOP, for their clears.
+    m_status_watchdog: Constant<Bits<32>>,
+    m_status_estop: Constant<Bits<32>>,
+    /// STATE fields.
+    m_state_estop_input: Constant<Bits<32>>,
+    m_state_estop_latched: Constant<Bits<32>>,
+    m_state_aborted: Constant<Bits<32>>,
+    m_state_inputs_ready: Constant<Bits<32>>,
+    /// STOP_CAUSE.CAUSE values, in place.
+    cause_stop: Constant<Bits<32>>,
+    cause_underrun: Constant<Bits<32>>,
+    cause_watchdog: Constant<Bits<32>>,
+    cause_home: Constant<Bits<32>>,
+    cause_limit: Constant<Bits<32>>,
+    cause_alarm: Constant<Bits<32>>,
+    cause_estop: Constant<Bits<32>>,
+    /// STOP_CAUSE.AXIS = k, in place.
+    cause_axis: [Constant<Bits<32>>; K],
+    /// Bit k of a K-bit vector.
+    axis_bit: [Constant<Bits<K>>; K],
+    zero_k: Constant<Bits<K>>,
     /// `bit_mask[i]` = 1 << i, to zero-extend STATUS and PERIOD_TICKS.
     bit_mask: [Constant<Bits<32>>; PERIOD_BITS],
     /// FIFO_LOW_WATER.LEVEL: N + 1 bits.
@@ -337,6 +536,9 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
         );
         assert!(NP1 == N + 1 && (2..=8).contains(&N), "MotionController: N in 2..=8, NP1 = N + 1");
         let a8 = |v: u32| Constant::new((v as u64).into());
+        let ev = |bit: u32| Constant::new((1u64 << bit).into());
+        let m32 = |bit: u32| Constant::new((1u64 << bit).into());
+        let cause = |c: StopCause| Constant::new(((c as u64) << fields::STOP_CAUSE_CAUSE).into());
         let config = registers::register_map(K, N as u32)
             .and_then(|map| map.register("CONFIG").map(|r| r.reset_value()))
             .expect("the controller's own register map validates");
@@ -347,19 +549,30 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             bus_write_data: Default::default(),
             bus_write: Default::default(),
             bus_read: Default::default(),
-            enc_a: array_init::array_init(|_| Default::default()),
-            enc_b: array_init::array_init(|_| Default::default()),
-            enc_index: array_init::array_init(|_| Default::default()),
+            enc_a: Default::default(),
+            enc_b: Default::default(),
+            enc_index: Default::default(),
+            limit_pos: Default::default(),
+            limit_neg: Default::default(),
+            home: Default::default(),
+            drive_alarm: Default::default(),
+            estop: Default::default(),
+            gpio_in: Default::default(),
             bus_read_data: Default::default(),
             irq: Default::default(),
             running: Default::default(),
             active: Default::default(),
-            step_a: array_init::array_init(|_| Default::default()),
-            step_b: array_init::array_init(|_| Default::default()),
+            step_a: Default::default(),
+            step_b: Default::default(),
+            drive_enable: Default::default(),
+            gpio_out: Default::default(),
             axes: array_init::array_init(MotionAxis::new),
             tick_divider: Default::default(),
             watchdog: Default::default(),
             interrupts: Default::default(),
+            io: Default::default(),
+            abort_hold: Default::default(),
+            stop_cause: Default::default(),
             run: Default::default(),
             irq_enable: Default::default(),
             tick_divisor: Default::default(),
@@ -394,6 +607,25 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             global_read: Default::default(),
             events: Default::default(),
             state_word: Default::default(),
+            abort: Default::default(),
+            refuse_run: Default::default(),
+            any_limit_held: Default::default(),
+            any_alarm_held: Default::default(),
+            any_home_held: Default::default(),
+            any_limit_event: Default::default(),
+            any_alarm_event: Default::default(),
+            any_home_event: Default::default(),
+            drive_allowed: Default::default(),
+            cause_now: Default::default(),
+            limit_axis: Default::default(),
+            alarm_axis: Default::default(),
+            home_axis: Default::default(),
+            limit_found: Default::default(),
+            alarm_found: Default::default(),
+            home_found: Default::default(),
+            steps_a: Default::default(),
+            steps_b: Default::default(),
+            enables: Default::default(),
             a_id: a8(global::ID),
             a_version: a8(global::VERSION),
             a_config: a8(global::CONFIG),
@@ -408,27 +640,49 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             a_snapshot: a8(global::SNAPSHOT),
             a_state: a8(global::STATE),
             a_period_count: a8(global::PERIOD_COUNT),
+            a_stop_cause: a8(global::STOP_CAUSE),
             id_value: Constant::new((ID_VALUE as u64).into()),
             version_value: Constant::new((VERSION_VALUE as u64).into()),
             config_value: Constant::new((config as u64).into()),
             bit0_32: Constant::new((1u64 << 0).into()),
-            bit0_7: Constant::new((1u64 << 0).into()),
             bit1_32: Constant::new((1u64 << 1).into()),
-            bit1_7: Constant::new((1u64 << 1).into()),
             bit2_32: Constant::new((1u64 << 2).into()),
-            bit2_7: Constant::new((1u64 << 2).into()),
-            bit3_7: Constant::new((1u64 << 3).into()),
-            bit4_7: Constant::new((1u64 << 4).into()),
-            bit5_7: Constant::new((1u64 << 5).into()),
-            bit6_7: Constant::new((1u64 << 6).into()),
             zero32: Constant::new(0u64.into()),
             one32: Constant::new(1u64.into()),
             zero_p: Constant::new(0u64.into()),
             one_p: Constant::new(1u64.into()),
             two_p: Constant::new(2u64.into()),
             not_one_p: Constant::new((crate::blocks::width_mask(PERIOD_BITS as u32) & !1).into()),
-            zero7: Constant::new(0u64.into()),
-            mask7: Constant::new(0x7fu64.into()),
+            ev_period_done: ev(irq::PERIOD_DONE),
+            ev_fifo_low: ev(irq::FIFO_LOW),
+            ev_underrun: ev(irq::UNDERRUN),
+            ev_overflow: ev(irq::OVERFLOW),
+            ev_encoder_error: ev(irq::ENCODER_ERROR),
+            ev_watchdog: ev(irq::WATCHDOG),
+            ev_axis_fault: ev(irq::AXIS_FAULT),
+            ev_limit: ev(irq::LIMIT),
+            ev_alarm: ev(irq::ALARM),
+            ev_estop: ev(irq::ESTOP),
+            ev_home: ev(irq::HOME),
+            ev_gpio: ev(irq::GPIO),
+            zero_ev: Constant::new(0u64.into()),
+            irq_mask: Constant::new(((1u64 << irq::COUNT) - 1).into()),
+            m_status_watchdog: m32(irq::WATCHDOG),
+            m_status_estop: m32(irq::ESTOP),
+            m_state_estop_input: m32(fields::STATE_ESTOP_INPUT),
+            m_state_estop_latched: m32(fields::STATE_ESTOP_LATCHED),
+            m_state_aborted: m32(fields::STATE_ABORTED),
+            m_state_inputs_ready: m32(fields::STATE_INPUTS_READY),
+            cause_stop: cause(StopCause::Stop),
+            cause_underrun: cause(StopCause::Underrun),
+            cause_watchdog: cause(StopCause::Watchdog),
+            cause_home: cause(StopCause::Home),
+            cause_limit: cause(StopCause::Limit),
+            cause_alarm: cause(StopCause::DriveAlarm),
+            cause_estop: cause(StopCause::Estop),
+            cause_axis: array_init::array_init(|k| Constant::new(((k as u64) << fields::STOP_CAUSE_AXIS).into())),
+            axis_bit: array_init::array_init(|k| Constant::new((1u64 << k).into())),
+            zero_k: Constant::new(0u64.into()),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
             level_mask: Constant::new(((1u64 << NP1) - 1).into()),
         }
@@ -455,16 +709,16 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             period_count,
             read_data,
             any_low_prev_n,
-            expired_prev
+            expired_prev,
+            abort_hold,
+            stop_cause
         );
-        self.tick_divider.clock.next = self.clock.val();
-        self.watchdog.clock.next = self.clock.val();
-        self.interrupts.clock.next = self.clock.val();
+        clock!(self, clock, tick_divider, watchdog, interrupts, io);
 
         // Global register writes.
         if self.bus_write.val() {
             if self.bus_address.val() == self.a_irq_enable.val() {
-                self.irq_enable.d.next = self.bus_write_data.val() & self.mask7.val();
+                self.irq_enable.d.next = self.bus_write_data.val() & self.irq_mask.val();
             }
             if self.bus_address.val() == self.a_tick_divisor.val() {
                 self.tick_divisor.d.next = self.bus_write_data.val();
@@ -494,17 +748,69 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.bus_write.val() & (self.bus_address.val() == self.a_watchdog_kick.val());
         self.watchdog.clear.next = self.bus_write.val()
             & (self.bus_address.val() == self.a_status.val())
-            & self.bus_write_data.val().get_bit(5);
+            & ((self.bus_write_data.val() & self.m_status_watchdog.val()) != self.zero32.val());
+
+        // Machine I/O: switch conditioning, E-stop latch, general I/O.
+        self.io.reset.next = self.reset.val();
+        self.io.limit_pos.next = self.limit_pos.val();
+        self.io.limit_neg.next = self.limit_neg.val();
+        self.io.home.next = self.home.val();
+        self.io.drive_alarm.next = self.drive_alarm.val();
+        self.io.estop.next = self.estop.val();
+        self.io.gpio_in.next = self.gpio_in.val();
+        self.io.address.next = self.bus_address.val();
+        self.io.write.next = self.bus_write.val();
+        self.io.write_data.next = self.bus_write_data.val();
+        self.io.estop_clear.next = self.bus_write.val()
+            & (self.bus_address.val() == self.a_status.val())
+            & ((self.bus_write_data.val() & self.m_status_estop.val()) != self.zero32.val());
+        self.io.watchdog_expired.next = self.watchdog.expired.val();
+        self.gpio_out.next = self.io.gpio_out.val();
+        self.drive_allowed.next = !self.io.estop_latched_next.val() & !self.watchdog.expired.val();
+
+        // Stop causes held by the axes.
+        self.any_limit_held.next = false;
+        self.any_alarm_held.next = false;
+        self.any_home_held.next = false;
+        self.any_limit_event.next = false;
+        self.any_alarm_event.next = false;
+        self.any_home_event.next = false;
+        for i in 0..K {
+            self.any_limit_held.next = self.any_limit_held.val() | self.axes[i].limit_held.val();
+            self.any_alarm_held.next = self.any_alarm_held.val() | self.axes[i].alarm_held.val();
+            self.any_home_held.next = self.any_home_held.val() | self.axes[i].home_held.val();
+            self.any_limit_event.next = self.any_limit_event.val() | self.axes[i].limit_event.val();
+            self.any_alarm_event.next = self.any_alarm_event.val() | self.axes[i].alarm_event.val();
+            self.any_home_event.next = self.any_home_event.val() | self.axes[i].home_event.val();
+        }
+        // Registered, so that the OR of every latch is not in front of the
+        // halt and flush logic of every axis: one clock of latency.
+        self.abort_hold.d.next = self.io.estop_latched.val()
+            | self.any_limit_held.val()
+            | self.any_alarm_held.val()
+            | self.any_home_held.val();
+        if self.reset.val() {
+            self.abort_hold.d.next = false;
+        }
+        self.abort.next = self.abort_hold.q.val() | self.watchdog.expired.val();
+        // RUN is refused on the latches themselves, not on the registered
+        // hold, so no clock slips between a latch and the refusal.
+        self.refuse_run.next = self.run.q.val()
+            | self.watchdog.expired.val()
+            | self.io.estop_active.val()
+            | self.io.estop_latched.val()
+            | self.any_limit_held.val()
+            | self.any_alarm_held.val()
+            | self.any_home_held.val()
+            | !self.io.ready.val();
 
         // Run control and the period boundary.
         self.write_control.next =
             self.bus_write.val() & (self.bus_address.val() == self.a_control.val());
-        self.start.next = self.write_control.val()
-            & self.bus_write_data.val().get_bit(0)
-            & !self.run.q.val()
-            & !self.watchdog.expired.val();
+        self.start.next =
+            self.write_control.val() & self.bus_write_data.val().get_bit(0) & !self.refuse_run.val();
         self.halt.next = (self.write_control.val() & !self.bus_write_data.val().get_bit(0))
-            | self.watchdog.expired.val();
+            | self.abort.val();
         self.all_ready.next = true;
         self.any_low.next = false;
         self.any_overflow.next = false;
@@ -558,8 +864,61 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         self.active.next = self.run.q.val() | self.any_busy.val();
         self.flush.next = self.write_control.val() & self.bus_write_data.val().get_bit(1);
 
+        // STOP_CAUSE: taken when RUN falls; of simultaneous causes the
+        // highest code wins, with the lowest axis that holds it.
+        self.limit_axis.next = self.zero32.val();
+        self.alarm_axis.next = self.zero32.val();
+        self.home_axis.next = self.zero32.val();
+        self.limit_found.next = false;
+        self.alarm_found.next = false;
+        self.home_found.next = false;
+        for i in 0..K {
+            if self.axes[i].limit_held.val() & !self.limit_found.val() {
+                self.limit_axis.next = self.cause_axis[i].val();
+                self.limit_found.next = true;
+            }
+            if self.axes[i].alarm_held.val() & !self.alarm_found.val() {
+                self.alarm_axis.next = self.cause_axis[i].val();
+                self.alarm_found.next = true;
+            }
+            if self.axes[i].home_held.val() & !self.home_found.val() {
+                self.home_axis.next = self.cause_axis[i].val();
+                self.home_found.next = true;
+            }
+        }
+        self.cause_now.next = self.cause_stop.val();
+        if self.underrun.val() {
+            self.cause_now.next = self.cause_underrun.val();
+        }
+        if self.watchdog.expired.val() {
+            self.cause_now.next = self.cause_watchdog.val();
+        }
+        if self.abort_hold.q.val() & self.any_home_held.val() {
+            self.cause_now.next = self.cause_home.val() | self.home_axis.val();
+        }
+        if self.abort_hold.q.val() & self.any_limit_held.val() {
+            self.cause_now.next = self.cause_limit.val() | self.limit_axis.val();
+        }
+        if self.abort_hold.q.val() & self.any_alarm_held.val() {
+            self.cause_now.next = self.cause_alarm.val() | self.alarm_axis.val();
+        }
+        if self.abort_hold.q.val() & self.io.estop_latched.val() {
+            self.cause_now.next = self.cause_estop.val();
+        }
+        if self.run.q.val() & (self.underrun.val() | self.halt.val()) {
+            self.stop_cause.d.next = self.cause_now.val();
+        }
+        if self.reset.val() {
+            self.stop_cause.d.next = self.zero32.val();
+        }
+
         // Axes.
         self.axes_read.next = self.zero32.val();
+        self.steps_a.next = self.zero_k.val();
+        self.steps_b.next = self.zero_k.val();
+        self.enables.next = self.zero_k.val();
+        // Bits of the K-bit ports by mask, not bit select: at K = 1 rust-hdl
+        // declares them without a range, where `x[0]` is illegal Verilog.
         for i in 0..K {
             self.axes[i].clock.next = self.clock.val();
             self.axes[i].reset.next = self.reset.val();
@@ -567,6 +926,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.axes[i].start.next = self.start.val();
             self.axes[i].flush.next = self.flush.val();
             self.axes[i].halt.next = self.halt.val();
+            self.axes[i].abort.next = self.abort.val();
             self.axes[i].pop.next = self.pop.val();
             self.axes[i].underrun.next = self.underrun.val();
             self.axes[i].period_active.next = self.period_active.q.val();
@@ -577,45 +937,76 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.axes[i].address.next = self.bus_address.val();
             self.axes[i].write.next = self.bus_write.val();
             self.axes[i].write_data.next = self.bus_write_data.val();
-            self.axes[i].enc_a.next = self.enc_a[i].val();
-            self.axes[i].enc_b.next = self.enc_b[i].val();
-            self.axes[i].enc_index.next = self.enc_index[i].val();
-            self.step_a[i].next = self.axes[i].out_a.val();
-            self.step_b[i].next = self.axes[i].out_b.val();
+            self.axes[i].enc_a.next = (self.enc_a.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].enc_b.next = (self.enc_b.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].enc_index.next = (self.enc_index.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].limit_forward.next = (self.io.limit_pos_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].limit_backward.next = (self.io.limit_neg_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].home.next = (self.io.home_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].home_rise.next = (self.io.home_rise.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].alarm.next = (self.io.alarm_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].drive_allowed.next = self.drive_allowed.val();
+            if self.axes[i].out_a.val() {
+                self.steps_a.next = self.steps_a.val() | self.axis_bit[i].val();
+            }
+            if self.axes[i].out_b.val() {
+                self.steps_b.next = self.steps_b.val() | self.axis_bit[i].val();
+            }
+            if self.axes[i].drive_enable.val() {
+                self.enables.next = self.enables.val() | self.axis_bit[i].val();
+            }
             self.axes_read.next = self.axes_read.val() | self.axes[i].read_data.val();
         }
+        self.step_a.next = self.steps_a.val();
+        self.step_b.next = self.steps_b.val();
+        self.drive_enable.next = self.enables.val();
 
         // Interrupts: pulses, so that a write-1-to-clear always clears.
         self.any_low_prev_n.d.next = !self.any_low.val();
         self.expired_prev.d.next = self.watchdog.expired.val();
-        self.events.next = self.zero7.val();
+        self.events.next = self.zero_ev.val();
         if self.pop.val() & self.in_period.q.val() {
-            self.events.next = self.events.val() | self.bit0_7.val();
+            self.events.next = self.events.val() | self.ev_period_done.val();
         }
         if self.any_low.val() & self.any_low_prev_n.q.val() {
-            self.events.next = self.events.val() | self.bit1_7.val();
+            self.events.next = self.events.val() | self.ev_fifo_low.val();
         }
         if self.underrun.val() {
-            self.events.next = self.events.val() | self.bit2_7.val();
+            self.events.next = self.events.val() | self.ev_underrun.val();
         }
         if self.any_overflow.val() {
-            self.events.next = self.events.val() | self.bit3_7.val();
+            self.events.next = self.events.val() | self.ev_overflow.val();
         }
         if self.any_encoder_error.val() {
-            self.events.next = self.events.val() | self.bit4_7.val();
+            self.events.next = self.events.val() | self.ev_encoder_error.val();
         }
         if self.watchdog.expired.val() & !self.expired_prev.q.val() {
-            self.events.next = self.events.val() | self.bit5_7.val();
+            self.events.next = self.events.val() | self.ev_watchdog.val();
         }
         if self.any_fault.val() {
-            self.events.next = self.events.val() | self.bit6_7.val();
+            self.events.next = self.events.val() | self.ev_axis_fault.val();
+        }
+        if self.any_limit_event.val() {
+            self.events.next = self.events.val() | self.ev_limit.val();
+        }
+        if self.any_alarm_event.val() {
+            self.events.next = self.events.val() | self.ev_alarm.val();
+        }
+        if self.io.estop_event.val() {
+            self.events.next = self.events.val() | self.ev_estop.val();
+        }
+        if self.any_home_event.val() {
+            self.events.next = self.events.val() | self.ev_home.val();
+        }
+        if self.io.gpio_event.val() {
+            self.events.next = self.events.val() | self.ev_gpio.val();
         }
         self.interrupts.reset.next = self.reset.val();
         self.interrupts.events.next = self.events.val();
         self.interrupts.clear.next =
             self.bus_write.val() & (self.bus_address.val() == self.a_status.val());
-        self.interrupts.clear_bits.next = self.bus_write_data.val().get_bits::<7>(0);
-        self.interrupts.enable.next = self.irq_enable.q.val().get_bits::<7>(0);
+        self.interrupts.clear_bits.next = self.bus_write_data.val().get_bits::<IRQ_COUNT>(0);
+        self.interrupts.enable.next = self.irq_enable.q.val().get_bits::<IRQ_COUNT>(0);
         self.irq.next = self.interrupts.irq.val();
 
         // Reads.
@@ -629,7 +1020,19 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         if self.watchdog.expired.val() {
             self.state_word.next = self.state_word.val() | self.bit2_32.val();
         }
-        self.global_read.next = self.zero32.val();
+        if self.io.estop_active.val() {
+            self.state_word.next = self.state_word.val() | self.m_state_estop_input.val();
+        }
+        if self.io.estop_latched.val() {
+            self.state_word.next = self.state_word.val() | self.m_state_estop_latched.val();
+        }
+        if self.abort.val() {
+            self.state_word.next = self.state_word.val() | self.m_state_aborted.val();
+        }
+        if self.io.ready.val() {
+            self.state_word.next = self.state_word.val() | self.m_state_inputs_ready.val();
+        }
+        self.global_read.next = self.io.read_data.val();
         if self.bus_address.val() == self.a_id.val() {
             self.global_read.next = self.id_value.val();
         }
@@ -645,7 +1048,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             }
         }
         if self.bus_address.val() == self.a_status.val() {
-            for i in 0..7 {
+            for i in 0..irq::COUNT {
                 if self.interrupts.status.val().get_bit(i) {
                     self.global_read.next = self.global_read.val() | self.bit_mask[i].val();
                 }
@@ -676,6 +1079,9 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         if self.bus_address.val() == self.a_period_count.val() {
             self.global_read.next = self.period_count.q.val();
         }
+        if self.bus_address.val() == self.a_stop_cause.val() {
+            self.global_read.next = self.stop_cause.q.val();
+        }
         if self.bus_read.val() {
             self.read_data.d.next = self.global_read.val() | self.axes_read.val();
         }
@@ -701,51 +1107,8 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
     }
 }
 
-impl<const K: usize, const N: usize, const NP1: usize> crate::sim::VectorPorts
-    for MotionController<K, N, NP1>
-{
-    fn input_names() -> Vec<String> {
-        let mut names: Vec<String> = ["reset", "bus_address", "bus_write_data", "bus_write", "bus_read"]
-            .map(String::from)
-            .to_vec();
-        for port in ["enc_a", "enc_b", "enc_index"] {
-            names.extend((0..K).map(|i| format!("{port}__{i}")));
-        }
-        names
-    }
-    fn output_names() -> Vec<String> {
-        let mut names: Vec<String> = ["bus_read_data", "irq", "running", "active"].map(String::from).to_vec();
-        for port in ["step_a", "step_b"] {
-            names.extend((0..K).map(|i| format!("{port}__{i}")));
-        }
-        names
-    }
-    fn clock_mut(&mut self) -> &mut Signal<In, Clock> {
-        &mut self.clock
-    }
-    fn set_inputs(&mut self, values: &[u64]) {
-        use crate::sim::PortValue;
-        self.reset.next = PortValue::from_vector(values[0]);
-        self.bus_address.next = PortValue::from_vector(values[1]);
-        self.bus_write_data.next = PortValue::from_vector(values[2]);
-        self.bus_write.next = PortValue::from_vector(values[3]);
-        self.bus_read.next = PortValue::from_vector(values[4]);
-        for i in 0..K {
-            self.enc_a[i].next = PortValue::from_vector(values[5 + i]);
-            self.enc_b[i].next = PortValue::from_vector(values[5 + K + i]);
-            self.enc_index[i].next = PortValue::from_vector(values[5 + 2 * K + i]);
-        }
-    }
-    fn outputs(&self) -> Vec<u64> {
-        use crate::sim::PortValue;
-        let mut out = vec![
-            self.bus_read_data.val().to_vector(),
-            self.irq.val().to_vector(),
-            self.running.val().to_vector(),
-            self.active.val().to_vector(),
-        ];
-        out.extend(self.step_a.iter().map(|s| s.val().to_vector()));
-        out.extend(self.step_b.iter().map(|s| s.val().to_vector()));
-        out
-    }
-}
+crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize] MotionController<K, N, NP1> {
+    inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
+        limit_pos, limit_neg, home, drive_alarm, estop, gpio_in],
+    outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out],
+});

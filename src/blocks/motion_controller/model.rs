@@ -6,7 +6,11 @@
 //! is computed in two phases, like the hardware: first the combinational
 //! values from the registered state of every part, then the edge.
 
-use super::registers::{self, axis, global, AXIS_BASE, AXIS_STRIDE, ID_VALUE, VERSION_VALUE};
+use super::io_model::{AxisIoComb, AxisIoModel, AxisSwitches, MachineIoModel, MachinePins, StepPath};
+use super::registers::{
+    self, axis, fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, ID_VALUE,
+    VERSION_VALUE,
+};
 use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
 use crate::blocks::dda_integrator::model::{DdaIntegratorInputs, DdaIntegratorModel, DdaIntegratorOutputs};
 use crate::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
@@ -39,6 +43,8 @@ pub struct ControllerInputs {
     pub read: bool,
     /// Per axis: encoder (a, b, index).
     pub encoders: Vec<(bool, bool, bool)>,
+    /// Limit, home, alarm, E-stop and general-input pins.
+    pub pins: MachinePins,
 }
 
 /// The controller's outputs after one edge.
@@ -54,12 +60,16 @@ pub struct ControllerOutputs {
     pub active: bool,
     /// Per axis: (step_a, step_b).
     pub steps: Vec<(bool, bool)>,
+    /// drive_enable, bit k for axis k.
+    pub drive_enable: u32,
+    /// gpio_out.
+    pub gpio_out: u8,
 }
 
 impl ControllerInputs {
     /// The RTL's input vector, in its port order (`VectorPorts`).
     pub fn to_vector(&self) -> Vec<u64> {
-        let mut vector = Vec::with_capacity(5 + 3 * self.encoders.len());
+        let mut vector = Vec::with_capacity(14);
         self.write_vector(&mut vector);
         vector
     }
@@ -75,9 +85,21 @@ impl ControllerInputs {
             self.write as u64,
             self.read as u64,
         ]);
-        vector.extend(self.encoders.iter().map(|e| e.0 as u64));
-        vector.extend(self.encoders.iter().map(|e| e.1 as u64));
-        vector.extend(self.encoders.iter().map(|e| e.2 as u64));
+        let word = |f: fn(&(bool, bool, bool)) -> bool| {
+            self.encoders
+                .iter()
+                .enumerate()
+                .fold(0u64, |w, (k, e)| w | (f(e) as u64) << k)
+        };
+        vector.extend([word(|e| e.0), word(|e| e.1), word(|e| e.2)]);
+        vector.extend([
+            self.pins.limit_pos as u64,
+            self.pins.limit_neg as u64,
+            self.pins.home as u64,
+            self.pins.drive_alarm as u64,
+            self.pins.estop as u64,
+            self.pins.gpio_in as u64,
+        ]);
     }
 }
 
@@ -90,7 +112,9 @@ impl ControllerOutputs {
             irq: v[1] != 0,
             running: v[2] != 0,
             active: v[3] != 0,
-            steps: (0..axes).map(|i| (v[4 + i] != 0, v[4 + axes + i] != 0)).collect(),
+            steps: (0..axes).map(|k| (v[4] >> k & 1 != 0, v[5] >> k & 1 != 0)).collect(),
+            drive_enable: v[6] as u32,
+            gpio_out: v[7] as u8,
         }
     }
 }
@@ -112,6 +136,8 @@ struct AxisControl {
     address: u32,
     write: bool,
     write_data: u32,
+    abort: bool,
+    drive_allowed: bool,
 }
 
 /// Model of one axis ([`super::axis::MotionAxis`]).
@@ -132,6 +158,8 @@ pub struct AxisModel {
     encoder_out: QuadratureDecoderOutputs,
     /// The axis's own registers (everything but the sub-blocks).
     glue: AxisGlue,
+    /// Limits, alarm, home and drive enable.
+    io: AxisIoModel,
 }
 
 /// The registers of an axis outside its sub-blocks: all 0 at power-up and
@@ -175,6 +203,7 @@ struct AxisGlue {
 /// The combinational values of an axis in one clock.
 #[derive(Clone, Copy, Debug, Default)]
 struct AxisComb {
+    io: AxisIoComb,
     low: bool,
     overflow_event: bool,
     fault_event: bool,
@@ -203,7 +232,7 @@ impl AxisModel {
         let dda = DdaIntegratorModel::new(super::PERIOD_BITS as u32);
         let encoder = QuadratureDecoderModel::new(32, 8, 16);
         Self {
-            window: (AXIS_BASE + index as u32 * AXIS_STRIDE) >> 4,
+            window: (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2,
             fifo,
             fifo_out,
             dda_out: dda.outputs(),
@@ -217,7 +246,13 @@ impl AxisModel {
             encoder_out: encoder.outputs(),
             encoder,
             glue: AxisGlue::default(),
+            io: AxisIoModel::default(),
         }
+    }
+
+    /// The machine-I/O state of the axis.
+    pub fn io(&self) -> &AxisIoModel {
+        &self.io
     }
 
     /// Steps emitted by the output stage, net (the commanded position).
@@ -235,8 +270,30 @@ impl AxisModel {
         self.fifo_out.level
     }
 
+    /// The bus addresses this axis's motion-core half.
     fn selected(&self, address: u32) -> bool {
-        (address >> 4) & 0xf == self.window
+        address >> AXIS_STRIDE_LOG2 == self.window && address & 0x10 == 0
+    }
+
+    /// The bus addresses this axis's machine-I/O half.
+    fn io_selected(&self, address: u32) -> bool {
+        address >> AXIS_STRIDE_LOG2 == self.window && address & 0x10 != 0
+    }
+
+    /// The step the interpolator offers to the request register in this
+    /// clock, and its direction.
+    fn candidate(&self) -> (bool, bool) {
+        let uniform_started = self.uniform_out.ready && !self.glue.uniform_ready_prev;
+        let uniform_forward = if uniform_started {
+            self.glue.uniform_loaded_forward
+        } else {
+            self.glue.uniform_running_forward
+        };
+        if self.glue.uniform_active {
+            (self.uniform_out.pulse && !self.glue.uniform_pulse_prev, uniform_forward)
+        } else {
+            (self.dda_out.pulse, self.glue.forward_2)
+        }
     }
 
     fn popped_magnitude(&self) -> u64 {
@@ -261,12 +318,35 @@ impl AxisModel {
         self.stage_out.busy || self.uniform_out.running
     }
 
-    fn comb(&self, address: u32, write: bool, pop: bool, low_water: u64) -> AxisComb {
+    #[allow(clippy::too_many_arguments)]
+    fn comb(
+        &self,
+        reset: bool,
+        address: u32,
+        write: bool,
+        write_data: u32,
+        pop: bool,
+        low_water: u64,
+        switches: AxisSwitches,
+    ) -> AxisComb {
         let selected = self.selected(address);
         let offset = address & 0xf;
+        let (pulse, pulse_forward) = self.candidate();
+        let path = StepPath {
+            pending_forward: self.stage_out.pending_forward,
+            pending_backward: self.stage_out.pending_backward,
+            request: self.glue.request,
+            request_forward: self.glue.request_forward,
+            pulse,
+            pulse_forward,
+        };
+        let io_offset = address & (AXIS_STRIDE - 1);
+        let io_command = (write && self.io_selected(address) && io_offset == axis::IO_COMMAND).then_some(write_data);
+        let io = self.io.comb(reset, &switches, &path, io_command);
         let fifo_write = write && selected && offset == axis::FIFO_WRITE;
         let low = self.fifo_out.level <= low_water;
-        let read_data = if !selected {
+        let io_read = if self.io_selected(address) { self.io.read(io_offset, &switches) } else { 0 };
+        let read_data = io_read | if !selected {
             0
         } else {
             match offset {
@@ -301,6 +381,7 @@ impl AxisModel {
             }
         };
         AxisComb {
+            io,
             low,
             overflow_event: fifo_write && self.fifo_out.full && !pop,
             fault_event: {
@@ -312,7 +393,7 @@ impl AxisModel {
         }
     }
 
-    fn edge(&mut self, c: &AxisControl, (a, b, index): (bool, bool, bool)) {
+    fn edge(&mut self, c: &AxisControl, (a, b, index): (bool, bool, bool), comb: &AxisComb) {
         let selected = self.selected(c.address);
         let offset = c.address & 0xf;
         let command = c.write && selected && offset == axis::AXIS_COMMAND;
@@ -397,17 +478,16 @@ impl AxisModel {
         next.glue.uniform_ready_prev = self.uniform_out.ready;
         next.glue.uniform_pulse_prev = self.uniform_out.pulse;
         let uniform_started = self.uniform_out.ready && !self.glue.uniform_ready_prev;
-        let uniform_forward = if uniform_started {
+        next.glue.uniform_running_forward = if uniform_started {
             self.glue.uniform_loaded_forward
         } else {
             self.glue.uniform_running_forward
         };
-        next.glue.uniform_running_forward = uniform_forward;
-        (next.glue.request, next.glue.request_forward) = if self.glue.uniform_active {
-            (self.uniform_out.pulse && !self.glue.uniform_pulse_prev, uniform_forward)
-        } else {
-            (self.dda_out.pulse, self.glue.forward_2)
-        };
+        // An abort or a blocked direction keeps the offered step out.
+        let (candidate, candidate_forward) = self.candidate();
+        let blocked = if candidate_forward { comb.io.block_forward } else { comb.io.block_backward };
+        next.glue.request = candidate && !c.abort && !blocked;
+        next.glue.request_forward = candidate_forward;
         let (step, dir) = (self.glue.request, self.glue.request_forward);
         next.stage_out = next.stage.step(StepOutputInputs {
             reset: c.reset,
@@ -419,6 +499,7 @@ impl AxisModel {
             dir_setup: self.glue.dir_setup as u64,
             dir_hold: self.glue.dir_hold as u64,
             clear_overrun: clear_faults,
+            flush: c.abort || comb.io.cut(),
         });
         // CLEAR_POSITION waits for a clock without a counted step.
         let clear_position = (command && c.write_data & 8 != 0) || self.glue.clear_position_pending;
@@ -454,6 +535,15 @@ impl AxisModel {
             next.glue.act_snapshot = self.encoder_out.count as u32;
         }
         next.glue.encoder_error_prev = self.encoder_out.error;
+        let io_offset = c.address & (AXIS_STRIDE - 1);
+        let io_write = (c.write && self.io_selected(c.address)).then_some((io_offset, c.write_data));
+        next.io.edge(
+            c.reset,
+            io_write,
+            &comb.io,
+            (self.position_out.count as u32, self.encoder_out.count as u32),
+            c.drive_allowed,
+        );
         if c.reset {
             next.glue = AxisGlue::default();
         }
@@ -491,6 +581,9 @@ pub struct MotionControllerModel {
     /// Inverted like the RTL's: reset counts as "already low".
     any_low_prev_n: bool,
     expired_prev: bool,
+    io: MachineIoModel,
+    abort_hold: bool,
+    stop_cause: u32,
 }
 
 impl MotionControllerModel {
@@ -525,7 +618,15 @@ impl MotionControllerModel {
             read_data: 0,
             any_low_prev_n: false,
             expired_prev: false,
+            io: MachineIoModel::new(axes),
+            abort_hold: false,
+            stop_cause: 0,
         })
+    }
+
+    /// `STOP_CAUSE.CAUSE`: why RUN last fell.
+    pub fn stop_cause(&self) -> StopCause {
+        StopCause::from_code(self.stop_cause >> fields::STOP_CAUSE_CAUSE & 0xf)
     }
 
     /// The axes, for positions and FIFO levels.
@@ -549,11 +650,18 @@ impl MotionControllerModel {
                 .iter()
                 .map(|a| (a.stage_out.out_a, a.stage_out.out_b))
                 .collect(),
+            drive_enable: self
+                .axes
+                .iter()
+                .enumerate()
+                .fold(0, |w, (k, a)| w | (a.io.drive_enable() as u32) << k),
+            gpio_out: self.io.gpio_out(),
         }
     }
 
-    fn global_read(&self, address: u32) -> u32 {
+    fn global_read(&self, address: u32, io: &super::io_model::MachineIoComb) -> u32 {
         let (expired, armed) = self.watchdog_out;
+        let bit = |on: bool, n: u32| (on as u32) << n;
         match address {
             global::ID => ID_VALUE,
             global::VERSION => VERSION_VALUE,
@@ -565,9 +673,18 @@ impl MotionControllerModel {
             global::PERIOD_TICKS => self.period_ticks,
             global::FIFO_LOW_WATER => self.low_water,
             global::WATCHDOG_TIMEOUT => self.watchdog_timeout,
-            global::STATE => self.run as u32 | (armed as u32) << 1 | (expired as u32) << 2,
+            global::STATE => {
+                self.run as u32
+                    | bit(armed, 1)
+                    | bit(expired, 2)
+                    | bit(io.estop_active, fields::STATE_ESTOP_INPUT)
+                    | bit(io.estop_latched, fields::STATE_ESTOP_LATCHED)
+                    | bit(self.abort_hold || expired, fields::STATE_ABORTED)
+                    | bit(io.ready, fields::STATE_INPUTS_READY)
+            }
             global::PERIOD_COUNT => self.period_count,
-            _ => 0,
+            global::STOP_CAUSE => self.stop_cause,
+            _ => io.read_data,
         }
     }
 
@@ -581,9 +698,25 @@ impl MotionControllerModel {
         let tick = self.tick;
 
         // Combinational phase.
+        let status_write = write(global::STATUS).then_some(i.write_data);
+        let status_bit = |n: u32| status_write.is_some_and(|d| d >> n & 1 != 0);
+        let io = self.io.comb(i.reset, address, status_bit(irq::ESTOP));
+        let drive_allowed = !io.estop_latched_next && !expired;
+        let any_limit_held = self.axes.iter().any(|a| a.io.limit_held());
+        let any_alarm_held = self.axes.iter().any(|a| a.io.alarm_held());
+        let any_home_held = self.axes.iter().any(|a| a.io.home_held());
+        let abort = self.abort_hold || expired;
+        let refuse_run = self.run
+            || expired
+            || io.estop_active
+            || io.estop_latched
+            || any_limit_held
+            || any_alarm_held
+            || any_home_held
+            || !io.ready;
         let write_control = write(global::CONTROL);
-        let start = write_control && i.write_data & 1 != 0 && !self.run && !expired;
-        let halt = (write_control && i.write_data & 1 == 0) || expired;
+        let start = write_control && i.write_data & 1 != 0 && !refuse_run;
+        let halt = (write_control && i.write_data & 1 == 0) || abort;
         let boundary = self.run && tick && self.boundary_next;
         let all_ready = self.axes.iter().all(|a| !a.fifo_out.empty);
         let pop = boundary && all_ready && !halt;
@@ -592,27 +725,53 @@ impl MotionControllerModel {
         let combs: Vec<AxisComb> = self
             .axes
             .iter()
-            .map(|a| a.comb(address, i.write, pop, self.low_water as u64))
+            .zip(&io.switches)
+            .map(|(a, s)| a.comb(i.reset, address, i.write, i.write_data, pop, self.low_water as u64, *s))
             .collect();
         let any_low = combs.iter().any(|c| c.low);
         let mut events = 0u64;
         let mut set = |bit: u32, on: bool| events |= (on as u64) << bit;
-        set(registers::irq::PERIOD_DONE, pop && self.in_period);
-        set(registers::irq::FIFO_LOW, any_low && self.any_low_prev_n);
-        set(registers::irq::UNDERRUN, underrun);
-        set(registers::irq::OVERFLOW, combs.iter().any(|c| c.overflow_event));
-        set(registers::irq::ENCODER_ERROR, combs.iter().any(|c| c.encoder_error_event));
-        set(registers::irq::WATCHDOG, expired && !self.expired_prev);
-        set(registers::irq::AXIS_FAULT, combs.iter().any(|c| c.fault_event));
+        set(irq::PERIOD_DONE, pop && self.in_period);
+        set(irq::FIFO_LOW, any_low && self.any_low_prev_n);
+        set(irq::UNDERRUN, underrun);
+        set(irq::OVERFLOW, combs.iter().any(|c| c.overflow_event));
+        set(irq::ENCODER_ERROR, combs.iter().any(|c| c.encoder_error_event));
+        set(irq::WATCHDOG, expired && !self.expired_prev);
+        set(irq::AXIS_FAULT, combs.iter().any(|c| c.fault_event));
+        set(irq::LIMIT, combs.iter().any(|c| c.io.limit_event));
+        set(irq::ALARM, combs.iter().any(|c| c.io.alarm_event));
+        set(irq::ESTOP, io.estop_event);
+        set(irq::HOME, combs.iter().any(|c| c.io.home_event));
+        set(irq::GPIO, io.gpio_event);
         let read_word = combs
             .iter()
-            .fold(self.global_read(address), |w, c| w | c.read_data);
+            .fold(self.global_read(address, &io), |w, c| w | c.read_data);
+        // STOP_CAUSE: the highest of this clock's causes, with the lowest
+        // axis that holds it.
+        let lowest = |held: fn(&AxisIoModel) -> bool| {
+            self.axes.iter().position(|a| held(&a.io)).unwrap_or(0) as u32
+        };
+        let cause_now = if self.abort_hold && io.estop_latched {
+            (StopCause::Estop, 0)
+        } else if self.abort_hold && any_alarm_held {
+            (StopCause::DriveAlarm, lowest(AxisIoModel::alarm_held))
+        } else if self.abort_hold && any_limit_held {
+            (StopCause::Limit, lowest(AxisIoModel::limit_held))
+        } else if self.abort_hold && any_home_held {
+            (StopCause::Home, lowest(AxisIoModel::home_held))
+        } else if expired {
+            (StopCause::Watchdog, 0)
+        } else if underrun {
+            (StopCause::Underrun, 0)
+        } else {
+            (StopCause::Stop, 0)
+        };
 
         // Edge.
         let mut next = self.clone();
         if i.write {
             match address {
-                global::IRQ_ENABLE => next.irq_enable = i.write_data & 0x7f,
+                global::IRQ_ENABLE => next.irq_enable = i.write_data & ((1 << irq::COUNT) - 1),
                 global::TICK_DIVISOR => next.tick_divisor = i.write_data,
                 global::PERIOD_TICKS => next.period_ticks = i.write_data & COUNT_MAX as u32,
                 global::FIFO_LOW_WATER => next.low_water = i.write_data & level_mask,
@@ -630,7 +789,7 @@ impl MotionControllerModel {
             tick,
             self.watchdog_timeout as u64,
             write(global::WATCHDOG_KICK),
-            write(global::STATUS) && i.write_data & (1 << registers::irq::WATCHDOG) != 0,
+            status_bit(irq::WATCHDOG),
         );
         if start {
             next.run = true;
@@ -656,6 +815,11 @@ impl MotionControllerModel {
             next.run = false;
             next.in_period = false;
         }
+        if self.run && (underrun || halt) {
+            next.stop_cause = (cause_now.0 as u32) << fields::STOP_CAUSE_CAUSE | cause_now.1 << fields::STOP_CAUSE_AXIS;
+        }
+        next.abort_hold = io.estop_latched || any_limit_held || any_alarm_held || any_home_held;
+        next.io.edge(i.reset, &i.pins, i.write.then_some((address, i.write_data)), &io, expired);
         let control = AxisControl {
             reset: i.reset,
             tick,
@@ -671,13 +835,15 @@ impl MotionControllerModel {
             address,
             write: i.write,
             write_data: i.write_data,
+            abort,
+            drive_allowed,
         };
-        for (axis, pins) in next.axes.iter_mut().zip(&i.encoders) {
-            axis.edge(&control, *pins);
+        for ((axis, pins), comb) in next.axes.iter_mut().zip(&i.encoders).zip(&combs) {
+            axis.edge(&control, *pins, comb);
         }
         next.any_low_prev_n = !any_low;
         next.expired_prev = expired;
-        let clear = write(global::STATUS).then_some((i.write_data & 0x7f) as u64);
+        let clear = status_write.map(|d| (d & ((1 << irq::COUNT) - 1)) as u64);
         (next.status, next.irq) =
             next.interrupts.step(i.reset, events, clear, self.irq_enable as u64);
         if i.read {
@@ -699,6 +865,8 @@ impl MotionControllerModel {
             next.read_data = 0;
             next.any_low_prev_n = false;
             next.expired_prev = false;
+            next.abort_hold = false;
+            next.stop_cause = 0;
         }
         *self = next;
         self.outputs()

@@ -15,8 +15,9 @@ use crate::regmap::{Access, Field, RegMapError, Register, RegisterMap};
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
-/// `VERSION` register value: major 0, minor 1, patch 0.
-pub const VERSION_VALUE: u32 = 0x0000_0100;
+/// `VERSION` register value: major 0, minor 2, patch 0 (minor 2: machine
+/// I/O, 32-word axis windows).
+pub const VERSION_VALUE: u32 = 0x0000_0200;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -48,15 +49,161 @@ pub mod global {
     pub const STATE: u32 = 0x0c;
     /// Periods started since reset.
     pub const PERIOD_COUNT: u32 = 0x0d;
+    /// Switch and GPIO input filter.
+    pub const INPUT_FILTER: u32 = 0x0e;
+    /// Input polarity per input class.
+    pub const INPUT_POLARITY: u32 = 0x0f;
+    /// Cause of the last stop.
+    pub const STOP_CAUSE: u32 = 0x10;
+    /// General inputs, filtered.
+    pub const GPIO_IN: u32 = 0x11;
+    /// General outputs.
+    pub const GPIO_OUT: u32 = 0x12;
+    /// Outputs dropped on E-stop or watchdog expiry.
+    pub const GPIO_SAFE: u32 = 0x13;
+    /// General input edge interrupt enables.
+    pub const GPIO_IRQ_ENABLE: u32 = 0x14;
+    /// General input edges seen (write 1 to clear).
+    pub const GPIO_EDGES: u32 = 0x15;
+}
+
+/// Bit numbers of the fields of the machine I/O registers (the map below
+/// is built from these, and the RTL's masks and the model use them by
+/// name).
+pub mod fields {
+    /// `INPUT_FILTER.LENGTH`: samples a level must hold (4 bits).
+    pub const FILTER_LENGTH: u32 = 0;
+    /// `INPUT_FILTER.SAMPLE_RATE`: a sample every n + 1 clocks (8 bits).
+    pub const FILTER_SAMPLE_RATE: u32 = 8;
+    /// Reset value of `INPUT_FILTER.LENGTH`.
+    pub const FILTER_LENGTH_RESET: u64 = 4;
+    /// `INPUT_POLARITY.LIMIT_POS`: limit_pos active low.
+    pub const POLARITY_LIMIT_POS: u32 = 0;
+    /// `INPUT_POLARITY.LIMIT_NEG`.
+    pub const POLARITY_LIMIT_NEG: u32 = 1;
+    /// `INPUT_POLARITY.HOME`.
+    pub const POLARITY_HOME: u32 = 2;
+    /// `INPUT_POLARITY.DRIVE_ALARM`.
+    pub const POLARITY_DRIVE_ALARM: u32 = 3;
+    /// `INPUT_POLARITY.GPIO`: 8 bits, one per general input.
+    pub const POLARITY_GPIO: u32 = 8;
+    /// `STOP_CAUSE.CAUSE` (4 bits, a [`super::StopCause`]).
+    pub const STOP_CAUSE_CAUSE: u32 = 0;
+    /// `STOP_CAUSE.AXIS` (4 bits).
+    pub const STOP_CAUSE_AXIS: u32 = 8;
+    /// `GPIO_IRQ_ENABLE.RISE` and `GPIO_EDGES.RISE` (8 bits).
+    pub const GPIO_RISE: u32 = 0;
+    /// `GPIO_IRQ_ENABLE.FALL` and `GPIO_EDGES.FALL` (8 bits).
+    pub const GPIO_FALL: u32 = 8;
+    /// `STATE.ESTOP_INPUT`.
+    pub const STATE_ESTOP_INPUT: u32 = 3;
+    /// `STATE.ESTOP_LATCHED`.
+    pub const STATE_ESTOP_LATCHED: u32 = 4;
+    /// `STATE.ABORTED`.
+    pub const STATE_ABORTED: u32 = 5;
+    /// `STATE.INPUTS_READY`.
+    pub const STATE_INPUTS_READY: u32 = 6;
+    /// `IO_CONFIG.LIMIT_ENABLE` (reset 1).
+    pub const LIMIT_ENABLE: u32 = 0;
+    /// `IO_CONFIG.ALARM_ENABLE` (reset 1).
+    pub const ALARM_ENABLE: u32 = 1;
+    /// `IO_CONFIG.STOP_ON_HOME`.
+    pub const STOP_ON_HOME: u32 = 2;
+    /// `IO_CONFIG.DRIVE_ENABLE`.
+    pub const DRIVE_ENABLE: u32 = 3;
+    /// Reset value of `IO_CONFIG`.
+    pub const IO_CONFIG_RESET: u32 = 1 << LIMIT_ENABLE | 1 << ALARM_ENABLE;
+    /// `IO_STATUS.LIMIT_POS`: live, active.
+    pub const IO_LIMIT_POS: u32 = 0;
+    /// `IO_STATUS.LIMIT_NEG`.
+    pub const IO_LIMIT_NEG: u32 = 1;
+    /// `IO_STATUS.HOME`.
+    pub const IO_HOME: u32 = 2;
+    /// `IO_STATUS.DRIVE_ALARM`.
+    pub const IO_DRIVE_ALARM: u32 = 3;
+    /// `IO_STATUS.LIMIT_POS_TRIPPED`: sticky.
+    pub const IO_LIMIT_POS_TRIPPED: u32 = 8;
+    /// `IO_STATUS.LIMIT_NEG_TRIPPED`: sticky.
+    pub const IO_LIMIT_NEG_TRIPPED: u32 = 9;
+    /// `IO_STATUS.ALARM_TRIPPED`: sticky.
+    pub const IO_ALARM_TRIPPED: u32 = 10;
+    /// `IO_STATUS.HOME_SEEN`: sticky.
+    pub const IO_HOME_SEEN: u32 = 11;
+    /// `IO_STATUS.DRIVE_ENABLE`: the pin.
+    pub const IO_DRIVE_ENABLE: u32 = 16;
+    /// `IO_COMMAND.CLEAR_LIMITS`.
+    pub const CLEAR_LIMITS: u32 = 0;
+    /// `IO_COMMAND.CLEAR_ALARM`.
+    pub const CLEAR_ALARM: u32 = 1;
+    /// `IO_COMMAND.CLEAR_HOME`.
+    pub const CLEAR_HOME: u32 = 2;
+}
+
+/// `STOP_CAUSE.CAUSE`: why RUN last fell. When several causes meet in one
+/// clock the highest value wins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[repr(u32)]
+pub enum StopCause {
+    /// Not stopped since reset.
+    None = 0,
+    /// CONTROL.RUN written 0.
+    Stop = 1,
+    /// A boundary found a FIFO empty.
+    Underrun = 2,
+    /// The watchdog expired.
+    Watchdog = 3,
+    /// An axis with STOP_ON_HOME saw its home switch.
+    Home = 4,
+    /// A step toward an active limit was cut.
+    Limit = 5,
+    /// A drive alarm.
+    DriveAlarm = 6,
+    /// The E-stop input.
+    Estop = 7,
+}
+
+impl StopCause {
+    /// Every cause, by value.
+    pub const ALL: [StopCause; 8] = [
+        StopCause::None,
+        StopCause::Stop,
+        StopCause::Underrun,
+        StopCause::Watchdog,
+        StopCause::Home,
+        StopCause::Limit,
+        StopCause::DriveAlarm,
+        StopCause::Estop,
+    ];
+
+    /// The cause a `STOP_CAUSE.CAUSE` value encodes (`None` for 8 to 15).
+    pub fn from_code(code: u32) -> StopCause {
+        Self::ALL.get(code as usize).copied().unwrap_or(StopCause::None)
+    }
+
+    /// What the cause is, for people.
+    pub fn describe(self) -> &'static str {
+        match self {
+            StopCause::None => "not stopped since reset",
+            StopCause::Stop => "RUN written 0",
+            StopCause::Underrun => "FIFO underrun",
+            StopCause::Watchdog => "watchdog expired",
+            StopCause::Home => "home switch (stop on home)",
+            StopCause::Limit => "limit switch",
+            StopCause::DriveAlarm => "drive alarm",
+            StopCause::Estop => "E-stop",
+        }
+    }
 }
 
 /// Word address of axis 0's register window; axis k is at
 /// `AXIS_BASE + k * AXIS_STRIDE`.
-pub const AXIS_BASE: u32 = 0x10;
-/// Words per axis window.
-pub const AXIS_STRIDE: u32 = 0x10;
+pub const AXIS_BASE: u32 = 0x20;
+/// Words per axis window: 16 for the motion core, 16 for its machine I/O.
+pub const AXIS_STRIDE: u32 = 0x20;
+/// log2 of [`AXIS_STRIDE`]: the window is `address >> AXIS_STRIDE_LOG2`.
+pub const AXIS_STRIDE_LOG2: u32 = 5;
 /// Most axes the 8-bit address space holds.
-pub const MAX_AXES: usize = 15;
+pub const MAX_AXES: usize = 7;
 
 /// Word offsets of the per-axis registers within an axis window.
 pub mod axis {
@@ -90,6 +237,16 @@ pub mod axis {
     pub const INDEX_POSITION: u32 = 0xd;
     /// Axis commands.
     pub const AXIS_COMMAND: u32 = 0xe;
+    /// Limit, alarm, home and drive-enable settings.
+    pub const IO_CONFIG: u32 = 0x10;
+    /// Switch levels and sticky trips.
+    pub const IO_STATUS: u32 = 0x11;
+    /// Clear the sticky trips.
+    pub const IO_COMMAND: u32 = 0x12;
+    /// CMD_POSITION at the home edge.
+    pub const HOME_CMD_POSITION: u32 = 0x13;
+    /// ACT_POSITION at the home edge.
+    pub const HOME_ACT_POSITION: u32 = 0x14;
 }
 
 /// Bit numbers of `STATUS` and `IRQ_ENABLE`, which are also the
@@ -109,8 +266,18 @@ pub mod irq {
     pub const WATCHDOG: u32 = 5;
     /// An axis lost steps (step overrun, interpolator overrange or refused load).
     pub const AXIS_FAULT: u32 = 6;
+    /// A step toward an active limit was cut: stopped.
+    pub const LIMIT: u32 = 7;
+    /// A drive alarm: stopped.
+    pub const ALARM: u32 = 8;
+    /// The E-stop input: stopped, drives disabled.
+    pub const ESTOP: u32 = 9;
+    /// A home switch edge was latched.
+    pub const HOME: u32 = 10;
+    /// An enabled general-input edge.
+    pub const GPIO: u32 = 11;
     /// Number of interrupt sources.
-    pub const COUNT: usize = 7;
+    pub const COUNT: usize = 12;
 }
 
 fn field(name: &'static str, lsb: u32, width: u32, access: Access, doc: &'static str) -> Field {
@@ -149,6 +316,11 @@ fn irq_fields(access: Access) -> Vec<Field> {
         field("ENCODER_ERROR", irq::ENCODER_ERROR, 1, access, "an encoder saw A and B change together (counts lost)"),
         field("WATCHDOG", irq::WATCHDOG, 1, access, "the watchdog expired: all axes stopped, RUN cleared; clearing it re-allows RUN"),
         field("AXIS_FAULT", irq::AXIS_FAULT, 1, access, "an axis dropped or clamped steps: see AXIS_STATUS"),
+        field("LIMIT", irq::LIMIT, 1, access, "a step toward an active limit was cut: all axes stopped; see IO_STATUS"),
+        field("ALARM", irq::ALARM, 1, access, "a drive alarm: all axes stopped, that drive disabled; see IO_STATUS"),
+        field("ESTOP", irq::ESTOP, 1, access, "E-stop: all axes stopped, every drive disabled; clearing it (with estop released) clears STATE.ESTOP_LATCHED"),
+        field("HOME", irq::HOME, 1, access, "a home switch edge latched the positions; see IO_STATUS.HOME_SEEN"),
+        field("GPIO", irq::GPIO, 1, access, "an enabled general-input edge; see GPIO_EDGES"),
     ]
 }
 
@@ -192,7 +364,7 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                 "core version",
                 vec![
                     field("PATCH", 0, 8, ReadOnly, "patch"),
-                    Field { reset: 1, ..field("MINOR", 8, 8, ReadOnly, "minor") },
+                    Field { reset: (VERSION_VALUE as u64 >> 8) & 0xff, ..field("MINOR", 8, 8, ReadOnly, "minor") },
                     field("MAJOR", 16, 8, ReadOnly, "major"),
                 ],
             ),
@@ -207,7 +379,7 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                         0,
                         1,
                         ReadWrite,
-                        "write 1 to start (refused while WATCHDOG_EXPIRED); write 0 to stop at once; cleared by an underrun or the watchdog",
+                        "write 1 to start (refused while STATE.ABORTED, the E-stop input is active or the inputs are not ready); write 0 to stop at once; cleared by an underrun or an abort (STOP_CAUSE)",
                     ),
                     field(
                         "FLUSH",
@@ -239,9 +411,64 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                     field("RUNNING", 0, 1, ReadOnly, "periods are running"),
                     field("WATCHDOG_ARMED", 1, 1, ReadOnly, "the watchdog is counting"),
                     field("WATCHDOG_EXPIRED", 2, 1, ReadOnly, "the watchdog expired; cleared with STATUS.WATCHDOG"),
+                    field("ESTOP_INPUT", fields::STATE_ESTOP_INPUT, 1, ReadOnly, "the E-stop input is active (filtered)"),
+                    field("ESTOP_LATCHED", fields::STATE_ESTOP_LATCHED, 1, ReadOnly, "E-stop latched; cleared with STATUS.ESTOP once the input is released"),
+                    field("ABORTED", fields::STATE_ABORTED, 1, ReadOnly, "a stop cause is held (E-stop, watchdog, alarm, limit or home trip): every output stage flushed (the FIFOs keep their entries), RUN refused"),
+                    Field { reset: 1, ..field("INPUTS_READY", fields::STATE_INPUTS_READY, 1, ReadOnly, "the switch filters are primed: 0 for the 3 clocks after reset, in which RUN is refused") },
                 ],
             ),
             Register::word("PERIOD_COUNT", global::PERIOD_COUNT, ReadOnly, 0, "periods started since reset, wrapping"),
+            register(
+                "INPUT_FILTER",
+                global::INPUT_FILTER,
+                "filter of the switch, alarm, E-stop and general inputs",
+                vec![
+                    Field { reset: fields::FILTER_LENGTH_RESET, ..field("LENGTH", fields::FILTER_LENGTH, 4, ReadWrite, "samples a new level must hold (0 and 1: the first sample)") },
+                    field("SAMPLE_RATE", fields::FILTER_SAMPLE_RATE, 8, ReadWrite, "a filter sample every n + 1 clocks"),
+                ],
+            ),
+            register(
+                "INPUT_POLARITY",
+                global::INPUT_POLARITY,
+                "1 = the input class is active low (normally-open wiring); E-stop has no polarity: it is always active high (fail-safe)",
+                vec![
+                    field("LIMIT_POS", fields::POLARITY_LIMIT_POS, 1, ReadWrite, "limit_pos inputs active low"),
+                    field("LIMIT_NEG", fields::POLARITY_LIMIT_NEG, 1, ReadWrite, "limit_neg inputs active low"),
+                    field("HOME", fields::POLARITY_HOME, 1, ReadWrite, "home inputs active low"),
+                    field("DRIVE_ALARM", fields::POLARITY_DRIVE_ALARM, 1, ReadWrite, "drive_alarm inputs active low"),
+                    field("GPIO", fields::POLARITY_GPIO, 8, ReadWrite, "per general input: active low"),
+                ],
+            ),
+            register(
+                "STOP_CAUSE",
+                global::STOP_CAUSE,
+                "why RUN last fell (kept until the next stop)",
+                vec![
+                    field("CAUSE", fields::STOP_CAUSE_CAUSE, 4, ReadOnly, "0 none, 1 RUN written 0, 2 underrun, 3 watchdog, 4 home, 5 limit, 6 drive alarm, 7 E-stop (the highest of simultaneous causes)"),
+                    field("AXIS", fields::STOP_CAUSE_AXIS, 4, ReadOnly, "home, limit, drive alarm: the lowest axis holding that cause"),
+                ],
+            ),
+            register("GPIO_IN", global::GPIO_IN, "general inputs", vec![field("LEVEL", 0, 8, ReadOnly, "filtered levels, polarity applied (0 until the inputs are ready)")]),
+            register("GPIO_OUT", global::GPIO_OUT, "general outputs", vec![field("LEVEL", 0, 8, ReadWrite, "gpio_out pins; the GPIO_SAFE ones are cleared (and held 0) while E-stop is latched or the watchdog expired")]),
+            register("GPIO_SAFE", global::GPIO_SAFE, "outputs that drop on E-stop or watchdog expiry", vec![field("MASK", 0, 8, ReadWrite, "1 = this output drops to 0 (spindle, coolant)")]),
+            register(
+                "GPIO_IRQ_ENABLE",
+                global::GPIO_IRQ_ENABLE,
+                "general-input edges that raise STATUS.GPIO",
+                vec![
+                    field("RISE", fields::GPIO_RISE, 8, ReadWrite, "per input: a rise (becoming active)"),
+                    field("FALL", fields::GPIO_FALL, 8, ReadWrite, "per input: a fall"),
+                ],
+            ),
+            register(
+                "GPIO_EDGES",
+                global::GPIO_EDGES,
+                "general-input edges seen since cleared, write 1 to clear (every edge, enabled or not)",
+                vec![
+                    field("RISE", fields::GPIO_RISE, 8, WriteOneToClear, "per input: rose"),
+                    field("FALL", fields::GPIO_FALL, 8, WriteOneToClear, "per input: fell"),
+                ],
+            ),
             per_axis(Register::word("FIFO_WRITE", at(axis::FIFO_WRITE), WriteOnly, 0, "push one period's signed step count (refused when full); a magnitude above 65535 is saturated and flagged")),
             per_axis(register(
                 "FIFO_STATUS",
@@ -307,6 +534,45 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                     field("CLEAR_ENCODER_ERROR", 4, 1, WriteOnly, "ENCODER_ERROR <- 0, keeping ACT_POSITION (an error on the same clock keeps it set)"),
                 ],
             )),
+            per_axis(register(
+                "IO_CONFIG",
+                at(axis::IO_CONFIG),
+                "limit, alarm, home and drive-enable settings",
+                vec![
+                    Field { reset: 1, ..field("LIMIT_ENABLE", fields::LIMIT_ENABLE, 1, ReadWrite, "the limit_pos / limit_neg inputs block steps toward them") },
+                    Field { reset: 1, ..field("ALARM_ENABLE", fields::ALARM_ENABLE, 1, ReadWrite, "the drive_alarm input aborts and disables this drive") },
+                    field("STOP_ON_HOME", fields::STOP_ON_HOME, 1, ReadWrite, "the home edge aborts the motion (homing moves)"),
+                    field("DRIVE_ENABLE", fields::DRIVE_ENABLE, 1, ReadWrite, "drive_enable pin, when no E-stop, watchdog expiry or alarm of this axis forces it low"),
+                ],
+            )),
+            per_axis(register(
+                "IO_STATUS",
+                at(axis::IO_STATUS),
+                "switch levels (filtered, polarity applied, 1 = active) and sticky trips",
+                vec![
+                    field("LIMIT_POS", fields::IO_LIMIT_POS, 1, ReadOnly, "limit_pos active"),
+                    field("LIMIT_NEG", fields::IO_LIMIT_NEG, 1, ReadOnly, "limit_neg active"),
+                    field("HOME", fields::IO_HOME, 1, ReadOnly, "home active"),
+                    field("DRIVE_ALARM", fields::IO_DRIVE_ALARM, 1, ReadOnly, "drive_alarm active"),
+                    field("LIMIT_POS_TRIPPED", fields::IO_LIMIT_POS_TRIPPED, 1, ReadOnly, "sticky: a step toward the active positive limit was cut (aborts, refuses RUN); cleared with CLEAR_LIMITS"),
+                    field("LIMIT_NEG_TRIPPED", fields::IO_LIMIT_NEG_TRIPPED, 1, ReadOnly, "sticky: the same toward the negative limit"),
+                    field("ALARM_TRIPPED", fields::IO_ALARM_TRIPPED, 1, ReadOnly, "sticky: the enabled drive alarm was active (aborts, refuses RUN, drive disabled); CLEAR_ALARM clears it once the alarm is gone"),
+                    field("HOME_SEEN", fields::IO_HOME_SEEN, 1, ReadOnly, "sticky: a home edge latched HOME_*_POSITION (with STOP_ON_HOME: aborts, refuses RUN); cleared with CLEAR_HOME"),
+                    field("DRIVE_ENABLE", fields::IO_DRIVE_ENABLE, 1, ReadOnly, "the drive_enable pin"),
+                ],
+            )),
+            per_axis(register(
+                "IO_COMMAND",
+                at(axis::IO_COMMAND),
+                "machine I/O commands: write 1 to act",
+                vec![
+                    field("CLEAR_LIMITS", fields::CLEAR_LIMITS, 1, WriteOnly, "clear LIMIT_POS_TRIPPED and LIMIT_NEG_TRIPPED (steps away from an active limit are then allowed)"),
+                    field("CLEAR_ALARM", fields::CLEAR_ALARM, 1, WriteOnly, "clear ALARM_TRIPPED (stays set while the alarm is active)"),
+                    field("CLEAR_HOME", fields::CLEAR_HOME, 1, WriteOnly, "clear HOME_SEEN: the next home edge latches again"),
+                ],
+            )),
+            per_axis(Register::word("HOME_CMD_POSITION", at(axis::HOME_CMD_POSITION), ReadOnly, 0, "CMD_POSITION on the clock of the home edge")),
+            per_axis(Register::word("HOME_ACT_POSITION", at(axis::HOME_ACT_POSITION), ReadOnly, 0, "ACT_POSITION on the clock of the home edge")),
         ],
     };
     map.validate()?;

@@ -206,6 +206,7 @@ impl<const W: usize, const T: usize> Logic for StepChannel<W, T> {
         self.stage.dir_setup.next = self.dir_setup.val();
         self.stage.dir_hold.next = self.dir_hold.val();
         self.stage.clear_overrun.next = false;
+        self.stage.flush.next = false;
         self.out_a.next = self.stage.out_a.val();
         self.out_b.next = self.stage.out_b.val();
         self.overrun.next = self.stage.overrun.val();

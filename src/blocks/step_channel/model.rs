@@ -96,6 +96,7 @@ impl StepChannelModel {
             dir_setup: i.dir_setup,
             dir_hold: i.dir_hold,
             clear_overrun: false,
+            flush: false,
         });
         self.dir_delay.rotate_right(1);
         self.dir_delay[0] = i.dir && !i.reset;

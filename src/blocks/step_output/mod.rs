@@ -29,6 +29,9 @@
 //! | `clear_overrun` | in | 1 | clears `overrun` (a request dropped on the same clock keeps it set); tie to 0 if unused |
 //! | `emitted` | out | 1 | a step left the stage at the last edge (its first pin edge is on `out_a`/`out_b` now): one clock per step, registered |
 //! | `emitted_forward` | out | 1 | direction of that step: 1 = forward (valid with `emitted`) |
+//! | `flush` | in | 1 | drop every pending step and this clock's request; a pulse already high keeps its full `step_len` and the intervals run on; tie to 0 if unused |
+//! | `pending_forward` | out | 1 | the next step to leave is forward (the pending count is above 0); from flip-flops |
+//! | `pending_backward` | out | 1 | the next step to leave is backward (the pending count is below 0); from flip-flops |
 //!
 //! ## Timing
 //! Step/dir after reset, step_len = 2, step_space = 3, dir_setup = 2,
@@ -93,6 +96,22 @@
 //!   timers, in the mode taken then.
 //! * Timer values of 0 where a minimum of 1 is needed act as 1 (documented
 //!   per port above).
+//!
+//! ## Flush
+//! `flush` empties the pending count at its edge: the request of the same
+//! clock is dropped too (flagged as an overrun only if it met a saturated
+//! count, as without the flush), and `at_max`/`at_min`
+//! clear. A step whose pulse the stage decides in the flush clock still
+//! leaves (its decision comes from the registered state, so the flush adds
+//! no logic to the step path) and is reported by `emitted`; from the next
+//! edge on, nothing rises until a new request. A pulse already high keeps
+//! its full `step_len`, and the space, hold and setup intervals that follow
+//! it still apply to the next step: a flush never makes a runt pulse or
+//! breaks a timing rule. Steps dropped by a flush never reached the pins,
+//! so a position counted from `emitted` stays the pins' count.
+//! `motion_controller` flushes every axis on an abort (E-stop, drive
+//! alarm, limit, stop on home, watchdog), and uses `pending_forward` /
+//! `pending_backward` to see a step waiting to move toward a limit.
 
 pub mod model;
 
@@ -160,6 +179,12 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
         "a step left at the last edge (its first pin edge is out now); registered",
     ),
     ("emitted_forward", "direction of that step: 1 = forward"),
+    (
+        "flush",
+        "drop every pending step and this clock's request; a pulse already high completes; tie to 0 if unused",
+    ),
+    ("pending_forward", "the next step to leave is forward (pending count above 0)"),
+    ("pending_backward", "the next step to leave is backward (pending count below 0)"),
 ];
 
 /// Step output stage with `T`-bit timers and a `P`-bit pending count. See
@@ -200,6 +225,12 @@ pub struct StepOutput<const T: usize, const P: usize> {
     pub emitted: Signal<Out, Bit>,
     /// Its direction.
     pub emitted_forward: Signal<Out, Bit>,
+    /// Drop every pending step and this clock's request.
+    pub flush: Signal<In, Bit>,
+    /// The pending count is above 0.
+    pub pending_forward: Signal<Out, Bit>,
+    /// The pending count is below 0.
+    pub pending_backward: Signal<Out, Bit>,
     /// Signed pending steps; its MSB is the sign.
     pending: DFF<Bits<P>>,
     /// `pending != 0`, registered so that no decision waits for a 16-bit
@@ -315,6 +346,9 @@ impl<const T: usize, const P: usize> Default for StepOutput<T, P> {
             clear_overrun: Default::default(),
             emitted: Default::default(),
             emitted_forward: Default::default(),
+            flush: Default::default(),
+            pending_forward: Default::default(),
+            pending_backward: Default::default(),
             pending: Default::default(),
             nonzero: Default::default(),
             at_max: Default::default(),
@@ -415,6 +449,8 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
 
         self.negative.next = (self.pending.q.val() & self.min_p.val()) != self.zero_p.val();
         self.positive.next = self.nonzero.q.val() & !self.negative.val();
+        self.pending_forward.next = self.positive.val();
+        self.pending_backward.next = self.negative.val();
         self.requested_mode.next = self.mode.val();
         if self.mode.val() == self.mode_reserved.val() {
             self.requested_mode.next = self.mode_step_dir.val();
@@ -598,6 +634,15 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
             }
         }
         self.nonzero.d.next = !self.reaches_zero.val();
+        // A flush empties the count like a reset of the count alone: a step
+        // emitted in this clock has already left, and the request of this
+        // clock is dropped with the rest.
+        if self.flush.val() {
+            self.pending.d.next = self.zero_p.val();
+            self.nonzero.d.next = false;
+            self.at_max.d.next = false;
+            self.at_min.d.next = false;
+        }
 
         // The mode is taken at reset and in the first clock after power-up
         // (a mode change: the start clock follows), so a mode tied from
@@ -646,6 +691,6 @@ impl<const T: usize, const P: usize> Logic for StepOutput<T, P> {
 }
 
 crate::vector_ports!(impl[const T: usize, const P: usize] StepOutput<T, P> {
-    inputs: [reset, step, dir, mode, step_len, step_space, dir_setup, dir_hold, clear_overrun],
-    outputs: [out_a, out_b, overrun, mode_invalid, busy, emitted, emitted_forward],
+    inputs: [reset, step, dir, mode, step_len, step_space, dir_setup, dir_hold, clear_overrun, flush],
+    outputs: [out_a, out_b, overrun, mode_invalid, busy, emitted, emitted_forward, pending_forward, pending_backward],
 });

@@ -26,6 +26,8 @@ pub struct StepOutputInputs {
     pub dir_hold: u64,
     /// Clears the sticky overrun.
     pub clear_overrun: bool,
+    /// Drop every pending step and this clock's request.
+    pub flush: bool,
 }
 
 impl StepOutputInputs {
@@ -41,6 +43,7 @@ impl StepOutputInputs {
             self.dir_setup,
             self.dir_hold,
             self.clear_overrun as u64,
+            self.flush as u64,
         ]
     }
 }
@@ -62,6 +65,10 @@ pub struct StepOutputOutputs {
     pub emitted: bool,
     /// Its direction: true = forward.
     pub emitted_forward: bool,
+    /// The pending count is above 0.
+    pub pending_forward: bool,
+    /// The pending count is below 0.
+    pub pending_backward: bool,
 }
 
 impl StepOutputOutputs {
@@ -75,6 +82,8 @@ impl StepOutputOutputs {
             busy: v[4] != 0,
             emitted: v[5] != 0,
             emitted_forward: v[6] != 0,
+            pending_forward: v[7] != 0,
+            pending_backward: v[8] != 0,
         }
     }
 }
@@ -167,6 +176,8 @@ impl StepOutputModel {
             busy: self.busy(),
             emitted: self.emitted,
             emitted_forward: self.emitted_forward,
+            pending_forward: self.pending > 0,
+            pending_backward: self.pending < 0,
         }
     }
 
@@ -263,6 +274,9 @@ impl StepOutputModel {
             (true, false) => -1,
         };
         next.pending = self.pending + emitted + requested;
+        if i.flush {
+            next.pending = 0;
+        }
 
         // The first clock after power-up takes the mode as a change does.
         if !self.mode_taken || (!self.busy() && requested_mode != self.active_mode) {
