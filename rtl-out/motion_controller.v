@@ -21902,13 +21902,13 @@ module motion_controller__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,es
         home_active = home_in__active;
         home_rise = home_in__rise;
         alarm_active = alarm_in__active;
-        estop_active = (estop_in__active != zero1);
+        estop_active = estop_in__active != zero1;
         ready = estop_in__ready;
         estop_next = estop_latch__q;
         if (estop_clear) begin
             estop_next = 1'b0;
         end
-        if ((estop_in__active != zero1)) begin
+        if (estop_in__active != zero1) begin
             estop_next = 1'b1;
         end
         if (reset) begin

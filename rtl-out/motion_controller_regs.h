@@ -208,7 +208,7 @@
 #define MC_STATE_ESTOP_LATCHED_SHIFT 4UL /* RO E-stop latched; cleared with STATUS.ESTOP once the input is released */
 #define MC_STATE_ESTOP_LATCHED_MASK 0x00000010UL
 #define MC_STATE_ESTOP_LATCHED_RESET 0x0UL
-#define MC_STATE_ABORTED_SHIFT 5UL /* RO a stop cause is held (E-stop, watchdog, alarm, limit or home trip): every axis flushed, RUN refused */
+#define MC_STATE_ABORTED_SHIFT 5UL /* RO a stop cause is held (E-stop, watchdog, alarm, limit or home trip): every output stage flushed (the FIFOs keep their entries), RUN refused */
 #define MC_STATE_ABORTED_MASK 0x00000020UL
 #define MC_STATE_ABORTED_RESET 0x0UL
 #define MC_STATE_INPUTS_READY_SHIFT 6UL /* RO the switch filters are primed: 0 for the 3 clocks after reset, in which RUN is refused */
