@@ -145,10 +145,10 @@ fn stop_cause(b: &mut Controller3) -> (StopCause, u64) {
 /// equals the steps counted at its pins.
 #[test]
 fn a_limit_cuts_its_axis_and_aborts_all_within_the_stated_latency() {
-    for filter in [0u64, 1, 4, 9] {
+    for filter in [0u64, 4, 9] {
         let seen = latency::switch(filter, 0);
         let (mut worst_own, mut worst_other) = (0, 0);
-        for phase in 0..24u64 {
+        for phase in 0..16u64 {
             let mut b = Controller3::new();
             setup(&mut b, [STEP_DIR, UP_DOWN, QUADRATURE], [2, 3, 2], filter, 200);
             b.write("IRQ_ENABLE", 0, b.pack("IRQ_ENABLE", &[("LIMIT", 1)]));

@@ -322,7 +322,9 @@ fn two_compiled_chaos_runs(seeds: [u64; 2], cycles: u64) {
     for run in runs {
         let run = run.join().expect("a lockstep run failed");
         assert_eq!(run.status_seen, ALL_STATUS, "every STATUS bit seen set: {:#x}", run.status_seen);
-        run.assert_busy("K=3 compiled", cycles / 4, cycles / 100, cycles / 4000);
+        // A fifth of the clocks running: random trips hold the axes stopped
+        // until the firmware clears them (22 % to 32 % measured).
+        run.assert_busy("K=3 compiled", cycles / 5, cycles / 100, cycles / 4000);
         println!(
             "{cycles} cycles: {} running, {} steps, {} interrupts",
             run.running_cycles, run.steps, run.irq_rises
@@ -331,10 +333,18 @@ fn two_compiled_chaos_runs(seeds: [u64; 2], cycles: u64) {
     println!("{} lockstep cycles in {:.1} s", 2 * cycles, started.elapsed().as_secs_f64());
 }
 
-/// The exported controller against the model under the chaos firmware and
-/// hostile bus traffic for 10^7 clocks: the scale the compiled backend
-/// makes affordable in the default suite.
+/// The exported controller against the model under the chaos firmware,
+/// hostile bus traffic and random switch activity for 5 x 10^6 clocks, in
+/// the default suite.
 #[test]
+fn compiled_controller_matches_model_for_five_million_cycles() {
+    two_compiled_chaos_runs([0x7e57_0001, 0x7e57_0003], 2_500_000);
+}
+
+/// The same for 10^7 clocks (86 s since the machine I/O doubled the model's
+/// cost per clock; out of the default suite to keep it under 15 minutes).
+#[test]
+#[ignore]
 fn compiled_controller_matches_model_for_ten_million_cycles() {
     two_compiled_chaos_runs([0x7e57_0001, 0x7e57_0003], 5_000_000);
 }
