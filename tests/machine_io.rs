@@ -8,6 +8,7 @@
 //! latencies ([`latency`]) and counted at the pins, not taken from the model.
 
 #[path = "motion_controller/bench.rs"]
+#[allow(dead_code)] // the bench serves tests/motion_controller.rs too
 mod bench;
 
 use bench::Bench;
@@ -600,13 +601,8 @@ fn monitored_run(seed: u64, cycles: u64, limits_disabled: bool) -> Result<Monito
     let mut firmware: std::collections::VecDeque<(u32, u32, bool)> = Default::default();
     for _ in 0..cycles {
         // Switches: rare trips of random length, with bounce.
-        let toggle = |rng: &mut StdRng, word: &mut u32, active: u32, inactive: u32| {
-            for k in 0..3 {
-                let rate = if *word >> k & 1 != 0 { active } else { inactive };
-                if rng.gen_ratio(1, rate) {
-                    *word ^= 1 << k;
-                }
-            }
+        let toggle = |rng: &mut StdRng, word: &mut u32, active, inactive| {
+            bench::toggle_pins(rng, word, 3, active, inactive)
         };
         toggle(&mut rng, &mut b.pins.limit_pos, 400, 15_000);
         toggle(&mut rng, &mut b.pins.limit_neg, 400, 15_000);

@@ -79,15 +79,7 @@ impl ChaosDriver {
     /// bounce, so that the filters, the trips and their clears all happen.
     fn machine_pins(&mut self, axes: usize) -> MachinePins {
         let rng = &mut self.rng;
-        // Mean clocks a pin stays active, and stays inactive.
-        let mut toggle = |word: &mut u32, active: u32, inactive: u32| {
-            for k in 0..axes {
-                let rate = if *word >> k & 1 != 0 { active } else { inactive };
-                if rng.gen_ratio(1, rate) {
-                    *word ^= 1 << k;
-                }
-            }
-        };
+        let mut toggle = |word: &mut u32, active, inactive| bench::toggle_pins(rng, word, axes, active, inactive);
         toggle(&mut self.pins.limit_pos, 3_000, 100_000);
         toggle(&mut self.pins.limit_neg, 3_000, 100_000);
         toggle(&mut self.pins.home, 2_000, 8_000);

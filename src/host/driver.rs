@@ -360,6 +360,17 @@ impl<B: ControllerBus> Driver<B> {
         Ok(reasons)
     }
 
+    /// Fails with [`DriverError::Refused`], naming what holds it, when the
+    /// controller would refuse `RUN` now.
+    fn ensure_runnable(&mut self) -> Result<(), DriverError> {
+        let reasons = self.refusal()?;
+        if reasons.is_empty() {
+            Ok(())
+        } else {
+            Err(DriverError::Refused(reasons.join("; ")))
+        }
+    }
+
     /// The trips an axis holds (each one refuses RUN), with what clears it.
     fn axis_trips(&mut self, axis: u32) -> Result<Vec<String>, DriverError> {
         let status = self.read("IO_STATUS", axis)?;
@@ -440,10 +451,7 @@ impl<B: ControllerBus> Driver<B> {
         mut progress: impl FnMut(usize),
     ) -> Result<RunReport, DriverError> {
         self.check(counts)?;
-        let reasons = self.refusal()?;
-        if !reasons.is_empty() {
-            return Err(DriverError::Refused(reasons.join("; ")));
-        }
+        self.ensure_runnable()?;
         let mut report = RunReport {
             periods: counts.len(),
             ..Default::default()
@@ -497,10 +505,7 @@ impl<B: ControllerBus> Driver<B> {
                 }
                 // Data came too late: restart from where it stopped, unless
                 // an abort came since (then RUN would be refused).
-                let reasons = self.refusal()?;
-                if !reasons.is_empty() {
-                    return Err(DriverError::Refused(reasons.join("; ")));
-                }
+                self.ensure_runnable()?;
                 report.underruns += 1;
                 self.write("CONTROL", 0, 1)?;
             }

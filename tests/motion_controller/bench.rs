@@ -164,3 +164,15 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
         self.clock(true, 0, 0, false, false);
     }
 }
+
+/// Random switch activity on one K-bit pin word: each of the `axes` pins
+/// flips with probability 1/`active` per clock while active (1) and
+/// 1/`inactive` while inactive: the mean clocks it stays in each level.
+pub fn toggle_pins(rng: &mut impl rand::Rng, word: &mut u32, axes: usize, active: u32, inactive: u32) {
+    for k in 0..axes {
+        let rate = if *word >> k & 1 != 0 { active } else { inactive };
+        if rng.gen_ratio(1, rate) {
+            *word ^= 1 << k;
+        }
+    }
+}

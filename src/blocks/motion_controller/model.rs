@@ -283,16 +283,20 @@ impl AxisModel {
     /// The step the interpolator offers to the request register in this
     /// clock, and its direction.
     fn candidate(&self) -> (bool, bool) {
-        let uniform_started = self.uniform_out.ready && !self.glue.uniform_ready_prev;
-        let uniform_forward = if uniform_started {
+        if self.glue.uniform_active {
+            (self.uniform_out.pulse && !self.glue.uniform_pulse_prev, self.uniform_forward())
+        } else {
+            (self.dda_out.pulse, self.glue.forward_2)
+        }
+    }
+
+    /// The direction of the uniform generator's pulses in this clock: the
+    /// loaded period's from the clock its first pulse comes (`ready` rises).
+    fn uniform_forward(&self) -> bool {
+        if self.uniform_out.ready && !self.glue.uniform_ready_prev {
             self.glue.uniform_loaded_forward
         } else {
             self.glue.uniform_running_forward
-        };
-        if self.glue.uniform_active {
-            (self.uniform_out.pulse && !self.glue.uniform_pulse_prev, uniform_forward)
-        } else {
-            (self.dda_out.pulse, self.glue.forward_2)
         }
     }
 
@@ -477,12 +481,7 @@ impl AxisModel {
         }
         next.glue.uniform_ready_prev = self.uniform_out.ready;
         next.glue.uniform_pulse_prev = self.uniform_out.pulse;
-        let uniform_started = self.uniform_out.ready && !self.glue.uniform_ready_prev;
-        next.glue.uniform_running_forward = if uniform_started {
-            self.glue.uniform_loaded_forward
-        } else {
-            self.glue.uniform_running_forward
-        };
+        next.glue.uniform_running_forward = self.uniform_forward();
         // An abort or a blocked direction keeps the offered step out.
         let (candidate, candidate_forward) = self.candidate();
         let blocked = if candidate_forward { comb.io.block_forward } else { comb.io.block_backward };
