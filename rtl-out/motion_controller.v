@@ -187,6 +187,12 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  axes__0__limit_event;
     wire  axes__0__alarm_event;
     wire  axes__0__home_event;
+    wire  axes__0__div_request;
+    wire  [15:0] axes__0__div_dividend;
+    wire  [15:0] axes__0__div_divisor;
+    reg  axes__0__div_done;
+    reg  [15:0] axes__0__div_quotient;
+    reg  [15:0] axes__0__div_remainder;
     reg  axes__1__clock;
     reg  axes__1__reset;
     reg  axes__1__tick;
@@ -228,6 +234,12 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  axes__1__limit_event;
     wire  axes__1__alarm_event;
     wire  axes__1__home_event;
+    wire  axes__1__div_request;
+    wire  [15:0] axes__1__div_dividend;
+    wire  [15:0] axes__1__div_divisor;
+    reg  axes__1__div_done;
+    reg  [15:0] axes__1__div_quotient;
+    reg  [15:0] axes__1__div_remainder;
     reg  axes__2__clock;
     reg  axes__2__reset;
     reg  axes__2__tick;
@@ -269,6 +281,12 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  axes__2__limit_event;
     wire  axes__2__alarm_event;
     wire  axes__2__home_event;
+    wire  axes__2__div_request;
+    wire  [15:0] axes__2__div_dividend;
+    wire  [15:0] axes__2__div_divisor;
+    reg  axes__2__div_done;
+    reg  [15:0] axes__2__div_quotient;
+    reg  [15:0] axes__2__div_remainder;
     reg  tick_divider__clock;
     reg  tick_divider__reset;
     reg  tick_divider__enable;
@@ -316,6 +334,19 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  [7:0] io__gpio_out;
     wire  io__ready;
     wire  [31:0] io__read_data;
+    reg  divider__clock;
+    reg  divider__reset;
+    reg  divider__start;
+    reg  [15:0] divider__dividend;
+    reg  [15:0] divider__divisor;
+    wire  divider__busy;
+    wire  divider__done;
+    wire  [15:0] divider__quotient;
+    wire  [15:0] divider__remainder;
+    wire  divider__divide_by_zero;
+    reg  [2:0] div_owner__d;
+    wire  [2:0] div_owner__q;
+    reg  div_owner__clock;
     reg  abort_hold__d;
     wire  abort_hold__q;
     reg  abort_hold__clock;
@@ -369,6 +400,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  expired_prev__clock;
 
     // Local signals
+    reg  div_idle;
+    reg  div_granted;
     reg  tick;
     reg  write_control;
     reg  start;
@@ -450,7 +483,13 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .home_held(axes__0__home_held),
         .limit_event(axes__0__limit_event),
         .alarm_event(axes__0__alarm_event),
-        .home_event(axes__0__home_event)
+        .home_event(axes__0__home_event),
+        .div_request(axes__0__div_request),
+        .div_dividend(axes__0__div_dividend),
+        .div_divisor(axes__0__div_divisor),
+        .div_done(axes__0__div_done),
+        .div_quotient(axes__0__div_quotient),
+        .div_remainder(axes__0__div_remainder)
     );
     motion_controller__axes__1 axes__1(
         .clock(axes__1__clock),
@@ -493,7 +532,13 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .home_held(axes__1__home_held),
         .limit_event(axes__1__limit_event),
         .alarm_event(axes__1__alarm_event),
-        .home_event(axes__1__home_event)
+        .home_event(axes__1__home_event),
+        .div_request(axes__1__div_request),
+        .div_dividend(axes__1__div_dividend),
+        .div_divisor(axes__1__div_divisor),
+        .div_done(axes__1__div_done),
+        .div_quotient(axes__1__div_quotient),
+        .div_remainder(axes__1__div_remainder)
     );
     motion_controller__axes__2 axes__2(
         .clock(axes__2__clock),
@@ -536,7 +581,13 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .home_held(axes__2__home_held),
         .limit_event(axes__2__limit_event),
         .alarm_event(axes__2__alarm_event),
-        .home_event(axes__2__home_event)
+        .home_event(axes__2__home_event),
+        .div_request(axes__2__div_request),
+        .div_dividend(axes__2__div_dividend),
+        .div_divisor(axes__2__div_divisor),
+        .div_done(axes__2__div_done),
+        .div_quotient(axes__2__div_quotient),
+        .div_remainder(axes__2__div_remainder)
     );
     motion_controller__tick_divider tick_divider(
         .clock(tick_divider__clock),
@@ -592,6 +643,23 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .gpio_out(io__gpio_out),
         .ready(io__ready),
         .read_data(io__read_data)
+    );
+    motion_controller__divider divider(
+        .clock(divider__clock),
+        .reset(divider__reset),
+        .start(divider__start),
+        .dividend(divider__dividend),
+        .divisor(divider__divisor),
+        .busy(divider__busy),
+        .done(divider__done),
+        .quotient(divider__quotient),
+        .remainder(divider__remainder),
+        .divide_by_zero(divider__divide_by_zero)
+    );
+    motion_controller__div_owner div_owner(
+        .d(div_owner__d),
+        .q(div_owner__q),
+        .clock(div_owner__clock)
     );
     motion_controller__abort_hold abort_hold(
         .d(abort_hold__d),
@@ -698,6 +766,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         expired_prev__clock = clock;
         abort_hold__clock = clock;
         stop_cause__clock = clock;
+        div_owner__clock = clock;
         run__d = run__q;
         irq_enable__d = irq_enable__q;
         tick_divisor__d = tick_divisor__q;
@@ -715,10 +784,12 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         expired_prev__d = expired_prev__q;
         abort_hold__d = abort_hold__q;
         stop_cause__d = stop_cause__q;
+        div_owner__d = div_owner__q;
         tick_divider__clock = clock;
         watchdog__clock = clock;
         interrupts__clock = clock;
         io__clock = clock;
+        divider__clock = clock;
         if (bus_write) begin
             if (bus_address == a_irq_enable) begin
                 irq_enable__d = bus_write_data & irq_mask;
@@ -918,6 +989,45 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         if (reset) begin
             stop_cause__d = zero32;
         end
+        divider__reset = reset | halt;
+        div_idle = ~divider__busy & ~divider__done;
+        div_granted = 1'b0;
+        divider__start = 1'b0;
+        divider__dividend = axes__0__div_dividend;
+        divider__divisor = axes__0__div_divisor;
+        if (div_idle & ~div_granted & axes__0__div_request) begin
+            div_granted = 1'b1;
+            divider__start = 1'b1;
+            divider__dividend = axes__0__div_dividend;
+            divider__divisor = axes__0__div_divisor;
+            div_owner__d = axis_bit__0;
+        end
+        axes__0__div_done = divider__done & ((div_owner__q & axis_bit__0) != zero_k);
+        axes__0__div_quotient = divider__quotient;
+        axes__0__div_remainder = divider__remainder;
+        if (div_idle & ~div_granted & axes__1__div_request) begin
+            div_granted = 1'b1;
+            divider__start = 1'b1;
+            divider__dividend = axes__1__div_dividend;
+            divider__divisor = axes__1__div_divisor;
+            div_owner__d = axis_bit__1;
+        end
+        axes__1__div_done = divider__done & ((div_owner__q & axis_bit__1) != zero_k);
+        axes__1__div_quotient = divider__quotient;
+        axes__1__div_remainder = divider__remainder;
+        if (div_idle & ~div_granted & axes__2__div_request) begin
+            div_granted = 1'b1;
+            divider__start = 1'b1;
+            divider__dividend = axes__2__div_dividend;
+            divider__divisor = axes__2__div_divisor;
+            div_owner__d = axis_bit__2;
+        end
+        axes__2__div_done = divider__done & ((div_owner__q & axis_bit__2) != zero_k);
+        axes__2__div_quotient = divider__quotient;
+        axes__2__div_remainder = divider__remainder;
+        if (reset) begin
+            div_owner__d = zero_k;
+        end
         axes_read = zero32;
         steps_a = zero_k;
         steps_b = zero_k;
@@ -1099,17 +1209,17 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         end
         global_read = io__read_data;
         if (bus_address == a_id) begin
-            global_read = id_value;
+            global_read = global_read | id_value;
         end
         if (bus_address == a_version) begin
-            global_read = version_value;
+            global_read = global_read | version_value;
         end
         if (bus_address == a_config) begin
-            global_read = config_value;
+            global_read = global_read | config_value;
         end
         if (bus_address == a_control) begin
             if (run__q) begin
-                global_read = one32;
+                global_read = global_read | one32;
             end
         end
         if (bus_address == a_status) begin
@@ -1151,10 +1261,10 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             end
         end
         if (bus_address == a_irq_enable) begin
-            global_read = irq_enable__q;
+            global_read = global_read | irq_enable__q;
         end
         if (bus_address == a_tick_divisor) begin
-            global_read = tick_divisor__q;
+            global_read = global_read | tick_divisor__q;
         end
         if (bus_address == a_period_ticks) begin
             if (period_ticks__q[0]) begin
@@ -1207,19 +1317,19 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             end
         end
         if (bus_address == a_low_water) begin
-            global_read = low_water__q;
+            global_read = global_read | low_water__q;
         end
         if (bus_address == a_watchdog_timeout) begin
-            global_read = watchdog_timeout__q;
+            global_read = global_read | watchdog_timeout__q;
         end
         if (bus_address == a_state) begin
-            global_read = state_word;
+            global_read = global_read | state_word;
         end
         if (bus_address == a_period_count) begin
-            global_read = period_count__q;
+            global_read = global_read | period_count__q;
         end
         if (bus_address == a_stop_cause) begin
-            global_read = stop_cause__q;
+            global_read = global_read | stop_cause__q;
         end
         if (bus_read) begin
             read_data__d = global_read | axes_read;
@@ -1285,7 +1395,7 @@ module motion_controller__any_low_prev_n(d,q,clock);
 endmodule // motion_controller__any_low_prev_n
 
 
-module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event);
+module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
 
     // Module arguments
     input wire  clock;
@@ -1329,6 +1439,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     output reg  limit_event;
     output reg  alarm_event;
     output reg  home_event;
+    output reg  div_request;
+    output reg  [15:0] div_dividend;
+    output reg  [15:0] div_divisor;
+    input wire  div_done;
+    input wire  [15:0] div_quotient;
+    input wire  [15:0] div_remainder;
 
     // Constant declarations
     localparam  window = 3'b1;
@@ -1409,6 +1525,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     wire  uniform__underrun;
     wire  uniform__overrange;
     wire  uniform__overflow;
+    wire  uniform__div_request;
+    wire  [15:0] uniform__div_dividend;
+    wire  [15:0] uniform__div_divisor;
+    reg  uniform__div_done;
+    reg  [15:0] uniform__div_quotient;
+    reg  [15:0] uniform__div_remainder;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -1660,7 +1782,13 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .running(uniform__running),
         .underrun(uniform__underrun),
         .overrange(uniform__overrange),
-        .overflow(uniform__overflow)
+        .overflow(uniform__overflow),
+        .div_request(uniform__div_request),
+        .div_dividend(uniform__div_dividend),
+        .div_divisor(uniform__div_divisor),
+        .div_done(uniform__div_done),
+        .div_quotient(uniform__div_quotient),
+        .div_remainder(uniform__div_remainder)
     );
     motion_controller__axes__0__stage stage(
         .clock(stage__clock),
@@ -2105,6 +2233,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__mode = settings__q[32'h1];
         uniform__load = popped_valid__q & uniform_active__q;
         uniform__clear_flags = clear_faults | start;
+        div_request = uniform__div_request;
+        div_dividend = uniform__div_dividend;
+        div_divisor = uniform__div_divisor;
+        uniform__div_done = div_done;
+        uniform__div_quotient = div_quotient;
+        uniform__div_remainder = div_remainder;
         if (popped_valid__q & uniform_active__q & uniform__ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
@@ -2256,43 +2390,43 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         read_data = io__read_data;
         if (selected) begin
             if (offset == off_fifo_status) begin
-                read_data = fifo_status;
+                read_data = read_data | fifo_status;
             end
             if (offset == off_config) begin
-                read_data = settings__q;
+                read_data = read_data | settings__q;
             end
             if (offset == off_step_len) begin
-                read_data = step_len__q;
+                read_data = read_data | step_len__q;
             end
             if (offset == off_step_space) begin
-                read_data = step_space__q;
+                read_data = read_data | step_space__q;
             end
             if (offset == off_dir_setup) begin
-                read_data = dir_setup__q;
+                read_data = read_data | dir_setup__q;
             end
             if (offset == off_dir_hold) begin
-                read_data = dir_hold__q;
+                read_data = read_data | dir_hold__q;
             end
             if (offset == off_sample_rate) begin
-                read_data = sample_rate__q;
+                read_data = read_data | sample_rate__q;
             end
             if (offset == off_cmd_position) begin
-                read_data = position__count;
+                read_data = read_data | position__count;
             end
             if (offset == off_act_position) begin
-                read_data = encoder__count;
+                read_data = read_data | encoder__count;
             end
             if (offset == off_cmd_snapshot) begin
-                read_data = cmd_snapshot__q;
+                read_data = read_data | cmd_snapshot__q;
             end
             if (offset == off_act_snapshot) begin
-                read_data = act_snapshot__q;
+                read_data = read_data | act_snapshot__q;
             end
             if (offset == off_axis_status) begin
-                read_data = axis_status;
+                read_data = read_data | axis_status;
             end
             if (offset == off_index_position) begin
-                read_data = encoder__index_count;
+                read_data = read_data | encoder__index_count;
             end
         end
         if (reset) begin
@@ -4823,16 +4957,16 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
         read_data = zero32;
         if (selected) begin
             if (offset == off_config) begin
-                read_data = io_config;
+                read_data = read_data | io_config;
             end
             if (offset == off_status) begin
-                read_data = status;
+                read_data = read_data | status;
             end
             if (offset == off_home_cmd) begin
-                read_data = home_cmd__q;
+                read_data = read_data | home_cmd__q;
             end
             if (offset == off_home_act) begin
-                read_data = home_act__q;
+                read_data = read_data | home_act__q;
             end
         end
     end
@@ -6239,7 +6373,7 @@ module motion_controller__axes__0__underrun_d(d,q,clock);
 endmodule // motion_controller__axes__0__underrun_d
 
 
-module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow);
+module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
 
     // Module arguments
     input wire  clock;
@@ -6257,6 +6391,12 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     output reg  underrun;
     output reg  overrange;
     output reg  overflow;
+    output reg  div_request;
+    output reg  [15:0] div_dividend;
+    output reg  [15:0] div_divisor;
+    input wire  div_done;
+    input wire  [15:0] div_quotient;
+    input wire  [15:0] div_remainder;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -6273,16 +6413,6 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     localparam  sign = 16'h8000;
 
     // Stub signals
-    reg  divider__clock;
-    reg  divider__reset;
-    reg  divider__start;
-    reg  [15:0] divider__dividend;
-    reg  [15:0] divider__divisor;
-    wire  divider__busy;
-    wire  divider__done;
-    wire  [15:0] divider__quotient;
-    wire  [15:0] divider__remainder;
-    wire  divider__divide_by_zero;
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
@@ -6304,24 +6434,12 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [15:0] slot_long_half__d;
-    wire  [15:0] slot_long_half__q;
-    reg  slot_long_half__clock;
     reg  [15:0] slot_short_pulses__d;
     wire  [15:0] slot_short_pulses__q;
     reg  slot_short_pulses__clock;
     reg  [15:0] slot_long_pulses__d;
     wire  [15:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
-    reg  [15:0] slot_step_long__d;
-    wire  [15:0] slot_step_long__q;
-    reg  slot_step_long__clock;
-    reg  [15:0] slot_step_short__d;
-    wire  [15:0] slot_step_short__q;
-    reg  slot_step_short__clock;
-    reg  [15:0] slot_first_error__d;
-    wire  [15:0] slot_first_error__q;
-    reg  slot_first_error__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
@@ -6340,6 +6458,9 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_last__d;
     wire  half_last__q;
     reg  half_last__clock;
+    reg  stretch__d;
+    wire  stretch__q;
+    reg  stretch__clock;
     reg  pulse_reg__d;
     wire  pulse_reg__q;
     reg  pulse_reg__clock;
@@ -6355,9 +6476,6 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] long_half__d;
-    wire  [15:0] long_half__q;
-    reg  long_half__clock;
     reg  [15:0] step_long__d;
     wire  [15:0] step_long__q;
     reg  step_long__clock;
@@ -6395,18 +6513,6 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  [15:0] period_half;
 
     // Sub module instances
-    motion_controller__axes__0__uniform__divider divider(
-        .clock(divider__clock),
-        .reset(divider__reset),
-        .start(divider__start),
-        .dividend(divider__dividend),
-        .divisor(divider__divisor),
-        .busy(divider__busy),
-        .done(divider__done),
-        .quotient(divider__quotient),
-        .remainder(divider__remainder),
-        .divide_by_zero(divider__divide_by_zero)
-    );
     motion_controller__axes__0__uniform__slot_state slot_state(
         .d(slot_state__d),
         .q(slot_state__q),
@@ -6442,11 +6548,6 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    motion_controller__axes__0__uniform__slot_long_half slot_long_half(
-        .d(slot_long_half__d),
-        .q(slot_long_half__q),
-        .clock(slot_long_half__clock)
-    );
     motion_controller__axes__0__uniform__slot_short_pulses slot_short_pulses(
         .d(slot_short_pulses__d),
         .q(slot_short_pulses__q),
@@ -6456,21 +6557,6 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         .d(slot_long_pulses__d),
         .q(slot_long_pulses__q),
         .clock(slot_long_pulses__clock)
-    );
-    motion_controller__axes__0__uniform__slot_step_long slot_step_long(
-        .d(slot_step_long__d),
-        .q(slot_step_long__q),
-        .clock(slot_step_long__clock)
-    );
-    motion_controller__axes__0__uniform__slot_step_short slot_step_short(
-        .d(slot_step_short__d),
-        .q(slot_step_short__q),
-        .clock(slot_step_short__clock)
-    );
-    motion_controller__axes__0__uniform__slot_first_error slot_first_error(
-        .d(slot_first_error__d),
-        .q(slot_first_error__q),
-        .clock(slot_first_error__clock)
     );
     motion_controller__axes__0__uniform__slot_has_pulses slot_has_pulses(
         .d(slot_has_pulses__d),
@@ -6502,6 +6588,11 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         .q(half_last__q),
         .clock(half_last__clock)
     );
+    motion_controller__axes__0__uniform__stretch stretch(
+        .d(stretch__d),
+        .q(stretch__q),
+        .clock(stretch__clock)
+    );
     motion_controller__axes__0__uniform__pulse_reg pulse_reg(
         .d(pulse_reg__d),
         .q(pulse_reg__q),
@@ -6526,11 +6617,6 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         .d(half_is_one__d),
         .q(half_is_one__q),
         .clock(half_is_one__clock)
-    );
-    motion_controller__axes__0__uniform__long_half long_half(
-        .d(long_half__d),
-        .q(long_half__q),
-        .clock(long_half__clock)
     );
     motion_controller__axes__0__uniform__step_long step_long(
         .d(step_long__d),
@@ -6592,24 +6678,20 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_long_half__clock = clock;
         slot_short_pulses__clock = clock;
         slot_long_pulses__clock = clock;
-        slot_step_long__clock = clock;
-        slot_step_short__clock = clock;
-        slot_first_error__clock = clock;
         slot_has_pulses__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
         half_left__clock = clock;
         half_last__clock = clock;
+        stretch__clock = clock;
         pulse_reg__clock = clock;
         long__clock = clock;
         error__clock = clock;
         half__clock = clock;
         half_is_one__clock = clock;
-        long_half__clock = clock;
         step_long__clock = clock;
         step_short__clock = clock;
         has_pulses__clock = clock;
@@ -6627,24 +6709,20 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_long_half__d = slot_long_half__q;
         slot_short_pulses__d = slot_short_pulses__q;
         slot_long_pulses__d = slot_long_pulses__q;
-        slot_step_long__d = slot_step_long__q;
-        slot_step_short__d = slot_step_short__q;
-        slot_first_error__d = slot_first_error__q;
         slot_has_pulses__d = slot_has_pulses__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
         half_left__d = half_left__q;
         half_last__d = half_last__q;
+        stretch__d = stretch__q;
         pulse_reg__d = pulse_reg__q;
         long__d = long__q;
         error__d = error__q;
         half__d = half__q;
         half_is_one__d = half_is_one__q;
-        long_half__d = long_half__q;
         step_long__d = step_long__q;
         step_short__d = step_short__q;
         has_pulses__d = has_pulses__q;
@@ -6655,9 +6733,6 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
         count_too_large__d = count_too_large__q;
-        divider__clock = clock;
-        divider__reset = reset;
-        divider__start = 1'b0;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -6674,8 +6749,9 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
         count_too_large__d = slot_count__q > period_half;
-        divider__dividend = period_half;
-        divider__divisor = slot_count__q;
+        div_dividend = period_half;
+        div_divisor = slot_count__q;
+        div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
@@ -6712,33 +6788,19 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
-            if (~divider__busy & ~divider__done) begin
-                divider__start = 1'b1;
-            end
-            if (divider__done) begin
-                slot_half__d = divider__quotient;
-                slot_long_pulses__d = divider__remainder;
+            if (div_done) begin
+                slot_half__d = div_quotient;
+                slot_long_pulses__d = div_remainder;
                 slot_has_pulses__d = slot_count__q != zero;
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
             slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_long_half__d = slot_half__q + one;
             slot_half_is_one__d = slot_half__q == one;
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
-            if (slot_interleaved__q) begin
-                slot_step_short__d = slot_long_pulses__q;
-                slot_step_long__d = zero - slot_short_pulses__q;
-                slot_first_error__d = slot_long_pulses__q - slot_short_pulses__q;
-            end
-            else begin
-                slot_step_short__d = one;
-                slot_step_long__d = one;
-                slot_first_error__d = one - slot_short_pulses__q;
-            end
             slot_state__d = full;
         end
         period_done_reg__d = 1'b0;
@@ -6761,29 +6823,24 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
                     ticks_left__d = ticks_left__q - one;
                     period_last__d = ticks_left__q == two;
                     if (has_pulses__q) begin
-                        if (half_last__q) begin
+                        if (half_last__q & stretch__q) begin
+                            stretch__d = 1'b0;
+                        end
+                        else if (half_last__q) begin
+                            half_left__d = half__q;
+                            half_last__d = half_is_one__q;
                             if (pulse_reg__q) begin
                                 pulse_reg__d = 1'b0;
-                                if (long__q) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
-                                end
-                                else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
-                                end
+                                stretch__d = long__q;
                             end
                             else begin
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
+                                stretch__d = next_long;
                                 if (next_long) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
                                     error__d = error__q + step_long__q;
                                 end
                                 else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
                                     error__d = error__q + step_short__q;
                                 end
                             end
@@ -6805,14 +6862,21 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
             period_last__d = 1'b0;
             half_left__d = slot_half__q;
             half_last__d = slot_half_is_one__q;
+            stretch__d = 1'b0;
             pulse_reg__d = slot_has_pulses__q;
             long__d = 1'b0;
-            error__d = slot_first_error__q;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            long_half__d = slot_long_half__q;
-            step_long__d = slot_step_long__q;
-            step_short__d = slot_step_short__q;
+            if (slot_interleaved__q) begin
+                step_short__d = slot_long_pulses__q;
+                step_long__d = zero - slot_short_pulses__q;
+                error__d = slot_long_pulses__q - slot_short_pulses__q;
+            end
+            else begin
+                step_short__d = one;
+                step_long__d = one;
+                error__d = one - slot_short_pulses__q;
+            end
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -6848,349 +6912,6 @@ module motion_controller__axes__0__uniform__count_too_large(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__uniform__count_too_large
-
-
-module motion_controller__axes__0__uniform__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  start;
-    input wire  [15:0] dividend;
-    input wire  [15:0] divisor;
-    output reg  busy;
-    output reg  done;
-    output reg  [15:0] quotient;
-    output reg  [15:0] remainder;
-    output reg  divide_by_zero;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  zero_d = 16'h0;
-    localparam  one_d = 16'h1;
-    localparam  msb_d = 16'h8000;
-    localparam  width = 8'h10;
-    localparam  one_step = 8'h1;
-    localparam  no_steps = 8'h0;
-
-    // Stub signals
-    reg  [15:0] shift__d;
-    wire  [15:0] shift__q;
-    reg  shift__clock;
-    reg  [15:0] partial__d;
-    wire  [15:0] partial__q;
-    reg  partial__clock;
-    reg  [15:0] denominator_inverted__d;
-    wire  [15:0] denominator_inverted__q;
-    reg  denominator_inverted__clock;
-    reg  [7:0] steps_left__d;
-    wire  [7:0] steps_left__q;
-    reg  steps_left__clock;
-    reg  running__d;
-    wire  running__q;
-    reg  running__clock;
-    reg  finished__d;
-    wire  finished__q;
-    reg  finished__clock;
-    reg  by_zero__d;
-    wire  by_zero__q;
-    reg  by_zero__clock;
-    reg  [15:0] subtractor__a;
-    reg  [15:0] subtractor__b;
-    wire  [15:0] subtractor__sum;
-    wire  subtractor__carry_out;
-
-    // Local signals
-    reg  [15:0] shifted;
-    reg  shifted_overflows;
-
-    // Sub module instances
-    motion_controller__axes__0__uniform__divider__shift shift(
-        .d(shift__d),
-        .q(shift__q),
-        .clock(shift__clock)
-    );
-    motion_controller__axes__0__uniform__divider__partial partial(
-        .d(partial__d),
-        .q(partial__q),
-        .clock(partial__clock)
-    );
-    motion_controller__axes__0__uniform__divider__denominator_inverted denominator_inverted(
-        .d(denominator_inverted__d),
-        .q(denominator_inverted__q),
-        .clock(denominator_inverted__clock)
-    );
-    motion_controller__axes__0__uniform__divider__steps_left steps_left(
-        .d(steps_left__d),
-        .q(steps_left__q),
-        .clock(steps_left__clock)
-    );
-    motion_controller__axes__0__uniform__divider__running running(
-        .d(running__d),
-        .q(running__q),
-        .clock(running__clock)
-    );
-    motion_controller__axes__0__uniform__divider__finished finished(
-        .d(finished__d),
-        .q(finished__q),
-        .clock(finished__clock)
-    );
-    motion_controller__axes__0__uniform__divider__by_zero by_zero(
-        .d(by_zero__d),
-        .q(by_zero__q),
-        .clock(by_zero__clock)
-    );
-    motion_controller__axes__0__uniform__divider__subtractor subtractor(
-        .a(subtractor__a),
-        .b(subtractor__b),
-        .sum(subtractor__sum),
-        .carry_out(subtractor__carry_out)
-    );
-
-    // Update code
-    always @(*) begin
-        shift__clock = clock;
-        partial__clock = clock;
-        denominator_inverted__clock = clock;
-        steps_left__clock = clock;
-        running__clock = clock;
-        finished__clock = clock;
-        by_zero__clock = clock;
-        shift__d = shift__q;
-        partial__d = partial__q;
-        denominator_inverted__d = denominator_inverted__q;
-        steps_left__d = steps_left__q;
-        running__d = running__q;
-        finished__d = finished__q;
-        by_zero__d = by_zero__q;
-        busy = running__q;
-        done = finished__q;
-        quotient = shift__q;
-        remainder = partial__q;
-        divide_by_zero = by_zero__q;
-        shifted = partial__q << 32'h1;
-        if ((shift__q & msb) != zero) begin
-            shifted = (partial__q << 32'h1) | one_d;
-        end
-        shifted_overflows = (partial__q & msb_d) != zero_d;
-        subtractor__a = shifted;
-        subtractor__b = denominator_inverted__q;
-        finished__d = 1'b0;
-        if (running__q) begin
-            if (subtractor__carry_out | shifted_overflows) begin
-                partial__d = subtractor__sum;
-                shift__d = (shift__q << 32'h1) | one;
-            end
-            else begin
-                partial__d = shifted;
-                shift__d = shift__q << 32'h1;
-            end
-            steps_left__d = steps_left__q - one_step;
-            if (steps_left__q == one_step) begin
-                running__d = 1'b0;
-                finished__d = 1'b1;
-            end
-        end
-        else if (start) begin
-            shift__d = dividend;
-            partial__d = zero_d;
-            denominator_inverted__d = ~divisor;
-            steps_left__d = width;
-            running__d = 1'b1;
-            by_zero__d = divisor == zero_d;
-        end
-        if (reset) begin
-            shift__d = zero;
-            partial__d = zero_d;
-            denominator_inverted__d = ~zero_d;
-            steps_left__d = no_steps;
-            running__d = 1'b0;
-            finished__d = 1'b0;
-            by_zero__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider
-
-
-module motion_controller__axes__0__uniform__divider__by_zero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__by_zero
-
-
-module motion_controller__axes__0__uniform__divider__denominator_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__denominator_inverted
-
-
-module motion_controller__axes__0__uniform__divider__finished(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__finished
-
-
-module motion_controller__axes__0__uniform__divider__partial(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__partial
-
-
-module motion_controller__axes__0__uniform__divider__running(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__running
-
-
-module motion_controller__axes__0__uniform__divider__shift(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__shift
-
-
-module motion_controller__axes__0__uniform__divider__steps_left(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__steps_left
-
-
-module motion_controller__axes__0__uniform__divider__subtractor(a,b,sum,carry_out);
-
-    // Module arguments
-    input wire  [15:0] a;
-    input wire  [15:0] b;
-    output reg  [15:0] sum;
-    output reg  carry_out;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  low_half = 16'hff;
-    localparam  high_half = 16'hff00;
-    localparam  mid_bit = 16'h100;
-
-    // Local signals
-    reg  [15:0] low_sum;
-    reg  [15:0] high_sum_carry0;
-    reg  [15:0] high_sum_carry1;
-    reg  carry_mid;
-    reg  carry_out0;
-    reg  carry_out1;
-
-    // Update code
-    always @(*) begin
-        low_sum = (a & low_half) + (b & low_half) + one;
-        carry_mid = (low_sum & mid_bit) != zero;
-        high_sum_carry0 = (a & high_half) + (b & high_half);
-        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
-        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
-        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
-        if (carry_mid) begin
-            sum = (low_sum & low_half) | high_sum_carry1;
-            carry_out = carry_out1;
-        end
-        else begin
-            sum = (low_sum & low_half) | high_sum_carry0;
-            carry_out = carry_out0;
-        end
-    end
-
-endmodule // motion_controller__axes__0__uniform__divider__subtractor
 
 
 module motion_controller__axes__0__uniform__error(d,q,clock);
@@ -7324,25 +7045,6 @@ module motion_controller__axes__0__uniform__long(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__uniform__long
-
-
-module motion_controller__axes__0__uniform__long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__long_half
 
 
 module motion_controller__axes__0__uniform__overflow_reg(d,q,clock);
@@ -7516,25 +7218,6 @@ module motion_controller__axes__0__uniform__slot_count(d,q,clock);
 endmodule // motion_controller__axes__0__uniform__slot_count
 
 
-module motion_controller__axes__0__uniform__slot_first_error(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__slot_first_error
-
-
 module motion_controller__axes__0__uniform__slot_full(d,q,clock);
 
     // Module arguments
@@ -7630,25 +7313,6 @@ module motion_controller__axes__0__uniform__slot_interleaved(d,q,clock);
 endmodule // motion_controller__axes__0__uniform__slot_interleaved
 
 
-module motion_controller__axes__0__uniform__slot_long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__slot_long_half
-
-
 module motion_controller__axes__0__uniform__slot_long_pulses(d,q,clock);
 
     // Module arguments
@@ -7725,44 +7389,6 @@ module motion_controller__axes__0__uniform__slot_state(d,q,clock);
 endmodule // motion_controller__axes__0__uniform__slot_state
 
 
-module motion_controller__axes__0__uniform__slot_step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__slot_step_long
-
-
-module motion_controller__axes__0__uniform__slot_step_short(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__uniform__slot_step_short
-
-
 module motion_controller__axes__0__uniform__step_long(d,q,clock);
 
     // Module arguments
@@ -7799,6 +7425,25 @@ module motion_controller__axes__0__uniform__step_short(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__uniform__step_short
+
+
+module motion_controller__axes__0__uniform__stretch(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__uniform__stretch
 
 
 module motion_controller__axes__0__uniform__ticks_left(d,q,clock);
@@ -7972,7 +7617,7 @@ module motion_controller__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_running_forward
 
 
-module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event);
+module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
 
     // Module arguments
     input wire  clock;
@@ -8016,6 +7661,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     output reg  limit_event;
     output reg  alarm_event;
     output reg  home_event;
+    output reg  div_request;
+    output reg  [15:0] div_dividend;
+    output reg  [15:0] div_divisor;
+    input wire  div_done;
+    input wire  [15:0] div_quotient;
+    input wire  [15:0] div_remainder;
 
     // Constant declarations
     localparam  window = 3'b10;
@@ -8096,6 +7747,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     wire  uniform__underrun;
     wire  uniform__overrange;
     wire  uniform__overflow;
+    wire  uniform__div_request;
+    wire  [15:0] uniform__div_dividend;
+    wire  [15:0] uniform__div_divisor;
+    reg  uniform__div_done;
+    reg  [15:0] uniform__div_quotient;
+    reg  [15:0] uniform__div_remainder;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -8347,7 +8004,13 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .running(uniform__running),
         .underrun(uniform__underrun),
         .overrange(uniform__overrange),
-        .overflow(uniform__overflow)
+        .overflow(uniform__overflow),
+        .div_request(uniform__div_request),
+        .div_dividend(uniform__div_dividend),
+        .div_divisor(uniform__div_divisor),
+        .div_done(uniform__div_done),
+        .div_quotient(uniform__div_quotient),
+        .div_remainder(uniform__div_remainder)
     );
     motion_controller__axes__1__stage stage(
         .clock(stage__clock),
@@ -8792,6 +8455,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__mode = settings__q[32'h1];
         uniform__load = popped_valid__q & uniform_active__q;
         uniform__clear_flags = clear_faults | start;
+        div_request = uniform__div_request;
+        div_dividend = uniform__div_dividend;
+        div_divisor = uniform__div_divisor;
+        uniform__div_done = div_done;
+        uniform__div_quotient = div_quotient;
+        uniform__div_remainder = div_remainder;
         if (popped_valid__q & uniform_active__q & uniform__ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
@@ -8943,43 +8612,43 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         read_data = io__read_data;
         if (selected) begin
             if (offset == off_fifo_status) begin
-                read_data = fifo_status;
+                read_data = read_data | fifo_status;
             end
             if (offset == off_config) begin
-                read_data = settings__q;
+                read_data = read_data | settings__q;
             end
             if (offset == off_step_len) begin
-                read_data = step_len__q;
+                read_data = read_data | step_len__q;
             end
             if (offset == off_step_space) begin
-                read_data = step_space__q;
+                read_data = read_data | step_space__q;
             end
             if (offset == off_dir_setup) begin
-                read_data = dir_setup__q;
+                read_data = read_data | dir_setup__q;
             end
             if (offset == off_dir_hold) begin
-                read_data = dir_hold__q;
+                read_data = read_data | dir_hold__q;
             end
             if (offset == off_sample_rate) begin
-                read_data = sample_rate__q;
+                read_data = read_data | sample_rate__q;
             end
             if (offset == off_cmd_position) begin
-                read_data = position__count;
+                read_data = read_data | position__count;
             end
             if (offset == off_act_position) begin
-                read_data = encoder__count;
+                read_data = read_data | encoder__count;
             end
             if (offset == off_cmd_snapshot) begin
-                read_data = cmd_snapshot__q;
+                read_data = read_data | cmd_snapshot__q;
             end
             if (offset == off_act_snapshot) begin
-                read_data = act_snapshot__q;
+                read_data = read_data | act_snapshot__q;
             end
             if (offset == off_axis_status) begin
-                read_data = axis_status;
+                read_data = read_data | axis_status;
             end
             if (offset == off_index_position) begin
-                read_data = encoder__index_count;
+                read_data = read_data | encoder__index_count;
             end
         end
         if (reset) begin
@@ -11510,16 +11179,16 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
         read_data = zero32;
         if (selected) begin
             if (offset == off_config) begin
-                read_data = io_config;
+                read_data = read_data | io_config;
             end
             if (offset == off_status) begin
-                read_data = status;
+                read_data = read_data | status;
             end
             if (offset == off_home_cmd) begin
-                read_data = home_cmd__q;
+                read_data = read_data | home_cmd__q;
             end
             if (offset == off_home_act) begin
-                read_data = home_act__q;
+                read_data = read_data | home_act__q;
             end
         end
     end
@@ -12926,7 +12595,7 @@ module motion_controller__axes__1__underrun_d(d,q,clock);
 endmodule // motion_controller__axes__1__underrun_d
 
 
-module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow);
+module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
 
     // Module arguments
     input wire  clock;
@@ -12944,6 +12613,12 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     output reg  underrun;
     output reg  overrange;
     output reg  overflow;
+    output reg  div_request;
+    output reg  [15:0] div_dividend;
+    output reg  [15:0] div_divisor;
+    input wire  div_done;
+    input wire  [15:0] div_quotient;
+    input wire  [15:0] div_remainder;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -12960,16 +12635,6 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     localparam  sign = 16'h8000;
 
     // Stub signals
-    reg  divider__clock;
-    reg  divider__reset;
-    reg  divider__start;
-    reg  [15:0] divider__dividend;
-    reg  [15:0] divider__divisor;
-    wire  divider__busy;
-    wire  divider__done;
-    wire  [15:0] divider__quotient;
-    wire  [15:0] divider__remainder;
-    wire  divider__divide_by_zero;
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
@@ -12991,24 +12656,12 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [15:0] slot_long_half__d;
-    wire  [15:0] slot_long_half__q;
-    reg  slot_long_half__clock;
     reg  [15:0] slot_short_pulses__d;
     wire  [15:0] slot_short_pulses__q;
     reg  slot_short_pulses__clock;
     reg  [15:0] slot_long_pulses__d;
     wire  [15:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
-    reg  [15:0] slot_step_long__d;
-    wire  [15:0] slot_step_long__q;
-    reg  slot_step_long__clock;
-    reg  [15:0] slot_step_short__d;
-    wire  [15:0] slot_step_short__q;
-    reg  slot_step_short__clock;
-    reg  [15:0] slot_first_error__d;
-    wire  [15:0] slot_first_error__q;
-    reg  slot_first_error__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
@@ -13027,6 +12680,9 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_last__d;
     wire  half_last__q;
     reg  half_last__clock;
+    reg  stretch__d;
+    wire  stretch__q;
+    reg  stretch__clock;
     reg  pulse_reg__d;
     wire  pulse_reg__q;
     reg  pulse_reg__clock;
@@ -13042,9 +12698,6 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] long_half__d;
-    wire  [15:0] long_half__q;
-    reg  long_half__clock;
     reg  [15:0] step_long__d;
     wire  [15:0] step_long__q;
     reg  step_long__clock;
@@ -13082,18 +12735,6 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  [15:0] period_half;
 
     // Sub module instances
-    motion_controller__axes__1__uniform__divider divider(
-        .clock(divider__clock),
-        .reset(divider__reset),
-        .start(divider__start),
-        .dividend(divider__dividend),
-        .divisor(divider__divisor),
-        .busy(divider__busy),
-        .done(divider__done),
-        .quotient(divider__quotient),
-        .remainder(divider__remainder),
-        .divide_by_zero(divider__divide_by_zero)
-    );
     motion_controller__axes__1__uniform__slot_state slot_state(
         .d(slot_state__d),
         .q(slot_state__q),
@@ -13129,11 +12770,6 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    motion_controller__axes__1__uniform__slot_long_half slot_long_half(
-        .d(slot_long_half__d),
-        .q(slot_long_half__q),
-        .clock(slot_long_half__clock)
-    );
     motion_controller__axes__1__uniform__slot_short_pulses slot_short_pulses(
         .d(slot_short_pulses__d),
         .q(slot_short_pulses__q),
@@ -13143,21 +12779,6 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         .d(slot_long_pulses__d),
         .q(slot_long_pulses__q),
         .clock(slot_long_pulses__clock)
-    );
-    motion_controller__axes__1__uniform__slot_step_long slot_step_long(
-        .d(slot_step_long__d),
-        .q(slot_step_long__q),
-        .clock(slot_step_long__clock)
-    );
-    motion_controller__axes__1__uniform__slot_step_short slot_step_short(
-        .d(slot_step_short__d),
-        .q(slot_step_short__q),
-        .clock(slot_step_short__clock)
-    );
-    motion_controller__axes__1__uniform__slot_first_error slot_first_error(
-        .d(slot_first_error__d),
-        .q(slot_first_error__q),
-        .clock(slot_first_error__clock)
     );
     motion_controller__axes__1__uniform__slot_has_pulses slot_has_pulses(
         .d(slot_has_pulses__d),
@@ -13189,6 +12810,11 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         .q(half_last__q),
         .clock(half_last__clock)
     );
+    motion_controller__axes__1__uniform__stretch stretch(
+        .d(stretch__d),
+        .q(stretch__q),
+        .clock(stretch__clock)
+    );
     motion_controller__axes__1__uniform__pulse_reg pulse_reg(
         .d(pulse_reg__d),
         .q(pulse_reg__q),
@@ -13213,11 +12839,6 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         .d(half_is_one__d),
         .q(half_is_one__q),
         .clock(half_is_one__clock)
-    );
-    motion_controller__axes__1__uniform__long_half long_half(
-        .d(long_half__d),
-        .q(long_half__q),
-        .clock(long_half__clock)
     );
     motion_controller__axes__1__uniform__step_long step_long(
         .d(step_long__d),
@@ -13279,24 +12900,20 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_long_half__clock = clock;
         slot_short_pulses__clock = clock;
         slot_long_pulses__clock = clock;
-        slot_step_long__clock = clock;
-        slot_step_short__clock = clock;
-        slot_first_error__clock = clock;
         slot_has_pulses__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
         half_left__clock = clock;
         half_last__clock = clock;
+        stretch__clock = clock;
         pulse_reg__clock = clock;
         long__clock = clock;
         error__clock = clock;
         half__clock = clock;
         half_is_one__clock = clock;
-        long_half__clock = clock;
         step_long__clock = clock;
         step_short__clock = clock;
         has_pulses__clock = clock;
@@ -13314,24 +12931,20 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_long_half__d = slot_long_half__q;
         slot_short_pulses__d = slot_short_pulses__q;
         slot_long_pulses__d = slot_long_pulses__q;
-        slot_step_long__d = slot_step_long__q;
-        slot_step_short__d = slot_step_short__q;
-        slot_first_error__d = slot_first_error__q;
         slot_has_pulses__d = slot_has_pulses__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
         half_left__d = half_left__q;
         half_last__d = half_last__q;
+        stretch__d = stretch__q;
         pulse_reg__d = pulse_reg__q;
         long__d = long__q;
         error__d = error__q;
         half__d = half__q;
         half_is_one__d = half_is_one__q;
-        long_half__d = long_half__q;
         step_long__d = step_long__q;
         step_short__d = step_short__q;
         has_pulses__d = has_pulses__q;
@@ -13342,9 +12955,6 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
         count_too_large__d = count_too_large__q;
-        divider__clock = clock;
-        divider__reset = reset;
-        divider__start = 1'b0;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -13361,8 +12971,9 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
         count_too_large__d = slot_count__q > period_half;
-        divider__dividend = period_half;
-        divider__divisor = slot_count__q;
+        div_dividend = period_half;
+        div_divisor = slot_count__q;
+        div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
@@ -13399,33 +13010,19 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
-            if (~divider__busy & ~divider__done) begin
-                divider__start = 1'b1;
-            end
-            if (divider__done) begin
-                slot_half__d = divider__quotient;
-                slot_long_pulses__d = divider__remainder;
+            if (div_done) begin
+                slot_half__d = div_quotient;
+                slot_long_pulses__d = div_remainder;
                 slot_has_pulses__d = slot_count__q != zero;
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
             slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_long_half__d = slot_half__q + one;
             slot_half_is_one__d = slot_half__q == one;
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
-            if (slot_interleaved__q) begin
-                slot_step_short__d = slot_long_pulses__q;
-                slot_step_long__d = zero - slot_short_pulses__q;
-                slot_first_error__d = slot_long_pulses__q - slot_short_pulses__q;
-            end
-            else begin
-                slot_step_short__d = one;
-                slot_step_long__d = one;
-                slot_first_error__d = one - slot_short_pulses__q;
-            end
             slot_state__d = full;
         end
         period_done_reg__d = 1'b0;
@@ -13448,29 +13045,24 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
                     ticks_left__d = ticks_left__q - one;
                     period_last__d = ticks_left__q == two;
                     if (has_pulses__q) begin
-                        if (half_last__q) begin
+                        if (half_last__q & stretch__q) begin
+                            stretch__d = 1'b0;
+                        end
+                        else if (half_last__q) begin
+                            half_left__d = half__q;
+                            half_last__d = half_is_one__q;
                             if (pulse_reg__q) begin
                                 pulse_reg__d = 1'b0;
-                                if (long__q) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
-                                end
-                                else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
-                                end
+                                stretch__d = long__q;
                             end
                             else begin
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
+                                stretch__d = next_long;
                                 if (next_long) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
                                     error__d = error__q + step_long__q;
                                 end
                                 else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
                                     error__d = error__q + step_short__q;
                                 end
                             end
@@ -13492,14 +13084,21 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
             period_last__d = 1'b0;
             half_left__d = slot_half__q;
             half_last__d = slot_half_is_one__q;
+            stretch__d = 1'b0;
             pulse_reg__d = slot_has_pulses__q;
             long__d = 1'b0;
-            error__d = slot_first_error__q;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            long_half__d = slot_long_half__q;
-            step_long__d = slot_step_long__q;
-            step_short__d = slot_step_short__q;
+            if (slot_interleaved__q) begin
+                step_short__d = slot_long_pulses__q;
+                step_long__d = zero - slot_short_pulses__q;
+                error__d = slot_long_pulses__q - slot_short_pulses__q;
+            end
+            else begin
+                step_short__d = one;
+                step_long__d = one;
+                error__d = one - slot_short_pulses__q;
+            end
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -13535,349 +13134,6 @@ module motion_controller__axes__1__uniform__count_too_large(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__uniform__count_too_large
-
-
-module motion_controller__axes__1__uniform__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  start;
-    input wire  [15:0] dividend;
-    input wire  [15:0] divisor;
-    output reg  busy;
-    output reg  done;
-    output reg  [15:0] quotient;
-    output reg  [15:0] remainder;
-    output reg  divide_by_zero;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  zero_d = 16'h0;
-    localparam  one_d = 16'h1;
-    localparam  msb_d = 16'h8000;
-    localparam  width = 8'h10;
-    localparam  one_step = 8'h1;
-    localparam  no_steps = 8'h0;
-
-    // Stub signals
-    reg  [15:0] shift__d;
-    wire  [15:0] shift__q;
-    reg  shift__clock;
-    reg  [15:0] partial__d;
-    wire  [15:0] partial__q;
-    reg  partial__clock;
-    reg  [15:0] denominator_inverted__d;
-    wire  [15:0] denominator_inverted__q;
-    reg  denominator_inverted__clock;
-    reg  [7:0] steps_left__d;
-    wire  [7:0] steps_left__q;
-    reg  steps_left__clock;
-    reg  running__d;
-    wire  running__q;
-    reg  running__clock;
-    reg  finished__d;
-    wire  finished__q;
-    reg  finished__clock;
-    reg  by_zero__d;
-    wire  by_zero__q;
-    reg  by_zero__clock;
-    reg  [15:0] subtractor__a;
-    reg  [15:0] subtractor__b;
-    wire  [15:0] subtractor__sum;
-    wire  subtractor__carry_out;
-
-    // Local signals
-    reg  [15:0] shifted;
-    reg  shifted_overflows;
-
-    // Sub module instances
-    motion_controller__axes__1__uniform__divider__shift shift(
-        .d(shift__d),
-        .q(shift__q),
-        .clock(shift__clock)
-    );
-    motion_controller__axes__1__uniform__divider__partial partial(
-        .d(partial__d),
-        .q(partial__q),
-        .clock(partial__clock)
-    );
-    motion_controller__axes__1__uniform__divider__denominator_inverted denominator_inverted(
-        .d(denominator_inverted__d),
-        .q(denominator_inverted__q),
-        .clock(denominator_inverted__clock)
-    );
-    motion_controller__axes__1__uniform__divider__steps_left steps_left(
-        .d(steps_left__d),
-        .q(steps_left__q),
-        .clock(steps_left__clock)
-    );
-    motion_controller__axes__1__uniform__divider__running running(
-        .d(running__d),
-        .q(running__q),
-        .clock(running__clock)
-    );
-    motion_controller__axes__1__uniform__divider__finished finished(
-        .d(finished__d),
-        .q(finished__q),
-        .clock(finished__clock)
-    );
-    motion_controller__axes__1__uniform__divider__by_zero by_zero(
-        .d(by_zero__d),
-        .q(by_zero__q),
-        .clock(by_zero__clock)
-    );
-    motion_controller__axes__1__uniform__divider__subtractor subtractor(
-        .a(subtractor__a),
-        .b(subtractor__b),
-        .sum(subtractor__sum),
-        .carry_out(subtractor__carry_out)
-    );
-
-    // Update code
-    always @(*) begin
-        shift__clock = clock;
-        partial__clock = clock;
-        denominator_inverted__clock = clock;
-        steps_left__clock = clock;
-        running__clock = clock;
-        finished__clock = clock;
-        by_zero__clock = clock;
-        shift__d = shift__q;
-        partial__d = partial__q;
-        denominator_inverted__d = denominator_inverted__q;
-        steps_left__d = steps_left__q;
-        running__d = running__q;
-        finished__d = finished__q;
-        by_zero__d = by_zero__q;
-        busy = running__q;
-        done = finished__q;
-        quotient = shift__q;
-        remainder = partial__q;
-        divide_by_zero = by_zero__q;
-        shifted = partial__q << 32'h1;
-        if ((shift__q & msb) != zero) begin
-            shifted = (partial__q << 32'h1) | one_d;
-        end
-        shifted_overflows = (partial__q & msb_d) != zero_d;
-        subtractor__a = shifted;
-        subtractor__b = denominator_inverted__q;
-        finished__d = 1'b0;
-        if (running__q) begin
-            if (subtractor__carry_out | shifted_overflows) begin
-                partial__d = subtractor__sum;
-                shift__d = (shift__q << 32'h1) | one;
-            end
-            else begin
-                partial__d = shifted;
-                shift__d = shift__q << 32'h1;
-            end
-            steps_left__d = steps_left__q - one_step;
-            if (steps_left__q == one_step) begin
-                running__d = 1'b0;
-                finished__d = 1'b1;
-            end
-        end
-        else if (start) begin
-            shift__d = dividend;
-            partial__d = zero_d;
-            denominator_inverted__d = ~divisor;
-            steps_left__d = width;
-            running__d = 1'b1;
-            by_zero__d = divisor == zero_d;
-        end
-        if (reset) begin
-            shift__d = zero;
-            partial__d = zero_d;
-            denominator_inverted__d = ~zero_d;
-            steps_left__d = no_steps;
-            running__d = 1'b0;
-            finished__d = 1'b0;
-            by_zero__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider
-
-
-module motion_controller__axes__1__uniform__divider__by_zero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__by_zero
-
-
-module motion_controller__axes__1__uniform__divider__denominator_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__denominator_inverted
-
-
-module motion_controller__axes__1__uniform__divider__finished(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__finished
-
-
-module motion_controller__axes__1__uniform__divider__partial(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__partial
-
-
-module motion_controller__axes__1__uniform__divider__running(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__running
-
-
-module motion_controller__axes__1__uniform__divider__shift(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__shift
-
-
-module motion_controller__axes__1__uniform__divider__steps_left(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__steps_left
-
-
-module motion_controller__axes__1__uniform__divider__subtractor(a,b,sum,carry_out);
-
-    // Module arguments
-    input wire  [15:0] a;
-    input wire  [15:0] b;
-    output reg  [15:0] sum;
-    output reg  carry_out;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  low_half = 16'hff;
-    localparam  high_half = 16'hff00;
-    localparam  mid_bit = 16'h100;
-
-    // Local signals
-    reg  [15:0] low_sum;
-    reg  [15:0] high_sum_carry0;
-    reg  [15:0] high_sum_carry1;
-    reg  carry_mid;
-    reg  carry_out0;
-    reg  carry_out1;
-
-    // Update code
-    always @(*) begin
-        low_sum = (a & low_half) + (b & low_half) + one;
-        carry_mid = (low_sum & mid_bit) != zero;
-        high_sum_carry0 = (a & high_half) + (b & high_half);
-        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
-        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
-        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
-        if (carry_mid) begin
-            sum = (low_sum & low_half) | high_sum_carry1;
-            carry_out = carry_out1;
-        end
-        else begin
-            sum = (low_sum & low_half) | high_sum_carry0;
-            carry_out = carry_out0;
-        end
-    end
-
-endmodule // motion_controller__axes__1__uniform__divider__subtractor
 
 
 module motion_controller__axes__1__uniform__error(d,q,clock);
@@ -14011,25 +13267,6 @@ module motion_controller__axes__1__uniform__long(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__uniform__long
-
-
-module motion_controller__axes__1__uniform__long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__long_half
 
 
 module motion_controller__axes__1__uniform__overflow_reg(d,q,clock);
@@ -14203,25 +13440,6 @@ module motion_controller__axes__1__uniform__slot_count(d,q,clock);
 endmodule // motion_controller__axes__1__uniform__slot_count
 
 
-module motion_controller__axes__1__uniform__slot_first_error(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__slot_first_error
-
-
 module motion_controller__axes__1__uniform__slot_full(d,q,clock);
 
     // Module arguments
@@ -14317,25 +13535,6 @@ module motion_controller__axes__1__uniform__slot_interleaved(d,q,clock);
 endmodule // motion_controller__axes__1__uniform__slot_interleaved
 
 
-module motion_controller__axes__1__uniform__slot_long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__slot_long_half
-
-
 module motion_controller__axes__1__uniform__slot_long_pulses(d,q,clock);
 
     // Module arguments
@@ -14412,44 +13611,6 @@ module motion_controller__axes__1__uniform__slot_state(d,q,clock);
 endmodule // motion_controller__axes__1__uniform__slot_state
 
 
-module motion_controller__axes__1__uniform__slot_step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__slot_step_long
-
-
-module motion_controller__axes__1__uniform__slot_step_short(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__uniform__slot_step_short
-
-
 module motion_controller__axes__1__uniform__step_long(d,q,clock);
 
     // Module arguments
@@ -14486,6 +13647,25 @@ module motion_controller__axes__1__uniform__step_short(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__uniform__step_short
+
+
+module motion_controller__axes__1__uniform__stretch(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__uniform__stretch
 
 
 module motion_controller__axes__1__uniform__ticks_left(d,q,clock);
@@ -14659,7 +13839,7 @@ module motion_controller__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_running_forward
 
 
-module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event);
+module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
 
     // Module arguments
     input wire  clock;
@@ -14703,6 +13883,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     output reg  limit_event;
     output reg  alarm_event;
     output reg  home_event;
+    output reg  div_request;
+    output reg  [15:0] div_dividend;
+    output reg  [15:0] div_divisor;
+    input wire  div_done;
+    input wire  [15:0] div_quotient;
+    input wire  [15:0] div_remainder;
 
     // Constant declarations
     localparam  window = 3'b11;
@@ -14783,6 +13969,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     wire  uniform__underrun;
     wire  uniform__overrange;
     wire  uniform__overflow;
+    wire  uniform__div_request;
+    wire  [15:0] uniform__div_dividend;
+    wire  [15:0] uniform__div_divisor;
+    reg  uniform__div_done;
+    reg  [15:0] uniform__div_quotient;
+    reg  [15:0] uniform__div_remainder;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -15034,7 +14226,13 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .running(uniform__running),
         .underrun(uniform__underrun),
         .overrange(uniform__overrange),
-        .overflow(uniform__overflow)
+        .overflow(uniform__overflow),
+        .div_request(uniform__div_request),
+        .div_dividend(uniform__div_dividend),
+        .div_divisor(uniform__div_divisor),
+        .div_done(uniform__div_done),
+        .div_quotient(uniform__div_quotient),
+        .div_remainder(uniform__div_remainder)
     );
     motion_controller__axes__2__stage stage(
         .clock(stage__clock),
@@ -15479,6 +14677,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__mode = settings__q[32'h1];
         uniform__load = popped_valid__q & uniform_active__q;
         uniform__clear_flags = clear_faults | start;
+        div_request = uniform__div_request;
+        div_dividend = uniform__div_dividend;
+        div_divisor = uniform__div_divisor;
+        uniform__div_done = div_done;
+        uniform__div_quotient = div_quotient;
+        uniform__div_remainder = div_remainder;
         if (popped_valid__q & uniform_active__q & uniform__ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
@@ -15630,43 +14834,43 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         read_data = io__read_data;
         if (selected) begin
             if (offset == off_fifo_status) begin
-                read_data = fifo_status;
+                read_data = read_data | fifo_status;
             end
             if (offset == off_config) begin
-                read_data = settings__q;
+                read_data = read_data | settings__q;
             end
             if (offset == off_step_len) begin
-                read_data = step_len__q;
+                read_data = read_data | step_len__q;
             end
             if (offset == off_step_space) begin
-                read_data = step_space__q;
+                read_data = read_data | step_space__q;
             end
             if (offset == off_dir_setup) begin
-                read_data = dir_setup__q;
+                read_data = read_data | dir_setup__q;
             end
             if (offset == off_dir_hold) begin
-                read_data = dir_hold__q;
+                read_data = read_data | dir_hold__q;
             end
             if (offset == off_sample_rate) begin
-                read_data = sample_rate__q;
+                read_data = read_data | sample_rate__q;
             end
             if (offset == off_cmd_position) begin
-                read_data = position__count;
+                read_data = read_data | position__count;
             end
             if (offset == off_act_position) begin
-                read_data = encoder__count;
+                read_data = read_data | encoder__count;
             end
             if (offset == off_cmd_snapshot) begin
-                read_data = cmd_snapshot__q;
+                read_data = read_data | cmd_snapshot__q;
             end
             if (offset == off_act_snapshot) begin
-                read_data = act_snapshot__q;
+                read_data = read_data | act_snapshot__q;
             end
             if (offset == off_axis_status) begin
-                read_data = axis_status;
+                read_data = read_data | axis_status;
             end
             if (offset == off_index_position) begin
-                read_data = encoder__index_count;
+                read_data = read_data | encoder__index_count;
             end
         end
         if (reset) begin
@@ -18197,16 +17401,16 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
         read_data = zero32;
         if (selected) begin
             if (offset == off_config) begin
-                read_data = io_config;
+                read_data = read_data | io_config;
             end
             if (offset == off_status) begin
-                read_data = status;
+                read_data = read_data | status;
             end
             if (offset == off_home_cmd) begin
-                read_data = home_cmd__q;
+                read_data = read_data | home_cmd__q;
             end
             if (offset == off_home_act) begin
-                read_data = home_act__q;
+                read_data = read_data | home_act__q;
             end
         end
     end
@@ -19613,7 +18817,7 @@ module motion_controller__axes__2__underrun_d(d,q,clock);
 endmodule // motion_controller__axes__2__underrun_d
 
 
-module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow);
+module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
 
     // Module arguments
     input wire  clock;
@@ -19631,6 +18835,12 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     output reg  underrun;
     output reg  overrange;
     output reg  overflow;
+    output reg  div_request;
+    output reg  [15:0] div_dividend;
+    output reg  [15:0] div_divisor;
+    input wire  div_done;
+    input wire  [15:0] div_quotient;
+    input wire  [15:0] div_remainder;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -19647,16 +18857,6 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     localparam  sign = 16'h8000;
 
     // Stub signals
-    reg  divider__clock;
-    reg  divider__reset;
-    reg  divider__start;
-    reg  [15:0] divider__dividend;
-    reg  [15:0] divider__divisor;
-    wire  divider__busy;
-    wire  divider__done;
-    wire  [15:0] divider__quotient;
-    wire  [15:0] divider__remainder;
-    wire  divider__divide_by_zero;
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
@@ -19678,24 +18878,12 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [15:0] slot_long_half__d;
-    wire  [15:0] slot_long_half__q;
-    reg  slot_long_half__clock;
     reg  [15:0] slot_short_pulses__d;
     wire  [15:0] slot_short_pulses__q;
     reg  slot_short_pulses__clock;
     reg  [15:0] slot_long_pulses__d;
     wire  [15:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
-    reg  [15:0] slot_step_long__d;
-    wire  [15:0] slot_step_long__q;
-    reg  slot_step_long__clock;
-    reg  [15:0] slot_step_short__d;
-    wire  [15:0] slot_step_short__q;
-    reg  slot_step_short__clock;
-    reg  [15:0] slot_first_error__d;
-    wire  [15:0] slot_first_error__q;
-    reg  slot_first_error__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
@@ -19714,6 +18902,9 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_last__d;
     wire  half_last__q;
     reg  half_last__clock;
+    reg  stretch__d;
+    wire  stretch__q;
+    reg  stretch__clock;
     reg  pulse_reg__d;
     wire  pulse_reg__q;
     reg  pulse_reg__clock;
@@ -19729,9 +18920,6 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] long_half__d;
-    wire  [15:0] long_half__q;
-    reg  long_half__clock;
     reg  [15:0] step_long__d;
     wire  [15:0] step_long__q;
     reg  step_long__clock;
@@ -19769,18 +18957,6 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  [15:0] period_half;
 
     // Sub module instances
-    motion_controller__axes__2__uniform__divider divider(
-        .clock(divider__clock),
-        .reset(divider__reset),
-        .start(divider__start),
-        .dividend(divider__dividend),
-        .divisor(divider__divisor),
-        .busy(divider__busy),
-        .done(divider__done),
-        .quotient(divider__quotient),
-        .remainder(divider__remainder),
-        .divide_by_zero(divider__divide_by_zero)
-    );
     motion_controller__axes__2__uniform__slot_state slot_state(
         .d(slot_state__d),
         .q(slot_state__q),
@@ -19816,11 +18992,6 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    motion_controller__axes__2__uniform__slot_long_half slot_long_half(
-        .d(slot_long_half__d),
-        .q(slot_long_half__q),
-        .clock(slot_long_half__clock)
-    );
     motion_controller__axes__2__uniform__slot_short_pulses slot_short_pulses(
         .d(slot_short_pulses__d),
         .q(slot_short_pulses__q),
@@ -19830,21 +19001,6 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         .d(slot_long_pulses__d),
         .q(slot_long_pulses__q),
         .clock(slot_long_pulses__clock)
-    );
-    motion_controller__axes__2__uniform__slot_step_long slot_step_long(
-        .d(slot_step_long__d),
-        .q(slot_step_long__q),
-        .clock(slot_step_long__clock)
-    );
-    motion_controller__axes__2__uniform__slot_step_short slot_step_short(
-        .d(slot_step_short__d),
-        .q(slot_step_short__q),
-        .clock(slot_step_short__clock)
-    );
-    motion_controller__axes__2__uniform__slot_first_error slot_first_error(
-        .d(slot_first_error__d),
-        .q(slot_first_error__q),
-        .clock(slot_first_error__clock)
     );
     motion_controller__axes__2__uniform__slot_has_pulses slot_has_pulses(
         .d(slot_has_pulses__d),
@@ -19876,6 +19032,11 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         .q(half_last__q),
         .clock(half_last__clock)
     );
+    motion_controller__axes__2__uniform__stretch stretch(
+        .d(stretch__d),
+        .q(stretch__q),
+        .clock(stretch__clock)
+    );
     motion_controller__axes__2__uniform__pulse_reg pulse_reg(
         .d(pulse_reg__d),
         .q(pulse_reg__q),
@@ -19900,11 +19061,6 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         .d(half_is_one__d),
         .q(half_is_one__q),
         .clock(half_is_one__clock)
-    );
-    motion_controller__axes__2__uniform__long_half long_half(
-        .d(long_half__d),
-        .q(long_half__q),
-        .clock(long_half__clock)
     );
     motion_controller__axes__2__uniform__step_long step_long(
         .d(step_long__d),
@@ -19966,24 +19122,20 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_long_half__clock = clock;
         slot_short_pulses__clock = clock;
         slot_long_pulses__clock = clock;
-        slot_step_long__clock = clock;
-        slot_step_short__clock = clock;
-        slot_first_error__clock = clock;
         slot_has_pulses__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
         half_left__clock = clock;
         half_last__clock = clock;
+        stretch__clock = clock;
         pulse_reg__clock = clock;
         long__clock = clock;
         error__clock = clock;
         half__clock = clock;
         half_is_one__clock = clock;
-        long_half__clock = clock;
         step_long__clock = clock;
         step_short__clock = clock;
         has_pulses__clock = clock;
@@ -20001,24 +19153,20 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_long_half__d = slot_long_half__q;
         slot_short_pulses__d = slot_short_pulses__q;
         slot_long_pulses__d = slot_long_pulses__q;
-        slot_step_long__d = slot_step_long__q;
-        slot_step_short__d = slot_step_short__q;
-        slot_first_error__d = slot_first_error__q;
         slot_has_pulses__d = slot_has_pulses__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
         half_left__d = half_left__q;
         half_last__d = half_last__q;
+        stretch__d = stretch__q;
         pulse_reg__d = pulse_reg__q;
         long__d = long__q;
         error__d = error__q;
         half__d = half__q;
         half_is_one__d = half_is_one__q;
-        long_half__d = long_half__q;
         step_long__d = step_long__q;
         step_short__d = step_short__q;
         has_pulses__d = has_pulses__q;
@@ -20029,9 +19177,6 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
         count_too_large__d = count_too_large__q;
-        divider__clock = clock;
-        divider__reset = reset;
-        divider__start = 1'b0;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -20048,8 +19193,9 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
         count_too_large__d = slot_count__q > period_half;
-        divider__dividend = period_half;
-        divider__divisor = slot_count__q;
+        div_dividend = period_half;
+        div_divisor = slot_count__q;
+        div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
@@ -20086,33 +19232,19 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
-            if (~divider__busy & ~divider__done) begin
-                divider__start = 1'b1;
-            end
-            if (divider__done) begin
-                slot_half__d = divider__quotient;
-                slot_long_pulses__d = divider__remainder;
+            if (div_done) begin
+                slot_half__d = div_quotient;
+                slot_long_pulses__d = div_remainder;
                 slot_has_pulses__d = slot_count__q != zero;
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
             slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_long_half__d = slot_half__q + one;
             slot_half_is_one__d = slot_half__q == one;
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
-            if (slot_interleaved__q) begin
-                slot_step_short__d = slot_long_pulses__q;
-                slot_step_long__d = zero - slot_short_pulses__q;
-                slot_first_error__d = slot_long_pulses__q - slot_short_pulses__q;
-            end
-            else begin
-                slot_step_short__d = one;
-                slot_step_long__d = one;
-                slot_first_error__d = one - slot_short_pulses__q;
-            end
             slot_state__d = full;
         end
         period_done_reg__d = 1'b0;
@@ -20135,29 +19267,24 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
                     ticks_left__d = ticks_left__q - one;
                     period_last__d = ticks_left__q == two;
                     if (has_pulses__q) begin
-                        if (half_last__q) begin
+                        if (half_last__q & stretch__q) begin
+                            stretch__d = 1'b0;
+                        end
+                        else if (half_last__q) begin
+                            half_left__d = half__q;
+                            half_last__d = half_is_one__q;
                             if (pulse_reg__q) begin
                                 pulse_reg__d = 1'b0;
-                                if (long__q) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
-                                end
-                                else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
-                                end
+                                stretch__d = long__q;
                             end
                             else begin
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
+                                stretch__d = next_long;
                                 if (next_long) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
                                     error__d = error__q + step_long__q;
                                 end
                                 else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
                                     error__d = error__q + step_short__q;
                                 end
                             end
@@ -20179,14 +19306,21 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
             period_last__d = 1'b0;
             half_left__d = slot_half__q;
             half_last__d = slot_half_is_one__q;
+            stretch__d = 1'b0;
             pulse_reg__d = slot_has_pulses__q;
             long__d = 1'b0;
-            error__d = slot_first_error__q;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            long_half__d = slot_long_half__q;
-            step_long__d = slot_step_long__q;
-            step_short__d = slot_step_short__q;
+            if (slot_interleaved__q) begin
+                step_short__d = slot_long_pulses__q;
+                step_long__d = zero - slot_short_pulses__q;
+                error__d = slot_long_pulses__q - slot_short_pulses__q;
+            end
+            else begin
+                step_short__d = one;
+                step_long__d = one;
+                error__d = one - slot_short_pulses__q;
+            end
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -20222,349 +19356,6 @@ module motion_controller__axes__2__uniform__count_too_large(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__uniform__count_too_large
-
-
-module motion_controller__axes__2__uniform__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  start;
-    input wire  [15:0] dividend;
-    input wire  [15:0] divisor;
-    output reg  busy;
-    output reg  done;
-    output reg  [15:0] quotient;
-    output reg  [15:0] remainder;
-    output reg  divide_by_zero;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  zero_d = 16'h0;
-    localparam  one_d = 16'h1;
-    localparam  msb_d = 16'h8000;
-    localparam  width = 8'h10;
-    localparam  one_step = 8'h1;
-    localparam  no_steps = 8'h0;
-
-    // Stub signals
-    reg  [15:0] shift__d;
-    wire  [15:0] shift__q;
-    reg  shift__clock;
-    reg  [15:0] partial__d;
-    wire  [15:0] partial__q;
-    reg  partial__clock;
-    reg  [15:0] denominator_inverted__d;
-    wire  [15:0] denominator_inverted__q;
-    reg  denominator_inverted__clock;
-    reg  [7:0] steps_left__d;
-    wire  [7:0] steps_left__q;
-    reg  steps_left__clock;
-    reg  running__d;
-    wire  running__q;
-    reg  running__clock;
-    reg  finished__d;
-    wire  finished__q;
-    reg  finished__clock;
-    reg  by_zero__d;
-    wire  by_zero__q;
-    reg  by_zero__clock;
-    reg  [15:0] subtractor__a;
-    reg  [15:0] subtractor__b;
-    wire  [15:0] subtractor__sum;
-    wire  subtractor__carry_out;
-
-    // Local signals
-    reg  [15:0] shifted;
-    reg  shifted_overflows;
-
-    // Sub module instances
-    motion_controller__axes__2__uniform__divider__shift shift(
-        .d(shift__d),
-        .q(shift__q),
-        .clock(shift__clock)
-    );
-    motion_controller__axes__2__uniform__divider__partial partial(
-        .d(partial__d),
-        .q(partial__q),
-        .clock(partial__clock)
-    );
-    motion_controller__axes__2__uniform__divider__denominator_inverted denominator_inverted(
-        .d(denominator_inverted__d),
-        .q(denominator_inverted__q),
-        .clock(denominator_inverted__clock)
-    );
-    motion_controller__axes__2__uniform__divider__steps_left steps_left(
-        .d(steps_left__d),
-        .q(steps_left__q),
-        .clock(steps_left__clock)
-    );
-    motion_controller__axes__2__uniform__divider__running running(
-        .d(running__d),
-        .q(running__q),
-        .clock(running__clock)
-    );
-    motion_controller__axes__2__uniform__divider__finished finished(
-        .d(finished__d),
-        .q(finished__q),
-        .clock(finished__clock)
-    );
-    motion_controller__axes__2__uniform__divider__by_zero by_zero(
-        .d(by_zero__d),
-        .q(by_zero__q),
-        .clock(by_zero__clock)
-    );
-    motion_controller__axes__2__uniform__divider__subtractor subtractor(
-        .a(subtractor__a),
-        .b(subtractor__b),
-        .sum(subtractor__sum),
-        .carry_out(subtractor__carry_out)
-    );
-
-    // Update code
-    always @(*) begin
-        shift__clock = clock;
-        partial__clock = clock;
-        denominator_inverted__clock = clock;
-        steps_left__clock = clock;
-        running__clock = clock;
-        finished__clock = clock;
-        by_zero__clock = clock;
-        shift__d = shift__q;
-        partial__d = partial__q;
-        denominator_inverted__d = denominator_inverted__q;
-        steps_left__d = steps_left__q;
-        running__d = running__q;
-        finished__d = finished__q;
-        by_zero__d = by_zero__q;
-        busy = running__q;
-        done = finished__q;
-        quotient = shift__q;
-        remainder = partial__q;
-        divide_by_zero = by_zero__q;
-        shifted = partial__q << 32'h1;
-        if ((shift__q & msb) != zero) begin
-            shifted = (partial__q << 32'h1) | one_d;
-        end
-        shifted_overflows = (partial__q & msb_d) != zero_d;
-        subtractor__a = shifted;
-        subtractor__b = denominator_inverted__q;
-        finished__d = 1'b0;
-        if (running__q) begin
-            if (subtractor__carry_out | shifted_overflows) begin
-                partial__d = subtractor__sum;
-                shift__d = (shift__q << 32'h1) | one;
-            end
-            else begin
-                partial__d = shifted;
-                shift__d = shift__q << 32'h1;
-            end
-            steps_left__d = steps_left__q - one_step;
-            if (steps_left__q == one_step) begin
-                running__d = 1'b0;
-                finished__d = 1'b1;
-            end
-        end
-        else if (start) begin
-            shift__d = dividend;
-            partial__d = zero_d;
-            denominator_inverted__d = ~divisor;
-            steps_left__d = width;
-            running__d = 1'b1;
-            by_zero__d = divisor == zero_d;
-        end
-        if (reset) begin
-            shift__d = zero;
-            partial__d = zero_d;
-            denominator_inverted__d = ~zero_d;
-            steps_left__d = no_steps;
-            running__d = 1'b0;
-            finished__d = 1'b0;
-            by_zero__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider
-
-
-module motion_controller__axes__2__uniform__divider__by_zero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__by_zero
-
-
-module motion_controller__axes__2__uniform__divider__denominator_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__denominator_inverted
-
-
-module motion_controller__axes__2__uniform__divider__finished(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__finished
-
-
-module motion_controller__axes__2__uniform__divider__partial(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__partial
-
-
-module motion_controller__axes__2__uniform__divider__running(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__running
-
-
-module motion_controller__axes__2__uniform__divider__shift(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__shift
-
-
-module motion_controller__axes__2__uniform__divider__steps_left(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__steps_left
-
-
-module motion_controller__axes__2__uniform__divider__subtractor(a,b,sum,carry_out);
-
-    // Module arguments
-    input wire  [15:0] a;
-    input wire  [15:0] b;
-    output reg  [15:0] sum;
-    output reg  carry_out;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  low_half = 16'hff;
-    localparam  high_half = 16'hff00;
-    localparam  mid_bit = 16'h100;
-
-    // Local signals
-    reg  [15:0] low_sum;
-    reg  [15:0] high_sum_carry0;
-    reg  [15:0] high_sum_carry1;
-    reg  carry_mid;
-    reg  carry_out0;
-    reg  carry_out1;
-
-    // Update code
-    always @(*) begin
-        low_sum = (a & low_half) + (b & low_half) + one;
-        carry_mid = (low_sum & mid_bit) != zero;
-        high_sum_carry0 = (a & high_half) + (b & high_half);
-        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
-        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
-        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
-        if (carry_mid) begin
-            sum = (low_sum & low_half) | high_sum_carry1;
-            carry_out = carry_out1;
-        end
-        else begin
-            sum = (low_sum & low_half) | high_sum_carry0;
-            carry_out = carry_out0;
-        end
-    end
-
-endmodule // motion_controller__axes__2__uniform__divider__subtractor
 
 
 module motion_controller__axes__2__uniform__error(d,q,clock);
@@ -20698,25 +19489,6 @@ module motion_controller__axes__2__uniform__long(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__uniform__long
-
-
-module motion_controller__axes__2__uniform__long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__long_half
 
 
 module motion_controller__axes__2__uniform__overflow_reg(d,q,clock);
@@ -20890,25 +19662,6 @@ module motion_controller__axes__2__uniform__slot_count(d,q,clock);
 endmodule // motion_controller__axes__2__uniform__slot_count
 
 
-module motion_controller__axes__2__uniform__slot_first_error(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__slot_first_error
-
-
 module motion_controller__axes__2__uniform__slot_full(d,q,clock);
 
     // Module arguments
@@ -21004,25 +19757,6 @@ module motion_controller__axes__2__uniform__slot_interleaved(d,q,clock);
 endmodule // motion_controller__axes__2__uniform__slot_interleaved
 
 
-module motion_controller__axes__2__uniform__slot_long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__slot_long_half
-
-
 module motion_controller__axes__2__uniform__slot_long_pulses(d,q,clock);
 
     // Module arguments
@@ -21099,44 +19833,6 @@ module motion_controller__axes__2__uniform__slot_state(d,q,clock);
 endmodule // motion_controller__axes__2__uniform__slot_state
 
 
-module motion_controller__axes__2__uniform__slot_step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__slot_step_long
-
-
-module motion_controller__axes__2__uniform__slot_step_short(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__uniform__slot_step_short
-
-
 module motion_controller__axes__2__uniform__step_long(d,q,clock);
 
     // Module arguments
@@ -21173,6 +19869,25 @@ module motion_controller__axes__2__uniform__step_short(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__uniform__step_short
+
+
+module motion_controller__axes__2__uniform__stretch(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__uniform__stretch
 
 
 module motion_controller__axes__2__uniform__ticks_left(d,q,clock);
@@ -21363,6 +20078,368 @@ module motion_controller__boundary_next(d,q,clock);
     end
 
 endmodule // motion_controller__boundary_next
+
+
+module motion_controller__div_owner(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__div_owner
+
+
+module motion_controller__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  start;
+    input wire  [15:0] dividend;
+    input wire  [15:0] divisor;
+    output reg  busy;
+    output reg  done;
+    output reg  [15:0] quotient;
+    output reg  [15:0] remainder;
+    output reg  divide_by_zero;
+
+    // Constant declarations
+    localparam  zero = 16'h0;
+    localparam  one = 16'h1;
+    localparam  msb = 16'h8000;
+    localparam  zero_d = 16'h0;
+    localparam  one_d = 16'h1;
+    localparam  msb_d = 16'h8000;
+    localparam  width = 8'h10;
+    localparam  one_step = 8'h1;
+    localparam  no_steps = 8'h0;
+
+    // Stub signals
+    reg  [15:0] shift__d;
+    wire  [15:0] shift__q;
+    reg  shift__clock;
+    reg  [15:0] partial__d;
+    wire  [15:0] partial__q;
+    reg  partial__clock;
+    reg  [15:0] denominator_inverted__d;
+    wire  [15:0] denominator_inverted__q;
+    reg  denominator_inverted__clock;
+    reg  [7:0] steps_left__d;
+    wire  [7:0] steps_left__q;
+    reg  steps_left__clock;
+    reg  running__d;
+    wire  running__q;
+    reg  running__clock;
+    reg  finished__d;
+    wire  finished__q;
+    reg  finished__clock;
+    reg  by_zero__d;
+    wire  by_zero__q;
+    reg  by_zero__clock;
+    reg  [15:0] subtractor__a;
+    reg  [15:0] subtractor__b;
+    wire  [15:0] subtractor__sum;
+    wire  subtractor__carry_out;
+
+    // Local signals
+    reg  [15:0] shifted;
+    reg  shifted_overflows;
+
+    // Sub module instances
+    motion_controller__divider__shift shift(
+        .d(shift__d),
+        .q(shift__q),
+        .clock(shift__clock)
+    );
+    motion_controller__divider__partial partial(
+        .d(partial__d),
+        .q(partial__q),
+        .clock(partial__clock)
+    );
+    motion_controller__divider__denominator_inverted denominator_inverted(
+        .d(denominator_inverted__d),
+        .q(denominator_inverted__q),
+        .clock(denominator_inverted__clock)
+    );
+    motion_controller__divider__steps_left steps_left(
+        .d(steps_left__d),
+        .q(steps_left__q),
+        .clock(steps_left__clock)
+    );
+    motion_controller__divider__running running(
+        .d(running__d),
+        .q(running__q),
+        .clock(running__clock)
+    );
+    motion_controller__divider__finished finished(
+        .d(finished__d),
+        .q(finished__q),
+        .clock(finished__clock)
+    );
+    motion_controller__divider__by_zero by_zero(
+        .d(by_zero__d),
+        .q(by_zero__q),
+        .clock(by_zero__clock)
+    );
+    motion_controller__divider__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
+
+    // Update code
+    always @(*) begin
+        shift__clock = clock;
+        partial__clock = clock;
+        denominator_inverted__clock = clock;
+        steps_left__clock = clock;
+        running__clock = clock;
+        finished__clock = clock;
+        by_zero__clock = clock;
+        shift__d = shift__q;
+        partial__d = partial__q;
+        denominator_inverted__d = denominator_inverted__q;
+        steps_left__d = steps_left__q;
+        running__d = running__q;
+        finished__d = finished__q;
+        by_zero__d = by_zero__q;
+        busy = running__q;
+        done = finished__q;
+        quotient = shift__q;
+        remainder = partial__q;
+        divide_by_zero = by_zero__q;
+        shifted = partial__q << 32'h1;
+        if ((shift__q & msb) != zero) begin
+            shifted = (partial__q << 32'h1) | one_d;
+        end
+        shifted_overflows = (partial__q & msb_d) != zero_d;
+        subtractor__a = shifted;
+        subtractor__b = denominator_inverted__q;
+        finished__d = 1'b0;
+        if (running__q) begin
+            if (subtractor__carry_out | shifted_overflows) begin
+                partial__d = subtractor__sum;
+                shift__d = (shift__q << 32'h1) | one;
+            end
+            else begin
+                partial__d = shifted;
+                shift__d = shift__q << 32'h1;
+            end
+            steps_left__d = steps_left__q - one_step;
+            if (steps_left__q == one_step) begin
+                running__d = 1'b0;
+                finished__d = 1'b1;
+            end
+        end
+        else if (start) begin
+            shift__d = dividend;
+            partial__d = zero_d;
+            denominator_inverted__d = ~divisor;
+            steps_left__d = width;
+            running__d = 1'b1;
+            by_zero__d = divisor == zero_d;
+        end
+        if (reset) begin
+            shift__d = zero;
+            partial__d = zero_d;
+            denominator_inverted__d = ~zero_d;
+            steps_left__d = no_steps;
+            running__d = 1'b0;
+            finished__d = 1'b0;
+            by_zero__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller__divider
+
+
+module motion_controller__divider__by_zero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__divider__by_zero
+
+
+module motion_controller__divider__denominator_inverted(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__divider__denominator_inverted
+
+
+module motion_controller__divider__finished(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__divider__finished
+
+
+module motion_controller__divider__partial(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__divider__partial
+
+
+module motion_controller__divider__running(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__divider__running
+
+
+module motion_controller__divider__shift(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__divider__shift
+
+
+module motion_controller__divider__steps_left(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__divider__steps_left
+
+
+module motion_controller__divider__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [15:0] a;
+    input wire  [15:0] b;
+    output reg  [15:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 16'h0;
+    localparam  one = 16'h1;
+    localparam  msb = 16'h8000;
+    localparam  low_half = 16'hff;
+    localparam  high_half = 16'hff00;
+    localparam  mid_bit = 16'h100;
+
+    // Local signals
+    reg  [15:0] low_sum;
+    reg  [15:0] high_sum_carry0;
+    reg  [15:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // motion_controller__divider__subtractor
 
 
 module motion_controller__expired_prev(d,q,clock);
@@ -22171,25 +21248,25 @@ module motion_controller__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,es
         end
         read_data = zero32;
         if (address == a_filter) begin
-            read_data = filter;
+            read_data = read_data | filter;
         end
         if (address == a_polarity) begin
-            read_data = polarity__q;
+            read_data = read_data | polarity__q;
         end
         if (address == a_gpio_in) begin
-            read_data = gpio_word;
+            read_data = read_data | gpio_word;
         end
         if (address == a_gpio_out) begin
-            read_data = out_word;
+            read_data = read_data | out_word;
         end
         if (address == a_gpio_safe) begin
-            read_data = safe_word;
+            read_data = read_data | safe_word;
         end
         if (address == a_gpio_irq_enable) begin
-            read_data = irq_word;
+            read_data = read_data | irq_word;
         end
         if (address == a_gpio_edges) begin
-            read_data = edges_word;
+            read_data = read_data | edges_word;
         end
     end
 

@@ -47,6 +47,131 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     output reg  overrange;
     output reg  overflow;
 
+    // Stub signals
+    reg  core__clock;
+    reg  core__reset;
+    reg  core__tick;
+    reg  [31:0] core__period;
+    reg  [31:0] core__count;
+    reg  core__mode;
+    reg  core__load;
+    reg  core__clear_flags;
+    wire  core__pulse;
+    wire  core__period_done;
+    wire  core__ready;
+    wire  core__running;
+    wire  core__underrun;
+    wire  core__overrange;
+    wire  core__overflow;
+    wire  core__div_request;
+    wire  [31:0] core__div_dividend;
+    wire  [31:0] core__div_divisor;
+    reg  core__div_done;
+    reg  [31:0] core__div_quotient;
+    reg  [31:0] core__div_remainder;
+    reg  divider__clock;
+    reg  divider__reset;
+    reg  divider__start;
+    reg  [31:0] divider__dividend;
+    reg  [31:0] divider__divisor;
+    wire  divider__busy;
+    wire  divider__done;
+    wire  [31:0] divider__quotient;
+    wire  [31:0] divider__remainder;
+    wire  divider__divide_by_zero;
+
+    // Sub module instances
+    uniform_pulse_gen__core core(
+        .clock(core__clock),
+        .reset(core__reset),
+        .tick(core__tick),
+        .period(core__period),
+        .count(core__count),
+        .mode(core__mode),
+        .load(core__load),
+        .clear_flags(core__clear_flags),
+        .pulse(core__pulse),
+        .period_done(core__period_done),
+        .ready(core__ready),
+        .running(core__running),
+        .underrun(core__underrun),
+        .overrange(core__overrange),
+        .overflow(core__overflow),
+        .div_request(core__div_request),
+        .div_dividend(core__div_dividend),
+        .div_divisor(core__div_divisor),
+        .div_done(core__div_done),
+        .div_quotient(core__div_quotient),
+        .div_remainder(core__div_remainder)
+    );
+    uniform_pulse_gen__divider divider(
+        .clock(divider__clock),
+        .reset(divider__reset),
+        .start(divider__start),
+        .dividend(divider__dividend),
+        .divisor(divider__divisor),
+        .busy(divider__busy),
+        .done(divider__done),
+        .quotient(divider__quotient),
+        .remainder(divider__remainder),
+        .divide_by_zero(divider__divide_by_zero)
+    );
+
+    // Update code
+    always @(*) begin
+        core__clock = clock;
+        divider__clock = clock;
+        core__reset = reset;
+        core__tick = tick;
+        core__period = period;
+        core__count = count;
+        core__mode = mode;
+        core__load = load;
+        core__clear_flags = clear_flags;
+        pulse = core__pulse;
+        period_done = core__period_done;
+        ready = core__ready;
+        running = core__running;
+        underrun = core__underrun;
+        overrange = core__overrange;
+        overflow = core__overflow;
+        divider__reset = reset;
+        divider__start = core__div_request & ~divider__busy & ~divider__done;
+        divider__dividend = core__div_dividend;
+        divider__divisor = core__div_divisor;
+        core__div_done = divider__done;
+        core__div_quotient = divider__quotient;
+        core__div_remainder = divider__remainder;
+    end
+
+endmodule // uniform_pulse_gen
+
+
+module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  tick;
+    input wire  [31:0] period;
+    input wire  [31:0] count;
+    input wire  mode;
+    input wire  load;
+    input wire  clear_flags;
+    output reg  pulse;
+    output reg  period_done;
+    output reg  ready;
+    output reg  running;
+    output reg  underrun;
+    output reg  overrange;
+    output reg  overflow;
+    output reg  div_request;
+    output reg  [31:0] div_dividend;
+    output reg  [31:0] div_divisor;
+    input wire  div_done;
+    input wire  [31:0] div_quotient;
+    input wire  [31:0] div_remainder;
+
     // Constant declarations
     localparam  empty = 3'b0;
     localparam  check = 3'b1;
@@ -62,16 +187,6 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     localparam  sign = 32'h80000000;
 
     // Stub signals
-    reg  divider__clock;
-    reg  divider__reset;
-    reg  divider__start;
-    reg  [31:0] divider__dividend;
-    reg  [31:0] divider__divisor;
-    wire  divider__busy;
-    wire  divider__done;
-    wire  [31:0] divider__quotient;
-    wire  [31:0] divider__remainder;
-    wire  divider__divide_by_zero;
     reg  [2:0] slot_state__d;
     wire  [2:0] slot_state__q;
     reg  slot_state__clock;
@@ -93,24 +208,12 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [31:0] slot_long_half__d;
-    wire  [31:0] slot_long_half__q;
-    reg  slot_long_half__clock;
     reg  [31:0] slot_short_pulses__d;
     wire  [31:0] slot_short_pulses__q;
     reg  slot_short_pulses__clock;
     reg  [31:0] slot_long_pulses__d;
     wire  [31:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
-    reg  [31:0] slot_step_long__d;
-    wire  [31:0] slot_step_long__q;
-    reg  slot_step_long__clock;
-    reg  [31:0] slot_step_short__d;
-    wire  [31:0] slot_step_short__q;
-    reg  slot_step_short__clock;
-    reg  [31:0] slot_first_error__d;
-    wire  [31:0] slot_first_error__q;
-    reg  slot_first_error__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
@@ -129,6 +232,9 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     reg  half_last__d;
     wire  half_last__q;
     reg  half_last__clock;
+    reg  stretch__d;
+    wire  stretch__q;
+    reg  stretch__clock;
     reg  pulse_reg__d;
     wire  pulse_reg__q;
     reg  pulse_reg__clock;
@@ -144,9 +250,6 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [31:0] long_half__d;
-    wire  [31:0] long_half__q;
-    reg  long_half__clock;
     reg  [31:0] step_long__d;
     wire  [31:0] step_long__q;
     reg  step_long__clock;
@@ -184,189 +287,157 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     reg  [31:0] period_half;
 
     // Sub module instances
-    uniform_pulse_gen__divider divider(
-        .clock(divider__clock),
-        .reset(divider__reset),
-        .start(divider__start),
-        .dividend(divider__dividend),
-        .divisor(divider__divisor),
-        .busy(divider__busy),
-        .done(divider__done),
-        .quotient(divider__quotient),
-        .remainder(divider__remainder),
-        .divide_by_zero(divider__divide_by_zero)
-    );
-    uniform_pulse_gen__slot_state slot_state(
+    uniform_pulse_gen__core__slot_state slot_state(
         .d(slot_state__d),
         .q(slot_state__q),
         .clock(slot_state__clock)
     );
-    uniform_pulse_gen__slot_full slot_full(
+    uniform_pulse_gen__core__slot_full slot_full(
         .d(slot_full__d),
         .q(slot_full__q),
         .clock(slot_full__clock)
     );
-    uniform_pulse_gen__slot_period slot_period(
+    uniform_pulse_gen__core__slot_period slot_period(
         .d(slot_period__d),
         .q(slot_period__q),
         .clock(slot_period__clock)
     );
-    uniform_pulse_gen__slot_count slot_count(
+    uniform_pulse_gen__core__slot_count slot_count(
         .d(slot_count__d),
         .q(slot_count__q),
         .clock(slot_count__clock)
     );
-    uniform_pulse_gen__slot_interleaved slot_interleaved(
+    uniform_pulse_gen__core__slot_interleaved slot_interleaved(
         .d(slot_interleaved__d),
         .q(slot_interleaved__q),
         .clock(slot_interleaved__clock)
     );
-    uniform_pulse_gen__slot_half slot_half(
+    uniform_pulse_gen__core__slot_half slot_half(
         .d(slot_half__d),
         .q(slot_half__q),
         .clock(slot_half__clock)
     );
-    uniform_pulse_gen__slot_half_is_one slot_half_is_one(
+    uniform_pulse_gen__core__slot_half_is_one slot_half_is_one(
         .d(slot_half_is_one__d),
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    uniform_pulse_gen__slot_long_half slot_long_half(
-        .d(slot_long_half__d),
-        .q(slot_long_half__q),
-        .clock(slot_long_half__clock)
-    );
-    uniform_pulse_gen__slot_short_pulses slot_short_pulses(
+    uniform_pulse_gen__core__slot_short_pulses slot_short_pulses(
         .d(slot_short_pulses__d),
         .q(slot_short_pulses__q),
         .clock(slot_short_pulses__clock)
     );
-    uniform_pulse_gen__slot_long_pulses slot_long_pulses(
+    uniform_pulse_gen__core__slot_long_pulses slot_long_pulses(
         .d(slot_long_pulses__d),
         .q(slot_long_pulses__q),
         .clock(slot_long_pulses__clock)
     );
-    uniform_pulse_gen__slot_step_long slot_step_long(
-        .d(slot_step_long__d),
-        .q(slot_step_long__q),
-        .clock(slot_step_long__clock)
-    );
-    uniform_pulse_gen__slot_step_short slot_step_short(
-        .d(slot_step_short__d),
-        .q(slot_step_short__q),
-        .clock(slot_step_short__clock)
-    );
-    uniform_pulse_gen__slot_first_error slot_first_error(
-        .d(slot_first_error__d),
-        .q(slot_first_error__q),
-        .clock(slot_first_error__clock)
-    );
-    uniform_pulse_gen__slot_has_pulses slot_has_pulses(
+    uniform_pulse_gen__core__slot_has_pulses slot_has_pulses(
         .d(slot_has_pulses__d),
         .q(slot_has_pulses__q),
         .clock(slot_has_pulses__clock)
     );
-    uniform_pulse_gen__running_reg running_reg(
+    uniform_pulse_gen__core__running_reg running_reg(
         .d(running_reg__d),
         .q(running_reg__q),
         .clock(running_reg__clock)
     );
-    uniform_pulse_gen__ticks_left ticks_left(
+    uniform_pulse_gen__core__ticks_left ticks_left(
         .d(ticks_left__d),
         .q(ticks_left__q),
         .clock(ticks_left__clock)
     );
-    uniform_pulse_gen__period_last period_last(
+    uniform_pulse_gen__core__period_last period_last(
         .d(period_last__d),
         .q(period_last__q),
         .clock(period_last__clock)
     );
-    uniform_pulse_gen__half_left half_left(
+    uniform_pulse_gen__core__half_left half_left(
         .d(half_left__d),
         .q(half_left__q),
         .clock(half_left__clock)
     );
-    uniform_pulse_gen__half_last half_last(
+    uniform_pulse_gen__core__half_last half_last(
         .d(half_last__d),
         .q(half_last__q),
         .clock(half_last__clock)
     );
-    uniform_pulse_gen__pulse_reg pulse_reg(
+    uniform_pulse_gen__core__stretch stretch(
+        .d(stretch__d),
+        .q(stretch__q),
+        .clock(stretch__clock)
+    );
+    uniform_pulse_gen__core__pulse_reg pulse_reg(
         .d(pulse_reg__d),
         .q(pulse_reg__q),
         .clock(pulse_reg__clock)
     );
-    uniform_pulse_gen__long long(
+    uniform_pulse_gen__core__long long(
         .d(long__d),
         .q(long__q),
         .clock(long__clock)
     );
-    uniform_pulse_gen__error error(
+    uniform_pulse_gen__core__error error(
         .d(error__d),
         .q(error__q),
         .clock(error__clock)
     );
-    uniform_pulse_gen__half half(
+    uniform_pulse_gen__core__half half(
         .d(half__d),
         .q(half__q),
         .clock(half__clock)
     );
-    uniform_pulse_gen__half_is_one half_is_one(
+    uniform_pulse_gen__core__half_is_one half_is_one(
         .d(half_is_one__d),
         .q(half_is_one__q),
         .clock(half_is_one__clock)
     );
-    uniform_pulse_gen__long_half long_half(
-        .d(long_half__d),
-        .q(long_half__q),
-        .clock(long_half__clock)
-    );
-    uniform_pulse_gen__step_long step_long(
+    uniform_pulse_gen__core__step_long step_long(
         .d(step_long__d),
         .q(step_long__q),
         .clock(step_long__clock)
     );
-    uniform_pulse_gen__step_short step_short(
+    uniform_pulse_gen__core__step_short step_short(
         .d(step_short__d),
         .q(step_short__q),
         .clock(step_short__clock)
     );
-    uniform_pulse_gen__has_pulses has_pulses(
+    uniform_pulse_gen__core__has_pulses has_pulses(
         .d(has_pulses__d),
         .q(has_pulses__q),
         .clock(has_pulses__clock)
     );
-    uniform_pulse_gen__period_done_reg period_done_reg(
+    uniform_pulse_gen__core__period_done_reg period_done_reg(
         .d(period_done_reg__d),
         .q(period_done_reg__q),
         .clock(period_done_reg__clock)
     );
-    uniform_pulse_gen__underrun_reg underrun_reg(
+    uniform_pulse_gen__core__underrun_reg underrun_reg(
         .d(underrun_reg__d),
         .q(underrun_reg__q),
         .clock(underrun_reg__clock)
     );
-    uniform_pulse_gen__overrange_reg overrange_reg(
+    uniform_pulse_gen__core__overrange_reg overrange_reg(
         .d(overrange_reg__d),
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
-    uniform_pulse_gen__overflow_reg overflow_reg(
+    uniform_pulse_gen__core__overflow_reg overflow_reg(
         .d(overflow_reg__d),
         .q(overflow_reg__q),
         .clock(overflow_reg__clock)
     );
-    uniform_pulse_gen__period_odd period_odd(
+    uniform_pulse_gen__core__period_odd period_odd(
         .d(period_odd__d),
         .q(period_odd__q),
         .clock(period_odd__clock)
     );
-    uniform_pulse_gen__period_small period_small(
+    uniform_pulse_gen__core__period_small period_small(
         .d(period_small__d),
         .q(period_small__q),
         .clock(period_small__clock)
     );
-    uniform_pulse_gen__count_too_large count_too_large(
+    uniform_pulse_gen__core__count_too_large count_too_large(
         .d(count_too_large__d),
         .q(count_too_large__q),
         .clock(count_too_large__clock)
@@ -381,24 +452,20 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_long_half__clock = clock;
         slot_short_pulses__clock = clock;
         slot_long_pulses__clock = clock;
-        slot_step_long__clock = clock;
-        slot_step_short__clock = clock;
-        slot_first_error__clock = clock;
         slot_has_pulses__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
         half_left__clock = clock;
         half_last__clock = clock;
+        stretch__clock = clock;
         pulse_reg__clock = clock;
         long__clock = clock;
         error__clock = clock;
         half__clock = clock;
         half_is_one__clock = clock;
-        long_half__clock = clock;
         step_long__clock = clock;
         step_short__clock = clock;
         has_pulses__clock = clock;
@@ -416,24 +483,20 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_long_half__d = slot_long_half__q;
         slot_short_pulses__d = slot_short_pulses__q;
         slot_long_pulses__d = slot_long_pulses__q;
-        slot_step_long__d = slot_step_long__q;
-        slot_step_short__d = slot_step_short__q;
-        slot_first_error__d = slot_first_error__q;
         slot_has_pulses__d = slot_has_pulses__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
         half_left__d = half_left__q;
         half_last__d = half_last__q;
+        stretch__d = stretch__q;
         pulse_reg__d = pulse_reg__q;
         long__d = long__q;
         error__d = error__q;
         half__d = half__q;
         half_is_one__d = half_is_one__q;
-        long_half__d = long_half__q;
         step_long__d = step_long__q;
         step_short__d = step_short__q;
         has_pulses__d = has_pulses__q;
@@ -444,9 +507,6 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
         count_too_large__d = count_too_large__q;
-        divider__clock = clock;
-        divider__reset = reset;
-        divider__start = 1'b0;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -463,8 +523,9 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
         count_too_large__d = slot_count__q > period_half;
-        divider__dividend = period_half;
-        divider__divisor = slot_count__q;
+        div_dividend = period_half;
+        div_divisor = slot_count__q;
+        div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
@@ -501,33 +562,19 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
-            if (~divider__busy & ~divider__done) begin
-                divider__start = 1'b1;
-            end
-            if (divider__done) begin
-                slot_half__d = divider__quotient;
-                slot_long_pulses__d = divider__remainder;
+            if (div_done) begin
+                slot_half__d = div_quotient;
+                slot_long_pulses__d = div_remainder;
                 slot_has_pulses__d = slot_count__q != zero;
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
             slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_long_half__d = slot_half__q + one;
             slot_half_is_one__d = slot_half__q == one;
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
-            if (slot_interleaved__q) begin
-                slot_step_short__d = slot_long_pulses__q;
-                slot_step_long__d = zero - slot_short_pulses__q;
-                slot_first_error__d = slot_long_pulses__q - slot_short_pulses__q;
-            end
-            else begin
-                slot_step_short__d = one;
-                slot_step_long__d = one;
-                slot_first_error__d = one - slot_short_pulses__q;
-            end
             slot_state__d = full;
         end
         period_done_reg__d = 1'b0;
@@ -550,29 +597,24 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
                     ticks_left__d = ticks_left__q - one;
                     period_last__d = ticks_left__q == two;
                     if (has_pulses__q) begin
-                        if (half_last__q) begin
+                        if (half_last__q & stretch__q) begin
+                            stretch__d = 1'b0;
+                        end
+                        else if (half_last__q) begin
+                            half_left__d = half__q;
+                            half_last__d = half_is_one__q;
                             if (pulse_reg__q) begin
                                 pulse_reg__d = 1'b0;
-                                if (long__q) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
-                                end
-                                else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
-                                end
+                                stretch__d = long__q;
                             end
                             else begin
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
+                                stretch__d = next_long;
                                 if (next_long) begin
-                                    half_left__d = long_half__q;
-                                    half_last__d = 1'b0;
                                     error__d = error__q + step_long__q;
                                 end
                                 else begin
-                                    half_left__d = half__q;
-                                    half_last__d = half_is_one__q;
                                     error__d = error__q + step_short__q;
                                 end
                             end
@@ -594,14 +636,21 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
             period_last__d = 1'b0;
             half_left__d = slot_half__q;
             half_last__d = slot_half_is_one__q;
+            stretch__d = 1'b0;
             pulse_reg__d = slot_has_pulses__q;
             long__d = 1'b0;
-            error__d = slot_first_error__q;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            long_half__d = slot_long_half__q;
-            step_long__d = slot_step_long__q;
-            step_short__d = slot_step_short__q;
+            if (slot_interleaved__q) begin
+                step_short__d = slot_long_pulses__q;
+                step_long__d = zero - slot_short_pulses__q;
+                error__d = slot_long_pulses__q - slot_short_pulses__q;
+            end
+            else begin
+                step_short__d = one;
+                step_long__d = one;
+                error__d = one - slot_short_pulses__q;
+            end
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -617,10 +666,10 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         slot_full__d = slot_state__d == full;
     end
 
-endmodule // uniform_pulse_gen
+endmodule // uniform_pulse_gen__core
 
 
-module uniform_pulse_gen__count_too_large(d,q,clock);
+module uniform_pulse_gen__core__count_too_large(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -636,7 +685,577 @@ module uniform_pulse_gen__count_too_large(d,q,clock);
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__count_too_large
+endmodule // uniform_pulse_gen__core__count_too_large
+
+
+module uniform_pulse_gen__core__error(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__error
+
+
+module uniform_pulse_gen__core__half(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__half
+
+
+module uniform_pulse_gen__core__half_is_one(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__half_is_one
+
+
+module uniform_pulse_gen__core__half_last(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__half_last
+
+
+module uniform_pulse_gen__core__half_left(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__half_left
+
+
+module uniform_pulse_gen__core__has_pulses(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__has_pulses
+
+
+module uniform_pulse_gen__core__long(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__long
+
+
+module uniform_pulse_gen__core__overflow_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__overflow_reg
+
+
+module uniform_pulse_gen__core__overrange_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__overrange_reg
+
+
+module uniform_pulse_gen__core__period_done_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__period_done_reg
+
+
+module uniform_pulse_gen__core__period_last(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__period_last
+
+
+module uniform_pulse_gen__core__period_odd(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__period_odd
+
+
+module uniform_pulse_gen__core__period_small(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__period_small
+
+
+module uniform_pulse_gen__core__pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__pulse_reg
+
+
+module uniform_pulse_gen__core__running_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__running_reg
+
+
+module uniform_pulse_gen__core__slot_count(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_count
+
+
+module uniform_pulse_gen__core__slot_full(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_full
+
+
+module uniform_pulse_gen__core__slot_half(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_half
+
+
+module uniform_pulse_gen__core__slot_half_is_one(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_half_is_one
+
+
+module uniform_pulse_gen__core__slot_has_pulses(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_has_pulses
+
+
+module uniform_pulse_gen__core__slot_interleaved(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_interleaved
+
+
+module uniform_pulse_gen__core__slot_long_pulses(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_long_pulses
+
+
+module uniform_pulse_gen__core__slot_period(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_period
+
+
+module uniform_pulse_gen__core__slot_short_pulses(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_short_pulses
+
+
+module uniform_pulse_gen__core__slot_state(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__slot_state
+
+
+module uniform_pulse_gen__core__step_long(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__step_long
+
+
+module uniform_pulse_gen__core__step_short(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__step_short
+
+
+module uniform_pulse_gen__core__stretch(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__stretch
+
+
+module uniform_pulse_gen__core__ticks_left(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__ticks_left
+
+
+module uniform_pulse_gen__core__underrun_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__underrun_reg
 
 
 module uniform_pulse_gen__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
@@ -980,650 +1599,4 @@ module uniform_pulse_gen__divider__subtractor(a,b,sum,carry_out);
     end
 
 endmodule // uniform_pulse_gen__divider__subtractor
-
-
-module uniform_pulse_gen__error(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__error
-
-
-module uniform_pulse_gen__half(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__half
-
-
-module uniform_pulse_gen__half_is_one(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__half_is_one
-
-
-module uniform_pulse_gen__half_last(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__half_last
-
-
-module uniform_pulse_gen__half_left(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__half_left
-
-
-module uniform_pulse_gen__has_pulses(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__has_pulses
-
-
-module uniform_pulse_gen__long(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__long
-
-
-module uniform_pulse_gen__long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__long_half
-
-
-module uniform_pulse_gen__overflow_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__overflow_reg
-
-
-module uniform_pulse_gen__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__overrange_reg
-
-
-module uniform_pulse_gen__period_done_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__period_done_reg
-
-
-module uniform_pulse_gen__period_last(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__period_last
-
-
-module uniform_pulse_gen__period_odd(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__period_odd
-
-
-module uniform_pulse_gen__period_small(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__period_small
-
-
-module uniform_pulse_gen__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__pulse_reg
-
-
-module uniform_pulse_gen__running_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__running_reg
-
-
-module uniform_pulse_gen__slot_count(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_count
-
-
-module uniform_pulse_gen__slot_first_error(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_first_error
-
-
-module uniform_pulse_gen__slot_full(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_full
-
-
-module uniform_pulse_gen__slot_half(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_half
-
-
-module uniform_pulse_gen__slot_half_is_one(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_half_is_one
-
-
-module uniform_pulse_gen__slot_has_pulses(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_has_pulses
-
-
-module uniform_pulse_gen__slot_interleaved(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_interleaved
-
-
-module uniform_pulse_gen__slot_long_half(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_long_half
-
-
-module uniform_pulse_gen__slot_long_pulses(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_long_pulses
-
-
-module uniform_pulse_gen__slot_period(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_period
-
-
-module uniform_pulse_gen__slot_short_pulses(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_short_pulses
-
-
-module uniform_pulse_gen__slot_state(d,q,clock);
-
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_state
-
-
-module uniform_pulse_gen__slot_step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_step_long
-
-
-module uniform_pulse_gen__slot_step_short(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__slot_step_short
-
-
-module uniform_pulse_gen__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__step_long
-
-
-module uniform_pulse_gen__step_short(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__step_short
-
-
-module uniform_pulse_gen__ticks_left(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__ticks_left
-
-
-module uniform_pulse_gen__underrun_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__underrun_reg
 `default_nettype wire

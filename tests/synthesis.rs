@@ -56,7 +56,8 @@ fn every_exported_module_synthesizes_and_places_on_ice40_hx8k() {
 /// input and output on a pin, synthesizes and places with its pin file at
 /// its 48 MHz clock, with the commands in `motion_board.v`'s header.
 ///
-/// The board fills about 96 % of the HX8K's logic cells. With yosys's
+/// The board fills about 91 % of the HX8K's logic cells (96 % before
+/// #19). With yosys's
 /// defaults (every enable on the cells' clock enable, which the 8 cells of
 /// a tile share) nextpnr could not legalise the placement ("Unable to find
 /// legal placement for all cells", 97 %); `-dffe_min_ce_use 4`, which puts

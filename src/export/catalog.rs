@@ -7,7 +7,9 @@ use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
-use crate::blocks::motion_controller::{self, MotionController3};
+use crate::blocks::motion_controller::{
+    self, MotionController1, MotionController3, MotionController6,
+};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
@@ -179,7 +181,9 @@ pub fn catalog() -> Vec<ModuleSpec> {
             ],
             port_docs: step_channel::PORT_DOCS,
             fmax_target_mhz: 110.0,
-            lut4_budget: Some(232),
+            // #19 withdrew the 232-LUT4 budget (hostmot2's DDS has no
+            // modulus); about 430 LUT4 is accepted for the modulus DDA.
+            lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(StepChannel::<32, 16>::default()),
         },
@@ -195,7 +199,9 @@ pub fn catalog() -> Vec<ModuleSpec> {
             port_docs: motion_controller::PORT_DOCS,
             fmax_target_mhz: 100.0,
             lut4_budget: None,
-            logic_cell_budget: Some(2500),
+            // #19: at most 4000 logic cells at K = 3 (the seed's FPGA class
+            // with room for the host links, DAC and mailbox).
+            logic_cell_budget: Some(4000),
             build: || Box::new(MotionController3::default()),
         },
     ]
@@ -204,4 +210,32 @@ pub fn catalog() -> Vec<ModuleSpec> {
 /// The catalog entry named `name`.
 pub fn find(name: &str) -> Option<ModuleSpec> {
     catalog().into_iter().find(|spec| spec.name == name)
+}
+
+/// A motion-controller configuration measured for the report's scaling
+/// table (#19): synthesized from a work folder, not exported.
+pub struct ScalingVariant {
+    /// K, the number of axes.
+    pub axes: usize,
+    /// Builds the controller.
+    pub build: fn() -> Box<dyn Block>,
+}
+
+/// The controller at K = 1, 3 (the exported configuration) and 6, all with
+/// 16-entry FIFOs.
+pub fn controller_scaling() -> Vec<ScalingVariant> {
+    vec![
+        ScalingVariant {
+            axes: 1,
+            build: || Box::new(MotionController1::default()),
+        },
+        ScalingVariant {
+            axes: 3,
+            build: || Box::new(MotionController3::default()),
+        },
+        ScalingVariant {
+            axes: 6,
+            build: || Box::new(MotionController6::default()),
+        },
+    ]
 }

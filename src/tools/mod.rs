@@ -1,10 +1,14 @@
 //! The open FPGA tools, run on exported Verilog: Verilator lint, cross-simulation
-//! in Icarus and Verilator against the Rust simulation, and yosys/nextpnr
-//! synthesis for iCE40 HX8K. Every run works in its own temporary folder.
+//! in Icarus and Verilator against the Rust simulation, yosys/nextpnr
+//! synthesis for iCE40 HX8K, and yosys mapping on Cyclone IV E, 7-series,
+//! Gowin and ECP5 (module [`families`]). Every run works in its own
+//! temporary folder.
 
 pub mod cosim;
+pub mod families;
 pub mod lint;
 pub mod report;
+pub mod scaling;
 pub mod synth;
 
 use std::path::PathBuf;

@@ -1,10 +1,12 @@
 //! `synthesis-report.md`: LUT4, DFF, carry, RAM, logic cells and Fmax of every
-//! exported module on iCE40 HX8K. Figures, not verdicts: a missed target is
-//! reported, not failed.
+//! exported module on iCE40 HX8K, then the families section (module
+//! [`super::families`]: Cyclone IV E, 7-series, Gowin and ECP5 cell counts).
+//! Figures, not verdicts: a missed target is reported, not failed.
 
 use std::path::Path;
 use std::process::Command;
 
+use super::families::HEADING as FAMILIES_HEADING;
 use super::synth::{synthesize, SynthFigures, DEVICE};
 use super::{run, ToolError};
 use crate::export::{generator, ModuleSpec};
@@ -70,10 +72,13 @@ pub fn render(rows: &[ReportRow], seeds: &[u64]) -> Result<String, ToolError> {
         if !fmax_met {
             missed.push("Fmax");
         }
-        if !row.lut4_budget.is_none_or(|budget| f.lut4 <= budget) {
+        if row.lut4_budget.is_some_and(|budget| f.lut4 > budget) {
             missed.push("LUT4");
         }
-        if !row.logic_cell_budget.is_none_or(|budget| f.logic_cells <= budget) {
+        if row
+            .logic_cell_budget
+            .is_some_and(|budget| f.logic_cells > budget)
+        {
             missed.push("logic cells");
         }
         let verdict = if missed.is_empty() {
@@ -105,11 +110,39 @@ pub fn render(rows: &[ReportRow], seeds: &[u64]) -> Result<String, ToolError> {
     Ok(md)
 }
 
-/// The cell counts a rendered report gives for one module's row:
-/// `(LUT4, DFF, carry, RAM)`, or `None` if the module has no row. The
-/// reading lives beside [`render`] so that the two agree on the layout.
+/// A report split into its iCE40 part (everything before the families
+/// section) and its families section, if it has one.
+pub fn sections(report: &str) -> (&str, Option<&str>) {
+    let start = if report.starts_with(FAMILIES_HEADING) {
+        Some(0)
+    } else {
+        report
+            .find(&format!("\n{FAMILIES_HEADING}\n"))
+            .map(|at| at + 1)
+    };
+    match start {
+        Some(at) => (&report[..at], Some(&report[at..])),
+        None => (report, None),
+    }
+}
+
+/// The whole report: the iCE40 part, then the families section.
+pub fn assemble(ice40: &str, families: &str) -> String {
+    let ice40 = ice40.trim_end();
+    if ice40.is_empty() {
+        families.to_string()
+    } else {
+        format!("{ice40}\n\n{families}")
+    }
+}
+
+/// The cell counts a rendered report gives for one module's row of the
+/// iCE40 table: `(LUT4, DFF, carry, RAM)`, or `None` if the module has no
+/// row. The reading lives beside [`render`] so that the two agree on the
+/// layout.
 pub fn cell_counts(report: &str, module: &str) -> Option<(u32, u32, u32, u32)> {
-    let line = report
+    let line = sections(report)
+        .0
         .lines()
         .find(|l| l.starts_with(&format!("| `{module}` |")))?;
     let cells: Vec<&str> = line.split('|').map(str::trim).collect();
@@ -118,9 +151,24 @@ pub fn cell_counts(report: &str, module: &str) -> Option<(u32, u32, u32, u32)> {
 }
 
 /// `fresh` (a report of some modules) with the rows of `previous` kept for
-/// the modules it did not measure, in `order`: re-measuring a few modules
-/// updates their rows and leaves the others.
+/// the modules it did not measure, in `order`, in each of the two tables:
+/// re-measuring a few modules updates their rows and leaves the others. A
+/// section `fresh` lacks is taken whole from `previous`.
 pub fn merge(previous: &str, fresh: &str, order: &[&str]) -> String {
+    let (previous_ice40, previous_families) = sections(previous);
+    let (fresh_ice40, fresh_families) = sections(fresh);
+    let ice40 = merge_table(previous_ice40, fresh_ice40, order);
+    let families = match (fresh_families, previous_families) {
+        (Some(fresh), previous) => merge_table(previous.unwrap_or(""), fresh, order),
+        (None, Some(previous)) => previous.to_string(),
+        (None, None) => String::new(),
+    };
+    assemble(&ice40, &families)
+}
+
+/// One section: the text of `fresh` up to its first module row, then one
+/// row per module of `order`, from `fresh` or else from `previous`.
+fn merge_table(previous: &str, fresh: &str, order: &[&str]) -> String {
     let row = |report: &str, module: &str| {
         report
             .lines()
@@ -141,12 +189,55 @@ pub fn merge(previous: &str, fresh: &str, order: &[&str]) -> String {
     merged
 }
 
-/// The modules a rendered report has rows for, in order.
+/// The modules the iCE40 table of a rendered report has rows for, in order.
 pub fn listed_modules(report: &str) -> Vec<String> {
-    report
+    sections(report)
+        .0
         .lines()
         .filter_map(|l| l.strip_prefix("| `"))
         .filter_map(|l| l.split('`').next())
         .map(str::to_string)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ICE40: &str = "# Synthesis report\n\n| module | LUT4 | area budget | DFF | carry | RAM |\n|---|\n| `a` | 1 | - | 2 | 3 | 0 |\n| `b` | 4 | - | 5 | 6 | 0 |\n";
+
+    fn families(rows: &str) -> String {
+        format!("{FAMILIES_HEADING}\n\ntext\n\n| module | x |\n|---|\n{rows}")
+    }
+
+    #[test]
+    fn readers_see_only_the_ice40_table() {
+        let report = assemble(ICE40, &families("| `a` | 9 |\n| `c` | 9 |\n"));
+        assert_eq!(listed_modules(&report), vec!["a", "b"]);
+        assert_eq!(cell_counts(&report, "b"), Some((4, 5, 6, 0)));
+        assert_eq!(cell_counts(&report, "c"), None);
+        assert!(sections(&report)
+            .1
+            .is_some_and(|f| f.starts_with(FAMILIES_HEADING)));
+    }
+
+    #[test]
+    fn merge_keeps_unmeasured_rows_in_both_tables() {
+        let previous = assemble(ICE40, &families("| `a` | 1 |\n| `b` | 2 |\n"));
+        let fresh = assemble(
+            "# Synthesis report\n\n| module |\n|---|\n| `b` | 40 | - | 50 | 60 | 0 |\n",
+            &families("| `b` | 20 |\n"),
+        );
+        let merged = merge(&previous, &fresh, &["a", "b"]);
+        assert_eq!(cell_counts(&merged, "a"), Some((1, 2, 3, 0)));
+        assert_eq!(cell_counts(&merged, "b"), Some((40, 50, 60, 0)));
+        let families_part = sections(&merged).1.unwrap_or_default();
+        assert!(
+            families_part.contains("| `a` | 1 |\n| `b` | 20 |\n"),
+            "{merged}"
+        );
+        // A report without a families section keeps working.
+        let old = merge(ICE40, &fresh, &["a", "b"]);
+        assert!(sections(&old).1.is_some_and(|f| f.contains("| `b` | 20 |")));
+    }
 }

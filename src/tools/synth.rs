@@ -29,18 +29,26 @@ pub struct SynthFigures {
 impl SynthFigures {
     /// The median Fmax over the seeds.
     pub fn median_fmax(&self) -> f64 {
-        let mut sorted = self.fmax_mhz.clone();
-        sorted.sort_by(|a, b| a.total_cmp(b));
-        let n = sorted.len();
-        if n == 0 {
-            0.0
-        } else if n % 2 == 1 {
-            sorted[n / 2]
-        } else {
-            (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
-        }
+        median(&self.fmax_mhz)
     }
 }
+
+/// The median of `values` (0 for none).
+pub(crate) fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(|a, b| a.total_cmp(b));
+    let n = sorted.len();
+    if n == 0 {
+        0.0
+    } else if n % 2 == 1 {
+        sorted[n / 2]
+    } else {
+        (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
+    }
+}
+
+/// The iCE40 HX8K's logic cells.
+pub const DEVICE_LOGIC_CELLS: u32 = 7680;
 
 /// Synthesizes `rtl` (top module `top`) with `synth_ice40 -dffe_min_ce_use
 /// 4` (an enable shared by fewer than 4 flip-flops goes into their LUTs
@@ -57,6 +65,40 @@ pub fn synthesize(
 ) -> Result<SynthFigures, ToolError> {
     let dir = work_dir("synth")?;
     let netlist = dir.path().join("netlist.json");
+    let mut figures = map_ice40(rtl, top, &netlist)?;
+    for seed in seeds {
+        let report = dir.path().join(format!("report-{seed}.json"));
+        run(
+            nextpnr(&netlist, &report)
+                .arg("--freq")
+                .arg(format!("{target_mhz}"))
+                .arg("--seed")
+                .arg(seed.to_string()),
+            false,
+        )?;
+        let (fmax, cells) = read_nextpnr_report(&report)?;
+        figures.fmax_mhz.push(fmax);
+        figures.logic_cells = cells;
+    }
+    Ok(figures)
+}
+
+/// Synthesizes `rtl` like [`synthesize`] and only packs it into logic
+/// cells: the figures of a design too large to place (`logic_cells` may
+/// exceed [`DEVICE_LOGIC_CELLS`]; no Fmax).
+pub fn pack_only(rtl: &Path, top: &str) -> Result<SynthFigures, ToolError> {
+    let dir = work_dir("pack")?;
+    let netlist = dir.path().join("netlist.json");
+    let report = dir.path().join("report.json");
+    let mut figures = map_ice40(rtl, top, &netlist)?;
+    run(nextpnr(&netlist, &report).arg("--pack-only"), false)?;
+    figures.logic_cells = read_nextpnr_utilization(&report)?;
+    Ok(figures)
+}
+
+/// yosys `synth_ice40` of `rtl` into `netlist`: the cell counts (no logic
+/// cells or Fmax yet).
+fn map_ice40(rtl: &Path, top: &str, netlist: &Path) -> Result<SynthFigures, ToolError> {
     let yosys_log = run(
         Command::new("yosys").arg("-p").arg(format!(
             "read_verilog {}; synth_ice40 -dffe_min_ce_use 4 -top {top} -json {}; stat",
@@ -73,45 +115,37 @@ pub fn synthesize(
             .map(|(_, n)| n)
             .sum()
     };
-    let mut figures = SynthFigures {
+    Ok(SynthFigures {
         lut4: count("SB_LUT4"),
         dff: count("SB_DFF"),
         carry: count("SB_CARRY"),
         ram: count("SB_RAM40_4K"),
         logic_cells: 0,
         fmax_mhz: Vec::new(),
-    };
-    for seed in seeds {
-        let report = dir.path().join(format!("report-{seed}.json"));
-        run(
-            Command::new("nextpnr-ice40")
-                .args([
-                    "--hx8k",
-                    "--package",
-                    "ct256",
-                    "--pcf-allow-unconstrained",
-                    "--timing-allow-fail",
-                    "--quiet",
-                ])
-                .arg("--json")
-                .arg(&netlist)
-                .arg("--freq")
-                .arg(format!("{target_mhz}"))
-                .arg("--seed")
-                .arg(seed.to_string())
-                .arg("--report")
-                .arg(&report),
-            false,
-        )?;
-        let (fmax, cells) = read_nextpnr_report(&report)?;
-        figures.fmax_mhz.push(fmax);
-        figures.logic_cells = cells;
-    }
-    Ok(figures)
+    })
+}
+
+/// nextpnr-ice40 on the HX8K with unconstrained IO, writing its JSON report.
+fn nextpnr(netlist: &Path, report: &Path) -> Command {
+    let mut command = Command::new("nextpnr-ice40");
+    command
+        .args([
+            "--hx8k",
+            "--package",
+            "ct256",
+            "--pcf-allow-unconstrained",
+            "--timing-allow-fail",
+            "--quiet",
+        ])
+        .arg("--json")
+        .arg(netlist)
+        .arg("--report")
+        .arg(report);
+    command
 }
 
 /// Cell counts of the last `stat` block in a yosys log: `(cell type, count)`.
-fn final_stat(log: &str) -> Vec<(String, u32)> {
+pub(crate) fn final_stat(log: &str) -> Vec<(String, u32)> {
     let start = log.rfind("Number of cells:").unwrap_or(0);
     log[start..]
         .lines()
@@ -128,17 +162,34 @@ fn final_stat(log: &str) -> Vec<(String, u32)> {
         .collect()
 }
 
-fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
-    let parse_error = |detail: &str| ToolError::Parse {
-        tool: "nextpnr-ice40".into(),
-        detail: detail.into(),
-    };
+fn read_nextpnr_json(path: &Path) -> Result<serde_json::Value, ToolError> {
     let text = std::fs::read_to_string(path).map_err(|source| ToolError::Io {
         context: format!("reading {}", path.display()),
         source,
     })?;
-    let json: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| parse_error(&e.to_string()))?;
+    serde_json::from_str(&text).map_err(|e| nextpnr_parse_error(&e.to_string()))
+}
+
+fn nextpnr_parse_error(detail: &str) -> ToolError {
+    ToolError::Parse {
+        tool: "nextpnr-ice40".into(),
+        detail: detail.into(),
+    }
+}
+
+fn utilization(json: &serde_json::Value) -> Result<u32, ToolError> {
+    json["utilization"]["ICESTORM_LC"]["used"]
+        .as_u64()
+        .map(|cells| cells as u32)
+        .ok_or_else(|| nextpnr_parse_error("no ICESTORM_LC utilization in the report"))
+}
+
+fn read_nextpnr_utilization(path: &Path) -> Result<u32, ToolError> {
+    utilization(&read_nextpnr_json(path)?)
+}
+
+fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
+    let json = read_nextpnr_json(path)?;
     let fmax = json["fmax"]
         .as_object()
         .and_then(|clocks| {
@@ -147,11 +198,8 @@ fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
                 .filter_map(|c| c["achieved"].as_f64())
                 .reduce(f64::min)
         })
-        .ok_or_else(|| parse_error("no achieved Fmax in the report"))?;
-    let cells = json["utilization"]["ICESTORM_LC"]["used"]
-        .as_u64()
-        .ok_or_else(|| parse_error("no ICESTORM_LC utilization in the report"))?;
-    Ok((fmax, cells as u32))
+        .ok_or_else(|| nextpnr_parse_error("no achieved Fmax in the report"))?;
+    Ok((fmax, utilization(&json)?))
 }
 
 #[cfg(test)]

@@ -16,7 +16,7 @@ use crate::blocks::dda_integrator::DdaIntegrator;
 use crate::blocks::pulse_counter::PulseCounter;
 use crate::blocks::quadrature_decoder::QuadratureDecoder;
 use crate::blocks::step_output::StepOutput;
-use crate::blocks::uniform_pulse_gen::UniformPulseGen;
+use crate::blocks::uniform_pulse_gen::UniformPulseCore;
 
 /// One controller axis with a FIFO of 2^N entries (`NP1` = N + 1).
 #[derive(LogicBlock)]
@@ -108,10 +108,23 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub alarm_event: Signal<Out, Bit>,
     /// HOME_SEEN rose.
     pub home_event: Signal<Out, Bit>,
+    /// The uniform generator's division port, answered by the controller's
+    /// shared divider: see [`UniformPulseCore`].
+    pub div_request: Signal<Out, Bit>,
+    /// T/2 to divide.
+    pub div_dividend: Signal<Out, Bits<PERIOD_BITS>>,
+    /// N to divide by.
+    pub div_divisor: Signal<Out, Bits<PERIOD_BITS>>,
+    /// This axis's division is done.
+    pub div_done: Signal<In, Bit>,
+    /// The shared divider's quotient.
+    pub div_quotient: Signal<In, Bits<PERIOD_BITS>>,
+    /// The shared divider's remainder.
+    pub div_remainder: Signal<In, Bits<PERIOD_BITS>>,
 
     fifo: CommandFifo<N, NP1>,
     dda: DdaIntegrator<PERIOD_BITS>,
-    uniform: UniformPulseGen<PERIOD_BITS>,
+    uniform: UniformPulseCore<PERIOD_BITS>,
     stage: StepOutput<16, STAGE_PENDING_BITS>,
     position: PulseCounter<32>,
     encoder: QuadratureDecoder<32, 8, 16>,
@@ -292,6 +305,12 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             limit_event: Default::default(),
             alarm_event: Default::default(),
             home_event: Default::default(),
+            div_request: Default::default(),
+            div_dividend: Default::default(),
+            div_divisor: Default::default(),
+            div_done: Default::default(),
+            div_quotient: Default::default(),
+            div_remainder: Default::default(),
             fifo: Default::default(),
             dda: Default::default(),
             uniform: Default::default(),
@@ -566,6 +585,12 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.uniform.mode.next = self.settings.q.val().get_bit(1);
         self.uniform.load.next = self.popped_valid.q.val() & self.uniform_active.q.val();
         self.uniform.clear_flags.next = self.clear_faults.val() | self.start.val();
+        self.div_request.next = self.uniform.div_request.val();
+        self.div_dividend.next = self.uniform.div_dividend.val();
+        self.div_divisor.next = self.uniform.div_divisor.val();
+        self.uniform.div_done.next = self.div_done.val();
+        self.uniform.div_quotient.next = self.div_quotient.val();
+        self.uniform.div_remainder.next = self.div_remainder.val();
         if self.popped_valid.q.val() & self.uniform_active.q.val() & self.uniform.ready.val() {
             self.uniform_loaded_forward.d.next = !self.popped.q.val().get_bit(31);
         }
@@ -736,46 +761,48 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.stage.mode_invalid.val() {
             self.axis_status.next = self.axis_status.val() | self.bit7_32.val();
         }
+        // One-hot AND-OR: the offsets are exclusive, which synthesis cannot
+        // know of a priority chain; ORing gated sources packs two per LUT4.
         self.read_data.next = self.io.read_data.val();
         if self.selected.val() {
             if self.offset.val() == self.off_fifo_status.val() {
-                self.read_data.next = self.fifo_status.val();
+                self.read_data.next = self.read_data.val() | self.fifo_status.val();
             }
             if self.offset.val() == self.off_config.val() {
-                self.read_data.next = self.settings.q.val();
+                self.read_data.next = self.read_data.val() | self.settings.q.val();
             }
             if self.offset.val() == self.off_step_len.val() {
-                self.read_data.next = self.step_len.q.val();
+                self.read_data.next = self.read_data.val() | self.step_len.q.val();
             }
             if self.offset.val() == self.off_step_space.val() {
-                self.read_data.next = self.step_space.q.val();
+                self.read_data.next = self.read_data.val() | self.step_space.q.val();
             }
             if self.offset.val() == self.off_dir_setup.val() {
-                self.read_data.next = self.dir_setup.q.val();
+                self.read_data.next = self.read_data.val() | self.dir_setup.q.val();
             }
             if self.offset.val() == self.off_dir_hold.val() {
-                self.read_data.next = self.dir_hold.q.val();
+                self.read_data.next = self.read_data.val() | self.dir_hold.q.val();
             }
             if self.offset.val() == self.off_sample_rate.val() {
-                self.read_data.next = self.sample_rate.q.val();
+                self.read_data.next = self.read_data.val() | self.sample_rate.q.val();
             }
             if self.offset.val() == self.off_cmd_position.val() {
-                self.read_data.next = self.position.count.val();
+                self.read_data.next = self.read_data.val() | self.position.count.val();
             }
             if self.offset.val() == self.off_act_position.val() {
-                self.read_data.next = self.encoder.count.val();
+                self.read_data.next = self.read_data.val() | self.encoder.count.val();
             }
             if self.offset.val() == self.off_cmd_snapshot.val() {
-                self.read_data.next = self.cmd_snapshot.q.val();
+                self.read_data.next = self.read_data.val() | self.cmd_snapshot.q.val();
             }
             if self.offset.val() == self.off_act_snapshot.val() {
-                self.read_data.next = self.act_snapshot.q.val();
+                self.read_data.next = self.read_data.val() | self.act_snapshot.q.val();
             }
             if self.offset.val() == self.off_axis_status.val() {
-                self.read_data.next = self.axis_status.val();
+                self.read_data.next = self.read_data.val() | self.axis_status.val();
             }
             if self.offset.val() == self.off_index_position.val() {
-                self.read_data.next = self.encoder.index_count.val();
+                self.read_data.next = self.read_data.val() | self.encoder.index_count.val();
             }
         }
 

@@ -356,16 +356,16 @@ impl Logic for AxisIo {
         self.read_data.next = self.zero32.val();
         if self.selected.val() {
             if self.offset.val() == self.off_config.val() {
-                self.read_data.next = self.io_config.val();
+                self.read_data.next = self.read_data.val() | self.io_config.val();
             }
             if self.offset.val() == self.off_status.val() {
-                self.read_data.next = self.status.val();
+                self.read_data.next = self.read_data.val() | self.status.val();
             }
             if self.offset.val() == self.off_home_cmd.val() {
-                self.read_data.next = self.home_cmd.q.val();
+                self.read_data.next = self.read_data.val() | self.home_cmd.q.val();
             }
             if self.offset.val() == self.off_home_act.val() {
-                self.read_data.next = self.home_act.q.val();
+                self.read_data.next = self.read_data.val() | self.home_act.q.val();
             }
         }
     }

@@ -427,25 +427,25 @@ impl<const K: usize> Logic for MachineIo<K> {
         }
         self.read_data.next = self.zero32.val();
         if self.address.val() == self.a_filter.val() {
-            self.read_data.next = self.filter.val();
+            self.read_data.next = self.read_data.val() | self.filter.val();
         }
         if self.address.val() == self.a_polarity.val() {
-            self.read_data.next = self.polarity.q.val();
+            self.read_data.next = self.read_data.val() | self.polarity.q.val();
         }
         if self.address.val() == self.a_gpio_in.val() {
-            self.read_data.next = self.gpio_word.val();
+            self.read_data.next = self.read_data.val() | self.gpio_word.val();
         }
         if self.address.val() == self.a_gpio_out.val() {
-            self.read_data.next = self.out_word.val();
+            self.read_data.next = self.read_data.val() | self.out_word.val();
         }
         if self.address.val() == self.a_gpio_safe.val() {
-            self.read_data.next = self.safe_word.val();
+            self.read_data.next = self.read_data.val() | self.safe_word.val();
         }
         if self.address.val() == self.a_gpio_irq_enable.val() {
-            self.read_data.next = self.irq_word.val();
+            self.read_data.next = self.read_data.val() | self.irq_word.val();
         }
         if self.address.val() == self.a_gpio_edges.val() {
-            self.read_data.next = self.edges_word.val();
+            self.read_data.next = self.read_data.val() | self.edges_word.val();
         }
     }
 }

@@ -79,11 +79,14 @@
 //!   tick one clock late, so the boundary tick still belongs to the old
 //!   period. DDA axes emit exactly |n| steps spread over the period's P
 //!   ticks (at most one per tick: |n| <= P). Uniform axes load the dual-period
-//!   generator with (P, |n|), |n| <= P/2; it runs each period
-//!   [`load_to_ready`](crate::blocks::uniform_pulse_gen::load_to_ready)(16)
-//!   + 2 = 24 clocks or more after its boundary (a fixed lag), so a period
-//!   must be longer than that in clocks, or the generator refuses the next
-//!   one (`INTERP_OVERFLOW`).
+//!   generator with (P, |n|), |n| <= P/2. The uniform axes share one
+//!   divider and take turns at it in axis order, so the j-th uniform axis
+//!   (from 0) runs each period [`latency::UNIFORM_LAG`] + j *
+//!   [`latency::UNIFORM_TURN`] = 24 + 18 j clocks or more after its
+//!   boundary: a fixed lag for a given choice of uniform axes, at most
+//!   [`latency::uniform_lag`](K) (60 clocks at K = 3). A period must be
+//!   longer than its axis's lag in clocks, or the generator refuses the
+//!   next one (`INTERP_OVERFLOW`).
 //! * The commanded position counts the steps that left each output stage,
 //!   so it is exact whatever happened before.
 //!
@@ -211,18 +214,20 @@
 //! A DDA step reaches the pins at the earliest 5 clocks after the base tick
 //! that produced it (1 tick delay, 2 in the DDA, 1 request register, 1 in
 //! the stage); the stage's timing settings may delay it further. A uniform
-//! axis runs each period 24 clocks or more behind the boundary. `irq` follows a `STATUS` bit by
+//! axis runs each period 24 + 18 j clocks or more behind the boundary (j:
+//! the uniform axes before it, see [`latency::UNIFORM_LAG`]). `irq` follows a `STATUS` bit by
 //! one clock. `CMD_POSITION` counts a step one clock after its first pin
 //! edge appears; `ACT_POSITION` follows the encoder pins by the decoder's
 //! latency (5 clocks with the filter off).
 //!
-//! ## Resources (iCE40 HX8K, K = 3, 16-entry FIFOs)
-//! See `rtl-out/synthesis-report.md`. Each axis carries a complete uniform
-//! pulse generator (its own divider and a double-buffered period plan), a
+//! ## Resources (iCE40 HX8K, 16-entry FIFOs)
+//! See `rtl-out/synthesis-report.md`, which also has K = 1 and K = 6 and
+//! four other FPGA families. Each axis carries a uniform pulse generator
+//! (a double-buffered period plan; the divider is shared by all axes), a
 //! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
-//! a quadrature decoder with timestamps, a FIFO, its machine I/O (two
-//! 32-bit home latches) and a 32-bit register file; issue #19 is the area
-//! work.
+//! a quadrature decoder, a FIFO, its machine I/O (two 32-bit home latches)
+//! and its register window with two 32-bit snapshots: about 1900 logic
+//! cells an axis, over about 1000 for the rest.
 
 pub mod axis;
 pub mod axis_io;
@@ -236,6 +241,7 @@ use rust_hdl::prelude::*;
 
 use crate::blocks::freq_divider::FreqDivider;
 use crate::blocks::interrupt_controller::InterruptController;
+use crate::blocks::sequential_divider::SequentialDivider;
 use crate::blocks::watchdog::Watchdog;
 use axis::MotionAxis;
 use machine_io::MachineIo;
@@ -269,6 +275,22 @@ pub mod latency {
     /// After the watchdog expires (STATE.WATCHDOG_EXPIRED set at x), the
     /// last step of any axis can rise at x + `WATCHDOG_ALL_AXES`.
     pub const WATCHDOG_ALL_AXES: u64 = 1;
+    /// A uniform axis runs each period `UNIFORM_LAG` + j * `UNIFORM_TURN`
+    /// clocks after its boundary, or later (the first tick edge from then
+    /// on), where j is the number of lower-numbered uniform axes that load
+    /// a period at the same boundary: the axes take turns at one divider,
+    /// and each turn lasts a division of `PERIOD_BITS` clocks and 2 of
+    /// handover. The lag of an axis is thus fixed by which axes are uniform.
+    pub const UNIFORM_LAG: u64 =
+        crate::blocks::uniform_pulse_gen::load_to_ready(super::PERIOD_BITS as u32) as u64 + 2;
+    /// See [`UNIFORM_LAG`].
+    pub const UNIFORM_TURN: u64 = super::PERIOD_BITS as u64 + 2;
+    /// The lag of the last of `axes` uniform axes: a period must last more
+    /// clocks than this, or that axis's generator refuses the next one
+    /// (`INTERP_OVERFLOW`). 24 clocks at K = 1, 60 at K = 3, 114 at K = 6.
+    pub const fn uniform_lag(axes: u64) -> u64 {
+        UNIFORM_LAG + axes.saturating_sub(1) * UNIFORM_TURN
+    }
 }
 
 /// Number of interrupt sources (`STATUS` bits).
@@ -276,6 +298,14 @@ const IRQ_COUNT: usize = irq::COUNT;
 
 /// The exported configuration: 3 axes, 16-entry FIFOs.
 pub type MotionController3 = MotionController<3, 4, 5>;
+
+/// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
+/// table, not exported.
+pub type MotionController1 = MotionController<1, 4, 5>;
+
+/// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
+/// the synthesis report's scaling table, not exported.
+pub type MotionController6 = MotionController<6, 4, 5>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -389,6 +419,16 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     watchdog: Watchdog<32>,
     interrupts: InterruptController<IRQ_COUNT>,
     io: MachineIo<K>,
+    /// One divider for every axis's uniform generator: each asks for one
+    /// division per period, so they take turns (see "Time base and
+    /// periods").
+    divider: SequentialDivider<PERIOD_BITS, PERIOD_BITS>,
+    /// The axis whose division is running (one-hot).
+    div_owner: DFF<Bits<K>>,
+    /// A division can start in this clock.
+    div_idle: Signal<Local, Bit>,
+    /// An axis was granted the divider in this clock.
+    div_granted: Signal<Local, Bit>,
     /// A stop cause is held (registered OR of every latch): every axis
     /// flushed, interpolators halted.
     abort_hold: DFF<Bit>,
@@ -571,6 +611,10 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             watchdog: Default::default(),
             interrupts: Default::default(),
             io: Default::default(),
+            divider: Default::default(),
+            div_owner: Default::default(),
+            div_idle: Default::default(),
+            div_granted: Default::default(),
             abort_hold: Default::default(),
             stop_cause: Default::default(),
             run: Default::default(),
@@ -711,9 +755,10 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             any_low_prev_n,
             expired_prev,
             abort_hold,
-            stop_cause
+            stop_cause,
+            div_owner
         );
-        clock!(self, clock, tick_divider, watchdog, interrupts, io);
+        clock!(self, clock, tick_divider, watchdog, interrupts, io, divider);
 
         // Global register writes.
         if self.bus_write.val() {
@@ -912,6 +957,32 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             self.stop_cause.d.next = self.zero32.val();
         }
 
+        // The shared divider: the lowest-numbered axis that asks gets it
+        // when it is idle (a start in its `done` clock would hand the
+        // owner's request, still high then, a second division).
+        self.divider.reset.next = self.reset.val() | self.halt.val();
+        self.div_idle.next = !self.divider.busy.val() & !self.divider.done.val();
+        self.div_granted.next = false;
+        self.divider.start.next = false;
+        self.divider.dividend.next = self.axes[0].div_dividend.val();
+        self.divider.divisor.next = self.axes[0].div_divisor.val();
+        for i in 0..K {
+            if self.div_idle.val() & !self.div_granted.val() & self.axes[i].div_request.val() {
+                self.div_granted.next = true;
+                self.divider.start.next = true;
+                self.divider.dividend.next = self.axes[i].div_dividend.val();
+                self.divider.divisor.next = self.axes[i].div_divisor.val();
+                self.div_owner.d.next = self.axis_bit[i].val();
+            }
+            self.axes[i].div_done.next = self.divider.done.val()
+                & ((self.div_owner.q.val() & self.axis_bit[i].val()) != self.zero_k.val());
+            self.axes[i].div_quotient.next = self.divider.quotient.val();
+            self.axes[i].div_remainder.next = self.divider.remainder.val();
+        }
+        if self.reset.val() {
+            self.div_owner.d.next = self.zero_k.val();
+        }
+
         // Axes.
         self.axes_read.next = self.zero32.val();
         self.steps_a.next = self.zero_k.val();
@@ -1032,19 +1103,20 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
         if self.io.ready.val() {
             self.state_word.next = self.state_word.val() | self.m_state_inputs_ready.val();
         }
+        // One-hot AND-OR over exclusive addresses (see the axis read mux).
         self.global_read.next = self.io.read_data.val();
         if self.bus_address.val() == self.a_id.val() {
-            self.global_read.next = self.id_value.val();
+            self.global_read.next = self.global_read.val() | self.id_value.val();
         }
         if self.bus_address.val() == self.a_version.val() {
-            self.global_read.next = self.version_value.val();
+            self.global_read.next = self.global_read.val() | self.version_value.val();
         }
         if self.bus_address.val() == self.a_config.val() {
-            self.global_read.next = self.config_value.val();
+            self.global_read.next = self.global_read.val() | self.config_value.val();
         }
         if self.bus_address.val() == self.a_control.val() {
             if self.run.q.val() {
-                self.global_read.next = self.one32.val();
+                self.global_read.next = self.global_read.val() | self.one32.val();
             }
         }
         if self.bus_address.val() == self.a_status.val() {
@@ -1055,10 +1127,10 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             }
         }
         if self.bus_address.val() == self.a_irq_enable.val() {
-            self.global_read.next = self.irq_enable.q.val();
+            self.global_read.next = self.global_read.val() | self.irq_enable.q.val();
         }
         if self.bus_address.val() == self.a_tick_divisor.val() {
-            self.global_read.next = self.tick_divisor.q.val();
+            self.global_read.next = self.global_read.val() | self.tick_divisor.q.val();
         }
         if self.bus_address.val() == self.a_period_ticks.val() {
             for i in 0..PERIOD_BITS {
@@ -1068,19 +1140,19 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
             }
         }
         if self.bus_address.val() == self.a_low_water.val() {
-            self.global_read.next = self.low_water.q.val();
+            self.global_read.next = self.global_read.val() | self.low_water.q.val();
         }
         if self.bus_address.val() == self.a_watchdog_timeout.val() {
-            self.global_read.next = self.watchdog_timeout.q.val();
+            self.global_read.next = self.global_read.val() | self.watchdog_timeout.q.val();
         }
         if self.bus_address.val() == self.a_state.val() {
-            self.global_read.next = self.state_word.val();
+            self.global_read.next = self.global_read.val() | self.state_word.val();
         }
         if self.bus_address.val() == self.a_period_count.val() {
-            self.global_read.next = self.period_count.q.val();
+            self.global_read.next = self.global_read.val() | self.period_count.q.val();
         }
         if self.bus_address.val() == self.a_stop_cause.val() {
-            self.global_read.next = self.stop_cause.q.val();
+            self.global_read.next = self.global_read.val() | self.stop_cause.q.val();
         }
         if self.bus_read.val() {
             self.read_data.d.next = self.global_read.val() | self.axes_read.val();

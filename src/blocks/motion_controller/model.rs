@@ -397,7 +397,13 @@ impl AxisModel {
         }
     }
 
-    fn edge(&mut self, c: &AxisControl, (a, b, index): (bool, bool, bool), comb: &AxisComb) {
+    fn edge(
+        &mut self,
+        c: &AxisControl,
+        (a, b, index): (bool, bool, bool),
+        comb: &AxisComb,
+        div_granted: bool,
+    ) {
         let selected = self.selected(c.address);
         let offset = c.address & 0xf;
         let command = c.write && selected && offset == axis::AXIS_COMMAND;
@@ -467,15 +473,18 @@ impl AxisModel {
             modulus: c.modulus,
             clear_overrange: clear_faults,
         });
-        next.uniform_out = next.uniform.step(UniformPulseGenInputs {
-            reset: c.reset || c.halt,
-            tick: self.glue.tick_d,
-            period: c.period_active,
-            count: magnitude,
-            mode: self.glue.config & 2 != 0,
-            load: self.glue.popped_valid && self.glue.uniform_active,
-            clear_flags: clear_faults || c.start,
-        });
+        next.uniform_out = next.uniform.step_with_divider(
+            UniformPulseGenInputs {
+                reset: c.reset || c.halt,
+                tick: self.glue.tick_d,
+                period: c.period_active,
+                count: magnitude,
+                mode: self.glue.config & 2 != 0,
+                load: self.glue.popped_valid && self.glue.uniform_active,
+                clear_flags: clear_faults || c.start,
+            },
+            div_granted,
+        );
         if self.glue.popped_valid && self.glue.uniform_active && self.uniform_out.ready {
             next.glue.uniform_loaded_forward = popped_forward;
         }
@@ -583,6 +592,8 @@ pub struct MotionControllerModel {
     io: MachineIoModel,
     abort_hold: bool,
     stop_cause: u32,
+    /// Edges before the shared divider is idle again (0: idle).
+    divider_busy_left: u32,
 }
 
 impl MotionControllerModel {
@@ -620,7 +631,28 @@ impl MotionControllerModel {
             io: MachineIoModel::new(axes),
             abort_hold: false,
             stop_cause: 0,
+            divider_busy_left: 0,
         })
+    }
+
+    /// The shared divider at one edge: the lowest-numbered axis whose
+    /// uniform generator waits for its division gets it, if it is idle.
+    /// `axes` is the state before the edge; a reset (or halt) idles it.
+    fn divider_edge(&mut self, reset: bool, axes: &[AxisModel]) -> Option<usize> {
+        if reset {
+            self.divider_busy_left = 0;
+            return None;
+        }
+        if self.divider_busy_left > 0 {
+            self.divider_busy_left -= 1;
+            return None;
+        }
+        let grant = axes.iter().position(|axis| axis.uniform.wants_division());
+        if grant.is_some() {
+            // Busy for PERIOD_BITS clocks, `done` for one more.
+            self.divider_busy_left = super::PERIOD_BITS as u32 + 1;
+        }
+        grant
     }
 
     /// `STOP_CAUSE.CAUSE`: why RUN last fell.
@@ -837,8 +869,9 @@ impl MotionControllerModel {
             abort,
             drive_allowed,
         };
-        for ((axis, pins), comb) in next.axes.iter_mut().zip(&i.encoders).zip(&combs) {
-            axis.edge(&control, *pins, comb);
+        let grant = next.divider_edge(i.reset || halt, &self.axes);
+        for (k, ((axis, pins), comb)) in next.axes.iter_mut().zip(&i.encoders).zip(&combs).enumerate() {
+            axis.edge(&control, *pins, comb, grant == Some(k));
         }
         next.any_low_prev_n = !any_low;
         next.expired_prev = expired;

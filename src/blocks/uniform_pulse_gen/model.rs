@@ -176,7 +176,7 @@ impl UniformPulseGenOutputs {
 
 /// Clocks from the edge that accepts a load to the edge after which the
 /// slot is complete, for a `width`-bit generator (a check and a clamp
-/// clock, the `width`-clock division and two clocks of precomputation): a
+/// clock, the `width`-clock division, a split clock and a spare one): a
 /// period loaded at edge L can start at the first tick edge after
 /// L + `load_to_ready(width)`.
 pub const fn load_to_ready(width: u32) -> u32 {
@@ -232,6 +232,27 @@ impl UniformPulseGenModel {
 
     /// One rising clock edge; returns the outputs after it.
     pub fn step(&mut self, i: UniformPulseGenInputs) -> UniformPulseGenOutputs {
+        // A divider of its own is always idle when the slot asks.
+        self.step_with_divider(i, true)
+    }
+
+    /// The slot waits for its division: T/2 / N starts at the next edge
+    /// if the divider is granted then ([`super::UniformPulseCore`]'s
+    /// `div_request`, before its division has started).
+    pub fn wants_division(&self) -> bool {
+        matches!(self.slot, Some((_, _, left)) if left == self.load_to_ready - 2)
+    }
+
+    /// One rising clock edge of a [`super::UniformPulseCore`] whose
+    /// division port is answered by a divider shared with others: `granted`
+    /// tells whether its division starts at this edge (it waits while
+    /// [`Self::wants_division`] and not granted). Its result comes `width`
+    /// clocks later, as from a divider of its own.
+    pub fn step_with_divider(
+        &mut self,
+        i: UniformPulseGenInputs,
+        granted: bool,
+    ) -> UniformPulseGenOutputs {
         if i.reset {
             *self = Self::with_width(self.mask.count_ones());
             return self.out;
@@ -299,7 +320,9 @@ impl UniformPulseGenModel {
                 // input.
                 self.out.overrange |= PulsePlan::new(plan.requested.0, plan.requested.1).1;
             }
-            *left = left.saturating_sub(1);
+            if *left != self.load_to_ready - 2 || granted {
+                *left = left.saturating_sub(1);
+            }
         }
         if i.load {
             if was_ready {

