@@ -94,29 +94,3 @@ fn the_board_example_places_with_its_pin_file() {
     assert!(nextpnr.status.success(), "nextpnr failed (pins or timing at 48 MHz):\n{log}");
     assert!(log.contains("PASS at 48.00 MHz"), "{log}");
 }
-
-/// The controller at K = 1 and K = 6 axes (the export is K = 3), for the
-/// figures on the controller's issue. Slow and not part of the suite:
-/// `cargo test --release --test synthesis -- --ignored`. Writes the Verilog
-/// to `target/motion_controller_k{1,6}.v`; synthesize those with the
-/// commands in the printed note.
-#[test]
-#[ignore]
-fn controller_variants_for_1_and_6_axes() {
-    use motion_hdl::blocks::motion_controller::MotionController;
-    use motion_hdl::export::module_verilog;
-    let dir = repo_root().join("target");
-    std::fs::create_dir_all(&dir).unwrap();
-    let k1 = module_verilog("motion_controller", &mut MotionController::<1, 4, 5>::default()).unwrap();
-    let k6 = module_verilog("motion_controller", &mut MotionController::<6, 4, 5>::default()).unwrap();
-    std::fs::write(dir.join("motion_controller_k1.v"), k1).unwrap();
-    std::fs::write(dir.join("motion_controller_k6.v"), k6).unwrap();
-    let figures = motion_hdl::tools::synth::synthesize(
-        &dir.join("motion_controller_k1.v"),
-        "motion_controller",
-        &[1, 2, 3, 4, 5],
-        100.0,
-    )
-    .unwrap();
-    println!("K = 1: {figures:?}, median {:.1} MHz", figures.median_fmax());
-}
