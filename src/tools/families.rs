@@ -11,7 +11,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use super::synth::{final_stat, median};
+use super::synth::{final_stat, median, slowest_fmax};
 use super::{run, work_dir, ToolError};
 use crate::export::ModuleSpec;
 
@@ -352,15 +352,7 @@ pub fn read_ecp5_report(text: &str) -> Result<(f64, (u32, u32), u32), ToolError>
     };
     let json: serde_json::Value =
         serde_json::from_str(text).map_err(|e| parse_error(&e.to_string()))?;
-    let fmax = json["fmax"]
-        .as_object()
-        .and_then(|clocks| {
-            clocks
-                .values()
-                .filter_map(|c| c["achieved"].as_f64())
-                .reduce(f64::min)
-        })
-        .ok_or_else(|| parse_error("no achieved Fmax in the report"))?;
+    let fmax = slowest_fmax(&json).ok_or_else(|| parse_error("no achieved Fmax in the report"))?;
     let used = |bel: &str, key: &str| {
         json["utilization"][bel][key]
             .as_u64()

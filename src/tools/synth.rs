@@ -190,16 +190,20 @@ fn read_nextpnr_utilization(path: &Path) -> Result<u32, ToolError> {
 
 fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
     let json = read_nextpnr_json(path)?;
-    let fmax = json["fmax"]
-        .as_object()
-        .and_then(|clocks| {
-            clocks
-                .values()
-                .filter_map(|c| c["achieved"].as_f64())
-                .reduce(f64::min)
-        })
+    let fmax = slowest_fmax(&json)
         .ok_or_else(|| nextpnr_parse_error("no achieved Fmax in the report"))?;
     Ok((fmax, utilization(&json)?))
+}
+
+/// The achieved Fmax of the slowest clock in a nextpnr (iCE40 or ECP5)
+/// `--report` file, in MHz.
+pub(crate) fn slowest_fmax(json: &serde_json::Value) -> Option<f64> {
+    json["fmax"].as_object().and_then(|clocks| {
+        clocks
+            .values()
+            .filter_map(|c| c["achieved"].as_f64())
+            .reduce(f64::min)
+    })
 }
 
 #[cfg(test)]
