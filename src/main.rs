@@ -38,9 +38,10 @@ enum Command {
         /// Folder holding the exported <module>.v files.
         #[arg(long, default_value = "rtl-out")]
         rtl: PathBuf,
-        /// The report file.
-        #[arg(long, default_value = "rtl-out/synthesis-report.md")]
-        out: PathBuf,
+        /// The report file (default: rtl-out/synthesis-report.md, or
+        /// rtl-out/scaling-report.md with --scaling).
+        #[arg(long)]
+        out: Option<PathBuf>,
         /// Placement seeds; Fmax is the median over them.
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=50))]
         seeds: u64,
@@ -244,11 +245,7 @@ fn run(cli: Cli) -> Result<(), String> {
         } => {
             let seeds: Vec<u64> = (1..=seeds).collect();
             if scaling {
-                let out = if out == PathBuf::from("rtl-out/synthesis-report.md") {
-                    PathBuf::from("rtl-out/scaling-report.md")
-                } else {
-                    out
-                };
+                let out = out.unwrap_or_else(|| PathBuf::from("rtl-out/scaling-report.md"));
                 let target = catalog::find("motion_controller")
                     .map_or(100.0, |spec| spec.fmax_target_mhz);
                 let rows = scaling::measure(&seeds, target).map_err(|e| e.to_string())?;
@@ -257,6 +254,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 println!("wrote {}", out.display());
                 return Ok(());
             }
+            let out = out.unwrap_or_else(|| PathBuf::from("rtl-out/synthesis-report.md"));
             let known: Vec<&str> = catalog().iter().map(|s| s.name).collect();
             if let Some(unknown) = modules.iter().find(|m| !known.contains(&m.as_str())) {
                 return Err(format!(

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use super::synth::{pack_only, synthesize, SynthFigures, DEVICE, DEVICE_LOGIC_CELLS};
+use super::synth::{synthesize_if_it_fits, SynthFigures, DEVICE, DEVICE_LOGIC_CELLS};
 use super::{work_dir, ToolError};
 use crate::export::catalog::controller_scaling;
 use crate::export::module_verilog;
@@ -27,15 +27,9 @@ pub fn measure(seeds: &[u64], target_mhz: f64) -> Result<Vec<ScalingRow>, ToolEr
         .map(|variant| {
             let rtl = dir.path().join(format!("motion_controller_k{}.v", variant.axes));
             write_verilog(&rtl, &mut *(variant.build)())?;
-            let packed = pack_only(&rtl, "motion_controller")?;
-            let figures = if packed.logic_cells <= DEVICE_LOGIC_CELLS {
-                synthesize(&rtl, "motion_controller", seeds, target_mhz)?
-            } else {
-                packed
-            };
             Ok(ScalingRow {
                 axes: variant.axes,
-                figures,
+                figures: synthesize_if_it_fits(&rtl, "motion_controller", seeds, target_mhz)?,
             })
         })
         .collect()

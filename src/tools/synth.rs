@@ -66,10 +66,45 @@ pub fn synthesize(
     let dir = work_dir("synth")?;
     let netlist = dir.path().join("netlist.json");
     let mut figures = map_ice40(rtl, top, &netlist)?;
+    place(dir.path(), &netlist, seeds, target_mhz, &mut figures)?;
+    Ok(figures)
+}
+
+/// Like [`synthesize`] for a design that may not fit: one yosys run, then
+/// only nextpnr's packer first. A design with more logic cells than
+/// [`DEVICE_LOGIC_CELLS`] is not placed: its figures have the logic cells
+/// it would need and no Fmax.
+pub fn synthesize_if_it_fits(
+    rtl: &Path,
+    top: &str,
+    seeds: &[u64],
+    target_mhz: f64,
+) -> Result<SynthFigures, ToolError> {
+    let dir = work_dir("synth")?;
+    let netlist = dir.path().join("netlist.json");
+    let report = dir.path().join("report-pack.json");
+    let mut figures = map_ice40(rtl, top, &netlist)?;
+    run(nextpnr(&netlist, &report).arg("--pack-only"), false)?;
+    figures.logic_cells = read_nextpnr_utilization(&report)?;
+    if figures.logic_cells <= DEVICE_LOGIC_CELLS {
+        place(dir.path(), &netlist, seeds, target_mhz, &mut figures)?;
+    }
+    Ok(figures)
+}
+
+/// Places and routes `netlist` once per seed (reports in `dir`), adding
+/// each Fmax and the logic cells to `figures`.
+fn place(
+    dir: &Path,
+    netlist: &Path,
+    seeds: &[u64],
+    target_mhz: f64,
+    figures: &mut SynthFigures,
+) -> Result<(), ToolError> {
     for seed in seeds {
-        let report = dir.path().join(format!("report-{seed}.json"));
+        let report = dir.join(format!("report-{seed}.json"));
         run(
-            nextpnr(&netlist, &report)
+            nextpnr(netlist, &report)
                 .arg("--freq")
                 .arg(format!("{target_mhz}"))
                 .arg("--seed")
@@ -80,20 +115,7 @@ pub fn synthesize(
         figures.fmax_mhz.push(fmax);
         figures.logic_cells = cells;
     }
-    Ok(figures)
-}
-
-/// Synthesizes `rtl` like [`synthesize`] and only packs it into logic
-/// cells: the figures of a design too large to place (`logic_cells` may
-/// exceed [`DEVICE_LOGIC_CELLS`]; no Fmax).
-pub fn pack_only(rtl: &Path, top: &str) -> Result<SynthFigures, ToolError> {
-    let dir = work_dir("pack")?;
-    let netlist = dir.path().join("netlist.json");
-    let report = dir.path().join("report.json");
-    let mut figures = map_ice40(rtl, top, &netlist)?;
-    run(nextpnr(&netlist, &report).arg("--pack-only"), false)?;
-    figures.logic_cells = read_nextpnr_utilization(&report)?;
-    Ok(figures)
+    Ok(())
 }
 
 /// yosys `synth_ice40` of `rtl` into `netlist`: the cell counts (no logic

@@ -227,7 +227,7 @@
 //! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
 //! a quadrature decoder, a FIFO, its machine I/O (two 32-bit home latches)
 //! and its register window with two 32-bit snapshots: about 1900 logic
-//! cells an axis, over about 1000 for the rest.
+//! cells an axis, over about 1100 for the rest.
 
 pub mod axis;
 pub mod axis_io;

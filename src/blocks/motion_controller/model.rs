@@ -16,6 +16,7 @@ use crate::blocks::dda_integrator::model::{DdaIntegratorInputs, DdaIntegratorMod
 use crate::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
 use crate::blocks::interrupt_controller::model::InterruptControllerModel;
 use crate::blocks::pulse_counter::model::{PulseCounterInputs, PulseCounterModel, PulseCounterOutputs};
+use crate::blocks::sequential_divider::model::{SequentialDividerInputs, SequentialDividerModel};
 use crate::blocks::quadrature_decoder::model::{
     QuadratureDecoderInputs, QuadratureDecoderModel, QuadratureDecoderOutputs,
 };
@@ -592,8 +593,9 @@ pub struct MotionControllerModel {
     io: MachineIoModel,
     abort_hold: bool,
     stop_cause: u32,
-    /// Edges before the shared divider is idle again (0: idle).
-    divider_busy_left: u32,
+    /// The uniform generators' shared divider: only its timing matters
+    /// here (each axis's plan computes its own quotient).
+    divider: SequentialDividerModel,
 }
 
 impl MotionControllerModel {
@@ -631,7 +633,10 @@ impl MotionControllerModel {
             io: MachineIoModel::new(axes),
             abort_hold: false,
             stop_cause: 0,
-            divider_busy_left: 0,
+            divider: SequentialDividerModel::new(
+                super::PERIOD_BITS as u32,
+                super::PERIOD_BITS as u32,
+            ),
         })
     }
 
@@ -639,19 +644,17 @@ impl MotionControllerModel {
     /// uniform generator waits for its division gets it, if it is idle.
     /// `axes` is the state before the edge; a reset (or halt) idles it.
     fn divider_edge(&mut self, reset: bool, axes: &[AxisModel]) -> Option<usize> {
-        if reset {
-            self.divider_busy_left = 0;
-            return None;
-        }
-        if self.divider_busy_left > 0 {
-            self.divider_busy_left -= 1;
-            return None;
-        }
-        let grant = axes.iter().position(|axis| axis.uniform.wants_division());
-        if grant.is_some() {
-            // Busy for PERIOD_BITS clocks, `done` for one more.
-            self.divider_busy_left = super::PERIOD_BITS as u32 + 1;
-        }
+        let divider = self.divider.outputs();
+        let grant = if divider.busy || divider.done {
+            None
+        } else {
+            axes.iter().position(|axis| axis.uniform.wants_division())
+        };
+        self.divider.step(SequentialDividerInputs {
+            reset,
+            start: grant.is_some(),
+            ..Default::default()
+        });
         grant
     }
 

@@ -257,6 +257,8 @@ impl UniformPulseGenModel {
             *self = Self::with_width(self.mask.count_ones());
             return self.out;
         }
+        // A waiting slot is never full, so the start below leaves it.
+        let waits_for_division = self.wants_division();
         // Sticky flags: a clear and a new event on the same clock leave the
         // flag set (the event is not lost).
         if i.clear_flags {
@@ -320,7 +322,7 @@ impl UniformPulseGenModel {
                 // input.
                 self.out.overrange |= PulsePlan::new(plan.requested.0, plan.requested.1).1;
             }
-            if *left != self.load_to_ready - 2 || granted {
+            if !waits_for_division || granted {
                 *left = left.saturating_sub(1);
             }
         }
