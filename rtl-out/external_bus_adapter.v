@@ -45,6 +45,82 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
     output reg  bus_read;
     input wire  [31:0] bus_read_data;
 
+    // Stub signals
+    reg  pins__clock;
+    reg  pins__reset;
+    reg  pins__cs_n;
+    reg  pins__we_n;
+    reg  pins__rd_n;
+    reg  [7:0] pins__address;
+    reg  [31:0] pins__data_in;
+    wire  [31:0] pins__data_out;
+    wire  pins__data_oe;
+    wire  pins__ready;
+    wire  [7:0] pins__bus_address;
+    wire  [31:0] pins__bus_write_data;
+    wire  pins__bus_write;
+    wire  pins__bus_read;
+    reg  [31:0] pins__bus_read_data;
+
+    // Sub module instances
+    external_bus_adapter__pins pins(
+        .clock(pins__clock),
+        .reset(pins__reset),
+        .cs_n(pins__cs_n),
+        .we_n(pins__we_n),
+        .rd_n(pins__rd_n),
+        .address(pins__address),
+        .data_in(pins__data_in),
+        .data_out(pins__data_out),
+        .data_oe(pins__data_oe),
+        .ready(pins__ready),
+        .bus_address(pins__bus_address),
+        .bus_write_data(pins__bus_write_data),
+        .bus_write(pins__bus_write),
+        .bus_read(pins__bus_read),
+        .bus_read_data(pins__bus_read_data)
+    );
+
+    // Update code
+    always @(*) begin
+        pins__clock = clock;
+        pins__reset = reset;
+        pins__cs_n = cs_n;
+        pins__we_n = we_n;
+        pins__rd_n = rd_n;
+        pins__address = address;
+        pins__data_in = data_in;
+        pins__bus_read_data = bus_read_data;
+        data_out = pins__data_out;
+        data_oe = pins__data_oe;
+        bus_address = pins__bus_address;
+        bus_write_data = pins__bus_write_data;
+        bus_write = pins__bus_write;
+        bus_read = pins__bus_read;
+    end
+
+endmodule // external_bus_adapter
+
+
+module external_bus_adapter__pins(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,data_oe,ready,bus_address,bus_write_data,bus_write,bus_read,bus_read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  cs_n;
+    input wire  we_n;
+    input wire  rd_n;
+    input wire  [7:0] address;
+    input wire  [31:0] data_in;
+    output reg  [31:0] data_out;
+    output reg  data_oe;
+    output reg  ready;
+    output reg  [7:0] bus_address;
+    output reg  [31:0] bus_write_data;
+    output reg  bus_write;
+    output reg  bus_read;
+    input wire  [31:0] bus_read_data;
+
     // Constant declarations
     localparam  zero_a = 8'h0;
     localparam  zero_d = 32'h0;
@@ -104,6 +180,9 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
     reg  read_answer__d;
     wire  read_answer__q;
     reg  read_answer__clock;
+    reg  read_done__d;
+    wire  read_done__q;
+    reg  read_done__clock;
     reg  [7:0] bus_address_reg__d;
     wire  [7:0] bus_address_reg__q;
     reg  bus_address_reg__clock;
@@ -125,117 +204,122 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
     reg  read_wanted;
 
     // Sub module instances
-    external_bus_adapter__write_meta write_meta(
+    external_bus_adapter__pins__write_meta write_meta(
         .d(write_meta__d),
         .q(write_meta__q),
         .clock(write_meta__clock)
     );
-    external_bus_adapter__write_sync write_sync(
+    external_bus_adapter__pins__write_sync write_sync(
         .d(write_sync__d),
         .q(write_sync__q),
         .clock(write_sync__clock)
     );
-    external_bus_adapter__write_prev write_prev(
+    external_bus_adapter__pins__write_prev write_prev(
         .d(write_prev__d),
         .q(write_prev__q),
         .clock(write_prev__clock)
     );
-    external_bus_adapter__write_older write_older(
+    external_bus_adapter__pins__write_older write_older(
         .d(write_older__d),
         .q(write_older__q),
         .clock(write_older__clock)
     );
-    external_bus_adapter__read_meta read_meta(
+    external_bus_adapter__pins__read_meta read_meta(
         .d(read_meta__d),
         .q(read_meta__q),
         .clock(read_meta__clock)
     );
-    external_bus_adapter__read_sync read_sync(
+    external_bus_adapter__pins__read_sync read_sync(
         .d(read_sync__d),
         .q(read_sync__q),
         .clock(read_sync__clock)
     );
-    external_bus_adapter__read_prev read_prev(
+    external_bus_adapter__pins__read_prev read_prev(
         .d(read_prev__d),
         .q(read_prev__q),
         .clock(read_prev__clock)
     );
-    external_bus_adapter__address_meta address_meta(
+    external_bus_adapter__pins__address_meta address_meta(
         .d(address_meta__d),
         .q(address_meta__q),
         .clock(address_meta__clock)
     );
-    external_bus_adapter__address_sync address_sync(
+    external_bus_adapter__pins__address_sync address_sync(
         .d(address_sync__d),
         .q(address_sync__q),
         .clock(address_sync__clock)
     );
-    external_bus_adapter__address_prev address_prev(
+    external_bus_adapter__pins__address_prev address_prev(
         .d(address_prev__d),
         .q(address_prev__q),
         .clock(address_prev__clock)
     );
-    external_bus_adapter__data_meta data_meta(
+    external_bus_adapter__pins__data_meta data_meta(
         .d(data_meta__d),
         .q(data_meta__q),
         .clock(data_meta__clock)
     );
-    external_bus_adapter__data_sync data_sync(
+    external_bus_adapter__pins__data_sync data_sync(
         .d(data_sync__d),
         .q(data_sync__q),
         .clock(data_sync__clock)
     );
-    external_bus_adapter__data_prev data_prev(
+    external_bus_adapter__pins__data_prev data_prev(
         .d(data_prev__d),
         .q(data_prev__q),
         .clock(data_prev__clock)
     );
-    external_bus_adapter__address_older address_older(
+    external_bus_adapter__pins__address_older address_older(
         .d(address_older__d),
         .q(address_older__q),
         .clock(address_older__clock)
     );
-    external_bus_adapter__data_older data_older(
+    external_bus_adapter__pins__data_older data_older(
         .d(data_older__d),
         .q(data_older__q),
         .clock(data_older__clock)
     );
-    external_bus_adapter__read_served read_served(
+    external_bus_adapter__pins__read_served read_served(
         .d(read_served__d),
         .q(read_served__q),
         .clock(read_served__clock)
     );
-    external_bus_adapter__read_pending read_pending(
+    external_bus_adapter__pins__read_pending read_pending(
         .d(read_pending__d),
         .q(read_pending__q),
         .clock(read_pending__clock)
     );
-    external_bus_adapter__read_answer read_answer(
+    external_bus_adapter__pins__read_answer read_answer(
         .d(read_answer__d),
         .q(read_answer__q),
         .clock(read_answer__clock)
     );
-    external_bus_adapter__bus_address_reg bus_address_reg(
+    external_bus_adapter__pins__read_done read_done(
+        .d(read_done__d),
+        .q(read_done__q),
+        .clock(read_done__clock)
+    );
+    external_bus_adapter__pins__bus_address_reg bus_address_reg(
         .d(bus_address_reg__d),
         .q(bus_address_reg__q),
         .clock(bus_address_reg__clock)
     );
-    external_bus_adapter__bus_write_data_reg bus_write_data_reg(
+    external_bus_adapter__pins__bus_write_data_reg bus_write_data_reg(
         .d(bus_write_data_reg__d),
         .q(bus_write_data_reg__q),
         .clock(bus_write_data_reg__clock)
     );
-    external_bus_adapter__bus_write_reg bus_write_reg(
+    external_bus_adapter__pins__bus_write_reg bus_write_reg(
         .d(bus_write_reg__d),
         .q(bus_write_reg__q),
         .clock(bus_write_reg__clock)
     );
-    external_bus_adapter__bus_read_reg bus_read_reg(
+    external_bus_adapter__pins__bus_read_reg bus_read_reg(
         .d(bus_read_reg__d),
         .q(bus_read_reg__q),
         .clock(bus_read_reg__clock)
     );
-    external_bus_adapter__data_out_reg data_out_reg(
+    external_bus_adapter__pins__data_out_reg data_out_reg(
         .d(data_out_reg__d),
         .q(data_out_reg__q),
         .clock(data_out_reg__clock)
@@ -261,6 +345,7 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         read_served__clock = clock;
         read_pending__clock = clock;
         read_answer__clock = clock;
+        read_done__clock = clock;
         bus_address_reg__clock = clock;
         bus_write_data_reg__clock = clock;
         bus_write_reg__clock = clock;
@@ -284,6 +369,7 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         read_served__d = read_served__q;
         read_pending__d = read_pending__q;
         read_answer__d = read_answer__q;
+        read_done__d = read_done__q;
         bus_address_reg__d = bus_address_reg__q;
         bus_write_data_reg__d = bus_write_data_reg__q;
         bus_write_reg__d = bus_write_reg__q;
@@ -339,6 +425,8 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         if (read_answer__q) begin
             data_out_reg__d = bus_read_data;
         end
+        read_done__d = (read_done__q | read_answer__q) & read_sync__q;
+        ready = ~(~cs_n & ~we_n & ~(write_sync__q & write_prev__q)) & ~(~cs_n & ~rd_n & ~read_done__q);
         if (reset) begin
             write_meta__d = 1'b0;
             write_sync__d = 1'b0;
@@ -358,6 +446,7 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
             data_prev__d = zero_d;
             read_served__d = 1'b0;
             read_answer__d = 1'b0;
+            read_done__d = 1'b0;
             bus_address_reg__d = zero_a;
             bus_write_data_reg__d = zero_d;
             bus_write_reg__d = 1'b0;
@@ -366,29 +455,10 @@ module external_bus_adapter(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
         end
     end
 
-endmodule // external_bus_adapter
+endmodule // external_bus_adapter__pins
 
 
-module external_bus_adapter__address_meta(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__address_meta
-
-
-module external_bus_adapter__address_older(d,q,clock);
+module external_bus_adapter__pins__address_meta(d,q,clock);
 
     // Module arguments
     input wire  [7:0] d;
@@ -404,29 +474,10 @@ module external_bus_adapter__address_older(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__address_older
+endmodule // external_bus_adapter__pins__address_meta
 
 
-module external_bus_adapter__address_prev(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__address_prev
-
-
-module external_bus_adapter__address_sync(d,q,clock);
+module external_bus_adapter__pins__address_older(d,q,clock);
 
     // Module arguments
     input wire  [7:0] d;
@@ -442,10 +493,10 @@ module external_bus_adapter__address_sync(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__address_sync
+endmodule // external_bus_adapter__pins__address_older
 
 
-module external_bus_adapter__bus_address_reg(d,q,clock);
+module external_bus_adapter__pins__address_prev(d,q,clock);
 
     // Module arguments
     input wire  [7:0] d;
@@ -461,10 +512,48 @@ module external_bus_adapter__bus_address_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__bus_address_reg
+endmodule // external_bus_adapter__pins__address_prev
 
 
-module external_bus_adapter__bus_read_reg(d,q,clock);
+module external_bus_adapter__pins__address_sync(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__address_sync
+
+
+module external_bus_adapter__pins__bus_address_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__bus_address_reg
+
+
+module external_bus_adapter__pins__bus_read_reg(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -480,10 +569,10 @@ module external_bus_adapter__bus_read_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__bus_read_reg
+endmodule // external_bus_adapter__pins__bus_read_reg
 
 
-module external_bus_adapter__bus_write_data_reg(d,q,clock);
+module external_bus_adapter__pins__bus_write_data_reg(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -499,10 +588,10 @@ module external_bus_adapter__bus_write_data_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__bus_write_data_reg
+endmodule // external_bus_adapter__pins__bus_write_data_reg
 
 
-module external_bus_adapter__bus_write_reg(d,q,clock);
+module external_bus_adapter__pins__bus_write_reg(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -518,10 +607,10 @@ module external_bus_adapter__bus_write_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__bus_write_reg
+endmodule // external_bus_adapter__pins__bus_write_reg
 
 
-module external_bus_adapter__data_meta(d,q,clock);
+module external_bus_adapter__pins__data_meta(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -537,29 +626,10 @@ module external_bus_adapter__data_meta(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__data_meta
+endmodule // external_bus_adapter__pins__data_meta
 
 
-module external_bus_adapter__data_older(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__data_older
-
-
-module external_bus_adapter__data_out_reg(d,q,clock);
+module external_bus_adapter__pins__data_older(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -575,29 +645,10 @@ module external_bus_adapter__data_out_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__data_out_reg
+endmodule // external_bus_adapter__pins__data_older
 
 
-module external_bus_adapter__data_prev(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__data_prev
-
-
-module external_bus_adapter__data_sync(d,q,clock);
+module external_bus_adapter__pins__data_out_reg(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -613,10 +664,48 @@ module external_bus_adapter__data_sync(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__data_sync
+endmodule // external_bus_adapter__pins__data_out_reg
 
 
-module external_bus_adapter__read_answer(d,q,clock);
+module external_bus_adapter__pins__data_prev(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__data_prev
+
+
+module external_bus_adapter__pins__data_sync(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__data_sync
+
+
+module external_bus_adapter__pins__read_answer(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -632,29 +721,10 @@ module external_bus_adapter__read_answer(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__read_answer
+endmodule // external_bus_adapter__pins__read_answer
 
 
-module external_bus_adapter__read_meta(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__read_meta
-
-
-module external_bus_adapter__read_pending(d,q,clock);
+module external_bus_adapter__pins__read_done(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -670,29 +740,10 @@ module external_bus_adapter__read_pending(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__read_pending
+endmodule // external_bus_adapter__pins__read_done
 
 
-module external_bus_adapter__read_prev(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__read_prev
-
-
-module external_bus_adapter__read_served(d,q,clock);
+module external_bus_adapter__pins__read_meta(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -708,29 +759,10 @@ module external_bus_adapter__read_served(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__read_served
+endmodule // external_bus_adapter__pins__read_meta
 
 
-module external_bus_adapter__read_sync(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__read_sync
-
-
-module external_bus_adapter__write_meta(d,q,clock);
+module external_bus_adapter__pins__read_pending(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -746,29 +778,10 @@ module external_bus_adapter__write_meta(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__write_meta
+endmodule // external_bus_adapter__pins__read_pending
 
 
-module external_bus_adapter__write_older(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // external_bus_adapter__write_older
-
-
-module external_bus_adapter__write_prev(d,q,clock);
+module external_bus_adapter__pins__read_prev(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -784,10 +797,10 @@ module external_bus_adapter__write_prev(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__write_prev
+endmodule // external_bus_adapter__pins__read_prev
 
 
-module external_bus_adapter__write_sync(d,q,clock);
+module external_bus_adapter__pins__read_served(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -803,5 +816,100 @@ module external_bus_adapter__write_sync(d,q,clock);
        q <= d;
     end
 
-endmodule // external_bus_adapter__write_sync
+endmodule // external_bus_adapter__pins__read_served
+
+
+module external_bus_adapter__pins__read_sync(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__read_sync
+
+
+module external_bus_adapter__pins__write_meta(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__write_meta
+
+
+module external_bus_adapter__pins__write_older(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__write_older
+
+
+module external_bus_adapter__pins__write_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__write_prev
+
+
+module external_bus_adapter__pins__write_sync(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // external_bus_adapter__pins__write_sync
 `default_nettype wire

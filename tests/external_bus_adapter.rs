@@ -7,47 +7,23 @@ use motion_hdl::blocks::external_bus_adapter::model::{
 };
 use motion_hdl::blocks::external_bus_adapter::ExternalBusAdapter;
 use motion_hdl::sim::Harness;
+use support::pin_bench::{random_pins, BusView, PinBench, PinWidths};
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
+mod support;
+
 type Adapter = ExternalBusAdapter<8>;
 
-/// Pins that change at random, strobes of every width from one clock
-/// (including the illegal ones), reads and writes overlapping.
-fn random_pins(seed: u64, cycles: usize) -> Vec<ExternalBusInputs> {
-    let mut rng = StdRng::seed_from_u64(seed);
-    let mut i = ExternalBusInputs::default();
-    (0..cycles)
-        .map(|_| {
-            if rng.gen_ratio(1, 4) {
-                i.cs_n = rng.gen_ratio(1, 3);
-            }
-            if rng.gen_ratio(1, 3) {
-                i.we_n = !i.we_n;
-            }
-            if rng.gen_ratio(1, 3) {
-                i.rd_n = !i.rd_n;
-            }
-            if rng.gen_ratio(1, 2) {
-                i.address = rng.gen_range(0..256);
-            }
-            if rng.gen_ratio(1, 2) {
-                i.data_in = rng.gen::<u32>() as u64;
-            }
-            i.bus_read_data = rng.gen::<u32>() as u64;
-            i.reset = rng.gen_ratio(1, 50_000);
-            i
-        })
-        .collect()
-}
+const WIDTHS: PinWidths = PinWidths { address_bits: 8, data_bits: 32 };
 
 #[test]
 fn rtl_matches_model_on_random_pins() {
     let mut h = Harness::new("external_bus_adapter", Adapter::default()).unwrap();
     let mut model = ExternalBusModel::new(8);
     let (mut writes, mut reads) = (0, 0);
-    for (cycle, i) in random_pins(0xb05, 1_000_000).iter().enumerate() {
+    for (cycle, i) in random_pins(0xb05, 1_000_000, WIDTHS).iter().enumerate() {
         let rtl = ExternalBusOutputs::from_vector(&h.step_vector(&i.to_vector()).unwrap());
         assert_eq!(rtl, model.step(*i), "cycle {cycle}: {i:?}");
         writes += rtl.bus_write as u32;
@@ -59,82 +35,23 @@ fn rtl_matches_model_on_random_pins() {
     );
 }
 
-/// A DSP on the pins, a register file on the bus. With `resolve`, every
-/// pin change is presented for its first clock as a random per-bit mix of
-/// the old and new values, as a synchronizer may resolve a sample taken
-/// while the pins switch.
-struct System {
-    h: Harness<Adapter>,
-    pins: ExternalBusInputs,
-    presented: ExternalBusInputs,
-    resolve: Option<StdRng>,
-    registers: [u64; 256],
-    slave_data: u64,
-    pending_read: Option<u64>,
-    bus_writes: u32,
-    bus_reads: u32,
-    last: ExternalBusOutputs,
+fn view(v: &[u64]) -> BusView {
+    let o = ExternalBusOutputs::from_vector(v);
+    BusView {
+        data_out: o.data_out,
+        data_oe: o.data_oe,
+        ready: None,
+        bus_address: o.bus_address,
+        bus_write_data: o.bus_write_data,
+        bus_write: o.bus_write,
+        bus_read: o.bus_read,
+        order_error: false,
+    }
 }
 
-impl System {
-    fn new(resolve: Option<u64>) -> Self {
-        Self {
-            h: Harness::new("external_bus_adapter", Adapter::default()).unwrap(),
-            pins: ExternalBusInputs::default(),
-            presented: ExternalBusInputs::default(),
-            resolve: resolve.map(StdRng::seed_from_u64),
-            registers: [0; 256],
-            slave_data: 0,
-            pending_read: None,
-            bus_writes: 0,
-            bus_reads: 0,
-            last: ExternalBusOutputs::default(),
-        }
-    }
-
-    fn clock(&mut self) {
-        let mut shown = self.pins;
-        if let Some(rng) = &mut self.resolve {
-            let (old, new) = (self.presented, self.pins);
-            let mix = |rng: &mut StdRng, old: u64, new: u64| {
-                let take_new = rng.gen::<u64>();
-                (old & !take_new) | (new & take_new)
-            };
-            shown.address = mix(rng, old.address, new.address) & 0xff;
-            shown.data_in = mix(rng, old.data_in, new.data_in) & 0xffff_ffff;
-            for (o, n, s) in [
-                (old.cs_n, new.cs_n, &mut shown.cs_n),
-                (old.we_n, new.we_n, &mut shown.we_n),
-                (old.rd_n, new.rd_n, &mut shown.rd_n),
-            ] {
-                *s = if o != n && rng.gen_bool(0.5) { o } else { n };
-            }
-        }
-        // Whatever was shown, the pins have their new value from now on.
-        self.presented = self.pins;
-        shown.bus_read_data = self.slave_data;
-        let out = ExternalBusOutputs::from_vector(&self.h.step_vector(&shown.to_vector()).unwrap());
-        // The slave registers its answer in the clock after bus_read.
-        if let Some(address) = self.pending_read.take() {
-            self.slave_data = self.registers[address as usize];
-        }
-        if out.bus_read {
-            self.pending_read = Some(out.bus_address);
-            self.bus_reads += 1;
-        }
-        if out.bus_write {
-            self.registers[out.bus_address as usize] = out.bus_write_data;
-            self.bus_writes += 1;
-        }
-        assert!(!(out.bus_read && out.bus_write));
-        self.last = out;
-    }
-
-    fn hold(&mut self, clocks: u32) {
-        for _ in 0..clocks {
-            self.clock();
-        }
-    }
+/// A DSP on the pins, a register file of 256 words on the bus.
+fn system(resolve: Option<u64>) -> PinBench<Adapter> {
+    PinBench::new("external_bus_adapter", Adapter::default(), view, WIDTHS, 256, resolve)
 }
 
 /// Random writes and reads at the datasheet's minimum timing: 3-clock
@@ -144,37 +61,22 @@ impl System {
 /// checks that every write and read reached the bus exactly once.
 fn dsp_session(seed: u64, resolve: bool, access: std::ops::Range<u32>) -> u32 {
     let mut rng = StdRng::seed_from_u64(seed);
-    let mut sys = System::new(resolve.then_some(seed + 1));
+    let mut sys = system(resolve.then_some(seed + 1));
     let mut expected = [0u64; 256];
     let (mut writes, mut reads, mut wrong) = (0, 0, 0);
     for _ in 0..20_000 {
         let address = rng.gen_range(0..256u64);
-        sys.pins.address = address;
         if rng.gen_bool(0.5) {
             let data = rng.gen::<u32>() as u64;
-            sys.pins.data_in = data;
-            sys.pins.cs_n = false;
-            sys.pins.we_n = false;
-            sys.hold(rng.gen_range(3..5));
-            sys.pins.we_n = true;
-            sys.pins.cs_n = true;
-            // Zero hold: address and data change as the strobe ends.
-            sys.pins.data_in = rng.gen::<u32>() as u64;
-            sys.pins.address = rng.gen_range(0..256);
+            let clocks = rng.gen_range(3..5);
+            sys.write(&mut rng, address, data, clocks);
             expected[address as usize] = data;
             writes += 1;
         } else {
-            sys.pins.cs_n = false;
-            sys.pins.rd_n = false;
-            sys.hold(rng.gen_range(access.clone()));
-            assert!(sys.last.data_oe);
-            wrong += (sys.last.data_out != expected[address as usize]) as u32;
-            sys.pins.rd_n = true;
-            sys.pins.cs_n = true;
-            sys.pins.address = rng.gen_range(0..256);
+            let clocks = rng.gen_range(access.clone());
+            wrong += (sys.read(&mut rng, address, clocks) != expected[address as usize]) as u32;
             reads += 1;
         }
-        sys.hold(2);
     }
     sys.hold(10);
     assert_eq!(sys.bus_writes, writes, "writes lost or doubled");
@@ -208,7 +110,7 @@ fn five_clocks_of_read_access_are_not_enough() {
 /// A runt strobe (one active sample) is not an access.
 #[test]
 fn a_one_sample_runt_is_ignored() {
-    let mut sys = System::new(None);
+    let mut sys = system(None);
     for pins in [(false, false, true), (false, true, false)] {
         (sys.pins.cs_n, sys.pins.we_n, sys.pins.rd_n) = pins;
         sys.hold(1);
@@ -220,7 +122,7 @@ fn a_one_sample_runt_is_ignored() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000).iter().map(ExternalBusInputs::to_vector).collect();
+    let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000, WIDTHS).iter().map(ExternalBusInputs::to_vector).collect();
     cross_simulate(
         &CosimDesign::exported("external_bus_adapter"),
         Adapter::default(),

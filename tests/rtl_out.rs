@@ -145,7 +145,7 @@ fn port_docs_and_the_rustdoc_port_table_name_the_exported_ports() {
         let documented: BTreeSet<String> = spec.port_docs.iter().map(|(name, _)| name.to_string()).collect();
         assert!(top.len() > 3, "{}: {top:?}", spec.name);
         assert_eq!(documented, top, "{}: PORT_DOCS against the exported ports", spec.name);
-        let source = std::fs::read_to_string(repo_root().join(format!("src/blocks/{}/mod.rs", spec.name))).unwrap();
+        let source = std::fs::read_to_string(repo_root().join(format!("src/blocks/{}/mod.rs", spec.block))).unwrap();
         assert_eq!(rustdoc_ports(&source), top, "{}: rustdoc port table against the exported ports", spec.name);
         assert!(top.iter().all(|p| !p.contains("__")), "{}: a port name with `__`: {top:?}", spec.name);
     }

@@ -2,6 +2,7 @@
 //! the rust-hdl implementation and its datasheet, `model.rs` the plain-Rust
 //! reference model the RTL is proven against (in `tests/<block>.rs`).
 
+pub mod bus_synchronizer;
 pub mod carry_select_adder;
 pub mod command_fifo;
 pub mod dda_integrator;
@@ -12,6 +13,7 @@ pub mod glitch_filter;
 pub mod input_conditioner;
 pub mod interrupt_controller;
 pub mod motion_controller;
+pub mod narrow_bus_adapter;
 pub mod pulse_counter;
 pub mod quadrature_decoder;
 pub mod sequential_divider;
@@ -19,6 +21,7 @@ pub mod step_channel;
 pub mod step_output;
 pub mod uniform_pulse_gen;
 pub mod watchdog;
+pub mod word_assembler;
 
 /// All ones in the low `width` bits (1 to 64): the value range of a
 /// `width`-bit port, for models and stimulus.

@@ -7,6 +7,7 @@ use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
+use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
 use crate::blocks::motion_controller::{
     self, MotionController1, MotionController3, MotionController6,
 };
@@ -27,6 +28,8 @@ pub type ParamDoc = (&'static str, &'static str, &'static str);
 pub struct ModuleSpec {
     /// Verilog module name (snake_case); also the file name.
     pub name: &'static str,
+    /// The block's folder under `src/blocks/` (its datasheet is `mod.rs`).
+    pub block: &'static str,
     /// One line: what the block is.
     pub summary: &'static str,
     /// Parameters fixed in this export.
@@ -48,6 +51,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
     vec![
         ModuleSpec {
             name: "freq_divider",
+            block: "freq_divider",
             summary: freq_divider::SUMMARY,
             parameters: &[("W", "32", "divisor width")],
             port_docs: freq_divider::PORT_DOCS,
@@ -58,6 +62,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "pulse_counter",
+            block: "pulse_counter",
             summary: pulse_counter::SUMMARY,
             parameters: &[("W", "32", "count width")],
             port_docs: pulse_counter::PORT_DOCS,
@@ -68,6 +73,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "sequential_divider",
+            block: "sequential_divider",
             summary: sequential_divider::SUMMARY,
             parameters: &[
                 ("N", "32", "dividend and quotient width"),
@@ -81,6 +87,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "dda_integrator",
+            block: "dda_integrator",
             summary: dda_integrator::SUMMARY,
             parameters: &[("W", "32", "integrand, modulus and accumulator width")],
             port_docs: dda_integrator::PORT_DOCS,
@@ -91,6 +98,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "dda_interpolator",
+            block: "dda_interpolator",
             summary: dda_interpolator::SUMMARY,
             parameters: &[
                 ("K", "3", "axes"),
@@ -109,6 +117,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "uniform_pulse_gen",
+            block: "uniform_pulse_gen",
             summary: uniform_pulse_gen::SUMMARY,
             parameters: &[
                 ("T", "32", "period width in ticks"),
@@ -122,6 +131,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "quadrature_decoder",
+            block: "quadrature_decoder",
             summary: quadrature_decoder::SUMMARY,
             parameters: &[
                 ("W", "32", "count and index_count width"),
@@ -136,6 +146,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "step_output",
+            block: "step_output",
             summary: step_output::SUMMARY,
             parameters: &[
                 (
@@ -157,6 +168,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "external_bus_adapter",
+            block: "external_bus_adapter",
             summary: external_bus_adapter::SUMMARY,
             parameters: &[
                 ("A", "8", "word address width"),
@@ -169,7 +181,40 @@ pub fn catalog() -> Vec<ModuleSpec> {
             build: || Box::new(ExternalBusAdapter::<8>::default()),
         },
         ModuleSpec {
+            name: "external_bus_adapter_16",
+            block: "narrow_bus_adapter",
+            summary: narrow_bus_adapter::SUMMARY_16,
+            parameters: &[
+                ("A", "8", "register (32-bit word) address width"),
+                ("NA", "9", "pin address width: 2 pin addresses per register"),
+                ("N", "16", "pin data width"),
+                ("W", "32", "register width"),
+            ],
+            port_docs: narrow_bus_adapter::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(ExternalBusAdapter16::default()),
+        },
+        ModuleSpec {
+            name: "external_bus_adapter_8",
+            block: "narrow_bus_adapter",
+            summary: narrow_bus_adapter::SUMMARY_8,
+            parameters: &[
+                ("A", "8", "register (32-bit word) address width"),
+                ("NA", "10", "pin address width: 4 pin addresses per register"),
+                ("N", "8", "pin data width"),
+                ("W", "32", "register width"),
+            ],
+            port_docs: narrow_bus_adapter::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(ExternalBusAdapter8::default()),
+        },
+        ModuleSpec {
             name: "step_channel",
+            block: "step_channel",
             summary: step_channel::SUMMARY,
             parameters: &[
                 ("W", "32", "DDA width (integrand, modulus, accumulator)"),
@@ -189,6 +234,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "motion_controller",
+            block: "motion_controller",
             summary: motion_controller::SUMMARY,
             parameters: &[
                 ("K", "3", "axes"),

@@ -136,6 +136,18 @@ impl<B: VectorPorts> Harness<B> {
         Ok(self.block.outputs())
     }
 
+    /// Applies one vector of input values and returns the outputs before
+    /// the next clock edge (the combinational outputs of this clock's
+    /// inputs and the present state); [`Harness::cycle`] then clocks it.
+    /// For blocks whose outputs depend combinationally on their inputs,
+    /// where [`Harness::step_vector`] shows them only after the edge.
+    pub fn peek_vector(&mut self, inputs: &[u64]) -> Result<Vec<u64>, HarnessError> {
+        self.block.set_inputs(inputs);
+        self.block.clock_mut().next = Clock { clk: false };
+        self.settle()?;
+        Ok(self.block.outputs())
+    }
+
     /// Flushes and closes the VCD file, if one is open, and returns the block.
     pub fn finish(mut self) -> B {
         if let Some(mut vcd) = self.vcd.take() {

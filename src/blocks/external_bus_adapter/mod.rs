@@ -15,6 +15,10 @@
 //!   the next clock, and the adapter holds that word on `data_out` for the
 //!   rest of the read.
 //!
+//! It is the [`BusSynchronizer`] at 32 bits, without its `ready` output
+//! (the 16- and 8-bit adapters in [`crate::blocks::narrow_bus_adapter`]
+//! have it); every timing below is the synchronizer's.
+//!
 //! ## Ports (`A` = 8-bit address in the exported `external_bus_adapter`)
 //! | port | dir | width | meaning |
 //! |---|---|---|---|
@@ -73,6 +77,8 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::bus_synchronizer::BusSynchronizer;
+
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
     "asynchronous external-memory bus (cs_n, we_n, rd_n) to a synchronous register bus, with synchronizers";
@@ -108,7 +114,7 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
 ];
 
 /// Asynchronous external bus adapter. See the [module documentation](self).
-#[derive(Clone, Debug, LogicBlock)]
+#[derive(Clone, Debug, Default, LogicBlock)]
 pub struct ExternalBusAdapter<const A: usize> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
@@ -138,208 +144,26 @@ pub struct ExternalBusAdapter<const A: usize> {
     pub bus_read: Signal<Out, Bit>,
     /// Read data from the slave.
     pub bus_read_data: Signal<In, Bits<32>>,
-    // Two-flip-flop synchronizers; the address and data go through the same
-    // stages, so each stage holds one consistent sample of all pins.
-    write_meta: DFF<Bit>,
-    write_sync: DFF<Bit>,
-    write_prev: DFF<Bit>,
-    write_older: DFF<Bit>,
-    read_meta: DFF<Bit>,
-    read_sync: DFF<Bit>,
-    read_prev: DFF<Bit>,
-    address_meta: DFF<Bits<A>>,
-    address_sync: DFF<Bits<A>>,
-    address_prev: DFF<Bits<A>>,
-    data_meta: DFF<Bits<32>>,
-    data_sync: DFF<Bits<32>>,
-    data_prev: DFF<Bits<32>>,
-    address_older: DFF<Bits<A>>,
-    data_older: DFF<Bits<32>>,
-    /// The current read strobe has been issued (or is pending).
-    read_served: DFF<Bit>,
-    /// A qualified read lost its clock to a write; it is issued next clock.
-    read_pending: DFF<Bit>,
-    /// `bus_read` was high last clock: capture the slave's answer now.
-    read_answer: DFF<Bit>,
-    bus_address_reg: DFF<Bits<A>>,
-    bus_write_data_reg: DFF<Bits<32>>,
-    bus_write_reg: DFF<Bit>,
-    bus_read_reg: DFF<Bit>,
-    data_out_reg: DFF<Bits<32>>,
-    write_ends: Signal<Local, Bit>,
-    read_wanted: Signal<Local, Bit>,
-    zero_a: Constant<Bits<A>>,
-    zero_d: Constant<Bits<32>>,
-}
-
-impl<const A: usize> Default for ExternalBusAdapter<A> {
-    fn default() -> Self {
-        Self {
-            clock: Default::default(),
-            reset: Default::default(),
-            cs_n: Default::default(),
-            we_n: Default::default(),
-            rd_n: Default::default(),
-            address: Default::default(),
-            data_in: Default::default(),
-            data_out: Default::default(),
-            data_oe: Default::default(),
-            bus_address: Default::default(),
-            bus_write_data: Default::default(),
-            bus_write: Default::default(),
-            bus_read: Default::default(),
-            bus_read_data: Default::default(),
-            write_meta: Default::default(),
-            write_sync: Default::default(),
-            write_prev: Default::default(),
-            write_older: Default::default(),
-            read_meta: Default::default(),
-            read_sync: Default::default(),
-            read_prev: Default::default(),
-            address_meta: Default::default(),
-            address_sync: Default::default(),
-            address_prev: Default::default(),
-            data_meta: Default::default(),
-            data_sync: Default::default(),
-            data_prev: Default::default(),
-            address_older: Default::default(),
-            data_older: Default::default(),
-            read_served: Default::default(),
-            read_pending: Default::default(),
-            read_answer: Default::default(),
-            bus_address_reg: Default::default(),
-            bus_write_data_reg: Default::default(),
-            bus_write_reg: Default::default(),
-            bus_read_reg: Default::default(),
-            data_out_reg: Default::default(),
-            write_ends: Default::default(),
-            read_wanted: Default::default(),
-            zero_a: Constant::new(0u64.into()),
-            zero_d: Constant::new(0u64.into()),
-        }
-    }
+    pins: BusSynchronizer<A, 32>,
 }
 
 impl<const A: usize> Logic for ExternalBusAdapter<A> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(
-            self,
-            clock,
-            write_meta,
-            write_sync,
-            write_prev,
-            write_older,
-            read_meta,
-            read_sync,
-            read_prev,
-            address_meta,
-            address_sync,
-            address_prev,
-            data_meta,
-            data_sync,
-            data_prev,
-            address_older,
-            data_older,
-            read_served,
-            read_pending,
-            read_answer,
-            bus_address_reg,
-            bus_write_data_reg,
-            bus_write_reg,
-            bus_read_reg,
-            data_out_reg
-        );
-        self.data_out.next = self.data_out_reg.q.val();
-        // Never drive the pins while the master writes.
-        self.data_oe.next = !self.cs_n.val() & !self.rd_n.val() & self.we_n.val();
-        self.bus_address.next = self.bus_address_reg.q.val();
-        self.bus_write_data.next = self.bus_write_data_reg.q.val();
-        self.bus_write.next = self.bus_write_reg.q.val();
-        self.bus_read.next = self.bus_read_reg.q.val();
-
-        // Samples of the pins; "active" is cs_n and the strobe both low.
-        self.write_meta.d.next = !self.cs_n.val() & !self.we_n.val();
-        self.write_sync.d.next = self.write_meta.q.val();
-        self.write_prev.d.next = self.write_sync.q.val();
-        self.write_older.d.next = self.write_prev.q.val();
-        self.read_meta.d.next = !self.cs_n.val() & !self.rd_n.val();
-        self.read_sync.d.next = self.read_meta.q.val();
-        self.read_prev.d.next = self.read_sync.q.val();
-        self.address_meta.d.next = self.address.val();
-        self.address_sync.d.next = self.address_meta.q.val();
-        self.address_prev.d.next = self.address_sync.q.val();
-        self.data_meta.d.next = self.data_in.val();
-        self.data_sync.d.next = self.data_meta.q.val();
-        self.data_prev.d.next = self.data_sync.q.val();
-        self.address_older.d.next = self.address_prev.q.val();
-        self.data_older.d.next = self.data_prev.q.val();
-
-        // A strobe counts only after two active samples in a row, so a runt
-        // (chip-select skew, a glitch) never becomes an access. A write is
-        // taken when its strobe ends, with the address and data of the
-        // sample before the last active one: that sample is at least a
-        // clock before the strobe's end, so a master with zero hold time
-        // cannot corrupt it. A read is issued once per strobe, one clock
-        // later if a write takes this clock.
-        self.write_ends.next =
-            self.write_older.q.val() & self.write_prev.q.val() & !self.write_sync.q.val();
-        self.read_wanted.next =
-            (self.read_prev.q.val() & self.read_sync.q.val() & !self.read_served.q.val())
-                | self.read_pending.q.val();
-        self.bus_write_reg.d.next = false;
-        self.bus_read_reg.d.next = false;
-        if self.write_ends.val() {
-            self.bus_write_reg.d.next = true;
-            self.bus_address_reg.d.next = self.address_older.q.val();
-            self.bus_write_data_reg.d.next = self.data_older.q.val();
-            if self.read_wanted.val() {
-                self.read_pending.d.next = true;
-                self.read_served.d.next = true;
-            }
-        } else if self.read_wanted.val() {
-            self.bus_read_reg.d.next = true;
-            self.bus_address_reg.d.next = self.address_sync.q.val();
-            if self.read_pending.q.val() {
-                // The address as it was on the clock the write took.
-                self.bus_address_reg.d.next = self.address_prev.q.val();
-            }
-            self.read_served.d.next = true;
-            self.read_pending.d.next = false;
-        }
-        if !self.read_sync.q.val() & !self.read_wanted.val() {
-            self.read_served.d.next = false;
-        }
-        self.read_answer.d.next = self.bus_read_reg.q.val();
-        if self.read_answer.q.val() {
-            self.data_out_reg.d.next = self.bus_read_data.val();
-        }
-
-        if self.reset.val() {
-            self.write_meta.d.next = false;
-            self.write_sync.d.next = false;
-            self.write_prev.d.next = false;
-            self.write_older.d.next = false;
-            self.read_prev.d.next = false;
-            self.read_pending.d.next = false;
-            self.address_older.d.next = self.zero_a.val();
-            self.data_older.d.next = self.zero_d.val();
-            self.read_meta.d.next = false;
-            self.read_sync.d.next = false;
-            self.address_meta.d.next = self.zero_a.val();
-            self.address_sync.d.next = self.zero_a.val();
-            self.address_prev.d.next = self.zero_a.val();
-            self.data_meta.d.next = self.zero_d.val();
-            self.data_sync.d.next = self.zero_d.val();
-            self.data_prev.d.next = self.zero_d.val();
-            self.read_served.d.next = false;
-            self.read_answer.d.next = false;
-            self.bus_address_reg.d.next = self.zero_a.val();
-            self.bus_write_data_reg.d.next = self.zero_d.val();
-            self.bus_write_reg.d.next = false;
-            self.bus_read_reg.d.next = false;
-            self.data_out_reg.d.next = self.zero_d.val();
-        }
+        clock!(self, clock, pins);
+        self.pins.reset.next = self.reset.val();
+        self.pins.cs_n.next = self.cs_n.val();
+        self.pins.we_n.next = self.we_n.val();
+        self.pins.rd_n.next = self.rd_n.val();
+        self.pins.address.next = self.address.val();
+        self.pins.data_in.next = self.data_in.val();
+        self.pins.bus_read_data.next = self.bus_read_data.val();
+        self.data_out.next = self.pins.data_out.val();
+        self.data_oe.next = self.pins.data_oe.val();
+        self.bus_address.next = self.pins.bus_address.val();
+        self.bus_write_data.next = self.pins.bus_write_data.val();
+        self.bus_write.next = self.pins.bus_write.val();
+        self.bus_read.next = self.pins.bus_read.val();
     }
 }
 

@@ -1,53 +1,10 @@
-//! Reference model of [`super::ExternalBusAdapter`], cycle-exact.
+//! Reference model of [`super::ExternalBusAdapter`], cycle-exact: the
+//! [`BusSynchronizerModel`] at 32 bits, without `ready`.
 
-/// Inputs of one clock cycle.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ExternalBusInputs {
-    /// Synchronous reset.
-    pub reset: bool,
-    /// Chip select, active low.
-    pub cs_n: bool,
-    /// Write strobe, active low.
-    pub we_n: bool,
-    /// Read strobe, active low.
-    pub rd_n: bool,
-    /// Word address.
-    pub address: u64,
-    /// Write data at the pins.
-    pub data_in: u64,
-    /// The slave's read data.
-    pub bus_read_data: u64,
-}
+use crate::blocks::bus_synchronizer::model::{BusSynchronizerModel, BusSynchronizerOutputs};
 
-impl Default for ExternalBusInputs {
-    /// An idle bus: every strobe high.
-    fn default() -> Self {
-        Self {
-            reset: false,
-            cs_n: true,
-            we_n: true,
-            rd_n: true,
-            address: 0,
-            data_in: 0,
-            bus_read_data: 0,
-        }
-    }
-}
-
-impl ExternalBusInputs {
-    /// The RTL's input vector, in its port order.
-    pub fn to_vector(&self) -> Vec<u64> {
-        vec![
-            self.reset as u64,
-            self.cs_n as u64,
-            self.we_n as u64,
-            self.rd_n as u64,
-            self.address,
-            self.data_in,
-            self.bus_read_data,
-        ]
-    }
-}
+/// Inputs of one clock cycle (the synchronizer's).
+pub use crate::blocks::bus_synchronizer::model::BusPinInputs as ExternalBusInputs;
 
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -80,92 +37,36 @@ impl ExternalBusOutputs {
     }
 }
 
-/// One sample of the pins as the synchronizer stages hold it.
-#[derive(Clone, Copy, Debug, Default)]
-struct Sample {
-    write: bool,
-    read: bool,
-    address: u64,
-    data: u64,
+impl From<BusSynchronizerOutputs> for ExternalBusOutputs {
+    fn from(o: BusSynchronizerOutputs) -> Self {
+        Self {
+            data_out: o.data_out,
+            data_oe: o.data_oe,
+            bus_address: o.bus_address,
+            bus_write_data: o.bus_write_data,
+            bus_write: o.bus_write,
+            bus_read: o.bus_read,
+        }
+    }
 }
 
 /// Cycle-exact model of the adapter with an `address_bits` address.
 #[derive(Clone, Debug)]
 pub struct ExternalBusModel {
-    address_mask: u64,
-    /// Pin samples, newest first: [meta, sync, prev, older].
-    stages: [Sample; 4],
-    read_served: bool,
-    read_pending: bool,
-    read_answer: bool,
-    out: ExternalBusOutputs,
+    pins: BusSynchronizerModel,
 }
 
 impl ExternalBusModel {
     /// An adapter in its power-up state.
     pub fn new(address_bits: u32) -> Self {
         Self {
-            address_mask: crate::blocks::width_mask(address_bits),
-            stages: Default::default(),
-            read_served: false,
-            read_pending: false,
-            read_answer: false,
-            out: ExternalBusOutputs::default(),
+            pins: BusSynchronizerModel::new(address_bits, 32),
         }
     }
 
     /// One rising clock edge; returns the outputs after it (`data_oe` with
     /// this clock's pins still applied).
     pub fn step(&mut self, i: ExternalBusInputs) -> ExternalBusOutputs {
-        let [_, sync, prev, older] = self.stages;
-        let mut out = self.out;
-        out.bus_write = false;
-        out.bus_read = false;
-        // Two active samples make an access; a write ends on the first
-        // inactive one and uses the sample before the last active one.
-        let write_ends = older.write && prev.write && !sync.write;
-        let read_wanted = (prev.read && sync.read && !self.read_served) || self.read_pending;
-        if write_ends {
-            out.bus_write = true;
-            out.bus_address = older.address;
-            out.bus_write_data = older.data;
-            if read_wanted {
-                self.read_pending = true;
-                self.read_served = true;
-            }
-        } else if read_wanted {
-            out.bus_read = true;
-            out.bus_address = if self.read_pending {
-                prev.address
-            } else {
-                sync.address
-            };
-            self.read_served = true;
-            self.read_pending = false;
-        }
-        if !sync.read && !read_wanted {
-            self.read_served = false;
-        }
-        if self.read_answer {
-            out.data_out = i.bus_read_data & 0xffff_ffff;
-        }
-        self.read_answer = self.out.bus_read;
-        self.stages = [
-            Sample {
-                write: !i.cs_n && !i.we_n,
-                read: !i.cs_n && !i.rd_n,
-                address: i.address & self.address_mask,
-                data: i.data_in & 0xffff_ffff,
-            },
-            self.stages[0],
-            self.stages[1],
-            self.stages[2],
-        ];
-        self.out = out;
-        if i.reset {
-            *self = Self::new(self.address_mask.count_ones());
-        }
-        self.out.data_oe = !i.cs_n && !i.rd_n && i.we_n;
-        self.out
+        self.pins.step(i).into()
     }
 }

@@ -1,0 +1,201 @@
+//! # `NarrowBusAdapter`: an 8- or 16-bit external bus to 32-bit registers, without tearing
+//!
+//! The seed board's DSP (TMS320F28335, XINTF: XD[15:0]) and PC bridge
+//! (CH365: 8 data bits) have narrower data buses than the controller's
+//! 32-bit registers. This adapter is the [`BusSynchronizer`] at the pins'
+//! width followed by a [`WordAssembler`]: each 32-bit register is 2 (16-bit
+//! bus) or 4 (8-bit bus) consecutive narrow addresses, lowest part first,
+//! and
+//! * **reads never tear**: reading the lowest part latches the whole
+//!   register in one `bus_read`; the higher parts return the latched word;
+//! * **writes are atomic**: the lower parts are held, and writing the
+//!   highest part commits the whole word as one `bus_write`.
+//!
+//! Exported as `external_bus_adapter_16` (`A` = 8, `NA` = 9, `N` = 16) and
+//! `external_bus_adapter_8` (`A` = 8, `NA` = 10, `N` = 8), both with `W` = 32
+//! ([`ExternalBusAdapter16`], [`ExternalBusAdapter8`]). The C header's
+//! `*_ADDR16(n)` and `*_ADDR8(n)` macros give the narrow addresses.
+//!
+//! ## Ports
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clock` | in | 1 | rising-edge clock |
+//! | `reset` | in | 1 | synchronous, active high: no access in progress, latch and holding register empty, outputs 0 |
+//! | `cs_n` | in | 1 | chip select, active low, asynchronous |
+//! | `we_n` | in | 1 | write strobe, active low, asynchronous |
+//! | `rd_n` | in | 1 | read strobe (output enable), active low, asynchronous |
+//! | `address` | in | NA | narrow word address: register address × (32/N) + part, asynchronous |
+//! | `data_in` | in | N | write data from the pins, asynchronous |
+//! | `data_out` | out | N | read data to the pins, registered |
+//! | `data_oe` | out | 1 | drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins |
+//! | `ready` | out | 1 | the access at the pins may end (XREADY): see [`BusSynchronizer`] |
+//! | `bus_address` | out | A | register address of the current bus strobe |
+//! | `bus_write_data` | out | W | the whole word of `bus_write` |
+//! | `bus_write` | out | 1 | one-clock write strobe: the highest part completed a word |
+//! | `bus_read` | out | 1 | one-clock read strobe: the lowest part was read |
+//! | `bus_read_data` | in | W | the slave's read data, valid in the clock after `bus_read` |
+//! | `order_error` | out | 1 | one-clock pulse: firmware broke the access order (see [`WordAssembler`]) |
+//!
+//! ## Timing
+//! Every narrow access has the [`BusSynchronizer`]'s pin timing, with or
+//! without `ready`: 3 t_clk write strobes, 6 t_clk read access, 2 t_clk
+//! between strobes. The bus strobes come on the same clocks as the
+//! synchronizer's (the assembler adds no latency): a register write
+//! reaches the bus at most 4 t_clk after the highest part's strobe ends;
+//! `order_error` pulses one clock after the offending bus strobe.
+//!
+//! A 32-bit register access by a 16-bit master therefore takes two bus
+//! cycles: with XINTF at 150 MHz and the FPGA at 48 MHz, about 2 × 140 ns
+//! for reads without `ready`, or whatever `ready` allows.
+//!
+//! ## What firmware must do
+//! Read the lowest part first, then the higher parts; write the lower parts
+//! first (any order), then the highest part, and let nothing else write
+//! another register's parts in between (an interrupt handler that only
+//! reads is harmless: reads and writes have separate latches). Broken
+//! orders have the outcomes in [`WordAssembler`]'s table: a torn word is
+//! never written, an out-of-order read reads the register fresh, and
+//! `order_error` pulses (wire it to a sticky status bit or an interrupt).
+
+pub mod model;
+
+use rust_hdl::prelude::*;
+
+use crate::blocks::bus_synchronizer::BusSynchronizer;
+use crate::blocks::word_assembler::WordAssembler;
+
+/// One line for the export header and the `rtl-out` index (16-bit pins).
+pub const SUMMARY_16: &str =
+    "16-bit asynchronous external bus (F28335 XINTF) to 32-bit registers: tear-free reads, atomic writes, XREADY";
+
+/// One line for the export header and the `rtl-out` index (8-bit pins).
+pub const SUMMARY_8: &str =
+    "8-bit asynchronous external bus (CH365) to 32-bit registers: tear-free reads, atomic writes, ready";
+
+/// Meaning of every port, for the export header and the `rtl-out` index.
+pub const PORT_DOCS: &[(&str, &str)] = &[
+    ("clock", "rising-edge clock"),
+    (
+        "reset",
+        "synchronous reset, active high: no access in progress, latch and holding register empty, outputs 0",
+    ),
+    ("cs_n", "chip select, active low, asynchronous"),
+    ("we_n", "write strobe, active low, asynchronous"),
+    (
+        "rd_n",
+        "read strobe (output enable), active low, asynchronous",
+    ),
+    (
+        "address",
+        "narrow word address: register address * (32/N) + part, asynchronous",
+    ),
+    ("data_in", "write data from the pins, asynchronous"),
+    ("data_out", "read data to the pins, registered"),
+    (
+        "data_oe",
+        "drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins",
+    ),
+    (
+        "ready",
+        "the access at the pins may end (XREADY): low from the strobe's fall until a write has two active samples or a read's answer is on data_out",
+    ),
+    ("bus_address", "register address of the current bus strobe"),
+    ("bus_write_data", "the whole word of bus_write"),
+    (
+        "bus_write",
+        "one-clock write strobe: the highest part completed a word",
+    ),
+    (
+        "bus_read",
+        "one-clock read strobe: the lowest part was read",
+    ),
+    (
+        "bus_read_data",
+        "the slave's read data, valid in the clock after bus_read",
+    ),
+    (
+        "order_error",
+        "one-clock pulse: firmware broke the access order (torn write dropped, out-of-order read)",
+    ),
+];
+
+/// The exported 16-bit adapter: 8-bit register address, 9-bit pin address.
+pub type ExternalBusAdapter16 = NarrowBusAdapter<8, 9, 16, 32>;
+
+/// The exported 8-bit adapter: 8-bit register address, 10-bit pin address.
+pub type ExternalBusAdapter8 = NarrowBusAdapter<8, 10, 8, 32>;
+
+/// Narrow external bus to wide registers. See the [module documentation](self).
+#[derive(Clone, Debug, Default, LogicBlock)]
+pub struct NarrowBusAdapter<const A: usize, const NA: usize, const N: usize, const W: usize> {
+    /// Rising-edge clock.
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset, active high.
+    pub reset: Signal<In, Bit>,
+    /// Chip select, active low.
+    pub cs_n: Signal<In, Bit>,
+    /// Write strobe, active low.
+    pub we_n: Signal<In, Bit>,
+    /// Read strobe, active low.
+    pub rd_n: Signal<In, Bit>,
+    /// Narrow word address.
+    pub address: Signal<In, Bits<NA>>,
+    /// Write data from the pins.
+    pub data_in: Signal<In, Bits<N>>,
+    /// Read data to the pins.
+    pub data_out: Signal<Out, Bits<N>>,
+    /// Drive the data pins.
+    pub data_oe: Signal<Out, Bit>,
+    /// The access may end.
+    pub ready: Signal<Out, Bit>,
+    /// Register address of the bus strobe.
+    pub bus_address: Signal<Out, Bits<A>>,
+    /// Whole word of the write strobe.
+    pub bus_write_data: Signal<Out, Bits<W>>,
+    /// Write strobe.
+    pub bus_write: Signal<Out, Bit>,
+    /// Read strobe.
+    pub bus_read: Signal<Out, Bit>,
+    /// Read data from the slave.
+    pub bus_read_data: Signal<In, Bits<W>>,
+    /// Access-order violation.
+    pub order_error: Signal<Out, Bit>,
+    pins: BusSynchronizer<NA, N>,
+    words: WordAssembler<A, NA, N, W>,
+}
+
+impl<const A: usize, const NA: usize, const N: usize, const W: usize> Logic
+    for NarrowBusAdapter<A, NA, N, W>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, pins, words);
+        self.pins.reset.next = self.reset.val();
+        self.pins.cs_n.next = self.cs_n.val();
+        self.pins.we_n.next = self.we_n.val();
+        self.pins.rd_n.next = self.rd_n.val();
+        self.pins.address.next = self.address.val();
+        self.pins.data_in.next = self.data_in.val();
+        self.pins.bus_read_data.next = self.words.narrow_read_data.val();
+        self.data_out.next = self.pins.data_out.val();
+        self.data_oe.next = self.pins.data_oe.val();
+        self.ready.next = self.pins.ready.val();
+
+        self.words.reset.next = self.reset.val();
+        self.words.narrow_address.next = self.pins.bus_address.val();
+        self.words.narrow_write_data.next = self.pins.bus_write_data.val();
+        self.words.narrow_write.next = self.pins.bus_write.val();
+        self.words.narrow_read.next = self.pins.bus_read.val();
+        self.words.bus_read_data.next = self.bus_read_data.val();
+        self.bus_address.next = self.words.bus_address.val();
+        self.bus_write_data.next = self.words.bus_write_data.val();
+        self.bus_write.next = self.words.bus_write.val();
+        self.bus_read.next = self.words.bus_read.val();
+        self.order_error.next = self.words.order_error.val();
+    }
+}
+
+crate::vector_ports!(impl[const A: usize, const NA: usize, const N: usize, const W: usize] NarrowBusAdapter<A, NA, N, W> {
+    inputs: [reset, cs_n, we_n, rd_n, address, data_in, bus_read_data],
+    outputs: [data_out, data_oe, ready, bus_address, bus_write_data, bus_write, bus_read, order_error],
+});
