@@ -98,7 +98,14 @@ struct Counts {
 }
 
 impl Counts {
-    fn count(&mut self, aw: usize, i: &DpramMailboxInputs, before: &DpramMailboxOutputs, after: &DpramMailboxOutputs, model: &DpramMailboxModel) {
+    fn count(
+        &mut self,
+        aw: usize,
+        i: &DpramMailboxInputs,
+        before: &DpramMailboxOutputs,
+        after: &DpramMailboxOutputs,
+        model: &DpramMailboxModel,
+    ) {
         if i.reset {
             return;
         }
@@ -149,7 +156,10 @@ impl Counts {
             self.forwarded,
             self.read_first,
         ];
-        assert!(all.iter().all(|&c| c >= n), "some rule exercised fewer than {n} times: {self:?}");
+        assert!(
+            all.iter().all(|&c| c >= n),
+            "some rule exercised fewer than {n} times: {self:?}"
+        );
     }
 }
 
@@ -255,7 +265,9 @@ impl Monitor {
             if got == want {
                 Ok(())
             } else {
-                Err(format!("{what}: got {got:#x}, the rules say {want:#x} ({i:?})"))
+                Err(format!(
+                    "{what}: got {got:#x}, the rules say {want:#x} ({i:?})"
+                ))
             }
         };
         if i.reset {
@@ -263,11 +275,21 @@ impl Monitor {
                 self.uncertain[address as usize] = true;
             }
             self.recent = vec![vec![], vec![]];
-            (self.a_read_data, self.b_read_data, self.irq_a, self.irq_b, self.excess) = (0, 0, false, false, 0);
+            (
+                self.a_read_data,
+                self.b_read_data,
+                self.irq_a,
+                self.irq_b,
+                self.excess,
+            ) = (0, 0, false, false, 0);
             check("a_read_data after reset", o.a_read_data, 0)?;
             check("b_read_data after reset", o.b_read_data, 0)?;
             let quiet = (o.irq_a, o.irq_b, o.collision, o.overrun) == (false, false, false, false);
-            check("irqs, collision and overrun low after reset", quiet as u64, 1)?;
+            check(
+                "irqs, collision and overrun low after reset",
+                quiet as u64,
+                1,
+            )?;
             return Ok(());
         }
         // Writes of this clock, in the order they take effect.
@@ -286,8 +308,20 @@ impl Monitor {
             self.apply(&writes);
         }
         for (read, address, held, got, port) in [
-            (i.a_read, i.a_address, &mut self.a_read_data, o.a_read_data, "a"),
-            (i.b_read, i.b_address, &mut self.b_read_data, o.b_read_data, "b"),
+            (
+                i.a_read,
+                i.a_address,
+                &mut self.a_read_data,
+                o.a_read_data,
+                "a",
+            ),
+            (
+                i.b_read,
+                i.b_address,
+                &mut self.b_read_data,
+                o.b_read_data,
+                "b",
+            ),
         ] {
             if read {
                 if self.uncertain[address as usize] {
@@ -327,7 +361,10 @@ impl Monitor {
         let strobes = i.a_write as i64 + i.b_write as i64;
         self.excess = (self.excess + strobes - 1).max(0);
         if o.overrun != (self.excess > 2) {
-            return Err(format!("overrun {} with an excess of {}: {i:?}", o.overrun, self.excess));
+            return Err(format!(
+                "overrun {} with an excess of {}: {i:?}",
+                o.overrun, self.excess
+            ));
         }
         if o.overrun {
             // The refused write is gone: one fewer waits.
@@ -348,7 +385,12 @@ impl Monitor {
 /// within a short random run.
 #[test]
 fn the_monitor_rejects_wrong_rules() {
-    for rule in [Rule::WriteFirst, Rule::AWinsCollision, Rule::ClearWins, Rule::NoHold] {
+    for rule in [
+        Rule::WriteFirst,
+        Rule::AWinsCollision,
+        Rule::ClearWins,
+        Rule::NoHold,
+    ] {
         let mut h = Harness::new("dpram_mailbox", Small::default()).unwrap();
         let mut monitor = Monitor::new(4, rule);
         let mut stimulus = Stimulus::new(0x3a1, 4);
@@ -462,12 +504,18 @@ fn b_writing_mailbox_to_a_raises_irq_a_and_an_a_read_or_write_clears_it() {
     let mut b = Bench::new();
     let o = b.clock(idle().b_wr(TO_A, 1));
     assert!(o.irq_a && !o.irq_b);
-    assert!(b.clock(idle().b_rd(TO_A)).irq_a, "B's own read does not clear it");
+    assert!(
+        b.clock(idle().b_rd(TO_A)).irq_a,
+        "B's own read does not clear it"
+    );
     let o = b.clock(idle().a_rd(TO_A));
     assert!(!o.irq_a);
     assert_eq!(o.a_read_data, 1);
     assert!(b.clock(idle().b_wr(TO_A, 1)).irq_a);
-    assert!(!b.clock(idle().a_wr(TO_A, 0)).irq_a, "an A write clears it too");
+    assert!(
+        !b.clock(idle().a_wr(TO_A, 0)).irq_a,
+        "an A write clears it too"
+    );
 }
 
 #[test]
@@ -516,7 +564,11 @@ fn a_read_on_the_clock_the_other_port_writes_returns_the_old_word() {
     b.clock(idle().a_wr(9, 0x1111));
     let o = b.clock(idle().a_wr(9, 0x2222).b_rd(9));
     assert_eq!(o.b_read_data, 0x1111, "read-first");
-    assert_eq!(b.clock(idle().b_rd(9)).b_read_data, 0x2222, "new on the next clock");
+    assert_eq!(
+        b.clock(idle().b_rd(9)).b_read_data,
+        0x2222,
+        "new on the next clock"
+    );
     let o = b.clock(idle().b_wr(9, 0x3333).a_rd(9));
     assert_eq!(o.a_read_data, 0x2222);
     assert_eq!(b.clock(idle().a_rd(9)).a_read_data, 0x3333);
@@ -543,7 +595,12 @@ fn back_to_back_writes_up_to_the_write_rate_are_never_refused() {
     // Each port every other clock, interleaved, for a long time: no refusal.
     for k in 0..1000u64 {
         let o = if k % 2 == 0 {
-            b.clock(idle().a_wr(k % 16, k).b_wr(16 + k % 16, k + 1).a_rd(16 + (k + 7) % 16))
+            b.clock(
+                idle()
+                    .a_wr(k % 16, k)
+                    .b_wr(16 + k % 16, k + 1)
+                    .a_rd(16 + (k + 7) % 16),
+            )
         } else {
             b.clock(idle().b_rd(k % 16))
         };
@@ -582,8 +639,16 @@ fn past_the_write_rate_b_writes_are_refused_and_flagged() {
         assert_eq!(b.read_both(address), (data, data), "word {address}");
     }
     // Both ports writing every clock: from the third clock on, every B write is refused.
-    let refused: Vec<bool> = (0..10).map(|k| b.clock(idle().a_wr(k, 100 + k).b_wr(k + 16, 200 + k)).overrun).collect();
-    assert_eq!(refused, [false, false, true, true, true, true, true, true, true, true]);
+    let refused: Vec<bool> = (0..10)
+        .map(|k| {
+            b.clock(idle().a_wr(k, 100 + k).b_wr(k + 16, 200 + k))
+                .overrun
+        })
+        .collect();
+    assert_eq!(
+        refused,
+        [false, false, true, true, true, true, true, true, true, true]
+    );
     b.idle(3);
     for k in 0..10 {
         let (a, _) = b.read_both(k);
@@ -597,7 +662,10 @@ fn past_the_write_rate_b_writes_are_refused_and_flagged() {
         assert!(!b.clock(idle().a_wr(0, 0)).overrun);
     }
     assert!(b.clock(idle().a_wr(0, 0).b_wr(22, 22)).overrun);
-    assert!(!b.clock(idle().b_wr(22, 22)).overrun, "with A quiet, it is taken");
+    assert!(
+        !b.clock(idle().b_wr(22, 22)).overrun,
+        "with A quiet, it is taken"
+    );
 }
 
 #[test]
@@ -612,10 +680,21 @@ fn reset_lowers_irqs_and_read_data_drops_queued_writes_and_keeps_the_ram() {
     // Two writes queued behind A's when the reset comes: dropped.
     b.clock(idle().a_wr(2, 0x22).b_wr(3, 0x33));
     b.clock(idle().a_wr(4, 0x44).b_wr(5, 0x55));
-    let o = b.clock(DpramMailboxInputs { reset: true, ..idle() });
+    let o = b.clock(DpramMailboxInputs {
+        reset: true,
+        ..idle()
+    });
     assert_eq!(o, DpramMailboxOutputs::default());
     // Landed: 1, 2 (A's, on its clock), 3 (the queue head, on the next). Dropped: 4, 5.
-    for (address, data) in [(1, 0x11), (2, 0x22), (3, 0x33), (4, 0), (5, 0), (TO_B, 1), (TO_A, 1)] {
+    for (address, data) in [
+        (1, 0x11),
+        (2, 0x22),
+        (3, 0x33),
+        (4, 0),
+        (5, 0),
+        (TO_B, 1),
+        (TO_A, 1),
+    ] {
         assert_eq!(b.read_both(address), (data, data), "word {address}");
     }
 }

@@ -416,8 +416,9 @@ impl<const AW: usize, const D: usize> Logic for DpramMailbox<AW, D> {
             self.queue1_valid.d.next = false;
         }
         self.overrun_reg.d.next = self.refuse_b.val();
-        self.collision_reg.d.next =
-            self.a_write.val() & self.b_write.val() & (self.a_address.val() == self.b_address.val());
+        self.collision_reg.d.next = self.a_write.val()
+            & self.b_write.val()
+            & (self.a_address.val() == self.b_address.val());
 
         // Reads: the RAM copy answers (read-first), unless a queued write
         // to the word has not landed yet; the newest queued one answers then.
@@ -456,13 +457,18 @@ impl<const AW: usize, const D: usize> Logic for DpramMailbox<AW, D> {
 
         // Mailboxes: a clearing access first, so that a raise on the same
         // clock wins.
-        if (self.a_read.val() | self.a_write.val()) & (self.a_address.val() == self.mailbox_a.val()) {
+        if (self.a_read.val() | self.a_write.val()) & (self.a_address.val() == self.mailbox_a.val())
+        {
             self.irq_a_reg.d.next = false;
         }
-        if self.b_write.val() & !self.refuse_b.val() & (self.b_address.val() == self.mailbox_a.val()) {
+        if self.b_write.val()
+            & !self.refuse_b.val()
+            & (self.b_address.val() == self.mailbox_a.val())
+        {
             self.irq_a_reg.d.next = true;
         }
-        if (self.b_read.val() | self.b_write.val()) & (self.b_address.val() == self.mailbox_b.val()) {
+        if (self.b_read.val() | self.b_write.val()) & (self.b_address.val() == self.mailbox_b.val())
+        {
             self.irq_b_reg.d.next = false;
         }
         if self.a_write.val() & (self.a_address.val() == self.mailbox_b.val()) {
