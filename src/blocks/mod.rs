@@ -7,6 +7,7 @@ pub mod carry_select_adder;
 pub mod command_fifo;
 pub mod dda_integrator;
 pub mod dda_interpolator;
+pub mod dpram_mailbox;
 pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;

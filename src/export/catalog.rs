@@ -5,6 +5,7 @@ use rust_hdl::core::prelude::*;
 
 use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
+use crate::blocks::dpram_mailbox::{self, DpramMailbox1024x16};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
@@ -211,6 +212,22 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(ExternalBusAdapter8::default()),
+        },
+        ModuleSpec {
+            name: "dpram_mailbox",
+            block: "dpram_mailbox",
+            summary: dpram_mailbox::SUMMARY,
+            parameters: &[
+                ("AW", "10", "word address width: 2^AW = 1024 words"),
+                ("D", "16", "data width"),
+                ("MAILBOX_TO_B", "1023", "port A writes it to raise irq_b (2^AW - 1)"),
+                ("MAILBOX_TO_A", "1022", "port B writes it to raise irq_a (2^AW - 2)"),
+            ],
+            port_docs: dpram_mailbox::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(DpramMailbox1024x16::default()),
         },
         ModuleSpec {
             name: "step_channel",

@@ -7,6 +7,10 @@ use std::fmt::Write;
 
 use super::RegisterMap;
 
+/// The narrow external buses (`external_bus_adapter_16`, `_8`): macro
+/// suffix and pin addresses per 32-bit register.
+const NARROW_BUSES: [(&str, u64); 2] = [("ADDR16", 2), ("ADDR8", 4)];
+
 /// One generated macro: name, replacement text, and an optional comment.
 struct Macro {
     name: String,
@@ -53,6 +57,14 @@ fn macros(map: &RegisterMap) -> Vec<(usize, Macro)> {
                 format!("({reg}_INDEX(n) * 4UL)"),
                 None,
             );
+            for (suffix, parts) in NARROW_BUSES {
+                push(
+                    n,
+                    format!("{reg}_{suffix}(n)"),
+                    format!("({reg}_INDEX(n) * {parts}UL)"),
+                    None,
+                );
+            }
         } else {
             push(
                 n,
@@ -66,6 +78,14 @@ fn macros(map: &RegisterMap) -> Vec<(usize, Macro)> {
                 format!("{:#06x}UL", r.address as u64 * 4),
                 None,
             );
+            for (suffix, parts) in NARROW_BUSES {
+                push(
+                    n,
+                    format!("{reg}_{suffix}"),
+                    format!("{:#06x}UL", r.address as u64 * parts),
+                    None,
+                );
+            }
         }
         push(
             n,
@@ -140,7 +160,14 @@ pub fn c_header(map: &RegisterMap, generator: &str) -> String {
     );
     let _ = writeln!(
         h,
-        " * read/write, W1C write 1 to clear, WO write only (reads 0). */"
+        " * read/write, W1C write 1 to clear, WO write only (reads 0)."
+    );
+    let _ = writeln!(
+        h,
+        " * ADDR16 and ADDR8 are the pin addresses of a register's lowest part on a\n \
+         * 16-bit bus (external_bus_adapter_16: INDEX * 2, bits 31:16 at ADDR16 + 1)\n \
+         * and an 8-bit bus (external_bus_adapter_8: INDEX * 4, lowest byte first).\n \
+         * On them, read the lowest part first and write the highest part last. */"
     );
     let _ = writeln!(h, "#ifndef {guard}\n#define {guard}\n");
     let mut current = usize::MAX;

@@ -13,8 +13,9 @@
 //!
 //! Exported as `external_bus_adapter_16` (`A` = 8, `NA` = 9, `N` = 16) and
 //! `external_bus_adapter_8` (`A` = 8, `NA` = 10, `N` = 8), both with `W` = 32
-//! ([`ExternalBusAdapter16`], [`ExternalBusAdapter8`]). The C header's
-//! `*_ADDR16(n)` and `*_ADDR8(n)` macros give the narrow addresses.
+//! ([`ExternalBusAdapter16`], [`ExternalBusAdapter8`]). The register
+//! header's `<REG>_ADDR16` and `<REG>_ADDR8` macros give each register's
+//! lowest-part pin address (`INDEX * 2` and `INDEX * 4`).
 //!
 //! ## Ports
 //! | port | dir | width | meaning |
