@@ -1,6 +1,6 @@
 //! The hardware blocks. Each block lives in its own folder: `mod.rs` holds
 //! the rust-hdl implementation and its datasheet, `model.rs` the plain-Rust
-//! reference model the RTL is proven against (in `tests/<block>.rs`).
+//! reference model the RTL is proven against (in `tests/blocks/<block>.rs`).
 
 pub mod bus_synchronizer;
 pub mod carry_select_adder;

@@ -148,7 +148,7 @@
 //!
 //! ## Machine I/O and safety
 //! Limits, drive alarms and the E-stop act in hardware, within the clocks
-//! given in [`latency`] (each measured at the pins by `tests/machine_io.rs`).
+//! given in [`latency`] (each measured at the pins by `tests/controller/machine_io.rs`).
 //! * **Inputs.** Every switch, alarm, E-stop and general input passes an
 //!   [`InputConditioner`](crate::blocks::input_conditioner): a 2-flip-flop
 //!   synchronizer and a glitch filter of `INPUT_FILTER.LENGTH` samples

@@ -3,7 +3,7 @@
 //! The model keeps each timer as "clocks still to wait" and gates every
 //! event on an explicit `started` state; the RTL uses loadable down-counters
 //! with registered "expired" flags instead. The two representations are
-//! proven equal by the cycle-by-cycle comparison in `tests/step_output.rs`.
+//! proven equal by the cycle-by-cycle comparison in `tests/blocks/step_output.rs`.
 
 /// Inputs of one clock cycle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -14,9 +14,8 @@ use motion_hdl::sim::Harness;
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use support::pin_bench::{random_pins, BusView, PinBench, PinWidths};
+use crate::support::pin_bench::{random_pins, BusView, PinBench, PinWidths};
 
-mod support;
 
 fn view(v: &[u64]) -> BusView {
     let o = NarrowBusOutputs::from_vector(v);

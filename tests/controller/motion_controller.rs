@@ -2,12 +2,10 @@
 //! the register bus, firmware-style runs with the steps looped back into
 //! the encoders, every fault, and cross-simulation.
 
-#[path = "motion_controller/bench.rs"]
-mod bench;
 
 use std::process::Command;
 
-use bench::Bench;
+use crate::bench::Bench;
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::registers::{irq, register_map};
 use motion_hdl::blocks::motion_controller::MotionController3;
@@ -79,7 +77,7 @@ impl ChaosDriver {
     /// bounce, so that the filters, the trips and their clears all happen.
     fn machine_pins(&mut self, axes: usize) -> MachinePins {
         let rng = &mut self.rng;
-        let mut toggle = |word: &mut u32, active, inactive| bench::toggle_pins(rng, word, axes, active, inactive);
+        let mut toggle = |word: &mut u32, active, inactive| crate::bench::toggle_pins(rng, word, axes, active, inactive);
         toggle(&mut self.pins.limit_pos, 3_000, 100_000);
         toggle(&mut self.pins.limit_neg, 3_000, 100_000);
         toggle(&mut self.pins.home, 2_000, 8_000);

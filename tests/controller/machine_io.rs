@@ -7,11 +7,8 @@
 //! every clock too; the assertions here are written from the datasheet's
 //! latencies ([`latency`]) and counted at the pins, not taken from the model.
 
-#[path = "motion_controller/bench.rs"]
-#[allow(dead_code)] // the bench serves tests/motion_controller.rs too
-mod bench;
 
-use bench::Bench;
+use crate::bench::Bench;
 use motion_hdl::blocks::motion_controller::latency;
 use motion_hdl::blocks::motion_controller::model::ControllerOutputs;
 use motion_hdl::blocks::motion_controller::registers::{global, StopCause};
@@ -602,7 +599,7 @@ fn monitored_run(seed: u64, cycles: u64, limits_disabled: bool) -> Result<Monito
     for _ in 0..cycles {
         // Switches: rare trips of random length, with bounce.
         let toggle = |rng: &mut StdRng, word: &mut u32, active, inactive| {
-            bench::toggle_pins(rng, word, 3, active, inactive)
+            crate::bench::toggle_pins(rng, word, 3, active, inactive)
         };
         toggle(&mut rng, &mut b.pins.limit_pos, 400, 15_000);
         toggle(&mut rng, &mut b.pins.limit_neg, 400, 15_000);

@@ -7,10 +7,8 @@
 //! encoders.
 
 #[allow(dead_code)]
-#[path = "motion_controller/bench.rs"]
-mod bench;
 
-use bench::Bench;
+use crate::bench::Bench;
 use motion_hdl::blocks::external_bus_adapter::model::{
     ExternalBusInputs, ExternalBusModel, ExternalBusOutputs,
 };

@@ -7,12 +7,11 @@ use motion_hdl::blocks::external_bus_adapter::model::{
 };
 use motion_hdl::blocks::external_bus_adapter::ExternalBusAdapter;
 use motion_hdl::sim::Harness;
-use support::pin_bench::{random_pins, BusView, PinBench, PinWidths};
+use crate::support::pin_bench::{random_pins, BusView, PinBench, PinWidths};
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-mod support;
 
 type Adapter = ExternalBusAdapter<8>;
 

@@ -1,0 +1,3 @@
+//! Benches shared by several blocks' tests.
+
+pub mod pin_bench;

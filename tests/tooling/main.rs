@@ -1,0 +1,10 @@
+//! The export and its tools: `rtl-out/` freshness and lint, register maps,
+//! cross-simulation, the harness, plots, and synthesis of every exported
+//! module and the board example.
+
+mod rtl_out;
+mod regmap;
+mod cross_simulation;
+mod harness;
+mod plots;
+mod synthesis;
