@@ -21,7 +21,7 @@
 //   data_in         in         8  write data from the pins, asynchronous
 //   data_out        out        8  read data to the pins, registered
 //   data_oe         out        1  drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins
-//   ready           out        1  the access at the pins may end (XREADY): low from the strobe's fall until a write has two active samples or a read's answer is on data_out
+//   ready           out        1  the access at the pins may end (wait input of the master): low from the strobe's fall until a write has two active samples or a read's answer is on data_out
 //   bus_address     out        8  register address of the current bus strobe
 //   bus_write_data  out       32  the whole word of bus_write
 //   bus_write       out        1  one-clock write strobe: the highest part completed a word

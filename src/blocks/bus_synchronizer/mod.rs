@@ -101,38 +101,77 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
-/// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
+/// The meaning of each pin-side and bus-side port, one constant per port,
+/// shared by the port tables of every adapter built on the synchronizer.
+pub mod port_docs {
+    /// A documented port: name, meaning.
+    pub type PortDoc = (&'static str, &'static str);
+    /// `clock`.
+    pub const CLOCK: PortDoc = ("clock", "rising-edge clock");
+    /// `reset`.
+    pub const RESET: PortDoc = (
         "reset",
         "synchronous reset, active high: no access in progress, outputs 0",
-    ),
-    ("cs_n", "chip select, active low, asynchronous"),
-    ("we_n", "write strobe, active low, asynchronous"),
-    (
+    );
+    /// `cs_n`.
+    pub const CS_N: PortDoc = ("cs_n", "chip select, active low, asynchronous");
+    /// `we_n`.
+    pub const WE_N: PortDoc = ("we_n", "write strobe, active low, asynchronous");
+    /// `rd_n`.
+    pub const RD_N: PortDoc = (
         "rd_n",
         "read strobe (output enable), active low, asynchronous",
-    ),
-    ("address", "word address, asynchronous"),
-    ("data_in", "write data from the pins, asynchronous"),
-    ("data_out", "read data to the pins, registered"),
-    (
+    );
+    /// `address`.
+    pub const ADDRESS: PortDoc = ("address", "word address, asynchronous");
+    /// `data_in`.
+    pub const DATA_IN: PortDoc = ("data_in", "write data from the pins, asynchronous");
+    /// `data_out`.
+    pub const DATA_OUT: PortDoc = ("data_out", "read data to the pins, registered");
+    /// `data_oe`.
+    pub const DATA_OE: PortDoc = (
         "data_oe",
         "drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins",
-    ),
-    (
+    );
+    /// `ready`.
+    pub const READY: PortDoc = (
         "ready",
         "the access at the pins may end (wait input of the master): low from the strobe's fall until a write has two active samples or a read's answer is on data_out",
-    ),
-    ("bus_address", "address of the current bus strobe"),
-    ("bus_write_data", "data of bus_write"),
-    ("bus_write", "one-clock write strobe"),
-    ("bus_read", "one-clock read strobe"),
-    (
+    );
+    /// `bus_address`.
+    pub const BUS_ADDRESS: PortDoc = ("bus_address", "address of the current bus strobe");
+    /// `bus_write_data`.
+    pub const BUS_WRITE_DATA: PortDoc = ("bus_write_data", "data of bus_write");
+    /// `bus_write`.
+    pub const BUS_WRITE: PortDoc = ("bus_write", "one-clock write strobe");
+    /// `bus_read`.
+    pub const BUS_READ: PortDoc = ("bus_read", "one-clock read strobe");
+    /// `bus_read_data`.
+    pub const BUS_READ_DATA: PortDoc = (
         "bus_read_data",
         "the slave's read data, valid in the clock after bus_read",
-    ),
+    );
+}
+
+use port_docs::*;
+
+/// Meaning of every port.
+pub const PORT_DOCS: &[(&str, &str)] = &[
+    CLOCK,
+    RESET,
+    CS_N,
+    WE_N,
+    RD_N,
+    ADDRESS,
+    DATA_IN,
+    DATA_OUT,
+    DATA_OE,
+    READY,
+    BUS_ADDRESS,
+    BUS_WRITE_DATA,
+    BUS_WRITE,
+    BUS_READ,
+    BUS_READ_DATA,
 ];
 
 /// Asynchronous external bus pins to a synchronous `D`-bit register bus.

@@ -77,40 +77,30 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::bus_synchronizer::port_docs::*;
 use crate::blocks::bus_synchronizer::BusSynchronizer;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
     "asynchronous external-memory bus (cs_n, we_n, rd_n) to a synchronous register bus, with synchronizers";
 
-/// Meaning of every port, for the export header and the `rtl-out` index.
+/// Meaning of every port, for the export header and the `rtl-out` index
+/// (the synchronizer's, without `ready`).
 pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: no access in progress, outputs 0",
-    ),
-    ("cs_n", "chip select, active low, asynchronous"),
-    ("we_n", "write strobe, active low, asynchronous"),
-    (
-        "rd_n",
-        "read strobe (output enable), active low, asynchronous",
-    ),
-    ("address", "word address, asynchronous"),
-    ("data_in", "write data from the pins, asynchronous"),
-    ("data_out", "read data to the pins, registered"),
-    (
-        "data_oe",
-        "drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins",
-    ),
-    ("bus_address", "address of the current bus strobe"),
-    ("bus_write_data", "data of bus_write"),
-    ("bus_write", "one-clock write strobe"),
-    ("bus_read", "one-clock read strobe"),
-    (
-        "bus_read_data",
-        "the slave's read data, valid in the clock after bus_read",
-    ),
+    CLOCK,
+    RESET,
+    CS_N,
+    WE_N,
+    RD_N,
+    ADDRESS,
+    DATA_IN,
+    DATA_OUT,
+    DATA_OE,
+    BUS_ADDRESS,
+    BUS_WRITE_DATA,
+    BUS_WRITE,
+    BUS_READ,
+    BUS_READ_DATA,
 ];
 
 /// Asynchronous external bus adapter. See the [module documentation](self).

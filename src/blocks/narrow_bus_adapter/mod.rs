@@ -62,6 +62,7 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::bus_synchronizer::port_docs::*;
 use crate::blocks::bus_synchronizer::BusSynchronizer;
 use crate::blocks::word_assembler::WordAssembler;
 
@@ -73,47 +74,33 @@ pub const SUMMARY_16: &str =
 pub const SUMMARY_8: &str =
     "8-bit asynchronous external bus (CH365) to 32-bit registers: tear-free reads, atomic writes, ready";
 
-/// Meaning of every port, for the export header and the `rtl-out` index.
+/// Meaning of every port, for the export header and the `rtl-out` index:
+/// the synchronizer's pins, and the register bus as the assembler makes it.
 pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
+    CLOCK,
     (
         "reset",
         "synchronous reset, active high: no access in progress, latch and holding register empty, outputs 0",
     ),
-    ("cs_n", "chip select, active low, asynchronous"),
-    ("we_n", "write strobe, active low, asynchronous"),
-    (
-        "rd_n",
-        "read strobe (output enable), active low, asynchronous",
-    ),
+    CS_N,
+    WE_N,
+    RD_N,
     (
         "address",
         "narrow word address: register address * (32/N) + part, asynchronous",
     ),
-    ("data_in", "write data from the pins, asynchronous"),
-    ("data_out", "read data to the pins, registered"),
-    (
-        "data_oe",
-        "drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins",
-    ),
-    (
-        "ready",
-        "the access at the pins may end (XREADY): low from the strobe's fall until a write has two active samples or a read's answer is on data_out",
-    ),
+    DATA_IN,
+    DATA_OUT,
+    DATA_OE,
+    READY,
     ("bus_address", "register address of the current bus strobe"),
     ("bus_write_data", "the whole word of bus_write"),
     (
         "bus_write",
         "one-clock write strobe: the highest part completed a word",
     ),
-    (
-        "bus_read",
-        "one-clock read strobe: the lowest part was read",
-    ),
-    (
-        "bus_read_data",
-        "the slave's read data, valid in the clock after bus_read",
-    ),
+    ("bus_read", "one-clock read strobe: the lowest part was read"),
+    BUS_READ_DATA,
     (
         "order_error",
         "one-clock pulse: firmware broke the access order (torn write dropped, out-of-order read)",
