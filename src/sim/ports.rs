@@ -169,7 +169,7 @@ mod tests {
         assert_eq!(<Bits<96> as PortValue>::WORDS, 2);
         let words = [0x0123_4567_89ab_cdef, 0xdead_beef];
         let x = Bits::<96>::from_words(&words);
-        assert!(x.get_bit(0) && x.get_bit(64) && !x.get_bit(95));
+        assert!(x.get_bit(0) && !x.get_bit(4) && x.get_bit(64) && x.get_bit(95) && !x.get_bit(93));
         let mut out = vec![];
         x.push_words(&mut out);
         assert_eq!(out, words);
