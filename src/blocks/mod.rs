@@ -20,6 +20,7 @@ pub mod quadrature_decoder;
 pub mod sequential_divider;
 pub mod step_channel;
 pub mod step_output;
+pub mod sync_fifo_bridge;
 pub mod uniform_pulse_gen;
 pub mod watchdog;
 pub mod word_assembler;

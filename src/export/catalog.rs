@@ -17,6 +17,7 @@ use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
 use crate::blocks::step_channel::{self, StepChannel};
 use crate::blocks::step_output::{self, StepOutput};
+use crate::blocks::sync_fifo_bridge::{self, SyncFifoBridge3};
 use crate::blocks::uniform_pulse_gen::{self, UniformPulseGen};
 
 /// One documented port: name and meaning (direction and width come from the RTL).
@@ -266,6 +267,21 @@ pub fn catalog() -> Vec<ModuleSpec> {
             // with room for the host links, DAC and mailbox).
             logic_cell_budget: Some(4000),
             build: || Box::new(MotionController3::default()),
+        },
+        ModuleSpec {
+            name: "sync_fifo_bridge",
+            summary: sync_fifo_bridge::SUMMARY,
+            parameters: &[
+                ("K", "3", "slave ports"),
+                ("N", "6", "FIFO depth 2^N = 64 words, for each of the 2 K FIFOs (command and status per slave)"),
+                ("master address", "8", "master bus word address width (register map SFB)"),
+                ("slave address", "4", "each slave bus's word address width (register map SFB_SLAVE)"),
+            ],
+            port_docs: sync_fifo_bridge::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(SyncFifoBridge3::default()),
         },
     ]
 }

@@ -26,7 +26,7 @@ pub enum ExportError {
     /// The catalog's port documentation disagrees with the RTL.
     #[error(transparent)]
     PortDoc(#[from] PortDocError),
-    /// The controller's register map does not validate.
+    /// A register map does not validate.
     #[error(transparent)]
     RegisterMap(#[from] crate::regmap::RegMapError),
     /// A file could not be written.
@@ -108,18 +108,34 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
             contents: module.testbench.clone(),
         });
     }
-    let map = crate::blocks::motion_controller::registers::register_map(3, 4)
-        ?;
-    files.push(GeneratedFile {
-        dir: OutputDir::Rtl,
-        file_name: "motion_controller_regs.h".to_string(),
-        contents: crate::regmap::c_header(&map, &header::generator()),
-    });
-    files.push(GeneratedFile {
-        dir: OutputDir::Rtl,
-        file_name: "motion_controller_regs.md".to_string(),
-        contents: crate::regmap::markdown(&map, &header::generator()),
-    });
+    use crate::blocks::{motion_controller, sync_fifo_bridge};
+    // The register maps of the exported configurations (see the catalog).
+    let maps = [
+        ("motion_controller_regs", motion_controller::registers::register_map(3, 4)?),
+        (
+            "sync_fifo_bridge_master_regs",
+            sync_fifo_bridge::registers::master_map(
+                sync_fifo_bridge::EXPORTED_SLAVES,
+                sync_fifo_bridge::EXPORTED_FIFO_LOG2 as u32,
+            )?,
+        ),
+        (
+            "sync_fifo_bridge_slave_regs",
+            sync_fifo_bridge::registers::slave_map(sync_fifo_bridge::EXPORTED_FIFO_LOG2 as u32)?,
+        ),
+    ];
+    for (name, map) in &maps {
+        files.push(GeneratedFile {
+            dir: OutputDir::Rtl,
+            file_name: format!("{name}.h"),
+            contents: crate::regmap::c_header(map, &header::generator()),
+        });
+        files.push(GeneratedFile {
+            dir: OutputDir::Rtl,
+            file_name: format!("{name}.md"),
+            contents: crate::regmap::markdown(map, &header::generator()),
+        });
+    }
     files.push(GeneratedFile {
         dir: OutputDir::Rtl,
         file_name: "README.md".to_string(),

@@ -78,8 +78,9 @@ pub enum SimError {
 /// A clocked block driven by port vectors, whichever simulator runs it.
 ///
 /// Vectors hold one value per port, in [`VectorPorts::input_names`] and
-/// [`VectorPorts::output_names`] order (ports up to 64 bits; the
-/// [`CompiledModel`] itself also takes wider ones).
+/// [`VectorPorts::output_names`] order; a port wider than 64 bits takes
+/// `ceil(width / 64)` columns, least significant word first
+/// ([`VectorPorts::input_words`]).
 pub trait Stepper {
     /// Applies `inputs`, runs one clock cycle and writes the outputs after
     /// its rising edge into `outputs`.
@@ -111,15 +112,17 @@ impl<B: VectorPorts> Stepper for Harness<B> {
         Backend::RustHdl
     }
     fn output_count(&self) -> usize {
-        B::output_names().len()
+        B::output_words().iter().sum()
     }
 }
 
 /// A [`CompiledModel`] with its ports in a block's [`VectorPorts`] order.
 pub struct CompiledStepper {
     model: CompiledModel,
-    inputs: Vec<usize>,
-    outputs: Vec<usize>,
+    /// Port index in the model and vector columns, per input.
+    inputs: Vec<(usize, usize)>,
+    /// The same per output.
+    outputs: Vec<(usize, usize)>,
 }
 
 impl CompiledStepper {
@@ -134,12 +137,14 @@ impl CompiledStepper {
     pub fn ordered<B: VectorPorts>(model: CompiledModel) -> Result<Self, SimError> {
         let inputs = B::input_names()
             .iter()
-            .map(|n| model.input_index(n))
-            .collect::<Result<Vec<_>, _>>()?;
+            .zip(B::input_words())
+            .map(|(n, words)| Ok((model.input_index(n)?, words)))
+            .collect::<Result<Vec<_>, CompiledError>>()?;
         let outputs = B::output_names()
             .iter()
-            .map(|n| model.output_index(n))
-            .collect::<Result<Vec<_>, _>>()?;
+            .zip(B::output_words())
+            .map(|(n, words)| Ok((model.output_index(n)?, words)))
+            .collect::<Result<Vec<_>, CompiledError>>()?;
         Ok(Self {
             model,
             inputs,
@@ -155,12 +160,24 @@ impl CompiledStepper {
 
 impl Stepper for CompiledStepper {
     fn step_into(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), SimError> {
-        for (&port, &value) in self.inputs.iter().zip(inputs) {
-            self.model.set(port, value);
+        let mut column = 0;
+        for &(port, words) in &self.inputs {
+            if words == 1 {
+                self.model.set(port, inputs[column]);
+            } else {
+                self.model.set_words(port, &inputs[column..column + words]);
+            }
+            column += words;
         }
         self.model.cycle();
-        for (out, &port) in outputs.iter_mut().zip(&self.outputs) {
-            *out = self.model.get(port);
+        let mut column = 0;
+        for &(port, words) in &self.outputs {
+            if words == 1 {
+                outputs[column] = self.model.get(port);
+            } else {
+                outputs[column..column + words].copy_from_slice(self.model.get_words(port));
+            }
+            column += words;
         }
         Ok(())
     }
@@ -171,7 +188,7 @@ impl Stepper for CompiledStepper {
         Backend::Verilator
     }
     fn output_count(&self) -> usize {
-        self.outputs.len()
+        self.outputs.iter().map(|&(_, words)| words).sum()
     }
 }
 

@@ -18,5 +18,5 @@ pub use compiled::{CompiledError, CompiledModel};
 
 pub use encoder::{quadrature_state, SimulatedEncoder};
 pub use harness::{Harness, HarnessError};
-pub use ports::{PortValue, VectorPorts};
+pub use ports::{port_words, push_port, set_port, PortValue, VectorPorts};
 pub use waveform::{render_svg, WaveformError};

@@ -144,7 +144,13 @@ pub fn cross_simulate<B: VectorPorts>(
     let ports = top_ports(&block);
     let expected = rust_outputs(&design.module, block, stimulus)?;
     for simulator in Simulator::TESTBENCH {
-        compare_in(simulator, design, stimulus, &expected)?;
+        compare_in_ports(
+            simulator,
+            design,
+            stimulus,
+            &expected,
+            (&B::input_words(), &B::output_words()),
+        )?;
     }
     compare_compiled::<B>(design, &ports, stimulus, &expected)?;
     Ok(CosimPass {
@@ -201,7 +207,12 @@ pub fn compare_compiled<B: VectorPorts>(
     let model = CompiledModel::from_verilog(&design.module, &verilog, "clock", ports, false)
         .map_err(|e| setup(&e))?;
     let mut compiled = CompiledStepper::ordered::<B>(model).map_err(|e| setup(&e))?;
-    let names = B::output_names();
+    // The port of each vector column (a wide port has several).
+    let names: Vec<String> = B::output_names()
+        .into_iter()
+        .zip(B::output_words())
+        .flat_map(|(name, words)| std::iter::repeat(name).take(words))
+        .collect();
     let mut outputs = vec![0; names.len()];
     for (cycle, (inputs, want)) in stimulus.iter().zip(expected).enumerate() {
         compiled.step_into(inputs, &mut outputs).map_err(|e| setup(&e))?;
@@ -219,20 +230,50 @@ pub fn compare_compiled<B: VectorPorts>(
 }
 
 /// Runs `design` in `simulator` on `stimulus` and compares its outputs with
-/// `expected` on every cycle; returns the cycles compared.
+/// `expected` on every cycle; returns the cycles compared. Every port takes
+/// one vector column (up to 64 bits); see [`compare_in_ports`] for wider ones.
 pub fn compare_in(
     simulator: Simulator,
     design: &CosimDesign,
     stimulus: &[Vec<u64>],
     expected: &[Vec<u64>],
 ) -> Result<usize, CosimError> {
+    let inputs = vec![1; stimulus.first().map_or(0, Vec::len)];
+    let outputs = vec![1; expected.first().map_or(0, Vec::len)];
+    compare_in_ports(simulator, design, stimulus, expected, (&inputs, &outputs))
+}
+
+/// The hex field of a port from its vector columns (least significant first).
+fn hex_field(words: &[u64]) -> String {
+    let top = words.iter().rposition(|&w| w != 0).unwrap_or(0);
+    let mut field = format!("{:x}", words[top]);
+    for word in words[..top].iter().rev() {
+        let _ = write!(field, "{word:016x}");
+    }
+    field
+}
+
+/// [`compare_in`] for ports of any width: `words` gives the vector columns
+/// of each input and each output port ([`VectorPorts::input_words`],
+/// [`VectorPorts::output_words`]); the vector file has one hex field per port.
+pub fn compare_in_ports(
+    simulator: Simulator,
+    design: &CosimDesign,
+    stimulus: &[Vec<u64>],
+    expected: &[Vec<u64>],
+    words: (&[usize], &[usize]),
+) -> Result<usize, CosimError> {
     let mut text = String::with_capacity(stimulus.len() * 16);
+    let mut fields = Vec::new();
     for (inputs, outputs) in stimulus.iter().zip(expected) {
-        let fields: Vec<String> = inputs
-            .iter()
-            .chain(outputs.iter())
-            .map(|v| format!("{v:x}"))
-            .collect();
+        fields.clear();
+        for (columns, widths) in [(inputs, words.0), (outputs, words.1)] {
+            let mut at = 0;
+            for &n in widths {
+                fields.push(hex_field(&columns[at..at + n]));
+                at += n;
+            }
+        }
         let _ = writeln!(text, "{}", fields.join(" "));
     }
     let dir = work_dir("cosim")?;
@@ -305,7 +346,23 @@ fn check_vector_ports<B: VectorPorts>(block: &B) -> Result<(), CosimError> {
             .map(|p| p.name.clone())
             .collect()
     };
+    let words = |dir: PortDirection| -> Vec<usize> {
+        ports
+            .iter()
+            .filter(|p| p.direction == dir && p.name != "clock")
+            .map(|p| p.width.div_ceil(64).max(1))
+            .collect()
+    };
     let (inputs, outputs) = (names(PortDirection::Input), names(PortDirection::Output));
+    if words(PortDirection::Input) != B::input_words() || words(PortDirection::Output) != B::output_words() {
+        return Err(CosimError::Setup(format!(
+            "vector_ports! gives input columns {:?} output columns {:?}, but the port widths need {:?} {:?}",
+            B::input_words(),
+            B::output_words(),
+            words(PortDirection::Input),
+            words(PortDirection::Output)
+        )));
+    }
     if inputs != B::input_names() || outputs != B::output_names() {
         return Err(CosimError::Setup(format!(
             "vector_ports! lists inputs {:?} outputs {:?}, but the block has inputs {inputs:?} outputs {outputs:?}",

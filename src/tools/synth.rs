@@ -50,6 +50,116 @@ pub(crate) fn median(values: &[f64]) -> f64 {
 /// The iCE40 HX8K's logic cells.
 pub const DEVICE_LOGIC_CELLS: u32 = 7680;
 
+/// User IO of the HX8K in the ct256 package.
+pub const PACKAGE_IO: usize = 206;
+
+/// A top with more port bits than [`PACKAGE_IO`] cannot be placed as it is
+/// (nextpnr gives every top-level port bit a pin). It is measured inside
+/// this wrapper instead: its input bits come from a shift register loaded
+/// from one pin, its output bits are XOR-folded into one registered pin, so
+/// that none of its logic is optimized away.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PinWrapper {
+    /// Input bits of the wrapped top (without the clock): the shift
+    /// register's length.
+    pub input_bits: usize,
+    /// Output bits folded.
+    pub output_bits: usize,
+}
+
+impl PinWrapper {
+    /// The wrapper a top with `ports` needs (clocked by `clock`), if it has
+    /// more port bits than the package has pins.
+    pub fn needed(ports: &[crate::export::Port], clock: &str) -> Option<Self> {
+        use crate::export::PortDirection;
+        let bits = |dir: PortDirection| -> usize {
+            ports
+                .iter()
+                .filter(|p| p.direction == dir && p.name != clock)
+                .map(|p| p.width)
+                .sum()
+        };
+        let (input_bits, output_bits) = (bits(PortDirection::Input), bits(PortDirection::Output));
+        (input_bits + output_bits + 1 > PACKAGE_IO).then_some(Self {
+            input_bits,
+            output_bits,
+        })
+    }
+
+    /// Flip-flops the wrapper adds (the shift register and the output pin),
+    /// subtracted from the DFF and logic-cell figures (each sits alone in a
+    /// logic cell, or with the last LUT of the fold).
+    pub fn flip_flops(&self) -> u32 {
+        self.input_bits as u32 + 1
+    }
+
+    /// LUT4s of the XOR fold (a tree of 4-input XORs): included in the
+    /// LUT4 and logic-cell figures.
+    pub fn fold_lut4(&self) -> u32 {
+        (self.output_bits.saturating_sub(1) as u32).div_ceil(3)
+    }
+
+    /// The wrapper module `<top>__pins` around `top` with `ports`.
+    pub fn verilog(&self, top: &str, ports: &[crate::export::Port], clock: &str) -> String {
+        use crate::export::PortDirection;
+        let mut connections = vec![format!(".{clock}(clock)")];
+        let (mut at_in, mut at_out) = (0, 0);
+        for p in ports.iter().filter(|p| p.name != clock) {
+            let (bus, at) = match p.direction {
+                PortDirection::Output => ("folded", &mut at_out),
+                _ => ("shift_in", &mut at_in),
+            };
+            connections.push(format!(".{}({bus}[{}:{}])", p.name, *at + p.width - 1, *at));
+            *at += p.width;
+        }
+        format!(
+            "module {top}__pins(input wire clock, input wire pin_in, output reg pin_out);\n\
+             \x20 reg [{in_top}:0] shift_in = 0;\n\
+             \x20 wire [{out_top}:0] folded;\n\
+             \x20 always @(posedge clock) begin\n\
+             \x20   shift_in <= {{shift_in[{in_below}:0], pin_in}};\n\
+             \x20   pin_out <= ^folded;\n\
+             \x20 end\n\
+             \x20 {top} uut ({});\n\
+             endmodule\n",
+            connections.join(", "),
+            in_top = self.input_bits - 1,
+            in_below = self.input_bits.saturating_sub(2),
+            out_top = self.output_bits - 1,
+        )
+    }
+}
+
+/// [`synthesize`] for a top with `ports`: inside a [`PinWrapper`] when it
+/// has more port bits than the package has pins (the wrapper's flip-flops
+/// are then subtracted from DFF and logic cells).
+pub fn synthesize_top(
+    rtl: &Path,
+    top: &str,
+    ports: &[crate::export::Port],
+    seeds: &[u64],
+    target_mhz: f64,
+) -> Result<(SynthFigures, Option<PinWrapper>), ToolError> {
+    let Some(wrapper) = PinWrapper::needed(ports, "clock") else {
+        return Ok((synthesize(rtl, top, seeds, target_mhz)?, None));
+    };
+    let dir = work_dir("pins")?;
+    let wrapped = dir.path().join(format!("{top}__pins.v"));
+    let source = std::fs::read_to_string(rtl).map_err(|source| ToolError::Io {
+        context: format!("reading {}", rtl.display()),
+        source,
+    })?;
+    let text = format!("{source}\n{}", wrapper.verilog(top, ports, "clock"));
+    std::fs::write(&wrapped, text).map_err(|source| ToolError::Io {
+        context: format!("writing {}", wrapped.display()),
+        source,
+    })?;
+    let mut figures = synthesize(&wrapped, &format!("{top}__pins"), seeds, target_mhz)?;
+    figures.dff -= wrapper.flip_flops();
+    figures.logic_cells -= wrapper.flip_flops();
+    Ok((figures, Some(wrapper)))
+}
+
 /// Synthesizes `rtl` (top module `top`) with `synth_ice40 -dffe_min_ce_use
 /// 4` (an enable shared by fewer than 4 flip-flops goes into their LUTs
 /// rather than onto the clock enable, which the 8 cells of a tile share: at
