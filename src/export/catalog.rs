@@ -270,6 +270,7 @@ pub fn catalog() -> Vec<ModuleSpec> {
         },
         ModuleSpec {
             name: "sync_fifo_bridge",
+            block: "sync_fifo_bridge",
             summary: sync_fifo_bridge::SUMMARY,
             parameters: &[
                 ("K", "3", "slave ports"),

@@ -22,3 +22,4 @@ mod step_channel;
 mod step_output;
 mod uniform_pulse_gen;
 mod watchdog;
+mod sync_fifo_bridge;
