@@ -1,6 +1,6 @@
 //! Reference model of [`super::InputConditioner`], cycle-exact: the
 //! synchronizer as two words, the filters as
-//! [`GlitchFilterModel`](crate::blocks::glitch_filter::model::GlitchFilterModel)s.
+//! [`GlitchFilterModel`]s.
 
 use crate::blocks::glitch_filter::model::GlitchFilterModel;
 

@@ -84,7 +84,7 @@
 //!   (from 0) runs each period [`latency::UNIFORM_LAG`] + j *
 //!   [`latency::UNIFORM_TURN`] = 24 + 18 j clocks or more after its
 //!   boundary: a fixed lag for a given choice of uniform axes, at most
-//!   [`latency::uniform_lag`](K) (60 clocks at K = 3). A period must be
+//!   [`latency::uniform_lag`]`(K)` (60 clocks at K = 3). A period must be
 //!   longer than its axis's lag in clocks, or the generator refuses the
 //!   next one (`INTERP_OVERFLOW`).
 //! * The commanded position counts the steps that left each output stage,

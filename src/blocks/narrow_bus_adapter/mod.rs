@@ -1,6 +1,6 @@
 //! # `NarrowBusAdapter`: an 8- or 16-bit external bus to 32-bit registers, without tearing
 //!
-//! The seed board's DSP (TMS320F28335, XINTF: XD[15:0]) and PC bridge
+//! The seed board's DSP (TMS320F28335, XINTF: `XD[15:0]`) and PC bridge
 //! (CH365: 8 data bits) have narrower data buses than the controller's
 //! 32-bit registers. This adapter is the [`BusSynchronizer`] at the pins'
 //! width followed by a [`WordAssembler`]: each 32-bit register is 2 (16-bit
