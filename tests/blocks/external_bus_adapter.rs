@@ -7,7 +7,7 @@ use motion_hdl::blocks::external_bus_adapter::model::{
 };
 use motion_hdl::blocks::external_bus_adapter::ExternalBusAdapter;
 use motion_hdl::sim::Harness;
-use crate::support::pin_bench::{random_pins, BusView, PinBench, PinWidths};
+use crate::support::pin_bench::{random_pins, BusView, Length, PinBench, PinWidths};
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -68,12 +68,12 @@ fn dsp_session(seed: u64, resolve: bool, access: std::ops::Range<u32>) -> u32 {
         if rng.gen_bool(0.5) {
             let data = rng.gen::<u32>() as u64;
             let clocks = rng.gen_range(3..5);
-            sys.write(&mut rng, address, data, clocks);
+            sys.write(&mut rng, address, data, Length::Clocks(clocks));
             expected[address as usize] = data;
             writes += 1;
         } else {
             let clocks = rng.gen_range(access.clone());
-            wrong += (sys.read(&mut rng, address, clocks) != expected[address as usize]) as u32;
+            wrong += (sys.read(&mut rng, address, Length::Clocks(clocks)).0 != expected[address as usize]) as u32;
             reads += 1;
         }
     }

@@ -14,7 +14,7 @@ use motion_hdl::sim::Harness;
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use crate::support::pin_bench::{random_pins, BusView, PinBench, PinWidths};
+use crate::support::pin_bench::{random_pins, BusView, Length, PinBench, PinWidths};
 
 
 fn view(v: &[u64]) -> BusView {
@@ -40,11 +40,11 @@ struct Width {
 
 const W16: Width = Width {
     name: "external_bus_adapter_16",
-    geometry: PartGeometry { narrow_bits: 16, wide_bits: 32, address_bits: 8 },
+    geometry: NarrowBusModel::geometry_16(),
 };
 const W8: Width = Width {
     name: "external_bus_adapter_8",
-    geometry: PartGeometry { narrow_bits: 8, wide_bits: 32, address_bits: 8 },
+    geometry: NarrowBusModel::geometry_8(),
 };
 
 impl Width {
@@ -128,22 +128,19 @@ impl<B: motion_hdl::sim::VectorPorts> Master<B> {
     }
 
     fn write_part(&mut self, address: u64, data: u64) {
-        match self.timing {
-            Timing::Fixed { .. } => {
-                let clocks = self.rng.gen_range(3..5);
-                self.bench.write(&mut self.rng, address, data, clocks);
-            }
-            Timing::Ready => {
-                self.bench.write_until_ready(&mut self.rng, address, data);
-            }
-        }
+        let length = match self.timing {
+            Timing::Fixed { .. } => Length::Clocks(self.rng.gen_range(3..5)),
+            Timing::Ready => Length::UntilReady,
+        };
+        self.bench.write(&mut self.rng, address, data, length);
     }
 
     fn read_part(&mut self, address: u64) -> u64 {
-        match self.timing {
-            Timing::Fixed { access } => self.bench.read(&mut self.rng, address, access),
-            Timing::Ready => self.bench.read_until_ready(&mut self.rng, address).0,
-        }
+        let length = match self.timing {
+            Timing::Fixed { access } => Length::Clocks(access),
+            Timing::Ready => Length::UntilReady,
+        };
+        self.bench.read(&mut self.rng, address, length).0
     }
 
     /// A 32-bit register write: the lower parts, then the highest.
@@ -236,15 +233,15 @@ fn ready_timing_is_the_documented_minimum() {
     for k in 0..200u64 {
         let register = k % 256;
         let (lo, hi) = (k * 7 + 1, k * 13 + 2);
-        assert_eq!(b.write_until_ready(&mut rng, register * 2, lo), 3);
-        assert_eq!(b.write_until_ready(&mut rng, register * 2 + 1, hi), 3);
-        let (data, clocks) = b.read_until_ready(&mut rng, register * 2);
+        assert_eq!(b.write(&mut rng, register * 2, lo, Length::UntilReady), 3);
+        assert_eq!(b.write(&mut rng, register * 2 + 1, hi, Length::UntilReady), 3);
+        let (data, clocks) = b.read(&mut rng, register * 2, Length::UntilReady);
         assert_eq!((data, clocks), (lo, 6));
-        let (data, clocks) = b.read_until_ready(&mut rng, register * 2 + 1);
+        let (data, clocks) = b.read(&mut rng, register * 2 + 1, Length::UntilReady);
         assert_eq!((data, clocks), (hi, 6));
-        b.write(&mut rng, register * 2, !lo & 0xffff, 3);
-        b.write(&mut rng, register * 2 + 1, !hi & 0xffff, 3);
-        too_early_wrong += (b.read(&mut rng, register * 2, 5) != !lo & 0xffff) as u32;
+        b.write(&mut rng, register * 2, !lo & 0xffff, Length::Clocks(3));
+        b.write(&mut rng, register * 2 + 1, !hi & 0xffff, Length::Clocks(3));
+        too_early_wrong += (b.read(&mut rng, register * 2, Length::Clocks(5)).0 != !lo & 0xffff) as u32;
     }
     assert!(too_early_wrong > 150, "{too_early_wrong}");
 }

@@ -67,12 +67,12 @@ impl NarrowBusModel {
     }
 
     /// The exported 16-bit adapter's geometry.
-    pub fn geometry_16() -> PartGeometry {
+    pub const fn geometry_16() -> PartGeometry {
         PartGeometry { narrow_bits: 16, wide_bits: 32, address_bits: 8 }
     }
 
     /// The exported 8-bit adapter's geometry.
-    pub fn geometry_8() -> PartGeometry {
+    pub const fn geometry_8() -> PartGeometry {
         PartGeometry { narrow_bits: 8, wide_bits: 32, address_bits: 8 }
     }
 

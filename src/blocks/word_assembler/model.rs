@@ -180,10 +180,9 @@ impl WordAssemblerModel {
                 self.error |= !d.write;
                 self.held_parts = 0;
             } else {
-                let holding_hit = self.holding_address == d.address;
                 self.holding = d.merged;
                 self.holding_address = d.address;
-                if holding_hit {
+                if d.holding_hit {
                     self.held_parts |= 1 << d.part;
                 } else {
                     // Parts of another register are abandoned.
@@ -204,13 +203,15 @@ impl WordAssemblerModel {
         let data = i.narrow_write_data & width_mask(g.narrow_bits);
         let top = g.parts() - 1;
         let latch_hit = self.latch_valid && self.latch_address == address;
-        let whole = self.holding_address == address && self.held_parts == (1 << top) - 1;
+        let holding_hit = self.holding_address == address;
+        let whole = holding_hit && self.held_parts == (1 << top) - 1;
         Decision {
             part,
             address,
             merged: g.with_part(self.holding, part, data),
             read: i.narrow_read && (part == 0 || !latch_hit),
             write: i.narrow_write && part == top && whole,
+            holding_hit,
         }
     }
 }
@@ -222,4 +223,6 @@ struct Decision {
     merged: u64,
     read: bool,
     write: bool,
+    /// The holding register holds parts of this register.
+    holding_hit: bool,
 }

@@ -24,6 +24,15 @@ pub struct BusView {
     pub order_error: bool,
 }
 
+/// How long the master holds a strobe.
+#[derive(Clone, Copy, Debug)]
+pub enum Length {
+    /// A fixed number of clocks.
+    Clocks(u32),
+    /// Until `ready` is seen high, sampled from the third clock on.
+    UntilReady,
+}
+
 /// Pin widths of the adapter under test.
 #[derive(Clone, Copy, Debug)]
 pub struct PinWidths {
@@ -135,51 +144,40 @@ impl<B: VectorPorts> PinBench<B> {
         }
     }
 
-    /// A write strobe of `clocks` clocks with zero hold: address and data
-    /// change to random values the moment it ends. Then the 2-clock gap.
-    pub fn write(&mut self, rng: &mut StdRng, address: u64, data: u64, clocks: u32) {
+    /// A write strobe of `length`, with zero hold: address and data change
+    /// to random values the moment it ends. Then the 2-clock gap. Returns
+    /// the strobe's length in clocks.
+    pub fn write(&mut self, rng: &mut StdRng, address: u64, data: u64, length: Length) -> u32 {
         self.pins.address = address;
         self.pins.data_in = data;
         self.pins.cs_n = false;
         self.pins.we_n = false;
-        self.hold(clocks);
-        self.end_strobe(rng);
-    }
-
-    /// A write strobe held until `ready` is seen high (sampled from the
-    /// third clock on). Returns the strobe's length in clocks.
-    pub fn write_until_ready(&mut self, rng: &mut StdRng, address: u64, data: u64) -> u32 {
-        self.pins.address = address;
-        self.pins.data_in = data;
-        self.pins.cs_n = false;
-        self.pins.we_n = false;
-        let clocks = self.wait_ready();
+        let clocks = self.hold_strobe(length);
         self.end_strobe(rng);
         clocks
     }
 
-    /// A read strobe sampled after `clocks` clocks; returns `data_out`.
-    pub fn read(&mut self, rng: &mut StdRng, address: u64, clocks: u32) -> u64 {
+    /// A read strobe of `length`; returns `data_out` at its end and the
+    /// strobe's length in clocks.
+    pub fn read(&mut self, rng: &mut StdRng, address: u64, length: Length) -> (u64, u32) {
         self.pins.address = address;
         self.pins.cs_n = false;
         self.pins.rd_n = false;
-        self.hold(clocks);
+        let clocks = self.hold_strobe(length);
         assert!(self.last.data_oe);
         let data = self.last.data_out;
         self.end_strobe(rng);
-        data
+        (data, clocks)
     }
 
-    /// A read strobe held until `ready` is seen high (sampled from the third
-    /// clock on); returns `data_out` then and the strobe's length.
-    pub fn read_until_ready(&mut self, rng: &mut StdRng, address: u64) -> (u64, u32) {
-        self.pins.address = address;
-        self.pins.cs_n = false;
-        self.pins.rd_n = false;
-        let clocks = self.wait_ready();
-        let data = self.last.data_out;
-        self.end_strobe(rng);
-        (data, clocks)
+    fn hold_strobe(&mut self, length: Length) -> u32 {
+        match length {
+            Length::Clocks(clocks) => {
+                self.hold(clocks);
+                clocks
+            }
+            Length::UntilReady => self.wait_ready(),
+        }
     }
 
     fn wait_ready(&mut self) -> u32 {
