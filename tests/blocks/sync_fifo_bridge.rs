@@ -93,7 +93,7 @@ impl<B: VectorPorts> Bench<B> {
 
     fn m_field(&mut self, register: &str, index: u32, name: &str) -> u64 {
         let word = self.m_read(register, index);
-        field(&self.master.clone(), register, name, word)
+        field(&self.master, register, name, word)
     }
 
     fn s_write(&mut self, k: usize, register: &str, data: u64) {
@@ -114,7 +114,7 @@ impl<B: VectorPorts> Bench<B> {
 
     fn s_field(&mut self, k: usize, register: &str, name: &str) -> u64 {
         let word = self.s_read(k, register);
-        field(&self.slave.clone(), register, name, word)
+        field(&self.slave, register, name, word)
     }
 }
 
@@ -636,7 +636,8 @@ fn staged_commands_cannot_be_popped_before_the_release() {
 #[test]
 fn tick_mode_arms_on_sync_and_releases_on_the_next_tick() {
     let mut b = Bench::new(SmallBridge::default(), SMALL_LOG2);
-    b.m_write("CONTROL", 0, pack(&b.master.clone(), "CONTROL", &[("TICK_MODE", 1)]));
+    let tick_mode = pack(&b.master, "CONTROL", &[("TICK_MODE", 1)]);
+    b.m_write("CONTROL", 0, tick_mode);
     assert_eq!(b.m_field("CONTROL", 0, "TICK_MODE"), 1);
     // A tick while not armed does nothing.
     b.m_write("CMD", 0, 1);
@@ -672,7 +673,8 @@ fn tick_mode_arms_on_sync_and_releases_on_the_next_tick() {
 #[test]
 fn a_write_and_a_pop_on_the_release_clock_are_not_part_of_the_release() {
     let mut b = Bench::new(SmallBridge::default(), SMALL_LOG2);
-    b.m_write("CONTROL", 0, pack(&b.master.clone(), "CONTROL", &[("TICK_MODE", 1)]));
+    let tick_mode = pack(&b.master, "CONTROL", &[("TICK_MODE", 1)]);
+    b.m_write("CONTROL", 0, tick_mode);
     b.m_write("CMD", 0, 10);
     b.m_write("SYNC", 0, 0);
     b.m_write("SYNC", 0, 0);

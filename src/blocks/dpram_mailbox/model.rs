@@ -120,11 +120,6 @@ impl DpramMailboxModel {
         self.memory[(address & self.address_mask) as usize]
     }
 
-    /// Accepted writes that have not landed in the RAM yet.
-    pub fn backlog(&self) -> usize {
-        self.queue.len()
-    }
-
     /// A write to `address` has been accepted but has not landed in the
     /// RAM yet: a read of it now is answered by forwarding.
     pub fn is_queued(&self, address: u64) -> bool {

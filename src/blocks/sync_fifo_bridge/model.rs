@@ -2,7 +2,8 @@
 //! a [`CommandFifoModel`]; addresses and the packing of every register word
 //! come from the register maps, by name.
 
-use super::registers::{master_map, slave_map};
+use super::registers::{master_map, slave_map, SLAVE_ADDRESS_BITS};
+use crate::blocks::width_mask;
 use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
 use crate::regmap::RegisterMap;
 
@@ -42,7 +43,7 @@ pub struct BridgeInputs {
 fn pack_words(words: impl Iterator<Item = u64>, slaves: usize) -> Vec<u64> {
     let mut columns = vec![0u64; (slaves * 32).div_ceil(64)];
     for (k, w) in words.enumerate() {
-        columns[k / 2] |= (w & 0xffff_ffff) << (32 * (k % 2));
+        columns[k / 2] |= (w & width_mask(32)) << (32 * (k % 2));
     }
     columns
 }
@@ -70,7 +71,7 @@ impl BridgeInputs {
             self.m_write as u64,
             self.m_read as u64,
             self.period_tick as u64,
-            self.slaves.iter().enumerate().fold(0, |v, (i, s)| v | (s.address & 0xf) << (4 * i)),
+            self.slaves.iter().enumerate().fold(0, |v, (i, s)| v | (s.address & width_mask(SLAVE_ADDRESS_BITS)) << (SLAVE_ADDRESS_BITS as usize * i)),
         ];
         v.extend(pack_words(self.slaves.iter().map(|s| s.write_data), k));
         v.push(bits(|s| s.write));
@@ -101,18 +102,9 @@ impl BridgeOutputs {
         Self {
             m_read_data: v[0],
             m_irq: v[1] != 0,
-            s_read_data: (0..slaves).map(|k| wide[k / 2] >> (32 * (k % 2)) & 0xffff_ffff).collect(),
+            s_read_data: (0..slaves).map(|k| wide[k / 2] >> (32 * (k % 2)) & width_mask(32)).collect(),
             s_data_ready: (0..slaves).map(|k| ready >> k & 1 != 0).collect(),
         }
-    }
-
-    /// The RTL's output vector.
-    pub fn to_vector(&self) -> Vec<u64> {
-        let k = self.s_read_data.len();
-        let mut v = vec![self.m_read_data, self.m_irq as u64];
-        v.extend(pack_words(self.s_read_data.iter().copied(), k));
-        v.push(self.s_data_ready.iter().enumerate().fold(0, |v, (i, &r)| v | (r as u64) << i));
-        v
     }
 }
 
@@ -254,31 +246,6 @@ impl BridgeModel {
         self.channels.len()
     }
 
-    /// FIFO depth in words.
-    pub fn depth(&self) -> usize {
-        self.depth
-    }
-
-    /// Slave k's released, unread commands.
-    pub fn released(&self, k: usize) -> u64 {
-        self.channels[k].released
-    }
-
-    /// Slave k's command FIFO level (staged and released).
-    pub fn cmd_level(&self, k: usize) -> u64 {
-        self.channels[k].cmd_out.level
-    }
-
-    /// Slave k's status FIFO level.
-    pub fn status_level(&self, k: usize) -> u64 {
-        self.channels[k].status_out.level
-    }
-
-    /// Tick mode: armed.
-    pub fn armed(&self) -> bool {
-        self.armed
-    }
-
     /// The master's map.
     pub fn master_map(&self) -> &RegisterMap {
         &self.master
@@ -293,7 +260,7 @@ impl BridgeModel {
     pub fn step(&mut self, i: &BridgeInputs) -> BridgeOutputs {
         assert_eq!(i.slaves.len(), self.channels.len(), "one SlaveBus per slave");
         let mut events = BridgeEvents::default();
-        let m_data = i.m_write_data & 0xffff_ffff;
+        let m_data = i.m_write_data & width_mask(32);
         let sync_write = i.m_write && i.m_address == self.a_sync;
         let release = i.period_tick && self.armed;
         let sync_now = sync_write && !self.tick_mode;
@@ -365,8 +332,8 @@ impl BridgeModel {
         for (k, (c, s)) in self.channels.iter_mut().zip(&i.slaves).enumerate() {
             let w = self.windows[k];
             let m_at = |a: u64| i.m_address == a;
-            let s_at = |a: u64| s.address & 0xf == a;
-            let s_data = s.write_data & 0xffff_ffff;
+            let s_at = |a: u64| s.address & width_mask(SLAVE_ADDRESS_BITS) == a;
+            let s_data = s.write_data & width_mask(32);
             let any_released = c.released != 0;
             let pop = s.read && s_at(self.s_cmd) && any_released;
             let cmd_write = i.m_write && m_at(w.cmd);
