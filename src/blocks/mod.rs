@@ -11,6 +11,7 @@ pub mod dpram_mailbox;
 pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;
+pub mod host_links;
 pub mod input_conditioner;
 pub mod interrupt_controller;
 pub mod motion_controller;

@@ -8,6 +8,7 @@ use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::dpram_mailbox::{self, DpramMailbox1024x16};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
+use crate::blocks::host_links::{self, SeedHostLinks};
 use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
 use crate::blocks::motion_controller::{
     self, MotionController1, MotionController3, MotionController6,
@@ -283,6 +284,22 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(SyncFifoBridge3::default()),
+        },
+        ModuleSpec {
+            name: "host_links",
+            block: "host_links",
+            summary: host_links::SUMMARY,
+            parameters: &[
+                ("CA", "8", "controller register address width (256 registers of 32 bits)"),
+                ("CNA", "9", "DSP half-word address width of the register window (2 per register)"),
+                ("MA", "10", "mailbox word address width: 1024 x 16"),
+                ("DA", "11", "DSP and PC pin address width: the DSP's top bit selects the mailbox"),
+            ],
+            port_docs: host_links::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(SeedHostLinks::default()),
         },
     ]
 }

@@ -25,27 +25,52 @@ pub struct ReportRow {
     pub figures: SynthFigures,
 }
 
-/// Synthesizes `rtl_dir/<module>.v` for each spec with the given seeds.
+/// Synthesizes `rtl_dir/<module>.v` for each spec with the given seeds, on
+/// as many threads as the machine has cores (yosys and nextpnr-ice40 use
+/// one each), the largest Verilog first so that the controller does not
+/// start last. Rows come back in the specs' order.
 pub fn measure(
     specs: &[ModuleSpec],
     rtl_dir: &Path,
     seeds: &[u64],
 ) -> Result<Vec<ReportRow>, ToolError> {
-    specs
-        .iter()
-        .map(|spec| {
-            let rtl = rtl_dir.join(format!("{}.v", spec.name));
-            let ports = crate::export::top_ports((spec.build)().as_ref());
-            let (figures, _) = synthesize_top(&rtl, spec.name, &ports, seeds, spec.fmax_target_mhz)?;
-            Ok(ReportRow {
-                module: spec.name.to_string(),
-                target_mhz: spec.fmax_target_mhz,
-                lut4_budget: spec.lut4_budget,
-                logic_cell_budget: spec.logic_cell_budget,
-                figures,
+    let rtl = |spec: &ModuleSpec| rtl_dir.join(format!("{}.v", spec.name));
+    let mut order: Vec<usize> = (0..specs.len()).collect();
+    let size = |i: &usize| std::fs::metadata(rtl(&specs[*i])).map(|m| m.len()).unwrap_or(0);
+    order.sort_by_key(|i| std::cmp::Reverse(size(i)));
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(specs.len().max(1));
+    let mut rows: Vec<Option<Result<ReportRow, ToolError>>> = (0..specs.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(&i) = order.get(k) else { break done };
+                        let spec = &specs[i];
+                        let ports = crate::export::top_ports((spec.build)().as_ref());
+                        let row = synthesize_top(&rtl(spec), spec.name, &ports, seeds, spec.fmax_target_mhz)
+                            .map(|(figures, _)| ReportRow {
+                                module: spec.name.to_string(),
+                                target_mhz: spec.fmax_target_mhz,
+                                lut4_budget: spec.lut4_budget,
+                                logic_cell_budget: spec.logic_cell_budget,
+                                figures,
+                            });
+                        done.push((i, row));
+                    }
+                })
             })
-        })
-        .collect()
+            .collect();
+        for handle in handles {
+            for (i, row) in handle.join().expect("a synthesis thread panicked") {
+                rows[i] = Some(row);
+            }
+        }
+    });
+    rows.into_iter().map(|row| row.expect("every module measured")).collect()
 }
 
 /// The report as Markdown.

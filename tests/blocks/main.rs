@@ -11,6 +11,7 @@ mod external_bus_adapter;
 mod narrow_bus_adapter;
 mod word_assembler;
 mod dpram_mailbox;
+mod host_links;
 mod freq_divider;
 mod glitch_filter;
 mod input_conditioner;

@@ -90,24 +90,10 @@ impl<B: VectorPorts> PinBench<B> {
 
     /// The pins as a synchronizer may see them this clock.
     fn shown_pins(&mut self) -> BusPinInputs {
-        let mut shown = self.pins;
-        if let Some(rng) = &mut self.resolve {
-            let (old, new) = (self.presented, self.pins);
-            let mix = |rng: &mut StdRng, old: u64, new: u64| {
-                let take_new = rng.gen::<u64>();
-                (old & !take_new) | (new & take_new)
-            };
-            shown.address =
-                mix(rng, old.address, new.address) & width_mask(self.widths.address_bits);
-            shown.data_in = mix(rng, old.data_in, new.data_in) & width_mask(self.widths.data_bits);
-            for (o, n, s) in [
-                (old.cs_n, new.cs_n, &mut shown.cs_n),
-                (old.we_n, new.we_n, &mut shown.we_n),
-                (old.rd_n, new.rd_n, &mut shown.rd_n),
-            ] {
-                *s = if o != n && rng.gen_bool(0.5) { o } else { n };
-            }
-        }
+        let shown = match &mut self.resolve {
+            Some(rng) => resolve_pins(rng, self.presented, self.pins, self.widths),
+            None => self.pins,
+        };
         // Whatever was shown, the pins have their new value from now on.
         self.presented = self.pins;
         shown
@@ -200,6 +186,31 @@ impl<B: VectorPorts> PinBench<B> {
         self.pins.data_in = rng.gen::<u64>() & width_mask(self.widths.data_bits);
         self.hold(2);
     }
+}
+
+/// The pins `new` as a synchronizer may sample them on the first clock
+/// after they changed from `old`: every changed bit resolved at random.
+pub fn resolve_pins(
+    rng: &mut StdRng,
+    old: BusPinInputs,
+    new: BusPinInputs,
+    widths: PinWidths,
+) -> BusPinInputs {
+    let mix = |rng: &mut StdRng, old: u64, new: u64| {
+        let take_new = rng.gen::<u64>();
+        (old & !take_new) | (new & take_new)
+    };
+    let mut shown = new;
+    shown.address = mix(rng, old.address, new.address) & width_mask(widths.address_bits);
+    shown.data_in = mix(rng, old.data_in, new.data_in) & width_mask(widths.data_bits);
+    for (o, n, s) in [
+        (old.cs_n, new.cs_n, &mut shown.cs_n),
+        (old.we_n, new.we_n, &mut shown.we_n),
+        (old.rd_n, new.rd_n, &mut shown.rd_n),
+    ] {
+        *s = if o != n && rng.gen_bool(0.5) { o } else { n };
+    }
+    shown
 }
 
 /// Pins that change at random, strobes of every width from one clock
