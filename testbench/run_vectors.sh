@@ -25,7 +25,12 @@ case "$simulator" in
     ;;
   verilator)
     # The RTL is linted separately with -Wall; the testbench is plain
-    # simulation code, so lint warnings are not fatal here.
+    # simulation code, so lint warnings are not fatal here. Every build
+    # compiles the same Verilator runtime (about 10 s of g++); with ccache
+    # (tests/run.sh installs it) only the first build of a run does.
+    if command -v ccache >/dev/null 2>&1; then
+      export OBJCACHE=ccache
+    fi
     verilator --binary -Wno-fatal -Wno-lint -Wno-style -O1 \
       --top-module "$top" -Mdir "$build/obj" -o "V$top" "$rtl" "$tb" >"$build/verilator.log" 2>&1 \
       || { cat "$build/verilator.log"; exit 1; }

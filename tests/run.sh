@@ -3,17 +3,19 @@
 # tools it needs (Debian, as root) or stops with the exact install line,
 # then runs every test. `.ci/run` calls this script. gcc compiles the
 # generated C register headers in the register-map tests; g++ builds the
-# Verilator models of the compiled simulation backend.
+# Verilator models of the compiled simulation backend; ccache keeps the
+# cross-simulation's Verilator builds from compiling Verilator's runtime
+# again for every module.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-tools=(yosys iverilog vvp verilator nextpnr-ice40 gcc g++)
+tools=(yosys iverilog vvp verilator nextpnr-ice40 gcc g++ ccache)
 missing=()
 for tool in "${tools[@]}"; do
   command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 done
 if [ ${#missing[@]} -gt 0 ]; then
-  install_line="apt-get install -y yosys iverilog verilator nextpnr-ice40 gcc g++"
+  install_line="apt-get install -y yosys iverilog verilator nextpnr-ice40 gcc g++ ccache"
   if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing missing FPGA tools: ${missing[*]}"
     apt-get update -qq
