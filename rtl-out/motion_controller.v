@@ -66,6 +66,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     output reg  [7:0] gpio_out;
 
     // Constant declarations
+    localparam  has_uniform = 1'b1;
     localparam  a_id = 8'h0;
     localparam  a_version = 8'h1;
     localparam  a_config = 8'h2;
@@ -990,7 +991,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             stop_cause__d = zero32;
         end
         divider__reset = reset | halt;
-        div_idle = ~divider__busy & ~divider__done;
+        div_idle = ~divider__busy & ~divider__done & has_uniform;
         div_granted = 1'b0;
         divider__start = 1'b0;
         divider__dividend = axes__0__div_dividend;
@@ -1002,9 +1003,14 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             divider__divisor = axes__0__div_divisor;
             div_owner__d = axis_bit__0;
         end
-        axes__0__div_done = divider__done & ((div_owner__q & axis_bit__0) != zero_k);
-        axes__0__div_quotient = divider__quotient;
-        axes__0__div_remainder = divider__remainder;
+        axes__0__div_done = 1'b0;
+        axes__0__div_quotient = zero_p;
+        axes__0__div_remainder = zero_p;
+        if (has_uniform) begin
+            axes__0__div_done = divider__done & ((div_owner__q & axis_bit__0) != zero_k);
+            axes__0__div_quotient = divider__quotient;
+            axes__0__div_remainder = divider__remainder;
+        end
         if (div_idle & ~div_granted & axes__1__div_request) begin
             div_granted = 1'b1;
             divider__start = 1'b1;
@@ -1012,9 +1018,14 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             divider__divisor = axes__1__div_divisor;
             div_owner__d = axis_bit__1;
         end
-        axes__1__div_done = divider__done & ((div_owner__q & axis_bit__1) != zero_k);
-        axes__1__div_quotient = divider__quotient;
-        axes__1__div_remainder = divider__remainder;
+        axes__1__div_done = 1'b0;
+        axes__1__div_quotient = zero_p;
+        axes__1__div_remainder = zero_p;
+        if (has_uniform) begin
+            axes__1__div_done = divider__done & ((div_owner__q & axis_bit__1) != zero_k);
+            axes__1__div_quotient = divider__quotient;
+            axes__1__div_remainder = divider__remainder;
+        end
         if (div_idle & ~div_granted & axes__2__div_request) begin
             div_granted = 1'b1;
             divider__start = 1'b1;
@@ -1022,9 +1033,14 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             divider__divisor = axes__2__div_divisor;
             div_owner__d = axis_bit__2;
         end
-        axes__2__div_done = divider__done & ((div_owner__q & axis_bit__2) != zero_k);
-        axes__2__div_quotient = divider__quotient;
-        axes__2__div_remainder = divider__remainder;
+        axes__2__div_done = 1'b0;
+        axes__2__div_quotient = zero_p;
+        axes__2__div_remainder = zero_p;
+        if (has_uniform) begin
+            axes__2__div_done = divider__done & ((div_owner__q & axis_bit__2) != zero_k);
+            axes__2__div_quotient = divider__quotient;
+            axes__2__div_remainder = divider__remainder;
+        end
         if (reset) begin
             div_owner__d = zero_k;
         end
@@ -1448,6 +1464,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Constant declarations
     localparam  window = 3'b1;
+    localparam  has_uniform = 1'b1;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -1469,7 +1486,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit_mask__3 = 32'h8;
     localparam  bit_mask__4 = 32'h10;
     localparam  mask16 = 32'hffff;
-    localparam  mask13 = 32'h1fff;
+    localparam  config_mask = 32'h1fff;
     localparam  mask8 = 32'hff;
     localparam  off_fifo_write = 4'h0;
     localparam  off_fifo_status = 4'h1;
@@ -1737,6 +1754,11 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] count;
     reg  uniform_started;
     reg  uniform_forward;
+    reg  uniform_pulse;
+    reg  uniform_ready;
+    reg  uniform_running;
+    reg  uniform_overrange;
+    reg  uniform_overflow;
     reg  [31:0] fifo_status;
     reg  [31:0] axis_status;
 
@@ -2143,7 +2165,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         clear_faults = command & write_data[32'h0];
         if (write & selected) begin
             if (offset == off_config) begin
-                settings__d = write_data & mask13;
+                settings__d = write_data & config_mask;
             end
             if (offset == off_step_len) begin
                 step_len__d = write_data & mask16;
@@ -2193,18 +2215,36 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         if (too_large) begin
             count = max_count;
         end
+        uniform_pulse = 1'b0;
+        uniform_ready = 1'b0;
+        uniform_running = 1'b0;
+        uniform_overrange = 1'b0;
+        uniform_overflow = 1'b0;
+        div_request = 1'b0;
+        div_dividend = zero_count;
+        div_divisor = zero_count;
+        if (has_uniform) begin
+            uniform_pulse = uniform__pulse;
+            uniform_ready = uniform__ready;
+            uniform_running = uniform__running;
+            uniform_overrange = uniform__overrange;
+            uniform_overflow = uniform__overflow;
+            div_request = uniform__div_request;
+            div_dividend = uniform__div_dividend;
+            div_divisor = uniform__div_divisor;
+        end
         if (clear_faults) begin
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & too_large;
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
-        if (uniform__overflow & ~uniform_overflow_prev__q) begin
+        if (uniform_overflow & ~uniform_overflow_prev__q) begin
             overflow_flag__d = 1'b1;
         end
-        if (start & ~uniform__running) begin
+        if (start & ~uniform_running) begin
             uniform_active__d = settings__q[32'h0];
         end
         if (popped_valid__q) begin
@@ -2233,18 +2273,15 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__mode = settings__q[32'h1];
         uniform__load = popped_valid__q & uniform_active__q;
         uniform__clear_flags = clear_faults | start;
-        div_request = uniform__div_request;
-        div_dividend = uniform__div_dividend;
-        div_divisor = uniform__div_divisor;
         uniform__div_done = div_done;
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
-        if (popped_valid__q & uniform_active__q & uniform__ready) begin
+        if (popped_valid__q & uniform_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
-        uniform_ready_prev__d = uniform__ready;
-        uniform_pulse_prev__d = uniform__pulse;
-        uniform_started = uniform__ready & ~uniform_ready_prev__q;
+        uniform_ready_prev__d = uniform_ready;
+        uniform_pulse_prev__d = uniform_pulse;
+        uniform_started = uniform_ready & ~uniform_ready_prev__q;
         uniform_forward = uniform_running_forward__q;
         if (uniform_started) begin
             uniform_forward = uniform_loaded_forward__q;
@@ -2252,7 +2289,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_running_forward__d = uniform_forward;
         stage__reset = reset;
         if (uniform_active__q) begin
-            candidate = uniform__pulse & ~uniform_pulse_prev__q;
+            candidate = uniform_pulse & ~uniform_pulse_prev__q;
             candidate_forward = uniform_forward;
         end
         else begin
@@ -2331,10 +2368,10 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         end
         overrun_prev__d = stage__overrun;
         dda_overrange_prev__d = dda__overrange;
-        uniform_overrange_prev__d = uniform__overrange;
-        uniform_overflow_prev__d = uniform__overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | saturated__q;
-        busy = stage__busy | uniform__running;
+        uniform_overrange_prev__d = uniform_overrange;
+        uniform_overflow_prev__d = uniform_overflow;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
         fifo_status = zero32;
@@ -2381,7 +2418,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         if (stage__busy) begin
             axis_status = axis_status | bit5_32;
         end
-        if (uniform__running) begin
+        if (uniform_running) begin
             axis_status = axis_status | bit6_32;
         end
         if (stage__mode_invalid) begin
@@ -7670,6 +7707,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Constant declarations
     localparam  window = 3'b10;
+    localparam  has_uniform = 1'b1;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -7691,7 +7729,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit_mask__3 = 32'h8;
     localparam  bit_mask__4 = 32'h10;
     localparam  mask16 = 32'hffff;
-    localparam  mask13 = 32'h1fff;
+    localparam  config_mask = 32'h1fff;
     localparam  mask8 = 32'hff;
     localparam  off_fifo_write = 4'h0;
     localparam  off_fifo_status = 4'h1;
@@ -7959,6 +7997,11 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] count;
     reg  uniform_started;
     reg  uniform_forward;
+    reg  uniform_pulse;
+    reg  uniform_ready;
+    reg  uniform_running;
+    reg  uniform_overrange;
+    reg  uniform_overflow;
     reg  [31:0] fifo_status;
     reg  [31:0] axis_status;
 
@@ -8365,7 +8408,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         clear_faults = command & write_data[32'h0];
         if (write & selected) begin
             if (offset == off_config) begin
-                settings__d = write_data & mask13;
+                settings__d = write_data & config_mask;
             end
             if (offset == off_step_len) begin
                 step_len__d = write_data & mask16;
@@ -8415,18 +8458,36 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         if (too_large) begin
             count = max_count;
         end
+        uniform_pulse = 1'b0;
+        uniform_ready = 1'b0;
+        uniform_running = 1'b0;
+        uniform_overrange = 1'b0;
+        uniform_overflow = 1'b0;
+        div_request = 1'b0;
+        div_dividend = zero_count;
+        div_divisor = zero_count;
+        if (has_uniform) begin
+            uniform_pulse = uniform__pulse;
+            uniform_ready = uniform__ready;
+            uniform_running = uniform__running;
+            uniform_overrange = uniform__overrange;
+            uniform_overflow = uniform__overflow;
+            div_request = uniform__div_request;
+            div_dividend = uniform__div_dividend;
+            div_divisor = uniform__div_divisor;
+        end
         if (clear_faults) begin
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & too_large;
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
-        if (uniform__overflow & ~uniform_overflow_prev__q) begin
+        if (uniform_overflow & ~uniform_overflow_prev__q) begin
             overflow_flag__d = 1'b1;
         end
-        if (start & ~uniform__running) begin
+        if (start & ~uniform_running) begin
             uniform_active__d = settings__q[32'h0];
         end
         if (popped_valid__q) begin
@@ -8455,18 +8516,15 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__mode = settings__q[32'h1];
         uniform__load = popped_valid__q & uniform_active__q;
         uniform__clear_flags = clear_faults | start;
-        div_request = uniform__div_request;
-        div_dividend = uniform__div_dividend;
-        div_divisor = uniform__div_divisor;
         uniform__div_done = div_done;
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
-        if (popped_valid__q & uniform_active__q & uniform__ready) begin
+        if (popped_valid__q & uniform_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
-        uniform_ready_prev__d = uniform__ready;
-        uniform_pulse_prev__d = uniform__pulse;
-        uniform_started = uniform__ready & ~uniform_ready_prev__q;
+        uniform_ready_prev__d = uniform_ready;
+        uniform_pulse_prev__d = uniform_pulse;
+        uniform_started = uniform_ready & ~uniform_ready_prev__q;
         uniform_forward = uniform_running_forward__q;
         if (uniform_started) begin
             uniform_forward = uniform_loaded_forward__q;
@@ -8474,7 +8532,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_running_forward__d = uniform_forward;
         stage__reset = reset;
         if (uniform_active__q) begin
-            candidate = uniform__pulse & ~uniform_pulse_prev__q;
+            candidate = uniform_pulse & ~uniform_pulse_prev__q;
             candidate_forward = uniform_forward;
         end
         else begin
@@ -8553,10 +8611,10 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         end
         overrun_prev__d = stage__overrun;
         dda_overrange_prev__d = dda__overrange;
-        uniform_overrange_prev__d = uniform__overrange;
-        uniform_overflow_prev__d = uniform__overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | saturated__q;
-        busy = stage__busy | uniform__running;
+        uniform_overrange_prev__d = uniform_overrange;
+        uniform_overflow_prev__d = uniform_overflow;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
         fifo_status = zero32;
@@ -8603,7 +8661,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         if (stage__busy) begin
             axis_status = axis_status | bit5_32;
         end
-        if (uniform__running) begin
+        if (uniform_running) begin
             axis_status = axis_status | bit6_32;
         end
         if (stage__mode_invalid) begin
@@ -13892,6 +13950,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Constant declarations
     localparam  window = 3'b11;
+    localparam  has_uniform = 1'b1;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -13913,7 +13972,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  bit_mask__3 = 32'h8;
     localparam  bit_mask__4 = 32'h10;
     localparam  mask16 = 32'hffff;
-    localparam  mask13 = 32'h1fff;
+    localparam  config_mask = 32'h1fff;
     localparam  mask8 = 32'hff;
     localparam  off_fifo_write = 4'h0;
     localparam  off_fifo_status = 4'h1;
@@ -14181,6 +14240,11 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] count;
     reg  uniform_started;
     reg  uniform_forward;
+    reg  uniform_pulse;
+    reg  uniform_ready;
+    reg  uniform_running;
+    reg  uniform_overrange;
+    reg  uniform_overflow;
     reg  [31:0] fifo_status;
     reg  [31:0] axis_status;
 
@@ -14587,7 +14651,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         clear_faults = command & write_data[32'h0];
         if (write & selected) begin
             if (offset == off_config) begin
-                settings__d = write_data & mask13;
+                settings__d = write_data & config_mask;
             end
             if (offset == off_step_len) begin
                 step_len__d = write_data & mask16;
@@ -14637,18 +14701,36 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         if (too_large) begin
             count = max_count;
         end
+        uniform_pulse = 1'b0;
+        uniform_ready = 1'b0;
+        uniform_running = 1'b0;
+        uniform_overrange = 1'b0;
+        uniform_overflow = 1'b0;
+        div_request = 1'b0;
+        div_dividend = zero_count;
+        div_divisor = zero_count;
+        if (has_uniform) begin
+            uniform_pulse = uniform__pulse;
+            uniform_ready = uniform__ready;
+            uniform_running = uniform__running;
+            uniform_overrange = uniform__overrange;
+            uniform_overflow = uniform__overflow;
+            div_request = uniform__div_request;
+            div_dividend = uniform__div_dividend;
+            div_divisor = uniform__div_divisor;
+        end
         if (clear_faults) begin
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & too_large;
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
-        if (uniform__overflow & ~uniform_overflow_prev__q) begin
+        if (uniform_overflow & ~uniform_overflow_prev__q) begin
             overflow_flag__d = 1'b1;
         end
-        if (start & ~uniform__running) begin
+        if (start & ~uniform_running) begin
             uniform_active__d = settings__q[32'h0];
         end
         if (popped_valid__q) begin
@@ -14677,18 +14759,15 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__mode = settings__q[32'h1];
         uniform__load = popped_valid__q & uniform_active__q;
         uniform__clear_flags = clear_faults | start;
-        div_request = uniform__div_request;
-        div_dividend = uniform__div_dividend;
-        div_divisor = uniform__div_divisor;
         uniform__div_done = div_done;
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
-        if (popped_valid__q & uniform_active__q & uniform__ready) begin
+        if (popped_valid__q & uniform_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
-        uniform_ready_prev__d = uniform__ready;
-        uniform_pulse_prev__d = uniform__pulse;
-        uniform_started = uniform__ready & ~uniform_ready_prev__q;
+        uniform_ready_prev__d = uniform_ready;
+        uniform_pulse_prev__d = uniform_pulse;
+        uniform_started = uniform_ready & ~uniform_ready_prev__q;
         uniform_forward = uniform_running_forward__q;
         if (uniform_started) begin
             uniform_forward = uniform_loaded_forward__q;
@@ -14696,7 +14775,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         uniform_running_forward__d = uniform_forward;
         stage__reset = reset;
         if (uniform_active__q) begin
-            candidate = uniform__pulse & ~uniform_pulse_prev__q;
+            candidate = uniform_pulse & ~uniform_pulse_prev__q;
             candidate_forward = uniform_forward;
         end
         else begin
@@ -14775,10 +14854,10 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         end
         overrun_prev__d = stage__overrun;
         dda_overrange_prev__d = dda__overrange;
-        uniform_overrange_prev__d = uniform__overrange;
-        uniform_overflow_prev__d = uniform__overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform__overrange & ~uniform_overrange_prev__q) | (uniform__overflow & ~uniform_overflow_prev__q) | saturated__q;
-        busy = stage__busy | uniform__running;
+        uniform_overrange_prev__d = uniform_overrange;
+        uniform_overflow_prev__d = uniform_overflow;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
         fifo_status = zero32;
@@ -14825,7 +14904,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         if (stage__busy) begin
             axis_status = axis_status | bit5_32;
         end
-        if (uniform__running) begin
+        if (uniform_running) begin
             axis_status = axis_status | bit6_32;
         end
         if (stage__mode_invalid) begin

@@ -56,6 +56,9 @@
 #define MC_CONFIG_POSITION_BITS_SHIFT 18UL /* RO width of the position counters */
 #define MC_CONFIG_POSITION_BITS_MASK 0x00fc0000UL
 #define MC_CONFIG_POSITION_BITS_RESET 0x20UL
+#define MC_CONFIG_DDA_ONLY_SHIFT 24UL /* RO 1 = no uniform pulse generators in this build: AXIS_CONFIG.UNIFORM and INTERLEAVED read 0 and ignore writes, every axis runs its DDA */
+#define MC_CONFIG_DDA_ONLY_MASK 0x01000000UL
+#define MC_CONFIG_DDA_ONLY_RESET 0x0UL
 
 /* CONTROL: run control */
 #define MC_CONTROL_INDEX 0x0003UL

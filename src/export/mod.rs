@@ -111,7 +111,8 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
     use crate::blocks::{motion_controller, sync_fifo_bridge};
     // The register maps of the exported configurations (see the catalog).
     let maps = [
-        ("motion_controller_regs", motion_controller::registers::register_map(3, 4)?),
+        ("motion_controller_regs", motion_controller::registers::register_map(3, 4, true)?),
+        ("motion_controller_dda_regs", motion_controller::registers::register_map(3, 4, false)?),
         (
             "sync_fifo_bridge_master_regs",
             sync_fifo_bridge::registers::master_map(

@@ -14,7 +14,7 @@ use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
-use crate::blocks::motion_controller::MotionController;
+use crate::blocks::motion_controller::MotionController3;
 use crate::regmap::RegisterMap;
 use crate::sim::{stepper, Backend, SimError, SimulatedEncoder, Stepper, VectorPorts};
 
@@ -98,13 +98,13 @@ impl RtlBus {
     /// signal goes to that file (on Verilator, a build with its tracer).
     pub fn new(backend: Backend, vcd: Option<&Path>) -> Result<Self, SimError> {
         Ok(Self {
-            rtl: stepper(backend, "motion_controller", MotionController::<3, 4, 5>::default(), vcd)?,
+            rtl: stepper(backend, "motion_controller", MotionController3::default(), vcd)?,
             inputs: ControllerInputs {
                 encoders: vec![(false, false, false); 3],
                 ..Default::default()
             },
             vector: Vec::new(),
-            outputs: vec![0; MotionController::<3, 4, 5>::output_names().len()],
+            outputs: vec![0; MotionController3::output_names().len()],
             encoders: [SimulatedEncoder::default(); 3],
             irq: false,
             window_steps: [0; 3],
@@ -220,7 +220,7 @@ impl ModelBus {
     /// A 3-axis, 16-entry model in its power-up state.
     pub fn new() -> Self {
         Self {
-            model: MotionControllerModel::new(3, 4).expect("3 axes fit"),
+            model: MotionControllerModel::new(3, 4, true).expect("3 axes fit"),
             irq: false,
             cycles: 0,
             pins: MachinePins::default(),

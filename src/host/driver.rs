@@ -185,7 +185,7 @@ impl<B: ControllerBus> Driver<B> {
                 return Err(DriverError::Config(format!("{name} {v} does not fit 16 bits")));
             }
         }
-        let map = register_map(3, 4)?;
+        let map = register_map(3, 4, true)?;
         let mut driver = Self {
             bus,
             map,

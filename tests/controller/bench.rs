@@ -13,8 +13,9 @@ use motion_hdl::blocks::motion_controller::MotionController;
 use motion_hdl::regmap::RegisterMap;
 use motion_hdl::sim::{stepper, Backend, SimulatedEncoder, Stepper, VectorPorts};
 
-/// RTL and model of a K-axis controller with 2^N-entry FIFOs, in lockstep.
-pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
+/// RTL and model of a K-axis controller with 2^N-entry FIFOs, with uniform
+/// generators if `UNIFORM`, in lockstep.
+pub struct Bench<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> {
     rtl: Box<dyn Stepper>,
     vector: Vec<u64>,
     rtl_outputs: Vec<u64>,
@@ -39,7 +40,7 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize> {
     pub recording: Option<Vec<Vec<u64>>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Bench<K, N, NP1, UNIFORM> {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
     /// it runs 70 times faster).
@@ -49,14 +50,15 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
 
     /// A bench in the power-up state with the RTL on `backend`.
     pub fn on(backend: Backend) -> Self {
-        let map = register_map(K, N as u32).unwrap();
-        let model = MotionControllerModel::new(K, N as u32).unwrap();
-        let rtl = stepper(backend, "motion_controller", MotionController::<K, N, NP1>::default(), None)
+        let map = register_map(K, N as u32, UNIFORM).unwrap();
+        let model = MotionControllerModel::new(K, N as u32, UNIFORM).unwrap();
+        let module = if UNIFORM { "motion_controller" } else { "motion_controller_dda" };
+        let rtl = stepper(backend, module, MotionController::<K, N, NP1, UNIFORM>::default(), None)
             .unwrap_or_else(|e| panic!("{e}"));
         Self {
             rtl,
             vector: Vec::new(),
-            rtl_outputs: vec![0; MotionController::<K, N, NP1>::output_names().len()],
+            rtl_outputs: vec![0; MotionController::<K, N, NP1, UNIFORM>::output_names().len()],
             model,
             map,
             encoders: vec![(false, false, false); K],
@@ -106,7 +108,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Bench<K, N, NP1> {
             pins: self.pins,
         };
         inputs.write_vector(&mut self.vector);
-        debug_assert_eq!(self.vector.len(), MotionController::<K, N, NP1>::input_names().len());
+        debug_assert_eq!(self.vector.len(), MotionController::<K, N, NP1, UNIFORM>::input_names().len());
         self.rtl.step_into(&self.vector, &mut self.rtl_outputs).unwrap();
         if let Some(recording) = self.recording.as_mut() {
             recording.push(self.vector.clone());
@@ -174,5 +176,46 @@ pub fn toggle_pins(rng: &mut impl rand::Rng, word: &mut u32, axes: usize, active
         if rng.gen_ratio(1, rate) {
             *word ^= 1 << k;
         }
+    }
+}
+
+/// A controller under test that a random-traffic driver clocks: one
+/// [`Bench`], or several driven alike and compared.
+pub trait Lockstep {
+    /// Number of axes.
+    fn axes(&self) -> usize;
+    /// The register map the traffic is addressed with.
+    fn map(&self) -> &RegisterMap;
+    /// Encoder and machine pins applied in the next clock.
+    fn set_pins(&mut self, encoders: Vec<(bool, bool, bool)>, pins: MachinePins);
+    /// One clock with these bus inputs; the outputs after it. Panics where
+    /// an RTL and its model (or two RTLs) disagree.
+    fn step(&mut self, reset: bool, address: u32, write_data: u32, write: bool, read: bool) -> ControllerOutputs;
+    /// Outputs after the last clock.
+    fn last(&self) -> &ControllerOutputs;
+}
+
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Lockstep
+    for Bench<K, N, NP1, UNIFORM>
+{
+    fn axes(&self) -> usize {
+        K
+    }
+
+    fn map(&self) -> &RegisterMap {
+        &self.map
+    }
+
+    fn set_pins(&mut self, encoders: Vec<(bool, bool, bool)>, pins: MachinePins) {
+        self.encoders = encoders;
+        self.pins = pins;
+    }
+
+    fn step(&mut self, reset: bool, address: u32, write_data: u32, write: bool, read: bool) -> ControllerOutputs {
+        self.clock(reset, address, write_data, write, read).clone()
+    }
+
+    fn last(&self) -> &ControllerOutputs {
+        &self.last
     }
 }

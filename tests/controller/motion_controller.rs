@@ -5,10 +5,10 @@
 
 use std::process::Command;
 
-use crate::bench::Bench;
+use crate::bench::{Bench, Lockstep};
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::registers::{irq, register_map};
-use motion_hdl::blocks::motion_controller::MotionController3;
+use motion_hdl::blocks::motion_controller::MotionController;
 use motion_hdl::export::generator;
 use motion_hdl::host::driver::SERVICED_INTERRUPTS;
 use motion_hdl::regmap::c_header;
@@ -18,10 +18,10 @@ use motion_hdl::tools::repo_root;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-type Controller3 = Bench<3, 4, 5>;
+type Controller3 = Bench<3, 4, 5, true>;
 
 /// Every STATUS bit.
-const ALL_STATUS: u32 = (1 << irq::COUNT) - 1;
+pub(crate) const ALL_STATUS: u32 = (1 << irq::COUNT) - 1;
 
 #[test]
 fn smoke_dda_periods_reach_their_positions() {
@@ -113,12 +113,12 @@ impl ChaosDriver {
             .collect()
     }
 
-    /// One clock's bus inputs: (reset, address, data, write, read).
-    fn bus<const K: usize, const N: usize, const NP1: usize>(
-        &mut self,
-        b: &Bench<K, N, NP1>,
-    ) -> (bool, u32, u32, bool, bool) {
+    /// One clock's bus inputs to `b`: (reset, address, data, write, read).
+    fn bus(&mut self, b: &impl Lockstep) -> (bool, u32, u32, bool, bool) {
         let rng = &mut self.rng;
+        let map = b.map();
+        let register = |name: &str| map.register(name).unwrap();
+        let pack = |name: &str, fields: &[(&str, u64)]| register(name).pack(fields).unwrap();
         if rng.gen_ratio(1, 60_000) {
             return (true, 0, 0, false, false);
         }
@@ -128,9 +128,11 @@ impl ChaosDriver {
         if !rng.gen_bool(self.p_bus) {
             return (false, 0, 0, false, false);
         }
-        let axis = rng.gen_range(0..K as u32);
+        let axis = rng.gen_range(0..b.axes() as u32);
         let small = |rng: &mut StdRng| [0, 1, 2, 3, rng.gen_range(0..20)][rng.gen_range(0..5)];
-        let w = |name: &str, index: u32, value: u32| (false, b.address(name, index), value, true, false);
+        let w = |name: &str, index: u32, value: u32| {
+            (false, register(name).address_of(index).unwrap(), value, true, false)
+        };
         match rng.gen_range(0..100) {
             0..=29 => {
                 let n = match rng.gen_range(0..20) {
@@ -153,7 +155,7 @@ impl ChaosDriver {
             50..=51 => w("SNAPSHOT", 0, 0),
             52..=54 => {
                 let mode = [0, 0, 1, 2, 3][rng.gen_range(0..5)];
-                let value = b.pack(
+                let value = pack(
                     "AXIS_CONFIG",
                     &[
                         ("UNIFORM", rng.gen_range(0..2)),
@@ -178,7 +180,7 @@ impl ChaosDriver {
             63 => (false, rng.gen_range(0..256), rng.gen(), true, false),
             64..=65 => w("IO_COMMAND", axis, if rng.gen_ratio(3, 4) { 7 } else { rng.gen_range(0..8) }),
             66 => {
-                let value = b.pack(
+                let value = pack(
                     "IO_CONFIG",
                     &[
                         ("LIMIT_ENABLE", !rng.gen_ratio(1, 6) as u64),
@@ -190,11 +192,11 @@ impl ChaosDriver {
                 w("IO_CONFIG", axis, value)
             }
             67 | 74 => {
-                let status = b.pack("STATUS", &[("ESTOP", 1), ("WATCHDOG", rng.gen_range(0..2))]);
+                let status = pack("STATUS", &[("ESTOP", 1), ("WATCHDOG", rng.gen_range(0..2))]);
                 w("STATUS", 0, status)
             }
             68 if rng.gen_ratio(1, 4) => {
-                let value = b.pack(
+                let value = pack(
                     "INPUT_FILTER",
                     &[("LENGTH", rng.gen_range(0..16)), ("SAMPLE_RATE", [0, 0, 1, 3][rng.gen_range(0..4)])],
                 );
@@ -202,7 +204,7 @@ impl ChaosDriver {
             }
             69 if rng.gen_ratio(1, 8) => {
                 // Mostly active high: an inverted class trips everything.
-                let value = b.pack(
+                let value = pack(
                     "INPUT_POLARITY",
                     &[
                         ("LIMIT_POS", rng.gen_ratio(1, 4) as u64),
@@ -224,9 +226,9 @@ impl ChaosDriver {
 }
 
 /// What a chaos run exercised, to show that it was not idle.
-struct ChaosRun {
+pub(crate) struct ChaosRun {
     /// STATUS bits seen set in reads of STATUS.
-    status_seen: u32,
+    pub(crate) status_seen: u32,
     running_cycles: u64,
     /// Step edges at the pins, all axes.
     steps: u64,
@@ -236,7 +238,7 @@ struct ChaosRun {
 impl ChaosRun {
     /// Fails unless the run was busy: at least `running` clocks with RUN
     /// set, `steps` step edges and `irqs` interrupts.
-    fn assert_busy(&self, name: &str, running: u64, steps: u64, irqs: u64) {
+    pub(crate) fn assert_busy(&self, name: &str, running: u64, steps: u64, irqs: u64) {
         assert!(
             self.running_cycles > running && self.steps > steps && self.irq_rises > irqs,
             "{name}: {} running cycles, {} steps, {} interrupts",
@@ -247,27 +249,25 @@ impl ChaosRun {
     }
 }
 
-/// `cycles` clocks of [`ChaosDriver`] traffic on a K-axis controller with
-/// 2^N-entry FIFOs; the bench compares RTL and model after every clock.
-fn chaos_run_on<const K: usize, const N: usize, const NP1: usize>(
-    mut b: Bench<K, N, NP1>,
-    seed: u64,
-    cycles: u64,
-) -> ChaosRun {
-    let mut driver = ChaosDriver::new(seed, K);
-    let status_address = b.address("STATUS", 0);
+/// `cycles` clocks of [`ChaosDriver`] traffic on a controller (a bench
+/// compares RTL and model after every clock).
+pub(crate) fn chaos_run_on(mut b: impl Lockstep, seed: u64, cycles: u64) -> ChaosRun {
+    let axes = b.axes();
+    let mut driver = ChaosDriver::new(seed, axes);
+    let status_address = b.map().register("STATUS").unwrap().address_of(0).unwrap();
     let mut run = ChaosRun {
         status_seen: 0,
         running_cycles: 0,
         steps: 0,
         irq_rises: 0,
     };
-    let mut previous = b.last.clone();
+    let mut previous = b.last().clone();
     for _ in 0..cycles {
-        b.encoders = driver.encoders();
-        b.pins = driver.machine_pins(K);
+        let encoders = driver.encoders();
+        let pins = driver.machine_pins(axes);
+        b.set_pins(encoders, pins);
         let (reset, address, data, write, read) = driver.bus(&b);
-        let out = b.clock(reset, address, data, write, read).clone();
+        let out = b.step(reset, address, data, write, read);
         // The edge that samples a read registers its data: these outputs
         // hold it (a test of the clock after would see the next read's).
         if read && address == status_address {
@@ -356,8 +356,8 @@ fn compiled_controller_matches_model_for_a_hundred_million_cycles() {
 fn other_axis_counts_and_fifo_depths_match_the_model() {
     let backend = Backend::from_env_or(Backend::Verilator).unwrap();
     for (name, run) in [
-        ("K=1, 256 entries", chaos_run_on(Bench::<1, 8, 9>::on(backend), 0x1_a515, 1_000_000)),
-        ("K=2, 32 entries", chaos_run_on(Bench::<2, 5, 6>::on(backend), 0x2_a515, 1_000_000)),
+        ("K=1, 256 entries", chaos_run_on(Bench::<1, 8, 9, true>::on(backend), 0x1_a515, 1_000_000)),
+        ("K=2, 32 entries", chaos_run_on(Bench::<2, 5, 6, true>::on(backend), 0x2_a515, 1_000_000)),
     ] {
         run.assert_busy(name, 200_000, 7_000, 200);
     }
@@ -365,11 +365,11 @@ fn other_axis_counts_and_fifo_depths_match_the_model() {
 
 /// Firmware set-up: base tick every clock, `period` clocks per period,
 /// step/dir outputs with 1-clock timing, axis `i` uniform if `uniform[i]`.
-fn configure(b: &mut Controller3, period: u32, uniform: [bool; 3]) {
+pub(crate) fn configure<const U: bool>(b: &mut Bench<3, 4, 5, U>, period: u32, uniform: [bool; 3]) {
     configure_with_tick(b, 1, period, uniform);
 }
 
-fn configure_with_tick(b: &mut Controller3, tick_divisor: u32, period: u32, uniform: [bool; 3]) {
+fn configure_with_tick<const U: bool>(b: &mut Bench<3, 4, 5, U>, tick_divisor: u32, period: u32, uniform: [bool; 3]) {
     b.write("TICK_DIVISOR", 0, tick_divisor);
     b.write("PERIOD_TICKS", 0, period);
     b.write("FIFO_LOW_WATER", 0, 4);
@@ -386,7 +386,7 @@ fn configure_with_tick(b: &mut Controller3, tick_divisor: u32, period: u32, unif
 }
 
 /// Idles until the controller has stopped and every output stage is idle.
-fn drain(b: &mut Controller3) {
+pub(crate) fn drain<const U: bool>(b: &mut Bench<3, 4, 5, U>) {
     for _ in 0..200 {
         b.idle(50);
         let state = b.read("STATE", 0);
@@ -489,7 +489,7 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
     assert_eq!(b.steps_while_inactive, 0, "a step left with the drive enable (active) low");
 }
 
-fn queue(b: &mut Controller3, axis: u32, counts: &[i32]) -> i64 {
+pub(crate) fn queue<const U: bool>(b: &mut Bench<3, 4, 5, U>, axis: u32, counts: &[i32]) -> i64 {
     for n in counts {
         b.write("FIFO_WRITE", axis, *n as u32);
     }
@@ -731,7 +731,14 @@ fn power_up_reads_reset_values_and_every_rw_field_reads_back() {
 /// the Rust simulation, on a firmware run with hostile traffic mixed in.
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let mut b = Controller3::new().with_loopback();
+    cross_simulate_exported::<true>("motion_controller");
+}
+
+/// The exported controller `module` (built with `UNIFORM` = `U`) in Icarus
+/// and Verilator against the Rust simulation: a firmware run with axis 1
+/// uniform (asked for, in a DDA-only build), then chaos traffic.
+pub(crate) fn cross_simulate_exported<const U: bool>(module: &str) {
+    let mut b = Bench::<3, 4, 5, U>::new().with_loopback();
     b.recording = Some(Vec::new());
     configure(&mut b, 60, [false, true, false]);
     for period in 0..12 {
@@ -759,59 +766,65 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     }
     let stimulus = b.recording.take().unwrap();
     cross_simulate(
-        &CosimDesign::exported("motion_controller"),
-        MotionController3::default(),
+        &CosimDesign::exported(module),
+        MotionController::<3, 4, 5, U>::default(),
         &stimulus,
     )
     .unwrap_or_else(|e| panic!("{e}"));
 }
 
-/// The generated C header (committed in rtl-out/) compiles as C89 and C99
-/// without a warning and gives the Rust map's numbers.
+/// The generated C headers (committed in rtl-out/), of the full and the
+/// DDA-only build, compile as C89 and C99 without a warning and give their
+/// Rust map's numbers.
 #[test]
 fn the_committed_c_header_compiles_and_agrees_with_the_map() {
-    let map = register_map(3, 4).unwrap();
-    let header = repo_root().join("rtl-out").join("motion_controller_regs.h");
-    assert_eq!(
-        std::fs::read_to_string(&header).unwrap(),
-        c_header(&map, &generator()),
-        "rtl-out/motion_controller_regs.h is stale: run `cargo run --release -- export`"
-    );
-    let dir = tempfile::tempdir().unwrap();
-    let program = r#"#include <stdio.h>
-#include "motion_controller_regs.h"
-int main(void) {
-    printf("%lu %lu %lu %lu %lu %lu\n", MC_FIFO_WRITE_INDEX(2), MC_STATUS_UNDERRUN_MASK,
+    for (name, uniform) in [("motion_controller_regs", true), ("motion_controller_dda_regs", false)] {
+        let map = register_map(3, 4, uniform).unwrap();
+        let header = repo_root().join("rtl-out").join(format!("{name}.h"));
+        assert_eq!(
+            std::fs::read_to_string(&header).unwrap(),
+            c_header(&map, &generator()),
+            "rtl-out/{name}.h is stale: run `cargo run --release -- export`"
+        );
+        let dir = tempfile::tempdir().unwrap();
+        let program = format!(
+            r#"#include <stdio.h>
+#include "{name}.h"
+int main(void) {{
+    printf("%lu %lu %lu %lu %lu %lu %lu\n", MC_FIFO_WRITE_INDEX(2), MC_STATUS_UNDERRUN_MASK,
            MC_AXIS_CONFIG_STEP_MODE_SHIFT, MC_CONFIG_RESET, MC_ACT_SNAPSHOT_OFFSET(1),
-           MC_STATUS_W1C_MASK);
+           MC_STATUS_W1C_MASK, MC_CONFIG_DDA_ONLY_RESET);
     return 0;
-}
-"#;
-    std::fs::write(dir.path().join("main.c"), program).unwrap();
-    let exe = dir.path().join("firmware");
-    for standard in ["-std=c89", "-std=c99"] {
-        let built = Command::new("gcc")
-            .args([standard, "-pedantic", "-Wall", "-Wextra", "-Werror", "-I"])
-            .arg(repo_root().join("rtl-out"))
-            .arg("-o")
-            .arg(&exe)
-            .arg(dir.path().join("main.c"))
-            .output()
-            .expect("gcc runs");
-        assert!(built.status.success(), "{standard}: {}", String::from_utf8_lossy(&built.stderr));
+}}
+"#
+        );
+        std::fs::write(dir.path().join("main.c"), program).unwrap();
+        let exe = dir.path().join("firmware");
+        for standard in ["-std=c89", "-std=c99"] {
+            let built = Command::new("gcc")
+                .args([standard, "-pedantic", "-Wall", "-Wextra", "-Werror", "-I"])
+                .arg(repo_root().join("rtl-out"))
+                .arg("-o")
+                .arg(&exe)
+                .arg(dir.path().join("main.c"))
+                .output()
+                .expect("gcc runs");
+            assert!(built.status.success(), "{name} {standard}: {}", String::from_utf8_lossy(&built.stderr));
+        }
+        let printed = String::from_utf8(Command::new(&exe).output().unwrap().stdout).unwrap();
+        let r = |name: &str| map.register(name).unwrap();
+        let expected = format!(
+            "{} {} {} {} {} {} {}\n",
+            r("FIFO_WRITE").address_of(2).unwrap(),
+            r("STATUS").field("UNDERRUN").unwrap().mask(),
+            r("AXIS_CONFIG").field("STEP_MODE").unwrap().lsb,
+            r("CONFIG").reset_value(),
+            r("ACT_SNAPSHOT").address_of(1).unwrap() * 4,
+            r("STATUS").w1c_mask(),
+            !uniform as u32,
+        );
+        assert_eq!(printed, expected, "{name}");
     }
-    let printed = String::from_utf8(Command::new(&exe).output().unwrap().stdout).unwrap();
-    let r = |name: &str| map.register(name).unwrap();
-    let expected = format!(
-        "{} {} {} {} {} {}\n",
-        r("FIFO_WRITE").address_of(2).unwrap(),
-        r("STATUS").field("UNDERRUN").unwrap().mask(),
-        r("AXIS_CONFIG").field("STEP_MODE").unwrap().lsb,
-        r("CONFIG").reset_value(),
-        r("ACT_SNAPSHOT").address_of(1).unwrap() * 4,
-        r("STATUS").w1c_mask(),
-    );
-    assert_eq!(printed, expected);
 }
 
 /// RUN written on the clocks right after an underrun boundary, while the

@@ -213,10 +213,21 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     count: Signal<Local, Bits<PERIOD_BITS>>,
     uniform_started: Signal<Local, Bit>,
     uniform_forward: Signal<Local, Bit>,
+    /// The uniform generator's outputs as the axis uses them: every use
+    /// goes through these, which are 0 in a build without the generator
+    /// (`has_uniform` = 0). The generator then drives nothing, and
+    /// synthesis removes it.
+    uniform_pulse: Signal<Local, Bit>,
+    uniform_ready: Signal<Local, Bit>,
+    uniform_running: Signal<Local, Bit>,
+    uniform_overrange: Signal<Local, Bit>,
+    uniform_overflow: Signal<Local, Bit>,
     fifo_status: Signal<Local, Bits<32>>,
     axis_status: Signal<Local, Bits<32>>,
 
     window: Constant<Bits<3>>,
+    /// The build has the uniform generator (the controller's `UNIFORM`).
+    has_uniform: Constant<Bit>,
     bit0_32: Constant<Bits<32>>,
     bit16_32: Constant<Bits<32>>,
     bit17_32: Constant<Bits<32>>,
@@ -238,7 +249,9 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// Register widths: the upper bits of the 32-bit registers are always
     /// 0, and yosys removes their flip-flops.
     mask16: Constant<Bits<32>>,
-    mask13: Constant<Bits<32>>,
+    /// AXIS_CONFIG's writable bits (the register map's read-write fields:
+    /// without the uniform generator, not UNIFORM and INTERLEAVED).
+    config_mask: Constant<Bits<32>>,
     mask8: Constant<Bits<32>>,
     off_fifo_write: Constant<Bits<4>>,
     off_fifo_status: Constant<Bits<4>>,
@@ -259,8 +272,10 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
 
 impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
     /// Axis number `index` (its register window is at
-    /// `AXIS_BASE + index * AXIS_STRIDE`).
-    pub fn new(index: usize) -> Self {
+    /// `AXIS_BASE + index * AXIS_STRIDE`), with its uniform generator if
+    /// `uniform`; `config_mask` is AXIS_CONFIG's read-write bits in the
+    /// controller's register map.
+    pub fn new(index: usize, uniform: bool, config_mask: u32) -> Self {
         let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2;
         let c4 = |v: u32| Constant::new((v as u64).into());
         Self {
@@ -368,9 +383,15 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             count: Default::default(),
             uniform_started: Default::default(),
             uniform_forward: Default::default(),
+            uniform_pulse: Default::default(),
+            uniform_ready: Default::default(),
+            uniform_running: Default::default(),
+            uniform_overrange: Default::default(),
+            uniform_overflow: Default::default(),
             fifo_status: Default::default(),
             axis_status: Default::default(),
             window: Constant::new((window as u64).into()),
+            has_uniform: Constant::new(uniform),
             bit0_32: Constant::new((1u64 << 0).into()),
             bit16_32: Constant::new((1u64 << 16).into()),
             bit17_32: Constant::new((1u64 << 17).into()),
@@ -388,7 +409,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             above_count: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into()),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
             mask16: Constant::new(0xffffu64.into()),
-            mask13: Constant::new(0x1fffu64.into()),
+            config_mask: Constant::new((config_mask as u64).into()),
             mask8: Constant::new(0xffu64.into()),
             off_fifo_write: c4(axis::FIFO_WRITE),
             off_fifo_status: c4(axis::FIFO_STATUS),
@@ -469,7 +490,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.clear_faults.next = self.command.val() & self.write_data.val().get_bit(0);
         if self.write.val() & self.selected.val() {
             if self.offset.val() == self.off_config.val() {
-                self.settings.d.next = self.write_data.val() & self.mask13.val();
+                self.settings.d.next = self.write_data.val() & self.config_mask.val();
             }
             if self.offset.val() == self.off_step_len.val() {
                 self.step_len.d.next = self.write_data.val() & self.mask16.val();
@@ -528,6 +549,28 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.too_large.val() {
             self.count.next = self.max_count.val();
         }
+        // The uniform generator's outputs, and its division request, are
+        // taken only in a build with the generator: without it they are
+        // constant 0 and the generator (and the controller's divider) has
+        // no fanout, so synthesis removes them.
+        self.uniform_pulse.next = false;
+        self.uniform_ready.next = false;
+        self.uniform_running.next = false;
+        self.uniform_overrange.next = false;
+        self.uniform_overflow.next = false;
+        self.div_request.next = false;
+        self.div_dividend.next = self.zero_count.val();
+        self.div_divisor.next = self.zero_count.val();
+        if self.has_uniform.val() {
+            self.uniform_pulse.next = self.uniform.pulse.val();
+            self.uniform_ready.next = self.uniform.ready.val();
+            self.uniform_running.next = self.uniform.running.val();
+            self.uniform_overrange.next = self.uniform.overrange.val();
+            self.uniform_overflow.next = self.uniform.overflow.val();
+            self.div_request.next = self.uniform.div_request.val();
+            self.div_dividend.next = self.uniform.div_dividend.val();
+            self.div_divisor.next = self.uniform.div_divisor.val();
+        }
         if self.clear_faults.val() {
             self.overrange_flag.d.next = false;
             self.overflow_flag.d.next = false;
@@ -537,11 +580,11 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.saturated.d.next = self.popped_valid.q.val() & self.too_large.val();
         if self.saturated.q.val()
             | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
-            | (self.uniform.overrange.val() & !self.uniform_overrange_prev.q.val())
+            | (self.uniform_overrange.val() & !self.uniform_overrange_prev.q.val())
         {
             self.overrange_flag.d.next = true;
         }
-        if self.uniform.overflow.val() & !self.uniform_overflow_prev.q.val() {
+        if self.uniform_overflow.val() & !self.uniform_overflow_prev.q.val() {
             self.overflow_flag.d.next = true;
         }
 
@@ -549,7 +592,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // boundary edge; the boundary tick itself still uses the old ones.
         // A uniform period still finishing keeps its generator in charge:
         // the switch waits for the next start, and no pulse is cut off.
-        if self.start.val() & !self.uniform.running.val() {
+        if self.start.val() & !self.uniform_running.val() {
             self.uniform_active.d.next = self.settings.q.val().get_bit(0);
         }
         if self.popped_valid.q.val() {
@@ -585,18 +628,15 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.uniform.mode.next = self.settings.q.val().get_bit(1);
         self.uniform.load.next = self.popped_valid.q.val() & self.uniform_active.q.val();
         self.uniform.clear_flags.next = self.clear_faults.val() | self.start.val();
-        self.div_request.next = self.uniform.div_request.val();
-        self.div_dividend.next = self.uniform.div_dividend.val();
-        self.div_divisor.next = self.uniform.div_divisor.val();
         self.uniform.div_done.next = self.div_done.val();
         self.uniform.div_quotient.next = self.div_quotient.val();
         self.uniform.div_remainder.next = self.div_remainder.val();
-        if self.popped_valid.q.val() & self.uniform_active.q.val() & self.uniform.ready.val() {
+        if self.popped_valid.q.val() & self.uniform_active.q.val() & self.uniform_ready.val() {
             self.uniform_loaded_forward.d.next = !self.popped.q.val().get_bit(31);
         }
-        self.uniform_ready_prev.d.next = self.uniform.ready.val();
-        self.uniform_pulse_prev.d.next = self.uniform.pulse.val();
-        self.uniform_started.next = self.uniform.ready.val() & !self.uniform_ready_prev.q.val();
+        self.uniform_ready_prev.d.next = self.uniform_ready.val();
+        self.uniform_pulse_prev.d.next = self.uniform_pulse.val();
+        self.uniform_started.next = self.uniform_ready.val() & !self.uniform_ready_prev.q.val();
         self.uniform_forward.next = self.uniform_running_forward.q.val();
         if self.uniform_started.val() {
             self.uniform_forward.next = self.uniform_loaded_forward.q.val();
@@ -610,7 +650,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // blocked direction keeps a step out of it; a step already in it or
         // pending in the stage is dropped by the stage's flush.
         if self.uniform_active.q.val() {
-            self.candidate.next = self.uniform.pulse.val() & !self.uniform_pulse_prev.q.val();
+            self.candidate.next = self.uniform_pulse.val() & !self.uniform_pulse_prev.q.val();
             self.candidate_forward.next = self.uniform_forward.val();
         } else {
             self.candidate.next = self.dda.pulse.val();
@@ -707,14 +747,14 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // saturated entry.
         self.overrun_prev.d.next = self.stage.overrun.val();
         self.dda_overrange_prev.d.next = self.dda.overrange.val();
-        self.uniform_overrange_prev.d.next = self.uniform.overrange.val();
-        self.uniform_overflow_prev.d.next = self.uniform.overflow.val();
+        self.uniform_overrange_prev.d.next = self.uniform_overrange.val();
+        self.uniform_overflow_prev.d.next = self.uniform_overflow.val();
         self.fault_event.next = (self.stage.overrun.val() & !self.overrun_prev.q.val())
             | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
-            | (self.uniform.overrange.val() & !self.uniform_overrange_prev.q.val())
-            | (self.uniform.overflow.val() & !self.uniform_overflow_prev.q.val())
+            | (self.uniform_overrange.val() & !self.uniform_overrange_prev.q.val())
+            | (self.uniform_overflow.val() & !self.uniform_overflow_prev.q.val())
             | self.saturated.q.val();
-        self.busy.next = self.stage.busy.val() | self.uniform.running.val();
+        self.busy.next = self.stage.busy.val() | self.uniform_running.val();
         self.encoder_error_prev.d.next = self.encoder.error.val();
         self.encoder_error_event.next = self.encoder.error.val() & !self.encoder_error_prev.q.val();
 
@@ -755,7 +795,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.stage.busy.val() {
             self.axis_status.next = self.axis_status.val() | self.bit5_32.val();
         }
-        if self.uniform.running.val() {
+        if self.uniform_running.val() {
             self.axis_status.next = self.axis_status.val() | self.bit6_32.val();
         }
         if self.stage.mode_invalid.val() {

@@ -113,7 +113,8 @@
 //! * **Interpolator choice** (`AXIS_CONFIG.UNIFORM`) is taken at a start,
 //!   for an axis whose uniform generator is idle; an axis still finishing
 //!   a uniform period keeps the generator until the next start, so no
-//!   pulse is cut off.
+//!   pulse is cut off. A DDA-only build (see "Build options") has no
+//!   choice: `UNIFORM` reads 0 and every axis runs its DDA.
 //! * **Encoder error**: A and B changing on one sample counts nothing, sets
 //!   `AXIS_STATUS.ENCODER_ERROR` and raises `STATUS.ENCODER_ERROR`.
 //!   `CLEAR_ENCODER_ERROR` acknowledges it and keeps `ACT_POSITION` (the
@@ -227,7 +228,33 @@
 //! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
 //! a quadrature decoder, a FIFO, its machine I/O (two 32-bit home latches)
 //! and its register window with two 32-bit snapshots: about 1900 logic
-//! cells an axis, over about 1100 for the rest.
+//! cells an axis, over about 1100 for the rest. The DDA-only build
+//! (`motion_controller_dda`) has its own row in the report.
+//!
+//! ## Build options: DDA only
+//! `UNIFORM` = false (the alias [`MotionController3Dda`], exported as
+//! `motion_controller_dda`) builds the controller without the uniform pulse
+//! generators and their shared divider: the seed design's own DDA-only
+//! scheme, small enough for an iCE40 HX8K with the host links and mailbox.
+//! The ports are the same; for software:
+//! * `CONFIG.DDA_ONLY` reads 1 (0 in the full build, and in cores older
+//!   than the field, which all have the generators): the driver's way to
+//!   tell the builds apart.
+//! * `AXIS_CONFIG.UNIFORM` and `INTERLEAVED` read 0 whatever is written
+//!   (write-any, read-legal); the other fields behave as in the full
+//!   build. Every axis runs its DDA, so a period takes |n| <= P steps on
+//!   every axis, and the uniform lag ([`latency::UNIFORM_LAG`]) never
+//!   applies.
+//! * `AXIS_STATUS.UNIFORM_RUNNING` and `INTERP_OVERFLOW` stay 0; `active`
+//!   is `running` or an output stage busy.
+//! * Everything else, pin for pin and clock for clock, is the full build
+//!   with no axis uniform (`tests/controller/dda_only.rs` checks it).
+//!
+//! Its register map is `rtl-out/motion_controller_dda_regs.h` and `.md`
+//! (same names as the full build's, with UNIFORM and INTERLEAVED read-only).
+//! The generators stay in the Rust block, but every use of their outputs,
+//! and the divider's, is gated by a constant: in the DDA-only build they
+//! drive nothing, and synthesis removes them.
 
 pub mod axis;
 pub mod axis_io;
@@ -296,16 +323,21 @@ pub mod latency {
 /// Number of interrupt sources (`STATUS` bits).
 const IRQ_COUNT: usize = irq::COUNT;
 
-/// The exported configuration: 3 axes, 16-entry FIFOs.
-pub type MotionController3 = MotionController<3, 4, 5>;
+/// The exported configuration (`motion_controller`): 3 axes, 16-entry
+/// FIFOs, DDA and uniform pulse generator on every axis.
+pub type MotionController3 = MotionController<3, 4, 5, true>;
+
+/// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
+/// 16-entry FIFOs, no uniform pulse generators (see "Build options").
+pub type MotionController3Dda = MotionController<3, 4, 5, false>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
-pub type MotionController1 = MotionController<1, 4, 5>;
+pub type MotionController1 = MotionController<1, 4, 5, true>;
 
 /// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
 /// the synthesis report's scaling table, not exported.
-pub type MotionController6 = MotionController<6, 4, 5>;
+pub type MotionController6 = MotionController<6, 4, 5, true>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -325,6 +357,10 @@ pub const PERIOD_BITS: usize = 16;
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
     "motion controller: K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
+
+/// The DDA-only build's line (`motion_controller_dda`).
+pub const SUMMARY_DDA: &str =
+    "motion controller, DDA interpolators only (no uniform pulse generators): K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
 pub const PORT_DOCS: &[(&str, &str)] = &[
@@ -363,9 +399,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
 ];
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
-/// N + 1). See the [module documentation](self).
+/// N + 1), with a uniform pulse generator on every axis if `UNIFORM` (else
+/// DDA only: see "Build options"). See the [module documentation](self).
 #[derive(LogicBlock)]
-pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
+pub struct MotionController<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
     /// Synchronous reset, active high.
@@ -425,6 +462,9 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     divider: SequentialDivider<PERIOD_BITS, PERIOD_BITS>,
     /// The axis whose division is running (one-hot).
     div_owner: DFF<Bits<K>>,
+    /// `UNIFORM`: the axes have uniform generators, and so the divider is
+    /// used. (A const generic cannot appear in `#[hdl_gen]` code.)
+    has_uniform: Constant<Bit>,
     /// A division can start in this clock.
     div_idle: Signal<Local, Bit>,
     /// An axis was granted the divider in this clock.
@@ -567,7 +607,9 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize> {
     level_mask: Constant<Bits<32>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize> Default for MotionController<K, N, NP1> {
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Default
+    for MotionController<K, N, NP1, UNIFORM>
+{
     fn default() -> Self {
         assert!(
             (1..=registers::MAX_AXES).contains(&K),
@@ -579,9 +621,11 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
         let ev = |bit: u32| Constant::new((1u64 << bit).into());
         let m32 = |bit: u32| Constant::new((1u64 << bit).into());
         let cause = |c: StopCause| Constant::new(((c as u64) << fields::STOP_CAUSE_CAUSE).into());
-        let config = registers::register_map(K, N as u32)
-            .and_then(|map| map.register("CONFIG").map(|r| r.reset_value()))
+        let map = registers::register_map(K, N as u32, UNIFORM)
             .expect("the controller's own register map validates");
+        let reg = |name: &str| map.register(name).expect("the controller's own register");
+        let config = reg("CONFIG").reset_value();
+        let axis_config_mask = reg("AXIS_CONFIG").rw_mask();
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -606,13 +650,14 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
             step_b: Default::default(),
             drive_enable: Default::default(),
             gpio_out: Default::default(),
-            axes: array_init::array_init(MotionAxis::new),
+            axes: array_init::array_init(|k| MotionAxis::new(k, UNIFORM, axis_config_mask)),
             tick_divider: Default::default(),
             watchdog: Default::default(),
             interrupts: Default::default(),
             io: Default::default(),
             divider: Default::default(),
             div_owner: Default::default(),
+            has_uniform: Constant::new(UNIFORM),
             div_idle: Default::default(),
             div_granted: Default::default(),
             abort_hold: Default::default(),
@@ -733,7 +778,9 @@ impl<const K: usize, const N: usize, const NP1: usize> Default for MotionControl
     }
 }
 
-impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionController<K, N, NP1> {
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Logic
+    for MotionController<K, N, NP1, UNIFORM>
+{
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -959,9 +1006,13 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
 
         // The shared divider: the lowest-numbered axis that asks gets it
         // when it is idle (a start in its `done` clock would hand the
-        // owner's request, still high then, a second division).
+        // owner's request, still high then, a second division). Without
+        // uniform generators it is never started and its results reach no
+        // axis, so synthesis removes it (the axes' requests are already 0,
+        // but that is not visible across the axis's module boundary).
         self.divider.reset.next = self.reset.val() | self.halt.val();
-        self.div_idle.next = !self.divider.busy.val() & !self.divider.done.val();
+        self.div_idle.next =
+            !self.divider.busy.val() & !self.divider.done.val() & self.has_uniform.val();
         self.div_granted.next = false;
         self.divider.start.next = false;
         self.divider.dividend.next = self.axes[0].div_dividend.val();
@@ -974,10 +1025,15 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
                 self.divider.divisor.next = self.axes[i].div_divisor.val();
                 self.div_owner.d.next = self.axis_bit[i].val();
             }
-            self.axes[i].div_done.next = self.divider.done.val()
-                & ((self.div_owner.q.val() & self.axis_bit[i].val()) != self.zero_k.val());
-            self.axes[i].div_quotient.next = self.divider.quotient.val();
-            self.axes[i].div_remainder.next = self.divider.remainder.val();
+            self.axes[i].div_done.next = false;
+            self.axes[i].div_quotient.next = self.zero_p.val();
+            self.axes[i].div_remainder.next = self.zero_p.val();
+            if self.has_uniform.val() {
+                self.axes[i].div_done.next = self.divider.done.val()
+                    & ((self.div_owner.q.val() & self.axis_bit[i].val()) != self.zero_k.val());
+                self.axes[i].div_quotient.next = self.divider.quotient.val();
+                self.axes[i].div_remainder.next = self.divider.remainder.val();
+            }
         }
         if self.reset.val() {
             self.div_owner.d.next = self.zero_k.val();
@@ -1179,7 +1235,7 @@ impl<const K: usize, const N: usize, const NP1: usize> Logic for MotionControlle
     }
 }
 
-crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize] MotionController<K, N, NP1> {
+crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool] MotionController<K, N, NP1, UNIFORM> {
     inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
         limit_pos, limit_neg, home, drive_alarm, estop, gpio_in],
     outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out],

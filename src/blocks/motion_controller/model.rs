@@ -145,6 +145,11 @@ struct AxisControl {
 #[derive(Clone, Debug)]
 pub struct AxisModel {
     window: u32,
+    /// AXIS_CONFIG's writable bits, from the register map: in a build
+    /// without uniform generators UNIFORM and INTERLEAVED are not among
+    /// them, so the uniform generator is never loaded and stays idle (the
+    /// RTL's gating of its outputs changes nothing else).
+    config_mask: u32,
     fifo: CommandFifoModel,
     fifo_out: CommandFifoOutputs,
     dda: DdaIntegratorModel,
@@ -213,7 +218,7 @@ struct AxisComb {
 }
 
 impl AxisModel {
-    fn new(index: usize, fifo_log2: u32) -> Self {
+    fn new(index: usize, fifo_log2: u32, config_mask: u32) -> Self {
         let mut fifo = CommandFifoModel::new(1 << fifo_log2);
         let fifo_out = fifo.step(true, false, 0, false, 0, false);
         let mut uniform = UniformPulseGenModel::with_width(super::PERIOD_BITS as u32);
@@ -234,6 +239,7 @@ impl AxisModel {
         let encoder = QuadratureDecoderModel::new(32, 8, 16);
         Self {
             window: (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2,
+            config_mask,
             fifo,
             fifo_out,
             dda_out: dda.outputs(),
@@ -412,7 +418,7 @@ impl AxisModel {
         let mut next = self.clone();
         if c.write && selected {
             match offset {
-                axis::AXIS_CONFIG => next.glue.config = c.write_data & 0x1fff,
+                axis::AXIS_CONFIG => next.glue.config = c.write_data & self.config_mask,
                 axis::STEP_LEN => next.glue.step_len = c.write_data & 0xffff,
                 axis::STEP_SPACE => next.glue.step_space = c.write_data & 0xffff,
                 axis::DIR_SETUP => next.glue.dir_setup = c.write_data & 0xffff,
@@ -560,8 +566,9 @@ impl AxisModel {
     }
 }
 
-/// Plain-Rust, cycle-exact model of a `motion_controller` with `axes` axes
-/// and FIFOs of 2^`fifo_log2` entries.
+/// Plain-Rust, cycle-exact model of a `motion_controller` with `axes` axes,
+/// FIFOs of 2^`fifo_log2` entries, and uniform pulse generators or not
+/// (the RTL's `UNIFORM`).
 #[derive(Clone, Debug)]
 pub struct MotionControllerModel {
     fifo_log2: u32,
@@ -599,15 +606,17 @@ pub struct MotionControllerModel {
 }
 
 impl MotionControllerModel {
-    /// A controller in its power-up state. Fails like
-    /// [`registers::register_map`] for an unsupported axis count.
-    pub fn new(axes: usize, fifo_log2: u32) -> Result<Self, crate::regmap::RegMapError> {
-        let map = registers::register_map(axes, fifo_log2)?;
+    /// A controller in its power-up state, with the uniform generators if
+    /// `uniform`. Fails like [`registers::register_map`] for an unsupported
+    /// axis count.
+    pub fn new(axes: usize, fifo_log2: u32, uniform: bool) -> Result<Self, crate::regmap::RegMapError> {
+        let map = registers::register_map(axes, fifo_log2, uniform)?;
         let config_value = map.register("CONFIG")?.reset_value();
+        let config_mask = map.register("AXIS_CONFIG")?.rw_mask();
         Ok(Self {
             fifo_log2,
             config_value,
-            axes: (0..axes).map(|i| AxisModel::new(i, fifo_log2)).collect(),
+            axes: (0..axes).map(|i| AxisModel::new(i, fifo_log2, config_mask)).collect(),
             tick_divider: FreqDividerModel::new(32),
             tick: false,
             watchdog: WatchdogModel::new(),

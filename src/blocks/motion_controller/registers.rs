@@ -95,6 +95,8 @@ pub mod fields {
     pub const GPIO_RISE: u32 = 0;
     /// `GPIO_IRQ_ENABLE.FALL` and `GPIO_EDGES.FALL` (8 bits).
     pub const GPIO_FALL: u32 = 8;
+    /// `CONFIG.DDA_ONLY`: the build has no uniform pulse generators.
+    pub const CONFIG_DDA_ONLY: u32 = 24;
     /// `STATE.ESTOP_INPUT`.
     pub const STATE_ESTOP_INPUT: u32 = 3;
     /// `STATE.ESTOP_LATCHED`.
@@ -324,10 +326,13 @@ fn irq_fields(access: Access) -> Vec<Field> {
     ]
 }
 
-/// The register map of a `motion_controller` with `axes` axes and FIFOs of
-/// 2^`fifo_log2` entries. Fails, naming the problem, for more axes than the
-/// address space holds or a map that does not validate.
-pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapError> {
+/// The register map of a `motion_controller` with `axes` axes, FIFOs of
+/// 2^`fifo_log2` entries, and the uniform pulse generators if `uniform`
+/// (the controller's `UNIFORM` parameter). Without them `CONFIG.DDA_ONLY`
+/// reads 1 and `AXIS_CONFIG.UNIFORM` and `INTERLEAVED` are read-only 0.
+/// Fails, naming the problem, for more axes than the address space holds
+/// or a map that does not validate.
+pub fn register_map(axes: usize, fifo_log2: u32, uniform: bool) -> Result<RegisterMap, RegMapError> {
     if axes == 0 || axes > MAX_AXES {
         return Err(RegMapError::NoCopies(format!(
             "motion_controller axes: {axes} (1 to {MAX_AXES} fit the 8-bit address space)"
@@ -346,16 +351,45 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
             field("FIFO_DEPTH_LOG2", 8, 4, ReadOnly, "each axis FIFO holds 2^n periods"),
             field("TIMER_BITS", 12, 6, ReadOnly, "width of the step timing registers"),
             field("POSITION_BITS", 18, 6, ReadOnly, "width of the position counters"),
+            // 1 for the build without, not 0: cores from before this field
+            // read 0 here, and all of them have the uniform generators.
+            field(
+                "DDA_ONLY",
+                fields::CONFIG_DDA_ONLY,
+                1,
+                ReadOnly,
+                "1 = no uniform pulse generators in this build: AXIS_CONFIG.UNIFORM and INTERLEAVED read 0 and ignore writes, every axis runs its DDA",
+            ),
         ],
     );
     config.fields[0].reset = axes as u64;
     config.fields[1].reset = fifo_log2 as u64;
     config.fields[2].reset = super::TIMER_BITS as u64;
     config.fields[3].reset = 32;
+    config.fields[4].reset = !uniform as u64;
+    // The uniform generator's fields: read-write, or read-only 0 (writes
+    // ignored) in a build without the generators.
+    let uniform_access = if uniform { ReadWrite } else { ReadOnly };
+    let (uniform_doc, interleaved_doc) = if uniform {
+        (
+            "0 = DDA, 1 = dual-period uniform pulse generator; taken when RUN starts and the axis's uniform generator is idle",
+            "uniform generator order: 0 = short pulses first, 1 = interleaved",
+        )
+    } else {
+        (
+            "reads 0, writes ignored: this build has no uniform pulse generator (CONFIG.DDA_ONLY), the axis always runs its DDA",
+            "reads 0, writes ignored (CONFIG.DDA_ONLY)",
+        )
+    };
+    let map_doc = if uniform {
+        "motion_controller: K step/encoder axes behind a 32-bit word-addressed register bus"
+    } else {
+        "motion_controller_dda: K step/encoder axes (DDA interpolators only) behind a 32-bit word-addressed register bus"
+    };
     let map = RegisterMap {
         name: "MC",
         address_bits: 8,
-        doc: "motion_controller: K step/encoder axes behind a 32-bit word-addressed register bus",
+        doc: map_doc,
         registers: vec![
             Register::word("ID", global::ID, ReadOnly, ID_VALUE as u64, "identity: 0x4D484443, \"MHDC\""),
             register(
@@ -486,8 +520,8 @@ pub fn register_map(axes: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
                 at(axis::AXIS_CONFIG),
                 "interpolator, output mode and encoder settings",
                 vec![
-                    field("UNIFORM", 0, 1, ReadWrite, "0 = DDA, 1 = dual-period uniform pulse generator; taken when RUN starts and the axis's uniform generator is idle"),
-                    field("INTERLEAVED", 1, 1, ReadWrite, "uniform generator order: 0 = short pulses first, 1 = interleaved"),
+                    field("UNIFORM", 0, 1, uniform_access, uniform_doc),
+                    field("INTERLEAVED", 1, 1, uniform_access, interleaved_doc),
                     field("STEP_MODE", 2, 2, ReadWrite, "0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0); taken while the output is idle"),
                     field("ENC_FILTER", 4, 4, ReadWrite, "encoder glitch filter: samples a level must hold"),
                     field("ENC_COUNTER_MODE", 8, 1, ReadWrite, "0 = 4x quadrature, 1 = step/dir input"),
