@@ -51,10 +51,48 @@ fn every_exported_module_synthesizes_and_places_on_ice40_hx8k() {
     }
 }
 
-/// The README's board example (`boards/ice40-hx8k-breakout`): the
-/// controller behind the DSP bus adapter, with a PLL and every machine
+/// Synthesizes a board top from `boards/ice40-hx8k-breakout/<top>.v` and
+/// the named `rtl-out/` modules, and places it with `<top>.pcf` at its
+/// 48 MHz clock, with the commands in the top's header. Returns
+/// nextpnr's log.
+fn place_board(top: &str, modules: &[&str]) -> String {
+    let board = repo_root().join("boards").join("ice40-hx8k-breakout");
+    let rtl = repo_root().join("rtl-out");
+    let dir = tempfile::tempdir().unwrap();
+    let netlist = dir.path().join("board.json");
+    let mut sources = vec![board.join(format!("{top}.v"))];
+    sources.extend(modules.iter().map(|m| rtl.join(format!("{m}.v"))));
+    let sources: Vec<String> = sources.iter().map(|p| p.display().to_string()).collect();
+    let yosys = Command::new("yosys")
+        .arg("-q")
+        .arg("-p")
+        .arg(format!(
+            "read_verilog {}; synth_ice40 -dffe_min_ce_use 4 -top {top} -json {}",
+            sources.join(" "),
+            netlist.display()
+        ))
+        .output()
+        .expect("yosys runs");
+    assert!(yosys.status.success(), "{}", String::from_utf8_lossy(&yosys.stderr));
+    let nextpnr = Command::new("nextpnr-ice40")
+        .args(["--hx8k", "--package", "ct256", "--freq", "48", "--pcf"])
+        .arg(board.join(format!("{top}.pcf")))
+        .arg("--json")
+        .arg(&netlist)
+        .arg("--asc")
+        .arg(dir.path().join("board.asc"))
+        .output()
+        .expect("nextpnr-ice40 runs");
+    let log = String::from_utf8_lossy(&nextpnr.stderr).into_owned();
+    assert!(nextpnr.status.success(), "{top}: nextpnr failed (pins or timing at 48 MHz):\n{log}");
+    assert!(log.contains("PASS at 48.00 MHz"), "{log}");
+    log
+}
+
+/// The README's board example (`boards/ice40-hx8k-breakout/motion_board.v`):
+/// the controller behind the DSP bus adapter, with a PLL and every machine
 /// input and output on a pin, synthesizes and places with its pin file at
-/// its 48 MHz clock, with the commands in `motion_board.v`'s header.
+/// its 48 MHz clock.
 ///
 /// The board fills about 91 % of the HX8K's logic cells (96 % before
 /// #19). With yosys's
@@ -64,33 +102,22 @@ fn every_exported_module_synthesizes_and_places_on_ice40_hx8k() {
 /// an enable shared by fewer than 4 flip-flops into their LUTs, places.
 #[test]
 fn the_board_example_places_with_its_pin_file() {
-    let board = repo_root().join("boards").join("ice40-hx8k-breakout");
-    let rtl = repo_root().join("rtl-out");
-    let dir = tempfile::tempdir().unwrap();
-    let netlist = dir.path().join("board.json");
-    let yosys = Command::new("yosys")
-        .arg("-q")
-        .arg("-p")
-        .arg(format!(
-            "read_verilog {} {} {}; synth_ice40 -dffe_min_ce_use 4 -top motion_board -json {}",
-            board.join("motion_board.v").display(),
-            rtl.join("motion_controller.v").display(),
-            rtl.join("external_bus_adapter.v").display(),
-            netlist.display()
-        ))
-        .output()
-        .expect("yosys runs");
-    assert!(yosys.status.success(), "{}", String::from_utf8_lossy(&yosys.stderr));
-    let nextpnr = Command::new("nextpnr-ice40")
-        .args(["--hx8k", "--package", "ct256", "--freq", "48", "--pcf"])
-        .arg(board.join("motion_board.pcf"))
-        .arg("--json")
-        .arg(&netlist)
-        .arg("--asc")
-        .arg(dir.path().join("board.asc"))
-        .output()
-        .expect("nextpnr-ice40 runs");
-    let log = String::from_utf8_lossy(&nextpnr.stderr);
-    assert!(nextpnr.status.success(), "nextpnr failed (pins or timing at 48 MHz):\n{log}");
-    assert!(log.contains("PASS at 48.00 MHz"), "{log}");
+    place_board("motion_board", &["motion_controller", "external_bus_adapter"]);
+}
+
+/// The seed card (`seed_board.v`): an F28335 on the 16-bit bus and a CH365
+/// on the 8-bit bus sharing the mailbox (`host_links`), the DDA-only
+/// controller and the machine I/O, placed with its pin file at 48 MHz.
+/// #19 asks for at least 15 % of the logic cells free.
+#[test]
+fn the_seed_board_places_with_its_pin_file_and_room_to_spare() {
+    let log = place_board("seed_board", &["host_links", "motion_controller_dda"]);
+    let used = log
+        .lines()
+        .find_map(|line| {
+            let rest = line.split("ICESTORM_LC:").nth(1)?;
+            rest.split('/').next()?.trim().parse::<u32>().ok()
+        })
+        .expect("nextpnr reports its logic cells");
+    assert!(used * 100 <= 7680 * 85, "seed board: {used} of 7680 logic cells, less than 15 % free");
 }
