@@ -54,6 +54,11 @@ enum Command {
         /// existing file, and nextpnr-ice40 does not run.
         #[arg(long)]
         families_only: bool,
+        /// Only the iCE40 table (yosys and nextpnr-ice40); the other-families
+        /// section is kept from the existing file (a controller's families
+        /// row alone takes about 15 minutes).
+        #[arg(long, conflicts_with = "families_only")]
+        ice40_only: bool,
         /// Instead, measure motion_controller at K = 1, 3 and 6 axes on
         /// iCE40 HX8K and write rtl-out/scaling-report.md (or --out).
         #[arg(long, conflicts_with_all = ["families_only", "modules"])]
@@ -241,6 +246,7 @@ fn run(cli: Cli) -> Result<(), String> {
             seeds,
             modules,
             families_only,
+            ice40_only,
             scaling,
         } => {
             let seeds: Vec<u64> = (1..=seeds).collect();
@@ -274,15 +280,19 @@ fn run(cli: Cli) -> Result<(), String> {
                 let rows = report::measure(&specs, &rtl, &seeds).map_err(|e| e.to_string())?;
                 report::render(&rows, &seeds).map_err(|e| e.to_string())?
             };
-            let ecp5 = families::ecp5_pnr_tool();
-            if let Err(why) = &ecp5 {
-                eprintln!("motion-hdl: ECP5 place and route not measured: {why}");
-            }
-            let rows =
-                families::measure(&specs, &rtl, &seeds, ecp5.is_ok()).map_err(|e| e.to_string())?;
-            let other = families::render(&rows, &seeds, &ecp5).map_err(|e| e.to_string())?;
+            let other = if ice40_only {
+                String::new()
+            } else {
+                let ecp5 = families::ecp5_pnr_tool();
+                if let Err(why) = &ecp5 {
+                    eprintln!("motion-hdl: ECP5 place and route not measured: {why}");
+                }
+                let rows = families::measure(&specs, &rtl, &seeds, ecp5.is_ok())
+                    .map_err(|e| e.to_string())?;
+                families::render(&rows, &seeds, &ecp5).map_err(|e| e.to_string())?
+            };
             let mut text = report::assemble(&ice40, &other);
-            if let (false, Some(previous)) = (modules.is_empty(), &previous) {
+            if let (true, Some(previous)) = (ice40_only || !modules.is_empty(), &previous) {
                 text = report::merge(previous, &text, &known);
             }
             std::fs::write(&out, text)
