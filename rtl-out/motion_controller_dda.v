@@ -1004,14 +1004,9 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
             divider__divisor = axes__0__div_divisor;
             div_owner__d = axis_bit__0;
         end
-        axes__0__div_done = 1'b0;
-        axes__0__div_quotient = zero_p;
-        axes__0__div_remainder = zero_p;
-        if (has_uniform) begin
-            axes__0__div_done = divider__done & ((div_owner__q & axis_bit__0) != zero_k);
-            axes__0__div_quotient = divider__quotient;
-            axes__0__div_remainder = divider__remainder;
-        end
+        axes__0__div_done = has_uniform & divider__done & ((div_owner__q & axis_bit__0) != zero_k);
+        axes__0__div_quotient = divider__quotient;
+        axes__0__div_remainder = divider__remainder;
         if (div_idle & ~div_granted & axes__1__div_request) begin
             div_granted = 1'b1;
             divider__start = 1'b1;
@@ -1019,14 +1014,9 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
             divider__divisor = axes__1__div_divisor;
             div_owner__d = axis_bit__1;
         end
-        axes__1__div_done = 1'b0;
-        axes__1__div_quotient = zero_p;
-        axes__1__div_remainder = zero_p;
-        if (has_uniform) begin
-            axes__1__div_done = divider__done & ((div_owner__q & axis_bit__1) != zero_k);
-            axes__1__div_quotient = divider__quotient;
-            axes__1__div_remainder = divider__remainder;
-        end
+        axes__1__div_done = has_uniform & divider__done & ((div_owner__q & axis_bit__1) != zero_k);
+        axes__1__div_quotient = divider__quotient;
+        axes__1__div_remainder = divider__remainder;
         if (div_idle & ~div_granted & axes__2__div_request) begin
             div_granted = 1'b1;
             divider__start = 1'b1;
@@ -1034,14 +1024,9 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
             divider__divisor = axes__2__div_divisor;
             div_owner__d = axis_bit__2;
         end
-        axes__2__div_done = 1'b0;
-        axes__2__div_quotient = zero_p;
-        axes__2__div_remainder = zero_p;
-        if (has_uniform) begin
-            axes__2__div_done = divider__done & ((div_owner__q & axis_bit__2) != zero_k);
-            axes__2__div_quotient = divider__quotient;
-            axes__2__div_remainder = divider__remainder;
-        end
+        axes__2__div_done = has_uniform & divider__done & ((div_owner__q & axis_bit__2) != zero_k);
+        axes__2__div_quotient = divider__quotient;
+        axes__2__div_remainder = divider__remainder;
         if (reset) begin
             div_owner__d = zero_k;
         end
@@ -2216,24 +2201,14 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         if (too_large) begin
             count = max_count;
         end
-        uniform_pulse = 1'b0;
-        uniform_ready = 1'b0;
-        uniform_running = 1'b0;
-        uniform_overrange = 1'b0;
-        uniform_overflow = 1'b0;
-        div_request = 1'b0;
-        div_dividend = zero_count;
-        div_divisor = zero_count;
-        if (has_uniform) begin
-            uniform_pulse = uniform__pulse;
-            uniform_ready = uniform__ready;
-            uniform_running = uniform__running;
-            uniform_overrange = uniform__overrange;
-            uniform_overflow = uniform__overflow;
-            div_request = uniform__div_request;
-            div_dividend = uniform__div_dividend;
-            div_divisor = uniform__div_divisor;
-        end
+        uniform_pulse = has_uniform & uniform__pulse;
+        uniform_ready = has_uniform & uniform__ready;
+        uniform_running = has_uniform & uniform__running;
+        uniform_overrange = has_uniform & uniform__overrange;
+        uniform_overflow = has_uniform & uniform__overflow;
+        div_request = has_uniform & uniform__div_request;
+        div_dividend = uniform__div_dividend;
+        div_divisor = uniform__div_divisor;
         if (clear_faults) begin
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -8459,24 +8434,14 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         if (too_large) begin
             count = max_count;
         end
-        uniform_pulse = 1'b0;
-        uniform_ready = 1'b0;
-        uniform_running = 1'b0;
-        uniform_overrange = 1'b0;
-        uniform_overflow = 1'b0;
-        div_request = 1'b0;
-        div_dividend = zero_count;
-        div_divisor = zero_count;
-        if (has_uniform) begin
-            uniform_pulse = uniform__pulse;
-            uniform_ready = uniform__ready;
-            uniform_running = uniform__running;
-            uniform_overrange = uniform__overrange;
-            uniform_overflow = uniform__overflow;
-            div_request = uniform__div_request;
-            div_dividend = uniform__div_dividend;
-            div_divisor = uniform__div_divisor;
-        end
+        uniform_pulse = has_uniform & uniform__pulse;
+        uniform_ready = has_uniform & uniform__ready;
+        uniform_running = has_uniform & uniform__running;
+        uniform_overrange = has_uniform & uniform__overrange;
+        uniform_overflow = has_uniform & uniform__overflow;
+        div_request = has_uniform & uniform__div_request;
+        div_dividend = uniform__div_dividend;
+        div_divisor = uniform__div_divisor;
         if (clear_faults) begin
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -14702,24 +14667,14 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         if (too_large) begin
             count = max_count;
         end
-        uniform_pulse = 1'b0;
-        uniform_ready = 1'b0;
-        uniform_running = 1'b0;
-        uniform_overrange = 1'b0;
-        uniform_overflow = 1'b0;
-        div_request = 1'b0;
-        div_dividend = zero_count;
-        div_divisor = zero_count;
-        if (has_uniform) begin
-            uniform_pulse = uniform__pulse;
-            uniform_ready = uniform__ready;
-            uniform_running = uniform__running;
-            uniform_overrange = uniform__overrange;
-            uniform_overflow = uniform__overflow;
-            div_request = uniform__div_request;
-            div_dividend = uniform__div_dividend;
-            div_divisor = uniform__div_divisor;
-        end
+        uniform_pulse = has_uniform & uniform__pulse;
+        uniform_ready = has_uniform & uniform__ready;
+        uniform_running = has_uniform & uniform__running;
+        uniform_overrange = has_uniform & uniform__overrange;
+        uniform_overflow = has_uniform & uniform__overflow;
+        div_request = has_uniform & uniform__div_request;
+        div_dividend = uniform__div_dividend;
+        div_divisor = uniform__div_divisor;
         if (clear_faults) begin
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;

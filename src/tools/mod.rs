@@ -95,6 +95,10 @@ pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, 
     // Output goes to files, so a chatty tool can never block on a full pipe.
     let stdout = tempfile::tempfile().map_err(|e| io_error("capturing output of", e))?;
     let stderr = tempfile::tempfile().map_err(|e| io_error("capturing output of", e))?;
+    // Its own process group, so that a time-out kills what a wrapper
+    // script started too (run_vectors.sh's vvp outlived a killed bash and
+    // kept a core busy for the rest of the suite).
+    std::os::unix::process::CommandExt::process_group(&mut *command, 0);
     let mut child = command
         .stdout(
             stdout
@@ -122,6 +126,9 @@ pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, 
             break Some(status);
         }
         if started.elapsed() > TOOL_TIME_LIMIT {
+            let _ = Command::new("kill")
+                .args(["-KILL", "--", &format!("-{}", child.id())])
+                .status();
             let _ = child.kill();
             let _ = child.wait();
             break None;

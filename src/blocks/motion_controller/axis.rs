@@ -553,24 +553,17 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // taken only in a build with the generator: without it they are
         // constant 0 and the generator (and the controller's divider) has
         // no fanout, so synthesis removes them.
-        self.uniform_pulse.next = false;
-        self.uniform_ready.next = false;
-        self.uniform_running.next = false;
-        self.uniform_overrange.next = false;
-        self.uniform_overflow.next = false;
-        self.div_request.next = false;
-        self.div_dividend.next = self.zero_count.val();
-        self.div_divisor.next = self.zero_count.val();
-        if self.has_uniform.val() {
-            self.uniform_pulse.next = self.uniform.pulse.val();
-            self.uniform_ready.next = self.uniform.ready.val();
-            self.uniform_running.next = self.uniform.running.val();
-            self.uniform_overrange.next = self.uniform.overrange.val();
-            self.uniform_overflow.next = self.uniform.overflow.val();
-            self.div_request.next = self.uniform.div_request.val();
-            self.div_dividend.next = self.uniform.div_dividend.val();
-            self.div_divisor.next = self.uniform.div_divisor.val();
-        }
+        // (One assignment each, no default-then-override: see the
+        // controller's divider grant.) The dividend and divisor matter only
+        // with a request.
+        self.uniform_pulse.next = self.has_uniform.val() & self.uniform.pulse.val();
+        self.uniform_ready.next = self.has_uniform.val() & self.uniform.ready.val();
+        self.uniform_running.next = self.has_uniform.val() & self.uniform.running.val();
+        self.uniform_overrange.next = self.has_uniform.val() & self.uniform.overrange.val();
+        self.uniform_overflow.next = self.has_uniform.val() & self.uniform.overflow.val();
+        self.div_request.next = self.has_uniform.val() & self.uniform.div_request.val();
+        self.div_dividend.next = self.uniform.div_dividend.val();
+        self.div_divisor.next = self.uniform.div_divisor.val();
         if self.clear_faults.val() {
             self.overrange_flag.d.next = false;
             self.overflow_flag.d.next = false;

@@ -1025,15 +1025,14 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Logi
                 self.divider.divisor.next = self.axes[i].div_divisor.val();
                 self.div_owner.d.next = self.axis_bit[i].val();
             }
-            self.axes[i].div_done.next = false;
-            self.axes[i].div_quotient.next = self.zero_p.val();
-            self.axes[i].div_remainder.next = self.zero_p.val();
-            if self.has_uniform.val() {
-                self.axes[i].div_done.next = self.divider.done.val()
-                    & ((self.div_owner.q.val() & self.axis_bit[i].val()) != self.zero_k.val());
-                self.axes[i].div_quotient.next = self.divider.quotient.val();
-                self.axes[i].div_remainder.next = self.divider.remainder.val();
-            }
+            // One assignment each, no default-then-override: these nets
+            // and the axes' requests form a cycle of always blocks, and a
+            // glitch on both sides keeps Icarus re-evaluating forever.
+            self.axes[i].div_done.next = self.has_uniform.val()
+                & self.divider.done.val()
+                & ((self.div_owner.q.val() & self.axis_bit[i].val()) != self.zero_k.val());
+            self.axes[i].div_quotient.next = self.divider.quotient.val();
+            self.axes[i].div_remainder.next = self.divider.remainder.val();
         }
         if self.reset.val() {
             self.div_owner.d.next = self.zero_k.val();
