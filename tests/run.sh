@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The whole motion-hdl test suite, on a fresh machine: installs the FPGA
 # tools it needs (Debian, as root) or stops with the exact install line,
-# then runs every test. `.ci/run` calls this script. gcc compiles the
+# then runs every test (with cargo-nextest; the crate has no doctests, and
+# `cargo test` runs the same tests one binary at a time). `.ci/run` calls
+# this script. gcc compiles the
 # generated C register headers in the register-map tests; g++ builds the
 # Verilator models of the compiled simulation backend; ccache keeps the
 # cross-simulation's Verilator builds from compiling Verilator's runtime
@@ -38,5 +40,11 @@ if [ "${verilator_major:-0}" -lt 5 ]; then
   exit 1
 fi
 
-# Test binaries run one after another; the tests inside one run in parallel.
-cargo test
+# cargo-nextest runs every test of the three binaries in one pool, the
+# longest first (.config/nextest.toml). It is on every machine of the
+# project's kind; elsewhere it is built from crates.io once.
+if ! cargo nextest --version >/dev/null 2>&1; then
+  echo "installing cargo-nextest"
+  cargo install --locked cargo-nextest
+fi
+cargo nextest run
