@@ -61,6 +61,11 @@ pub struct Field {
 }
 
 impl Field {
+    /// The same field with reset value `reset`.
+    pub fn with_reset(self, reset: u64) -> Self {
+        Self { reset, ..self }
+    }
+
     /// All ones in the field's width.
     pub fn max_value(&self) -> u64 {
         // Clamped: an invalid width must give an error later, not a panic.
@@ -104,6 +109,31 @@ impl Field {
         self.check_fits()?;
         let bits = BitArray::<[u32; 1], Lsb0>::new([word]);
         Ok(bits[self.lsb as usize..(self.lsb + self.width) as usize].load::<u64>())
+    }
+}
+
+/// A field with reset value 0 (see [`Field::with_reset`]): the builder every
+/// block's register map uses.
+pub fn field(name: &'static str, lsb: u32, width: u32, access: Access, doc: &'static str) -> Field {
+    Field {
+        name,
+        lsb,
+        width,
+        access,
+        reset: 0,
+        doc,
+    }
+}
+
+/// A single register (count 1) of `fields`.
+pub fn register(name: &'static str, address: u32, doc: &'static str, fields: Vec<Field>) -> Register {
+    Register {
+        name,
+        address,
+        count: 1,
+        stride: 0,
+        doc,
+        fields,
     }
 }
 

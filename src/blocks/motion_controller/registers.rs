@@ -11,7 +11,7 @@
 //! through the bus by the tests, packed and unpacked with this map: a field
 //! moved here and not in the RTL fails them.
 
-use crate::regmap::{Access, Field, RegMapError, Register, RegisterMap};
+use crate::regmap::{field, register, Access, Field, RegMapError, Register, RegisterMap};
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
@@ -280,28 +280,6 @@ pub mod irq {
     pub const GPIO: u32 = 11;
     /// Number of interrupt sources.
     pub const COUNT: usize = 12;
-}
-
-fn field(name: &'static str, lsb: u32, width: u32, access: Access, doc: &'static str) -> Field {
-    Field {
-        name,
-        lsb,
-        width,
-        access,
-        reset: 0,
-        doc,
-    }
-}
-
-fn register(name: &'static str, address: u32, doc: &'static str, fields: Vec<Field>) -> Register {
-    Register {
-        name,
-        address,
-        count: 1,
-        stride: 0,
-        doc,
-        fields,
-    }
 }
 
 /// A read-write register whose low `width` bits hold a number.

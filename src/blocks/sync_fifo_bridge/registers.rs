@@ -5,7 +5,7 @@
 //! Markdown tables, the RTL's address decoders and field constants, the
 //! model and the tests all take them from here, by name.
 
-use crate::regmap::{Access, Field, RegMapError, Register, RegisterMap};
+use crate::regmap::{field, register, Access, Field, RegMapError, Register, RegisterMap};
 
 /// `ID` register value: "SFB1".
 pub const ID_VALUE: u32 = 0x5346_4231;
@@ -23,28 +23,6 @@ pub const SLAVE_STRIDE: u32 = 0x4;
 pub const MAX_SLAVES: usize = 8;
 /// Deepest FIFO: every level field is 8 bits wide.
 pub const MAX_FIFO_LOG2: u32 = 7;
-
-fn field(name: &'static str, lsb: u32, width: u32, access: Access, doc: &'static str) -> Field {
-    Field {
-        name,
-        lsb,
-        width,
-        access,
-        reset: 0,
-        doc,
-    }
-}
-
-fn register(name: &'static str, address: u32, doc: &'static str, fields: Vec<Field>) -> Register {
-    Register {
-        name,
-        address,
-        count: 1,
-        stride: 0,
-        doc,
-        fields,
-    }
-}
 
 fn check(slaves: usize, fifo_log2: u32) -> Result<(), RegMapError> {
     if slaves == 0 || slaves > MAX_SLAVES || !(1..=MAX_FIFO_LOG2).contains(&fifo_log2) {
