@@ -5,6 +5,7 @@
 pub mod bus_synchronizer;
 pub mod carry_select_adder;
 pub mod command_fifo;
+pub mod dac_interface;
 pub mod dda_integrator;
 pub mod dda_interpolator;
 pub mod dpram_mailbox;

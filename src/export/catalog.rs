@@ -3,6 +3,7 @@
 
 use rust_hdl::core::prelude::*;
 
+use crate::blocks::dac_interface::{self, DacInterface3};
 use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::dpram_mailbox::{self, DpramMailbox1024x16};
@@ -317,6 +318,20 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(SeedHostLinks::default()),
+        },
+        ModuleSpec {
+            name: "dac_interface",
+            block: "dac_interface",
+            summary: dac_interface::SUMMARY,
+            parameters: &[
+                ("K", "3", "channels (three AD669s)"),
+                ("W", "16", "code width"),
+            ],
+            port_docs: dac_interface::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(DacInterface3::default()),
         },
     ]
 }

@@ -108,9 +108,10 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
             contents: module.testbench.clone(),
         });
     }
-    use crate::blocks::{motion_controller, sync_fifo_bridge};
+    use crate::blocks::{dac_interface, motion_controller, sync_fifo_bridge};
     // The register maps of the exported configurations (see the catalog).
     let maps = [
+        ("dac_interface_regs", dac_interface::registers::register_map(3, 16)?),
         ("motion_controller_regs", motion_controller::registers::register_map(3, 4, true)?),
         ("motion_controller_dda_regs", motion_controller::registers::register_map(3, 4, false)?),
         (

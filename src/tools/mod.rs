@@ -157,3 +157,32 @@ fn read_all(mut file: std::fs::File) -> String {
     let _ = file.rewind().and_then(|_| file.read_to_end(&mut bytes));
     String::from_utf8_lossy(&bytes).into_owned()
 }
+
+/// Compiles the C `program` (which includes headers from `include_dir`)
+/// with gcc as strict `standard` C (`c89`, `c99`: `-pedantic -Wall -Wextra
+/// -Werror`), runs it and returns what it printed: how the tests check a
+/// generated register header against its Rust map.
+pub fn run_c_program(include_dir: &std::path::Path, standard: &str, program: &str) -> Result<String, ToolError> {
+    let dir = work_dir("c-program")?;
+    let source = dir.path().join("main.c");
+    std::fs::write(&source, program).map_err(|source| ToolError::Io {
+        context: "writing the C program".into(),
+        source,
+    })?;
+    let exe = dir.path().join("program");
+    run(
+        Command::new("gcc")
+            .arg(format!("-std={standard}"))
+            .args(["-pedantic", "-Wall", "-Wextra", "-Werror", "-I"])
+            .arg(include_dir)
+            .arg("-o")
+            .arg(&exe)
+            .arg(&source),
+        false,
+    )?;
+    let output = Command::new(&exe).output().map_err(|source| ToolError::Io {
+        context: "running the C program".into(),
+        source,
+    })?;
+    Ok(String::from_utf8_lossy(&output.stdout).into_owned())
+}

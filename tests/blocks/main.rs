@@ -5,6 +5,7 @@
 
 mod support;
 mod command_fifo;
+mod dac_interface;
 mod dda_integrator;
 mod dda_interpolator;
 mod external_bus_adapter;
