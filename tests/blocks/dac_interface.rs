@@ -41,7 +41,11 @@ impl Traffic {
     fn timing_word(&mut self) -> u64 {
         let mut word = 0;
         for lsb in [0, 8, 16, 24] {
-            let value = if self.rng.gen_ratio(1, 10) { self.rng.gen_range(0..40) } else { self.rng.gen_range(0..7) };
+            let value = if self.rng.gen_ratio(1, 10) {
+                self.rng.gen_range(0..40)
+            } else {
+                self.rng.gen_range(0..7)
+            };
             word |= value << lsb;
         }
         word
@@ -66,7 +70,11 @@ impl Traffic {
             0..=11 => {
                 i.bus_write = true;
                 i.bus_address = CODE_BASE as u64 + rng.gen_range(0..self.channels as u64);
-                i.bus_write_data = if rng.gen_ratio(1, 20) { rng.gen::<u32>() as u64 } else { rng.gen_range(0..1 << 16) };
+                i.bus_write_data = if rng.gen_ratio(1, 20) {
+                    rng.gen::<u32>() as u64
+                } else {
+                    rng.gen_range(0..1 << 16)
+                };
             }
             12..=13 => {
                 i.bus_write = true;
@@ -174,7 +182,12 @@ impl Ad669Monitor {
     /// `span` clocks: the floor (element-wise least) or ceiling.
     fn timing_bound(&self, span: u64, floor: bool) -> [u64; 4] {
         let from = self.clock.saturating_sub(span);
-        let mut words: Vec<u64> = self.timing.iter().filter(|(c, _)| *c >= from).map(|(_, w)| *w).collect();
+        let mut words: Vec<u64> = self
+            .timing
+            .iter()
+            .filter(|(c, _)| *c >= from)
+            .map(|(_, w)| *w)
+            .collect();
         if let Some((_, w)) = self.timing.iter().rev().find(|(c, _)| *c < from) {
             words.push(*w);
         }
@@ -193,12 +206,19 @@ impl Ad669Monitor {
         let formats = [false, true];
         formats.iter().any(|&f| {
             self.staged_history.iter().any(|(_, hf)| *hf == f)
-                && self.chips.iter().all(|c| c.second.map(|p| self.decode(p, f)) == Some(0))
+                && self
+                    .chips
+                    .iter()
+                    .all(|c| c.second.map(|p| self.decode(p, f)) == Some(0))
         })
     }
 
     fn decode(&self, pins: u64, offset_binary: bool) -> u64 {
-        pins ^ if offset_binary { 1 << (self.width - 1) } else { 0 }
+        pins ^ if offset_binary {
+            1 << (self.width - 1)
+        } else {
+            0
+        }
     }
 
     fn registers(&mut self, i: &DacInputs) {
@@ -206,11 +226,15 @@ impl Ad669Monitor {
         if i.reset {
             self.staged = vec![0; self.channels];
             self.offset_binary = false;
-            self.timing.push((self.clock, self.map.register("TIMING").unwrap().reset_value() as u64));
+            self.timing.push((
+                self.clock,
+                self.map.register("TIMING").unwrap().reset_value() as u64,
+            ));
             self.safe_due = vec![self.clock];
             self.safe_owed = true;
             self.abort_prev = false;
-            self.staged_history.push((self.staged.clone(), self.offset_binary));
+            self.staged_history
+                .push((self.staged.clone(), self.offset_binary));
             return;
         }
         if i.bus_write {
@@ -219,7 +243,9 @@ impl Ad669Monitor {
                 self.offset_binary = i.bus_write_data & 1 != 0;
             } else if a == address(&self.map, "TIMING") {
                 self.timing.push((self.clock, i.bus_write_data));
-            } else if (CODE_BASE as u64..CODE_BASE as u64 + self.channels as u64).contains(&a) && !i.force_safe {
+            } else if (CODE_BASE as u64..CODE_BASE as u64 + self.channels as u64).contains(&a)
+                && !i.force_safe
+            {
                 self.staged[(a - CODE_BASE as u64) as usize] = i.bus_write_data & code_mask;
             }
         }
@@ -263,14 +289,23 @@ impl Ad669Monitor {
         let bus_changed = o.dac_data != prev.dac_data || o.dac_cs_n != prev.dac_cs_n;
 
         if (!o.dac_cs_n & width_mask(self.channels as u32)).count_ones() > 1 {
-            return Err(format!("clock {clock}: more than one chip selected: {:#b}", o.dac_cs_n));
+            return Err(format!(
+                "clock {clock}: more than one chip selected: {:#b}",
+                o.dac_cs_n
+            ));
         }
         // Setup, width and hold of the first-rank writes.
         let l1_rose = !l1 && was_l1;
-        self.since_l1_rise = if l1_rose { 0 } else { self.since_l1_rise.saturating_add(1) };
+        self.since_l1_rise = if l1_rose {
+            0
+        } else {
+            self.since_l1_rise.saturating_add(1)
+        };
         if bus_changed {
             if l1 && was_l1 {
-                return Err(format!("clock {clock}: data or CS changed while L1 was low"));
+                return Err(format!(
+                    "clock {clock}: data or CS changed while L1 was low"
+                ));
             }
             if self.since_l1_rise < hold {
                 return Err(format!(
@@ -280,22 +315,37 @@ impl Ad669Monitor {
             }
         }
         if l1 && !was_l1 && (self.same_for < setup || bus_changed) {
-            return Err(format!("clock {clock}: L1 fell {} clocks after data and CS settled (setup {setup})", self.same_for));
+            return Err(format!(
+                "clock {clock}: L1 fell {} clocks after data and CS settled (setup {setup})",
+                self.same_for
+            ));
         }
         if !l1 && was_l1 && self.l1_low_for < width {
-            return Err(format!("clock {clock}: L1 low for {} clocks (width {width})", self.l1_low_for));
+            return Err(format!(
+                "clock {clock}: L1 low for {} clocks (width {width})",
+                self.l1_low_for
+            ));
         }
         self.same_for = if bus_changed { 1 } else { self.same_for + 1 };
         self.l1_low_for = if l1 { self.l1_low_for + 1 } else { 0 };
 
         // The LDAC pulse: only with every first-rank write complete.
         if o.dac_ldac && (o.dac_cs_n != width_mask(self.channels as u32) || l1) {
-            return Err(format!("clock {clock}: LDAC high during a first-rank write"));
+            return Err(format!(
+                "clock {clock}: LDAC high during a first-rank write"
+            ));
         }
         if !o.dac_ldac && prev.dac_ldac && self.ldac_high_for < ldac_width {
-            return Err(format!("clock {clock}: LDAC high for {} clocks (width {ldac_width})", self.ldac_high_for));
+            return Err(format!(
+                "clock {clock}: LDAC high for {} clocks (width {ldac_width})",
+                self.ldac_high_for
+            ));
         }
-        self.ldac_high_for = if o.dac_ldac { self.ldac_high_for + 1 } else { 0 };
+        self.ldac_high_for = if o.dac_ldac {
+            self.ldac_high_for + 1
+        } else {
+            0
+        };
 
         // The bank: first ranks, then second ranks.
         for (k, chip) in self.chips.iter_mut().enumerate() {
@@ -326,7 +376,10 @@ impl Ad669Monitor {
             let [s, w, h, l] = self.timing_bound(4000, false);
             let limit = safe_latency(self.channels as u64, s, w, h, l);
             if clock - due > limit {
-                return Err(format!("clock {clock}: no safe LDAC {} clocks after the abort or reset of clock {due}", clock - due));
+                return Err(format!(
+                    "clock {clock}: no safe LDAC {} clocks after the abort or reset of clock {due}",
+                    clock - due
+                ));
             }
         }
         self.prev = Some(*o);
@@ -339,20 +392,31 @@ impl Ad669Monitor {
     fn check_ldac_codes(&mut self) -> Result<(), String> {
         let clock = self.clock;
         if let Some(k) = self.chips.iter().position(|c| !c.written_since_ldac) {
-            return Err(format!("clock {clock}: LDAC without a first-rank write of channel {k} since the last"));
+            return Err(format!(
+                "clock {clock}: LDAC without a first-rank write of channel {k} since the last"
+            ));
         }
         let pins: Vec<u64> = self.chips.iter().map(|c| c.first.unwrap()).collect();
-        let decoded = |offset: bool| -> Vec<u64> { pins.iter().map(|&p| self.decode(p, offset)).collect() };
+        let decoded =
+            |offset: bool| -> Vec<u64> { pins.iter().map(|&p| self.decode(p, offset)).collect() };
         let formats: Vec<bool> = self.staged_history.iter().map(|(_, f)| *f).collect();
         let all_zero = formats.iter().any(|&f| decoded(f).iter().all(|&c| c == 0));
         if self.safe_due.iter().any(|&due| due < clock) {
             if !all_zero {
-                return Err(format!("clock {clock}: LDAC of {pins:x?} while the safe code is due"));
+                return Err(format!(
+                    "clock {clock}: LDAC of {pins:x?} while the safe code is due"
+                ));
             }
         } else if all_zero && self.safe_owed {
             // The safe update of an abort whose outputs were already 0.
-        } else if !self.staged_history.iter().any(|(codes, f)| &decoded(*f) == codes) {
-            return Err(format!("clock {clock}: LDAC of {pins:x?}, which is no staged set of codes"));
+        } else if !self
+            .staged_history
+            .iter()
+            .any(|(codes, f)| &decoded(*f) == codes)
+        {
+            return Err(format!(
+                "clock {clock}: LDAC of {pins:x?}, which is no staged set of codes"
+            ));
         }
         if all_zero {
             self.safe_owed = false;
@@ -387,7 +451,11 @@ fn lockstep<const K: usize, const W: usize>(seed: u64, cycles: u64) -> Ad669Moni
     for clock in 0..cycles {
         let inputs = traffic.next(clock);
         let out = DacOutputs::from_vector(&rtl.step_vector(&inputs.to_vector()).unwrap());
-        assert_eq!(out, model.step(inputs), "clock {clock}: RTL against the model after {inputs:?}");
+        assert_eq!(
+            out,
+            model.step(inputs),
+            "clock {clock}: RTL against the model after {inputs:?}"
+        );
         recent.push_back((clock, inputs, out));
         if recent.len() > 120 {
             recent.pop_front();
@@ -415,7 +483,11 @@ fn rtl_matches_model_and_the_ad669_bank_for_a_million_clocks() {
         monitor.updates, monitor.safe_updates, monitor.worst_safe_latency
     );
     assert!(monitor.updates > 15_000, "{} updates", monitor.updates);
-    assert!(monitor.safe_updates > 200, "{} safe updates", monitor.safe_updates);
+    assert!(
+        monitor.safe_updates > 200,
+        "{} safe updates",
+        monitor.safe_updates
+    );
 }
 
 #[test]
@@ -446,7 +518,9 @@ fn watch(trace: &Trace) -> Result<(), String> {
 
 /// Index of the first clock after `from` where `edge(before, after)`.
 fn find(trace: &Trace, from: usize, edge: impl Fn(&DacOutputs, &DacOutputs) -> bool) -> usize {
-    (from.max(1)..trace.len()).find(|&t| edge(&trace[t - 1].1, &trace[t].1)).expect("edge in the trace")
+    (from.max(1)..trace.len())
+        .find(|&t| edge(&trace[t - 1].1, &trace[t].1))
+        .expect("edge in the trace")
 }
 
 /// The monitor is not a test that cannot fail: each broken trace (a
@@ -460,9 +534,13 @@ fn the_ad669_monitor_catches_each_broken_rule() {
     let l1_rise = find(&clean, l1_fall, |a, b| !a.dac_l1_n && b.dac_l1_n);
     let next_channel = find(&clean, l1_rise, |a, b| a.dac_cs_n != b.dac_cs_n);
     let ldac = find(&clean, 1, |a, b| !a.dac_ldac && b.dac_ldac);
-    let abort = (1..clean.len()).find(|&t| clean[t].0.force_safe && !clean[t - 1].0.force_safe && t > ldac).unwrap();
+    let abort = (1..clean.len())
+        .find(|&t| clean[t].0.force_safe && !clean[t - 1].0.force_safe && t > ldac)
+        .unwrap();
     let safe_ldac = find(&clean, abort + 1, |a, b| !a.dac_ldac && b.dac_ldac);
-    let write_start = find(&clean, safe_ldac + 100, |a, b| a.dac_cs_n == 0b111 && b.dac_cs_n == 0b110);
+    let write_start = find(&clean, safe_ldac + 100, |a, b| {
+        a.dac_cs_n == 0b111 && b.dac_cs_n == 0b110
+    });
 
     let mut mutants: Vec<(&str, Trace, &str)> = Vec::new();
     let mut short_l1 = clean.clone();
@@ -471,10 +549,18 @@ fn the_ad669_monitor_catches_each_broken_rule() {
     let mut no_hold = clean.clone();
     let new_data = clean[next_channel].1.dac_data ^ 0x5a5a;
     no_hold[next_channel - 1].1.dac_data = new_data;
-    mutants.push(("data changed a clock into the hold", no_hold, "after L1 rose"));
+    mutants.push((
+        "data changed a clock into the hold",
+        no_hold,
+        "after L1 rose",
+    ));
     let mut early_ldac = clean.clone();
     early_ldac[ldac - 1].1.dac_ldac = true;
-    mutants.push(("LDAC a clock early", early_ldac, "LDAC high during a first-rank write"));
+    mutants.push((
+        "LDAC a clock early",
+        early_ldac,
+        "LDAC high during a first-rank write",
+    ));
     let mut two_selected = clean.clone();
     two_selected[l1_fall].1.dac_cs_n &= !0b100;
     mutants.push(("two chips selected", two_selected, "more than one chip"));
@@ -521,7 +607,10 @@ impl Bench {
             last: DacOutputs::default(),
             clock: 0,
         };
-        b.clock(DacInputs { reset: true, ..Default::default() });
+        b.clock(DacInputs {
+            reset: true,
+            ..Default::default()
+        });
         b.idle_until_quiet();
         b
     }
@@ -529,7 +618,12 @@ impl Bench {
     fn clock(&mut self, mut inputs: DacInputs) -> DacOutputs {
         inputs.force_safe |= self.force_safe;
         let out = DacOutputs::from_vector(&self.rtl.step_vector(&inputs.to_vector()).unwrap());
-        assert_eq!(out, self.model.step(inputs), "clock {}: RTL against the model", self.clock);
+        assert_eq!(
+            out,
+            self.model.step(inputs),
+            "clock {}: RTL against the model",
+            self.clock
+        );
         self.clock += 1;
         self.last = out;
         out
@@ -545,24 +639,38 @@ impl Bench {
 
     fn write(&mut self, name: &str, index: u32, value: u64) {
         let address = self.map.register(name).unwrap().address_of(index).unwrap() as u64;
-        self.clock(DacInputs { bus_address: address, bus_write_data: value, bus_write: true, ..Default::default() });
+        self.clock(DacInputs {
+            bus_address: address,
+            bus_write_data: value,
+            bus_write: true,
+            ..Default::default()
+        });
     }
 
     fn read(&mut self, name: &str, index: u32) -> u64 {
         let address = self.map.register(name).unwrap().address_of(index).unwrap() as u64;
-        self.clock(DacInputs { bus_address: address, bus_read: true, ..Default::default() });
+        self.clock(DacInputs {
+            bus_address: address,
+            bus_read: true,
+            ..Default::default()
+        });
         self.idle().bus_read_data
     }
 
     fn status(&mut self, field: &str) -> u64 {
         let word = self.read("STATUS", 0);
-        field_of(&self.map, "STATUS", field).extract(word as u32).unwrap()
+        field_of(&self.map, "STATUS", field)
+            .extract(word as u32)
+            .unwrap()
     }
 
     /// Pulses `update` and returns the pins of the clocks until the
     /// update's LDAC has fallen, starting with the request's clock.
     fn update(&mut self) -> Vec<DacOutputs> {
-        let mut pins = vec![self.clock(DacInputs { update: true, ..Default::default() })];
+        let mut pins = vec![self.clock(DacInputs {
+            update: true,
+            ..Default::default()
+        })];
         while self.last.busy {
             pins.push(self.idle());
         }
@@ -584,18 +692,36 @@ fn an_update_follows_the_datasheet_edges_at_the_reset_timing() {
     let edge = |what: &dyn Fn(&DacOutputs) -> bool| pins.iter().position(|p| what(p)).unwrap();
     for (k, code) in codes.iter().enumerate() {
         let start = 1 + k * (s + w + h);
-        assert_eq!(edge(&|p: &DacOutputs| p.dac_cs_n == 0b111 ^ (1 << k)), start, "channel {k}: CS falls");
+        assert_eq!(
+            edge(&|p: &DacOutputs| p.dac_cs_n == 0b111 ^ (1 << k)),
+            start,
+            "channel {k}: CS falls"
+        );
         assert_eq!(pins[start].dac_data, *code, "channel {k}: data");
         let l1 = (start..).find(|&t| !pins[t].dac_l1_n).unwrap();
         assert_eq!(l1, start + s, "channel {k}: L1 falls");
-        assert_eq!((l1..).find(|&t| pins[t].dac_l1_n).unwrap(), l1 + w, "channel {k}: L1 rises");
-        let deselect = (start..).find(|&t| pins[t].dac_cs_n & (1 << k) != 0).unwrap();
+        assert_eq!(
+            (l1..).find(|&t| pins[t].dac_l1_n).unwrap(),
+            l1 + w,
+            "channel {k}: L1 rises"
+        );
+        let deselect = (start..)
+            .find(|&t| pins[t].dac_cs_n & (1 << k) != 0)
+            .unwrap();
         assert_eq!(deselect, start + s + w + h, "channel {k}: CS rises");
     }
     let ldac = edge(&|p: &DacOutputs| p.dac_ldac);
     assert_eq!(ldac, 1 + 3 * (s + w + h), "LDAC rises");
-    assert_eq!(pins.len(), ldac + l + 1, "LDAC high {l} clocks, then busy falls with it");
-    assert_eq!(pins.len() - 1, 30, "the update's length at the reset timing");
+    assert_eq!(
+        pins.len(),
+        ldac + l + 1,
+        "LDAC high {l} clocks, then busy falls with it"
+    );
+    assert_eq!(
+        pins.len() - 1,
+        30,
+        "the update's length at the reset timing"
+    );
     for (k, code) in codes.iter().enumerate() {
         assert_eq!(b.read("APPLIED", k as u32), *code, "APPLIED[{k}]");
     }
@@ -610,8 +736,12 @@ fn timing_diagram() -> String {
         b.write("CODE", k, 0x100 * (k as u64 + 1));
     }
     let pins = b.update();
-    let row = |f: &dyn Fn(&DacOutputs) -> bool| -> String { pins.iter().map(|p| if f(p) { '#' } else { '_' }).collect() };
-    let ruler: String = (0..pins.len()).map(|c| char::from_digit(c as u32 % 10, 10).unwrap()).collect();
+    let row = |f: &dyn Fn(&DacOutputs) -> bool| -> String {
+        pins.iter().map(|p| if f(p) { '#' } else { '_' }).collect()
+    };
+    let ruler: String = (0..pins.len())
+        .map(|c| char::from_digit(c as u32 % 10, 10).unwrap())
+        .collect();
     let data: String = pins
         .iter()
         .map(|p| match p.dac_cs_n {
@@ -638,7 +768,10 @@ fn datasheet_timing_diagram_is_the_simulation() {
     if std::env::var_os("UPDATE_TIMING_DIAGRAM").is_some() {
         std::fs::write(&path, &simulated).unwrap();
     }
-    assert_eq!(drawn, simulated, "timing.txt differs from the simulation (rerun with UPDATE_TIMING_DIAGRAM=1)");
+    assert_eq!(
+        drawn, simulated,
+        "timing.txt differs from the simulation (rerun with UPDATE_TIMING_DIAGRAM=1)"
+    );
 }
 
 /// A request during an update is deferred, flagged, and served next with
@@ -651,7 +784,10 @@ fn a_request_during_an_update_is_deferred_with_the_latest_codes() {
     for (k, code) in first.iter().enumerate() {
         b.write("CODE", k as u32, *code);
     }
-    b.clock(DacInputs { update: true, ..Default::default() });
+    b.clock(DacInputs {
+        update: true,
+        ..Default::default()
+    });
     for _ in 0..3 {
         b.idle();
     }
@@ -672,7 +808,11 @@ fn a_request_during_an_update_is_deferred_with_the_latest_codes() {
             ldacs.push(t);
             if ldacs.len() == 1 {
                 for (k, code) in first.iter().enumerate() {
-                    assert_eq!(b.model_applied_after_ldac(k), *code, "first update, channel {k}");
+                    assert_eq!(
+                        b.model_applied_after_ldac(k),
+                        *code,
+                        "first update, channel {k}"
+                    );
                 }
             }
         }
@@ -683,9 +823,17 @@ fn a_request_during_an_update_is_deferred_with_the_latest_codes() {
     }
     assert_eq!(ldacs.len(), 2, "one deferred update, however many requests");
     for (k, code) in latest.iter().enumerate() {
-        assert_eq!(b.read("APPLIED", k as u32), *code, "the deferred update has the latest codes");
+        assert_eq!(
+            b.read("APPLIED", k as u32),
+            *code,
+            "the deferred update has the latest codes"
+        );
     }
-    b.write("STATUS", 0, field_of(&b.map, "STATUS", "DEFERRED").mask() as u64);
+    b.write(
+        "STATUS",
+        0,
+        field_of(&b.map, "STATUS", "DEFERRED").mask() as u64,
+    );
     assert_eq!(b.status("DEFERRED"), 0, "W1C");
 }
 
@@ -695,11 +843,20 @@ impl Bench {
         // The first ranks at the LDAC rise are the codes the update wrote:
         // read them back from the model's APPLIED a pulse later.
         let mut copy = self.model.clone();
-        let address = self.map.register("APPLIED").unwrap().address_of(k as u32).unwrap() as u64;
+        let address = self
+            .map
+            .register("APPLIED")
+            .unwrap()
+            .address_of(k as u32)
+            .unwrap() as u64;
         for _ in 0..8 {
             copy.step(DacInputs::default());
         }
-        copy.step(DacInputs { bus_address: address, bus_read: true, ..Default::default() });
+        copy.step(DacInputs {
+            bus_address: address,
+            bus_read: true,
+            ..Default::default()
+        });
         copy.step(DacInputs::default()).bus_read_data
     }
 }
@@ -717,7 +874,10 @@ fn an_abort_at_any_clock_reaches_the_safe_code_within_the_stated_latency() {
         for k in 0..3 {
             b.write("CODE", k, 0x4000 + k as u64);
         }
-        b.clock(DacInputs { update: true, ..Default::default() });
+        b.clock(DacInputs {
+            update: true,
+            ..Default::default()
+        });
         for _ in 0..offset {
             b.idle();
         }
@@ -735,24 +895,37 @@ fn an_abort_at_any_clock_reaches_the_safe_code_within_the_stated_latency() {
         let latency = latency.unwrap_or_else(|| panic!("offset {offset}: no safe LDAC"));
         assert!(latency <= bound, "offset {offset}: {latency} clocks");
         for k in 0..3 {
-            assert_eq!(b.read("APPLIED", k), 0, "offset {offset}: channel {k} at 0 V");
+            assert_eq!(
+                b.read("APPLIED", k),
+                0,
+                "offset {offset}: channel {k} at 0 V"
+            );
         }
         worst = worst.max(latency);
         // Refused while abort is high.
         b.write("CODE", 0, 0x1111);
         b.write("UPDATE", 0, 1);
         let pins = b.update();
-        assert!(pins.iter().all(|p| p.dac_cs_n == 0b111 && !p.dac_ldac), "offset {offset}: no write during the abort");
+        assert!(
+            pins.iter().all(|p| p.dac_cs_n == 0b111 && !p.dac_ldac),
+            "offset {offset}: no write during the abort"
+        );
         assert_eq!(b.status("REFUSED"), 1);
         assert_eq!(b.read("CODE", 0), 0, "the staged code is the safe one");
         b.force_safe = false;
         for _ in 0..50 {
-            assert!(!b.idle().busy, "offset {offset}: nothing happens as abort falls");
+            assert!(
+                !b.idle().busy,
+                "offset {offset}: nothing happens as abort falls"
+            );
         }
         assert_eq!(b.status("SAFE"), 1);
     }
     println!("worst abort-to-safe-LDAC latency: {worst} clocks (bound {bound})");
-    assert!(worst + 8 >= bound, "the bound is near the worst case: {worst} of {bound}");
+    assert!(
+        worst + 8 >= bound,
+        "the bound is near the worst case: {worst} of {bound}"
+    );
 }
 
 /// Offset binary: the pins carry the code with its MSB inverted, so the
@@ -760,7 +933,11 @@ fn an_abort_at_any_clock_reaches_the_safe_code_within_the_stated_latency() {
 #[test]
 fn offset_binary_pins_and_the_safe_code_at_mid_scale() {
     let mut b = Bench::new();
-    b.write("CONTROL", 0, field_of(&b.map, "CONTROL", "OFFSET_BINARY").mask() as u64);
+    b.write(
+        "CONTROL",
+        0,
+        field_of(&b.map, "CONTROL", "OFFSET_BINARY").mask() as u64,
+    );
     for (k, code) in [0xffff, 0x0000, 0x7fff].iter().enumerate() {
         b.write("CODE", k as u32, *code);
     }
@@ -776,7 +953,10 @@ fn offset_binary_pins_and_the_safe_code_at_mid_scale() {
             safe_pins.push(out.dac_data);
         }
     }
-    assert!(!safe_pins.is_empty() && safe_pins.iter().all(|&d| d == 0x8000), "{safe_pins:x?}");
+    assert!(
+        !safe_pins.is_empty() && safe_pins.iter().all(|&d| d == 0x8000),
+        "{safe_pins:x?}"
+    );
 }
 
 /// Reset starts the safe update on the first clock out of reset, and the
@@ -789,12 +969,18 @@ fn reset_writes_the_safe_code_first_and_registers_read_their_reset_values() {
     }
     b.update();
     b.write("TIMING", 0, 0x0303_0303);
-    b.clock(DacInputs { reset: true, ..Default::default() });
+    b.clock(DacInputs {
+        reset: true,
+        ..Default::default()
+    });
     let first = b.idle();
     assert!(first.busy && first.safe, "the safe update starts at once");
     let mut t = 1;
     while !b.last.dac_ldac {
-        assert!(b.last.dac_l1_n || b.last.dac_data == 0, "only code 0 is written");
+        assert!(
+            b.last.dac_l1_n || b.last.dac_data == 0,
+            "only code 0 is written"
+        );
         b.idle();
         t += 1;
     }
@@ -806,7 +992,11 @@ fn reset_writes_the_safe_code_first_and_registers_read_their_reset_values() {
             let expected = register.reset_value() as u64;
             let name = register.name;
             let value = b.read(name, index);
-            let wanted = if name == "STATUS" { field_of(&b.map, "STATUS", "SAFE").mask() as u64 } else { expected };
+            let wanted = if name == "STATUS" {
+                field_of(&b.map, "STATUS", "SAFE").mask() as u64
+            } else {
+                expected
+            };
             assert_eq!(value, wanted, "{name}[{index}]");
         }
     }
@@ -818,12 +1008,20 @@ fn reset_writes_the_safe_code_first_and_registers_read_their_reset_values() {
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut traffic = Traffic::new(0xdac4, 3, 16);
     let stimulus: Vec<Vec<u64>> = (0..30_000).map(|c| traffic.next(c).to_vector()).collect();
-    cross_simulate(&CosimDesign::exported("dac_interface"), DacInterface3::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate(
+        &CosimDesign::exported("dac_interface"),
+        DacInterface3::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let mut traffic = Traffic::new(0xdac5, 4, 12);
     let stimulus: Vec<Vec<u64>> = (0..20_000).map(|c| traffic.next(c).to_vector()).collect();
-    cross_simulate_generated("dac_interface_k4_w12", DacInterface::<4, 12>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate_generated(
+        "dac_interface_k4_w12",
+        DacInterface::<4, 12>::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// The committed C header (`rtl-out/dac_interface_regs.h`) is today's,

@@ -156,7 +156,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
         "reset",
         "synchronous, active high: registers to their reset values, then the safe update",
     ),
-    ("bus_address", "register word address, with bus_write or bus_read"),
+    (
+        "bus_address",
+        "register word address, with bus_write or bus_read",
+    ),
     ("bus_write_data", "register write data"),
     ("bus_write", "one-clock register write strobe"),
     ("bus_read", "one-clock register read strobe"),
@@ -176,7 +179,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("dac_cs_n", "bit k: channel k's chip select, active low"),
     ("dac_l1_n", "first-rank load, active low, shared"),
     ("dac_ldac", "second-rank load, active high, shared"),
-    ("busy", "an update runs: from the edge it starts until dac_ldac falls"),
+    (
+        "busy",
+        "an update runs: from the edge it starts until dac_ldac falls",
+    ),
     (
         "safe",
         "the outputs hold the safe code, or its update is pending or running",
@@ -328,13 +334,23 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
         // sliced at 0, 8, 16 and 24 in update(); the map must agree.
         for (name, lsb) in [("SETUP", 0), ("WIDTH", 8), ("HOLD", 16), ("LDAC_WIDTH", 24)] {
             let f = field_of(&map, "TIMING", name);
-            assert_eq!((f.lsb, f.width), (lsb, 8), "TIMING.{name} moved: update() slices it at {lsb}");
+            assert_eq!(
+                (f.lsb, f.width),
+                (lsb, 8),
+                "TIMING.{name} moved: update() slices it at {lsb}"
+            );
         }
         let address = |name: &str| {
-            Constant::new((map.register(name).expect("a register of the map").address as u64).into())
+            Constant::new(
+                (map.register(name).expect("a register of the map").address as u64).into(),
+            )
         };
-        let mask = |register: &str, field: &str| Constant::new((field_of(&map, register, field).mask() as u64).into());
-        let reset_value = |name: &str| Constant::new((map.register(name).expect("a register").reset_value() as u64).into());
+        let mask = |register: &str, field: &str| {
+            Constant::new((field_of(&map, register, field).mask() as u64).into())
+        };
+        let reset_value = |name: &str| {
+            Constant::new((map.register(name).expect("a register").reset_value() as u64).into())
+        };
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -401,7 +417,9 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
             a_status: address("STATUS"),
             a_timing: address("TIMING"),
             a_code: array_init::array_init(|k| Constant::new((CODE_BASE as u64 + k as u64).into())),
-            a_applied: array_init::array_init(|k| Constant::new((APPLIED_BASE as u64 + k as u64).into())),
+            a_applied: array_init::array_init(|k| {
+                Constant::new((APPLIED_BASE as u64 + k as u64).into())
+            }),
             id_value: Constant::new((ID_VALUE as u64).into()),
             config_value: reset_value("CONFIG"),
             timing_reset: reset_value("TIMING"),
@@ -490,7 +508,8 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
             self.l1_active.d.next = self.phase.q.val() == self.p_width.val();
             for k in 0..K {
                 if (self.channel.q.val() & self.chan_bit[k].val()) != self.zero_k.val() {
-                    self.data_pin.d.next = self.shadow[k].q.val().get_bits::<W>(0) ^ self.flip.val();
+                    self.data_pin.d.next =
+                        self.shadow[k].q.val().get_bits::<W>(0) ^ self.flip.val();
                 }
             }
         }
@@ -584,9 +603,10 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
         // Sequencer.
         self.abort_rise.next = self.force_safe.val() & !self.abort_prev.q.val();
         self.abort_prev.d.next = self.force_safe.val();
-        self.cut_now.next =
-            self.cut.q.val() | (self.abort_rise.val() & self.running.val() & !self.safe_run.q.val());
-        self.phase_done.next = (self.left.q.val() == self.zero8.val()) | (self.left.q.val() == self.one8.val());
+        self.cut_now.next = self.cut.q.val()
+            | (self.abort_rise.val() & self.running.val() & !self.safe_run.q.val());
+        self.phase_done.next =
+            (self.left.q.val() == self.zero8.val()) | (self.left.q.val() == self.one8.val());
         self.start.next = false;
         self.start_safe.next = false;
         if !self.running.val() {
@@ -624,7 +644,8 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
                     if self.cut_now.val() {
                         self.phase.d.next = self.p_idle.val();
                         self.cut.d.next = false;
-                    } else if (self.channel.q.val() & self.last_channel.val()) == self.zero_k.val() {
+                    } else if (self.channel.q.val() & self.last_channel.val()) == self.zero_k.val()
+                    {
                         self.phase.d.next = self.p_setup.val();
                         self.channel.d.next = self.channel.q.val() << 1;
                         self.left.d.next = self.t_setup.q.val();

@@ -178,11 +178,19 @@ impl DacModel {
 
     /// The pins' code for signed code `value` in the chosen format.
     fn pin_code(&self, value: u64, offset_binary: bool) -> u64 {
-        value ^ if offset_binary { 1 << (self.width - 1) } else { 0 }
+        value
+            ^ if offset_binary {
+                1 << (self.width - 1)
+            } else {
+                0
+            }
     }
 
     fn address(&self, name: &str) -> u64 {
-        self.map.register(name).expect("a register of the map").address as u64
+        self.map
+            .register(name)
+            .expect("a register of the map")
+            .address as u64
     }
 
     fn field_mask(&self, register: &str, field: &str) -> u64 {
@@ -190,7 +198,13 @@ impl DacModel {
     }
 
     fn read(&self, address: u64, abort: bool) -> u64 {
-        let status_bit = |field: &str, on: bool| if on { self.field_mask("STATUS", field) } else { 0 };
+        let status_bit = |field: &str, on: bool| {
+            if on {
+                self.field_mask("STATUS", field)
+            } else {
+                0
+            }
+        };
         let k = self.channels as u64;
         match address {
             a if a == self.address("ID") => ID_VALUE as u64,
@@ -213,7 +227,9 @@ impl DacModel {
                     | status_bit("REFUSED", self.refused)
             }
             a if a == self.address("TIMING") => self.timing_word,
-            a if (CODE_BASE as u64..CODE_BASE as u64 + k).contains(&a) => self.staged[(a - CODE_BASE as u64) as usize],
+            a if (CODE_BASE as u64..CODE_BASE as u64 + k).contains(&a) => {
+                self.staged[(a - CODE_BASE as u64) as usize]
+            }
             a if (APPLIED_BASE as u64..APPLIED_BASE as u64 + k).contains(&a) => {
                 self.applied[(a - APPLIED_BASE as u64) as usize]
             }
