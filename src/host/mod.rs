@@ -8,6 +8,7 @@ pub mod driver;
 pub mod interpolator;
 pub mod path;
 pub mod planner;
+pub mod servo;
 pub mod simulation;
 
 pub use bus::{ControllerBus, ModelBus, RecordingBus, RtlBus};
@@ -15,3 +16,4 @@ pub use driver::{Driver, DriverConfig, DriverError, RunReport};
 pub use interpolator::{interpolate, Interpolation};
 pub use path::{Path, PathError, Segment};
 pub use planner::{plan, PlannedSegment};
+pub use servo::{DriveScale, FollowingError, LoopOutput, PositionLoop, ServoError, ServoGains, ServoMotor};

@@ -1,0 +1,437 @@
+//! The DSP's half of an analog servo axis (#18): a velocity-mode position
+//! loop that turns the commanded position and the encoder count into a DAC
+//! code each period, and a simulated servo (an analog velocity drive and a
+//! motor) that turns the DAC voltage back into encoder counts.
+//!
+//! Units are the drive's: positions in encoder counts, velocities in
+//! counts/s, the drive's gain in counts/s per volt. The loop's output is a
+//! velocity command; the drive scale turns it into volts and the DAC scale
+//! into a signed code (two's complement, as `dac_interface`'s `CODE`
+//! registers take it; 0 is 0 V).
+//!
+//! ```text
+//! commanded ──┬─ kff · velocity ────────────────┐
+//!             └─(+)─ error ─ kp, ki, kd ─(+)────┴─> counts/s ─ /drive gain ─> volts ─ DAC code (clamped)
+//! encoder ───────(−)
+//! ```
+
+/// What is wrong with a servo setting: each names the setting.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ServoError {
+    /// A setting is not a finite number in its range.
+    #[error("servo setting `{name}` = {value}: {rule}")]
+    Setting {
+        /// The setting.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// The range it must be in.
+        rule: &'static str,
+    },
+}
+
+fn check(name: &'static str, value: f64, rule: &'static str, ok: bool) -> Result<(), ServoError> {
+    if value.is_finite() && ok {
+        Ok(())
+    } else {
+        Err(ServoError::Setting { name, value, rule })
+    }
+}
+
+/// The position loop's gains.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ServoGains {
+    /// Proportional: counts/s of velocity command per count of error (1/s).
+    pub kp: f64,
+    /// Integral: counts/s per count-second of error (1/s²).
+    pub ki: f64,
+    /// Derivative: counts/s per count/s of error change (s).
+    pub kd: f64,
+    /// Velocity feed-forward: the share of the commanded velocity sent
+    /// straight to the drive (1 = all of it).
+    pub kff: f64,
+}
+
+impl Default for ServoGains {
+    /// A stiff loop for the default [`ServoMotor`] at a 1 ms period.
+    fn default() -> Self {
+        Self {
+            kp: 150.0,
+            ki: 3000.0,
+            kd: 0.0,
+            kff: 1.0,
+        }
+    }
+}
+
+/// From velocity command to DAC code.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DriveScale {
+    /// The drive's velocity per volt of command, counts/s per V.
+    pub counts_per_s_per_volt: f64,
+    /// The DAC's full scale, V (the code -2^(W-1) gives -full scale).
+    pub full_scale_volts: f64,
+    /// The DAC's code width W.
+    pub code_bits: u32,
+}
+
+impl Default for DriveScale {
+    /// An AD669 (±10 V, 16 bits) into a drive of 10 000 counts/s per volt.
+    fn default() -> Self {
+        Self {
+            counts_per_s_per_volt: 10_000.0,
+            full_scale_volts: 10.0,
+            code_bits: 16,
+        }
+    }
+}
+
+impl DriveScale {
+    /// The signed code for `volts`, clamped to the DAC's range; and whether
+    /// it was clamped.
+    pub fn code(&self, volts: f64) -> (i64, bool) {
+        let half = 1i64 << (self.code_bits - 1);
+        let ideal = (volts / self.full_scale_volts * half as f64).round();
+        let code = ideal.clamp(-(half as f64), (half - 1) as f64) as i64;
+        (code, code as f64 != ideal)
+    }
+
+    /// The voltage of signed `code`.
+    pub fn volts(&self, code: i64) -> f64 {
+        code as f64 / (1i64 << (self.code_bits - 1)) as f64 * self.full_scale_volts
+    }
+
+    /// `code` as the W-bit pattern a `CODE` register takes.
+    pub fn register_value(&self, code: i64) -> u32 {
+        (code as u64 & ((1u64 << self.code_bits) - 1)) as u32
+    }
+}
+
+/// One period's result of the loop.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoopOutput {
+    /// Commanded minus measured position, counts.
+    pub following_error: f64,
+    /// The DAC code (signed).
+    pub code: i64,
+    /// The code was clamped at the DAC's range.
+    pub saturated: bool,
+}
+
+/// The velocity-mode position loop, run once per period.
+#[derive(Clone, Debug)]
+pub struct PositionLoop {
+    gains: ServoGains,
+    scale: DriveScale,
+    period_s: f64,
+    integral: f64,
+    last_error: Option<f64>,
+}
+
+impl PositionLoop {
+    /// A loop at rest, run every `period_s` seconds.
+    pub fn new(gains: ServoGains, scale: DriveScale, period_s: f64) -> Result<Self, ServoError> {
+        check("kp", gains.kp, "0 or more (1/s)", gains.kp >= 0.0)?;
+        check("ki", gains.ki, "0 or more (1/s²)", gains.ki >= 0.0)?;
+        check("kd", gains.kd, "0 or more (s)", gains.kd >= 0.0)?;
+        check("kff", gains.kff, "0 to 2", (0.0..=2.0).contains(&gains.kff))?;
+        check(
+            "counts_per_s_per_volt",
+            scale.counts_per_s_per_volt,
+            "not 0 (counts/s per V; negative for a reversed drive)",
+            scale.counts_per_s_per_volt != 0.0,
+        )?;
+        check(
+            "full_scale_volts",
+            scale.full_scale_volts,
+            "above 0 (V)",
+            scale.full_scale_volts > 0.0,
+        )?;
+        check(
+            "code_bits",
+            scale.code_bits as f64,
+            "2 to 32",
+            (2..=32).contains(&scale.code_bits),
+        )?;
+        check("period_s", period_s, "above 0 (s)", period_s > 0.0)?;
+        Ok(Self {
+            gains,
+            scale,
+            period_s,
+            integral: 0.0,
+            last_error: None,
+        })
+    }
+
+    /// One period: the commanded position and velocity (counts, counts/s)
+    /// and the encoder count give the DAC code. The integral is held while
+    /// the output is clamped (no wind-up).
+    pub fn step(&mut self, commanded: f64, commanded_velocity: f64, measured: i64) -> LoopOutput {
+        let g = self.gains;
+        let error = commanded - measured as f64;
+        let rate = self
+            .last_error
+            .map_or(0.0, |last| (error - last) / self.period_s);
+        self.last_error = Some(error);
+        let integral = self.integral + error * self.period_s;
+        let velocity = g.kff * commanded_velocity + g.kp * error + g.ki * integral + g.kd * rate;
+        let (code, saturated) = self.scale.code(velocity / self.scale.counts_per_s_per_volt);
+        if !saturated {
+            self.integral = integral;
+        }
+        LoopOutput {
+            following_error: error,
+            code,
+            saturated,
+        }
+    }
+}
+
+/// A simulated analog servo: a velocity drive (first-order lag towards its
+/// gain times the command voltage, within its velocity and acceleration
+/// limits: the motor's torque over its inertia) turning a motor with an
+/// encoder.
+#[derive(Clone, Debug)]
+pub struct ServoMotor {
+    /// The drive's gain, counts/s per V.
+    pub counts_per_s_per_volt: f64,
+    /// The velocity loop's time constant, s.
+    pub time_constant_s: f64,
+    /// Highest speed, counts/s.
+    pub max_velocity: f64,
+    /// Highest acceleration (peak torque / inertia), counts/s².
+    pub max_acceleration: f64,
+    position: f64,
+    velocity: f64,
+}
+
+impl Default for ServoMotor {
+    /// 10 000 counts/s per V, 2 ms, ±100 000 counts/s, 2·10^6 counts/s².
+    fn default() -> Self {
+        Self::new(10_000.0, 0.002, 100_000.0, 2.0e6)
+    }
+}
+
+impl ServoMotor {
+    /// A motor at rest at count 0.
+    pub fn new(
+        counts_per_s_per_volt: f64,
+        time_constant_s: f64,
+        max_velocity: f64,
+        max_acceleration: f64,
+    ) -> Self {
+        Self {
+            counts_per_s_per_volt,
+            time_constant_s,
+            max_velocity,
+            max_acceleration,
+            position: 0.0,
+            velocity: 0.0,
+        }
+    }
+
+    /// `seconds` under a steady command of `volts`.
+    pub fn advance(&mut self, volts: f64, seconds: f64) {
+        let target =
+            (volts * self.counts_per_s_per_volt).clamp(-self.max_velocity, self.max_velocity);
+        // Steps short against the time constant, so the lag is integrated
+        // accurately whatever the caller's step.
+        let steps = (seconds / (self.time_constant_s / 20.0)).ceil().max(1.0) as u32;
+        let dt = seconds / steps as f64;
+        for _ in 0..steps {
+            let wanted = (target - self.velocity) / self.time_constant_s;
+            let acceleration = wanted.clamp(-self.max_acceleration, self.max_acceleration);
+            let velocity = self.velocity + acceleration * dt;
+            self.position += 0.5 * (self.velocity + velocity) * dt;
+            self.velocity = velocity;
+        }
+    }
+
+    /// The encoder's count (whole counts passed).
+    pub fn counts(&self) -> i64 {
+        self.position.floor() as i64
+    }
+
+    /// The speed, counts/s.
+    pub fn velocity(&self) -> f64 {
+        self.velocity
+    }
+}
+
+/// Following-error figures of a run, in counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FollowingError {
+    /// Largest magnitude.
+    pub max: f64,
+    /// Root mean square over the periods.
+    pub rms: f64,
+    /// Periods counted.
+    pub periods: u64,
+    sum_squares: f64,
+}
+
+impl FollowingError {
+    /// Adds one period's error.
+    pub fn add(&mut self, error: f64) {
+        self.max = self.max.max(error.abs());
+        self.sum_squares += error * error;
+        self.periods += 1;
+        self.rms = (self.sum_squares / self.periods as f64).sqrt();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Loop and motor at a 1 ms period on a commanded trajectory (position
+    /// and velocity per period); returns the motor and the error figures.
+    fn run(
+        gains: ServoGains,
+        trajectory: &[(f64, f64)],
+        settle: usize,
+    ) -> (ServoMotor, FollowingError, u64) {
+        let period = 0.001;
+        let mut servo = PositionLoop::new(gains, DriveScale::default(), period).unwrap();
+        let mut motor = ServoMotor::default();
+        let scale = DriveScale::default();
+        let mut figures = FollowingError::default();
+        let mut saturated = 0;
+        let last = *trajectory.last().unwrap();
+        for &(position, velocity) in trajectory
+            .iter()
+            .chain(std::iter::repeat(&(last.0, 0.0)).take(settle))
+        {
+            let out = servo.step(position, velocity, motor.counts());
+            figures.add(out.following_error);
+            saturated += out.saturated as u64;
+            motor.advance(scale.volts(out.code), period);
+        }
+        (motor, figures, saturated)
+    }
+
+    /// A move of 20 000 counts at 40 000 counts/s with 400 000 counts/s²
+    /// ramps, sampled every ms.
+    fn trapezoid() -> Vec<(f64, f64)> {
+        let (distance, v, a): (f64, f64, f64) = (20_000.0, 40_000.0, 400_000.0);
+        let ramp = v / a;
+        let cruise = (distance - v * ramp) / v;
+        let total = 2.0 * ramp + cruise;
+        (1..=(total * 1000.0).ceil() as usize)
+            .map(|i| {
+                let t = (i as f64 / 1000.0).min(total);
+                if t < ramp {
+                    (0.5 * a * t * t, a * t)
+                } else if t < ramp + cruise {
+                    (0.5 * v * ramp + v * (t - ramp), v)
+                } else {
+                    let d = total - t;
+                    (distance - 0.5 * a * d * d, a * d)
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_trapezoid_move_ends_within_a_count_of_its_target() {
+        let (motor, figures, saturated) = run(ServoGains::default(), &trapezoid(), 300);
+        assert!(
+            (motor.counts() - 20_000).abs() <= 1,
+            "ended at {}",
+            motor.counts()
+        );
+        assert!(
+            motor.velocity().abs() < 50.0,
+            "still moving at {} counts/s",
+            motor.velocity()
+        );
+        assert_eq!(saturated, 0, "the move is within the DAC's range");
+        println!(
+            "following error: peak {:.1}, RMS {:.2} counts",
+            figures.max, figures.rms
+        );
+        assert!(
+            figures.max < 200.0,
+            "following error peaks at {:.1} counts",
+            figures.max
+        );
+    }
+
+    #[test]
+    fn feed_forward_cuts_the_following_error_of_a_move() {
+        let with = run(ServoGains::default(), &trapezoid(), 0).1;
+        let without = run(
+            ServoGains {
+                kff: 0.0,
+                ..ServoGains::default()
+            },
+            &trapezoid(),
+            0,
+        )
+        .1;
+        println!(
+            "peak following error: {:.1} counts with feed-forward, {:.1} without",
+            with.max, without.max
+        );
+        assert!(
+            with.max * 3.0 < without.max,
+            "peak with {:.1}, without {:.1} counts",
+            with.max,
+            without.max
+        );
+    }
+
+    #[test]
+    fn a_large_error_clamps_the_code_and_does_not_wind_up() {
+        let scale = DriveScale::default();
+        let mut servo = PositionLoop::new(ServoGains::default(), scale, 0.001).unwrap();
+        for _ in 0..100 {
+            let out = servo.step(1.0e9, 0.0, 0);
+            assert_eq!((out.code, out.saturated), (32_767, true));
+        }
+        // Back at the target: no stored integral pushes on.
+        let out = servo.step(0.0, 0.0, 0);
+        assert_eq!(out.code, 0, "the integral held while clamped");
+        assert_eq!(scale.code(-20.0), (-32_768, true));
+        assert_eq!(scale.register_value(-1), 0xffff);
+        assert!((scale.volts(16_384) - 5.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_settings_are_errors_naming_the_setting() {
+        let scale = DriveScale::default();
+        let bad = |gains: ServoGains, scale: DriveScale, period: f64| {
+            PositionLoop::new(gains, scale, period)
+                .unwrap_err()
+                .to_string()
+        };
+        let g = ServoGains::default();
+        assert_eq!(
+            bad(ServoGains { kp: -1.0, ..g }, scale, 0.001),
+            "servo setting `kp` = -1: 0 or more (1/s)"
+        );
+        assert_eq!(
+            bad(ServoGains { ki: f64::NAN, ..g }, scale, 0.001),
+            "servo setting `ki` = NaN: 0 or more (1/s²)"
+        );
+        assert_eq!(
+            bad(g, scale, 0.0),
+            "servo setting `period_s` = 0: above 0 (s)"
+        );
+        assert_eq!(
+            bad(
+                g,
+                DriveScale {
+                    code_bits: 40,
+                    ..scale
+                },
+                0.001
+            ),
+            "servo setting `code_bits` = 40: 2 to 32"
+        );
+        assert_eq!(
+            bad(g, DriveScale { counts_per_s_per_volt: 0.0, ..scale }, 0.001),
+            "servo setting `counts_per_s_per_volt` = 0: not 0 (counts/s per V; negative for a reversed drive)"
+        );
+    }
+}
