@@ -762,16 +762,7 @@ fn timing_diagram() -> String {
 
 #[test]
 fn datasheet_timing_diagram_is_the_simulation() {
-    let path = motion_hdl::tools::repo_root().join("src/blocks/dac_interface/timing.txt");
-    let drawn = std::fs::read_to_string(&path).unwrap_or_default();
-    let simulated = timing_diagram();
-    if std::env::var_os("UPDATE_TIMING_DIAGRAM").is_some() {
-        std::fs::write(&path, &simulated).unwrap();
-    }
-    assert_eq!(
-        drawn, simulated,
-        "timing.txt differs from the simulation (rerun with UPDATE_TIMING_DIAGRAM=1)"
-    );
+    crate::support::timing_diagram::assert_timing_diagram_is("dac_interface", &timing_diagram());
 }
 
 /// A request during an update is deferred, flagged, and served next with

@@ -1,3 +1,4 @@
 //! Benches shared by several blocks' tests.
 
 pub mod pin_bench;
+pub mod timing_diagram;
