@@ -1160,7 +1160,13 @@ module sync_fifo_bridge__channels__0(clock,reset,m_address,m_write_data,m_write,
             status_underflow__d = 1'b0;
             s_read_reg__d = zero32;
         end
-        ready__d = released__d != zero_c;
+        ready__d = released_base != zero_c;
+        if (pop) begin
+            ready__d = released_base != one_c;
+        end
+        if (reset) begin
+            ready__d = 1'b0;
+        end
         data_ready = ready__q;
     end
 
@@ -2621,7 +2627,13 @@ module sync_fifo_bridge__channels__1(clock,reset,m_address,m_write_data,m_write,
             status_underflow__d = 1'b0;
             s_read_reg__d = zero32;
         end
-        ready__d = released__d != zero_c;
+        ready__d = released_base != zero_c;
+        if (pop) begin
+            ready__d = released_base != one_c;
+        end
+        if (reset) begin
+            ready__d = 1'b0;
+        end
         data_ready = ready__q;
     end
 
@@ -4082,7 +4094,13 @@ module sync_fifo_bridge__channels__2(clock,reset,m_address,m_write_data,m_write,
             status_underflow__d = 1'b0;
             s_read_reg__d = zero32;
         end
-        ready__d = released__d != zero_c;
+        ready__d = released_base != zero_c;
+        if (pop) begin
+            ready__d = released_base != one_c;
+        end
+        if (reset) begin
+            ready__d = 1'b0;
+        end
         data_ready = ready__q;
     end
 

@@ -353,9 +353,17 @@ impl<const N: usize, const NP1: usize> Logic for BridgeChannel<N, NP1> {
             self.status_underflow.d.next = false;
             self.s_read_reg.d.next = self.zero32.val();
         }
-        // Last: data_ready follows every assignment of the count above, so
-        // it rises on the edge that releases, from a flip-flop.
-        self.ready.d.next = self.released.d.val() != self.zero_c.val();
+        // data_ready is the next count's != 0, from a flip-flop, so it rises
+        // on the edge that releases. Compared before the pop's subtraction
+        // (base != 1 with a pop, else base != 0): the subtractor's carry
+        // chain is off this path, which limited Fmax.
+        self.ready.d.next = self.released_base.val() != self.zero_c.val();
+        if self.pop.val() {
+            self.ready.d.next = self.released_base.val() != self.one_c.val();
+        }
+        if self.reset.val() {
+            self.ready.d.next = false;
+        }
         self.data_ready.next = self.ready.q.val();
     }
 }
