@@ -12,3 +12,4 @@ mod machine_io;
 mod host;
 mod compiled_backend;
 mod controller_behind_bus_adapter;
+mod analog_servo;

@@ -1,0 +1,126 @@
+//! An analog servo axis from its parts, ahead of the controller's analog
+//! mode (#18): the host's position loop writes a code and an update into
+//! `dac_interface` (RTL) once per period, an AD669 turns the code into a
+//! voltage on its LDAC, the simulated drive and motor turn, and the
+//! motor's encoder feeds `quadrature_decoder` (RTL), whose count closes
+//! the loop. Clock 1 MHz, period 1 ms.
+
+use motion_hdl::blocks::dac_interface::model::{DacInputs, DacOutputs};
+use motion_hdl::blocks::dac_interface::registers::register_map;
+use motion_hdl::blocks::dac_interface::DacInterface3;
+use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
+use motion_hdl::host::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
+use motion_hdl::sim::{quadrature_state, Harness};
+
+#[test]
+fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
+    const CLOCKS_PER_PERIOD: u64 = 1000;
+    let clock_s = 1.0e-6;
+    let map = register_map(3, 16).unwrap();
+    let code0 = map.register("CODE").unwrap().address_of(0).unwrap() as u64;
+    let mut dac = Harness::new("dac_interface", DacInterface3::default()).unwrap();
+    let mut decoder = Harness::new(
+        "quadrature_decoder",
+        QuadratureDecoder::<32, 8, 16>::default(),
+    )
+    .unwrap();
+    let scale = DriveScale::default();
+    let mut servo = PositionLoop::new(
+        ServoGains::default(),
+        scale,
+        CLOCKS_PER_PERIOD as f64 * clock_s,
+    )
+    .unwrap();
+    let mut motor = ServoMotor::default();
+    let mut figures = FollowingError::default();
+
+    // The move: 20 000 counts at up to 40 000 counts/s, ramps of 0.1 s,
+    // then 0.3 s to settle.
+    let (distance, v, a): (f64, f64, f64) = (20_000.0, 40_000.0, 400_000.0);
+    let ramp = v / a;
+    let total = 2.0 * ramp + (distance - v * ramp) / v;
+    let command = |t: f64| -> (f64, f64) {
+        let t = t.min(total);
+        if t < ramp {
+            (0.5 * a * t * t, a * t)
+        } else if t < total - ramp {
+            (0.5 * v * ramp + v * (t - ramp), v)
+        } else {
+            let d = total - t;
+            (distance - 0.5 * a * d * d, a * d)
+        }
+    };
+    let periods = ((total + 0.3) * 1000.0) as u64;
+
+    let (mut first, mut second) = (0u64, 0u64);
+    let mut count = 0i64;
+    let mut ldacs = 0;
+    for clock in 0..periods * CLOCKS_PER_PERIOD {
+        let mut inputs = DacInputs {
+            reset: clock == 0,
+            ..Default::default()
+        };
+        let phase = clock % CLOCKS_PER_PERIOD;
+        if clock > 0 && phase == 0 {
+            let (position, velocity) = command(clock as f64 * clock_s);
+            let out = servo.step(position, velocity, count);
+            figures.add(out.following_error);
+            inputs.bus_write = true;
+            inputs.bus_address = code0;
+            inputs.bus_write_data = scale.register_value(out.code) as u64;
+        }
+        inputs.update = clock > 0 && phase == 1;
+        let pins = DacOutputs::from_vector(&dac.step_vector(&inputs.to_vector()).unwrap());
+        // The AD669 on channel 0: both ranks level-sensitive.
+        if pins.dac_cs_n & 1 == 0 && !pins.dac_l1_n {
+            first = pins.dac_data;
+        }
+        if pins.dac_ldac {
+            ldacs += (second != first) as u32;
+            second = first;
+        }
+        let volts = scale.volts(second as u16 as i16 as i64);
+        motor.advance(volts, clock_s);
+        let (a, b) = quadrature_state(motor.counts());
+        // [reset, a, b, index, filter, clear, sample_rate, counter_mode,
+        //  index_invert, index_clear, index_latch, index_once, index_rearm, clear_error]
+        let decoded = decoder
+            .step_vector(&[
+                (clock == 0) as u64,
+                a as u64,
+                b as u64,
+                0,
+                0,
+                0,
+                0,
+                0,
+                0,
+                0,
+                0,
+                0,
+                0,
+                0,
+            ])
+            .unwrap();
+        count = decoded[0] as u32 as i32 as i64;
+    }
+    println!(
+        "{} periods, {ldacs} output changes; following error max {:.1}, RMS {:.2} counts; ended at {count}",
+        figures.periods, figures.max, figures.rms
+    );
+    assert!(
+        (count - 20_000).abs() <= 1,
+        "the axis ended at {count}, not within a count of 20000"
+    );
+    assert_eq!(
+        count,
+        motor.counts(),
+        "the decoder counted every count the motor turned"
+    );
+    assert!(
+        figures.max < 50.0,
+        "following error peaked at {:.1} counts",
+        figures.max
+    );
+    assert!(ldacs > 100, "{ldacs} output changes");
+}
