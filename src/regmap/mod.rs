@@ -508,6 +508,16 @@ impl RegisterMap {
         Ok(())
     }
 
+    /// Field `field` of register `register`.
+    pub fn field(&self, register: &str, field: &str) -> Result<&Field, RegMapError> {
+        self.register(register)?.field(field)
+    }
+
+    /// The word address of copy `index` of register `name`.
+    pub fn address_of(&self, name: &str, index: u32) -> Result<u32, RegMapError> {
+        self.register(name)?.address_of(index)
+    }
+
     /// The register named `name`.
     pub fn register(&self, name: &str) -> Result<&Register, RegMapError> {
         self.registers

@@ -638,7 +638,7 @@ impl Bench {
     }
 
     fn write(&mut self, name: &str, index: u32, value: u64) {
-        let address = self.map.register(name).unwrap().address_of(index).unwrap() as u64;
+        let address = self.map.address_of(name, index).unwrap() as u64;
         self.clock(DacInputs {
             bus_address: address,
             bus_write_data: value,
@@ -648,7 +648,7 @@ impl Bench {
     }
 
     fn read(&mut self, name: &str, index: u32) -> u64 {
-        let address = self.map.register(name).unwrap().address_of(index).unwrap() as u64;
+        let address = self.map.address_of(name, index).unwrap() as u64;
         self.clock(DacInputs {
             bus_address: address,
             bus_read: true,
@@ -834,12 +834,7 @@ impl Bench {
         // The first ranks at the LDAC rise are the codes the update wrote:
         // read them back from the model's APPLIED a pulse later.
         let mut copy = self.model.clone();
-        let address = self
-            .map
-            .register("APPLIED")
-            .unwrap()
-            .address_of(k as u32)
-            .unwrap() as u64;
+        let address = self.map.address_of("APPLIED", k as u32).unwrap() as u64;
         for _ in 0..8 {
             copy.step(DacInputs::default());
         }
@@ -1045,10 +1040,10 @@ int main(void) {
         printed,
         format!(
             "{} {} {} {}\n",
-            map.register("CODE").unwrap().address_of(2).unwrap(),
+            map.address_of("CODE", 2).unwrap(),
             map.register("TIMING").unwrap().reset_value(),
             f("STATUS", "REFUSED"),
-            map.register("APPLIED").unwrap().address_of(0).unwrap()
+            map.address_of("APPLIED", 0).unwrap()
         )
     );
 }

@@ -17,7 +17,7 @@ fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
     const CLOCKS_PER_PERIOD: u64 = 1000;
     let clock_s = 1.0e-6;
     let map = register_map(3, 16).unwrap();
-    let code0 = map.register("CODE").unwrap().address_of(0).unwrap() as u64;
+    let code0 = map.address_of("CODE", 0).unwrap() as u64;
     let mut dac = Harness::new("dac_interface", DacInterface3::default()).unwrap();
     let mut decoder = Harness::new(
         "quadrature_decoder",
