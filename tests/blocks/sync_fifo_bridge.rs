@@ -737,7 +737,6 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
 #[test]
 fn both_register_headers_compile_together_and_agree_with_the_maps() {
     let root = motion_hdl::tools::repo_root().join("rtl-out");
-    let dir = tempfile::tempdir().unwrap();
     let program = r#"#include <stdio.h>
 #include "sync_fifo_bridge_master_regs.h"
 #include "sync_fifo_bridge_slave_regs.h"
@@ -747,18 +746,7 @@ int main(void) {
     return 0;
 }
 "#;
-    std::fs::write(dir.path().join("main.c"), program).unwrap();
-    let exe = dir.path().join("regs");
-    let built = std::process::Command::new("gcc")
-        .args(["-std=c89", "-pedantic", "-Wall", "-Wextra", "-Werror", "-I"])
-        .arg(&root)
-        .arg("-o")
-        .arg(&exe)
-        .arg(dir.path().join("main.c"))
-        .output()
-        .expect("gcc runs");
-    assert!(built.status.success(), "{}", String::from_utf8_lossy(&built.stderr));
-    let printed = String::from_utf8(std::process::Command::new(&exe).output().unwrap().stdout).unwrap();
+    let printed = motion_hdl::tools::run_c_program(&root, "c89", program).unwrap_or_else(|e| panic!("{e}"));
     let model = BridgeModel::new(K, EXPORTED_FIFO_LOG2 as u32);
     let (m, s) = (model.master_map(), model.slave_map());
     let mask = |map: &RegisterMap, r: &str, f: &str| map.register(r).unwrap().field(f).unwrap().mask();

@@ -3,7 +3,6 @@
 //! the encoders, every fault, and cross-simulation.
 
 
-use std::process::Command;
 
 use crate::bench::{Bench, Lockstep};
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
@@ -786,7 +785,6 @@ fn the_committed_c_header_compiles_and_agrees_with_the_map() {
             c_header(&map, &generator()),
             "rtl-out/{name}.h is stale: run `cargo run --release -- export`"
         );
-        let dir = tempfile::tempdir().unwrap();
         let program = format!(
             r#"#include <stdio.h>
 #include "{name}.h"
@@ -798,20 +796,6 @@ int main(void) {{
 }}
 "#
         );
-        std::fs::write(dir.path().join("main.c"), program).unwrap();
-        let exe = dir.path().join("firmware");
-        for standard in ["-std=c89", "-std=c99"] {
-            let built = Command::new("gcc")
-                .args([standard, "-pedantic", "-Wall", "-Wextra", "-Werror", "-I"])
-                .arg(repo_root().join("rtl-out"))
-                .arg("-o")
-                .arg(&exe)
-                .arg(dir.path().join("main.c"))
-                .output()
-                .expect("gcc runs");
-            assert!(built.status.success(), "{name} {standard}: {}", String::from_utf8_lossy(&built.stderr));
-        }
-        let printed = String::from_utf8(Command::new(&exe).output().unwrap().stdout).unwrap();
         let r = |name: &str| map.register(name).unwrap();
         let expected = format!(
             "{} {} {} {} {} {} {}\n",
@@ -823,7 +807,11 @@ int main(void) {{
             r("STATUS").w1c_mask(),
             !uniform as u32,
         );
-        assert_eq!(printed, expected, "{name}");
+        for standard in ["c89", "c99"] {
+            let printed = motion_hdl::tools::run_c_program(&repo_root().join("rtl-out"), standard, &program)
+                .unwrap_or_else(|e| panic!("{name} {standard}: {e}"));
+            assert_eq!(printed, expected, "{name} {standard}");
+        }
     }
 }
 
