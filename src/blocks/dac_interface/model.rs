@@ -93,13 +93,69 @@ struct Timing {
 }
 
 impl Timing {
-    fn from_word(word: u64) -> Self {
-        let at = |lsb: u32| ((word >> lsb) & 0xff).max(1);
+    fn from_word(word: u64, d: &Decode) -> Self {
+        let [setup, width, hold, ldac] = d
+            .timing_fields
+            .map(|(lsb, mask)| ((word >> lsb) & mask).max(1));
         Self {
-            setup: at(0),
-            width: at(8),
-            hold: at(16),
-            ldac: at(24),
+            setup,
+            width,
+            hold,
+            ldac,
+        }
+    }
+}
+
+/// The map's addresses and field masks, looked up by name once.
+#[derive(Clone, Copy, Debug)]
+struct Decode {
+    id: u64,
+    config: u64,
+    control: u64,
+    update: u64,
+    status: u64,
+    timing: u64,
+    config_value: u64,
+    timing_reset: u64,
+    offset_binary: u64,
+    start: u64,
+    busy: u64,
+    safe: u64,
+    force_safe: u64,
+    pending: u64,
+    deferred: u64,
+    refused: u64,
+    /// `TIMING`'s SETUP, WIDTH, HOLD and LDAC_WIDTH: (lsb, value mask).
+    timing_fields: [(u32, u64); 4],
+}
+
+impl Decode {
+    fn new(map: &RegisterMap) -> Self {
+        let register = |name: &str| map.register(name).expect("a register of the map");
+        let address = |name: &str| register(name).address as u64;
+        let mask = |r: &str, f: &str| field_of(map, r, f).mask() as u64;
+        let timing_field = |f: &str| {
+            let field = field_of(map, "TIMING", f);
+            (field.lsb, field.max_value())
+        };
+        Self {
+            id: address("ID"),
+            config: address("CONFIG"),
+            control: address("CONTROL"),
+            update: address("UPDATE"),
+            status: address("STATUS"),
+            timing: address("TIMING"),
+            config_value: register("CONFIG").reset_value() as u64,
+            timing_reset: register("TIMING").reset_value() as u64,
+            offset_binary: mask("CONTROL", "OFFSET_BINARY"),
+            start: mask("UPDATE", "START"),
+            busy: mask("STATUS", "BUSY"),
+            safe: mask("STATUS", "SAFE"),
+            force_safe: mask("STATUS", "FORCE_SAFE"),
+            pending: mask("STATUS", "PENDING"),
+            deferred: mask("STATUS", "DEFERRED"),
+            refused: mask("STATUS", "REFUSED"),
+            timing_fields: ["SETUP", "WIDTH", "HOLD", "LDAC_WIDTH"].map(timing_field),
         }
     }
 }
@@ -107,7 +163,7 @@ impl Timing {
 /// Cycle-exact model of a `channels`-channel, `width`-bit interface.
 #[derive(Clone, Debug)]
 pub struct DacModel {
-    map: RegisterMap,
+    decode: Decode,
     channels: usize,
     width: u32,
     // Register layer.
@@ -141,9 +197,11 @@ impl DacModel {
     /// An interface just out of reset.
     pub fn new(channels: usize, width: usize) -> Self {
         let map = register_map(channels, width).expect("a valid dac_interface geometry");
-        let timing_word = map.register("TIMING").expect("TIMING").reset_value() as u64;
+        let decode = Decode::new(&map);
+        let timing_word = decode.timing_reset;
+        let timing = Timing::from_word(timing_word, &decode);
         Self {
-            map,
+            decode,
             channels,
             width: width as u32,
             staged: vec![0; channels],
@@ -157,7 +215,7 @@ impl DacModel {
             left: 0,
             shadow: vec![0; channels],
             shadow_offset: false,
-            timing: Timing::from_word(timing_word),
+            timing,
             safe_run: false,
             cut: false,
             pending: false,
@@ -171,11 +229,6 @@ impl DacModel {
         }
     }
 
-    /// The register map the model decodes.
-    pub fn map(&self) -> &RegisterMap {
-        &self.map
-    }
-
     /// The pins' code for signed code `value` in the chosen format.
     fn pin_code(&self, value: u64, offset_binary: bool) -> u64 {
         value
@@ -186,47 +239,23 @@ impl DacModel {
             }
     }
 
-    fn address(&self, name: &str) -> u64 {
-        self.map
-            .register(name)
-            .expect("a register of the map")
-            .address as u64
-    }
-
-    fn field_mask(&self, register: &str, field: &str) -> u64 {
-        field_of(&self.map, register, field).mask() as u64
-    }
-
-    fn read(&self, address: u64, abort: bool) -> u64 {
-        let status_bit = |field: &str, on: bool| {
-            if on {
-                self.field_mask("STATUS", field)
-            } else {
-                0
-            }
-        };
+    fn read(&self, address: u64, force_safe: bool) -> u64 {
+        let d = &self.decode;
+        let bit = |mask: u64, on: bool| if on { mask } else { 0 };
         let k = self.channels as u64;
         match address {
-            a if a == self.address("ID") => ID_VALUE as u64,
-            a if a == self.address("CONFIG") => {
-                self.map.register("CONFIG").expect("CONFIG").reset_value() as u64
+            a if a == d.id => ID_VALUE as u64,
+            a if a == d.config => d.config_value,
+            a if a == d.control => bit(d.offset_binary, self.offset_binary),
+            a if a == d.status => {
+                bit(d.busy, self.busy() || self.ldac)
+                    | bit(d.safe, self.safe)
+                    | bit(d.force_safe, force_safe)
+                    | bit(d.pending, self.pending)
+                    | bit(d.deferred, self.deferred)
+                    | bit(d.refused, self.refused)
             }
-            a if a == self.address("CONTROL") => {
-                if self.offset_binary {
-                    self.field_mask("CONTROL", "OFFSET_BINARY")
-                } else {
-                    0
-                }
-            }
-            a if a == self.address("STATUS") => {
-                status_bit("BUSY", self.busy() || self.ldac)
-                    | status_bit("SAFE", self.safe)
-                    | status_bit("FORCE_SAFE", abort)
-                    | status_bit("PENDING", self.pending)
-                    | status_bit("DEFERRED", self.deferred)
-                    | status_bit("REFUSED", self.refused)
-            }
-            a if a == self.address("TIMING") => self.timing_word,
+            a if a == d.timing => self.timing_word,
             a if (CODE_BASE as u64..CODE_BASE as u64 + k).contains(&a) => {
                 self.staged[(a - CODE_BASE as u64) as usize]
             }
@@ -247,7 +276,7 @@ impl DacModel {
         let k = self.channels;
 
         // Pins: from the phase before this edge.
-        let (cs_n, l1_n, ldac, data) = match self.phase {
+        let (cs_n, l1_n, ldac, pin_data) = match self.phase {
             Phase::Idle => (width_mask(k as u32), true, false, self.data),
             Phase::Setup(c) | Phase::Hold(c) | Phase::Width(c) => (
                 width_mask(k as u32) & !(1 << c),
@@ -263,37 +292,23 @@ impl DacModel {
             self.read_data = self.read(i.bus_address, i.force_safe);
         }
 
-        // An update that starts on this edge takes the registers as they
-        // were before it (a write on the same clock goes to the next one).
-        let before = (self.staged.clone(), self.offset_binary, self.timing_word);
-
-        // Register writes.
-        let mut request = i.update;
-        if i.bus_write {
-            let a = i.bus_address;
-            let d = i.bus_write_data;
-            if a == self.address("CONTROL") {
-                self.offset_binary = d & self.field_mask("CONTROL", "OFFSET_BINARY") != 0;
-            } else if a == self.address("UPDATE") {
-                request |= d & self.field_mask("UPDATE", "START") != 0;
-            } else if a == self.address("STATUS") {
-                if d & self.field_mask("STATUS", "DEFERRED") != 0 {
-                    self.deferred = false;
-                }
-                if d & self.field_mask("STATUS", "REFUSED") != 0 {
-                    self.refused = false;
-                }
-            } else if a == self.address("TIMING") {
-                self.timing_word = d;
-            } else if (CODE_BASE as u64..CODE_BASE as u64 + k as u64).contains(&a) {
-                if i.force_safe {
-                    self.refused = true;
-                } else {
-                    self.staged[(a - CODE_BASE as u64) as usize] = d & code_mask;
-                }
+        // Strobes and flags first. The registers an update takes at its
+        // start (codes, format, timing) land after the sequencer: an update
+        // starting on this edge takes them as they were before it.
+        let d = self.decode;
+        let (a, data) = (i.bus_address, i.bus_write_data);
+        let code_write =
+            i.bus_write && (CODE_BASE as u64..CODE_BASE as u64 + k as u64).contains(&a);
+        let mut request = i.update || (i.bus_write && a == d.update && data & d.start != 0);
+        if i.bus_write && a == d.status {
+            if data & d.deferred != 0 {
+                self.deferred = false;
+            }
+            if data & d.refused != 0 {
+                self.refused = false;
             }
         }
-        if request && i.force_safe {
+        if i.force_safe && (request || code_write) {
             self.refused = true;
             request = false;
         }
@@ -304,9 +319,9 @@ impl DacModel {
         let (old_phase, old_left) = (self.phase, self.left);
         let safe_run_before = self.safe_run;
         let start = |m: &mut Self, safe: bool| {
-            m.shadow = if safe { vec![0; k] } else { before.0.clone() };
-            m.shadow_offset = before.1;
-            m.timing = Timing::from_word(before.2);
+            m.shadow = if safe { vec![0; k] } else { m.staged.clone() };
+            m.shadow_offset = m.offset_binary;
+            m.timing = Timing::from_word(m.timing_word, &d);
             m.safe_run = safe;
             m.cut = false;
             m.phase = Phase::Setup(0);
@@ -369,6 +384,15 @@ impl DacModel {
                 }
             }
         }
+        if i.bus_write && a == d.control {
+            self.offset_binary = data & d.offset_binary != 0;
+        }
+        if i.bus_write && a == d.timing {
+            self.timing_word = data;
+        }
+        if code_write && !i.force_safe {
+            self.staged[(a - CODE_BASE as u64) as usize] = data & code_mask;
+        }
         if abort_rise {
             self.staged = vec![0; k];
             self.pending = false;
@@ -377,7 +401,7 @@ impl DacModel {
             self.safe = true;
         }
         self.abort_prev = i.force_safe;
-        (self.cs_n, self.l1_n, self.ldac, self.data) = (cs_n, l1_n, ldac, data);
+        (self.cs_n, self.l1_n, self.ldac, self.data) = (cs_n, l1_n, ldac, pin_data);
 
         if i.reset {
             *self = Self::new(k, self.width as usize);
