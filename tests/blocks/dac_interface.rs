@@ -372,7 +372,8 @@ impl Ad669Monitor {
         if ldac_rise {
             self.next_update();
         }
-        for &due in &self.safe_due {
+        // The oldest due is the first to run out.
+        if let Some(&due) = self.safe_due.first() {
             let [s, w, h, l] = self.timing_bound(4000, false);
             let limit = safe_latency(self.channels as u64, s, w, h, l);
             if clock - due > limit {
