@@ -18,6 +18,8 @@
 //   bus_read        in         1  one-clock register read strobe
 //   update          in         1  one-clock update request (the period boundary), as a write of UPDATE.START
 //   force_safe      in         1  level: its rise starts the safe update; while high, codes and updates are refused
+//   load            in         3  bit k: load_code goes into channel k's staged code (as a CODE[k] write; refused while force_safe is high)
+//   load_code       in        16  the code of load, signed
 //   bus_read_data   out       32  register read data, valid in the clock after bus_read, held until the next read
 //   dac_data        out       16  DAC data bus, shared by every channel
 //   dac_cs_n        out        3  bit k: channel k's chip select, active low
@@ -28,7 +30,7 @@
 // ============================================================================
 
 `default_nettype none
-module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,update,force_safe,bus_read_data,dac_data,dac_cs_n,dac_l1_n,dac_ldac,busy,safe);
+module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,update,force_safe,load,load_code,bus_read_data,dac_data,dac_cs_n,dac_l1_n,dac_ldac,busy,safe);
 
     // Module arguments
     input wire  clock;
@@ -39,6 +41,8 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     input wire  bus_read;
     input wire  update;
     input wire  force_safe;
+    input wire  [2:0] load;
+    input wire  [15:0] load_code;
     output reg  [31:0] bus_read_data;
     output reg  [15:0] dac_data;
     output reg  [2:0] dac_cs_n;
@@ -81,6 +85,22 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     localparam  chan_bit__0 = 3'b1;
     localparam  chan_bit__1 = 3'b10;
     localparam  chan_bit__2 = 3'b100;
+    localparam  word_bit__0 = 32'h1;
+    localparam  word_bit__1 = 32'h2;
+    localparam  word_bit__2 = 32'h4;
+    localparam  word_bit__3 = 32'h8;
+    localparam  word_bit__4 = 32'h10;
+    localparam  word_bit__5 = 32'h20;
+    localparam  word_bit__6 = 32'h40;
+    localparam  word_bit__7 = 32'h80;
+    localparam  word_bit__8 = 32'h100;
+    localparam  word_bit__9 = 32'h200;
+    localparam  word_bit__10 = 32'h400;
+    localparam  word_bit__11 = 32'h800;
+    localparam  word_bit__12 = 32'h1000;
+    localparam  word_bit__13 = 32'h2000;
+    localparam  word_bit__14 = 32'h4000;
+    localparam  word_bit__15 = 32'h8000;
     localparam  first_channel = 3'b1;
     localparam  last_channel = 3'b100;
     localparam  zero_k = 3'b0;
@@ -200,6 +220,7 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     reg  start_safe;
     reg  [31:0] status_word;
     reg  [31:0] read_word;
+    reg  [31:0] load_word;
 
     // Sub module instances
     dac_interface__staged__0 staged__0(
@@ -556,6 +577,79 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
                 else begin
                     staged__2__d = bus_write_data & code_mask;
                 end
+            end
+        end
+        load_word = zero32;
+        if (load_code[0]) begin
+            load_word = load_word | word_bit__0;
+        end
+        if (load_code[1]) begin
+            load_word = load_word | word_bit__1;
+        end
+        if (load_code[2]) begin
+            load_word = load_word | word_bit__2;
+        end
+        if (load_code[3]) begin
+            load_word = load_word | word_bit__3;
+        end
+        if (load_code[4]) begin
+            load_word = load_word | word_bit__4;
+        end
+        if (load_code[5]) begin
+            load_word = load_word | word_bit__5;
+        end
+        if (load_code[6]) begin
+            load_word = load_word | word_bit__6;
+        end
+        if (load_code[7]) begin
+            load_word = load_word | word_bit__7;
+        end
+        if (load_code[8]) begin
+            load_word = load_word | word_bit__8;
+        end
+        if (load_code[9]) begin
+            load_word = load_word | word_bit__9;
+        end
+        if (load_code[10]) begin
+            load_word = load_word | word_bit__10;
+        end
+        if (load_code[11]) begin
+            load_word = load_word | word_bit__11;
+        end
+        if (load_code[12]) begin
+            load_word = load_word | word_bit__12;
+        end
+        if (load_code[13]) begin
+            load_word = load_word | word_bit__13;
+        end
+        if (load_code[14]) begin
+            load_word = load_word | word_bit__14;
+        end
+        if (load_code[15]) begin
+            load_word = load_word | word_bit__15;
+        end
+        if ((load & chan_bit__0) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__0__d = load_word;
+            end
+        end
+        if ((load & chan_bit__1) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__1__d = load_word;
+            end
+        end
+        if ((load & chan_bit__2) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__2__d = load_word;
             end
         end
         if (request & force_safe) begin

@@ -17,6 +17,10 @@ module dac_interface_tb;
   reg vector_update;
   reg force_safe = 0;
   reg vector_force_safe;
+  reg [2:0] load = 0;
+  reg [2:0] vector_load;
+  reg [15:0] load_code = 0;
+  reg [15:0] vector_load_code;
   wire [31:0] bus_read_data;
   reg [31:0] expected_bus_read_data;
   wire [15:0] dac_data;
@@ -35,7 +39,7 @@ module dac_interface_tb;
   integer fields;
   integer cycle;
   reg [8*1024-1:0] vector_path;
-  dac_interface uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .update(update), .force_safe(force_safe), .bus_read_data(bus_read_data), .dac_data(dac_data), .dac_cs_n(dac_cs_n), .dac_l1_n(dac_l1_n), .dac_ldac(dac_ldac), .busy(busy), .safe(safe));
+  dac_interface uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .update(update), .force_safe(force_safe), .load(load), .load_code(load_code), .bus_read_data(bus_read_data), .dac_data(dac_data), .dac_cs_n(dac_cs_n), .dac_l1_n(dac_l1_n), .dac_ldac(dac_ldac), .busy(busy), .safe(safe));
   initial begin
     if (!$value$plusargs("vectors=%s", vector_path)) begin
       $display("ERROR missing +vectors=FILE");
@@ -48,8 +52,8 @@ module dac_interface_tb;
     end
     cycle = 0;
     while (!$feof(vectors)) begin
-      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_update, vector_force_safe, expected_bus_read_data, expected_dac_data, expected_dac_cs_n, expected_dac_l1_n, expected_dac_ldac, expected_busy, expected_safe);
-      if (fields == 14) begin
+      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_update, vector_force_safe, vector_load, vector_load_code, expected_bus_read_data, expected_dac_data, expected_dac_cs_n, expected_dac_l1_n, expected_dac_ldac, expected_busy, expected_safe);
+      if (fields == 16) begin
         reset = vector_reset;
         bus_address = vector_bus_address;
         bus_write_data = vector_bus_write_data;
@@ -57,6 +61,8 @@ module dac_interface_tb;
         bus_read = vector_bus_read;
         update = vector_update;
         force_safe = vector_force_safe;
+        load = vector_load;
+        load_code = vector_load_code;
         #5 clock = 1'b1;
         #1;
         if (bus_read_data !== expected_bus_read_data) begin

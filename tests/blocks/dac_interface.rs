@@ -20,11 +20,12 @@ fn address(map: &RegisterMap, name: &str) -> u64 {
 
 /// Random traffic: code writes (some wider than W), update pulses and
 /// `UPDATE` writes, rare format and timing changes, W1C clears, reads of
-/// every address, aborts held for a while, rare resets. Clock 0 is a reset.
+/// every address, hardware loads, aborts held for a while, rare resets. Clock 0 is a reset.
 struct Traffic {
     rng: StdRng,
     map: RegisterMap,
     channels: usize,
+    width: usize,
     abort_left: u32,
 }
 
@@ -34,6 +35,7 @@ impl Traffic {
             rng: StdRng::seed_from_u64(seed),
             map: register_map(channels, width).unwrap(),
             channels,
+            width,
             abort_left: 0,
         }
     }
@@ -104,6 +106,11 @@ impl Traffic {
             }
             18..=40 => i.bus_read = true,
             _ => {}
+        }
+        // The hardware load port, alone or beside a bus write.
+        if self.rng.gen_ratio(1, 25) {
+            i.load = self.rng.gen_range(1..1 << self.channels);
+            i.load_code = self.rng.gen_range(0..1 << self.width);
         }
         i
     }
@@ -247,6 +254,13 @@ impl Ad669Monitor {
                 && !i.force_safe
             {
                 self.staged[(a - CODE_BASE as u64) as usize] = i.bus_write_data & code_mask;
+            }
+        }
+        if !i.force_safe {
+            for c in 0..self.channels {
+                if i.load >> c & 1 == 1 {
+                    self.staged[c] = i.load_code & code_mask;
+                }
             }
         }
         if i.force_safe && !self.abort_prev {

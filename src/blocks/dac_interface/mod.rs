@@ -20,6 +20,8 @@
 //! | `bus_read` | in | 1 | one-clock register read strobe |
 //! | `update` | in | 1 | one-clock update request (the period boundary), as a write of `UPDATE.START` |
 //! | `force_safe` | in | 1 | level: its rise starts the safe update; while high, codes and updates are refused |
+//! | `load` | in | K | bit k: `load_code` goes into channel k's staged code in this clock (as a `CODE[k]` write; refused while `force_safe` is high); tie to 0 when unused |
+//! | `load_code` | in | W | the code of `load`, signed (two's complement) |
 //! | `bus_read_data` | out | 32 | register read data, valid in the clock after `bus_read`, held until the next read |
 //! | `dac_data` | out | W | DAC data bus, shared by every channel |
 //! | `dac_cs_n` | out | K | bit k: channel k's chip select, active low |
@@ -97,6 +99,15 @@
 //! one. A request and a `CODE` write on the same clock: the update takes
 //! the codes as they were before that clock.
 //!
+//! ## The hardware load port
+//! A controller feeds codes without the register bus: in a clock with
+//! `load` bit k set, channel k's staged code becomes `load_code` (cut to W
+//! bits), exactly as a `CODE[k]` write of that value would (the same code
+//! may go to several channels in one clock). A load and a bus `CODE[k]`
+//! write in the same clock: the load wins. While `force_safe` is high a
+//! load is refused and sets `STATUS.REFUSED`. An update requested in the
+//! clock after the load takes the loaded codes.
+//!
 //! ## Reset and abort: the safe code
 //! * After `reset` the block writes code 0 to every channel and pulses
 //!   `LDAC`, as if an update were requested in the first clock out of
@@ -172,6 +183,11 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
         "level: its rise starts the safe update; while high, codes and updates are refused",
     ),
     (
+        "load",
+        "bit k: load_code goes into channel k's staged code (as a CODE[k] write; refused while force_safe is high)",
+    ),
+    ("load_code", "the code of load, signed"),
+    (
         "bus_read_data",
         "register read data, valid in the clock after bus_read, held until the next read",
     ),
@@ -226,6 +242,10 @@ pub struct DacInterface<const K: usize, const W: usize> {
     pub update: Signal<In, Bit>,
     /// Forces the safe code (the abort level).
     pub force_safe: Signal<In, Bit>,
+    /// Per channel: stage `load_code` (the hardware path of a `CODE` write).
+    pub load: Signal<In, Bits<K>>,
+    /// The code of `load`.
+    pub load_code: Signal<In, Bits<W>>,
     /// Register read data.
     pub bus_read_data: Signal<Out, Bits<32>>,
     /// DAC data bus.
@@ -290,6 +310,9 @@ pub struct DacInterface<const K: usize, const W: usize> {
     start_safe: Signal<Local, Bit>,
     status_word: Signal<Local, Bits<32>>,
     read_word: Signal<Local, Bits<32>>,
+    /// `load_code` zero-extended, bit by bit: rust-hdl's cast prints as a
+    /// mask of another width, which Verilator flags.
+    load_word: Signal<Local, Bits<32>>,
 
     p_idle: Constant<Bits<3>>,
     p_setup: Constant<Bits<3>>,
@@ -318,6 +341,8 @@ pub struct DacInterface<const K: usize, const W: usize> {
     code_mask: Constant<Bits<32>>,
     msb_w: Constant<Bits<W>>,
     chan_bit: [Constant<Bits<K>>; K],
+    /// `word_bit[i]` = 1 << i, for `load_word`.
+    word_bit: [Constant<Bits<32>>; W],
     first_channel: Constant<Bits<K>>,
     last_channel: Constant<Bits<K>>,
     zero_k: Constant<Bits<K>>,
@@ -360,6 +385,8 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
             bus_read: Default::default(),
             update: Default::default(),
             force_safe: Default::default(),
+            load: Default::default(),
+            load_code: Default::default(),
             bus_read_data: Default::default(),
             dac_data: Default::default(),
             dac_cs_n: Default::default(),
@@ -405,6 +432,7 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
             start_safe: Default::default(),
             status_word: Default::default(),
             read_word: Default::default(),
+            load_word: Default::default(),
             p_idle: Constant::new(IDLE.into()),
             p_setup: Constant::new(SETUP.into()),
             p_width: Constant::new(WIDTH.into()),
@@ -434,6 +462,7 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
             code_mask: mask("CODE", "VALUE"),
             msb_w: Constant::new((1u64 << (W - 1)).into()),
             chan_bit: array_init::array_init(|k| Constant::new((1u64 << k).into())),
+            word_bit: array_init::array_init(|i| Constant::new((1u64 << i).into())),
             first_channel: Constant::new(1u64.into()),
             last_channel: Constant::new((1u64 << (K - 1)).into()),
             zero_k: Constant::new(0u64.into()),
@@ -595,6 +624,22 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
                 }
             }
         }
+        // The hardware path: after the bus, so it wins a same-clock write.
+        self.load_word.next = self.zero32.val();
+        for i in 0..W {
+            if self.load_code.val().get_bit(i) {
+                self.load_word.next = self.load_word.val() | self.word_bit[i].val();
+            }
+        }
+        for k in 0..K {
+            if (self.load.val() & self.chan_bit[k].val()) != self.zero_k.val() {
+                if self.force_safe.val() {
+                    self.refused.d.next = true;
+                } else {
+                    self.staged[k].d.next = self.load_word.val();
+                }
+            }
+        }
         if self.request.val() & self.force_safe.val() {
             self.refused.d.next = true;
         }
@@ -727,6 +772,6 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
 }
 
 crate::vector_ports!(impl[const K: usize, const W: usize] DacInterface<K, W> {
-    inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, update, force_safe],
+    inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, update, force_safe, load, load_code],
     outputs: [bus_read_data, dac_data, dac_cs_n, dac_l1_n, dac_ldac, busy, safe],
 });

@@ -22,6 +22,10 @@ pub struct DacInputs {
     pub update: bool,
     /// Forces the safe code (the abort level).
     pub force_safe: bool,
+    /// Bit k: stage `load_code` into channel k.
+    pub load: u64,
+    /// The code of `load` (W bits).
+    pub load_code: u64,
 }
 
 impl DacInputs {
@@ -35,6 +39,8 @@ impl DacInputs {
             self.bus_read as u64,
             self.update as u64,
             self.force_safe as u64,
+            self.load,
+            self.load_code,
         ]
     }
 }
@@ -308,7 +314,8 @@ impl DacModel {
                 self.refused = false;
             }
         }
-        if i.force_safe && (request || code_write) {
+        let load = i.load & width_mask(k as u32);
+        if i.force_safe && (request || code_write || load != 0) {
             self.refused = true;
             request = false;
         }
@@ -392,6 +399,13 @@ impl DacModel {
         }
         if code_write && !i.force_safe {
             self.staged[(a - CODE_BASE as u64) as usize] = data & code_mask;
+        }
+        if !i.force_safe {
+            for (c, staged) in self.staged.iter_mut().enumerate() {
+                if load >> c & 1 == 1 {
+                    *staged = i.load_code & code_mask;
+                }
+            }
         }
         if abort_rise {
             self.staged = vec![0; k];
