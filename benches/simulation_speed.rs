@@ -22,14 +22,14 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 
-type Controller = MotionController<3, 4, 5, true>;
+type Controller = MotionController<3, 4, 5, true, false>;
 
 /// `cycles` clocks of controller traffic: firmware set-up (base tick every
 /// clock, 100-tick periods, RUN), then random bus traffic (a third of it
 /// FIFO writes of small step counts, the rest any register, written or
 /// read) and random encoder movement, as in the controller's chaos test.
 fn controller_stimulus(cycles: usize) -> Vec<Vec<u64>> {
-    let map = register_map(3, 4, true).unwrap();
+    let map = register_map(3, 4, true, false).unwrap();
     let address = |name: &str, i: u32| map.register(name).unwrap().address_of(i).unwrap();
     let mut rng = StdRng::seed_from_u64(0x5eed);
     let mut phases = [0u8; 3];

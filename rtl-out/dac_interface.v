@@ -12,7 +12,7 @@
 //   name            dir    width  meaning
 //   clock           in         1  rising-edge clock
 //   reset           in         1  synchronous, active high: registers to their reset values, then the safe update
-//   bus_address     in         4  register word address, with bus_write or bus_read
+//   bus_address     in         5  register word address, with bus_write or bus_read
 //   bus_write_data  in        32  register write data
 //   bus_write       in         1  one-clock register write strobe
 //   bus_read        in         1  one-clock register read strobe
@@ -35,7 +35,7 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [3:0] bus_address;
+    input wire  [4:0] bus_address;
     input wire  [31:0] bus_write_data;
     input wire  bus_write;
     input wire  bus_read;
@@ -57,18 +57,18 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     localparam  p_width = 3'b10;
     localparam  p_hold = 3'b11;
     localparam  p_ldac = 3'b100;
-    localparam  a_id = 4'h0;
-    localparam  a_config = 4'h1;
-    localparam  a_control = 4'h2;
-    localparam  a_update = 4'h3;
-    localparam  a_status = 4'h4;
-    localparam  a_timing = 4'h5;
-    localparam  a_code__0 = 4'h8;
-    localparam  a_code__1 = 4'h9;
-    localparam  a_code__2 = 4'ha;
-    localparam  a_applied__0 = 4'hc;
-    localparam  a_applied__1 = 4'hd;
-    localparam  a_applied__2 = 4'he;
+    localparam  a_id = 5'b0;
+    localparam  a_config = 5'b1;
+    localparam  a_control = 5'b10;
+    localparam  a_update = 5'b11;
+    localparam  a_status = 5'b100;
+    localparam  a_timing = 5'b101;
+    localparam  a_code__0 = 5'b10000;
+    localparam  a_code__1 = 5'b10001;
+    localparam  a_code__2 = 5'b10010;
+    localparam  a_applied__0 = 5'b11000;
+    localparam  a_applied__1 = 5'b11001;
+    localparam  a_applied__2 = 5'b11010;
     localparam  id_value = 32'h44414331;
     localparam  config_value = 32'h1003;
     localparam  timing_reset = 32'h5020501;

@@ -10,7 +10,7 @@
 #ifndef DAC_REGS_H
 #define DAC_REGS_H
 
-#define DAC_ADDRESS_BITS 4UL
+#define DAC_ADDRESS_BITS 5UL
 
 /* ID: identifies the block: "DAC1" */
 #define DAC_ID_INDEX 0x0000UL
@@ -102,7 +102,7 @@
 
 /* CODE: channel k's staged code, signed (two's complement); 0 is 0 V */
 #define DAC_CODE_COUNT 3UL
-#define DAC_CODE_INDEX(n) (0x0008UL + (unsigned long)(n) * 0x1UL)
+#define DAC_CODE_INDEX(n) (0x0010UL + (unsigned long)(n) * 0x1UL)
 #define DAC_CODE_OFFSET(n) (DAC_CODE_INDEX(n) * 4UL)
 #define DAC_CODE_ADDR16(n) (DAC_CODE_INDEX(n) * 2UL)
 #define DAC_CODE_ADDR8(n) (DAC_CODE_INDEX(n) * 4UL)
@@ -113,7 +113,7 @@
 
 /* APPLIED: channel k's code in the DAC's second rank (the output), signed */
 #define DAC_APPLIED_COUNT 3UL
-#define DAC_APPLIED_INDEX(n) (0x000cUL + (unsigned long)(n) * 0x1UL)
+#define DAC_APPLIED_INDEX(n) (0x0018UL + (unsigned long)(n) * 0x1UL)
 #define DAC_APPLIED_OFFSET(n) (DAC_APPLIED_INDEX(n) * 4UL)
 #define DAC_APPLIED_ADDR16(n) (DAC_APPLIED_INDEX(n) * 2UL)
 #define DAC_APPLIED_ADDR8(n) (DAC_APPLIED_INDEX(n) * 4UL)

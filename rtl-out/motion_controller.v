@@ -35,10 +35,14 @@
 //   step_b          out        3  bit k: axis k's dir, down or B
 //   drive_enable    out        3  bit k: enable (servo-on) of axis k's drive
 //   gpio_out        out        8  general outputs (GPIO_OUT)
+//   dac_data        out       16  DAC data bus, shared by the analog channels (0 in a build without them)
+//   dac_cs_n        out        3  bit k: chip select of axis k's DAC, active low (1 in a build without them)
+//   dac_l1_n        out        1  DAC first-rank load, active low, shared
+//   dac_ldac        out        1  DAC second-rank load, active high, shared: every analog output changes on its rise
 // ============================================================================
 
 `default_nettype none
-module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out);
+module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
 
     // Module arguments
     input wire  clock;
@@ -64,8 +68,30 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     output reg  [2:0] step_b;
     output reg  [2:0] drive_enable;
     output reg  [7:0] gpio_out;
+    output reg  [15:0] dac_data;
+    output reg  [2:0] dac_cs_n;
+    output reg  dac_l1_n;
+    output reg  dac_ldac;
 
     // Constant declarations
+    localparam  has_analog = 1'b0;
+    localparam  a_dac_global__0 = 8'h16;
+    localparam  a_dac_global__1 = 8'h17;
+    localparam  a_dac_global__2 = 8'h18;
+    localparam  d_dac_global__0 = 5'b10;
+    localparam  d_dac_global__1 = 5'b100;
+    localparam  d_dac_global__2 = 5'b101;
+    localparam  a_dac_applied__0 = 8'h35;
+    localparam  a_dac_applied__1 = 8'h55;
+    localparam  a_dac_applied__2 = 8'h75;
+    localparam  d_dac_applied__0 = 5'b11000;
+    localparam  d_dac_applied__1 = 5'b11001;
+    localparam  d_dac_applied__2 = 5'b11010;
+    localparam  zero5 = 5'b0;
+    localparam  last_axis = 3'b100;
+    localparam  zero_code = 16'h0;
+    localparam  dac_data_mask = 16'h0;
+    localparam  dac_cs_idle = 3'b111;
     localparam  has_uniform = 1'b1;
     localparam  a_id = 8'h0;
     localparam  a_version = 8'h1;
@@ -194,6 +220,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__0__div_done;
     reg  [15:0] axes__0__div_quotient;
     reg  [15:0] axes__0__div_remainder;
+    wire  axes__0__analog;
+    wire  [15:0] axes__0__dac_code;
     reg  axes__1__clock;
     reg  axes__1__reset;
     reg  axes__1__tick;
@@ -241,6 +269,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__1__div_done;
     reg  [15:0] axes__1__div_quotient;
     reg  [15:0] axes__1__div_remainder;
+    wire  axes__1__analog;
+    wire  [15:0] axes__1__dac_code;
     reg  axes__2__clock;
     reg  axes__2__reset;
     reg  axes__2__tick;
@@ -288,6 +318,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__2__div_done;
     reg  [15:0] axes__2__div_quotient;
     reg  [15:0] axes__2__div_remainder;
+    wire  axes__2__analog;
+    wire  [15:0] axes__2__dac_code;
     reg  tick_divider__clock;
     reg  tick_divider__reset;
     reg  tick_divider__enable;
@@ -335,6 +367,35 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  [7:0] io__gpio_out;
     wire  io__ready;
     wire  [31:0] io__read_data;
+    reg  dac__clock;
+    reg  dac__reset;
+    reg  [4:0] dac__bus_address;
+    reg  [31:0] dac__bus_write_data;
+    reg  dac__bus_write;
+    reg  dac__bus_read;
+    reg  dac__update;
+    reg  dac__force_safe;
+    reg  [2:0] dac__load;
+    reg  [15:0] dac__load_code;
+    wire  [31:0] dac__bus_read_data;
+    wire  [15:0] dac__dac_data;
+    wire  [2:0] dac__dac_cs_n;
+    wire  dac__dac_l1_n;
+    wire  dac__dac_ldac;
+    wire  dac__busy;
+    wire  dac__safe;
+    reg  pop_d__d;
+    wire  pop_d__q;
+    reg  pop_d__clock;
+    reg  [2:0] dac_walk__d;
+    wire  [2:0] dac_walk__q;
+    reg  dac_walk__clock;
+    reg  dac_update__d;
+    wire  dac_update__q;
+    reg  dac_update__clock;
+    reg  dac_read_sel__d;
+    wire  dac_read_sel__q;
+    reg  dac_read_sel__clock;
     reg  divider__clock;
     reg  divider__reset;
     reg  divider__start;
@@ -401,6 +462,14 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  expired_prev__clock;
 
     // Local signals
+    reg  [2:0] walk_now;
+    reg  [2:0] analog_axes;
+    reg  [2:0] dac_load;
+    reg  [15:0] dac_code;
+    reg  stop_zero;
+    reg  dac_hit;
+    reg  [4:0] dac_address;
+    reg  [31:0] read_out;
     reg  div_idle;
     reg  div_granted;
     reg  tick;
@@ -490,7 +559,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .div_divisor(axes__0__div_divisor),
         .div_done(axes__0__div_done),
         .div_quotient(axes__0__div_quotient),
-        .div_remainder(axes__0__div_remainder)
+        .div_remainder(axes__0__div_remainder),
+        .analog(axes__0__analog),
+        .dac_code(axes__0__dac_code)
     );
     motion_controller__axes__1 axes__1(
         .clock(axes__1__clock),
@@ -539,7 +610,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .div_divisor(axes__1__div_divisor),
         .div_done(axes__1__div_done),
         .div_quotient(axes__1__div_quotient),
-        .div_remainder(axes__1__div_remainder)
+        .div_remainder(axes__1__div_remainder),
+        .analog(axes__1__analog),
+        .dac_code(axes__1__dac_code)
     );
     motion_controller__axes__2 axes__2(
         .clock(axes__2__clock),
@@ -588,7 +661,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .div_divisor(axes__2__div_divisor),
         .div_done(axes__2__div_done),
         .div_quotient(axes__2__div_quotient),
-        .div_remainder(axes__2__div_remainder)
+        .div_remainder(axes__2__div_remainder),
+        .analog(axes__2__analog),
+        .dac_code(axes__2__dac_code)
     );
     motion_controller__tick_divider tick_divider(
         .clock(tick_divider__clock),
@@ -644,6 +719,45 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .gpio_out(io__gpio_out),
         .ready(io__ready),
         .read_data(io__read_data)
+    );
+    motion_controller__dac dac(
+        .clock(dac__clock),
+        .reset(dac__reset),
+        .bus_address(dac__bus_address),
+        .bus_write_data(dac__bus_write_data),
+        .bus_write(dac__bus_write),
+        .bus_read(dac__bus_read),
+        .update(dac__update),
+        .force_safe(dac__force_safe),
+        .load(dac__load),
+        .load_code(dac__load_code),
+        .bus_read_data(dac__bus_read_data),
+        .dac_data(dac__dac_data),
+        .dac_cs_n(dac__dac_cs_n),
+        .dac_l1_n(dac__dac_l1_n),
+        .dac_ldac(dac__dac_ldac),
+        .busy(dac__busy),
+        .safe(dac__safe)
+    );
+    motion_controller__pop_d pop_d(
+        .d(pop_d__d),
+        .q(pop_d__q),
+        .clock(pop_d__clock)
+    );
+    motion_controller__dac_walk dac_walk(
+        .d(dac_walk__d),
+        .q(dac_walk__q),
+        .clock(dac_walk__clock)
+    );
+    motion_controller__dac_update dac_update(
+        .d(dac_update__d),
+        .q(dac_update__q),
+        .clock(dac_update__clock)
+    );
+    motion_controller__dac_read_sel dac_read_sel(
+        .d(dac_read_sel__d),
+        .q(dac_read_sel__q),
+        .clock(dac_read_sel__clock)
     );
     motion_controller__divider divider(
         .clock(divider__clock),
@@ -768,6 +882,10 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         abort_hold__clock = clock;
         stop_cause__clock = clock;
         div_owner__clock = clock;
+        pop_d__clock = clock;
+        dac_walk__clock = clock;
+        dac_update__clock = clock;
+        dac_read_sel__clock = clock;
         run__d = run__q;
         irq_enable__d = irq_enable__q;
         tick_divisor__d = tick_divisor__q;
@@ -786,11 +904,16 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         abort_hold__d = abort_hold__q;
         stop_cause__d = stop_cause__q;
         div_owner__d = div_owner__q;
+        pop_d__d = pop_d__q;
+        dac_walk__d = dac_walk__q;
+        dac_update__d = dac_update__q;
+        dac_read_sel__d = dac_read_sel__q;
         tick_divider__clock = clock;
         watchdog__clock = clock;
         interrupts__clock = clock;
         io__clock = clock;
         divider__clock = clock;
+        dac__clock = clock;
         if (bus_write) begin
             if (bus_address == a_irq_enable) begin
                 irq_enable__d = bus_write_data & irq_mask;
@@ -1141,6 +1264,80 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         step_a = steps_a;
         step_b = steps_b;
         drive_enable = enables;
+        analog_axes = zero_k;
+        if (axes__0__analog) begin
+            analog_axes = analog_axes | axis_bit__0;
+        end
+        if (axes__1__analog) begin
+            analog_axes = analog_axes | axis_bit__1;
+        end
+        if (axes__2__analog) begin
+            analog_axes = analog_axes | axis_bit__2;
+        end
+        pop_d__d = pop;
+        walk_now = dac_walk__q;
+        if (pop_d__q) begin
+            walk_now = axis_bit__0;
+        end
+        dac_load = walk_now & analog_axes;
+        dac_code = zero_code;
+        if ((walk_now & axis_bit__0) != zero_k) begin
+            dac_code = axes__0__dac_code;
+        end
+        if ((walk_now & axis_bit__1) != zero_k) begin
+            dac_code = axes__1__dac_code;
+        end
+        if ((walk_now & axis_bit__2) != zero_k) begin
+            dac_code = axes__2__dac_code;
+        end
+        dac_walk__d = walk_now << 32'h1;
+        dac_update__d = ((walk_now & last_axis) != zero_k) & (analog_axes != zero_k);
+        stop_zero = has_analog & run__q & (underrun | halt) & ~abort;
+        if (stop_zero) begin
+            dac_load = analog_axes;
+            dac_code = zero_code;
+            dac_walk__d = zero_k;
+            dac_update__d = analog_axes != zero_k;
+        end
+        dac_hit = 1'b0;
+        dac_address = zero5;
+        if (bus_address == a_dac_global__0) begin
+            dac_hit = has_analog;
+            dac_address = d_dac_global__0;
+        end
+        if (bus_address == a_dac_global__1) begin
+            dac_hit = has_analog;
+            dac_address = d_dac_global__1;
+        end
+        if (bus_address == a_dac_global__2) begin
+            dac_hit = has_analog;
+            dac_address = d_dac_global__2;
+        end
+        if (bus_address == a_dac_applied__0) begin
+            dac_hit = has_analog;
+            dac_address = d_dac_applied__0;
+        end
+        if (bus_address == a_dac_applied__1) begin
+            dac_hit = has_analog;
+            dac_address = d_dac_applied__1;
+        end
+        if (bus_address == a_dac_applied__2) begin
+            dac_hit = has_analog;
+            dac_address = d_dac_applied__2;
+        end
+        dac__reset = reset;
+        dac__bus_address = dac_address;
+        dac__bus_write_data = bus_write_data;
+        dac__bus_write = bus_write & dac_hit;
+        dac__bus_read = bus_read & dac_hit;
+        dac__update = dac_update__q;
+        dac__force_safe = abort;
+        dac__load = dac_load;
+        dac__load_code = dac_code;
+        dac_data = dac__dac_data & dac_data_mask;
+        dac_cs_n = dac__dac_cs_n | dac_cs_idle;
+        dac_l1_n = dac__dac_l1_n | ~has_analog;
+        dac_ldac = dac__dac_ldac & has_analog;
         any_low_prev_n__d = ~any_low;
         expired_prev__d = watchdog__expired;
         events = zero_ev;
@@ -1334,8 +1531,13 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         end
         if (bus_read) begin
             read_data__d = global_read | axes_read;
+            dac_read_sel__d = dac_hit;
         end
-        bus_read_data = read_data__q;
+        read_out = read_data__q;
+        if (dac_read_sel__q) begin
+            read_out = dac__bus_read_data;
+        end
+        bus_read_data = read_out;
         if (reset) begin
             run__d = 1'b0;
             irq_enable__d = zero32;
@@ -1352,6 +1554,10 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             read_data__d = zero32;
             any_low_prev_n__d = 1'b0;
             expired_prev__d = 1'b0;
+            pop_d__d = 1'b0;
+            dac_walk__d = zero_k;
+            dac_update__d = 1'b0;
+            dac_read_sel__d = 1'b0;
         end
     end
 
@@ -1396,7 +1602,7 @@ module motion_controller__any_low_prev_n(d,q,clock);
 endmodule // motion_controller__any_low_prev_n
 
 
-module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code);
 
     // Module arguments
     input wire  clock;
@@ -1446,10 +1652,17 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  div_done;
     input wire  [15:0] div_quotient;
     input wire  [15:0] div_remainder;
+    output reg  analog;
+    output reg  [15:0] dac_code;
 
     // Constant declarations
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b1;
+    localparam  has_analog = 1'b0;
+    localparam  above_code = 32'hffff8000;
+    localparam  code_max = 16'h7fff;
+    localparam  code_min = 16'h8000;
+    localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -1695,6 +1908,18 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_active__d;
     wire  uniform_active__q;
     reg  uniform_active__clock;
+    reg  analog_active__d;
+    wire  analog_active__q;
+    reg  analog_active__clock;
+    reg  code_wide__d;
+    wire  code_wide__q;
+    reg  code_wide__clock;
+    reg  code_forward__d;
+    wire  code_forward__q;
+    reg  code_forward__clock;
+    reg  code_backward__d;
+    wire  code_backward__q;
+    reg  code_backward__clock;
     reg  uniform_loaded_forward__d;
     wire  uniform_loaded_forward__q;
     reg  uniform_loaded_forward__clock;
@@ -1725,6 +1950,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Local signals
     reg  clear_position;
+    reg  [15:0] code_value;
     reg  selected;
     reg  [3:0] offset;
     reg  candidate;
@@ -2019,6 +2245,26 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .q(uniform_active__q),
         .clock(uniform_active__clock)
     );
+    motion_controller__axes__0__analog_active analog_active(
+        .d(analog_active__d),
+        .q(analog_active__q),
+        .clock(analog_active__clock)
+    );
+    motion_controller__axes__0__code_wide code_wide(
+        .d(code_wide__d),
+        .q(code_wide__q),
+        .clock(code_wide__clock)
+    );
+    motion_controller__axes__0__code_forward code_forward(
+        .d(code_forward__d),
+        .q(code_forward__q),
+        .clock(code_forward__clock)
+    );
+    motion_controller__axes__0__code_backward code_backward(
+        .d(code_backward__d),
+        .q(code_backward__q),
+        .clock(code_backward__clock)
+    );
     motion_controller__axes__0__uniform_loaded_forward uniform_loaded_forward(
         .d(uniform_loaded_forward__d),
         .q(uniform_loaded_forward__q),
@@ -2093,6 +2339,10 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         forward_1__clock = clock;
         forward_2__clock = clock;
         uniform_active__clock = clock;
+        analog_active__clock = clock;
+        code_wide__clock = clock;
+        code_forward__clock = clock;
+        code_backward__clock = clock;
         uniform_loaded_forward__clock = clock;
         uniform_running_forward__clock = clock;
         uniform_ready_prev__clock = clock;
@@ -2128,6 +2378,10 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
         uniform_active__d = uniform_active__q;
+        analog_active__d = analog_active__q;
+        code_wide__d = code_wide__q;
+        code_forward__d = code_forward__q;
+        code_backward__d = code_backward__q;
         uniform_loaded_forward__d = uniform_loaded_forward__q;
         uniform_running_forward__d = uniform_running_forward__q;
         uniform_ready_prev__d = uniform_ready_prev__q;
@@ -2187,7 +2441,19 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             popped_upper_nonzero__d = ~upper_zero;
             popped_upper_ones__d = upper_ones;
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
+            code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
         end
+        code_value = popped__q[(32'h0)+:(16)];
+        if (code_wide__q) begin
+            if (popped__q[32'h1f]) begin
+                code_value = code_min;
+            end
+            else begin
+                code_value = code_max;
+            end
+        end
+        dac_code = code_value;
+        analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
             too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
@@ -2212,7 +2478,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        saturated__d = popped_valid__q & too_large;
+        saturated__d = popped_valid__q & ((analog_active__q & code_wide__q) | (~analog_active__q & too_large));
         if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
@@ -2222,17 +2488,26 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         if (start & ~uniform_running) begin
             uniform_active__d = settings__q[32'h0];
         end
+        if (start) begin
+            analog_active__d = has_analog & settings__q[32'hd];
+        end
         if (popped_valid__q) begin
             forward__d = ~popped__q[32'h1f];
-            if (uniform_active__q) begin
+            if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
             end
             else begin
                 integrand__d = count;
             end
+            if (analog_active__q) begin
+                code_forward__d = ~popped__q[32'h1f] & (code_value != zero_code);
+                code_backward__d = popped__q[32'h1f];
+            end
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            code_forward__d = 1'b0;
+            code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
@@ -2246,12 +2521,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = settings__q[32'h1];
-        uniform__load = popped_valid__q & uniform_active__q;
+        uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
-        if (popped_valid__q & uniform_active__q & uniform_ready) begin
+        if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
         uniform_ready_prev__d = uniform_ready;
@@ -2326,8 +2601,8 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         io__pending_backward = stage__pending_backward;
         io__request = request__q;
         io__request_forward = request_forward__q;
-        io__pulse = candidate;
-        io__pulse_forward = candidate_forward;
+        io__pulse = candidate | code_forward__q | code_backward__q;
+        io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
         io__cmd_position = position__count;
         io__act_position = encoder__count;
         drive_enable = io__drive_enable;
@@ -2468,6 +2743,10 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
             uniform_active__d = 1'b0;
+            analog_active__d = 1'b0;
+            code_wide__d = 1'b0;
+            code_forward__d = 1'b0;
+            code_backward__d = 1'b0;
             uniform_loaded_forward__d = 1'b0;
             uniform_running_forward__d = 1'b0;
             uniform_ready_prev__d = 1'b0;
@@ -2500,6 +2779,25 @@ module motion_controller__axes__0__act_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__act_snapshot
+
+
+module motion_controller__axes__0__analog_active(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__analog_active
 
 
 module motion_controller__axes__0__clear_position_pending(d,q,clock);
@@ -2538,6 +2836,63 @@ module motion_controller__axes__0__cmd_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__cmd_snapshot
+
+
+module motion_controller__axes__0__code_backward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__code_backward
+
+
+module motion_controller__axes__0__code_forward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__code_forward
+
+
+module motion_controller__axes__0__code_wide(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__code_wide
 
 
 module motion_controller__axes__0__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
@@ -7629,7 +7984,7 @@ module motion_controller__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_running_forward
 
 
-module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code);
 
     // Module arguments
     input wire  clock;
@@ -7679,10 +8034,17 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  div_done;
     input wire  [15:0] div_quotient;
     input wire  [15:0] div_remainder;
+    output reg  analog;
+    output reg  [15:0] dac_code;
 
     // Constant declarations
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b1;
+    localparam  has_analog = 1'b0;
+    localparam  above_code = 32'hffff8000;
+    localparam  code_max = 16'h7fff;
+    localparam  code_min = 16'h8000;
+    localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -7928,6 +8290,18 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_active__d;
     wire  uniform_active__q;
     reg  uniform_active__clock;
+    reg  analog_active__d;
+    wire  analog_active__q;
+    reg  analog_active__clock;
+    reg  code_wide__d;
+    wire  code_wide__q;
+    reg  code_wide__clock;
+    reg  code_forward__d;
+    wire  code_forward__q;
+    reg  code_forward__clock;
+    reg  code_backward__d;
+    wire  code_backward__q;
+    reg  code_backward__clock;
     reg  uniform_loaded_forward__d;
     wire  uniform_loaded_forward__q;
     reg  uniform_loaded_forward__clock;
@@ -7958,6 +8332,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Local signals
     reg  clear_position;
+    reg  [15:0] code_value;
     reg  selected;
     reg  [3:0] offset;
     reg  candidate;
@@ -8252,6 +8627,26 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .q(uniform_active__q),
         .clock(uniform_active__clock)
     );
+    motion_controller__axes__1__analog_active analog_active(
+        .d(analog_active__d),
+        .q(analog_active__q),
+        .clock(analog_active__clock)
+    );
+    motion_controller__axes__1__code_wide code_wide(
+        .d(code_wide__d),
+        .q(code_wide__q),
+        .clock(code_wide__clock)
+    );
+    motion_controller__axes__1__code_forward code_forward(
+        .d(code_forward__d),
+        .q(code_forward__q),
+        .clock(code_forward__clock)
+    );
+    motion_controller__axes__1__code_backward code_backward(
+        .d(code_backward__d),
+        .q(code_backward__q),
+        .clock(code_backward__clock)
+    );
     motion_controller__axes__1__uniform_loaded_forward uniform_loaded_forward(
         .d(uniform_loaded_forward__d),
         .q(uniform_loaded_forward__q),
@@ -8326,6 +8721,10 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         forward_1__clock = clock;
         forward_2__clock = clock;
         uniform_active__clock = clock;
+        analog_active__clock = clock;
+        code_wide__clock = clock;
+        code_forward__clock = clock;
+        code_backward__clock = clock;
         uniform_loaded_forward__clock = clock;
         uniform_running_forward__clock = clock;
         uniform_ready_prev__clock = clock;
@@ -8361,6 +8760,10 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
         uniform_active__d = uniform_active__q;
+        analog_active__d = analog_active__q;
+        code_wide__d = code_wide__q;
+        code_forward__d = code_forward__q;
+        code_backward__d = code_backward__q;
         uniform_loaded_forward__d = uniform_loaded_forward__q;
         uniform_running_forward__d = uniform_running_forward__q;
         uniform_ready_prev__d = uniform_ready_prev__q;
@@ -8420,7 +8823,19 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             popped_upper_nonzero__d = ~upper_zero;
             popped_upper_ones__d = upper_ones;
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
+            code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
         end
+        code_value = popped__q[(32'h0)+:(16)];
+        if (code_wide__q) begin
+            if (popped__q[32'h1f]) begin
+                code_value = code_min;
+            end
+            else begin
+                code_value = code_max;
+            end
+        end
+        dac_code = code_value;
+        analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
             too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
@@ -8445,7 +8860,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        saturated__d = popped_valid__q & too_large;
+        saturated__d = popped_valid__q & ((analog_active__q & code_wide__q) | (~analog_active__q & too_large));
         if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
@@ -8455,17 +8870,26 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         if (start & ~uniform_running) begin
             uniform_active__d = settings__q[32'h0];
         end
+        if (start) begin
+            analog_active__d = has_analog & settings__q[32'hd];
+        end
         if (popped_valid__q) begin
             forward__d = ~popped__q[32'h1f];
-            if (uniform_active__q) begin
+            if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
             end
             else begin
                 integrand__d = count;
             end
+            if (analog_active__q) begin
+                code_forward__d = ~popped__q[32'h1f] & (code_value != zero_code);
+                code_backward__d = popped__q[32'h1f];
+            end
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            code_forward__d = 1'b0;
+            code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
@@ -8479,12 +8903,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = settings__q[32'h1];
-        uniform__load = popped_valid__q & uniform_active__q;
+        uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
-        if (popped_valid__q & uniform_active__q & uniform_ready) begin
+        if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
         uniform_ready_prev__d = uniform_ready;
@@ -8559,8 +8983,8 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         io__pending_backward = stage__pending_backward;
         io__request = request__q;
         io__request_forward = request_forward__q;
-        io__pulse = candidate;
-        io__pulse_forward = candidate_forward;
+        io__pulse = candidate | code_forward__q | code_backward__q;
+        io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
         io__cmd_position = position__count;
         io__act_position = encoder__count;
         drive_enable = io__drive_enable;
@@ -8701,6 +9125,10 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
             uniform_active__d = 1'b0;
+            analog_active__d = 1'b0;
+            code_wide__d = 1'b0;
+            code_forward__d = 1'b0;
+            code_backward__d = 1'b0;
             uniform_loaded_forward__d = 1'b0;
             uniform_running_forward__d = 1'b0;
             uniform_ready_prev__d = 1'b0;
@@ -8733,6 +9161,25 @@ module motion_controller__axes__1__act_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__act_snapshot
+
+
+module motion_controller__axes__1__analog_active(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__analog_active
 
 
 module motion_controller__axes__1__clear_position_pending(d,q,clock);
@@ -8771,6 +9218,63 @@ module motion_controller__axes__1__cmd_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__cmd_snapshot
+
+
+module motion_controller__axes__1__code_backward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__code_backward
+
+
+module motion_controller__axes__1__code_forward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__code_forward
+
+
+module motion_controller__axes__1__code_wide(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__code_wide
 
 
 module motion_controller__axes__1__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
@@ -13862,7 +14366,7 @@ module motion_controller__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_running_forward
 
 
-module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code);
 
     // Module arguments
     input wire  clock;
@@ -13912,10 +14416,17 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  div_done;
     input wire  [15:0] div_quotient;
     input wire  [15:0] div_remainder;
+    output reg  analog;
+    output reg  [15:0] dac_code;
 
     // Constant declarations
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b1;
+    localparam  has_analog = 1'b0;
+    localparam  above_code = 32'hffff8000;
+    localparam  code_max = 16'h7fff;
+    localparam  code_min = 16'h8000;
+    localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -14161,6 +14672,18 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_active__d;
     wire  uniform_active__q;
     reg  uniform_active__clock;
+    reg  analog_active__d;
+    wire  analog_active__q;
+    reg  analog_active__clock;
+    reg  code_wide__d;
+    wire  code_wide__q;
+    reg  code_wide__clock;
+    reg  code_forward__d;
+    wire  code_forward__q;
+    reg  code_forward__clock;
+    reg  code_backward__d;
+    wire  code_backward__q;
+    reg  code_backward__clock;
     reg  uniform_loaded_forward__d;
     wire  uniform_loaded_forward__q;
     reg  uniform_loaded_forward__clock;
@@ -14191,6 +14714,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Local signals
     reg  clear_position;
+    reg  [15:0] code_value;
     reg  selected;
     reg  [3:0] offset;
     reg  candidate;
@@ -14485,6 +15009,26 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .q(uniform_active__q),
         .clock(uniform_active__clock)
     );
+    motion_controller__axes__2__analog_active analog_active(
+        .d(analog_active__d),
+        .q(analog_active__q),
+        .clock(analog_active__clock)
+    );
+    motion_controller__axes__2__code_wide code_wide(
+        .d(code_wide__d),
+        .q(code_wide__q),
+        .clock(code_wide__clock)
+    );
+    motion_controller__axes__2__code_forward code_forward(
+        .d(code_forward__d),
+        .q(code_forward__q),
+        .clock(code_forward__clock)
+    );
+    motion_controller__axes__2__code_backward code_backward(
+        .d(code_backward__d),
+        .q(code_backward__q),
+        .clock(code_backward__clock)
+    );
     motion_controller__axes__2__uniform_loaded_forward uniform_loaded_forward(
         .d(uniform_loaded_forward__d),
         .q(uniform_loaded_forward__q),
@@ -14559,6 +15103,10 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         forward_1__clock = clock;
         forward_2__clock = clock;
         uniform_active__clock = clock;
+        analog_active__clock = clock;
+        code_wide__clock = clock;
+        code_forward__clock = clock;
+        code_backward__clock = clock;
         uniform_loaded_forward__clock = clock;
         uniform_running_forward__clock = clock;
         uniform_ready_prev__clock = clock;
@@ -14594,6 +15142,10 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         forward_1__d = forward_1__q;
         forward_2__d = forward_2__q;
         uniform_active__d = uniform_active__q;
+        analog_active__d = analog_active__q;
+        code_wide__d = code_wide__q;
+        code_forward__d = code_forward__q;
+        code_backward__d = code_backward__q;
         uniform_loaded_forward__d = uniform_loaded_forward__q;
         uniform_running_forward__d = uniform_running_forward__q;
         uniform_ready_prev__d = uniform_ready_prev__q;
@@ -14653,7 +15205,19 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             popped_upper_nonzero__d = ~upper_zero;
             popped_upper_ones__d = upper_ones;
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
+            code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
         end
+        code_value = popped__q[(32'h0)+:(16)];
+        if (code_wide__q) begin
+            if (popped__q[32'h1f]) begin
+                code_value = code_min;
+            end
+            else begin
+                code_value = code_max;
+            end
+        end
+        dac_code = code_value;
+        analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
             too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
@@ -14678,7 +15242,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        saturated__d = popped_valid__q & too_large;
+        saturated__d = popped_valid__q & ((analog_active__q & code_wide__q) | (~analog_active__q & too_large));
         if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
@@ -14688,17 +15252,26 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         if (start & ~uniform_running) begin
             uniform_active__d = settings__q[32'h0];
         end
+        if (start) begin
+            analog_active__d = has_analog & settings__q[32'hd];
+        end
         if (popped_valid__q) begin
             forward__d = ~popped__q[32'h1f];
-            if (uniform_active__q) begin
+            if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
             end
             else begin
                 integrand__d = count;
             end
+            if (analog_active__q) begin
+                code_forward__d = ~popped__q[32'h1f] & (code_value != zero_code);
+                code_backward__d = popped__q[32'h1f];
+            end
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            code_forward__d = 1'b0;
+            code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
@@ -14712,12 +15285,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = settings__q[32'h1];
-        uniform__load = popped_valid__q & uniform_active__q;
+        uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
-        if (popped_valid__q & uniform_active__q & uniform_ready) begin
+        if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h1f];
         end
         uniform_ready_prev__d = uniform_ready;
@@ -14792,8 +15365,8 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         io__pending_backward = stage__pending_backward;
         io__request = request__q;
         io__request_forward = request_forward__q;
-        io__pulse = candidate;
-        io__pulse_forward = candidate_forward;
+        io__pulse = candidate | code_forward__q | code_backward__q;
+        io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
         io__cmd_position = position__count;
         io__act_position = encoder__count;
         drive_enable = io__drive_enable;
@@ -14934,6 +15507,10 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             forward_1__d = 1'b0;
             forward_2__d = 1'b0;
             uniform_active__d = 1'b0;
+            analog_active__d = 1'b0;
+            code_wide__d = 1'b0;
+            code_forward__d = 1'b0;
+            code_backward__d = 1'b0;
             uniform_loaded_forward__d = 1'b0;
             uniform_running_forward__d = 1'b0;
             uniform_ready_prev__d = 1'b0;
@@ -14966,6 +15543,25 @@ module motion_controller__axes__2__act_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__act_snapshot
+
+
+module motion_controller__axes__2__analog_active(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__analog_active
 
 
 module motion_controller__axes__2__clear_position_pending(d,q,clock);
@@ -15004,6 +15600,63 @@ module motion_controller__axes__2__cmd_snapshot(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__cmd_snapshot
+
+
+module motion_controller__axes__2__code_backward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__code_backward
+
+
+module motion_controller__axes__2__code_forward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__code_forward
+
+
+module motion_controller__axes__2__code_wide(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__code_wide
 
 
 module motion_controller__axes__2__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
@@ -20112,6 +20765,1432 @@ module motion_controller__boundary_next(d,q,clock);
     end
 
 endmodule // motion_controller__boundary_next
+
+
+module motion_controller__dac(clock,reset,bus_address,bus_write_data,bus_write,bus_read,update,force_safe,load,load_code,bus_read_data,dac_data,dac_cs_n,dac_l1_n,dac_ldac,busy,safe);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [4:0] bus_address;
+    input wire  [31:0] bus_write_data;
+    input wire  bus_write;
+    input wire  bus_read;
+    input wire  update;
+    input wire  force_safe;
+    input wire  [2:0] load;
+    input wire  [15:0] load_code;
+    output reg  [31:0] bus_read_data;
+    output reg  [15:0] dac_data;
+    output reg  [2:0] dac_cs_n;
+    output reg  dac_l1_n;
+    output reg  dac_ldac;
+    output reg  busy;
+    output reg  safe;
+
+    // Constant declarations
+    localparam  p_idle = 3'b0;
+    localparam  p_setup = 3'b1;
+    localparam  p_width = 3'b10;
+    localparam  p_hold = 3'b11;
+    localparam  p_ldac = 3'b100;
+    localparam  a_id = 5'b0;
+    localparam  a_config = 5'b1;
+    localparam  a_control = 5'b10;
+    localparam  a_update = 5'b11;
+    localparam  a_status = 5'b100;
+    localparam  a_timing = 5'b101;
+    localparam  a_code__0 = 5'b10000;
+    localparam  a_code__1 = 5'b10001;
+    localparam  a_code__2 = 5'b10010;
+    localparam  a_applied__0 = 5'b11000;
+    localparam  a_applied__1 = 5'b11001;
+    localparam  a_applied__2 = 5'b11010;
+    localparam  id_value = 32'h44414331;
+    localparam  config_value = 32'h1003;
+    localparam  timing_reset = 32'h5020501;
+    localparam  f_offset_binary = 32'h1;
+    localparam  f_start = 32'h1;
+    localparam  f_busy = 32'h1;
+    localparam  f_safe = 32'h2;
+    localparam  f_force_safe = 32'h4;
+    localparam  f_pending = 32'h8;
+    localparam  f_deferred = 32'h100;
+    localparam  f_refused = 32'h200;
+    localparam  code_mask = 32'hffff;
+    localparam  msb_w = 16'h8000;
+    localparam  chan_bit__0 = 3'b1;
+    localparam  chan_bit__1 = 3'b10;
+    localparam  chan_bit__2 = 3'b100;
+    localparam  word_bit__0 = 32'h1;
+    localparam  word_bit__1 = 32'h2;
+    localparam  word_bit__2 = 32'h4;
+    localparam  word_bit__3 = 32'h8;
+    localparam  word_bit__4 = 32'h10;
+    localparam  word_bit__5 = 32'h20;
+    localparam  word_bit__6 = 32'h40;
+    localparam  word_bit__7 = 32'h80;
+    localparam  word_bit__8 = 32'h100;
+    localparam  word_bit__9 = 32'h200;
+    localparam  word_bit__10 = 32'h400;
+    localparam  word_bit__11 = 32'h800;
+    localparam  word_bit__12 = 32'h1000;
+    localparam  word_bit__13 = 32'h2000;
+    localparam  word_bit__14 = 32'h4000;
+    localparam  word_bit__15 = 32'h8000;
+    localparam  first_channel = 3'b1;
+    localparam  last_channel = 3'b100;
+    localparam  zero_k = 3'b0;
+    localparam  zero_w = 16'h0;
+    localparam  zero32 = 32'h0;
+    localparam  zero8 = 8'h0;
+    localparam  one8 = 8'h1;
+
+    // Stub signals
+    reg  [31:0] staged__0__d;
+    wire  [31:0] staged__0__q;
+    reg  staged__0__clock;
+    reg  [31:0] staged__1__d;
+    wire  [31:0] staged__1__q;
+    reg  staged__1__clock;
+    reg  [31:0] staged__2__d;
+    wire  [31:0] staged__2__q;
+    reg  staged__2__clock;
+    reg  offset_binary__d;
+    wire  offset_binary__q;
+    reg  offset_binary__clock;
+    reg  [31:0] timing_word__d;
+    wire  [31:0] timing_word__q;
+    reg  timing_word__clock;
+    reg  deferred__d;
+    wire  deferred__q;
+    reg  deferred__clock;
+    reg  refused__d;
+    wire  refused__q;
+    reg  refused__clock;
+    reg  [31:0] read_data__d;
+    wire  [31:0] read_data__q;
+    reg  read_data__clock;
+    reg  abort_prev__d;
+    wire  abort_prev__q;
+    reg  abort_prev__clock;
+    reg  [2:0] phase__d;
+    wire  [2:0] phase__q;
+    reg  phase__clock;
+    reg  [2:0] channel__d;
+    wire  [2:0] channel__q;
+    reg  channel__clock;
+    reg  [7:0] left__d;
+    wire  [7:0] left__q;
+    reg  left__clock;
+    reg  [31:0] shadow__0__d;
+    wire  [31:0] shadow__0__q;
+    reg  shadow__0__clock;
+    reg  [31:0] shadow__1__d;
+    wire  [31:0] shadow__1__q;
+    reg  shadow__1__clock;
+    reg  [31:0] shadow__2__d;
+    wire  [31:0] shadow__2__q;
+    reg  shadow__2__clock;
+    reg  shadow_offset__d;
+    wire  shadow_offset__q;
+    reg  shadow_offset__clock;
+    reg  [7:0] t_width__d;
+    wire  [7:0] t_width__q;
+    reg  t_width__clock;
+    reg  [7:0] t_hold__d;
+    wire  [7:0] t_hold__q;
+    reg  t_hold__clock;
+    reg  [7:0] t_setup__d;
+    wire  [7:0] t_setup__q;
+    reg  t_setup__clock;
+    reg  [7:0] t_ldac__d;
+    wire  [7:0] t_ldac__q;
+    reg  t_ldac__clock;
+    reg  safe_run__d;
+    wire  safe_run__q;
+    reg  safe_run__clock;
+    reg  cut__d;
+    wire  cut__q;
+    reg  cut__clock;
+    reg  pending__d;
+    wire  pending__q;
+    reg  pending__clock;
+    reg  pending_safe__d;
+    wire  pending_safe__q;
+    reg  pending_safe__clock;
+    reg  [31:0] applied__0__d;
+    wire  [31:0] applied__0__q;
+    reg  applied__0__clock;
+    reg  [31:0] applied__1__d;
+    wire  [31:0] applied__1__q;
+    reg  applied__1__clock;
+    reg  [31:0] applied__2__d;
+    wire  [31:0] applied__2__q;
+    reg  applied__2__clock;
+    reg  safe_reg__d;
+    wire  safe_reg__q;
+    reg  safe_reg__clock;
+    reg  [15:0] data_pin__d;
+    wire  [15:0] data_pin__q;
+    reg  data_pin__clock;
+    reg  [2:0] cs_active__d;
+    wire  [2:0] cs_active__q;
+    reg  cs_active__clock;
+    reg  l1_active__d;
+    wire  l1_active__q;
+    reg  l1_active__clock;
+    reg  ldac_pin__d;
+    wire  ldac_pin__q;
+    reg  ldac_pin__clock;
+
+    // Local signals
+    reg  running;
+    reg  in_channel;
+    reg  phase_done;
+    reg  [15:0] flip;
+    reg  request;
+    reg  go;
+    reg  abort_rise;
+    reg  cut_now;
+    reg  start;
+    reg  start_safe;
+    reg  [31:0] status_word;
+    reg  [31:0] read_word;
+    reg  [31:0] load_word;
+
+    // Sub module instances
+    motion_controller__dac__staged__0 staged__0(
+        .d(staged__0__d),
+        .q(staged__0__q),
+        .clock(staged__0__clock)
+    );
+    motion_controller__dac__staged__1 staged__1(
+        .d(staged__1__d),
+        .q(staged__1__q),
+        .clock(staged__1__clock)
+    );
+    motion_controller__dac__staged__2 staged__2(
+        .d(staged__2__d),
+        .q(staged__2__q),
+        .clock(staged__2__clock)
+    );
+    motion_controller__dac__offset_binary offset_binary(
+        .d(offset_binary__d),
+        .q(offset_binary__q),
+        .clock(offset_binary__clock)
+    );
+    motion_controller__dac__timing_word timing_word(
+        .d(timing_word__d),
+        .q(timing_word__q),
+        .clock(timing_word__clock)
+    );
+    motion_controller__dac__deferred deferred(
+        .d(deferred__d),
+        .q(deferred__q),
+        .clock(deferred__clock)
+    );
+    motion_controller__dac__refused refused(
+        .d(refused__d),
+        .q(refused__q),
+        .clock(refused__clock)
+    );
+    motion_controller__dac__read_data read_data(
+        .d(read_data__d),
+        .q(read_data__q),
+        .clock(read_data__clock)
+    );
+    motion_controller__dac__abort_prev abort_prev(
+        .d(abort_prev__d),
+        .q(abort_prev__q),
+        .clock(abort_prev__clock)
+    );
+    motion_controller__dac__phase phase(
+        .d(phase__d),
+        .q(phase__q),
+        .clock(phase__clock)
+    );
+    motion_controller__dac__channel channel(
+        .d(channel__d),
+        .q(channel__q),
+        .clock(channel__clock)
+    );
+    motion_controller__dac__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+    motion_controller__dac__shadow__0 shadow__0(
+        .d(shadow__0__d),
+        .q(shadow__0__q),
+        .clock(shadow__0__clock)
+    );
+    motion_controller__dac__shadow__1 shadow__1(
+        .d(shadow__1__d),
+        .q(shadow__1__q),
+        .clock(shadow__1__clock)
+    );
+    motion_controller__dac__shadow__2 shadow__2(
+        .d(shadow__2__d),
+        .q(shadow__2__q),
+        .clock(shadow__2__clock)
+    );
+    motion_controller__dac__shadow_offset shadow_offset(
+        .d(shadow_offset__d),
+        .q(shadow_offset__q),
+        .clock(shadow_offset__clock)
+    );
+    motion_controller__dac__t_width t_width(
+        .d(t_width__d),
+        .q(t_width__q),
+        .clock(t_width__clock)
+    );
+    motion_controller__dac__t_hold t_hold(
+        .d(t_hold__d),
+        .q(t_hold__q),
+        .clock(t_hold__clock)
+    );
+    motion_controller__dac__t_setup t_setup(
+        .d(t_setup__d),
+        .q(t_setup__q),
+        .clock(t_setup__clock)
+    );
+    motion_controller__dac__t_ldac t_ldac(
+        .d(t_ldac__d),
+        .q(t_ldac__q),
+        .clock(t_ldac__clock)
+    );
+    motion_controller__dac__safe_run safe_run(
+        .d(safe_run__d),
+        .q(safe_run__q),
+        .clock(safe_run__clock)
+    );
+    motion_controller__dac__cut cut(
+        .d(cut__d),
+        .q(cut__q),
+        .clock(cut__clock)
+    );
+    motion_controller__dac__pending pending(
+        .d(pending__d),
+        .q(pending__q),
+        .clock(pending__clock)
+    );
+    motion_controller__dac__pending_safe pending_safe(
+        .d(pending_safe__d),
+        .q(pending_safe__q),
+        .clock(pending_safe__clock)
+    );
+    motion_controller__dac__applied__0 applied__0(
+        .d(applied__0__d),
+        .q(applied__0__q),
+        .clock(applied__0__clock)
+    );
+    motion_controller__dac__applied__1 applied__1(
+        .d(applied__1__d),
+        .q(applied__1__q),
+        .clock(applied__1__clock)
+    );
+    motion_controller__dac__applied__2 applied__2(
+        .d(applied__2__d),
+        .q(applied__2__q),
+        .clock(applied__2__clock)
+    );
+    motion_controller__dac__safe_reg safe_reg(
+        .d(safe_reg__d),
+        .q(safe_reg__q),
+        .clock(safe_reg__clock)
+    );
+    motion_controller__dac__data_pin data_pin(
+        .d(data_pin__d),
+        .q(data_pin__q),
+        .clock(data_pin__clock)
+    );
+    motion_controller__dac__cs_active cs_active(
+        .d(cs_active__d),
+        .q(cs_active__q),
+        .clock(cs_active__clock)
+    );
+    motion_controller__dac__l1_active l1_active(
+        .d(l1_active__d),
+        .q(l1_active__q),
+        .clock(l1_active__clock)
+    );
+    motion_controller__dac__ldac_pin ldac_pin(
+        .d(ldac_pin__d),
+        .q(ldac_pin__q),
+        .clock(ldac_pin__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        offset_binary__clock = clock;
+        timing_word__clock = clock;
+        deferred__clock = clock;
+        refused__clock = clock;
+        read_data__clock = clock;
+        abort_prev__clock = clock;
+        phase__clock = clock;
+        channel__clock = clock;
+        left__clock = clock;
+        shadow_offset__clock = clock;
+        t_width__clock = clock;
+        t_hold__clock = clock;
+        t_setup__clock = clock;
+        t_ldac__clock = clock;
+        safe_run__clock = clock;
+        cut__clock = clock;
+        pending__clock = clock;
+        pending_safe__clock = clock;
+        safe_reg__clock = clock;
+        data_pin__clock = clock;
+        cs_active__clock = clock;
+        l1_active__clock = clock;
+        ldac_pin__clock = clock;
+        offset_binary__d = offset_binary__q;
+        timing_word__d = timing_word__q;
+        deferred__d = deferred__q;
+        refused__d = refused__q;
+        read_data__d = read_data__q;
+        abort_prev__d = abort_prev__q;
+        phase__d = phase__q;
+        channel__d = channel__q;
+        left__d = left__q;
+        shadow_offset__d = shadow_offset__q;
+        t_width__d = t_width__q;
+        t_hold__d = t_hold__q;
+        t_setup__d = t_setup__q;
+        t_ldac__d = t_ldac__q;
+        safe_run__d = safe_run__q;
+        cut__d = cut__q;
+        pending__d = pending__q;
+        pending_safe__d = pending_safe__q;
+        safe_reg__d = safe_reg__q;
+        data_pin__d = data_pin__q;
+        cs_active__d = cs_active__q;
+        l1_active__d = l1_active__q;
+        ldac_pin__d = ldac_pin__q;
+        staged__0__clock = clock;
+        staged__0__d = staged__0__q;
+        shadow__0__clock = clock;
+        shadow__0__d = shadow__0__q;
+        applied__0__clock = clock;
+        applied__0__d = applied__0__q;
+        staged__1__clock = clock;
+        staged__1__d = staged__1__q;
+        shadow__1__clock = clock;
+        shadow__1__d = shadow__1__q;
+        applied__1__clock = clock;
+        applied__1__d = applied__1__q;
+        staged__2__clock = clock;
+        staged__2__d = staged__2__q;
+        shadow__2__clock = clock;
+        shadow__2__d = shadow__2__q;
+        applied__2__clock = clock;
+        applied__2__d = applied__2__q;
+        bus_read_data = read_data__q;
+        dac_data = data_pin__q;
+        dac_cs_n = ~cs_active__q;
+        dac_l1_n = ~l1_active__q;
+        dac_ldac = ldac_pin__q;
+        busy = (phase__q != p_idle) | ldac_pin__q;
+        safe = safe_reg__q;
+        running = phase__q != p_idle;
+        in_channel = (phase__q == p_setup) | (phase__q == p_width) | (phase__q == p_hold);
+        flip = zero_w;
+        if (shadow_offset__q) begin
+            flip = msb_w;
+        end
+        cs_active__d = zero_k;
+        l1_active__d = 1'b0;
+        ldac_pin__d = phase__q == p_ldac;
+        if (in_channel) begin
+            cs_active__d = channel__q;
+            l1_active__d = phase__q == p_width;
+            if ((channel__q & chan_bit__0) != zero_k) begin
+                data_pin__d = shadow__0__q[(32'h0)+:(16)] ^ flip;
+            end
+            if ((channel__q & chan_bit__1) != zero_k) begin
+                data_pin__d = shadow__1__q[(32'h0)+:(16)] ^ flip;
+            end
+            if ((channel__q & chan_bit__2) != zero_k) begin
+                data_pin__d = shadow__2__q[(32'h0)+:(16)] ^ flip;
+            end
+        end
+        status_word = zero32;
+        if (running | ldac_pin__q) begin
+            status_word = status_word | f_busy;
+        end
+        if (safe_reg__q) begin
+            status_word = status_word | f_safe;
+        end
+        if (force_safe) begin
+            status_word = status_word | f_force_safe;
+        end
+        if (pending__q) begin
+            status_word = status_word | f_pending;
+        end
+        if (deferred__q) begin
+            status_word = status_word | f_deferred;
+        end
+        if (refused__q) begin
+            status_word = status_word | f_refused;
+        end
+        read_word = zero32;
+        if (bus_address == a_id) begin
+            read_word = id_value;
+        end
+        if (bus_address == a_config) begin
+            read_word = config_value;
+        end
+        if ((bus_address == a_control) & offset_binary__q) begin
+            read_word = f_offset_binary;
+        end
+        if (bus_address == a_status) begin
+            read_word = status_word;
+        end
+        if (bus_address == a_timing) begin
+            read_word = timing_word__q;
+        end
+        if (bus_address == a_code__0) begin
+            read_word = staged__0__q;
+        end
+        if (bus_address == a_applied__0) begin
+            read_word = applied__0__q;
+        end
+        if (bus_address == a_code__1) begin
+            read_word = staged__1__q;
+        end
+        if (bus_address == a_applied__1) begin
+            read_word = applied__1__q;
+        end
+        if (bus_address == a_code__2) begin
+            read_word = staged__2__q;
+        end
+        if (bus_address == a_applied__2) begin
+            read_word = applied__2__q;
+        end
+        if (bus_read) begin
+            read_data__d = read_word;
+        end
+        request = update;
+        if (bus_write) begin
+            if (bus_address == a_control) begin
+                offset_binary__d = (bus_write_data & f_offset_binary) != zero32;
+            end
+            if ((bus_address == a_update) & ((bus_write_data & f_start) != zero32)) begin
+                request = 1'b1;
+            end
+            if (bus_address == a_status) begin
+                if ((bus_write_data & f_deferred) != zero32) begin
+                    deferred__d = 1'b0;
+                end
+                if ((bus_write_data & f_refused) != zero32) begin
+                    refused__d = 1'b0;
+                end
+            end
+            if (bus_address == a_timing) begin
+                timing_word__d = bus_write_data;
+            end
+            if (bus_address == a_code__0) begin
+                if (force_safe) begin
+                    refused__d = 1'b1;
+                end
+                else begin
+                    staged__0__d = bus_write_data & code_mask;
+                end
+            end
+            if (bus_address == a_code__1) begin
+                if (force_safe) begin
+                    refused__d = 1'b1;
+                end
+                else begin
+                    staged__1__d = bus_write_data & code_mask;
+                end
+            end
+            if (bus_address == a_code__2) begin
+                if (force_safe) begin
+                    refused__d = 1'b1;
+                end
+                else begin
+                    staged__2__d = bus_write_data & code_mask;
+                end
+            end
+        end
+        load_word = zero32;
+        if (load_code[0]) begin
+            load_word = load_word | word_bit__0;
+        end
+        if (load_code[1]) begin
+            load_word = load_word | word_bit__1;
+        end
+        if (load_code[2]) begin
+            load_word = load_word | word_bit__2;
+        end
+        if (load_code[3]) begin
+            load_word = load_word | word_bit__3;
+        end
+        if (load_code[4]) begin
+            load_word = load_word | word_bit__4;
+        end
+        if (load_code[5]) begin
+            load_word = load_word | word_bit__5;
+        end
+        if (load_code[6]) begin
+            load_word = load_word | word_bit__6;
+        end
+        if (load_code[7]) begin
+            load_word = load_word | word_bit__7;
+        end
+        if (load_code[8]) begin
+            load_word = load_word | word_bit__8;
+        end
+        if (load_code[9]) begin
+            load_word = load_word | word_bit__9;
+        end
+        if (load_code[10]) begin
+            load_word = load_word | word_bit__10;
+        end
+        if (load_code[11]) begin
+            load_word = load_word | word_bit__11;
+        end
+        if (load_code[12]) begin
+            load_word = load_word | word_bit__12;
+        end
+        if (load_code[13]) begin
+            load_word = load_word | word_bit__13;
+        end
+        if (load_code[14]) begin
+            load_word = load_word | word_bit__14;
+        end
+        if (load_code[15]) begin
+            load_word = load_word | word_bit__15;
+        end
+        if ((load & chan_bit__0) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__0__d = load_word;
+            end
+        end
+        if ((load & chan_bit__1) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__1__d = load_word;
+            end
+        end
+        if ((load & chan_bit__2) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__2__d = load_word;
+            end
+        end
+        if (request & force_safe) begin
+            refused__d = 1'b1;
+        end
+        go = request & ~force_safe;
+        abort_rise = force_safe & ~abort_prev__q;
+        abort_prev__d = force_safe;
+        cut_now = cut__q | (abort_rise & running & ~safe_run__q);
+        phase_done = (left__q == zero8) | (left__q == one8);
+        start = 1'b0;
+        start_safe = 1'b0;
+        if (~running) begin
+            if (pending_safe__q) begin
+                if (go) begin
+                    pending__d = 1'b1;
+                    deferred__d = 1'b1;
+                end
+                pending_safe__d = 1'b0;
+                start = 1'b1;
+                start_safe = 1'b1;
+            end
+            else if ((pending__q | go) & ~force_safe) begin
+                pending__d = 1'b0;
+                start = 1'b1;
+            end
+        end
+        else begin
+            if (go) begin
+                pending__d = 1'b1;
+                deferred__d = 1'b1;
+            end
+            cut__d = cut_now;
+            if (~phase_done) begin
+                left__d = left__q - one8;
+            end
+            else begin
+                if (phase__q == p_setup) begin
+                    phase__d = p_width;
+                    left__d = t_width__q;
+                end
+                if (phase__q == p_width) begin
+                    phase__d = p_hold;
+                    left__d = t_hold__q;
+                end
+                if (phase__q == p_hold) begin
+                    if (cut_now) begin
+                        phase__d = p_idle;
+                        cut__d = 1'b0;
+                    end
+                    else if ((channel__q & last_channel) == zero_k) begin
+                        phase__d = p_setup;
+                        channel__d = channel__q << 32'h1;
+                        left__d = t_setup__q;
+                    end
+                    else begin
+                        phase__d = p_ldac;
+                        left__d = t_ldac__q;
+                    end
+                end
+                if (phase__q == p_ldac) begin
+                    phase__d = p_idle;
+                    applied__0__d = shadow__0__q;
+                    applied__1__d = shadow__1__q;
+                    applied__2__d = shadow__2__q;
+                    safe_reg__d = safe_run__q | pending_safe__q;
+                    cut__d = 1'b0;
+                end
+            end
+        end
+        if (start) begin
+            shadow__0__d = staged__0__q;
+            if (start_safe) begin
+                shadow__0__d = zero32;
+            end
+            shadow__1__d = staged__1__q;
+            if (start_safe) begin
+                shadow__1__d = zero32;
+            end
+            shadow__2__d = staged__2__q;
+            if (start_safe) begin
+                shadow__2__d = zero32;
+            end
+            shadow_offset__d = offset_binary__q;
+            t_setup__d = timing_word__q[(32'h0)+:(8)];
+            t_width__d = timing_word__q[(32'h8)+:(8)];
+            t_hold__d = timing_word__q[(32'h10)+:(8)];
+            t_ldac__d = timing_word__q[(32'h18)+:(8)];
+            left__d = timing_word__q[(32'h0)+:(8)];
+            safe_run__d = start_safe;
+            cut__d = 1'b0;
+            phase__d = p_setup;
+            channel__d = first_channel;
+        end
+        if (abort_rise) begin
+            staged__0__d = zero32;
+            staged__1__d = zero32;
+            staged__2__d = zero32;
+            pending__d = 1'b0;
+            pending_safe__d = ~(running & safe_run__q);
+            safe_reg__d = 1'b1;
+        end
+        if (reset) begin
+            staged__0__d = zero32;
+            shadow__0__d = zero32;
+            applied__0__d = zero32;
+            staged__1__d = zero32;
+            shadow__1__d = zero32;
+            applied__1__d = zero32;
+            staged__2__d = zero32;
+            shadow__2__d = zero32;
+            applied__2__d = zero32;
+            offset_binary__d = 1'b0;
+            timing_word__d = timing_reset;
+            deferred__d = 1'b0;
+            refused__d = 1'b0;
+            read_data__d = zero32;
+            abort_prev__d = 1'b0;
+            phase__d = p_idle;
+            channel__d = zero_k;
+            left__d = zero8;
+            shadow_offset__d = 1'b0;
+            t_setup__d = zero8;
+            t_width__d = zero8;
+            t_hold__d = zero8;
+            t_ldac__d = zero8;
+            safe_run__d = 1'b0;
+            cut__d = 1'b0;
+            pending__d = 1'b0;
+            pending_safe__d = 1'b1;
+            safe_reg__d = 1'b1;
+            data_pin__d = zero_w;
+            cs_active__d = zero_k;
+            l1_active__d = 1'b0;
+            ldac_pin__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller__dac
+
+
+module motion_controller__dac__abort_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__abort_prev
+
+
+module motion_controller__dac__applied__0(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__applied__0
+
+
+module motion_controller__dac__applied__1(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__applied__1
+
+
+module motion_controller__dac__applied__2(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__applied__2
+
+
+module motion_controller__dac__channel(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__channel
+
+
+module motion_controller__dac__cs_active(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__cs_active
+
+
+module motion_controller__dac__cut(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__cut
+
+
+module motion_controller__dac__data_pin(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__data_pin
+
+
+module motion_controller__dac__deferred(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__deferred
+
+
+module motion_controller__dac__l1_active(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__l1_active
+
+
+module motion_controller__dac__ldac_pin(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__ldac_pin
+
+
+module motion_controller__dac__left(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__left
+
+
+module motion_controller__dac__offset_binary(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__offset_binary
+
+
+module motion_controller__dac__pending(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__pending
+
+
+module motion_controller__dac__pending_safe(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__pending_safe
+
+
+module motion_controller__dac__phase(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__phase
+
+
+module motion_controller__dac__read_data(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__read_data
+
+
+module motion_controller__dac__refused(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__refused
+
+
+module motion_controller__dac__safe_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__safe_reg
+
+
+module motion_controller__dac__safe_run(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__safe_run
+
+
+module motion_controller__dac__shadow__0(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__shadow__0
+
+
+module motion_controller__dac__shadow__1(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__shadow__1
+
+
+module motion_controller__dac__shadow__2(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__shadow__2
+
+
+module motion_controller__dac__shadow_offset(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__shadow_offset
+
+
+module motion_controller__dac__staged__0(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__staged__0
+
+
+module motion_controller__dac__staged__1(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__staged__1
+
+
+module motion_controller__dac__staged__2(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__staged__2
+
+
+module motion_controller__dac__t_hold(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__t_hold
+
+
+module motion_controller__dac__t_ldac(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__t_ldac
+
+
+module motion_controller__dac__t_setup(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__t_setup
+
+
+module motion_controller__dac__t_width(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__t_width
+
+
+module motion_controller__dac__timing_word(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac__timing_word
+
+
+module motion_controller__dac_read_sel(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac_read_sel
+
+
+module motion_controller__dac_update(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac_update
+
+
+module motion_controller__dac_walk(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__dac_walk
 
 
 module motion_controller__div_owner(d,q,clock);
@@ -26092,6 +28171,25 @@ module motion_controller__period_ticks(d,q,clock);
     end
 
 endmodule // motion_controller__period_ticks
+
+
+module motion_controller__pop_d(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__pop_d
 
 
 module motion_controller__read_data(d,q,clock);

@@ -59,6 +59,9 @@
 #define MC_CONFIG_DDA_ONLY_SHIFT 24UL /* RO 1 = no uniform pulse generators in this build: AXIS_CONFIG.UNIFORM and INTERLEAVED read 0 and ignore writes, every axis runs its DDA */
 #define MC_CONFIG_DDA_ONLY_MASK 0x01000000UL
 #define MC_CONFIG_DDA_ONLY_RESET 0x0UL
+#define MC_CONFIG_ANALOG_SHIFT 25UL /* RO 1 = this build has the analog outputs (dac_* pins, AXIS_CONFIG.ANALOG, the DAC_* registers) */
+#define MC_CONFIG_ANALOG_MASK 0x02000000UL
+#define MC_CONFIG_ANALOG_RESET 0x0UL
 
 /* CONTROL: run control */
 #define MC_CONTROL_INDEX 0x0003UL
@@ -428,6 +431,9 @@
 #define MC_AXIS_CONFIG_INDEX_ONCE_SHIFT 12UL /* RW act on the first index only, until REARM_INDEX */
 #define MC_AXIS_CONFIG_INDEX_ONCE_MASK 0x00001000UL
 #define MC_AXIS_CONFIG_INDEX_ONCE_RESET 0x0UL
+#define MC_AXIS_CONFIG_ANALOG_SHIFT 13UL /* RO reads 0, writes ignored: this build has no analog outputs (CONFIG.ANALOG) */
+#define MC_AXIS_CONFIG_ANALOG_MASK 0x00002000UL
+#define MC_AXIS_CONFIG_ANALOG_RESET 0x0UL
 
 /* STEP_LEN: step pulse high time in clocks (0 acts as 1) */
 #define MC_STEP_LEN_COUNT 3UL

@@ -47,11 +47,19 @@ module motion_controller_dda_tb;
   reg [2:0] expected_drive_enable;
   wire [7:0] gpio_out;
   reg [7:0] expected_gpio_out;
+  wire [15:0] dac_data;
+  reg [15:0] expected_dac_data;
+  wire [2:0] dac_cs_n;
+  reg [2:0] expected_dac_cs_n;
+  wire dac_l1_n;
+  reg expected_dac_l1_n;
+  wire dac_ldac;
+  reg expected_dac_ldac;
   integer vectors;
   integer fields;
   integer cycle;
   reg [8*1024-1:0] vector_path;
-  motion_controller_dda uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a(enc_a), .enc_b(enc_b), .enc_index(enc_index), .limit_pos(limit_pos), .limit_neg(limit_neg), .home(home), .drive_alarm(drive_alarm), .estop(estop), .gpio_in(gpio_in), .bus_read_data(bus_read_data), .irq(irq), .running(running), .active(active), .step_a(step_a), .step_b(step_b), .drive_enable(drive_enable), .gpio_out(gpio_out));
+  motion_controller_dda uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a(enc_a), .enc_b(enc_b), .enc_index(enc_index), .limit_pos(limit_pos), .limit_neg(limit_neg), .home(home), .drive_alarm(drive_alarm), .estop(estop), .gpio_in(gpio_in), .bus_read_data(bus_read_data), .irq(irq), .running(running), .active(active), .step_a(step_a), .step_b(step_b), .drive_enable(drive_enable), .gpio_out(gpio_out), .dac_data(dac_data), .dac_cs_n(dac_cs_n), .dac_l1_n(dac_l1_n), .dac_ldac(dac_ldac));
   initial begin
     if (!$value$plusargs("vectors=%s", vector_path)) begin
       $display("ERROR missing +vectors=FILE");
@@ -64,8 +72,8 @@ module motion_controller_dda_tb;
     end
     cycle = 0;
     while (!$feof(vectors)) begin
-      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a, vector_enc_b, vector_enc_index, vector_limit_pos, vector_limit_neg, vector_home, vector_drive_alarm, vector_estop, vector_gpio_in, expected_bus_read_data, expected_irq, expected_running, expected_active, expected_step_a, expected_step_b, expected_drive_enable, expected_gpio_out);
-      if (fields == 22) begin
+      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a, vector_enc_b, vector_enc_index, vector_limit_pos, vector_limit_neg, vector_home, vector_drive_alarm, vector_estop, vector_gpio_in, expected_bus_read_data, expected_irq, expected_running, expected_active, expected_step_a, expected_step_b, expected_drive_enable, expected_gpio_out, expected_dac_data, expected_dac_cs_n, expected_dac_l1_n, expected_dac_ldac);
+      if (fields == 26) begin
         reset = vector_reset;
         bus_address = vector_bus_address;
         bus_write_data = vector_bus_write_data;
@@ -112,6 +120,22 @@ module motion_controller_dda_tb;
         end
         if (gpio_out !== expected_gpio_out) begin
           $display("MISMATCH cycle=%0d signal=gpio_out expected=%h got=%h", cycle, expected_gpio_out, gpio_out);
+          $finish;
+        end
+        if (dac_data !== expected_dac_data) begin
+          $display("MISMATCH cycle=%0d signal=dac_data expected=%h got=%h", cycle, expected_dac_data, dac_data);
+          $finish;
+        end
+        if (dac_cs_n !== expected_dac_cs_n) begin
+          $display("MISMATCH cycle=%0d signal=dac_cs_n expected=%h got=%h", cycle, expected_dac_cs_n, dac_cs_n);
+          $finish;
+        end
+        if (dac_l1_n !== expected_dac_l1_n) begin
+          $display("MISMATCH cycle=%0d signal=dac_l1_n expected=%h got=%h", cycle, expected_dac_l1_n, dac_l1_n);
+          $finish;
+        end
+        if (dac_ldac !== expected_dac_ldac) begin
+          $display("MISMATCH cycle=%0d signal=dac_ldac expected=%h got=%h", cycle, expected_dac_ldac, dac_ldac);
           $finish;
         end
         #4 clock = 1'b0;

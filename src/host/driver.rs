@@ -185,7 +185,9 @@ impl<B: ControllerBus> Driver<B> {
                 return Err(DriverError::Config(format!("{name} {v} does not fit 16 bits")));
             }
         }
-        let map = register_map(3, 4, true)?;
+        // CONFIG is at the same address in every build: read it with the
+        // full build's map, then take the map of the build found.
+        let map = register_map(3, 4, true, false)?;
         let mut driver = Self {
             bus,
             map,
@@ -202,6 +204,9 @@ impl<B: ControllerBus> Driver<B> {
             return Err(DriverError::Identity(format!("{axes} axes, this driver drives 3")));
         }
         driver.depth = 1 << driver.field("CONFIG", "FIFO_DEPTH_LOG2", build)?;
+        let uniform = driver.field("CONFIG", "DDA_ONLY", build)? == 0;
+        let analog = driver.field("CONFIG", "ANALOG", build)? == 1;
+        driver.map = register_map(3, driver.depth.trailing_zeros(), uniform, analog)?;
         driver.configure()?;
         Ok(driver)
     }

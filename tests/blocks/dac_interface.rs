@@ -5,7 +5,7 @@
 //! reset; cross-simulation.
 
 use motion_hdl::blocks::dac_interface::model::{DacInputs, DacModel, DacOutputs};
-use motion_hdl::blocks::dac_interface::registers::{field_of, register_map, CODE_BASE};
+use motion_hdl::blocks::dac_interface::registers::{field_of, register_map, ADDRESS_BITS, CODE_BASE};
 use motion_hdl::blocks::dac_interface::{safe_latency, DacInterface, DacInterface3};
 use motion_hdl::blocks::width_mask;
 use motion_hdl::regmap::RegisterMap;
@@ -57,7 +57,7 @@ impl Traffic {
         let rng = &mut self.rng;
         let mut i = DacInputs {
             reset: clock == 0 || rng.gen_ratio(1, 200_000),
-            bus_address: rng.gen_range(0..16),
+            bus_address: rng.gen_range(0..1 << ADDRESS_BITS),
             update: rng.gen_ratio(1, 40),
             ..Default::default()
         };

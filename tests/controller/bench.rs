@@ -15,7 +15,7 @@ use motion_hdl::sim::{stepper, Backend, SimulatedEncoder, Stepper, VectorPorts};
 
 /// RTL and model of a K-axis controller with 2^N-entry FIFOs, with uniform
 /// generators if `UNIFORM`, in lockstep.
-pub struct Bench<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> {
+pub struct Bench<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> {
     rtl: Box<dyn Stepper>,
     vector: Vec<u64>,
     rtl_outputs: Vec<u64>,
@@ -40,7 +40,7 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize, const UNIFORM
     pub recording: Option<Vec<Vec<u64>>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Bench<K, N, NP1, UNIFORM> {
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Bench<K, N, NP1, UNIFORM, ANALOG> {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
     /// it runs 70 times faster).
@@ -50,15 +50,20 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Benc
 
     /// A bench in the power-up state with the RTL on `backend`.
     pub fn on(backend: Backend) -> Self {
-        let map = register_map(K, N as u32, UNIFORM).unwrap();
-        let model = MotionControllerModel::new(K, N as u32, UNIFORM).unwrap();
-        let module = if UNIFORM { "motion_controller" } else { "motion_controller_dda" };
-        let rtl = stepper(backend, module, MotionController::<K, N, NP1, UNIFORM>::default(), None)
+        let map = register_map(K, N as u32, UNIFORM, ANALOG).unwrap();
+        let model = MotionControllerModel::new(K, N as u32, UNIFORM, ANALOG).unwrap();
+        let module = match (UNIFORM, ANALOG) {
+            (true, false) => "motion_controller",
+            (false, true) => "motion_controller_dda",
+            (true, true) => "motion_controller_analog",
+            (false, false) => "motion_controller_dda_steps",
+        };
+        let rtl = stepper(backend, module, MotionController::<K, N, NP1, UNIFORM, ANALOG>::default(), None)
             .unwrap_or_else(|e| panic!("{e}"));
         Self {
             rtl,
             vector: Vec::new(),
-            rtl_outputs: vec![0; MotionController::<K, N, NP1, UNIFORM>::output_names().len()],
+            rtl_outputs: vec![0; MotionController::<K, N, NP1, UNIFORM, ANALOG>::output_names().len()],
             model,
             map,
             encoders: vec![(false, false, false); K],
@@ -108,7 +113,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Benc
             pins: self.pins,
         };
         inputs.write_vector(&mut self.vector);
-        debug_assert_eq!(self.vector.len(), MotionController::<K, N, NP1, UNIFORM>::input_names().len());
+        debug_assert_eq!(self.vector.len(), MotionController::<K, N, NP1, UNIFORM, ANALOG>::input_names().len());
         self.rtl.step_into(&self.vector, &mut self.rtl_outputs).unwrap();
         if let Some(recording) = self.recording.as_mut() {
             recording.push(self.vector.clone());
@@ -195,8 +200,8 @@ pub trait Lockstep {
     fn last(&self) -> &ControllerOutputs;
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Lockstep
-    for Bench<K, N, NP1, UNIFORM>
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Lockstep
+    for Bench<K, N, NP1, UNIFORM, ANALOG>
 {
     fn axes(&self) -> usize {
         K

@@ -22,7 +22,7 @@ use rand::{Rng, SeedableRng};
 struct Board {
     adapter: Harness<ExternalBusAdapter<8>>,
     adapter_model: ExternalBusModel,
-    controller: Bench<3, 4, 5, true>,
+    controller: Bench<3, 4, 5, true, false>,
     /// What the DSP drives on the pins.
     pins: ExternalBusInputs,
     /// The adapter's outputs after the last clock.

@@ -204,7 +204,7 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
     };
     let error = Driver::new(ModelBus::new(), bad).err().unwrap();
     assert_eq!(error.to_string(), "invalid configuration: period_ticks 70000 is outside 1..=65535");
-    let map = motion_hdl::blocks::motion_controller::registers::register_map(3, 4, true).unwrap();
+    let map = motion_hdl::blocks::motion_controller::registers::register_map(3, 4, true, false).unwrap();
     let mut driver = Driver::new(RecordingBus::new(ModelBus::new(), &map), DriverConfig::default()).unwrap();
     let error = driver.run(&[[0, 101, 0]], |_| {}).unwrap_err();
     assert!(error.to_string().contains("axis 1: 101 steps exceed the limit of 50"), "{error}");
@@ -221,7 +221,7 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
 
 /// Writes `fields` of register `name` (index `index`) through the map.
 fn write_fields(bus: &mut impl ControllerBus, name: &str, index: u32, fields: &[(&str, u64)]) {
-    let map = register_map(3, 4, true).unwrap();
+    let map = register_map(3, 4, true, false).unwrap();
     let register = map.register(name).unwrap();
     bus.write(register.address_of(index).unwrap(), register.pack(fields).unwrap());
 }

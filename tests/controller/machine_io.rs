@@ -15,7 +15,7 @@ use motion_hdl::blocks::motion_controller::registers::{global, StopCause};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-type Controller3 = Bench<3, 4, 5, true>;
+type Controller3 = Bench<3, 4, 5, true, false>;
 
 /// Step output modes.
 const STEP_DIR: u8 = 0;

@@ -14,7 +14,7 @@
 //! |---|---|---|---|
 //! | `clock` | in | 1 | rising-edge clock |
 //! | `reset` | in | 1 | synchronous, active high: registers to their reset values, then the safe update |
-//! | `bus_address` | in | 4 | register word address, with `bus_write` or `bus_read` |
+//! | `bus_address` | in | 5 | register word address, with `bus_write` or `bus_read` |
 //! | `bus_write_data` | in | 32 | register write data |
 //! | `bus_write` | in | 1 | one-clock register write strobe |
 //! | `bus_read` | in | 1 | one-clock register read strobe |
@@ -52,8 +52,8 @@
 //! | 0x3 | `UPDATE` | WO | `START`: request an update |
 //! | 0x4 | `STATUS` | RO, W1C | `BUSY`, `SAFE`, `FORCE_SAFE`, `PENDING`; sticky `DEFERRED` and `REFUSED` (write 1 to clear; a new event on the clearing clock wins) |
 //! | 0x5 | `TIMING` | RW | `SETUP`, `WIDTH`, `HOLD`, `LDAC_WIDTH` in clocks, 8 bits each; 0 acts as 1 |
-//! | 0x8 + k | `CODE[k]` | RW | channel k's staged code: W bits, signed (two's complement), 0 is 0 V |
-//! | 0xC + k | `APPLIED[k]` | RO | channel k's code at the DAC's output: the code of the last `LDAC` |
+//! | 0x10 + k | `CODE[k]` | RW | channel k's staged code: W bits, signed (two's complement), 0 is 0 V |
+//! | 0x18 + k | `APPLIED[k]` | RO | channel k's code at the DAC's output: the code of the last `LDAC` |
 //!
 //! Codes are written as signed numbers whatever the pins' format, so the
 //! safe code is 0 in every format (0x8000 at the pins of a 16-bit offset
@@ -231,7 +231,7 @@ pub struct DacInterface<const K: usize, const W: usize> {
     /// Synchronous reset, active high.
     pub reset: Signal<In, Bit>,
     /// Register word address.
-    pub bus_address: Signal<In, Bits<4>>,
+    pub bus_address: Signal<In, Bits<5>>,
     /// Register write data.
     pub bus_write_data: Signal<In, Bits<32>>,
     /// Register write strobe.
@@ -319,14 +319,14 @@ pub struct DacInterface<const K: usize, const W: usize> {
     p_width: Constant<Bits<3>>,
     p_hold: Constant<Bits<3>>,
     p_ldac: Constant<Bits<3>>,
-    a_id: Constant<Bits<4>>,
-    a_config: Constant<Bits<4>>,
-    a_control: Constant<Bits<4>>,
-    a_update: Constant<Bits<4>>,
-    a_status: Constant<Bits<4>>,
-    a_timing: Constant<Bits<4>>,
-    a_code: [Constant<Bits<4>>; K],
-    a_applied: [Constant<Bits<4>>; K],
+    a_id: Constant<Bits<5>>,
+    a_config: Constant<Bits<5>>,
+    a_control: Constant<Bits<5>>,
+    a_update: Constant<Bits<5>>,
+    a_status: Constant<Bits<5>>,
+    a_timing: Constant<Bits<5>>,
+    a_code: [Constant<Bits<5>>; K],
+    a_applied: [Constant<Bits<5>>; K],
     id_value: Constant<Bits<32>>,
     config_value: Constant<Bits<32>>,
     timing_reset: Constant<Bits<32>>,
@@ -354,7 +354,7 @@ pub struct DacInterface<const K: usize, const W: usize> {
 
 impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
     fn default() -> Self {
-        let map = register_map(K, W).expect("DacInterface: 1 to 4 channels of 2 to 16 bits");
+        let map = register_map(K, W).expect("DacInterface: 1 to 8 channels of 2 to 16 bits");
         // rust-hdl slices only at literal offsets: the TIMING fields are
         // sliced at 0, 8, 16 and 24 in update(); the map must agree.
         for (name, lsb) in [("SETUP", 0), ("WIDTH", 8), ("HOLD", 16), ("LDAC_WIDTH", 24)] {

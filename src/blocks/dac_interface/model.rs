@@ -235,6 +235,18 @@ impl DacModel {
         }
     }
 
+    /// An interface at power-up, before any reset: every flip-flop 0 (so
+    /// `TIMING` reads 0 and no safe update is due: the pins stay idle until
+    /// a reset).
+    pub fn power_up(channels: usize, width: usize) -> Self {
+        let mut m = Self::new(channels, width);
+        m.timing_word = 0;
+        m.timing = Timing::from_word(0, &m.decode);
+        m.pending_safe = false;
+        m.safe = false;
+        m
+    }
+
     /// The pins' code for signed code `value` in the chosen format.
     fn pin_code(&self, value: u64, offset_binary: bool) -> u64 {
         value

@@ -8,15 +8,16 @@ use crate::regmap::{field, register, Access, Field, RegMapError, Register, Regis
 /// `ID` register value: "DAC1".
 pub const ID_VALUE: u32 = 0x4441_4331;
 /// Address bits of the register bus.
-pub const ADDRESS_BITS: u32 = 4;
-/// Most channels: `CODE` and `APPLIED` have four words each.
-pub const MAX_CHANNELS: usize = 4;
+pub const ADDRESS_BITS: u32 = 5;
+/// Most channels: `CODE` and `APPLIED` have eight words each (the
+/// motion controller has up to 7 axes).
+pub const MAX_CHANNELS: usize = 8;
 /// Widest code.
 pub const MAX_WIDTH: usize = 16;
 /// Word address of `CODE[0]`.
-pub const CODE_BASE: u32 = 0x8;
+pub const CODE_BASE: u32 = 0x10;
 /// Word address of `APPLIED[0]`.
-pub const APPLIED_BASE: u32 = 0xC;
+pub const APPLIED_BASE: u32 = 0x18;
 
 /// Reset values of the `TIMING` fields, in clocks: at 100 MHz they meet the
 /// AD669 (40 ns CS/L1 and LDAC pulses, 40 ns data setup and 10 ns data hold

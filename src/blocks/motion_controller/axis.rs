@@ -9,7 +9,7 @@ use rust_hdl::prelude::*;
 
 
 use super::axis_io::AxisIo;
-use super::registers::{axis, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2};
+use super::registers::{axis, fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
 use super::{PERIOD_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
 use crate::blocks::dda_integrator::DdaIntegrator;
@@ -121,6 +121,12 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub div_quotient: Signal<In, Bits<PERIOD_BITS>>,
     /// The shared divider's remainder.
     pub div_remainder: Signal<In, Bits<PERIOD_BITS>>,
+    /// The axis is an analog axis in this run (`AXIS_CONFIG.ANALOG`,
+    /// latched at the start; always 0 in a build without the DAC).
+    pub analog: Signal<Out, Bit>,
+    /// The analog code of the running period: the popped entry, saturated
+    /// to 16 bits signed (valid from the clock after the pop).
+    pub dac_code: Signal<Out, Bits<DAC_BITS>>,
 
     fifo: CommandFifo<N, NP1>,
     dda: DdaIntegrator<PERIOD_BITS>,
@@ -182,6 +188,17 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     forward_2: DFF<Bit>,
     /// The uniform generator, not the DDA, drives this axis (latched at start).
     uniform_active: DFF<Bit>,
+    /// The axis is analog: its entries are DAC codes (latched at start).
+    analog_active: DFF<Bit>,
+    /// The popped entry does not fit 16 bits signed (taken at the pop,
+    /// like the step count's range tests; 0 after reset).
+    code_wide: DFF<Bit>,
+    /// The analog code of the running period is positive / negative: the
+    /// axis moves toward its forward / backward limit (for the limit cut).
+    code_forward: DFF<Bit>,
+    code_backward: DFF<Bit>,
+    /// The popped entry as a 16-bit code (saturated).
+    code_value: Signal<Local, Bits<DAC_BITS>>,
     /// Direction of the period loaded into the uniform generator, and of
     /// the one it is running.
     uniform_loaded_forward: DFF<Bit>,
@@ -228,6 +245,13 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     window: Constant<Bits<3>>,
     /// The build has the uniform generator (the controller's `UNIFORM`).
     has_uniform: Constant<Bit>,
+    /// The build has the analog outputs (the controller's `ANALOG`).
+    has_analog: Constant<Bit>,
+    /// The bits of an entry above a 16-bit signed code, with its sign.
+    above_code: Constant<Bits<32>>,
+    code_max: Constant<Bits<DAC_BITS>>,
+    code_min: Constant<Bits<DAC_BITS>>,
+    zero_code: Constant<Bits<DAC_BITS>>,
     bit0_32: Constant<Bits<32>>,
     bit16_32: Constant<Bits<32>>,
     bit17_32: Constant<Bits<32>>,
@@ -273,11 +297,14 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
 impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
     /// Axis number `index` (its register window is at
     /// `AXIS_BASE + index * AXIS_STRIDE`), with its uniform generator if
-    /// `uniform`; `config_mask` is AXIS_CONFIG's read-write bits in the
-    /// controller's register map.
-    pub fn new(index: usize, uniform: bool, config_mask: u32) -> Self {
+    /// `uniform` and its analog mode if `analog`; `config_mask` is
+    /// AXIS_CONFIG's read-write bits in the controller's register map.
+    pub fn new(index: usize, uniform: bool, analog: bool, config_mask: u32) -> Self {
         let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2;
         let c4 = |v: u32| Constant::new((v as u64).into());
+        // rust-hdl prints a named constant by name: update() reads the
+        // field at this literal bit.
+        assert_eq!(fields::AXIS_ANALOG, 13, "AXIS_CONFIG.ANALOG moved: update() reads bit 13");
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -326,6 +353,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             div_done: Default::default(),
             div_quotient: Default::default(),
             div_remainder: Default::default(),
+            analog: Default::default(),
+            dac_code: Default::default(),
             fifo: Default::default(),
             dda: Default::default(),
             uniform: Default::default(),
@@ -360,6 +389,11 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             forward_1: Default::default(),
             forward_2: Default::default(),
             uniform_active: Default::default(),
+            analog_active: Default::default(),
+            code_wide: Default::default(),
+            code_forward: Default::default(),
+            code_backward: Default::default(),
+            code_value: Default::default(),
             uniform_loaded_forward: Default::default(),
             uniform_running_forward: Default::default(),
             uniform_ready_prev: Default::default(),
@@ -392,6 +426,11 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             axis_status: Default::default(),
             window: Constant::new((window as u64).into()),
             has_uniform: Constant::new(uniform),
+            has_analog: Constant::new(analog),
+            above_code: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(DAC_BITS as u32 - 1)).into()),
+            code_max: Constant::new(crate::blocks::width_mask(DAC_BITS as u32 - 1).into()),
+            code_min: Constant::new((1u64 << (DAC_BITS - 1)).into()),
+            zero_code: Constant::new(0u64.into()),
             bit0_32: Constant::new((1u64 << 0).into()),
             bit16_32: Constant::new((1u64 << 16).into()),
             bit17_32: Constant::new((1u64 << 17).into()),
@@ -462,6 +501,10 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             forward_1,
             forward_2,
             uniform_active,
+            analog_active,
+            code_wide,
+            code_forward,
+            code_backward,
             uniform_loaded_forward,
             uniform_running_forward,
             uniform_ready_prev,
@@ -537,7 +580,21 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.popped_upper_ones.d.next = self.upper_ones.val();
             self.popped_low_nonzero.d.next =
                 self.fifo.head.val().get_bits::<PERIOD_BITS>(0) != self.zero_count.val();
+            self.code_wide.d.next = ((self.fifo.head.val() & self.above_code.val()) != self.zero32.val())
+                & ((self.fifo.head.val() & self.above_code.val()) != self.above_code.val());
         }
+        // The analog code, saturated to 16 bits signed. (A local, so that
+        // the output is assigned once: see the controller's divider grant.)
+        self.code_value.next = self.popped.q.val().get_bits::<DAC_BITS>(0);
+        if self.code_wide.q.val() {
+            if self.popped.q.val().get_bit(31) {
+                self.code_value.next = self.code_min.val();
+            } else {
+                self.code_value.next = self.code_max.val();
+            }
+        }
+        self.dac_code.next = self.code_value.val();
+        self.analog.next = self.analog_active.q.val();
         self.low_half.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
         if self.popped.q.val().get_bit(31) {
             self.too_large.next = !self.popped_upper_ones.q.val() | !self.popped_low_nonzero.q.val();
@@ -570,7 +627,9 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         }
         // Set by the rises of the sub-blocks' flags (their levels would
         // defeat a CLEAR_FAULTS that clears them on the same clock).
-        self.saturated.d.next = self.popped_valid.q.val() & self.too_large.val();
+        self.saturated.d.next = self.popped_valid.q.val()
+            & ((self.analog_active.q.val() & self.code_wide.q.val())
+                | (!self.analog_active.q.val() & self.too_large.val()));
         if self.saturated.q.val()
             | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
             | (self.uniform_overrange.val() & !self.uniform_overrange_prev.q.val())
@@ -588,16 +647,28 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         if self.start.val() & !self.uniform_running.val() {
             self.uniform_active.d.next = self.settings.q.val().get_bit(0);
         }
+        // An analog axis takes no steps: its entries are DAC codes.
+        if self.start.val() {
+            self.analog_active.d.next = self.has_analog.val() & self.settings.q.val().get_bit(13);
+        }
         if self.popped_valid.q.val() {
             self.forward.d.next = !self.popped.q.val().get_bit(31);
-            if self.uniform_active.q.val() {
+            if self.uniform_active.q.val() | self.analog_active.q.val() {
                 self.integrand.d.next = self.zero_count.val();
             } else {
                 self.integrand.d.next = self.count.val();
             }
+            if self.analog_active.q.val() {
+                self.code_forward.d.next =
+                    !self.popped.q.val().get_bit(31) & (self.code_value.val() != self.zero_code.val());
+                self.code_backward.d.next = self.popped.q.val().get_bit(31);
+            }
         }
+        // The controller sets the analog channels to 0 when RUN falls.
         if self.underrun_d.q.val() | self.halt.val() {
             self.integrand.d.next = self.zero_count.val();
+            self.code_forward.d.next = false;
+            self.code_backward.d.next = false;
         }
         self.forward_1.d.next = self.forward.q.val();
         self.forward_2.d.next = self.forward_1.q.val();
@@ -619,12 +690,17 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.uniform.period.next = self.period_active.val();
         self.uniform.count.next = self.count.val();
         self.uniform.mode.next = self.settings.q.val().get_bit(1);
-        self.uniform.load.next = self.popped_valid.q.val() & self.uniform_active.q.val();
+        self.uniform.load.next =
+            self.popped_valid.q.val() & self.uniform_active.q.val() & !self.analog_active.q.val();
         self.uniform.clear_flags.next = self.clear_faults.val() | self.start.val();
         self.uniform.div_done.next = self.div_done.val();
         self.uniform.div_quotient.next = self.div_quotient.val();
         self.uniform.div_remainder.next = self.div_remainder.val();
-        if self.popped_valid.q.val() & self.uniform_active.q.val() & self.uniform_ready.val() {
+        if self.popped_valid.q.val()
+            & self.uniform_active.q.val()
+            & !self.analog_active.q.val()
+            & self.uniform_ready.val()
+        {
             self.uniform_loaded_forward.d.next = !self.popped.q.val().get_bit(31);
         }
         self.uniform_ready_prev.d.next = self.uniform_ready.val();
@@ -719,8 +795,12 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.io.pending_backward.next = self.stage.pending_backward.val();
         self.io.request.next = self.request.q.val();
         self.io.request_forward.next = self.request_forward.q.val();
-        self.io.pulse.next = self.candidate.val();
-        self.io.pulse_forward.next = self.candidate_forward.val();
+        // An analog axis's motion is its code's sign: a code toward an
+        // enabled, active limit is cut like a step (and aborts).
+        self.io.pulse.next =
+            self.candidate.val() | self.code_forward.q.val() | self.code_backward.q.val();
+        self.io.pulse_forward.next = (self.analog_active.q.val() & self.code_forward.q.val())
+            | (!self.analog_active.q.val() & self.candidate_forward.val());
         self.io.cmd_position.next = self.position.count.val();
         self.io.act_position.next = self.encoder.count.val();
         self.drive_enable.next = self.io.drive_enable.val();
@@ -866,6 +946,10 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.forward_1.d.next = false;
             self.forward_2.d.next = false;
             self.uniform_active.d.next = false;
+            self.analog_active.d.next = false;
+            self.code_wide.d.next = false;
+            self.code_forward.d.next = false;
+            self.code_backward.d.next = false;
             self.uniform_loaded_forward.d.next = false;
             self.uniform_running_forward.d.next = false;
             self.uniform_ready_prev.d.next = false;

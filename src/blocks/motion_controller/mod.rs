@@ -272,7 +272,8 @@ use crate::blocks::sequential_divider::SequentialDivider;
 use crate::blocks::watchdog::Watchdog;
 use axis::MotionAxis;
 use machine_io::MachineIo;
-use registers::{fields, global, irq, StopCause, ID_VALUE, VERSION_VALUE};
+use crate::blocks::dac_interface::DacInterface;
+use registers::{fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, DAC_BITS, ID_VALUE, VERSION_VALUE};
 
 /// The machine-I/O latencies in clocks, as the tests measure them. Clock
 /// c is the first clock whose inputs carry a pin's new level; "at c + n"
@@ -325,19 +326,19 @@ const IRQ_COUNT: usize = irq::COUNT;
 
 /// The exported configuration (`motion_controller`): 3 axes, 16-entry
 /// FIFOs, DDA and uniform pulse generator on every axis.
-pub type MotionController3 = MotionController<3, 4, 5, true>;
+pub type MotionController3 = MotionController<3, 4, 5, true, false>;
 
 /// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
 /// 16-entry FIFOs, no uniform pulse generators (see "Build options").
-pub type MotionController3Dda = MotionController<3, 4, 5, false>;
+pub type MotionController3Dda = MotionController<3, 4, 5, false, true>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
-pub type MotionController1 = MotionController<1, 4, 5, true>;
+pub type MotionController1 = MotionController<1, 4, 5, true, false>;
 
 /// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
 /// the synthesis report's scaling table, not exported.
-pub type MotionController6 = MotionController<6, 4, 5, true>;
+pub type MotionController6 = MotionController<6, 4, 5, true, false>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -396,13 +397,17 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("gpio_in", "general inputs, asynchronous"),
     ("drive_enable", "bit k: enable (servo-on) of axis k's drive"),
     ("gpio_out", "general outputs (GPIO_OUT)"),
+    ("dac_data", "DAC data bus, shared by the analog channels (0 in a build without them)"),
+    ("dac_cs_n", "bit k: chip select of axis k's DAC, active low (1 in a build without them)"),
+    ("dac_l1_n", "DAC first-rank load, active low, shared"),
+    ("dac_ldac", "DAC second-rank load, active high, shared: every analog output changes on its rise"),
 ];
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
 /// N + 1), with a uniform pulse generator on every axis if `UNIFORM` (else
 /// DDA only: see "Build options"). See the [module documentation](self).
 #[derive(LogicBlock)]
-pub struct MotionController<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> {
+pub struct MotionController<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
     /// Synchronous reset, active high.
@@ -450,12 +455,56 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize, co
     pub drive_enable: Signal<Out, Bits<K>>,
     /// General outputs.
     pub gpio_out: Signal<Out, Bits<8>>,
+    /// DAC data bus (the analog axes' codes).
+    pub dac_data: Signal<Out, Bits<DAC_BITS>>,
+    /// Per axis: DAC chip select, active low.
+    pub dac_cs_n: Signal<Out, Bits<K>>,
+    /// DAC first-rank load, active low.
+    pub dac_l1_n: Signal<Out, Bit>,
+    /// DAC second-rank load, active high.
+    pub dac_ldac: Signal<Out, Bit>,
 
     axes: [MotionAxis<N, NP1>; K],
     tick_divider: FreqDivider<32>,
     watchdog: Watchdog<32>,
     interrupts: InterruptController<IRQ_COUNT>,
     io: MachineIo<K>,
+    /// The analog outputs: one channel per axis, used by the analog axes.
+    dac: DacInterface<K, DAC_BITS>,
+    /// `ANALOG`: the analog outputs are built (else the DAC drives nothing
+    /// and synthesis removes it).
+    has_analog: Constant<Bit>,
+    /// The pop one clock late: the axes' codes are valid.
+    pop_d: DFF<Bit>,
+    /// One-hot: the axis whose code is loaded into the DAC in this clock
+    /// (a walk over every axis after each pop).
+    dac_walk: DFF<Bits<K>>,
+    /// The DAC's update request, the clock after the walk's last load.
+    dac_update: DFF<Bit>,
+    /// The last read addressed a DAC register (its read data is the DAC's).
+    dac_read_sel: DFF<Bit>,
+    walk_now: Signal<Local, Bits<K>>,
+    analog_axes: Signal<Local, Bits<K>>,
+    dac_load: Signal<Local, Bits<K>>,
+    dac_code: Signal<Local, Bits<DAC_BITS>>,
+    /// RUN falls (not by an abort): the analog channels go to 0.
+    stop_zero: Signal<Local, Bit>,
+    dac_hit: Signal<Local, Bit>,
+    dac_address: Signal<Local, Bits<5>>,
+    read_out: Signal<Local, Bits<32>>,
+    /// The controller's and the DAC's addresses of the forwarded registers.
+    a_dac_global: [Constant<Bits<8>>; 3],
+    d_dac_global: [Constant<Bits<5>>; 3],
+    a_dac_applied: [Constant<Bits<8>>; K],
+    d_dac_applied: [Constant<Bits<5>>; K],
+    zero5: Constant<Bits<5>>,
+    /// Bit K - 1: the walk's last axis.
+    last_axis: Constant<Bits<K>>,
+    zero_code: Constant<Bits<DAC_BITS>>,
+    /// All ones with the analog outputs, else 0 (pins held idle).
+    dac_data_mask: Constant<Bits<DAC_BITS>>,
+    /// 0 with the analog outputs, else all ones (chip selects held high).
+    dac_cs_idle: Constant<Bits<K>>,
     /// One divider for every axis's uniform generator: each asks for one
     /// division per period, so they take turns (see "Time base and
     /// periods").
@@ -607,8 +656,8 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize, co
     level_mask: Constant<Bits<32>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Default
-    for MotionController<K, N, NP1, UNIFORM>
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Default
+    for MotionController<K, N, NP1, UNIFORM, ANALOG>
 {
     fn default() -> Self {
         assert!(
@@ -621,8 +670,11 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Defa
         let ev = |bit: u32| Constant::new((1u64 << bit).into());
         let m32 = |bit: u32| Constant::new((1u64 << bit).into());
         let cause = |c: StopCause| Constant::new(((c as u64) << fields::STOP_CAUSE_CAUSE).into());
-        let map = registers::register_map(K, N as u32, UNIFORM)
+        let map = registers::register_map(K, N as u32, UNIFORM, ANALOG)
             .expect("the controller's own register map validates");
+        let dac_map = crate::blocks::dac_interface::registers::register_map(K, DAC_BITS)
+            .expect("a dac_interface of K channels");
+        let dac_applied = dac_map.register("APPLIED").expect("the DAC's APPLIED").address as u64;
         let reg = |name: &str| map.register(name).expect("the controller's own register");
         let config = reg("CONFIG").reset_value();
         let axis_config_mask = reg("AXIS_CONFIG").rw_mask();
@@ -650,7 +702,36 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Defa
             step_b: Default::default(),
             drive_enable: Default::default(),
             gpio_out: Default::default(),
-            axes: array_init::array_init(|k| MotionAxis::new(k, UNIFORM, axis_config_mask)),
+            dac_data: Default::default(),
+            dac_cs_n: Default::default(),
+            dac_l1_n: Default::default(),
+            dac_ldac: Default::default(),
+            axes: array_init::array_init(|k| MotionAxis::new(k, UNIFORM, ANALOG, axis_config_mask)),
+            dac: Default::default(),
+            has_analog: Constant::new(ANALOG),
+            pop_d: Default::default(),
+            dac_walk: Default::default(),
+            dac_update: Default::default(),
+            dac_read_sel: Default::default(),
+            walk_now: Default::default(),
+            analog_axes: Default::default(),
+            dac_load: Default::default(),
+            dac_code: Default::default(),
+            stop_zero: Default::default(),
+            dac_hit: Default::default(),
+            dac_address: Default::default(),
+            read_out: Default::default(),
+            a_dac_global: array_init::array_init(|i| a8(registers::DAC_GLOBAL[i].1)),
+            d_dac_global: array_init::array_init(|i| {
+                Constant::new((dac_map.register(registers::DAC_GLOBAL[i].2).expect("a dac_interface register").address as u64).into())
+            }),
+            a_dac_applied: array_init::array_init(|k| a8(AXIS_BASE + k as u32 * AXIS_STRIDE + registers::axis::DAC_APPLIED)),
+            d_dac_applied: array_init::array_init(|k| Constant::new((dac_applied + k as u64).into())),
+            zero5: Constant::new(0u64.into()),
+            last_axis: Constant::new((1u64 << (K - 1)).into()),
+            zero_code: Constant::new(0u64.into()),
+            dac_data_mask: Constant::new((if ANALOG { crate::blocks::width_mask(DAC_BITS as u32) } else { 0 }).into()),
+            dac_cs_idle: Constant::new((if ANALOG { 0 } else { crate::blocks::width_mask(K as u32) }).into()),
             tick_divider: Default::default(),
             watchdog: Default::default(),
             interrupts: Default::default(),
@@ -778,8 +859,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Defa
     }
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Logic
-    for MotionController<K, N, NP1, UNIFORM>
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Logic
+    for MotionController<K, N, NP1, UNIFORM, ANALOG>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -803,9 +884,13 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Logi
             expired_prev,
             abort_hold,
             stop_cause,
-            div_owner
+            div_owner,
+            pop_d,
+            dac_walk,
+            dac_update,
+            dac_read_sel
         );
-        clock!(self, clock, tick_divider, watchdog, interrupts, io, divider);
+        clock!(self, clock, tick_divider, watchdog, interrupts, io, divider, dac);
 
         // Global register writes.
         if self.bus_write.val() {
@@ -1087,6 +1172,70 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Logi
         self.step_b.next = self.steps_b.val();
         self.drive_enable.next = self.enables.val();
 
+        // Analog outputs. After each pop the axes' codes are loaded into
+        // the DAC one axis a clock (the analog ones), then one update
+        // writes every channel and pulses LDAC once. When RUN falls, not by
+        // an abort, every analog channel gets 0 (an underrun or a stop must
+        // not leave a velocity command on); an abort forces the DAC's safe
+        // code itself.
+        self.analog_axes.next = self.zero_k.val();
+        for i in 0..K {
+            if self.axes[i].analog.val() {
+                self.analog_axes.next = self.analog_axes.val() | self.axis_bit[i].val();
+            }
+        }
+        self.pop_d.d.next = self.pop.val();
+        self.walk_now.next = self.dac_walk.q.val();
+        if self.pop_d.q.val() {
+            self.walk_now.next = self.axis_bit[0].val();
+        }
+        self.dac_load.next = self.walk_now.val() & self.analog_axes.val();
+        self.dac_code.next = self.zero_code.val();
+        for i in 0..K {
+            if (self.walk_now.val() & self.axis_bit[i].val()) != self.zero_k.val() {
+                self.dac_code.next = self.axes[i].dac_code.val();
+            }
+        }
+        self.dac_walk.d.next = self.walk_now.val() << 1;
+        self.dac_update.d.next = ((self.walk_now.val() & self.last_axis.val()) != self.zero_k.val())
+            & (self.analog_axes.val() != self.zero_k.val());
+        self.stop_zero.next = self.has_analog.val() & self.run.q.val() & (self.underrun.val() | self.halt.val())
+            & !self.abort.val();
+        if self.stop_zero.val() {
+            self.dac_load.next = self.analog_axes.val();
+            self.dac_code.next = self.zero_code.val();
+            self.dac_walk.d.next = self.zero_k.val();
+            self.dac_update.d.next = self.analog_axes.val() != self.zero_k.val();
+        }
+        // The DAC's registers on our bus.
+        self.dac_hit.next = false;
+        self.dac_address.next = self.zero5.val();
+        for i in 0..3 {
+            if self.bus_address.val() == self.a_dac_global[i].val() {
+                self.dac_hit.next = self.has_analog.val();
+                self.dac_address.next = self.d_dac_global[i].val();
+            }
+        }
+        for i in 0..K {
+            if self.bus_address.val() == self.a_dac_applied[i].val() {
+                self.dac_hit.next = self.has_analog.val();
+                self.dac_address.next = self.d_dac_applied[i].val();
+            }
+        }
+        self.dac.reset.next = self.reset.val();
+        self.dac.bus_address.next = self.dac_address.val();
+        self.dac.bus_write_data.next = self.bus_write_data.val();
+        self.dac.bus_write.next = self.bus_write.val() & self.dac_hit.val();
+        self.dac.bus_read.next = self.bus_read.val() & self.dac_hit.val();
+        self.dac.update.next = self.dac_update.q.val();
+        self.dac.force_safe.next = self.abort.val();
+        self.dac.load.next = self.dac_load.val();
+        self.dac.load_code.next = self.dac_code.val();
+        self.dac_data.next = self.dac.dac_data.val() & self.dac_data_mask.val();
+        self.dac_cs_n.next = self.dac.dac_cs_n.val() | self.dac_cs_idle.val();
+        self.dac_l1_n.next = self.dac.dac_l1_n.val() | !self.has_analog.val();
+        self.dac_ldac.next = self.dac.dac_ldac.val() & self.has_analog.val();
+
         // Interrupts: pulses, so that a write-1-to-clear always clears.
         self.any_low_prev_n.d.next = !self.any_low.val();
         self.expired_prev.d.next = self.watchdog.expired.val();
@@ -1211,8 +1360,14 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Logi
         }
         if self.bus_read.val() {
             self.read_data.d.next = self.global_read.val() | self.axes_read.val();
+            self.dac_read_sel.d.next = self.dac_hit.val();
         }
-        self.bus_read_data.next = self.read_data.q.val();
+        // The DAC's read data is registered like ours: the same clock.
+        self.read_out.next = self.read_data.q.val();
+        if self.dac_read_sel.q.val() {
+            self.read_out.next = self.dac.bus_read_data.val();
+        }
+        self.bus_read_data.next = self.read_out.val();
 
         if self.reset.val() {
             self.run.d.next = false;
@@ -1230,12 +1385,17 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool> Logi
             self.read_data.d.next = self.zero32.val();
             self.any_low_prev_n.d.next = false;
             self.expired_prev.d.next = false;
+            self.pop_d.d.next = false;
+            self.dac_walk.d.next = self.zero_k.val();
+            self.dac_update.d.next = false;
+            self.dac_read_sel.d.next = false;
         }
     }
 }
 
-crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool] MotionController<K, N, NP1, UNIFORM> {
+crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool] MotionController<K, N, NP1, UNIFORM, ANALOG> {
     inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
         limit_pos, limit_neg, home, drive_alarm, estop, gpio_in],
-    outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out],
+    outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out,
+        dac_data, dac_cs_n, dac_l1_n, dac_ldac],
 });

@@ -12,6 +12,7 @@ use super::registers::{
     VERSION_VALUE,
 };
 use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
+use crate::blocks::dac_interface::model::{DacInputs, DacModel, DacOutputs};
 use crate::blocks::dda_integrator::model::{DdaIntegratorInputs, DdaIntegratorModel, DdaIntegratorOutputs};
 use crate::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
 use crate::blocks::interrupt_controller::model::InterruptControllerModel;
@@ -65,6 +66,22 @@ pub struct ControllerOutputs {
     pub drive_enable: u32,
     /// gpio_out.
     pub gpio_out: u8,
+    /// The DAC pins: data, chip selects (active low, bit k for axis k),
+    /// L1 (active low) and LDAC.
+    pub dac: DacPins,
+}
+
+/// The controller's DAC pins after one edge.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DacPins {
+    /// `dac_data`.
+    pub data: u64,
+    /// `dac_cs_n`, bit k for axis k.
+    pub cs_n: u64,
+    /// `dac_l1_n`.
+    pub l1_n: bool,
+    /// `dac_ldac`.
+    pub ldac: bool,
 }
 
 impl ControllerInputs {
@@ -116,6 +133,12 @@ impl ControllerOutputs {
             steps: (0..axes).map(|k| (v[4] >> k & 1 != 0, v[5] >> k & 1 != 0)).collect(),
             drive_enable: v[6] as u32,
             gpio_out: v[7] as u8,
+            dac: DacPins {
+                data: v[8],
+                cs_n: v[9],
+                l1_n: v[10] != 0,
+                ldac: v[11] != 0,
+            },
         }
     }
 }
@@ -195,6 +218,10 @@ struct AxisGlue {
     forward_1: bool,
     forward_2: bool,
     uniform_active: bool,
+    analog_active: bool,
+    code_wide: bool,
+    code_forward: bool,
+    code_backward: bool,
     uniform_loaded_forward: bool,
     uniform_running_forward: bool,
     uniform_ready_prev: bool,
@@ -307,6 +334,23 @@ impl AxisModel {
         }
     }
 
+    /// The axis is analog in this run (`AXIS_CONFIG.ANALOG` at the start).
+    pub fn analog(&self) -> bool {
+        self.glue.analog_active
+    }
+
+    /// The analog code of the running period: the popped entry saturated
+    /// to 16 bits signed, as 16 bits.
+    pub fn dac_code(&self) -> u64 {
+        let popped = self.glue.popped as i32;
+        let code = if self.glue.code_wide {
+            if popped < 0 { i16::MIN } else { i16::MAX }
+        } else {
+            popped as i16
+        };
+        code as u16 as u64
+    }
+
     fn popped_magnitude(&self) -> u64 {
         (self.glue.popped as i32).unsigned_abs() as u64
     }
@@ -343,6 +387,9 @@ impl AxisModel {
         let selected = self.selected(address);
         let offset = address & 0xf;
         let (pulse, pulse_forward) = self.candidate();
+        // An analog axis moves the way its code points.
+        let pulse = pulse || self.glue.code_forward || self.glue.code_backward;
+        let pulse_forward = if self.glue.analog_active { self.glue.code_forward } else { pulse_forward };
         let path = StepPath {
             pending_forward: self.stage_out.pending_forward,
             pending_backward: self.stage_out.pending_backward,
@@ -433,6 +480,7 @@ impl AxisModel {
         next.glue.tick_d = c.tick;
         if c.pop {
             next.glue.popped = self.fifo_out.head as u32;
+            next.glue.code_wide = i16::try_from(self.fifo_out.head as u32 as i32).is_err();
         }
         let magnitude = self.popped_magnitude().min(COUNT_MAX);
         let popped_forward = self.glue.popped & (1 << 31) == 0;
@@ -441,7 +489,8 @@ impl AxisModel {
             next.glue.overrange_flag = false;
             next.glue.overflow_flag = false;
         }
-        next.glue.saturated = self.glue.popped_valid && self.too_large();
+        next.glue.saturated = self.glue.popped_valid
+            && if self.glue.analog_active { self.glue.code_wide } else { self.too_large() };
         if self.glue.saturated || dda_rise || uniform_overrange_rise {
             next.glue.overrange_flag = true;
         }
@@ -455,12 +504,23 @@ impl AxisModel {
         if c.start && !self.uniform_out.running {
             next.glue.uniform_active = self.glue.config & 1 != 0;
         }
+        if c.start {
+            next.glue.analog_active = self.glue.config & 1 << fields::AXIS_ANALOG != 0;
+        }
         if self.glue.popped_valid {
             next.glue.forward = popped_forward;
-            next.glue.integrand = if self.glue.uniform_active { 0 } else { magnitude };
+            let stepless = self.glue.uniform_active || self.glue.analog_active;
+            next.glue.integrand = if stepless { 0 } else { magnitude };
+            if self.glue.analog_active {
+                let code = self.dac_code() as u16 as i16;
+                next.glue.code_forward = code > 0;
+                next.glue.code_backward = code < 0;
+            }
         }
         if self.glue.underrun_d || c.halt {
             next.glue.integrand = 0;
+            next.glue.code_forward = false;
+            next.glue.code_backward = false;
         }
         next.glue.forward_1 = self.glue.forward;
         next.glue.forward_2 = self.glue.forward_1;
@@ -487,12 +547,16 @@ impl AxisModel {
                 period: c.period_active,
                 count: magnitude,
                 mode: self.glue.config & 2 != 0,
-                load: self.glue.popped_valid && self.glue.uniform_active,
+                load: self.glue.popped_valid && self.glue.uniform_active && !self.glue.analog_active,
                 clear_flags: clear_faults || c.start,
             },
             div_granted,
         );
-        if self.glue.popped_valid && self.glue.uniform_active && self.uniform_out.ready {
+        if self.glue.popped_valid
+            && self.glue.uniform_active
+            && !self.glue.analog_active
+            && self.uniform_out.ready
+        {
             next.glue.uniform_loaded_forward = popped_forward;
         }
         next.glue.uniform_ready_prev = self.uniform_out.ready;
@@ -603,14 +667,44 @@ pub struct MotionControllerModel {
     /// The uniform generators' shared divider: only its timing matters
     /// here (each axis's plan computes its own quotient).
     divider: SequentialDividerModel,
+    /// The build has the analog outputs (`ANALOG`).
+    analog: bool,
+    dac: DacModel,
+    dac_out: DacOutputs,
+    /// The pop one clock late, the walk loading the axes' codes (bit k:
+    /// axis k's turn), the DAC's update request and its read select.
+    pop_d: bool,
+    dac_walk: u64,
+    dac_update: bool,
+    dac_read_sel: bool,
+    /// The controller's and the DAC's address of each forwarded register.
+    dac_addresses: Vec<(u32, u64)>,
 }
 
 impl MotionControllerModel {
     /// A controller in its power-up state, with the uniform generators if
-    /// `uniform`. Fails like [`registers::register_map`] for an unsupported
-    /// axis count.
-    pub fn new(axes: usize, fifo_log2: u32, uniform: bool) -> Result<Self, crate::regmap::RegMapError> {
-        let map = registers::register_map(axes, fifo_log2, uniform)?;
+    /// `uniform` and the analog outputs if `analog`. Fails like
+    /// [`registers::register_map`] for an unsupported axis count.
+    pub fn new(
+        axes: usize,
+        fifo_log2: u32,
+        uniform: bool,
+        analog: bool,
+    ) -> Result<Self, crate::regmap::RegMapError> {
+        let map = registers::register_map(axes, fifo_log2, uniform, analog)?;
+        let dac_map = crate::blocks::dac_interface::registers::register_map(axes, registers::DAC_BITS)?;
+        let mut dac_addresses = Vec::new();
+        for (_, address, name) in registers::DAC_GLOBAL {
+            dac_addresses.push((address, dac_map.register(name)?.address as u64));
+        }
+        for k in 0..axes as u32 {
+            dac_addresses.push((
+                AXIS_BASE + k * AXIS_STRIDE + axis::DAC_APPLIED,
+                dac_map.address_of("APPLIED", k)? as u64,
+            ));
+        }
+        let dac = DacModel::power_up(axes, registers::DAC_BITS);
+        let dac_out = dac.outputs();
         let config_value = map.register("CONFIG")?.reset_value();
         let config_mask = map.register("AXIS_CONFIG")?.rw_mask();
         Ok(Self {
@@ -646,6 +740,14 @@ impl MotionControllerModel {
                 super::PERIOD_BITS as u32,
                 super::PERIOD_BITS as u32,
             ),
+            analog,
+            dac,
+            dac_out,
+            pop_d: false,
+            dac_walk: 0,
+            dac_update: false,
+            dac_read_sel: false,
+            dac_addresses,
         })
     }
 
@@ -683,8 +785,20 @@ impl MotionControllerModel {
     }
 
     fn outputs(&self) -> ControllerOutputs {
+        let k = self.axes.len() as u32;
+        let dac = if self.analog {
+            DacPins {
+                data: self.dac_out.dac_data,
+                cs_n: self.dac_out.dac_cs_n,
+                l1_n: self.dac_out.dac_l1_n,
+                ldac: self.dac_out.dac_ldac,
+            }
+        } else {
+            DacPins { data: 0, cs_n: crate::blocks::width_mask(k), l1_n: true, ldac: false }
+        };
         ControllerOutputs {
-            read_data: self.read_data,
+            dac,
+            read_data: if self.dac_read_sel { self.dac_out.bus_read_data as u32 } else { self.read_data },
             irq: self.irq,
             running: self.run,
             active: self.run || self.axes.iter().any(AxisModel::busy),
@@ -881,6 +995,47 @@ impl MotionControllerModel {
             abort,
             drive_allowed,
         };
+        // Analog outputs: after each pop a walk loads the analog axes' codes
+        // one a clock, then one update; when RUN falls (not by an abort)
+        // every analog channel gets 0.
+        let axes = self.axes.len();
+        let analog_axes = self
+            .axes
+            .iter()
+            .enumerate()
+            .fold(0u64, |w, (k, a)| w | (a.analog() as u64) << k);
+        let walk_now = if self.pop_d { 1 } else { self.dac_walk };
+        let mut load = walk_now & analog_axes;
+        let mut load_code = (0..axes).find(|k| walk_now >> k & 1 == 1).map_or(0, |k| self.axes[k].dac_code());
+        next.dac_walk = (walk_now << 1) & crate::blocks::width_mask(axes as u32);
+        next.dac_update = walk_now >> (axes - 1) & 1 == 1 && analog_axes != 0;
+        if self.analog && self.run && (underrun || halt) && !abort {
+            load = analog_axes;
+            load_code = 0;
+            next.dac_walk = 0;
+            next.dac_update = analog_axes != 0;
+        }
+        next.pop_d = pop;
+        let dac_target = self
+            .dac_addresses
+            .iter()
+            .find(|(a, _)| *a == address)
+            .filter(|_| self.analog)
+            .map(|(_, d)| *d);
+        next.dac_out = next.dac.step(DacInputs {
+            reset: i.reset,
+            bus_address: dac_target.unwrap_or(0),
+            bus_write_data: i.write_data as u64,
+            bus_write: i.write && dac_target.is_some(),
+            bus_read: i.read && dac_target.is_some(),
+            update: self.dac_update,
+            force_safe: abort,
+            load,
+            load_code,
+        });
+        if i.read {
+            next.dac_read_sel = dac_target.is_some();
+        }
         let grant = next.divider_edge(i.reset || halt, &self.axes);
         for (k, ((axis, pins), comb)) in next.axes.iter_mut().zip(&i.encoders).zip(&combs).enumerate() {
             axis.edge(&control, *pins, comb, grant == Some(k));
@@ -911,6 +1066,10 @@ impl MotionControllerModel {
             next.expired_prev = false;
             next.abort_hold = false;
             next.stop_cause = 0;
+            next.pop_d = false;
+            next.dac_walk = 0;
+            next.dac_update = false;
+            next.dac_read_sel = false;
         }
         *self = next;
         self.outputs()

@@ -65,7 +65,27 @@ pub mod global {
     pub const GPIO_IRQ_ENABLE: u32 = 0x14;
     /// General input edges seen (write 1 to clear).
     pub const GPIO_EDGES: u32 = 0x15;
+    /// The analog outputs' code format (`dac_interface` CONTROL; analog builds).
+    pub const DAC_CONTROL: u32 = 0x16;
+    /// The analog outputs' state and flags (`dac_interface` STATUS).
+    pub const DAC_STATUS: u32 = 0x17;
+    /// The analog outputs' pin timing (`dac_interface` TIMING).
+    pub const DAC_TIMING: u32 = 0x18;
 }
+
+/// The `dac_interface` registers an analog build forwards, by name: (the
+/// controller's register, the DAC's register). The controller's bus
+/// reaches them at these addresses; their fields, access and reset values
+/// are the DAC's own.
+pub const DAC_GLOBAL: [(&str, u32, &str); 3] = [
+    ("DAC_CONTROL", global::DAC_CONTROL, "CONTROL"),
+    ("DAC_STATUS", global::DAC_STATUS, "STATUS"),
+    ("DAC_TIMING", global::DAC_TIMING, "TIMING"),
+];
+
+/// Width of the analog codes: the AD669's 16 bits (a narrower DAC takes
+/// the top bits of `dac_data`).
+pub const DAC_BITS: usize = 16;
 
 /// Bit numbers of the fields of the machine I/O registers (the map below
 /// is built from these, and the RTL's masks and the model use them by
@@ -97,6 +117,10 @@ pub mod fields {
     pub const GPIO_FALL: u32 = 8;
     /// `CONFIG.DDA_ONLY`: the build has no uniform pulse generators.
     pub const CONFIG_DDA_ONLY: u32 = 24;
+    /// `CONFIG.ANALOG`: the build has the analog outputs.
+    pub const CONFIG_ANALOG: u32 = 25;
+    /// `AXIS_CONFIG.ANALOG`: the axis is an analog (DAC) axis.
+    pub const AXIS_ANALOG: u32 = 13;
     /// `STATE.ESTOP_INPUT`.
     pub const STATE_ESTOP_INPUT: u32 = 3;
     /// `STATE.ESTOP_LATCHED`.
@@ -249,6 +273,8 @@ pub mod axis {
     pub const HOME_CMD_POSITION: u32 = 0x13;
     /// ACT_POSITION at the home edge.
     pub const HOME_ACT_POSITION: u32 = 0x14;
+    /// The code at the axis's DAC output (analog builds).
+    pub const DAC_APPLIED: u32 = 0x15;
 }
 
 /// Bit numbers of `STATUS` and `IRQ_ENABLE`, which are also the
@@ -305,12 +331,20 @@ fn irq_fields(access: Access) -> Vec<Field> {
 }
 
 /// The register map of a `motion_controller` with `axes` axes, FIFOs of
-/// 2^`fifo_log2` entries, and the uniform pulse generators if `uniform`
-/// (the controller's `UNIFORM` parameter). Without them `CONFIG.DDA_ONLY`
-/// reads 1 and `AXIS_CONFIG.UNIFORM` and `INTERLEAVED` are read-only 0.
-/// Fails, naming the problem, for more axes than the address space holds
-/// or a map that does not validate.
-pub fn register_map(axes: usize, fifo_log2: u32, uniform: bool) -> Result<RegisterMap, RegMapError> {
+/// 2^`fifo_log2` entries, the uniform pulse generators if `uniform` (the
+/// controller's `UNIFORM` parameter) and the analog outputs if `analog`
+/// (`ANALOG`). Without the generators `CONFIG.DDA_ONLY` reads 1 and
+/// `AXIS_CONFIG.UNIFORM` and `INTERLEAVED` are read-only 0; without the
+/// analog outputs `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0 and the
+/// `DAC_*` registers are absent (read 0). Fails, naming the problem, for
+/// more axes than the address space holds or a map that does not
+/// validate.
+pub fn register_map(
+    axes: usize,
+    fifo_log2: u32,
+    uniform: bool,
+    analog: bool,
+) -> Result<RegisterMap, RegMapError> {
     if axes == 0 || axes > MAX_AXES {
         return Err(RegMapError::NoCopies(format!(
             "motion_controller axes: {axes} (1 to {MAX_AXES} fit the 8-bit address space)"
@@ -338,6 +372,13 @@ pub fn register_map(axes: usize, fifo_log2: u32, uniform: bool) -> Result<Regist
                 ReadOnly,
                 "1 = no uniform pulse generators in this build: AXIS_CONFIG.UNIFORM and INTERLEAVED read 0 and ignore writes, every axis runs its DDA",
             ),
+            field(
+                "ANALOG",
+                fields::CONFIG_ANALOG,
+                1,
+                ReadOnly,
+                "1 = this build has the analog outputs (dac_* pins, AXIS_CONFIG.ANALOG, the DAC_* registers)",
+            ),
         ],
     );
     config.fields[0].reset = axes as u64;
@@ -345,6 +386,13 @@ pub fn register_map(axes: usize, fifo_log2: u32, uniform: bool) -> Result<Regist
     config.fields[2].reset = super::TIMER_BITS as u64;
     config.fields[3].reset = 32;
     config.fields[4].reset = !uniform as u64;
+    config.fields[5].reset = analog as u64;
+    let analog_access = if analog { ReadWrite } else { ReadOnly };
+    let analog_doc = if analog {
+        "1 = analog axis, taken when RUN starts: each FIFO entry is the axis's signed 16-bit DAC code for the period (0 = 0 V), no steps; its channel goes to 0 when RUN falls"
+    } else {
+        "reads 0, writes ignored: this build has no analog outputs (CONFIG.ANALOG)"
+    };
     // The uniform generator's fields: read-write, or read-only 0 (writes
     // ignored) in a build without the generators.
     let uniform_access = if uniform { ReadWrite } else { ReadOnly };
@@ -359,12 +407,13 @@ pub fn register_map(axes: usize, fifo_log2: u32, uniform: bool) -> Result<Regist
             "reads 0, writes ignored (CONFIG.DDA_ONLY)",
         )
     };
-    let map_doc = if uniform {
-        "motion_controller: K step/encoder axes behind a 32-bit word-addressed register bus"
-    } else {
-        "motion_controller_dda: K step/encoder axes (DDA interpolators only) behind a 32-bit word-addressed register bus"
+    let map_doc = match (uniform, analog) {
+        (true, false) => "motion_controller: K step/encoder axes behind a 32-bit word-addressed register bus",
+        (false, true) => "motion_controller_dda: K step or analog (DAC) axes with encoders, DDA interpolators only, behind a 32-bit word-addressed register bus",
+        (true, true) => "motion_controller: K step or analog (DAC) axes with encoders behind a 32-bit word-addressed register bus",
+        (false, false) => "motion_controller: K step/encoder axes (DDA interpolators only) behind a 32-bit word-addressed register bus",
     };
-    let map = RegisterMap {
+    let mut map = RegisterMap {
         name: "MC",
         address_bits: 8,
         doc: map_doc,
@@ -507,6 +556,7 @@ pub fn register_map(axes: usize, fifo_log2: u32, uniform: bool) -> Result<Regist
                     field("INDEX_CLEAR", 10, 1, ReadWrite, "an index event clears ACT_POSITION"),
                     field("INDEX_LATCH", 11, 1, ReadWrite, "an index event latches ACT_POSITION into INDEX_POSITION"),
                     field("INDEX_ONCE", 12, 1, ReadWrite, "act on the first index only, until REARM_INDEX"),
+                    field("ANALOG", fields::AXIS_ANALOG, 1, analog_access, analog_doc),
                 ],
             )),
             per_axis(number("STEP_LEN", at(axis::STEP_LEN), 16, "step pulse high time in clocks (0 acts as 1)")),
@@ -587,6 +637,23 @@ pub fn register_map(axes: usize, fifo_log2: u32, uniform: bool) -> Result<Regist
             per_axis(Register::word("HOME_ACT_POSITION", at(axis::HOME_ACT_POSITION), ReadOnly, 0, "ACT_POSITION on the clock of the home edge")),
         ],
     };
+    if analog {
+        let dac = crate::blocks::dac_interface::registers::register_map(axes, DAC_BITS)?;
+        for (name, address, dac_name) in DAC_GLOBAL {
+            let mut r = dac.register(dac_name)?.clone();
+            r.name = name;
+            r.address = address;
+            map.registers.push(r);
+        }
+        let applied = dac.register("APPLIED")?;
+        map.registers.push(per_axis(Register {
+            name: "DAC_APPLIED",
+            address: at(axis::DAC_APPLIED),
+            doc: "the code at this axis's DAC output (the last LDAC), signed; 0 after reset, an abort or a stop",
+            fields: applied.fields.clone(),
+            ..applied.clone()
+        }));
+    }
     map.validate()?;
     Ok(map)
 }
