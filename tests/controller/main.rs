@@ -13,3 +13,4 @@ mod host;
 mod compiled_backend;
 mod controller_behind_bus_adapter;
 mod analog_servo;
+mod analog_axes;

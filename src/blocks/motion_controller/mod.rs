@@ -313,6 +313,25 @@ pub mod latency {
         crate::blocks::uniform_pulse_gen::load_to_ready(super::PERIOD_BITS as u32) as u64 + 2;
     /// See [`UNIFORM_LAG`].
     pub const UNIFORM_TURN: u64 = super::PERIOD_BITS as u64 + 2;
+    /// The analog outputs of a period change (the DAC's `dac_ldac` rises)
+    /// `analog_ldac(K, S, Wd, H)` clocks after its boundary clock (the
+    /// clock the FIFOs pop), with the `DAC_TIMING` fields S, Wd, H (0 acting
+    /// as 1): the codes are loaded one axis a clock after the pop, then the
+    /// DAC writes K first ranks. 29 clocks at K = 3 and the reset timing.
+    /// When RUN falls by an underrun or a stop (clock c), the 0 V update's
+    /// `dac_ldac` rises at c + 2 + K (S + Wd + H), or after the running
+    /// update's if one runs (it is deferred, not torn).
+    pub const fn analog_ldac(axes: u64, setup: u64, width: u64, hold: u64) -> u64 {
+        axes + 2 + axes * (at_least_1(setup) + at_least_1(width) + at_least_1(hold))
+    }
+
+    const fn at_least_1(v: u64) -> u64 {
+        if v > 1 {
+            v
+        } else {
+            1
+        }
+    }
     /// The lag of the last of `axes` uniform axes: a period must last more
     /// clocks than this, or that axis's generator refuses the next one
     /// (`INTERP_OVERFLOW`). 24 clocks at K = 1, 60 at K = 3, 114 at K = 6.
