@@ -131,7 +131,10 @@ module motion_board (
         .gpio_in(GPIO_IN),
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
-        .gpio_out(GPIO_OUT)
+        .gpio_out(GPIO_OUT),
+        // This build has no analog outputs (see seed_board.v for the
+        // build that has): its DAC pins idle.
+        .dac_data(), .dac_cs_n(), .dac_l1_n(), .dac_ldac()
     );
 
     assign {Z_STEP, Y_STEP, X_STEP} = step_a;

@@ -39,6 +39,15 @@
 // input active high and pulled up (fail-safe with normally-closed
 // contacts to ground), one drive enable per axis, 8 general inputs and
 // outputs.
+//
+// Analog axes: three AD669s share DAC_D (DB15..DB0); each chip's CS is
+// its DAC_CS_N bit (X = 0), L1 is DAC_L1_N, LDAC is DAC_LDAC. The code
+// format is DAC_CONTROL.OFFSET_BINARY (0: two's complement, 1: offset
+// binary): set it to the DACs' coding. An axis with AXIS_CONFIG.ANALOG set
+// takes its FIFO entries as velocity codes; every output goes to 0 V at
+// reset and on every abort. The DAC_TIMING reset values, made for
+// 100 MHz, give longer pulses at 48 MHz (125 ns data setup to the L1
+// rise, 104 ns L1 and LDAC, 42 ns hold): they meet the AD669 as they are.
 
 `default_nettype none
 
@@ -75,6 +84,11 @@ module seed_board (
     // General I/O (spindle, coolant, probe, ...)
     input  wire [7:0]  GPIO_IN,
     output wire [7:0]  GPIO_OUT,
+    // Three AD669s (X, Y, Z) on one data bus: the analog (velocity) axes
+    output wire [15:0] DAC_D,
+    output wire [2:0]  DAC_CS_N,
+    output wire        DAC_L1_N,
+    output wire        DAC_LDAC,
     output wire        LED_RUNNING,
     output wire        LED_MAILBOX
 );
@@ -157,7 +171,9 @@ module seed_board (
         .gpio_in(GPIO_IN),
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
-        .gpio_out(GPIO_OUT)
+        .gpio_out(GPIO_OUT),
+        .dac_data(DAC_D), .dac_cs_n(DAC_CS_N),
+        .dac_l1_n(DAC_L1_N), .dac_ldac(DAC_LDAC)
     );
 
     assign {Z_STEP, Y_STEP, X_STEP} = step_a;

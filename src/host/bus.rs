@@ -14,7 +14,9 @@ use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
-use crate::blocks::motion_controller::MotionController3;
+use crate::blocks::motion_controller::{MotionController3, MotionController3Dda};
+use crate::host::servo::{DriveScale, ServoMotor};
+use crate::sim::quadrature_state;
 use crate::regmap::RegisterMap;
 use crate::sim::{stepper, Backend, SimError, SimulatedEncoder, Stepper, VectorPorts};
 
@@ -91,6 +93,21 @@ pub struct RtlBus {
     samples: Vec<[i64; 3]>,
     sample_every: u64,
     schedule: PinSchedule,
+    /// Per axis: an analog servo on the DAC pins instead of the step
+    /// loopback.
+    servos: [Option<ServoPlant>; 3],
+    /// Seconds per clock (for the servo motors).
+    clock_s: f64,
+}
+
+/// An analog axis's plant: its AD669 (two latch ranks on the controller's
+/// DAC pins), the drive and motor it commands, and the motor's encoder.
+#[derive(Clone, Debug)]
+struct ServoPlant {
+    motor: ServoMotor,
+    scale: DriveScale,
+    first_rank: u64,
+    second_rank: u64,
 }
 
 impl RtlBus {
@@ -114,6 +131,44 @@ impl RtlBus {
             samples: Vec::new(),
             sample_every: 0,
             schedule: PinSchedule::default(),
+            servos: [None, None, None],
+            clock_s: 0.0,
+        })
+    }
+
+    /// The analog build (`motion_controller_dda`) at `clock_hz`, with an
+    /// analog servo on each axis that has a motor in `servos`: its AD669 on
+    /// the DAC pins (channel k, two's complement) drives `scale`'s volts
+    /// into the motor, whose encoder feeds the axis's encoder pins. The
+    /// other axes' steps are looped back into their encoders.
+    pub fn with_servos(
+        backend: Backend,
+        vcd: Option<&Path>,
+        servos: [Option<ServoMotor>; 3],
+        scale: DriveScale,
+        clock_hz: f64,
+    ) -> Result<Self, SimError> {
+        let mut bus = Self::new(backend, vcd)?;
+        bus.rtl = stepper(backend, "motion_controller_dda", MotionController3Dda::default(), vcd)?;
+        bus.outputs = vec![0; MotionController3Dda::output_names().len()];
+        bus.servos = servos.map(|m| {
+            m.map(|motor| ServoPlant {
+                motor,
+                scale,
+                first_rank: 0,
+                second_rank: 0,
+            })
+        });
+        bus.clock_s = 1.0 / clock_hz;
+        Ok(bus)
+    }
+
+    /// Per axis: its position, counts: the servo motor's encoder count, or
+    /// the net steps looped back.
+    pub fn positions(&self) -> [i64; 3] {
+        std::array::from_fn(|k| match &self.servos[k] {
+            Some(plant) => plant.motor.counts(),
+            None => self.encoders[k].net,
         })
     }
 
@@ -170,8 +225,14 @@ impl ControllerBus for RtlBus {
         self.inputs.write_data = data;
         self.inputs.write = write;
         self.inputs.read = read;
-        for (pins, e) in self.inputs.encoders.iter_mut().zip(&self.encoders) {
-            *pins = e.outputs();
+        for (k, (pins, e)) in self.inputs.encoders.iter_mut().zip(&self.encoders).enumerate() {
+            *pins = match &self.servos[k] {
+                Some(plant) => {
+                    let (a, b) = quadrature_state(plant.motor.counts());
+                    (a, b, false)
+                }
+                None => e.outputs(),
+            };
         }
         self.schedule.apply(self.rtl.cycles(), &mut self.inputs.pins);
         self.inputs.write_vector(&mut self.vector);
@@ -186,8 +247,22 @@ impl ControllerBus for RtlBus {
             self.window_steps[i] += e.total - before;
         }
         let cycles = self.rtl.cycles();
+        for (k, servo) in self.servos.iter_mut().enumerate() {
+            if let Some(plant) = servo {
+                // The AD669: level-sensitive ranks.
+                if out.dac.cs_n >> k & 1 == 0 && !out.dac.l1_n {
+                    plant.first_rank = out.dac.data;
+                }
+                if out.dac.ldac {
+                    plant.second_rank = plant.first_rank;
+                }
+                let code = plant.second_rank as u16 as i16 as i64;
+                plant.motor.advance(plant.scale.volts(code), self.clock_s);
+            }
+        }
         if self.sample_every > 0 && cycles % self.sample_every == 0 {
-            self.samples.push(self.encoders.map(|e| e.net));
+            let positions = self.positions();
+            self.samples.push(positions);
         }
         if cycles - self.window_start >= self.rate_window {
             for i in 0..3 {

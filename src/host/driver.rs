@@ -63,6 +63,9 @@ pub struct DriverConfig {
     pub dir_time: u32,
     /// Per axis: the uniform pulse generator (else the DDA).
     pub uniform: [bool; 3],
+    /// Per axis: an analog (DAC) axis, its FIFO entries velocity codes
+    /// (needs a build with the analog outputs; see [`Driver::run_servo`]).
+    pub analog: [bool; 3],
 }
 
 impl Default for DriverConfig {
@@ -74,6 +77,7 @@ impl Default for DriverConfig {
             step_space: 2,
             dir_time: 2,
             uniform: [false, true, false],
+            analog: [false; 3],
         }
     }
 }
@@ -163,6 +167,9 @@ pub struct Driver<B: ControllerBus> {
     depth: u32,
 }
 
+mod servo_run;
+pub use servo_run::ServoRunReport;
+
 impl<B: ControllerBus> Driver<B> {
     /// Checks the configuration, reads the controller's identity and build
     /// configuration, and programs it (stopped).
@@ -207,6 +214,13 @@ impl<B: ControllerBus> Driver<B> {
         let uniform = driver.field("CONFIG", "DDA_ONLY", build)? == 0;
         let analog = driver.field("CONFIG", "ANALOG", build)? == 1;
         driver.map = register_map(3, driver.depth.trailing_zeros(), uniform, analog)?;
+        if let Some(axis) = (0..3).find(|&k| config.analog[k] && (!analog || config.uniform[k])) {
+            return Err(DriverError::Config(if analog {
+                format!("axis {axis} cannot be both uniform and analog")
+            } else {
+                format!("axis {axis} as an analog axis needs a controller with analog outputs (motion_controller_dda); this one's CONFIG.ANALOG reads 0")
+            }));
+        }
         driver.configure()?;
         Ok(driver)
     }
@@ -254,7 +268,11 @@ impl<B: ControllerBus> Driver<B> {
         for axis in 0..3u32 {
             let config = self.pack(
                 "AXIS_CONFIG",
-                &[("UNIFORM", c.uniform[axis as usize] as u64), ("INTERLEAVED", 1)],
+                &[
+                    ("UNIFORM", c.uniform[axis as usize] as u64),
+                    ("INTERLEAVED", 1),
+                    ("ANALOG", c.analog[axis as usize] as u64),
+                ],
             )?;
             self.write("AXIS_CONFIG", axis, config)?;
             self.write("STEP_LEN", axis, c.step_len)?;
@@ -298,7 +316,8 @@ impl<B: ControllerBus> Driver<B> {
 
     fn check(&self, counts: &[[i32; 3]]) -> Result<(), DriverError> {
         for (period, c) in counts.iter().enumerate() {
-            for axis in 0..3 {
+            // An analog axis's position is the servo loop's business.
+            for axis in (0..3).filter(|&k| !self.config.analog[k]) {
                 let (limit, why) = self.limit(axis);
                 if c[axis].unsigned_abs() > limit {
                     return Err(DriverError::CountTooLarge {
@@ -455,6 +474,11 @@ impl<B: ControllerBus> Driver<B> {
         counts: &[[i32; 3]],
         mut progress: impl FnMut(usize),
     ) -> Result<RunReport, DriverError> {
+        if let Some(axis) = (0..3).find(|&k| self.config.analog[k]) {
+            return Err(DriverError::Config(format!(
+                "axis {axis} is analog: its entries are codes from a servo loop (Driver::run_servo), not step counts"
+            )));
+        }
         self.check(counts)?;
         self.ensure_runnable()?;
         let mut report = RunReport {

@@ -1,5 +1,7 @@
 //! `motion-hdl simulate`: a path file through the simulated 3-axis
-//! controller (RTL, every step looped back into its axis's encoder), with
+//! controller (RTL, every step looped back into its axis's encoder, or an
+//! axis run as an analog servo: its DAC drives a simulated drive and motor
+//! whose encoder closes the host's position loop), with
 //! optional machine-input events ([`Trip`]: an E-stop, a limit switch or a
 //! drive alarm at a given time). A run the controller aborts fails with the
 //! cause, as the driver reports it ("motion stopped: E-stop ...").
@@ -9,9 +11,10 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
 use super::{interpolate, plan, Driver, DriverConfig, Path, RtlBus};
 use crate::blocks::motion_controller::io_model::MachinePins;
-use crate::plots::{plot_path_xy, plot_speed};
+use crate::plots::{plot_following_error, plot_path_xy, plot_speed};
 use crate::sim::Backend;
 
 /// Settings of a simulation run.
@@ -21,6 +24,10 @@ pub struct SimulationOptions {
     pub clock_hz: f64,
     /// Per axis: the uniform pulse generator instead of the DDA.
     pub uniform: [bool; 3],
+    /// Per axis: an analog servo (the `motion_controller_dda` build, the
+    /// default [`ServoMotor`], [`ServoGains`] and [`DriveScale`]: the path's
+    /// steps are the motor's encoder counts).
+    pub servo: [bool; 3],
     /// Step pulse high time, clocks (also the direction setup and hold).
     pub step_len: u32,
     /// Minimum step low time, clocks.
@@ -120,6 +127,10 @@ pub struct SimulationReport {
     /// Peak step rate per axis at the pins, steps per second, over 10 ms
     /// windows.
     pub peak_rate: [f64; 3],
+    /// Per analog servo axis: its following error, counts.
+    pub following: [Option<FollowingError>; 3],
+    /// Periods the servo loops held the end before they settled.
+    pub settle_periods: usize,
     /// Underruns while periods were still to come.
     pub underruns: usize,
     /// Interpolation periods.
@@ -163,8 +174,23 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         step_space: options.step_space,
         dir_time: options.step_len.max(1),
         uniform: options.uniform,
+        analog: options.servo,
     };
-    let mut bus = RtlBus::new(options.backend, options.vcd.as_deref()).map_err(|e| e.to_string())?;
+    let servo = options.servo.iter().any(|&s| s);
+    if let Some(axis) = (0..3).find(|&k| options.servo[k] && options.uniform[k]) {
+        return Err(format!("axis {} cannot be both uniform and an analog servo", ["x", "y", "z"][axis]));
+    }
+    if servo && options.uniform.iter().any(|&u| u) {
+        return Err("--uniform needs the motion_controller build, --servo the motion_controller_dda build (DDA only): use one of them".into());
+    }
+    let period_s = tick_divisor as f64 * period_ticks as f64 / options.clock_hz;
+    let mut bus = if servo {
+        let motors = options.servo.map(|s| s.then(ServoMotor::default));
+        RtlBus::with_servos(options.backend, options.vcd.as_deref(), motors, DriveScale::default(), options.clock_hz)
+    } else {
+        RtlBus::new(options.backend, options.vcd.as_deref())
+    }
+    .map_err(|e| e.to_string())?;
     bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
     // 10 ms windows: at a real clock, 10,000 clocks hold only a step or two.
     bus.set_rate_window((options.clock_hz / 100.0).round() as u64);
@@ -184,11 +210,33 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         None
     };
     let started = Instant::now();
-    let report = driver.run(&interpolation.counts, |queued| {
+    let show = |queued: usize| {
         if let Some(bar) = &bar {
             bar.set_position(queued as u64);
         }
-    });
+    };
+    let mut following = [None; 3];
+    let mut errors = Vec::new();
+    let mut settle_periods = 0;
+    let report = if servo {
+        let mut loops: [Option<PositionLoop>; 3] = [None, None, None];
+        for k in 0..3 {
+            if options.servo[k] {
+                loops[k] = Some(
+                    PositionLoop::new(ServoGains::default(), DriveScale::default(), period_s)
+                        .map_err(|e| e.to_string())?,
+                );
+            }
+        }
+        driver.run_servo(&interpolation.counts, &mut loops, period_s, show).map(|r| {
+            following = r.following;
+            errors = r.errors;
+            settle_periods = r.settle_periods;
+            r.run
+        })
+    } else {
+        driver.run(&interpolation.counts, show)
+    };
     if let Some(bar) = &bar {
         if report.is_err() {
             bar.abandon();
@@ -214,6 +262,13 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         let speed = dir.join(format!("{stem}-speed.svg"));
         plot_speed(&interpolation.speeds, path.period, &speed).map_err(|e| e.to_string())?;
         figures = vec![xy, speed];
+        if servo {
+            let names = ["x", "y", "z"];
+            let axes: Vec<(usize, &str)> = (0..3).filter(|&k| options.servo[k]).map(|k| (k, names[k])).collect();
+            let fe = dir.join(format!("{stem}-following-error.svg"));
+            plot_following_error(&errors, &axes, period_s, &fe).map_err(|e| e.to_string())?;
+            figures.push(fe);
+        }
     }
     let to_path = |p: [i32; 3]| offset(p.map(i64::from));
     let commanded = to_path(report.commanded);
@@ -223,6 +278,8 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         commanded: commanded.map(|v| v as i32),
         actual: actual.map(|v| v as i32),
         peak_rate: bus.peak_steps_per_clock().map(|r| r * options.clock_hz),
+        following,
+        settle_periods,
         underruns: report.underruns,
         periods: report.periods,
         cycles: report.cycles,

@@ -4,4 +4,4 @@ pub mod pulse_trains;
 pub mod trajectory;
 
 pub use pulse_trains::{plot_pulse_trains, plot_unevenness, PlotError};
-pub use trajectory::{plot_path_xy, plot_speed};
+pub use trajectory::{plot_following_error, plot_path_xy, plot_speed};

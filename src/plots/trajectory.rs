@@ -90,3 +90,48 @@ pub fn plot_speed(speeds: &[f64], period_s: f64, path: &Path) -> Result<(), Plot
         .map_err(|e| err(e.to_string()))?;
     root.present().map_err(|e| err(e.to_string()))
 }
+
+/// Draws each analog axis's following error (counts) per period: `errors`
+/// holds one value per axis and period; `axes` names the axes drawn.
+pub fn plot_following_error(
+    errors: &[[f64; 3]],
+    axes: &[(usize, &str)],
+    period_s: f64,
+    path: &Path,
+) -> Result<(), PlotError> {
+    let err = draw_error(path);
+    let end = (errors.len() as f64 * period_s).max(period_s);
+    let (low, high) = bounds(errors.iter().flat_map(|e| axes.iter().map(|&(k, _)| e[k])).chain([0.0]));
+    let root = SVGBackend::new(path, (1000, 450)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("Following error of the analog servo axes", ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0f64..end, low..high)
+        .map_err(|e| err(e.to_string()))?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc("commanded - actual (counts)")
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    for (i, &(k, name)) in axes.iter().enumerate() {
+        let color = Palette99::pick(i).to_rgba();
+        chart
+            .draw_series(LineSeries::new(
+                errors.iter().enumerate().map(|(j, e)| ((j + 1) as f64 * period_s, e[k])),
+                color.stroke_width(1),
+            ))
+            .map_err(|e| err(e.to_string()))?
+            .label(name.to_string())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+    }
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    root.present().map_err(|e| err(e.to_string()))
+}

@@ -124,3 +124,68 @@ fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
     );
     assert!(ldacs > 100, "{ldacs} output changes");
 }
+
+/// End to end: `examples/square.path` with X as an analog servo on the
+/// exported `motion_controller_dda` (compiled), Y and Z stepping. The host
+/// closes X's loop once per period through the controller's FIFO, DAC and
+/// encoder; X ends within a count of the path's end, Y and Z exactly, and
+/// the following error is reported.
+#[test]
+fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
+    use motion_hdl::host::simulation::{simulate, SimulationOptions};
+    let square = motion_hdl::tools::repo_root().join("examples/square.path");
+    let dir = tempfile::tempdir().unwrap();
+    let options = SimulationOptions {
+        clock_hz: 4e6,
+        uniform: [false; 3],
+        servo: [true, false, false],
+        step_len: 2,
+        step_space: 2,
+        out_dir: Some(dir.path().to_path_buf()),
+        vcd: None,
+        progress: false,
+        backend: motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator).unwrap(),
+        trips: Vec::new(),
+    };
+    let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
+    let fe = r.following[0].expect("X's following error");
+    println!(
+        "X servo: following error max {:.1}, RMS {:.2} counts over {} periods; settled {} periods after the path; ended at {:?} for {:?}",
+        fe.max, fe.rms, fe.periods, r.settle_periods, r.actual, r.target
+    );
+    assert!((r.actual[0] as i64 - r.target[0]).abs() <= 1, "X ended at {}, target {}", r.actual[0], r.target[0]);
+    for k in 1..3 {
+        assert_eq!(r.commanded[k] as i64, r.target[k], "axis {k} commanded");
+        assert_eq!(r.actual[k] as i64, r.target[k], "axis {k} actual");
+    }
+    assert_eq!(r.underruns, 0);
+    assert_eq!(r.commanded[0], 0, "the analog axis took no steps");
+    assert!(fe.periods as usize >= r.periods, "one figure per period");
+    assert!(r.figures.iter().any(|f| f.ends_with("square-following-error.svg")));
+}
+
+/// The CLI names a bad `--servo` axis and a servo axis asked for the
+/// uniform generator (which the analog build does not have), and exits
+/// non-zero.
+#[test]
+fn simulate_names_a_bad_servo_option() {
+    let square = motion_hdl::tools::repo_root().join("examples/square.path");
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
+            .arg("simulate")
+            .arg(&square)
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{args:?} succeeded");
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        stderr
+    };
+    let stderr = run(&["--servo", "w"]);
+    assert!(stderr.contains("--servo: unknown axis `w` (x, y or z)"), "{stderr}");
+    let stderr = run(&["--servo", "x", "--uniform", "x"]);
+    assert!(stderr.contains("axis x cannot be both uniform and an analog servo"), "{stderr}");
+    let stderr = run(&["--servo", "x", "--uniform", "y"]);
+    assert!(stderr.contains("--uniform needs the motion_controller build, --servo the motion_controller_dda build"), "{stderr}");
+}

@@ -45,6 +45,10 @@
 //! | `gpio_in` | in | 8 | general inputs, asynchronous |
 //! | `drive_enable` | out | K | bit k: enable (servo-on) of axis k's drive; registered |
 //! | `gpio_out` | out | 8 | general outputs (`GPIO_OUT`); registered |
+//! | `dac_data` | out | 16 | DAC data bus, shared by the analog channels (AD669 style; 0 in a build without them); registered |
+//! | `dac_cs_n` | out | K | bit k: chip select of axis k's DAC, active low (1 in a build without them); registered |
+//! | `dac_l1_n` | out | 1 | DAC first-rank load, active low, shared; registered |
+//! | `dac_ldac` | out | 1 | DAC second-rank load, active high, shared: every analog output changes on its rise; registered |
 //!
 //! Every switch, alarm and E-stop input is active high at reset: with the
 //! FPGA's pull-ups and normally-closed contacts to ground, an open or
@@ -211,6 +215,54 @@
 //!   reset values (their flip-flops hold the value XOR the reset value), so
 //!   limits and alarms are enabled from the first clock.
 //!
+//! ## Analog axes (build option `ANALOG`; on in `motion_controller_dda`)
+//! An axis with `AXIS_CONFIG.ANALOG` set (taken when RUN starts) drives a
+//! servo amplifier in velocity mode through its own DAC instead of
+//! step/dir: the DACs are a [`DacInterface`](crate::blocks::dac_interface)
+//! (AD669 style, one channel per axis, one shared data bus and LDAC).
+//! * **Entries are codes.** Each FIFO entry of an analog axis is its
+//!   signed 16-bit DAC code for that period (0 is 0 V; the sign is the
+//!   direction: a positive code must move the axis toward `limit_pos`, with
+//!   its encoder counting up). An entry outside -32768..=32767 is
+//!   saturated and flagged (`INTERP_OVERRANGE`, `STATUS.AXIS_FAULT`). The
+//!   axis takes no steps; its encoder stays the position feedback.
+//! * **One update per period.** After each pop the codes are loaded one
+//!   axis a clock, then one update writes every DAC's first rank and pulses
+//!   `dac_ldac` once: every analog output changes on the same edge,
+//!   [`latency::analog_ldac`] clocks after the boundary (29 at K = 3 and the
+//!   reset timing), a fixed lag after the step axes' boundary. The update
+//!   lasts 1 + K (S + Wd + H) + L clocks (`DAC_TIMING`; 30 at reset): a
+//!   period must be longer than the lag plus that, or updates are deferred
+//!   (`DAC_STATUS.DEFERRED`) and the outputs lag further.
+//! * **Stop and underrun set 0 V.** When RUN falls by an underrun or a RUN
+//!   = 0 write, every analog channel gets code 0 and an update (its LDAC
+//!   2 + K (S + Wd + H) clocks later, after the running update if one
+//!   runs). A velocity held through an underrun would keep the motor
+//!   turning with nobody closing the loop, so the analog outputs stop as
+//!   the step axes do.
+//! * **Abort forces the safe code.** An abort (E-stop, watchdog, alarm,
+//!   limit, stop on home) drives the DAC's `force_safe`: every output gets
+//!   0 V within the DAC's [`safe_latency`](crate::blocks::dac_interface::safe_latency)
+//!   (35 clocks at the reset timing) of the abort; from an E-stop pin that
+//!   is at most `latency::switch` + 1 + 35 = 41 clocks (41 measured, worst
+//!   case over an E-stop at every clock of an update). Codes cannot reach
+//!   the DACs until the abort clears and RUN starts again.
+//! * **Limits.** A code toward an enabled, active limit is cut like a step:
+//!   the limit trips and everything aborts, and the update carrying the
+//!   code is cut before its LDAC, so the code never reaches the output. An
+//!   analog axis moving away from an active limit is allowed (after
+//!   `CLEAR_LIMITS`).
+//! * **Read back**: `DAC_APPLIED` (per axis) is the code at the DAC's
+//!   output; `DAC_CONTROL` (the code format), `DAC_STATUS` and
+//!   `DAC_TIMING` are the DAC's own registers (see its datasheet). The
+//!   channel of an axis not in analog mode stays at 0 V.
+//! * The servo loop's latency is the FIFO's: firmware closing a position
+//!   loop keeps one or two entries queued on an analog axis.
+//!
+//! A board with narrower DACs (12-bit, such as the DAC7724) takes the top
+//! bits of `dac_data`: a 16-bit code's upper 12 bits are the 12-bit code in
+//! either format.
+//!
 //! ## Latency
 //! A DDA step reaches the pins at the earliest 5 clocks after the base tick
 //! that produced it (1 tick delay, 2 in the DDA, 1 request register, 1 in
@@ -231,12 +283,24 @@
 //! cells an axis, over about 1100 for the rest. The DDA-only build
 //! (`motion_controller_dda`) has its own row in the report.
 //!
-//! ## Build options: DDA only
-//! `UNIFORM` = false (the alias [`MotionController3Dda`], exported as
-//! `motion_controller_dda`) builds the controller without the uniform pulse
+//! ## Build options: DDA only, analog outputs
+//! `ANALOG` = true builds the analog outputs (see "Analog axes"); without
+//! them `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0, the `DAC_*`
+//! registers are absent (read 0) and the DAC pins idle (every `dac_cs_n`
+//! and `dac_l1_n` high, `dac_ldac` and `dac_data` low): synthesis removes
+//! the DAC. Both exports keep the same ports.
+//!
+//! `UNIFORM` = false builds the controller without the uniform pulse
 //! generators and their shared divider: the seed design's own DDA-only
-//! scheme, small enough for an iCE40 HX8K with the host links and mailbox.
-//! The ports are the same; for software:
+//! scheme. The two options are exported as:
+//! * `motion_controller` ([`MotionController3`]): uniform generators, no
+//!   analog outputs (with the board's bus adapter it fills 91 % of an
+//!   iCE40 HX8K: the DAC does not fit beside it);
+//! * `motion_controller_dda` ([`MotionController3Dda`]): DDA only, with
+//!   the analog outputs: the seed's card (step and AD669 servo drives),
+//!   small enough for an iCE40 HX8K with the host links and mailbox.
+//!
+//! Without the uniform generators the ports are the same; for software:
 //! * `CONFIG.DDA_ONLY` reads 1 (0 in the full build, and in cores older
 //!   than the field, which all have the generators): the driver's way to
 //!   tell the builds apart.
@@ -348,7 +412,8 @@ const IRQ_COUNT: usize = irq::COUNT;
 pub type MotionController3 = MotionController<3, 4, 5, true, false>;
 
 /// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
-/// 16-entry FIFOs, no uniform pulse generators (see "Build options").
+/// 16-entry FIFOs, no uniform pulse generators, the analog outputs (see
+/// "Build options").
 pub type MotionController3Dda = MotionController<3, 4, 5, false, true>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
@@ -380,7 +445,7 @@ pub const SUMMARY: &str =
 
 /// The DDA-only build's line (`motion_controller_dda`).
 pub const SUMMARY_DDA: &str =
-    "motion controller, DDA interpolators only (no uniform pulse generators): K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
+    "motion controller, DDA interpolators only (no uniform pulse generators), with analog outputs: K step or analog (AD669 DAC) axes with encoders, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
 pub const PORT_DOCS: &[(&str, &str)] = &[
@@ -424,7 +489,8 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
 /// N + 1), with a uniform pulse generator on every axis if `UNIFORM` (else
-/// DDA only: see "Build options"). See the [module documentation](self).
+/// DDA only) and the analog outputs if `ANALOG` (K <= 8): see "Build
+/// options". See the [module documentation](self).
 #[derive(LogicBlock)]
 pub struct MotionController<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> {
     /// Rising-edge clock.

@@ -15,9 +15,9 @@ use crate::regmap::{field, register, Access, Field, RegMapError, Register, Regis
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
-/// `VERSION` register value: major 0, minor 2, patch 0 (minor 2: machine
-/// I/O, 32-word axis windows).
-pub const VERSION_VALUE: u32 = 0x0000_0200;
+/// `VERSION` register value: major 0, minor 3, patch 0 (minor 2: machine
+/// I/O, 32-word axis windows; minor 3: analog axes, `CONFIG.ANALOG`).
+pub const VERSION_VALUE: u32 = 0x0000_0300;
 
 /// Word addresses of the global registers.
 pub mod global {
