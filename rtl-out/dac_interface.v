@@ -80,7 +80,6 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     localparam  f_pending = 32'h8;
     localparam  f_deferred = 32'h100;
     localparam  f_refused = 32'h200;
-    localparam  code_mask = 32'hffff;
     localparam  msb_w = 16'h8000;
     localparam  chan_bit__0 = 3'b1;
     localparam  chan_bit__1 = 3'b10;
@@ -110,14 +109,14 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     localparam  one8 = 8'h1;
 
     // Stub signals
-    reg  [31:0] staged__0__d;
-    wire  [31:0] staged__0__q;
+    reg  [15:0] staged__0__d;
+    wire  [15:0] staged__0__q;
     reg  staged__0__clock;
-    reg  [31:0] staged__1__d;
-    wire  [31:0] staged__1__q;
+    reg  [15:0] staged__1__d;
+    wire  [15:0] staged__1__q;
     reg  staged__1__clock;
-    reg  [31:0] staged__2__d;
-    wire  [31:0] staged__2__q;
+    reg  [15:0] staged__2__d;
+    wire  [15:0] staged__2__q;
     reg  staged__2__clock;
     reg  offset_binary__d;
     wire  offset_binary__q;
@@ -146,14 +145,14 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     reg  [7:0] left__d;
     wire  [7:0] left__q;
     reg  left__clock;
-    reg  [31:0] shadow__0__d;
-    wire  [31:0] shadow__0__q;
+    reg  [15:0] shadow__0__d;
+    wire  [15:0] shadow__0__q;
     reg  shadow__0__clock;
-    reg  [31:0] shadow__1__d;
-    wire  [31:0] shadow__1__q;
+    reg  [15:0] shadow__1__d;
+    wire  [15:0] shadow__1__q;
     reg  shadow__1__clock;
-    reg  [31:0] shadow__2__d;
-    wire  [31:0] shadow__2__q;
+    reg  [15:0] shadow__2__d;
+    wire  [15:0] shadow__2__q;
     reg  shadow__2__clock;
     reg  shadow_offset__d;
     wire  shadow_offset__q;
@@ -182,14 +181,14 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     reg  pending_safe__d;
     wire  pending_safe__q;
     reg  pending_safe__clock;
-    reg  [31:0] applied__0__d;
-    wire  [31:0] applied__0__q;
+    reg  [15:0] applied__0__d;
+    wire  [15:0] applied__0__q;
     reg  applied__0__clock;
-    reg  [31:0] applied__1__d;
-    wire  [31:0] applied__1__q;
+    reg  [15:0] applied__1__d;
+    wire  [15:0] applied__1__q;
     reg  applied__1__clock;
-    reg  [31:0] applied__2__d;
-    wire  [31:0] applied__2__q;
+    reg  [15:0] applied__2__d;
+    wire  [15:0] applied__2__q;
     reg  applied__2__clock;
     reg  safe_reg__d;
     wire  safe_reg__q;
@@ -220,7 +219,6 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
     reg  start_safe;
     reg  [31:0] status_word;
     reg  [31:0] read_word;
-    reg  [31:0] load_word;
 
     // Sub module instances
     dac_interface__staged__0 staged__0(
@@ -470,13 +468,13 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
             cs_active__d = channel__q;
             l1_active__d = phase__q == p_width;
             if ((channel__q & chan_bit__0) != zero_k) begin
-                data_pin__d = shadow__0__q[(32'h0)+:(16)] ^ flip;
+                data_pin__d = shadow__0__q ^ flip;
             end
             if ((channel__q & chan_bit__1) != zero_k) begin
-                data_pin__d = shadow__1__q[(32'h0)+:(16)] ^ flip;
+                data_pin__d = shadow__1__q ^ flip;
             end
             if ((channel__q & chan_bit__2) != zero_k) begin
-                data_pin__d = shadow__2__q[(32'h0)+:(16)] ^ flip;
+                data_pin__d = shadow__2__q ^ flip;
             end
         end
         status_word = zero32;
@@ -515,22 +513,310 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
             read_word = timing_word__q;
         end
         if (bus_address == a_code__0) begin
-            read_word = staged__0__q;
+            read_word = zero32;
+            if (staged__0__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (staged__0__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (staged__0__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (staged__0__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (staged__0__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (staged__0__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (staged__0__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (staged__0__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (staged__0__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (staged__0__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (staged__0__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (staged__0__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (staged__0__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (staged__0__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (staged__0__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (staged__0__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
         end
         if (bus_address == a_applied__0) begin
-            read_word = applied__0__q;
+            read_word = zero32;
+            if (applied__0__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (applied__0__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (applied__0__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (applied__0__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (applied__0__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (applied__0__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (applied__0__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (applied__0__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (applied__0__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (applied__0__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (applied__0__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (applied__0__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (applied__0__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (applied__0__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (applied__0__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (applied__0__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
         end
         if (bus_address == a_code__1) begin
-            read_word = staged__1__q;
+            read_word = zero32;
+            if (staged__1__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (staged__1__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (staged__1__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (staged__1__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (staged__1__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (staged__1__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (staged__1__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (staged__1__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (staged__1__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (staged__1__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (staged__1__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (staged__1__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (staged__1__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (staged__1__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (staged__1__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (staged__1__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
         end
         if (bus_address == a_applied__1) begin
-            read_word = applied__1__q;
+            read_word = zero32;
+            if (applied__1__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (applied__1__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (applied__1__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (applied__1__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (applied__1__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (applied__1__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (applied__1__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (applied__1__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (applied__1__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (applied__1__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (applied__1__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (applied__1__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (applied__1__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (applied__1__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (applied__1__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (applied__1__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
         end
         if (bus_address == a_code__2) begin
-            read_word = staged__2__q;
+            read_word = zero32;
+            if (staged__2__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (staged__2__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (staged__2__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (staged__2__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (staged__2__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (staged__2__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (staged__2__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (staged__2__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (staged__2__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (staged__2__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (staged__2__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (staged__2__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (staged__2__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (staged__2__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (staged__2__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (staged__2__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
         end
         if (bus_address == a_applied__2) begin
-            read_word = applied__2__q;
+            read_word = zero32;
+            if (applied__2__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (applied__2__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (applied__2__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (applied__2__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (applied__2__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (applied__2__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (applied__2__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (applied__2__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (applied__2__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (applied__2__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (applied__2__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (applied__2__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (applied__2__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (applied__2__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (applied__2__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (applied__2__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
         end
         if (bus_read) begin
             read_data__d = read_word;
@@ -559,7 +845,7 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
                     refused__d = 1'b1;
                 end
                 else begin
-                    staged__0__d = bus_write_data & code_mask;
+                    staged__0__d = bus_write_data[(32'h0)+:(16)];
                 end
             end
             if (bus_address == a_code__1) begin
@@ -567,7 +853,7 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
                     refused__d = 1'b1;
                 end
                 else begin
-                    staged__1__d = bus_write_data & code_mask;
+                    staged__1__d = bus_write_data[(32'h0)+:(16)];
                 end
             end
             if (bus_address == a_code__2) begin
@@ -575,65 +861,16 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
                     refused__d = 1'b1;
                 end
                 else begin
-                    staged__2__d = bus_write_data & code_mask;
+                    staged__2__d = bus_write_data[(32'h0)+:(16)];
                 end
             end
-        end
-        load_word = zero32;
-        if (load_code[0]) begin
-            load_word = load_word | word_bit__0;
-        end
-        if (load_code[1]) begin
-            load_word = load_word | word_bit__1;
-        end
-        if (load_code[2]) begin
-            load_word = load_word | word_bit__2;
-        end
-        if (load_code[3]) begin
-            load_word = load_word | word_bit__3;
-        end
-        if (load_code[4]) begin
-            load_word = load_word | word_bit__4;
-        end
-        if (load_code[5]) begin
-            load_word = load_word | word_bit__5;
-        end
-        if (load_code[6]) begin
-            load_word = load_word | word_bit__6;
-        end
-        if (load_code[7]) begin
-            load_word = load_word | word_bit__7;
-        end
-        if (load_code[8]) begin
-            load_word = load_word | word_bit__8;
-        end
-        if (load_code[9]) begin
-            load_word = load_word | word_bit__9;
-        end
-        if (load_code[10]) begin
-            load_word = load_word | word_bit__10;
-        end
-        if (load_code[11]) begin
-            load_word = load_word | word_bit__11;
-        end
-        if (load_code[12]) begin
-            load_word = load_word | word_bit__12;
-        end
-        if (load_code[13]) begin
-            load_word = load_word | word_bit__13;
-        end
-        if (load_code[14]) begin
-            load_word = load_word | word_bit__14;
-        end
-        if (load_code[15]) begin
-            load_word = load_word | word_bit__15;
         end
         if ((load & chan_bit__0) != zero_k) begin
             if (force_safe) begin
                 refused__d = 1'b1;
             end
             else begin
-                staged__0__d = load_word;
+                staged__0__d = load_code;
             end
         end
         if ((load & chan_bit__1) != zero_k) begin
@@ -641,7 +878,7 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
                 refused__d = 1'b1;
             end
             else begin
-                staged__1__d = load_word;
+                staged__1__d = load_code;
             end
         end
         if ((load & chan_bit__2) != zero_k) begin
@@ -649,7 +886,7 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
                 refused__d = 1'b1;
             end
             else begin
-                staged__2__d = load_word;
+                staged__2__d = load_code;
             end
         end
         if (request & force_safe) begin
@@ -723,15 +960,15 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
         if (start) begin
             shadow__0__d = staged__0__q;
             if (start_safe) begin
-                shadow__0__d = zero32;
+                shadow__0__d = zero_w;
             end
             shadow__1__d = staged__1__q;
             if (start_safe) begin
-                shadow__1__d = zero32;
+                shadow__1__d = zero_w;
             end
             shadow__2__d = staged__2__q;
             if (start_safe) begin
-                shadow__2__d = zero32;
+                shadow__2__d = zero_w;
             end
             shadow_offset__d = offset_binary__q;
             t_setup__d = timing_word__q[(32'h0)+:(8)];
@@ -745,23 +982,23 @@ module dac_interface(clock,reset,bus_address,bus_write_data,bus_write,bus_read,u
             channel__d = first_channel;
         end
         if (abort_rise) begin
-            staged__0__d = zero32;
-            staged__1__d = zero32;
-            staged__2__d = zero32;
+            staged__0__d = zero_w;
+            staged__1__d = zero_w;
+            staged__2__d = zero_w;
             pending__d = 1'b0;
             pending_safe__d = ~(running & safe_run__q);
             safe_reg__d = 1'b1;
         end
         if (reset) begin
-            staged__0__d = zero32;
-            shadow__0__d = zero32;
-            applied__0__d = zero32;
-            staged__1__d = zero32;
-            shadow__1__d = zero32;
-            applied__1__d = zero32;
-            staged__2__d = zero32;
-            shadow__2__d = zero32;
-            applied__2__d = zero32;
+            staged__0__d = zero_w;
+            shadow__0__d = zero_w;
+            applied__0__d = zero_w;
+            staged__1__d = zero_w;
+            shadow__1__d = zero_w;
+            applied__1__d = zero_w;
+            staged__2__d = zero_w;
+            shadow__2__d = zero_w;
+            applied__2__d = zero_w;
             offset_binary__d = 1'b0;
             timing_word__d = timing_reset;
             deferred__d = 1'b0;
@@ -813,13 +1050,13 @@ endmodule // dac_interface__abort_prev
 module dac_interface__applied__0(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -832,13 +1069,13 @@ endmodule // dac_interface__applied__0
 module dac_interface__applied__1(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -851,13 +1088,13 @@ endmodule // dac_interface__applied__1
 module dac_interface__applied__2(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -1174,13 +1411,13 @@ endmodule // dac_interface__safe_run
 module dac_interface__shadow__0(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -1193,13 +1430,13 @@ endmodule // dac_interface__shadow__0
 module dac_interface__shadow__1(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -1212,13 +1449,13 @@ endmodule // dac_interface__shadow__1
 module dac_interface__shadow__2(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -1250,13 +1487,13 @@ endmodule // dac_interface__shadow_offset
 module dac_interface__staged__0(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -1269,13 +1506,13 @@ endmodule // dac_interface__staged__0
 module dac_interface__staged__1(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -1288,13 +1525,13 @@ endmodule // dac_interface__staged__1
 module dac_interface__staged__2(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin

@@ -261,9 +261,10 @@ pub struct DacInterface<const K: usize, const W: usize> {
     /// The safe code is applied, pending or running.
     pub safe: Signal<Out, Bit>,
 
-    // Register layer: staged codes and the registers, 32 bits wide with
-    // the bits above W always 0 (synthesis removes them).
-    staged: [DFF<Bits<32>>; K],
+    // Register layer: the staged codes (W bits: widened bit by bit for the
+    // bus, since rust-hdl's cast prints as a mask Verilator flags) and the
+    // registers.
+    staged: [DFF<Bits<W>>; K],
     offset_binary: DFF<Bit>,
     timing_word: DFF<Bits<32>>,
     deferred: DFF<Bit>,
@@ -277,7 +278,7 @@ pub struct DacInterface<const K: usize, const W: usize> {
     channel: DFF<Bits<K>>,
     /// Clocks left in the phase; 0 or 1: the phase ends on this edge.
     left: DFF<Bits<8>>,
-    shadow: [DFF<Bits<32>>; K],
+    shadow: [DFF<Bits<W>>; K],
     shadow_offset: DFF<Bit>,
     t_width: DFF<Bits<8>>,
     t_hold: DFF<Bits<8>>,
@@ -287,7 +288,7 @@ pub struct DacInterface<const K: usize, const W: usize> {
     cut: DFF<Bit>,
     pending: DFF<Bit>,
     pending_safe: DFF<Bit>,
-    applied: [DFF<Bits<32>>; K],
+    applied: [DFF<Bits<W>>; K],
     safe_reg: DFF<Bit>,
 
     // Pins.
@@ -310,9 +311,6 @@ pub struct DacInterface<const K: usize, const W: usize> {
     start_safe: Signal<Local, Bit>,
     status_word: Signal<Local, Bits<32>>,
     read_word: Signal<Local, Bits<32>>,
-    /// `load_code` zero-extended, bit by bit: rust-hdl's cast prints as a
-    /// mask of another width, which Verilator flags.
-    load_word: Signal<Local, Bits<32>>,
 
     p_idle: Constant<Bits<3>>,
     p_setup: Constant<Bits<3>>,
@@ -338,10 +336,9 @@ pub struct DacInterface<const K: usize, const W: usize> {
     f_pending: Constant<Bits<32>>,
     f_deferred: Constant<Bits<32>>,
     f_refused: Constant<Bits<32>>,
-    code_mask: Constant<Bits<32>>,
     msb_w: Constant<Bits<W>>,
     chan_bit: [Constant<Bits<K>>; K],
-    /// `word_bit[i]` = 1 << i, for `load_word`.
+    /// `word_bit[i]` = 1 << i: a code's bits in a bus word.
     word_bit: [Constant<Bits<32>>; W],
     first_channel: Constant<Bits<K>>,
     last_channel: Constant<Bits<K>>,
@@ -365,6 +362,7 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
                 "TIMING.{name} moved: update() slices it at {lsb}"
             );
         }
+        assert_eq!(field_of(&map, "CODE", "VALUE").width as usize, W, "CODE.VALUE is the W-bit staged code");
         let address = |name: &str| {
             Constant::new(
                 (map.register(name).expect("a register of the map").address as u64).into(),
@@ -432,7 +430,6 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
             start_safe: Default::default(),
             status_word: Default::default(),
             read_word: Default::default(),
-            load_word: Default::default(),
             p_idle: Constant::new(IDLE.into()),
             p_setup: Constant::new(SETUP.into()),
             p_width: Constant::new(WIDTH.into()),
@@ -459,7 +456,6 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
             f_pending: mask("STATUS", "PENDING"),
             f_deferred: mask("STATUS", "DEFERRED"),
             f_refused: mask("STATUS", "REFUSED"),
-            code_mask: mask("CODE", "VALUE"),
             msb_w: Constant::new((1u64 << (W - 1)).into()),
             chan_bit: array_init::array_init(|k| Constant::new((1u64 << k).into())),
             word_bit: array_init::array_init(|i| Constant::new((1u64 << i).into())),
@@ -538,7 +534,7 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
             for k in 0..K {
                 if (self.channel.q.val() & self.chan_bit[k].val()) != self.zero_k.val() {
                     self.data_pin.d.next =
-                        self.shadow[k].q.val().get_bits::<W>(0) ^ self.flip.val();
+                        self.shadow[k].q.val() ^ self.flip.val();
                 }
             }
         }
@@ -581,10 +577,20 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
         }
         for k in 0..K {
             if self.bus_address.val() == self.a_code[k].val() {
-                self.read_word.next = self.staged[k].q.val();
+                self.read_word.next = self.zero32.val();
+                for i in 0..W {
+                    if self.staged[k].q.val().get_bit(i) {
+                        self.read_word.next = self.read_word.val() | self.word_bit[i].val();
+                    }
+                }
             }
             if self.bus_address.val() == self.a_applied[k].val() {
-                self.read_word.next = self.applied[k].q.val();
+                self.read_word.next = self.zero32.val();
+                for i in 0..W {
+                    if self.applied[k].q.val().get_bit(i) {
+                        self.read_word.next = self.read_word.val() | self.word_bit[i].val();
+                    }
+                }
             }
         }
         if self.bus_read.val() {
@@ -619,24 +625,18 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
                     if self.force_safe.val() {
                         self.refused.d.next = true;
                     } else {
-                        self.staged[k].d.next = self.bus_write_data.val() & self.code_mask.val();
+                        self.staged[k].d.next = self.bus_write_data.val().get_bits::<W>(0);
                     }
                 }
             }
         }
         // The hardware path: after the bus, so it wins a same-clock write.
-        self.load_word.next = self.zero32.val();
-        for i in 0..W {
-            if self.load_code.val().get_bit(i) {
-                self.load_word.next = self.load_word.val() | self.word_bit[i].val();
-            }
-        }
         for k in 0..K {
             if (self.load.val() & self.chan_bit[k].val()) != self.zero_k.val() {
                 if self.force_safe.val() {
                     self.refused.d.next = true;
                 } else {
-                    self.staged[k].d.next = self.load_word.val();
+                    self.staged[k].d.next = self.load_code.val();
                 }
             }
         }
@@ -714,7 +714,7 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
             for k in 0..K {
                 self.shadow[k].d.next = self.staged[k].q.val();
                 if self.start_safe.val() {
-                    self.shadow[k].d.next = self.zero32.val();
+                    self.shadow[k].d.next = self.zero_w.val();
                 }
             }
             self.shadow_offset.d.next = self.offset_binary.q.val();
@@ -730,7 +730,7 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
         }
         if self.abort_rise.val() {
             for k in 0..K {
-                self.staged[k].d.next = self.zero32.val();
+                self.staged[k].d.next = self.zero_w.val();
             }
             self.pending.d.next = false;
             // A running safe update already writes 0 everywhere.
@@ -740,9 +740,9 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
 
         if self.reset.val() {
             for k in 0..K {
-                self.staged[k].d.next = self.zero32.val();
-                self.shadow[k].d.next = self.zero32.val();
-                self.applied[k].d.next = self.zero32.val();
+                self.staged[k].d.next = self.zero_w.val();
+                self.shadow[k].d.next = self.zero_w.val();
+                self.applied[k].d.next = self.zero_w.val();
             }
             self.offset_binary.d.next = false;
             self.timing_word.d.next = self.timing_reset.val();
