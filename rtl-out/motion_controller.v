@@ -75,6 +75,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
 
     // Constant declarations
     localparam  has_analog = 1'b0;
+    localparam  code_max = 16'h7fff;
+    localparam  code_min = 16'h8000;
+    localparam  dac_applied_bits = 5'b11000;
     localparam  a_dac_global__0 = 8'h16;
     localparam  a_dac_global__1 = 8'h17;
     localparam  a_dac_global__2 = 8'h18;
@@ -84,9 +87,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     localparam  a_dac_applied__0 = 8'h35;
     localparam  a_dac_applied__1 = 8'h55;
     localparam  a_dac_applied__2 = 8'h75;
-    localparam  d_dac_applied__0 = 5'b11000;
-    localparam  d_dac_applied__1 = 5'b11001;
-    localparam  d_dac_applied__2 = 5'b11010;
+    localparam  d_dac_applied__0 = 5'b0;
+    localparam  d_dac_applied__1 = 5'b1;
+    localparam  d_dac_applied__2 = 5'b10;
     localparam  zero5 = 5'b0;
     localparam  last_axis = 3'b100;
     localparam  zero_code = 16'h0;
@@ -222,6 +225,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [15:0] axes__0__div_remainder;
     wire  axes__0__analog;
     wire  [15:0] axes__0__dac_code;
+    wire  axes__0__code_out_of_range;
+    wire  axes__0__code_negative;
     reg  axes__1__clock;
     reg  axes__1__reset;
     reg  axes__1__tick;
@@ -271,6 +276,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [15:0] axes__1__div_remainder;
     wire  axes__1__analog;
     wire  [15:0] axes__1__dac_code;
+    wire  axes__1__code_out_of_range;
+    wire  axes__1__code_negative;
     reg  axes__2__clock;
     reg  axes__2__reset;
     reg  axes__2__tick;
@@ -320,6 +327,8 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [15:0] axes__2__div_remainder;
     wire  axes__2__analog;
     wire  [15:0] axes__2__dac_code;
+    wire  axes__2__code_out_of_range;
+    wire  axes__2__code_negative;
     reg  tick_divider__clock;
     reg  tick_divider__reset;
     reg  tick_divider__enable;
@@ -466,6 +475,10 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [2:0] analog_axes;
     reg  [2:0] dac_load;
     reg  [15:0] dac_code;
+    reg  walk_wide;
+    reg  walk_negative;
+    reg  [4:0] dac_low;
+    reg  dac_applied_hit;
     reg  stop_zero;
     reg  dac_hit;
     reg  [4:0] dac_address;
@@ -561,7 +574,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .div_quotient(axes__0__div_quotient),
         .div_remainder(axes__0__div_remainder),
         .analog(axes__0__analog),
-        .dac_code(axes__0__dac_code)
+        .dac_code(axes__0__dac_code),
+        .code_out_of_range(axes__0__code_out_of_range),
+        .code_negative(axes__0__code_negative)
     );
     motion_controller__axes__1 axes__1(
         .clock(axes__1__clock),
@@ -612,7 +627,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .div_quotient(axes__1__div_quotient),
         .div_remainder(axes__1__div_remainder),
         .analog(axes__1__analog),
-        .dac_code(axes__1__dac_code)
+        .dac_code(axes__1__dac_code),
+        .code_out_of_range(axes__1__code_out_of_range),
+        .code_negative(axes__1__code_negative)
     );
     motion_controller__axes__2 axes__2(
         .clock(axes__2__clock),
@@ -663,7 +680,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .div_quotient(axes__2__div_quotient),
         .div_remainder(axes__2__div_remainder),
         .analog(axes__2__analog),
-        .dac_code(axes__2__dac_code)
+        .dac_code(axes__2__dac_code),
+        .code_out_of_range(axes__2__code_out_of_range),
+        .code_negative(axes__2__code_negative)
     );
     motion_controller__tick_divider tick_divider(
         .clock(tick_divider__clock),
@@ -1281,14 +1300,30 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         end
         dac_load = walk_now & analog_axes;
         dac_code = zero_code;
+        walk_wide = 1'b0;
+        walk_negative = 1'b0;
         if ((walk_now & axis_bit__0) != zero_k) begin
             dac_code = axes__0__dac_code;
+            walk_wide = axes__0__code_out_of_range;
+            walk_negative = axes__0__code_negative;
         end
         if ((walk_now & axis_bit__1) != zero_k) begin
             dac_code = axes__1__dac_code;
+            walk_wide = axes__1__code_out_of_range;
+            walk_negative = axes__1__code_negative;
         end
         if ((walk_now & axis_bit__2) != zero_k) begin
             dac_code = axes__2__dac_code;
+            walk_wide = axes__2__code_out_of_range;
+            walk_negative = axes__2__code_negative;
+        end
+        if (walk_wide) begin
+            if (walk_negative) begin
+                dac_code = code_min;
+            end
+            else begin
+                dac_code = code_max;
+            end
         end
         dac_walk__d = walk_now << 32'h1;
         dac_update__d = ((walk_now & last_axis) != zero_k) & (analog_axes != zero_k);
@@ -1300,30 +1335,38 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             dac_update__d = analog_axes != zero_k;
         end
         dac_hit = 1'b0;
-        dac_address = zero5;
+        dac_applied_hit = 1'b0;
+        dac_low = zero5;
         if (bus_address == a_dac_global__0) begin
             dac_hit = has_analog;
-            dac_address = d_dac_global__0;
+            dac_low = d_dac_global__0;
         end
         if (bus_address == a_dac_global__1) begin
             dac_hit = has_analog;
-            dac_address = d_dac_global__1;
+            dac_low = d_dac_global__1;
         end
         if (bus_address == a_dac_global__2) begin
             dac_hit = has_analog;
-            dac_address = d_dac_global__2;
+            dac_low = d_dac_global__2;
         end
         if (bus_address == a_dac_applied__0) begin
             dac_hit = has_analog;
-            dac_address = d_dac_applied__0;
+            dac_applied_hit = 1'b1;
+            dac_low = d_dac_applied__0;
         end
         if (bus_address == a_dac_applied__1) begin
             dac_hit = has_analog;
-            dac_address = d_dac_applied__1;
+            dac_applied_hit = 1'b1;
+            dac_low = d_dac_applied__1;
         end
         if (bus_address == a_dac_applied__2) begin
             dac_hit = has_analog;
-            dac_address = d_dac_applied__2;
+            dac_applied_hit = 1'b1;
+            dac_low = d_dac_applied__2;
+        end
+        dac_address = dac_low;
+        if (dac_applied_hit) begin
+            dac_address = dac_low | dac_applied_bits;
         end
         dac__reset = reset;
         dac__bus_address = dac_address;
@@ -1602,7 +1645,7 @@ module motion_controller__any_low_prev_n(d,q,clock);
 endmodule // motion_controller__any_low_prev_n
 
 
-module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code);
+module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -1654,14 +1697,14 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  [15:0] div_remainder;
     output reg  analog;
     output reg  [15:0] dac_code;
+    output reg  code_out_of_range;
+    output reg  code_negative;
 
     // Constant declarations
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
     localparam  above_code = 32'hffff8000;
-    localparam  code_max = 16'h7fff;
-    localparam  code_min = 16'h8000;
     localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
@@ -1950,7 +1993,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Local signals
     reg  clear_position;
-    reg  [15:0] code_value;
+    reg  code_nonzero;
     reg  selected;
     reg  [3:0] offset;
     reg  candidate;
@@ -2443,16 +2486,10 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
             code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
         end
-        code_value = popped__q[(32'h0)+:(16)];
-        if (code_wide__q) begin
-            if (popped__q[32'h1f]) begin
-                code_value = code_min;
-            end
-            else begin
-                code_value = code_max;
-            end
-        end
-        dac_code = code_value;
+        dac_code = popped__q[(32'h0)+:(16)];
+        code_out_of_range = code_wide__q;
+        code_negative = popped__q[32'h1f];
+        code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
         analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
@@ -2500,7 +2537,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
                 integrand__d = count;
             end
             if (analog_active__q) begin
-                code_forward__d = ~popped__q[32'h1f] & (code_value != zero_code);
+                code_forward__d = ~popped__q[32'h1f] & code_nonzero;
                 code_backward__d = popped__q[32'h1f];
             end
         end
@@ -7984,7 +8021,7 @@ module motion_controller__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_running_forward
 
 
-module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code);
+module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -8036,14 +8073,14 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  [15:0] div_remainder;
     output reg  analog;
     output reg  [15:0] dac_code;
+    output reg  code_out_of_range;
+    output reg  code_negative;
 
     // Constant declarations
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
     localparam  above_code = 32'hffff8000;
-    localparam  code_max = 16'h7fff;
-    localparam  code_min = 16'h8000;
     localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
@@ -8332,7 +8369,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Local signals
     reg  clear_position;
-    reg  [15:0] code_value;
+    reg  code_nonzero;
     reg  selected;
     reg  [3:0] offset;
     reg  candidate;
@@ -8825,16 +8862,10 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
             code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
         end
-        code_value = popped__q[(32'h0)+:(16)];
-        if (code_wide__q) begin
-            if (popped__q[32'h1f]) begin
-                code_value = code_min;
-            end
-            else begin
-                code_value = code_max;
-            end
-        end
-        dac_code = code_value;
+        dac_code = popped__q[(32'h0)+:(16)];
+        code_out_of_range = code_wide__q;
+        code_negative = popped__q[32'h1f];
+        code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
         analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
@@ -8882,7 +8913,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
                 integrand__d = count;
             end
             if (analog_active__q) begin
-                code_forward__d = ~popped__q[32'h1f] & (code_value != zero_code);
+                code_forward__d = ~popped__q[32'h1f] & code_nonzero;
                 code_backward__d = popped__q[32'h1f];
             end
         end
@@ -14366,7 +14397,7 @@ module motion_controller__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_running_forward
 
 
-module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code);
+module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -14418,14 +14449,14 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  [15:0] div_remainder;
     output reg  analog;
     output reg  [15:0] dac_code;
+    output reg  code_out_of_range;
+    output reg  code_negative;
 
     // Constant declarations
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
     localparam  above_code = 32'hffff8000;
-    localparam  code_max = 16'h7fff;
-    localparam  code_min = 16'h8000;
     localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
@@ -14714,7 +14745,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
 
     // Local signals
     reg  clear_position;
-    reg  [15:0] code_value;
+    reg  code_nonzero;
     reg  selected;
     reg  [3:0] offset;
     reg  candidate;
@@ -15207,16 +15238,10 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
             code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
         end
-        code_value = popped__q[(32'h0)+:(16)];
-        if (code_wide__q) begin
-            if (popped__q[32'h1f]) begin
-                code_value = code_min;
-            end
-            else begin
-                code_value = code_max;
-            end
-        end
-        dac_code = code_value;
+        dac_code = popped__q[(32'h0)+:(16)];
+        code_out_of_range = code_wide__q;
+        code_negative = popped__q[32'h1f];
+        code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
         analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
         if (popped__q[32'h1f]) begin
@@ -15264,7 +15289,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
                 integrand__d = count;
             end
             if (analog_active__q) begin
-                code_forward__d = ~popped__q[32'h1f] & (code_value != zero_code);
+                code_forward__d = ~popped__q[32'h1f] & code_nonzero;
                 code_backward__d = popped__q[32'h1f];
             end
         end

@@ -88,7 +88,7 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         uniform: Vec<String>,
         /// Axes run as analog servos (any of x, y, z, comma separated): the
-        /// DDA-only build with its analog outputs; the axis's DAC drives a
+        /// motion_controller_servo build (DDA only, analog outputs); the axis's DAC drives a
         /// simulated velocity drive and motor whose encoder closes the
         /// host's position loop (the path's steps are encoder counts).
         /// Prints each servo axis's following error and plots it.

@@ -40,14 +40,11 @@
 // contacts to ground), one drive enable per axis, 8 general inputs and
 // outputs.
 //
-// Analog axes: three AD669s share DAC_D (DB15..DB0); each chip's CS is
-// its DAC_CS_N bit (X = 0), L1 is DAC_L1_N, LDAC is DAC_LDAC. The code
-// format is DAC_CONTROL.OFFSET_BINARY (0: two's complement, 1: offset
-// binary): set it to the DACs' coding. An axis with AXIS_CONFIG.ANALOG set
-// takes its FIFO entries as velocity codes; every output goes to 0 V at
-// reset and on every abort. The DAC_TIMING reset values, made for
-// 100 MHz, give longer pulses at 48 MHz (125 ns data setup to the L1
-// rise, 104 ns L1 and LDAC, 42 ns hold): they meet the AD669 as they are.
+// Analog axes: not on this card yet. motion_controller_servo is this
+// controller with the DAC outputs (three AD669s on one bus); with it and
+// the DACs wired the card needs 6,639 of the 7,680 logic cells (86 %),
+// over the 85 % this card must stay under, until the design saves about
+// 110 logic cells. motion_controller_dda's DAC pins idle.
 
 `default_nettype none
 
@@ -84,11 +81,6 @@ module seed_board (
     // General I/O (spindle, coolant, probe, ...)
     input  wire [7:0]  GPIO_IN,
     output wire [7:0]  GPIO_OUT,
-    // Three AD669s (X, Y, Z) on one data bus: the analog (velocity) axes
-    output wire [15:0] DAC_D,
-    output wire [2:0]  DAC_CS_N,
-    output wire        DAC_L1_N,
-    output wire        DAC_LDAC,
     output wire        LED_RUNNING,
     output wire        LED_MAILBOX
 );
@@ -172,8 +164,8 @@ module seed_board (
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
         .gpio_out(GPIO_OUT),
-        .dac_data(DAC_D), .dac_cs_n(DAC_CS_N),
-        .dac_l1_n(DAC_L1_N), .dac_ldac(DAC_LDAC)
+        // No DAC in this build (see the header): the pins idle.
+        .dac_data(), .dac_cs_n(), .dac_l1_n(), .dac_ldac()
     );
 
     assign {Z_STEP, Y_STEP, X_STEP} = step_a;

@@ -12,7 +12,7 @@ use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::host_links::{self, SeedHostLinks};
 use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
 use crate::blocks::motion_controller::{
-    self, MotionController1, MotionController3, MotionController3Dda, MotionController6,
+    self, MotionController1, MotionController3, MotionController3Dda, MotionController3Servo, MotionController6,
 };
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
@@ -286,6 +286,24 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(MotionController3Dda::default()),
+        },
+        ModuleSpec {
+            name: "motion_controller_servo",
+            block: "motion_controller",
+            summary: motion_controller::SUMMARY_SERVO,
+            parameters: &[
+                ("K", "3", "axes"),
+                ("N", "4", "FIFO depth 2^N = 16 periods per axis"),
+                ("T", "16", "step timing register width"),
+                ("P", "8", "each output stage's pending-step count width: +127 / -128 steps"),
+                ("UNIFORM", "false", "no uniform pulse generators: every axis runs its DDA (CONFIG.DDA_ONLY = 1)"),
+                ("ANALOG", "true", "analog outputs: an AD669 per axis, AXIS_CONFIG.ANALOG (CONFIG.ANALOG = 1)"),
+            ],
+            port_docs: motion_controller::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(MotionController3Servo::default()),
         },
         ModuleSpec {
             name: "sync_fifo_bridge",

@@ -14,7 +14,7 @@ use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
-use crate::blocks::motion_controller::{MotionController3, MotionController3Dda};
+use crate::blocks::motion_controller::{MotionController3, MotionController3Servo};
 use crate::host::servo::{DriveScale, ServoMotor};
 use crate::sim::quadrature_state;
 use crate::regmap::RegisterMap;
@@ -136,7 +136,7 @@ impl RtlBus {
         })
     }
 
-    /// The analog build (`motion_controller_dda`) at `clock_hz`, with an
+    /// The analog build (`motion_controller_servo`) at `clock_hz`, with an
     /// analog servo on each axis that has a motor in `servos`: its AD669 on
     /// the DAC pins (channel k, two's complement) drives `scale`'s volts
     /// into the motor, whose encoder feeds the axis's encoder pins. The
@@ -149,8 +149,8 @@ impl RtlBus {
         clock_hz: f64,
     ) -> Result<Self, SimError> {
         let mut bus = Self::new(backend, vcd)?;
-        bus.rtl = stepper(backend, "motion_controller_dda", MotionController3Dda::default(), vcd)?;
-        bus.outputs = vec![0; MotionController3Dda::output_names().len()];
+        bus.rtl = stepper(backend, "motion_controller_servo", MotionController3Servo::default(), vcd)?;
+        bus.outputs = vec![0; MotionController3Servo::output_names().len()];
         bus.servos = servos.map(|m| {
             m.map(|motor| ServoPlant {
                 motor,

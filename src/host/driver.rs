@@ -218,7 +218,7 @@ impl<B: ControllerBus> Driver<B> {
             return Err(DriverError::Config(if analog {
                 format!("axis {axis} cannot be both uniform and analog")
             } else {
-                format!("axis {axis} as an analog axis needs a controller with analog outputs (motion_controller_dda); this one's CONFIG.ANALOG reads 0")
+                format!("axis {axis} as an analog axis needs a controller with analog outputs (motion_controller_servo); this one's CONFIG.ANALOG reads 0")
             }));
         }
         driver.configure()?;

@@ -24,7 +24,7 @@ pub struct SimulationOptions {
     pub clock_hz: f64,
     /// Per axis: the uniform pulse generator instead of the DDA.
     pub uniform: [bool; 3],
-    /// Per axis: an analog servo (the `motion_controller_dda` build, the
+    /// Per axis: an analog servo (the `motion_controller_servo` build, the
     /// default [`ServoMotor`], [`ServoGains`] and [`DriveScale`]: the path's
     /// steps are the motor's encoder counts).
     pub servo: [bool; 3],
@@ -181,7 +181,7 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         return Err(format!("axis {} cannot be both uniform and an analog servo", ["x", "y", "z"][axis]));
     }
     if servo && options.uniform.iter().any(|&u| u) {
-        return Err("--uniform needs the motion_controller build, --servo the motion_controller_dda build (DDA only): use one of them".into());
+        return Err("--uniform needs the motion_controller build, --servo the motion_controller_servo build (DDA only): use one of them".into());
     }
     let period_s = tick_divisor as f64 * period_ticks as f64 / options.clock_hz;
     let mut bus = if servo {

@@ -1,4 +1,4 @@
-//! Analog axes of `motion_controller_dda` (`ANALOG` = true) at the pins:
+//! Analog axes of `motion_controller_servo` (`ANALOG` = true) at the pins:
 //! a behavioral bank of AD669s on the DAC pins, against what the FIFOs
 //! were given. Per period every analog axis's code leaves in one update
 //! with one LDAC, at a fixed lag after the boundary; the step axes keep
@@ -308,4 +308,23 @@ fn a_code_toward_an_active_limit_never_reaches_the_output() {
         seen |= bank.code(0) == -3000;
     }
     assert!(seen, "the code away from the limit reached the output");
+}
+
+/// 3 x 10^5 clocks of the chaos traffic (random ANALOG bits, DAC_TIMING,
+/// DAC_CONTROL and DAC_STATUS writes, DAC_APPLIED reads among the rest) on
+/// the exported `motion_controller_servo` compiled by Verilator, in
+/// lockstep with the model built the same way (about 1 s).
+#[test]
+fn servo_build_matches_its_model_under_random_traffic() {
+    let backend = motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator).unwrap();
+    let run = crate::motion_controller::chaos_run_on(Analog3::on(backend), 0xdda_0009, 300_000);
+    assert_eq!(run.status_seen, crate::motion_controller::ALL_STATUS, "every STATUS bit seen set: {:#x}", run.status_seen);
+    run.assert_busy("K=3 servo", 60_000, 3_000, 75);
+}
+
+/// The exported `motion_controller_servo.v` in Icarus and Verilator, cycle
+/// for cycle against the Rust simulation.
+#[test]
+fn exported_servo_verilog_matches_rust_in_icarus_and_verilator() {
+    crate::motion_controller::cross_simulate_exported::<false, true>("motion_controller_servo");
 }

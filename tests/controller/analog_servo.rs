@@ -126,7 +126,7 @@ fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
 }
 
 /// End to end: `examples/square.path` with X as an analog servo on the
-/// exported `motion_controller_dda` (compiled), Y and Z stepping. The host
+/// exported `motion_controller_servo` (compiled), Y and Z stepping. The host
 /// closes X's loop once per period through the controller's FIFO, DAC and
 /// encoder; X ends within a count of the path's end, Y and Z exactly, and
 /// the following error is reported.
@@ -187,5 +187,5 @@ fn simulate_names_a_bad_servo_option() {
     let stderr = run(&["--servo", "x", "--uniform", "x"]);
     assert!(stderr.contains("axis x cannot be both uniform and an analog servo"), "{stderr}");
     let stderr = run(&["--servo", "x", "--uniform", "y"]);
-    assert!(stderr.contains("--uniform needs the motion_controller build, --servo the motion_controller_dda build"), "{stderr}");
+    assert!(stderr.contains("--uniform needs the motion_controller build, --servo the motion_controller_servo build"), "{stderr}");
 }

@@ -54,9 +54,9 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         let model = MotionControllerModel::new(K, N as u32, UNIFORM, ANALOG).unwrap();
         let module = match (UNIFORM, ANALOG) {
             (true, false) => "motion_controller",
-            (false, true) => "motion_controller_dda",
-            (true, true) => "motion_controller_analog",
-            (false, false) => "motion_controller_dda_steps",
+            (false, true) => "motion_controller_servo",
+            (true, true) => "motion_controller_uniform_servo",
+            (false, false) => "motion_controller_dda",
         };
         let rtl = stepper(backend, module, MotionController::<K, N, NP1, UNIFORM, ANALOG>::default(), None)
             .unwrap_or_else(|e| panic!("{e}"));

@@ -797,8 +797,12 @@ pub(crate) fn cross_simulate_exported<const U: bool, const A: bool>(module: &str
 /// Rust map's numbers.
 #[test]
 fn the_committed_c_header_compiles_and_agrees_with_the_map() {
-    for (name, uniform) in [("motion_controller_regs", true), ("motion_controller_dda_regs", false)] {
-        let map = register_map(3, 4, uniform, !uniform).unwrap();
+    for (name, uniform, analog) in [
+        ("motion_controller_regs", true, false),
+        ("motion_controller_dda_regs", false, false),
+        ("motion_controller_servo_regs", false, true),
+    ] {
+        let map = register_map(3, 4, uniform, analog).unwrap();
         let header = repo_root().join("rtl-out").join(format!("{name}.h"));
         assert_eq!(
             std::fs::read_to_string(&header).unwrap(),

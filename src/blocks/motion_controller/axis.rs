@@ -124,9 +124,14 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// The axis is an analog axis in this run (`AXIS_CONFIG.ANALOG`,
     /// latched at the start; always 0 in a build without the DAC).
     pub analog: Signal<Out, Bit>,
-    /// The analog code of the running period: the popped entry, saturated
-    /// to 16 bits signed (valid from the clock after the pop).
+    /// The analog code of the running period: the popped entry's low 16
+    /// bits (valid from the clock after the pop); the controller saturates
+    /// it with `code_out_of_range` and `code_negative`, once for all axes.
     pub dac_code: Signal<Out, Bits<DAC_BITS>>,
+    /// The popped entry does not fit 16 bits signed.
+    pub code_out_of_range: Signal<Out, Bit>,
+    /// The popped entry is negative.
+    pub code_negative: Signal<Out, Bit>,
 
     fifo: CommandFifo<N, NP1>,
     dda: DdaIntegrator<PERIOD_BITS>,
@@ -197,8 +202,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// axis moves toward its forward / backward limit (for the limit cut).
     code_forward: DFF<Bit>,
     code_backward: DFF<Bit>,
-    /// The popped entry as a 16-bit code (saturated).
-    code_value: Signal<Local, Bits<DAC_BITS>>,
+    /// The popped entry as a code is not 0 (saturated or not).
+    code_nonzero: Signal<Local, Bit>,
     /// Direction of the period loaded into the uniform generator, and of
     /// the one it is running.
     uniform_loaded_forward: DFF<Bit>,
@@ -249,8 +254,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     has_analog: Constant<Bit>,
     /// The bits of an entry above a 16-bit signed code, with its sign.
     above_code: Constant<Bits<32>>,
-    code_max: Constant<Bits<DAC_BITS>>,
-    code_min: Constant<Bits<DAC_BITS>>,
     zero_code: Constant<Bits<DAC_BITS>>,
     bit0_32: Constant<Bits<32>>,
     bit16_32: Constant<Bits<32>>,
@@ -355,6 +358,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             div_remainder: Default::default(),
             analog: Default::default(),
             dac_code: Default::default(),
+            code_out_of_range: Default::default(),
+            code_negative: Default::default(),
             fifo: Default::default(),
             dda: Default::default(),
             uniform: Default::default(),
@@ -393,7 +398,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             code_wide: Default::default(),
             code_forward: Default::default(),
             code_backward: Default::default(),
-            code_value: Default::default(),
+            code_nonzero: Default::default(),
             uniform_loaded_forward: Default::default(),
             uniform_running_forward: Default::default(),
             uniform_ready_prev: Default::default(),
@@ -428,8 +433,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             has_uniform: Constant::new(uniform),
             has_analog: Constant::new(analog),
             above_code: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(DAC_BITS as u32 - 1)).into()),
-            code_max: Constant::new(crate::blocks::width_mask(DAC_BITS as u32 - 1).into()),
-            code_min: Constant::new((1u64 << (DAC_BITS - 1)).into()),
             zero_code: Constant::new(0u64.into()),
             bit0_32: Constant::new((1u64 << 0).into()),
             bit16_32: Constant::new((1u64 << 16).into()),
@@ -583,17 +586,13 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.code_wide.d.next = ((self.fifo.head.val() & self.above_code.val()) != self.zero32.val())
                 & ((self.fifo.head.val() & self.above_code.val()) != self.above_code.val());
         }
-        // The analog code, saturated to 16 bits signed. (A local, so that
-        // the output is assigned once: see the controller's divider grant.)
-        self.code_value.next = self.popped.q.val().get_bits::<DAC_BITS>(0);
-        if self.code_wide.q.val() {
-            if self.popped.q.val().get_bit(31) {
-                self.code_value.next = self.code_min.val();
-            } else {
-                self.code_value.next = self.code_max.val();
-            }
-        }
-        self.dac_code.next = self.code_value.val();
+        // The analog code; the controller saturates it (one saturator after
+        // its axis multiplexer, not one per axis).
+        self.dac_code.next = self.popped.q.val().get_bits::<DAC_BITS>(0);
+        self.code_out_of_range.next = self.code_wide.q.val();
+        self.code_negative.next = self.popped.q.val().get_bit(31);
+        self.code_nonzero.next =
+            (self.popped.q.val().get_bits::<DAC_BITS>(0) != self.zero_code.val()) | self.code_wide.q.val();
         self.analog.next = self.analog_active.q.val();
         self.low_half.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
         if self.popped.q.val().get_bit(31) {
@@ -659,8 +658,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
                 self.integrand.d.next = self.count.val();
             }
             if self.analog_active.q.val() {
-                self.code_forward.d.next =
-                    !self.popped.q.val().get_bit(31) & (self.code_value.val() != self.zero_code.val());
+                self.code_forward.d.next = !self.popped.q.val().get_bit(31) & self.code_nonzero.val();
                 self.code_backward.d.next = self.popped.q.val().get_bit(31);
             }
         }

@@ -215,7 +215,7 @@
 //!   reset values (their flip-flops hold the value XOR the reset value), so
 //!   limits and alarms are enabled from the first clock.
 //!
-//! ## Analog axes (build option `ANALOG`; on in `motion_controller_dda`)
+//! ## Analog axes (build option `ANALOG`; on in `motion_controller_servo`)
 //! An axis with `AXIS_CONFIG.ANALOG` set (taken when RUN starts) drives a
 //! servo amplifier in velocity mode through its own DAC instead of
 //! step/dir: the DACs are a [`DacInterface`](crate::blocks::dac_interface)
@@ -296,9 +296,12 @@
 //! * `motion_controller` ([`MotionController3`]): uniform generators, no
 //!   analog outputs (with the board's bus adapter it fills 91 % of an
 //!   iCE40 HX8K: the DAC does not fit beside it);
-//! * `motion_controller_dda` ([`MotionController3Dda`]): DDA only, with
-//!   the analog outputs: the seed's card (step and AD669 servo drives),
-//!   small enough for an iCE40 HX8K with the host links and mailbox.
+//! * `motion_controller_dda` ([`MotionController3Dda`]): DDA only, no
+//!   analog outputs: small enough for an iCE40 HX8K with the host links
+//!   and mailbox with 15 % of it free (the seed card, `seed_board.v`);
+//! * `motion_controller_servo` ([`MotionController3Servo`]): DDA only,
+//!   with the analog outputs (step and AD669 servo drives). With the host
+//!   links it needs 86 % of an HX8K: the seed card does not take it yet.
 //!
 //! Without the uniform generators the ports are the same; for software:
 //! * `CONFIG.DDA_ONLY` reads 1 (0 in the full build, and in cores older
@@ -412,9 +415,13 @@ const IRQ_COUNT: usize = irq::COUNT;
 pub type MotionController3 = MotionController<3, 4, 5, true, false>;
 
 /// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
-/// 16-entry FIFOs, no uniform pulse generators, the analog outputs (see
+/// 16-entry FIFOs, no uniform pulse generators, no analog outputs (see
 /// "Build options").
-pub type MotionController3Dda = MotionController<3, 4, 5, false, true>;
+pub type MotionController3Dda = MotionController<3, 4, 5, false, false>;
+
+/// The exported servo configuration (`motion_controller_servo`): the
+/// DDA-only controller with the analog outputs (see "Build options").
+pub type MotionController3Servo = MotionController<3, 4, 5, false, true>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
@@ -445,7 +452,11 @@ pub const SUMMARY: &str =
 
 /// The DDA-only build's line (`motion_controller_dda`).
 pub const SUMMARY_DDA: &str =
-    "motion controller, DDA interpolators only (no uniform pulse generators), with analog outputs: K step or analog (AD669 DAC) axes with encoders, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
+    "motion controller, DDA interpolators only (no uniform pulse generators): K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
+
+/// The servo build's line (`motion_controller_servo`).
+pub const SUMMARY_SERVO: &str =
+    "motion controller, DDA interpolators only, with analog outputs: K step or analog (AD669 DAC, velocity servo) axes with encoders, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
 pub const PORT_DOCS: &[(&str, &str)] = &[
@@ -572,6 +583,18 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize, co
     analog_axes: Signal<Local, Bits<K>>,
     dac_load: Signal<Local, Bits<K>>,
     dac_code: Signal<Local, Bits<DAC_BITS>>,
+    /// The walked axis's entry does not fit 16 bits / is negative.
+    walk_wide: Signal<Local, Bit>,
+    walk_negative: Signal<Local, Bit>,
+    code_max: Constant<Bits<DAC_BITS>>,
+    code_min: Constant<Bits<DAC_BITS>>,
+    /// The forwarded register's DAC address: its low 3 bits, and bits 4 and
+    /// 3 both from `dac_applied_hit` (the DAC's globals are below 8, its
+    /// APPLIED at 0x18 + k): its CODE addresses (0x10 + k, bit 4 without
+    /// bit 3) cannot occur, and synthesis removes their logic.
+    dac_low: Signal<Local, Bits<5>>,
+    dac_applied_hit: Signal<Local, Bit>,
+    dac_applied_bits: Constant<Bits<5>>,
     /// RUN falls (not by an abort): the analog channels go to 0.
     stop_zero: Signal<Local, Bit>,
     dac_hit: Signal<Local, Bit>,
@@ -760,6 +783,13 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         let dac_map = crate::blocks::dac_interface::registers::register_map(K, DAC_BITS)
             .expect("a dac_interface of K channels");
         let dac_applied = dac_map.register("APPLIED").expect("the DAC's APPLIED").address as u64;
+        // The forwarded addresses are built so that CODE's cannot occur
+        // (see `dac_low`): the DAC's map must keep this layout.
+        assert_eq!(dac_applied, 0b11000, "the DAC's APPLIED moved: dac_address builds 0x18 + k");
+        assert_eq!(crate::blocks::dac_interface::registers::CODE_BASE, 0b10000, "the DAC's CODE moved");
+        for (_, _, name) in registers::DAC_GLOBAL {
+            assert!(dac_map.register(name).expect("a DAC register").address < 8, "DAC {name} moved above 7");
+        }
         let reg = |name: &str| map.register(name).expect("the controller's own register");
         let config = reg("CONFIG").reset_value();
         let axis_config_mask = reg("AXIS_CONFIG").rw_mask();
@@ -802,6 +832,13 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             analog_axes: Default::default(),
             dac_load: Default::default(),
             dac_code: Default::default(),
+            walk_wide: Default::default(),
+            walk_negative: Default::default(),
+            code_max: Constant::new(crate::blocks::width_mask(DAC_BITS as u32 - 1).into()),
+            code_min: Constant::new((1u64 << (DAC_BITS - 1)).into()),
+            dac_low: Default::default(),
+            dac_applied_hit: Default::default(),
+            dac_applied_bits: Constant::new(0b11000u64.into()),
             stop_zero: Default::default(),
             dac_hit: Default::default(),
             dac_address: Default::default(),
@@ -811,7 +848,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
                 Constant::new((dac_map.register(registers::DAC_GLOBAL[i].2).expect("a dac_interface register").address as u64).into())
             }),
             a_dac_applied: array_init::array_init(|k| a8(AXIS_BASE + k as u32 * AXIS_STRIDE + registers::axis::DAC_APPLIED)),
-            d_dac_applied: array_init::array_init(|k| Constant::new((dac_applied + k as u64).into())),
+            d_dac_applied: array_init::array_init(|k| Constant::new((k as u64).into())),
             zero5: Constant::new(0u64.into()),
             last_axis: Constant::new((1u64 << (K - 1)).into()),
             zero_code: Constant::new(0u64.into()),
@@ -1276,9 +1313,21 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         }
         self.dac_load.next = self.walk_now.val() & self.analog_axes.val();
         self.dac_code.next = self.zero_code.val();
+        self.walk_wide.next = false;
+        self.walk_negative.next = false;
         for i in 0..K {
             if (self.walk_now.val() & self.axis_bit[i].val()) != self.zero_k.val() {
                 self.dac_code.next = self.axes[i].dac_code.val();
+                self.walk_wide.next = self.axes[i].code_out_of_range.val();
+                self.walk_negative.next = self.axes[i].code_negative.val();
+            }
+        }
+        // An entry beyond 16 bits signed saturates.
+        if self.walk_wide.val() {
+            if self.walk_negative.val() {
+                self.dac_code.next = self.code_min.val();
+            } else {
+                self.dac_code.next = self.code_max.val();
             }
         }
         self.dac_walk.d.next = self.walk_now.val() << 1;
@@ -1294,18 +1343,24 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         }
         // The DAC's registers on our bus.
         self.dac_hit.next = false;
-        self.dac_address.next = self.zero5.val();
+        self.dac_applied_hit.next = false;
+        self.dac_low.next = self.zero5.val();
         for i in 0..3 {
             if self.bus_address.val() == self.a_dac_global[i].val() {
                 self.dac_hit.next = self.has_analog.val();
-                self.dac_address.next = self.d_dac_global[i].val();
+                self.dac_low.next = self.d_dac_global[i].val();
             }
         }
         for i in 0..K {
             if self.bus_address.val() == self.a_dac_applied[i].val() {
                 self.dac_hit.next = self.has_analog.val();
-                self.dac_address.next = self.d_dac_applied[i].val();
+                self.dac_applied_hit.next = true;
+                self.dac_low.next = self.d_dac_applied[i].val();
             }
+        }
+        self.dac_address.next = self.dac_low.val();
+        if self.dac_applied_hit.val() {
+            self.dac_address.next = self.dac_low.val() | self.dac_applied_bits.val();
         }
         self.dac.reset.next = self.reset.val();
         self.dac.bus_address.next = self.dac_address.val();
