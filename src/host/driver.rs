@@ -168,7 +168,7 @@ pub struct Driver<B: ControllerBus> {
 }
 
 mod servo_run;
-pub use servo_run::ServoRunReport;
+pub use servo_run::{ServoRunReport, SERVO_LEAD, SETTLED_PERIODS, SETTLE_PERIODS};
 
 impl<B: ControllerBus> Driver<B> {
     /// Checks the configuration, reads the controller's identity and build

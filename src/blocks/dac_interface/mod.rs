@@ -144,8 +144,8 @@
 //!
 //! ## Resources
 //! The exported K = 3, W = 16 (yosys `synth_ice40`, nextpnr-ice40 HX8K,
-//! `rtl-out/synthesis-report.md`): 304 LUT4, 285 DFF, 475 logic cells,
-//! Fmax 141.6 MHz (median of 5 seeds). Of the flip-flops, 3 x 3 x W hold
+//! `rtl-out/synthesis-report.md`): 402 LUT4, 285 DFF, 525 logic cells,
+//! Fmax 129.8 MHz (median of 5 seeds). Of the flip-flops, 3 x 3 x W hold
 //! the staged, running and applied codes, and 64 the timing register and
 //! its copy for the running update.
 

@@ -1,7 +1,7 @@
 //! # `host_links`: the seed card's DSP and PC buses, the controller's registers and the mailbox
 //!
 //! The seed card has two masters on the FPGA: a TMS320F28335 on its 16-bit
-//! external interface (XINTF: one zone chip select, XWE, XRD, XA, XD[15:0],
+//! external interface (XINTF: one zone chip select, XWE, XRD, XA, XD\[15:0\],
 //! XREADY) and a CH365 PCI bridge with an 8-bit data bus. The DSP drives
 //! the motion controller's 32-bit registers and shares a dual-port RAM
 //! mailbox with the PC. This block is that whole host side, composed of the
