@@ -407,6 +407,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  dac_read_sel__d;
     wire  dac_read_sel__q;
     reg  dac_read_sel__clock;
+    reg  stop_zero_d__d;
+    wire  stop_zero_d__q;
+    reg  stop_zero_d__clock;
     reg  divider__clock;
     reg  divider__reset;
     reg  divider__start;
@@ -780,6 +783,11 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .q(dac_read_sel__q),
         .clock(dac_read_sel__clock)
     );
+    motion_controller_servo__stop_zero_d stop_zero_d(
+        .d(stop_zero_d__d),
+        .q(stop_zero_d__q),
+        .clock(stop_zero_d__clock)
+    );
     motion_controller_servo__divider divider(
         .clock(divider__clock),
         .reset(divider__reset),
@@ -907,6 +915,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         dac_walk__clock = clock;
         dac_update__clock = clock;
         dac_read_sel__clock = clock;
+        stop_zero_d__clock = clock;
         run__d = run__q;
         irq_enable__d = irq_enable__q;
         tick_divisor__d = tick_divisor__q;
@@ -929,6 +938,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         dac_walk__d = dac_walk__q;
         dac_update__d = dac_update__q;
         dac_read_sel__d = dac_read_sel__q;
+        stop_zero_d__d = stop_zero_d__q;
         tick_divider__clock = clock;
         watchdog__clock = clock;
         interrupts__clock = clock;
@@ -1330,7 +1340,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         dac_walk__d = walk_now << 32'h1;
         dac_update__d = ((walk_now & last_axis) != zero_k) & (analog_axes != zero_k);
         stop_zero = has_analog & run__q & (underrun | halt) & ~abort;
-        if (stop_zero) begin
+        stop_zero_d__d = stop_zero;
+        if (stop_zero_d__q) begin
             dac_load = analog_axes;
             dac_code = zero_code;
             dac_walk__d = zero_k;
@@ -1603,6 +1614,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
             dac_walk__d = zero_k;
             dac_update__d = 1'b0;
             dac_read_sel__d = 1'b0;
+            stop_zero_d__d = 1'b0;
         end
     end
 
@@ -28511,6 +28523,25 @@ module motion_controller_servo__stop_cause(d,q,clock);
     end
 
 endmodule // motion_controller_servo__stop_cause
+
+
+module motion_controller_servo__stop_zero_d(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__stop_zero_d
 
 
 module motion_controller_servo__tick_divider(clock,reset,enable,divisor,strobe);

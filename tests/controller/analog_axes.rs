@@ -154,7 +154,7 @@ fn each_period_s_codes_leave_in_one_update_at_a_fixed_lag_and_an_underrun_sets_0
     let underrun = 1 + codes.len() as u64 * period as u64;
     let zero = rises.last().unwrap() - underrun;
     println!("LDAC {} clocks after each boundary; the underrun's 0 V LDAC {zero} clocks after it", first - 1);
-    assert_eq!(zero, 2 + 3 * (s + w + h), "the 0 V update after the underrun");
+    assert_eq!(zero, 3 + 3 * (s + w + h), "the 0 V update after the underrun");
 
     crate::motion_controller::drain(&mut b);
     assert_eq!(b.pin_steps(1), 9, "the step axis took its steps");

@@ -236,7 +236,7 @@
 //!   (`DAC_STATUS.DEFERRED`) and the outputs lag further.
 //! * **Stop and underrun set 0 V.** When RUN falls by an underrun or a RUN
 //!   = 0 write, every analog channel gets code 0 and an update (its LDAC
-//!   2 + K (S + Wd + H) clocks later, after the running update if one
+//!   3 + K (S + Wd + H) clocks later, after the running update if one
 //!   runs). A velocity held through an underrun would keep the motor
 //!   turning with nobody closing the loop, so the analog outputs stop as
 //!   the step axes do.
@@ -388,7 +388,7 @@ pub mod latency {
     /// as 1): the codes are loaded one axis a clock after the pop, then the
     /// DAC writes K first ranks. 29 clocks at K = 3 and the reset timing.
     /// When RUN falls by an underrun or a stop (clock c), the 0 V update's
-    /// `dac_ldac` rises at c + 2 + K (S + Wd + H), or after the running
+    /// `dac_ldac` rises at c + 3 + K (S + Wd + H), or after the running
     /// update's if one runs (it is deferred, not torn).
     pub const fn analog_ldac(axes: u64, setup: u64, width: u64, hold: u64) -> u64 {
         axes + 2 + axes * (at_least_1(setup) + at_least_1(width) + at_least_1(hold))
@@ -597,8 +597,10 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize, co
     dac_low: Signal<Local, Bits<5>>,
     dac_applied_hit: Signal<Local, Bit>,
     dac_applied_bits: Constant<Bits<5>>,
-    /// RUN falls (not by an abort): the analog channels go to 0.
+    /// RUN falls (not by an abort): the analog channels go to 0, in the
+    /// next clock (registered: the underrun decode is long).
     stop_zero: Signal<Local, Bit>,
+    stop_zero_d: DFF<Bit>,
     dac_hit: Signal<Local, Bit>,
     dac_address: Signal<Local, Bits<5>>,
     read_out: Signal<Local, Bits<32>>,
@@ -842,6 +844,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             dac_applied_hit: Default::default(),
             dac_applied_bits: Constant::new(0b11000u64.into()),
             stop_zero: Default::default(),
+            stop_zero_d: Default::default(),
             dac_hit: Default::default(),
             dac_address: Default::default(),
             read_out: Default::default(),
@@ -1012,7 +1015,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             pop_d,
             dac_walk,
             dac_update,
-            dac_read_sel
+            dac_read_sel,
+            stop_zero_d
         );
         clock!(self, clock, tick_divider, watchdog, interrupts, io, divider, dac);
 
@@ -1337,7 +1341,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             & (self.analog_axes.val() != self.zero_k.val());
         self.stop_zero.next = self.has_analog.val() & self.run.q.val() & (self.underrun.val() | self.halt.val())
             & !self.abort.val();
-        if self.stop_zero.val() {
+        self.stop_zero_d.d.next = self.stop_zero.val();
+        if self.stop_zero_d.q.val() {
             self.dac_load.next = self.analog_axes.val();
             self.dac_code.next = self.zero_code.val();
             self.dac_walk.d.next = self.zero_k.val();
@@ -1531,6 +1536,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             self.dac_walk.d.next = self.zero_k.val();
             self.dac_update.d.next = false;
             self.dac_read_sel.d.next = false;
+            self.stop_zero_d.d.next = false;
         }
     }
 }

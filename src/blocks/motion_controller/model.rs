@@ -677,6 +677,9 @@ pub struct MotionControllerModel {
     dac_walk: u64,
     dac_update: bool,
     dac_read_sel: bool,
+    /// RUN fell (not by an abort) in the last clock: the analog channels
+    /// go to 0 now.
+    stop_zero_d: bool,
     /// The controller's and the DAC's address of each forwarded register.
     dac_addresses: Vec<(u32, u64)>,
 }
@@ -747,6 +750,7 @@ impl MotionControllerModel {
             dac_walk: 0,
             dac_update: false,
             dac_read_sel: false,
+            stop_zero_d: false,
             dac_addresses,
         })
     }
@@ -1009,7 +1013,8 @@ impl MotionControllerModel {
         let mut load_code = (0..axes).find(|k| walk_now >> k & 1 == 1).map_or(0, |k| self.axes[k].dac_code());
         next.dac_walk = (walk_now << 1) & crate::blocks::width_mask(axes as u32);
         next.dac_update = walk_now >> (axes - 1) & 1 == 1 && analog_axes != 0;
-        if self.analog && self.run && (underrun || halt) && !abort {
+        next.stop_zero_d = self.analog && self.run && (underrun || halt) && !abort;
+        if self.stop_zero_d {
             load = analog_axes;
             load_code = 0;
             next.dac_walk = 0;
@@ -1070,6 +1075,7 @@ impl MotionControllerModel {
             next.dac_walk = 0;
             next.dac_update = false;
             next.dac_read_sel = false;
+            next.stop_zero_d = false;
         }
         *self = next;
         self.outputs()
