@@ -16,7 +16,7 @@ use crate::blocks::motion_controller::model::{
 };
 use crate::blocks::motion_controller::{MotionController3, MotionController3Servo};
 use crate::host::servo::{DriveScale, ServoMotor};
-use crate::sim::quadrature_state;
+use crate::sim::{quadrature_state, Ad669Bank};
 use crate::regmap::RegisterMap;
 use crate::sim::{stepper, Backend, SimError, SimulatedEncoder, Stepper, VectorPorts};
 
@@ -96,18 +96,18 @@ pub struct RtlBus {
     /// Per axis: an analog servo on the DAC pins instead of the step
     /// loopback.
     servos: [Option<ServoPlant>; 3],
+    /// The servos' DACs, one per axis on the controller's DAC pins.
+    dacs: Ad669Bank,
     /// Seconds per clock (for the servo motors).
     clock_s: f64,
 }
 
-/// An analog axis's plant: its AD669 (two latch ranks on the controller's
-/// DAC pins), the drive and motor it commands, and the motor's encoder.
+/// An analog axis's plant: the drive and motor its DAC commands, and the
+/// motor's encoder.
 #[derive(Clone, Debug)]
 struct ServoPlant {
     motor: ServoMotor,
     scale: DriveScale,
-    first_rank: u64,
-    second_rank: u64,
 }
 
 impl RtlBus {
@@ -132,6 +132,7 @@ impl RtlBus {
             sample_every: 0,
             schedule: PinSchedule::default(),
             servos: [None, None, None],
+            dacs: Ad669Bank::new(3),
             clock_s: 0.0,
         })
     }
@@ -151,14 +152,7 @@ impl RtlBus {
         let mut bus = Self::new(backend, vcd)?;
         bus.rtl = stepper(backend, "motion_controller_servo", MotionController3Servo::default(), vcd)?;
         bus.outputs = vec![0; MotionController3Servo::output_names().len()];
-        bus.servos = servos.map(|m| {
-            m.map(|motor| ServoPlant {
-                motor,
-                scale,
-                first_rank: 0,
-                second_rank: 0,
-            })
-        });
+        bus.servos = servos.map(|m| m.map(|motor| ServoPlant { motor, scale }));
         bus.clock_s = 1.0 / clock_hz;
         Ok(bus)
     }
@@ -247,17 +241,10 @@ impl ControllerBus for RtlBus {
             self.window_steps[i] += e.total - before;
         }
         let cycles = self.rtl.cycles();
+        self.dacs.clock(out.dac.data, out.dac.cs_n, out.dac.l1_n, out.dac.ldac);
         for (k, servo) in self.servos.iter_mut().enumerate() {
             if let Some(plant) = servo {
-                // The AD669: level-sensitive ranks.
-                if out.dac.cs_n >> k & 1 == 0 && !out.dac.l1_n {
-                    plant.first_rank = out.dac.data;
-                }
-                if out.dac.ldac {
-                    plant.second_rank = plant.first_rank;
-                }
-                let code = plant.second_rank as u16 as i16 as i64;
-                plant.motor.advance(plant.scale.volts(code), self.clock_s);
+                plant.motor.advance(plant.scale.volts(self.dacs.code(k)), self.clock_s);
             }
         }
         if self.sample_every > 0 && cycles % self.sample_every == 0 {

@@ -6,6 +6,7 @@
 //! Verilog compiled by Verilator, another 70 times faster on the whole
 //! controller. [`Stepper`] drives either, chosen at run time ([`Backend`]).
 
+mod ad669;
 mod backend;
 pub mod compiled;
 mod encoder;
@@ -13,6 +14,7 @@ mod harness;
 mod ports;
 mod waveform;
 
+pub use ad669::Ad669Bank;
 pub use backend::{stepper, Backend, CompiledStepper, SimError, Stepper, BACKEND_VARIABLE};
 pub use compiled::{CompiledError, CompiledModel};
 

@@ -11,6 +11,7 @@ use motion_hdl::blocks::dac_interface::safe_latency;
 use motion_hdl::blocks::motion_controller::latency;
 use motion_hdl::blocks::motion_controller::model::DacPins;
 use motion_hdl::blocks::motion_controller::registers::StopCause;
+use motion_hdl::sim::Ad669Bank;
 
 /// The exported analog build.
 type Analog3 = Bench<3, 4, 5, false, true>;
@@ -18,33 +19,10 @@ type Analog3 = Bench<3, 4, 5, false, true>;
 /// DAC_TIMING at reset: S, Wd, H, L.
 const TIMING: (u64, u64, u64, u64) = (1, 5, 2, 5);
 
-/// Three AD669s on the controller's DAC pins: a chip's first rank is
-/// transparent while its CS and the shared L1 are low, every second rank
-/// while LDAC is high.
-#[derive(Clone, Debug, Default)]
-struct Ad669Bank {
-    first: [u64; 3],
-    second: [u64; 3],
-}
-
-impl Ad669Bank {
-    /// One clock of pins; true on an LDAC rise.
-    fn clock(&mut self, pins: &DacPins, ldac_before: bool) -> bool {
-        for k in 0..3 {
-            if pins.cs_n >> k & 1 == 0 && !pins.l1_n {
-                self.first[k] = pins.data;
-            }
-        }
-        if pins.ldac {
-            self.second = self.first;
-        }
-        pins.ldac && !ldac_before
-    }
-
-    /// Channel k's output as a signed code (two's complement pins).
-    fn code(&self, k: usize) -> i64 {
-        self.second[k] as u16 as i16 as i64
-    }
+/// One clock of the controller's DAC pins into a bank of AD669s; true on
+/// an LDAC rise.
+fn clock_bank(bank: &mut Ad669Bank, pins: &DacPins) -> bool {
+    bank.clock(pins.data, pins.cs_n, pins.l1_n, pins.ldac)
 }
 
 /// The code an entry becomes: saturated to 16 bits signed.
@@ -63,14 +41,12 @@ fn check_periods(
     codes: &[[i64; 3]],
     analog: [bool; 3],
 ) -> Result<Vec<u64>, String> {
-    let mut bank = Ad669Bank::default();
+    let mut bank = Ad669Bank::new(3);
     let mut rises = Vec::new();
-    let mut ldac = false;
     for (clock, pins) in trace.iter().enumerate() {
-        if bank.clock(pins, ldac) {
+        if clock_bank(&mut bank, pins) {
             rises.push(clock as u64);
         }
-        ldac = pins.ldac;
         // After a whole LDAC pulse, the outputs hold one period's codes.
         if !pins.ldac && clock > 0 && trace[clock - 1].ldac {
             let n = rises.len() - 1;
@@ -105,15 +81,20 @@ fn configure_analog(b: &mut Analog3, period: u32, analog: [bool; 3]) {
     }
 }
 
-/// Runs `codes` (one entry per axis and period; a step count on the step
-/// axes) from a RUN write; returns the DAC pins of each clock from that
-/// write until `clocks` later.
-fn run_codes(b: &mut Analog3, codes: &[[i64; 3]], clocks: u64) -> Vec<DacPins> {
+/// Queues one entry per axis for each period of `codes`.
+fn queue_periods(b: &mut Analog3, codes: &[[i64; 3]]) {
     for c in codes {
         for (axis, &n) in c.iter().enumerate() {
             b.write("FIFO_WRITE", axis as u32, n as u32);
         }
     }
+}
+
+/// Runs `codes` (one entry per axis and period; a step count on the step
+/// axes) from a RUN write; returns the DAC pins of each clock from that
+/// write until `clocks` later.
+fn run_codes(b: &mut Analog3, codes: &[[i64; 3]], clocks: u64) -> Vec<DacPins> {
+    queue_periods(b, codes);
     let mut trace = vec![b.write_then_pins("CONTROL", 0, 1)];
     for _ in 1..clocks {
         b.idle(1);
@@ -226,15 +207,10 @@ fn an_estop_at_any_clock_of_an_update_reaches_0v_within_the_bound() {
         b.pins = Default::default();
         b.idle(20);
         configure_analog(&mut b, period as u32, [true, true, true]);
-        let codes = [[20_000i64, -20_000, 12_345]; 4];
-        for c in &codes {
-            for (axis, &n) in c.iter().enumerate() {
-                b.write("FIFO_WRITE", axis as u32, n as u32);
-            }
-        }
-        let mut bank = Ad669Bank::default();
+        queue_periods(&mut b, &[[20_000, -20_000, 12_345]; 4]);
+        let mut bank = Ad669Bank::new(3);
         b.write("CONTROL", 0, 1);
-        bank.clock(&b.last.dac, false);
+        clock_bank(&mut bank, &b.last.dac);
         // The second period's update runs from clock 101 + 3: the E-stop
         // lands `offset` clocks into it (the first period's codes are out).
         let estop_at = period + 4 + offset;
@@ -243,9 +219,8 @@ fn an_estop_at_any_clock_of_an_update_reaches_0v_within_the_bound() {
             if clock == estop_at {
                 b.pins.estop = true;
             }
-            let before = b.last.dac.ldac;
             b.idle(1);
-            bank.clock(&b.last.dac, before);
+            clock_bank(&mut bank, &b.last.dac);
             if clock == estop_at - 1 {
                 assert_eq!(bank.code(0), 20_000, "offset {offset}: the first period's code is out");
             }
@@ -273,17 +248,12 @@ fn a_code_toward_an_active_limit_never_reaches_the_output() {
     configure_analog(&mut b, period as u32, [true, false, false]);
     b.pins.limit_pos = 0b001;
     b.idle(20);
-    for _ in 0..3 {
-        for (axis, n) in [5000i64, 0, 0].iter().enumerate() {
-            b.write("FIFO_WRITE", axis as u32, *n as u32);
-        }
-    }
-    let mut bank = Ad669Bank::default();
+    queue_periods(&mut b, &[[5000, 0, 0]; 3]);
+    let mut bank = Ad669Bank::new(3);
     b.write("CONTROL", 0, 1);
     for _ in 0..3 * period {
-        let before = b.last.dac.ldac;
         b.idle(1);
-        bank.clock(&b.last.dac, before);
+        clock_bank(&mut bank, &b.last.dac);
         assert_eq!(bank.code(0), 0, "the code toward the limit reached the output");
     }
     let io = b.read("IO_STATUS", 0);
@@ -294,17 +264,12 @@ fn a_code_toward_an_active_limit_never_reaches_the_output() {
     // Back off: away from the limit, still active.
     b.write("IO_COMMAND", 0, b.pack("IO_COMMAND", &[("CLEAR_LIMITS", 1)]));
     b.write("CONTROL", 0, b.pack("CONTROL", &[("FLUSH", 1)]));
-    for _ in 0..2 {
-        for (axis, n) in [-3000i64, 0, 0].iter().enumerate() {
-            b.write("FIFO_WRITE", axis as u32, *n as u32);
-        }
-    }
+    queue_periods(&mut b, &[[-3000, 0, 0]; 2]);
     b.write("CONTROL", 0, 1);
     let mut seen = false;
     for _ in 0..period + 60 {
-        let before = b.last.dac.ldac;
         b.idle(1);
-        bank.clock(&b.last.dac, before);
+        clock_bank(&mut bank, &b.last.dac);
         seen |= bank.code(0) == -3000;
     }
     assert!(seen, "the code away from the limit reached the output");

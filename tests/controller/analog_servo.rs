@@ -10,7 +10,7 @@ use motion_hdl::blocks::dac_interface::registers::register_map;
 use motion_hdl::blocks::dac_interface::DacInterface3;
 use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
 use motion_hdl::host::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
-use motion_hdl::sim::{quadrature_state, Harness};
+use motion_hdl::sim::{quadrature_state, Ad669Bank, Harness};
 
 #[test]
 fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
@@ -52,7 +52,8 @@ fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
     };
     let periods = ((total + 0.3) * 1000.0) as u64;
 
-    let (mut first, mut second) = (0u64, 0u64);
+    // The AD669 on channel 0.
+    let mut bank = Ad669Bank::new(1);
     let mut count = 0i64;
     let mut ldacs = 0;
     for clock in 0..periods * CLOCKS_PER_PERIOD {
@@ -71,15 +72,10 @@ fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
         }
         inputs.update = clock > 0 && phase == 1;
         let pins = DacOutputs::from_vector(&dac.step_vector(&inputs.to_vector()).unwrap());
-        // The AD669 on channel 0: both ranks level-sensitive.
-        if pins.dac_cs_n & 1 == 0 && !pins.dac_l1_n {
-            first = pins.dac_data;
-        }
-        if pins.dac_ldac {
-            ldacs += (second != first) as u32;
-            second = first;
-        }
-        let volts = scale.volts(second as u16 as i16 as i64);
+        let before = bank.code(0);
+        bank.clock(pins.dac_data, pins.dac_cs_n, pins.dac_l1_n, pins.dac_ldac);
+        ldacs += (bank.code(0) != before) as u32;
+        let volts = scale.volts(bank.code(0));
         motor.advance(volts, clock_s);
         let (a, b) = quadrature_state(motor.counts());
         // [reset, a, b, index, filter, clear, sample_rate, counter_mode,
