@@ -338,10 +338,16 @@ impl<B: ControllerBus> Driver<B> {
         let room = self.depth as u64 - self.field("FIFO_STATUS", "LEVEL", level)?;
         for _ in 0..room {
             let Some(c) = counts.get(*next) else { break };
-            for axis in 0..3u32 {
-                self.write("FIFO_WRITE", axis, c[axis as usize] as u32)?;
-            }
+            self.push_period(c)?;
             *next += 1;
+        }
+        Ok(())
+    }
+
+    /// Writes one period's entry of every axis to its FIFO.
+    fn push_period(&mut self, entry: &[i32; 3]) -> Result<(), DriverError> {
+        for axis in 0..3u32 {
+            self.write("FIFO_WRITE", axis, entry[axis as usize] as u32)?;
         }
         Ok(())
     }

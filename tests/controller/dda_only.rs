@@ -1,9 +1,9 @@
 //! `motion_controller_dda`: the controller built without uniform pulse
-//! generators (`UNIFORM` = false), and `motion_controller_servo` (the same
-//! with the analog outputs, `ANALOG` = true). Its RTL against the model built the same way, its step, I/O and
-//! bus pins against the full controller's when no axis selects the uniform
-//! generator or analog mode, and what firmware sees of the missing
-//! generators. (The analog axes themselves: `analog_axes.rs`.)
+//! generators (`UNIFORM` = false). Its RTL against the model built the same
+//! way, its pins against the full controller's when no axis selects the
+//! uniform generator, and what firmware sees of the missing generators.
+//! (The build with the analog outputs, `motion_controller_servo`:
+//! `analog_axes.rs`.)
 
 use crate::bench::{Bench, Lockstep};
 use crate::motion_controller::{chaos_run_on, configure, cross_simulate_exported, drain, queue, ALL_STATUS};
@@ -48,15 +48,13 @@ fn dda_only_controller_matches_its_model_for_ten_million_cycles() {
 struct Twins {
     full: Full3,
     dda: Dda3,
-    /// Every copy of AXIS_CONFIG, and its UNIFORM, INTERLEAVED and ANALOG
-    /// bits: cleared in every write to one (INTERLEAVED too, which the full
-    /// build reads back).
+    /// Every copy of AXIS_CONFIG, and its UNIFORM and INTERLEAVED bits:
+    /// cleared in every write to one (INTERLEAVED too, which the full build
+    /// reads back).
     axis_config: Vec<u32>,
     uniform_bits: u32,
-    /// CONFIG is never read: it differs by design (`DDA_ONLY`, `ANALOG`);
-    /// nor are the DAC's registers, which the full build does not have.
+    /// CONFIG is never read: it differs by design (`DDA_ONLY`).
     config: u32,
-    dac_registers: Vec<u32>,
     cycles: u64,
 }
 
@@ -66,15 +64,8 @@ impl Twins {
         let axis_config = full.map.register("AXIS_CONFIG").unwrap();
         Self {
             axis_config: axis_config.addresses().collect(),
-            uniform_bits: axis_config.pack(&[("UNIFORM", 1), ("INTERLEAVED", 1), ("ANALOG", 1)]).unwrap(),
+            uniform_bits: axis_config.pack(&[("UNIFORM", 1), ("INTERLEAVED", 1)]).unwrap(),
             config: full.address("CONFIG", 0),
-            dac_registers: Dda3::on(backend)
-                .map
-                .registers
-                .iter()
-                .filter(|r| r.name.starts_with("DAC_"))
-                .flat_map(|r| r.addresses())
-                .collect(),
             dda: Dda3::on(backend),
             full,
             cycles: 0,
@@ -102,14 +93,9 @@ impl Lockstep for Twins {
         } else {
             write_data
         };
-        let dac = self.dac_registers.contains(&address);
-        let read = read && address != self.config && !dac;
-        let write = write && !dac;
+        let read = read && address != self.config;
         let full = self.full.step(reset, address, write_data, write, read);
-        let mut dda = self.dda.step(reset, address, write_data, write, read);
-        // The DDA build's DAC writes the safe code after each reset; the
-        // full build's DAC pins stay idle.
-        dda.dac = full.dac;
+        let dda = self.dda.step(reset, address, write_data, write, read);
         assert_eq!(full, dda, "cycle {}: the full and the DDA-only controller differ", self.cycles);
         self.cycles += 1;
         full

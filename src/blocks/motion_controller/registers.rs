@@ -646,13 +646,12 @@ pub fn register_map(
             map.registers.push(r);
         }
         let applied = dac.register("APPLIED")?;
-        map.registers.push(per_axis(Register {
-            name: "DAC_APPLIED",
-            address: at(axis::DAC_APPLIED),
-            doc: "the code at this axis's DAC output (the last LDAC), signed; 0 after reset, an abort or a stop",
-            fields: applied.fields.clone(),
-            ..applied.clone()
-        }));
+        map.registers.push(per_axis(register(
+            "DAC_APPLIED",
+            at(axis::DAC_APPLIED),
+            "the code at this axis's DAC output (the last LDAC), signed; 0 after reset, an abort or a stop",
+            applied.fields.clone(),
+        )));
     }
     map.validate()?;
     Ok(map)

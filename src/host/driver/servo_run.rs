@@ -94,10 +94,7 @@ impl<B: ControllerBus> Driver<B> {
         let measured = measure(self)?;
         let mut queued = 0;
         for _ in 0..=SERVO_LEAD {
-            let entry = next_entry(queued, 0, measured);
-            for axis in 0..3u32 {
-                self.write("FIFO_WRITE", axis, entry[axis as usize] as u32)?;
-            }
+            self.push_period(&next_entry(queued, 0, measured))?;
             queued += 1;
         }
         self.write("CONTROL", 0, 1)?;
@@ -143,10 +140,7 @@ impl<B: ControllerBus> Driver<B> {
                     break;
                 }
             }
-            let entry = next_entry(queued, done, measured);
-            for axis in 0..3u32 {
-                self.write("FIFO_WRITE", axis, entry[axis as usize] as u32)?;
-            }
+            self.push_period(&next_entry(queued, done, measured))?;
             queued += 1;
             progress(queued.min(counts.len()));
         }
