@@ -7,17 +7,19 @@
 # generated C register headers in the register-map tests; g++ builds the
 # Verilator models of the compiled simulation backend; ccache keeps the
 # cross-simulation's Verilator builds from compiling Verilator's runtime
-# again for every module.
+# again for every module. yosys-smtbmc (in Debian's yosys package) and
+# the z3 solver run the formal proofs (Debian's boolector, 1.5, is too old
+# for yosys-smtbmc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-tools=(yosys iverilog vvp verilator nextpnr-ice40 gcc g++ ccache)
+tools=(yosys yosys-smtbmc z3 iverilog vvp verilator nextpnr-ice40 gcc g++ ccache)
 missing=()
 for tool in "${tools[@]}"; do
   command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 done
 if [ ${#missing[@]} -gt 0 ]; then
-  install_line="apt-get install -y yosys iverilog verilator nextpnr-ice40 gcc g++ ccache"
+  install_line="apt-get install -y yosys z3 iverilog verilator nextpnr-ice40 gcc g++ ccache"
   if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing missing FPGA tools: ${missing[*]}"
     apt-get update -qq

@@ -6,6 +6,7 @@
 
 pub mod cosim;
 pub mod families;
+pub mod formal;
 pub mod lint;
 pub mod report;
 pub mod scaling;
@@ -15,7 +16,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 /// The one line that installs every tool these checks need (Debian, as root).
-pub const INSTALL_LINE: &str = "apt-get install -y yosys iverilog verilator nextpnr-ice40";
+pub const INSTALL_LINE: &str = "apt-get install -y yosys z3 iverilog verilator nextpnr-ice40";
 
 /// A tool run failed.
 #[derive(Debug, thiserror::Error)]

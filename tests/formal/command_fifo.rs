@@ -1,0 +1,1 @@
+//! `formal/command_fifo.sv`: proofs and mutations.

@@ -1,0 +1,1 @@
+//! `formal/external_bus_adapter.sv`: proofs and mutations.

@@ -1,0 +1,1 @@
+//! `formal/interrupt_controller.sv`: proofs and mutations.

@@ -1,0 +1,14 @@
+//! Formal proofs of the blocks' port contracts (`formal/`, run by
+//! `motion_hdl::tools::formal`): each proof, and for each property file a
+//! deliberate bug that its proof must catch with a counterexample.
+
+mod support;
+
+mod command_fifo;
+mod external_bus_adapter;
+mod freq_divider;
+mod interrupt_controller;
+mod motion_controller;
+mod quadrature_decoder;
+mod step_output;
+mod watchdog;

@@ -1,0 +1,1 @@
+//! `formal/motion_controller.sv`: proofs and mutations.

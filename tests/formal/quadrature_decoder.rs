@@ -1,0 +1,1 @@
+//! `formal/quadrature_decoder.sv`: proofs and mutations.

@@ -1,0 +1,1 @@
+//! `formal/step_output.sv`: proofs and mutations.

@@ -1,0 +1,53 @@
+//! The two checks every property file gets: its proofs pass, and a
+//! deliberate bug in the block fails them with a counterexample.
+
+use motion_hdl::tools::formal::{formal_catalog, instance_verilog, prove, prove_verilog, Checks, FailedCheck, FormalSpec, Outcome};
+
+fn spec(name: &str) -> FormalSpec {
+    formal_catalog()
+        .into_iter()
+        .find(|s| s.name == name)
+        .unwrap_or_else(|| panic!("no proof named {name} in formal_catalog()"))
+}
+
+/// Proves the catalog's proof `name` (bounded check and k-induction).
+pub fn assert_proved(name: &str) {
+    let spec = spec(name);
+    let report = prove(&spec).unwrap_or_else(|e| panic!("{name}: {e}"));
+    println!(
+        "{name}: {:?}; yosys {:.2} s, bounded ({} clocks) {:.2} s, induction (k = {}) {:.2} s",
+        report.outcome,
+        report.build_time.as_secs_f64(),
+        spec.bmc_depth,
+        report.bmc_time.as_secs_f64(),
+        spec.induction_depth,
+        report.induction_time.as_secs_f64()
+    );
+    assert!(matches!(report.outcome, Outcome::Proved), "{name}: {:?}", report.outcome);
+}
+
+/// Replaces the one occurrence of `find` in the generated Verilog of proof
+/// `name` with `replace` (the bug), and checks that the bounded check of
+/// the contract alone (no induction invariants) finds a counterexample
+/// from power-up.
+pub fn assert_mutation_caught(name: &str, find: &str, replace: &str) {
+    let spec = spec(name);
+    let verilog = instance_verilog(&spec).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(
+        verilog.matches(find).count(),
+        1,
+        "{name}: the mutation's text `{find}` must occur exactly once in the generated Verilog"
+    );
+    let mutant = verilog.replacen(find, replace, 1);
+    let report = prove_verilog(&spec, &mutant, Checks::ContractBounded).unwrap_or_else(|e| panic!("{name}: {e}"));
+    match report.outcome {
+        Outcome::Counterexample { check, steps, assertion, vcd } => {
+            println!("{name} with `{find}` -> `{replace}`: {assertion} fails after {steps} clocks ({})", vcd.display());
+            assert_eq!(check, FailedCheck::Bounded, "{name}: the mutant must fail from power-up, not only in induction");
+            assert!(steps > 0, "{name}: a counterexample has at least one clock");
+            assert!(vcd.exists(), "{name}: the counterexample's VCD {} was not written", vcd.display());
+            assert!(assertion.contains(spec.property_file), "{name}: the failed assertion {assertion} is not in {}", spec.property_file);
+        }
+        Outcome::Proved => panic!("{name}: the proof passes with `{find}` replaced by `{replace}`: the properties cannot see this bug"),
+    }
+}

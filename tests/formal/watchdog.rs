@@ -1,0 +1,1 @@
+//! `formal/watchdog.sv`: proofs and mutations.
