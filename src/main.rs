@@ -8,7 +8,7 @@ use motion_hdl::export::{catalog, write_export};
 use motion_hdl::host::simulation::{simulate, SimulationOptions, Trip};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
-use motion_hdl::tools::{families, report, scaling};
+use motion_hdl::tools::{families, formal, report, scaling};
 
 /// motion-hdl: FPGA motion-control blocks, exported to Verilog.
 #[derive(Parser)]
@@ -112,6 +112,16 @@ enum Command {
         /// from power-up. Repeatable.
         #[arg(long, value_name = "INPUT@MS")]
         trip: Vec<String>,
+    },
+    /// Run the formal proofs (formal/*.sv on the blocks' generated Verilog;
+    /// yosys-smtbmc with z3): a bounded check from power-up and a
+    /// k-induction each. Prints the README's "What is proved" table with
+    /// the measured times; a failed proof prints its counterexample's
+    /// assertion, length and VCD, and exits non-zero.
+    Prove {
+        /// Only these proofs (default: all), by name (e.g. freq_divider_w4).
+        #[arg(long = "proof")]
+        proofs: Vec<String>,
     },
     /// Draw the uniform pulse generator's figures as SVG: one period of
     /// (T, N) in single-period, paper-order and interleaved form, and the
@@ -267,6 +277,34 @@ fn run(cli: Cli) -> Result<(), String> {
                 curve.display()
             );
             Ok(())
+        }
+        Command::Prove { proofs } => {
+            let specs = formal::formal_catalog();
+            let known: Vec<&str> = specs.iter().map(|s| s.name).collect();
+            if let Some(unknown) = proofs.iter().find(|p| !known.contains(&p.as_str())) {
+                return Err(format!("unknown proof `{unknown}`; proofs: {}", known.join(", ")));
+            }
+            let mut failed = Vec::new();
+            print!("{}", formal::TABLE_HEADER);
+            for spec in specs.iter().filter(|s| proofs.is_empty() || proofs.iter().any(|p| p == s.name)) {
+                let report = formal::prove(spec).map_err(|e| e.to_string())?;
+                match &report.outcome {
+                    formal::Outcome::Proved => println!("{}", formal::table_row(spec, &report)),
+                    formal::Outcome::Counterexample { check, steps, assertion, vcd } => {
+                        eprintln!(
+                            "motion-hdl: {}: {check:?} check fails: {assertion} after {steps} clocks; trace {}",
+                            spec.name,
+                            vcd.display()
+                        );
+                        failed.push(spec.name);
+                    }
+                }
+            }
+            if failed.is_empty() {
+                Ok(())
+            } else {
+                Err(format!("not proved: {}", failed.join(", ")))
+            }
         }
         Command::Export { out, testbench_out } => {
             let written = write_export(&out, &testbench_out).map_err(|e| e.to_string())?;

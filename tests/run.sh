@@ -42,7 +42,7 @@ if [ "${verilator_major:-0}" -lt 5 ]; then
   exit 1
 fi
 
-# cargo-nextest runs every test of the three binaries in one pool, the
+# cargo-nextest runs every test of the four binaries in one pool, the
 # longest first (.config/nextest.toml). It is on every machine of the
 # project's kind; elsewhere it is built from crates.io once.
 if ! cargo nextest --version >/dev/null 2>&1; then

@@ -3,6 +3,7 @@
 //! deliberate bug that its proof must catch with a counterexample.
 
 mod support;
+mod readme;
 
 mod command_fifo;
 mod external_bus_adapter;

@@ -316,3 +316,48 @@ fn failure_of(output: &str, induction: bool, depth: u32) -> (u32, String) {
     };
     (steps, assertion)
 }
+
+/// The header of the README's "What is proved" table.
+pub const TABLE_HEADER: &str = "| block | proof | instance | what is proved | bounded depth | induction depth | time (s) |\n|---|---|---|---|---|---|---|\n";
+
+/// A table row's fixed part: everything but the time, which is measured.
+/// The README's table must contain it for every proof of the catalog.
+pub fn table_row_prefix(spec: &FormalSpec) -> String {
+    format!(
+        "| `{}` | `{}` | {} | {} | {} | {} |",
+        spec.block, spec.name, spec.instance, spec.properties, spec.bmc_depth, spec.induction_depth
+    )
+}
+
+/// One row of the README's "What is proved" table, with the proof's
+/// measured wall time (yosys, bounded check and induction).
+pub fn table_row(spec: &FormalSpec, report: &ProofReport) -> String {
+    format!("{} {:.1} |", table_row_prefix(spec), report.total_time().as_secs_f64())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{failure_of, splice};
+
+    #[test]
+    fn the_property_file_is_included_before_the_top_modules_endmodule() {
+        let verilog = "module top(a);\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n";
+        assert_eq!(
+            splice("top", verilog, "top.sv").unwrap(),
+            "module top(a);\n`ifdef FORMAL\n`include \"top.sv\"\n`endif\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n"
+        );
+        assert!(splice("other", verilog, "other.sv").is_err());
+    }
+
+    #[test]
+    fn a_failure_reads_as_the_assertion_and_the_traces_length() {
+        let bounded = "##   0:00:00  Checking assertions in step 0..\n##   0:00:00  Checking assertions in step 1..\n\
+                       ##   0:00:00  Checking assertions in step 2..\n##   0:00:00  BMC failed!\n\
+                       ##   0:00:00  Assert failed in top: top.sv:12.5-12.20 ($assert$top.sv:12$3)\n##   0:00:00  Status: FAILED\n";
+        assert_eq!(failure_of(bounded, false, 20), (3, "top: top.sv:12.5-12.20 ($assert$top.sv:12$3)".to_string()));
+        let induction = "##   0:00:00  Trying induction in step 2..\n##   0:00:00  Trying induction in step 1..\n\
+                         ##   0:00:00  Trying induction in step 0..\n##   0:00:00  Temporal induction failed!\n\
+                         ##   0:00:00  Assert failed in top: top.sv:9.1-9.9 ($assert$top.sv:9$1)\n";
+        assert_eq!(failure_of(induction, true, 2).0, 3);
+    }
+}
