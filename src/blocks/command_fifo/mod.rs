@@ -36,6 +36,34 @@
 //! edge. A write to that same address on the same edge (into an empty FIFO,
 //! or into the slot a pop is about to expose) is caught by a bypass
 //! register, because block RAM returns the old word on a read-during-write.
+//!
+//! ## Formal proof
+//! `formal/command_fifo.sv` states the ports and timing above as
+//! assertions: `level` never exceeds 2^N, and `empty`, `full` and `low`
+//! follow it; reset (and power-up) empties the FIFO and clears both flags;
+//! `level` moves by one per write taken and per pop taken, so a refused
+//! write or pop changes nothing; a refused write sets `overflow`, a
+//! refused pop `underflow`, each held until `clear_flags` (a flag set on
+//! its clock stays set) and set by nothing else; a refused write leaves
+//! `head` as it was; `head` is 0 until the first write taken since
+//! power-up; and entries come out in order with their data: a freely
+//! chosen write taken is followed, stays held while the entries written
+//! before it are popped, then is on `head` with its data until it is
+//! popped. It assumes nothing of the environment: every input, `reset`
+//! included, is free at every clock. Proved by k-induction for N = 1 and
+//! for the motion controller's N = 4 (figures in the README's "What is
+//! proved").
+//!
+//! Two limits. The RAM's read register has no initial value in the
+//! Verilog, so `head` is 0 from the first clock edge after power-up, not
+//! before it. And the RAM's array is in rust-hdl's `RAM` submodule, which
+//! the proof cannot name, while an entry behind the head is held only
+//! there: the induction therefore takes the RAM's own contract as a
+//! premise (a read returns the word last written to its address before the
+//! read's edge, read-first), and `formal/command_fifo_ram.sv` proves that
+//! contract on the same RAM, built as the FIFO builds it, at both depths
+//! (assume-guarantee). The bounded checks from power-up of the mutation
+//! tests run on the real RAM, without the premise.
 
 pub mod model;
 
