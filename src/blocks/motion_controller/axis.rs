@@ -4,6 +4,10 @@
 //!
 //! Internal to [`super::MotionController`]; its behavior is specified there
 //! and modelled by [`super::model::AxisModel`].
+//!
+//! Formal proof: `formal/motion_controller_axis.sv` (the requests let into
+//! the output stage, its flush on an abort or a limit cut, and no pin step
+//! after an abort; see the controller's datasheet, "Formal proof").
 
 use rust_hdl::prelude::*;
 

@@ -13,6 +13,10 @@
 //! A step toward an enabled, active limit at any of the three is *cut*:
 //! the axis gates the candidate and flushes its stage in this clock, and
 //! the sticky trip flag it sets holds every axis stopped.
+//!
+//! Formal proof: `formal/motion_controller_axis_io.sv` (the blocked
+//! directions, the cut and the trip flags; see the controller's datasheet,
+//! "Formal proof").
 
 use rust_hdl::prelude::*;
 

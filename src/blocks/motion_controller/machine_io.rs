@@ -6,6 +6,10 @@
 //! Internal to [`super::MotionController`]; the behavior is specified in
 //! [`super`] ("Machine I/O and safety") and modelled by
 //! [`super::io_model::MachineIoModel`].
+//!
+//! Formal proof: `formal/motion_controller_machine_io.sv` (the E-stop's
+//! conditioning at the reset `INPUT_FILTER`, and its latch; see the
+//! controller's datasheet, "Formal proof").
 
 use rust_hdl::prelude::*;
 

@@ -273,6 +273,78 @@
 //! edge appears; `ACT_POSITION` follows the encoder pins by the decoder's
 //! latency (5 clocks with the filter off).
 //!
+//! ## Formal proof
+//! The whole controller does not close, so its two safety rules, "no step
+//! toward an enabled, active limit" and "no step after the E-stop's
+//! latency", are proved on the sub-blocks that decide them, each with the
+//! rest of the controller abstracted: every input of the sub-block is free
+//! at every clock (reset, `abort`, the filtered switch levels, the bus),
+//! and nothing is assumed of the environment. Clock t runs from edge t - 1
+//! to edge t; a step "at edge t" has its first pin edge after edge t.
+//! * `formal/motion_controller_axis_io.sv`, on [`axis_io::AxisIo`] (an
+//!   axis's limit gate): a direction is blocked exactly when its filtered
+//!   limit level is active and `IO_CONFIG.LIMIT_ENABLE` reads 1 (from
+//!   power-up and after reset, else as last written); `cut` is high exactly
+//!   when a step toward a blocked direction is offered to the request
+//!   register, in it, or pending in the stage; a cut sets its sticky trip
+//!   flag (a trip on the clock of `CLEAR_LIMITS` wins), whose OR,
+//!   `limit_held`, aborts every axis.
+//! * `formal/motion_controller_axis.sv`, on [`axis::MotionAxis`] (N = 2,
+//!   with the uniform generator, no analog outputs: an axis of the exported
+//!   `motion_controller`, with a 4-entry FIFO): a request the output stage
+//!   takes in clock t was made in clock t - 1 with `abort` low and its
+//!   direction not blocked; the stage is flushed in a clock exactly when
+//!   `abort` is high or a step toward a blocked direction is pending,
+//!   requested or offered; after a clock with `abort` high, neither pin
+//!   rises and no step leaves at the next edge; and a step the stage
+//!   reports (`emitted`: the step at the last edge) is not toward a
+//!   direction that was blocked in the clock before the one that decided
+//!   it. That last rule's induction takes a premise on the stage's ports
+//!   (the stage's pending count is a register of a sub-block, which the
+//!   property file cannot name), proved on the same stage by
+//!   `formal/motion_controller_stage.sv` (`StepOutput` with T = 16, P = 8,
+//!   as the axis builds it): a reported step goes the way of the pending
+//!   count's sign in the clock that decided it, and the count turns
+//!   forward (backward) only through a forward (backward) request at an
+//!   edge without reset or flush.
+//! * `formal/motion_controller_machine_io.sv`, on [`machine_io::MachineIo`]
+//!   (K = 1): `STATE.ESTOP_LATCHED` is set at an edge whose clock had the
+//!   filtered E-stop level high, and then holds until an edge with a
+//!   `STATUS.ESTOP` clear and the level low (or reset); with
+//!   `INPUT_FILTER` at its reset value (LENGTH 4, SAMPLE_RATE 0, nothing
+//!   else written since the last reset or power-up), an E-stop pin held
+//!   from clock c with no reset makes the filtered level high after edge
+//!   c + [`latency::switch`]`(4, 0)` = c + 5, and the latch after edge c + 6.
+//!
+//! How they compose (the wiring between the blocks is this file's
+//! `update`, read, not proved; `tests/controller/machine_io.rs` measures
+//! the whole at the pins):
+//! * **Limits.** The axis's `limit_forward` is the machine I/O's
+//!   conditioned `limit_pos_active` of the same clock, so a limit whose
+//!   filtered level is set at edge s (and enabled) blocks from clock s + 1
+//!   on, and the axis proof leaves no step toward it after edge s + 1 =
+//!   s + [`latency::LIMIT_OWN_AXIS`] (the step at edge s + 1 is decided in
+//!   clock s + 1 from registers the limit had not reached). That is at the
+//!   stage's step report; the stage's own contract
+//!   (`formal/step_output.sv`, proved at T = 3, P = 3) makes the report the
+//!   pin step.
+//! * **E-stop.** Pin held from clock c: latched after edge c + 6 (machine
+//!   I/O proof); `abort_hold` (one register, cleared by reset) after edge
+//!   c + 7; `abort` (= `abort_hold` OR the watchdog's expiry, to every axis
+//!   unregistered) high from clock c + 8 on; no pin rise and no step of any
+//!   axis after edge c + 8 (axis proof). The last step is thus at edge
+//!   c + 8 = c + `latency::switch(4, 0)` + [`latency::ABORT_ALL_AXES`], the
+//!   stated bound; `tests/formal/motion_controller.rs` checks these
+//!   constants.
+//!
+//! Not proved: the controller as a whole and the wiring above; the E-stop
+//! latency at other `INPUT_FILTER` settings (the filter's counters are
+//! registers of the input conditioner, a sub-block the property file cannot
+//! name, so the induction must span a whole filter interval: up to 4096
+//! clocks); the DDA-only and servo builds' axes (same source, with the
+//! uniform generator gated off, or the analog code's direction also offered
+//! to the limit gate); drive alarms, stop on home and the watchdog.
+//!
 //! ## Resources (iCE40 HX8K, 16-entry FIFOs)
 //! See `rtl-out/synthesis-report.md`, which also has K = 1 and K = 6 and
 //! four other FPGA families. Each axis carries a uniform pulse generator

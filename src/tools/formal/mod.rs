@@ -275,7 +275,11 @@ fn splice(top: &str, verilog: &str, property_file: &str) -> Result<String, ToolE
 /// trace's length in clocks and the failed assertion.
 fn smtbmc(dir: &Path, induction: bool, depth: u32) -> Result<Option<(u32, String)>, ToolError> {
     let mut command = Command::new("yosys-smtbmc");
-    command.current_dir(dir).args(["-s", SOLVER, "--presat"]);
+    // `--unroll`: z3 4.8.12 (Debian 12's) stalls on the first step of any
+    // model with more than a few dozen registers when the transition
+    // relation stays a recursive function; unrolled, the same models
+    // solve in seconds.
+    command.current_dir(dir).args(["-s", SOLVER, "--presat", "--unroll"]);
     if induction {
         command.arg("-i");
     }
