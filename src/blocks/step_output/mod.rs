@@ -112,6 +112,37 @@
 //! `motion_controller` flushes every axis on an abort (E-stop, drive
 //! alarm, limit, stop on home, watchdog), and uses `pending_forward` /
 //! `pending_backward` to see a step waiting to move toward a limit.
+//!
+//! ## Formal proof
+//! `formal/step_output.sv` states the rules above as assertions on the
+//! ports, reading the steps from the pins (mode 0 a rise of `out_a`, its
+//! direction `out_b`; mode 1 a rise of `out_a` or `out_b`; mode 2 a Gray
+//! move), each setting taken at the edge that starts its interval:
+//! * mode 0: `out_a` high exactly max(step_len, 1) clocks; a rise at least
+//!   max(step_space, 1) clocks after the last fall and max(dir_setup, 1)
+//!   after `out_b` last turned (or after the start clock), never at an edge
+//!   that turns `out_b`; `out_b` never turns while `out_a` is high, at its
+//!   fall, or within max(dir_hold, 1) clocks after it;
+//! * mode 1: the same length and space on `out_a | out_b`, never both
+//!   high, a pulse keeps its output; mode 2: one Gray step per move, each
+//!   state held at least max(step_len, 1) clocks;
+//! * every mode: a request is dropped exactly when it meets the saturated
+//!   count, and then sets `overrun` (sticky, cleared as specified); every
+//!   pin step goes the way of the pending count (accepted requests minus
+//!   pin steps since the last reset or flush), so none is lost or invented;
+//!   `pending_forward`/`pending_backward` are its sign and
+//!   `emitted`/`emitted_forward` report the pin steps;
+//! * the outputs are low after a reset or a mode change and stay low
+//!   through the start clock; a mode change never cuts a pulse, a
+//!   quadrature state or a direction hold (a reset may: it sets the
+//!   outputs low at once); `busy` is high while steps are pending, a pulse
+//!   is high, or any of those intervals runs.
+//!
+//! It assumes nothing: every input, `mode` and the four settings included,
+//! is free at every clock. The induction also shows the internal count
+//! equal to accepted requests minus pin steps at every clock. Proved by
+//! k-induction for T = 3, P = 3 and for the exported T = 16, P = 16
+//! (figures in the README's "What is proved").
 
 pub mod model;
 
