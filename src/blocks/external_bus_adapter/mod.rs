@@ -72,6 +72,40 @@
 //!   the word from before or after the write. Do not do this.
 //! * A read whose strobe ends before its data is registered is still issued
 //!   (side effects happen once); the master just reads an older `data_out`.
+//!
+//! ## Formal proof
+//! `formal/external_bus_adapter.sv` states the contract above on the ports,
+//! with the pins seen as the synchronizer's first flip-flops sample them:
+//! one sample per clock edge, a pin changing near an edge sampled either
+//! way, a word changing there as any value. A write access (a run of two or
+//! more active samples) gives exactly one `bus_write`, two clocks after the
+//! edge that first samples its strobe inactive, with the address and data
+//! sampled a clock before its last active sample; a read access gives
+//! exactly one `bus_read`, two clocks after its second active sample, with
+//! the address sampled there, and the slave's answer of the next clock is on
+//! `data_out` from the clock after, until the next answer. No other strobe
+//! comes: a runt (one active sample) gives none, and never both in one
+//! clock. `data_oe` is as stated; an edge in reset ends every access and
+//! leaves the outputs 0.
+//!
+//! The pin timing table is what makes a legal access such a run (3 t_clk
+//! of write strobe: two active samples; 2 t_clk of strobe high: an inactive
+//! sample between two runs; the setup and hold rows: clean samples where
+//! address and data are taken), so the proof assumes none of it: every
+//! input, `reset` included, is free at every clock. The strobe contract is
+//! proved while no clock edge since reset has sampled both strobes active,
+//! which "we_n and rd_n low together: do not do this" and the 2 t_clk of
+//! strobe high between accesses ensure (they hold between a write and a
+//! read as between two accesses of one kind); `data_oe`'s holds always.
+//! Proved by k-induction for A = 2 and for the exported A = 8 (figures in
+//! the README's "What is proved").
+//!
+//! Not proved, because it is false: the strobes after the bad input of
+//! both strobes low together. A read that overlaps the last sample of a
+//! write is put off a clock as stated, but if it lasts only two samples,
+//! the synchronizer loses the one inactive sample after it (`read_served`
+//! is not cleared in the clock the put-off read is issued), and a legal
+//! read that starts right after it is never issued (until reset).
 
 pub mod model;
 

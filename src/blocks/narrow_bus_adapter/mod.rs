@@ -57,6 +57,40 @@
 //! orders have the outcomes in [`WordAssembler`]'s table: a torn word is
 //! never written, an out-of-order read reads the register fresh, and
 //! `order_error` pulses (wire it to a sticky status bit or an interrupt).
+//!
+//! ## Formal proof
+//! `formal/narrow_bus_adapter.sv` states the contract on the ports, with the
+//! pins seen as in [`crate::blocks::external_bus_adapter`]'s proof (one
+//! sample per clock edge, either value near a change): a narrow write or
+//! read takes effect in the clock the synchronizer's strobe would, with the
+//! address and data that proof names. Then, in that clock:
+//! * a highest-part write gives exactly one `bus_write`, of the register's
+//!   whole word (each lower part as last written, the highest part from
+//!   this write), if and only if every lower part of that register was
+//!   written since the last highest-part write, reset or lower-part write
+//!   of another register; any other write gives none;
+//! * a part-0 read, or a higher-part read of a register other than the one
+//!   latched by the last `bus_read`, gives exactly one `bus_read`; a
+//!   higher-part read of the latched register gives none; `data_out` then
+//!   holds the part of the slave's answer (latched) or of the latched word;
+//! * `order_error` pulses the clock after, exactly on the broken orders of
+//!   the [`WordAssembler`] table;
+//! * `ready` is high with no strobe active; with the strobe sampled active
+//!   at the last two edges (the "3 t_clk after the fall" rule), a write's
+//!   `ready` is high exactly from its third active sample, and a read's
+//!   exactly from its sixth, with its answer on `data_out`, provided every
+//!   earlier read since reset lasted until its answer (as a master that
+//!   waits for `ready` does; the proof observes this, it does not assume
+//!   it);
+//! * an edge in reset ends every access, empties the latch and the holding
+//!   register, and leaves the outputs 0.
+//!
+//! Nothing is assumed: every input, `reset` included, is free at every
+//! clock, and firmware's order is free (broken orders have the outcomes
+//! above). As for the 32-bit adapter, all but `data_oe` is proved while no
+//! clock edge since reset has sampled both strobes active. Proved by
+//! k-induction for A = 1, NA = 2, N = 2, W = 4 and for both exported
+//! adapters (figures in the README's "What is proved").
 
 pub mod model;
 
