@@ -119,6 +119,29 @@ fn a_one_sample_runt_is_ignored() {
     assert_eq!((sys.bus_writes, sys.bus_reads), (0, 0));
 }
 
+/// After the bad input of a read overlapping a write's last sample, the
+/// read is put off a clock; a legal read that starts right after it (one
+/// inactive sample between them) is still issued. Found by the formal
+/// proof (formal/external_bus_adapter.sv): the put-off read's issue clock
+/// kept the first read marked as served, and the second was never issued.
+#[test]
+fn a_read_right_after_a_put_off_read_is_issued() {
+    let mut sys = system(None);
+    sys.pins.cs_n = false;
+    // Per clock: (we_n, rd_n). Write in clocks 0-1, the overlapping read
+    // in 1-2, one idle clock, the next read in 4-8.
+    let clocks = [(false, true), (false, false), (true, false), (true, true)]
+        .into_iter()
+        .chain(std::iter::repeat((true, false)).take(5));
+    for (we_n, rd_n) in clocks {
+        (sys.pins.we_n, sys.pins.rd_n) = (we_n, rd_n);
+        sys.hold(1);
+    }
+    (sys.pins.cs_n, sys.pins.we_n, sys.pins.rd_n) = (true, true, true);
+    sys.hold(10);
+    assert_eq!((sys.bus_writes, sys.bus_reads), (1, 2), "(writes, reads)");
+}
+
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000, WIDTHS).iter().map(ExternalBusInputs::to_vector).collect();

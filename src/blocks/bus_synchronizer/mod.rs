@@ -382,7 +382,9 @@ impl<const A: usize, const D: usize> Logic for BusSynchronizer<A, D> {
             self.read_served.d.next = true;
             self.read_pending.d.next = false;
         }
-        if !self.read_sync.q.val() & !self.read_wanted.val() {
+        // A strobe seen inactive ends its read, even on the clock a
+        // put-off read is issued: a read starting right after it is new.
+        if !self.read_sync.q.val() {
             self.read_served.d.next = false;
         }
         self.read_answer.d.next = self.bus_read_reg.q.val();

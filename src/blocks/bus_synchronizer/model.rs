@@ -155,7 +155,7 @@ impl BusSynchronizerModel {
             self.read_served = true;
             self.read_pending = false;
         }
-        if !sync.read && !read_wanted {
+        if !sync.read {
             self.read_served = false;
         }
         if self.read_answer {

@@ -40,10 +40,10 @@
 //! T = 0, never after reset or an expiry until a kick arms the watchdog
 //! again. It stays set until `clear`. `armed` is 1 from such a kick up to
 //! the expiry. The proof assumes nothing: every input is free at every
-//! clock. It also proves the two points of `clear` stated in the ports
-//! table: `clear` clears `expired` only and leaves a running countdown
-//! armed; and an expiry on the clock of a `clear` sets `expired` (the new
-//! expiry wins).
+//! clock. It also proves two points of `clear`: it clears `expired` only
+//! and leaves a running countdown armed (the ports table); and an expiry on
+//! the clock of a `clear` sets `expired`: the new expiry wins over the
+//! clear of the old one.
 //! Proved by k-induction (depth 1) for W = 4 and for the motion
 //! controller's W = 32 (figures in the README's "What is proved").
 
