@@ -418,7 +418,7 @@ module external_bus_adapter__pins(clock,reset,cs_n,we_n,rd_n,address,data_in,dat
             read_served__d = 1'b1;
             read_pending__d = 1'b0;
         end
-        if (~read_sync__q & ~read_wanted) begin
+        if (~read_sync__q) begin
             read_served__d = 1'b0;
         end
         read_answer__d = bus_read_reg__q;

@@ -627,7 +627,7 @@ module host_links__dsp(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,data_
             read_served__d = 1'b1;
             read_pending__d = 1'b0;
         end
-        if (~read_sync__q & ~read_wanted) begin
+        if (~read_sync__q) begin
             read_served__d = 1'b0;
         end
         read_answer__d = bus_read_reg__q;
@@ -4267,7 +4267,7 @@ module host_links__pc__pins(clock,reset,cs_n,we_n,rd_n,address,data_in,data_out,
             read_served__d = 1'b1;
             read_pending__d = 1'b0;
         end
-        if (~read_sync__q & ~read_wanted) begin
+        if (~read_sync__q) begin
             read_served__d = 1'b0;
         end
         read_answer__d = bus_read_reg__q;
