@@ -170,7 +170,8 @@ end
 // same RAM: an assume-guarantee pair). The followed entry may wait
 // behind the head for any number of clocks, held only in the RAM's array,
 // and the array is in rust-hdl's RAM submodule, which this file cannot
-// name (yosys 0.23 has no hierarchical references). So the induction
+// name (yosys 0.23 reads no hierarchical references, and a `hierconn`
+// wire reaches a submodule's wire, not its memory array). So the induction
 // takes the RAM's own contract as a premise, on its ports: a read-first
 // synchronous RAM, whose read at an edge returns the word last written to
 // its address before that edge. Stated for the followed entry's slot

@@ -214,7 +214,9 @@ end
 `ifdef INDUCTION_INVARIANTS
 // INDUCTION INVARIANTS: the block's registers against the model's stages.
 // The filters' run counters are inside the GlitchFilter submodules, out of
-// reach of this file (no hierarchical references in yosys 0.23). With
+// reach of this file (yosys 0.23 reads no hierarchical references; a
+// `hierconn` wire, as in narrow_bus_adapter.sv, would reach them and let
+// the exported S = 8 close: not done yet). With
 // `filter` <= 1 a filter reloads its counter with 0 or 1 at every sample
 // that accepts or sees no change, and a stale counter would refuse a change
 // at a sample, breaking the filtered-level invariant at the next edge: so

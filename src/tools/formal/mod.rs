@@ -2,9 +2,13 @@
 //!
 //! Each property file in `formal/` is spliced into the top module of a
 //! block's generated Verilog, just before its `endmodule`: the inline style
-//! of ZipCPU's cores. yosys 0.23 has no hierarchical references, so this is
-//! how the invariants that induction needs can name the block's registers,
-//! while the contract properties name only the ports. The properties are
+//! of ZipCPU's cores. yosys 0.23 reads no hierarchical references in
+//! expressions, so this is how the invariants that induction needs can name
+//! the top module's registers, while the contract properties name only the
+//! ports. A submodule's register is reached through a top-module wire named
+//! `\<instance>.<wire>` with the `(* hierconn *)` attribute, which `flatten`
+//! connects (`formal/narrow_bus_adapter.sv`); a submodule's memory array
+//! cannot be reached that way (hence `formal/command_fifo_ram.sv`). The properties are
 //! immediate assertions and assumptions in the Verilog subset that
 //! `read_verilog -formal` reads.
 //!
