@@ -48,8 +48,34 @@ fn external_bus_adapter_proof_catches_a_write_on_both_edges() {
 fn external_bus_adapter_proof_catches_a_read_lost_at_minimum_spacing() {
     assert_mutation_caught(
         "external_bus_adapter_a2",
+        "if (~read_sync__q) begin",
+        "if (~read_sync__q & ~read_prev__q) begin",
+    );
+}
+
+/// The bug this proof found under the bad input of both strobes active
+/// (fixed since): the "served" flag is not cleared on the clock a put-off
+/// read is issued, so after a read that overlapped a write's end and was
+/// put off a clock, a read starting one inactive sample later is never
+/// issued.
+#[test]
+fn external_bus_adapter_proof_catches_a_read_lost_after_a_put_off_read() {
+    assert_mutation_caught(
+        "external_bus_adapter_a2",
+        "if (~read_sync__q) begin",
         "if (~read_sync__q & ~read_wanted) begin",
-        "if (~read_sync__q & ~read_prev__q & ~read_wanted) begin",
+    );
+}
+
+/// A put-off read (both strobes active, the write took its clock) issued
+/// with the address of the clock it is issued in instead of the one it
+/// was qualified with.
+#[test]
+fn external_bus_adapter_proof_catches_a_put_off_read_with_a_late_address() {
+    assert_mutation_caught(
+        "external_bus_adapter_a2",
+        "bus_address_reg__d = address_prev__q;",
+        "bus_address_reg__d = address_sync__q;",
     );
 }
 

@@ -92,20 +92,19 @@
 //! of write strobe: two active samples; 2 t_clk of strobe high: an inactive
 //! sample between two runs; the setup and hold rows: clean samples where
 //! address and data are taken), so the proof assumes none of it: every
-//! input, `reset` included, is free at every clock. The strobe contract is
-//! proved while no clock edge since reset has sampled both strobes active,
-//! which "we_n and rd_n low together: do not do this" and the 2 t_clk of
-//! strobe high between accesses ensure (they hold between a write and a
-//! read as between two accesses of one kind); `data_oe`'s holds always.
-//! Proved by k-induction for A = 2 and for the exported A = 8 (figures in
-//! the README's "What is proved").
+//! input, `reset` included, is free at every clock, the bad input of both
+//! strobes low together included. Its outcome is proved as "Bad input"
+//! states it: the write is taken when it ends, and the read is issued once
+//! per run of active read samples, one clock later if the write's
+//! `bus_write` takes its clock (the write ends at the edge of the read's
+//! second active sample); the put-off read still carries the address
+//! sampled at that second active sample, as an on-time read does. Proved by
+//! k-induction for A = 2 and for the exported A = 8 (figures in the
+//! README's "What is proved").
 //!
-//! Not proved, because it is false: the strobes after the bad input of
-//! both strobes low together. A read that overlaps the last sample of a
-//! write is put off a clock as stated, but if it lasts only two samples,
-//! the synchronizer loses the one inactive sample after it (`read_served`
-//! is not cleared in the clock the put-off read is issued), and a legal
-//! read that starts right after it is never issued (until reset).
+//! Under that bad input the proof found a bug, since fixed: after a read
+//! put off a clock by a write, a read starting one inactive sample later
+//! was never issued.
 
 pub mod model;
 

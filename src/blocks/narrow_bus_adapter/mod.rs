@@ -87,8 +87,9 @@
 //!
 //! Nothing is assumed: every input, `reset` included, is free at every
 //! clock, and firmware's order is free (broken orders have the outcomes
-//! above). As for the 32-bit adapter, all but `data_oe` is proved while no
-//! clock edge since reset has sampled both strobes active. Proved by
+//! above). All but `data_oe` is proved while no clock edge since reset has
+//! sampled both strobes active: unlike the 32-bit adapter's proof, this one
+//! does not cover the bad input of we_n and rd_n low together. Proved by
 //! k-induction for A = 1, NA = 2, N = 2, W = 4 and for both exported
 //! adapters (figures in the README's "What is proved").
 

@@ -13,9 +13,9 @@ pub(super) fn specs() -> Vec<FormalSpec> {
             module: "external_bus_adapter",
             property_file: "external_bus_adapter.sv",
             instance: "A = 2, data 32",
-            properties: "one bus_write per write access, one bus_read per read access, at their latencies, with the sampled address and data (runts: none); data_out; data_oe; reset",
+            properties: "one bus_write per write access, one bus_read per read access, at their latencies, with the sampled address and data (runts: none; both strobes together: the read put off a clock when the write takes it); data_out; data_oe; reset",
             bmc_depth: 12,
-            induction_depth: 5,
+            induction_depth: 6,
             build: || Box::new(ExternalBusAdapter::<2>::default()),
         },
         FormalSpec {
@@ -26,7 +26,7 @@ pub(super) fn specs() -> Vec<FormalSpec> {
             instance: "A = 8, data 32 (exported)",
             properties: "the same, on the exported instance",
             bmc_depth: 6,
-            induction_depth: 5,
+            induction_depth: 6,
             build: || Box::new(ExternalBusAdapter::<8>::default()),
         },
         FormalSpec {
