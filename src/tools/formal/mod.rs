@@ -317,9 +317,9 @@ fn failure_of(output: &str, induction: bool, depth: u32) -> (u32, String) {
     } else {
         output
             .lines()
+            .rev()
             .filter_map(|l| l.split_once("Checking assertions in step "))
-            .filter_map(|(_, rest)| rest.trim_end_matches('.').trim().parse::<u32>().ok())
-            .last()
+            .find_map(|(_, rest)| rest.trim_end_matches('.').trim().parse::<u32>().ok())
             .map_or(0, |s| s + 1)
     };
     (steps, assertion)
