@@ -5,6 +5,7 @@
 
 pub mod bus;
 pub mod driver;
+pub mod gcode;
 pub mod interpolator;
 pub mod path;
 pub mod planner;

@@ -1,0 +1,298 @@
+//! The G-code line lexer: one line of a program into a block of words.
+//!
+//! What a line may hold (RS-274/NGC, with the RepRap checksum):
+//! * an optional `/` first: block delete (the block is marked, and skipped
+//!   by the interpreter);
+//! * words: a letter (either case) and a number, spaces allowed between and
+//!   inside them as RS-274 allows between a letter and its number
+//!   (`G1X1Y2`, `x.5`, `Y-0.25`, `Z +1.`);
+//! * an `N` line number as the first word;
+//! * comments: `( ... )` anywhere (not nested), `;` to the end of the line;
+//! * a checksum `*NN` at the end: the XOR of every byte before the `*`;
+//! * a line holding only `%` delimits the program and is skipped.
+//!
+//! Numbers are kept as `f64` and as their text: G and M codes are compared
+//! as integers ([`Word::code`]), never as floats. Every error names the
+//! 1-based line of the file and the problem, with the text at fault.
+
+use thiserror::Error;
+
+/// A line of a G-code program that cannot be read.
+#[derive(Debug, Error, PartialEq, Eq, Clone)]
+#[error("line {line}: {message}")]
+pub struct LexError {
+    /// The 1-based line of the file.
+    pub line: usize,
+    /// What is wrong, naming the text at fault.
+    pub message: String,
+}
+
+/// One word: a letter and its number.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Word {
+    /// The letter, upper case.
+    pub letter: char,
+    /// The number as written, without spaces (`-0.25`, `90.1`, `+1.`).
+    pub text: String,
+    /// The number's value.
+    pub value: f64,
+}
+
+impl Word {
+    /// A G or M code as an integer, ten times its number: `G1` and `G01` are
+    /// 10, `G90.1` is 901. `None` for a negative code or one with more than
+    /// one decimal (`G1.25`), which names no code.
+    pub fn code(&self) -> Option<u32> {
+        let (major, minor) = match self.text.split_once('.') {
+            Some((major, "")) => (major, "0"),
+            Some((major, minor)) => (major, minor),
+            None => (self.text.as_str(), "0"),
+        };
+        let major = major.strip_prefix('+').unwrap_or(major);
+        if major.is_empty() || minor.len() != 1 || !major.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let major: u32 = major.parse().ok()?;
+        let minor: u32 = minor.parse().ok()?;
+        major.checked_mul(10)?.checked_add(minor)
+    }
+
+    /// The word as written in a message: `G90.1`, `X-0.25`.
+    pub fn name(&self) -> String {
+        format!("{}{}", self.letter, self.text)
+    }
+}
+
+/// One line of a program, read.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Block {
+    /// The 1-based line of the file.
+    pub line: usize,
+    /// The `N` line number, if the line has one.
+    pub number: Option<u32>,
+    /// Block delete: the line starts with `/`.
+    pub deleted: bool,
+    /// The words, in order (the `N` word is not among them).
+    pub words: Vec<Word>,
+    /// The comments' texts, without their delimiters.
+    pub comments: Vec<String>,
+}
+
+/// Reads every line of `program`; `%` lines are skipped, so are lines
+/// with nothing but spaces.
+pub fn lex_program(program: &str) -> Result<Vec<Block>, LexError> {
+    let mut blocks = Vec::new();
+    for (index, text) in program.lines().enumerate() {
+        if let Some(block) = lex_line(index + 1, text)? {
+            blocks.push(block);
+        }
+    }
+    Ok(blocks)
+}
+
+/// Reads one line (`line` is its 1-based number in the file). `None` for a
+/// blank or `%` line.
+pub fn lex_line(line: usize, text: &str) -> Result<Option<Block>, LexError> {
+    let error = |message: String| LexError { line, message };
+    let trimmed = text.trim();
+    if trimmed.is_empty() || trimmed == "%" {
+        return Ok(None);
+    }
+    let body = checked_body(trimmed).map_err(error)?;
+    let mut block = Block {
+        line,
+        ..Block::default()
+    };
+    let bytes = body.as_bytes();
+    let mut at = 0;
+    skip_spaces(bytes, &mut at);
+    if bytes.get(at) == Some(&b'/') {
+        block.deleted = true;
+        at += 1;
+    }
+    loop {
+        skip_spaces(bytes, &mut at);
+        let Some(&byte) = bytes.get(at) else { break };
+        match byte {
+            b'(' => {
+                let close = body[at..]
+                    .find(')')
+                    .ok_or_else(|| error("comment `(` is not closed on its line".into()))?;
+                let comment = &body[at + 1..at + close];
+                if comment.contains('(') {
+                    return Err(error(format!("comment `({comment})` holds a `(`: comments do not nest")));
+                }
+                block.comments.push(comment.to_string());
+                at += close + 1;
+            }
+            b';' => {
+                block.comments.push(body[at + 1..].to_string());
+                break;
+            }
+            letter if letter.is_ascii_alphabetic() => {
+                let letter = letter.to_ascii_uppercase() as char;
+                at += 1;
+                let number = read_number(bytes, &mut at);
+                let word = parse_word(letter, &number).map_err(error)?;
+                if letter == 'N' {
+                    if !block.words.is_empty() || block.number.is_some() {
+                        return Err(error(format!("line number {} is not the first word", word.name())));
+                    }
+                    block.number = Some(word.text.parse().map_err(|_| {
+                        error(format!("line number {} is not a whole number", word.name()))
+                    })?);
+                } else {
+                    block.words.push(word);
+                }
+            }
+            other => {
+                let shown = body[at..].chars().next().unwrap_or(other as char);
+                return Err(error(format!("unexpected character `{shown}`")));
+            }
+        }
+    }
+    Ok(Some(block))
+}
+
+/// The line without its checksum, after checking it: `*NN` is the XOR of
+/// every byte before the `*`. A `*` inside a comment is not a checksum.
+fn checked_body(line: &str) -> Result<&str, String> {
+    let Some(star) = checksum_star(line) else {
+        return Ok(line);
+    };
+    let (body, tail) = (&line[..star], line[star + 1..].trim());
+    let given: u8 = tail
+        .parse()
+        .map_err(|_| format!("checksum `*{tail}` is not a number from 0 to 255"))?;
+    let computed = body.bytes().fold(0u8, |x, b| x ^ b);
+    if given != computed {
+        return Err(format!("checksum *{given} does not match the line (its bytes give *{computed})"));
+    }
+    Ok(body)
+}
+
+/// Where the checksum's `*` is: the first `*` outside a comment.
+fn checksum_star(line: &str) -> Option<usize> {
+    let mut in_comment = false;
+    for (i, c) in line.char_indices() {
+        match c {
+            '(' => in_comment = true,
+            ')' => in_comment = false,
+            ';' if !in_comment => return None,
+            '*' if !in_comment => return Some(i),
+            _ => {}
+        }
+    }
+    None
+}
+
+fn skip_spaces(bytes: &[u8], at: &mut usize) {
+    while bytes.get(*at).is_some_and(|b| b.is_ascii_whitespace()) {
+        *at += 1;
+    }
+}
+
+/// The text after a letter: a sign, digits and points, spaces allowed
+/// between them and removed.
+fn read_number(bytes: &[u8], at: &mut usize) -> String {
+    let mut number = String::new();
+    loop {
+        skip_spaces(bytes, at);
+        match bytes.get(*at) {
+            Some(&b) if (b == b'+' || b == b'-') && number.is_empty() => number.push(b as char),
+            Some(&b) if b.is_ascii_digit() || b == b'.' => number.push(b as char),
+            _ => return number,
+        }
+        *at += 1;
+    }
+}
+
+fn parse_word(letter: char, number: &str) -> Result<Word, String> {
+    if number.is_empty() {
+        return Err(format!("word `{letter}` has no number"));
+    }
+    let digits = number.trim_start_matches(['+', '-']);
+    let points = digits.matches('.').count();
+    if points > 1 || !digits.bytes().any(|b| b.is_ascii_digit()) {
+        return Err(format!("`{letter}{number}` is not a number"));
+    }
+    let value: f64 = number
+        .parse()
+        .map_err(|_| format!("`{letter}{number}` is not a number"))?;
+    Ok(Word {
+        letter,
+        text: number.to_string(),
+        value,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn words(text: &str) -> Vec<(char, f64)> {
+        lex_line(1, text)
+            .unwrap()
+            .unwrap()
+            .words
+            .iter()
+            .map(|w| (w.letter, w.value))
+            .collect()
+    }
+
+    #[test]
+    fn words_with_and_without_spaces_and_in_either_case() {
+        assert_eq!(words("G1X1Y2"), vec![('G', 1.0), ('X', 1.0), ('Y', 2.0)]);
+        assert_eq!(words("g01 x.5 y-0.25 z+1."), vec![('G', 1.0), ('X', 0.5), ('Y', -0.25), ('Z', 1.0)]);
+        assert_eq!(words("G 1 X 1 2.5"), vec![('G', 1.0), ('X', 12.5)]);
+        assert_eq!(words("X1234.5678")[0].1, 1234.5678);
+    }
+
+    #[test]
+    fn codes_are_integers_with_one_decimal() {
+        let code = |text: &str| lex_line(1, text).unwrap().unwrap().words[0].code();
+        assert_eq!(code("G1"), Some(10));
+        assert_eq!(code("G01"), Some(10));
+        assert_eq!(code("G90.1"), Some(901));
+        assert_eq!(code("G91.1"), Some(911));
+        assert_eq!(code("M30"), Some(300));
+        assert_eq!(code("G1."), Some(10));
+        assert_eq!(code("G1.25"), None);
+        assert_eq!(code("G-1"), None);
+    }
+
+    #[test]
+    fn line_numbers_comments_block_delete_and_checksums() {
+        let block = lex_line(7, "/N10 G1 X1 (to the edge) Y2 ; and up").unwrap().unwrap();
+        assert_eq!(block.line, 7);
+        assert!(block.deleted);
+        assert_eq!(block.number, Some(10));
+        assert_eq!(block.words.len(), 3);
+        assert_eq!(block.comments, vec!["to the edge".to_string(), " and up".to_string()]);
+        // N3 T0*57: the RepRap documentation's example.
+        let block = lex_line(1, "N3 T0*57").unwrap().unwrap();
+        assert_eq!((block.number, block.words[0].name()), (Some(3), "T0".to_string()));
+        assert_eq!(lex_line(1, "%").unwrap(), None);
+        assert_eq!(lex_line(1, "   ").unwrap(), None);
+        assert_eq!(lex_line(1, "(only a comment *)").unwrap().unwrap().words.len(), 0);
+    }
+
+    #[test]
+    fn errors_name_the_line_and_the_text() {
+        let message = |text: &str| lex_line(12, text).unwrap_err().to_string();
+        assert_eq!(message("G1 X"), "line 12: word `X` has no number");
+        assert_eq!(message("G1 X1.2.3"), "line 12: `X1.2.3` is not a number");
+        assert_eq!(message("G1 X-"), "line 12: `X-` is not a number");
+        assert_eq!(message("G1 X1 $"), "line 12: unexpected character `$`");
+        assert_eq!(message("G1 (open"), "line 12: comment `(` is not closed on its line");
+        assert_eq!(message("G1 (a (b) c)"), "line 12: comment `(a (b)` holds a `(`: comments do not nest");
+        assert_eq!(message("N3 T0*58"), "line 12: checksum *58 does not match the line (its bytes give *57)");
+        assert_eq!(message("N3 T0*x"), "line 12: checksum `*x` is not a number from 0 to 255");
+        assert_eq!(message("G1 N3"), "line 12: line number N3 is not the first word");
+        assert_eq!(message("N3.5 G1"), "line 12: line number N3.5 is not a whole number");
+        assert_eq!(
+            lex_program("G21\n\nG1 X1 @\n").unwrap_err().to_string(),
+            "line 3: unexpected character `@`"
+        );
+    }
+}
