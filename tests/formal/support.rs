@@ -1,13 +1,10 @@
 //! The two checks every property file gets: its proofs pass, and a
 //! deliberate bug in the block fails them with a counterexample.
 
-use motion_hdl::tools::formal::{formal_catalog, instance_verilog, prove, prove_verilog, Checks, FailedCheck, FormalSpec, Outcome};
+use motion_hdl::tools::formal::{find, instance_verilog, prove, prove_verilog, Checks, FailedCheck, FormalSpec, Outcome};
 
 fn spec(name: &str) -> FormalSpec {
-    formal_catalog()
-        .into_iter()
-        .find(|s| s.name == name)
-        .unwrap_or_else(|| panic!("no proof named {name} in formal_catalog()"))
+    find(name).unwrap_or_else(|| panic!("no proof named {name} in formal_catalog()"))
 }
 
 /// Proves the catalog's proof `name` (bounded check and k-induction).

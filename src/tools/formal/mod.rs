@@ -90,6 +90,11 @@ pub fn formal_catalog() -> Vec<FormalSpec> {
     .collect()
 }
 
+/// The proof of the catalog named `name`.
+pub fn find(name: &str) -> Option<FormalSpec> {
+    formal_catalog().into_iter().find(|spec| spec.name == name)
+}
+
 /// Which of the two checks failed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FailedCheck {
@@ -180,11 +185,11 @@ pub fn prove_verilog(spec: &FormalSpec, verilog: &str, checks: Checks) -> Result
             source,
         }
     })?;
-    prove_text(spec, verilog, &properties, checks)
+    check_spliced(spec, verilog, &properties, checks)
 }
 
-/// Proves `properties` spliced into the top module of `verilog`.
-pub fn prove_text(spec: &FormalSpec, verilog: &str, properties: &str, checks: Checks) -> Result<ProofReport, ToolError> {
+/// Runs `checks` on `properties` spliced into the top module of `verilog`.
+fn check_spliced(spec: &FormalSpec, verilog: &str, properties: &str, checks: Checks) -> Result<ProofReport, ToolError> {
     if spec.bmc_depth < spec.induction_depth {
         // The induction step assumes the properties for k clocks; only a
         // base case at least as deep makes that sound.
@@ -218,27 +223,17 @@ pub fn prove_text(spec: &FormalSpec, verilog: &str, properties: &str, checks: Ch
     let started = Instant::now();
     let bounded = smtbmc(dir.path(), false, spec.bmc_depth)?;
     let bmc_time = started.elapsed();
-    if let Some((steps, assertion)) = bounded {
-        return Ok(ProofReport {
-            outcome: counterexample(dir, FailedCheck::Bounded, steps, assertion),
-            build_time,
-            bmc_time,
-            induction_time: Duration::ZERO,
-        });
-    }
-    if checks == Checks::ContractBounded {
-        return Ok(ProofReport {
-            outcome: Outcome::Proved,
-            build_time,
-            bmc_time,
-            induction_time: Duration::ZERO,
-        });
-    }
-    let started = Instant::now();
-    let induction = smtbmc(dir.path(), true, spec.induction_depth)?;
-    let induction_time = started.elapsed();
-    let outcome = match induction {
-        Some((steps, assertion)) => counterexample(dir, FailedCheck::Induction, steps, assertion),
+    let (failure, induction_time) = match (bounded, checks) {
+        (Some(failure), _) => (Some((FailedCheck::Bounded, failure)), Duration::ZERO),
+        (None, Checks::ContractBounded) => (None, Duration::ZERO),
+        (None, Checks::Proof) => {
+            let started = Instant::now();
+            let induction = smtbmc(dir.path(), true, spec.induction_depth)?;
+            (induction.map(|failure| (FailedCheck::Induction, failure)), started.elapsed())
+        }
+    };
+    let outcome = match failure {
+        Some((check, (steps, assertion))) => counterexample(dir, check, steps, assertion),
         None => Outcome::Proved,
     };
     Ok(ProofReport {
@@ -287,9 +282,7 @@ fn smtbmc(dir: &Path, induction: bool, depth: u32) -> Result<Option<(u32, String
     if induction {
         command.arg("-i");
     }
-    command
-        .args(["-t", &depth.to_string(), "--dump-vcd", "trace.vcd", "model.smt2"])
-        .current_dir(dir);
+    command.args(["-t", &depth.to_string(), "--dump-vcd", "trace.vcd", "model.smt2"]);
     let output = run(&mut command, true)?;
     if output.contains("Status: PASSED") {
         return Ok(None);
