@@ -5,7 +5,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export};
-use motion_hdl::host::simulation::{simulate, SimulationOptions, Trip};
+use motion_hdl::host::simulation::{simulate, InputFormat, SimulationOptions, Trip};
+use motion_hdl::host::MachineSettings;
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
 use motion_hdl::tools::{families, formal, report, scaling};
@@ -70,8 +71,19 @@ enum Command {
     /// underruns, and SVG plots of the path and of the speed. An abort
     /// (E-stop, limit switch, drive alarm) fails naming its cause.
     Simulate {
-        /// The path file.
+        /// The program: G-code (.nc, .ngc, .gcode, .tap) or a path file
+        /// (.path).
         path_file: PathBuf,
+        /// The file's format when its extension does not say: gcode or
+        /// path.
+        #[arg(long)]
+        format: Option<String>,
+        /// Machine settings for a G-code program (steps_per_mm,
+        /// max_velocity, max_accel, contour_error, period_us; see
+        /// host::machine). Default: 100 100 400 steps/mm, 50 50 20 mm/s,
+        /// 500 500 200 mm/s^2, 0.01 mm, 1000 us.
+        #[arg(long)]
+        machine: Option<PathBuf>,
         /// System clock in MHz (default: 48, the board example's clock, on
         /// verilator; 1 on rust-hdl). The controller's behavior is the same
         /// at any clock (its timing registers count clocks); a lower clock
@@ -153,6 +165,8 @@ fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Simulate {
             path_file,
+            format,
+            machine,
             clock_mhz,
             uniform,
             servo,
@@ -203,7 +217,17 @@ fn run(cli: Cli) -> Result<(), String> {
             if !(clock_mhz.is_finite() && clock_mhz > 0.0) {
                 return Err(format!("--clock-mhz must be positive, not {clock_mhz}"));
             }
+            let format = format.map(|f| InputFormat::parse(&f)).transpose()?;
+            let machine = machine
+                .map(|file| {
+                    let text =
+                        std::fs::read_to_string(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+                    MachineSettings::parse(&text).map_err(|e| format!("{}: {e}", file.display()))
+                })
+                .transpose()?;
             let options = SimulationOptions {
+                format,
+                machine,
                 clock_hz: clock_mhz * 1e6,
                 uniform: uniform_axes,
                 servo: servo_axes,
@@ -216,6 +240,16 @@ fn run(cli: Cli) -> Result<(), String> {
                 trips,
             };
             let r = simulate(&path_file, &options)?;
+            for ignored in &r.ignored {
+                println!("ignored    {} on line {} ({}: does not change the motion)", ignored.word, ignored.line, ignored.what);
+            }
+            if let Some((end, units)) = r.program_end {
+                let unit = units.name();
+                println!(
+                    "program    X {:.4} {unit}  Y {:.4} {unit}  Z {:.4} {unit}",
+                    end[0], end[1], end[2]
+                );
+            }
             println!("target     {:?}", r.target);
             println!("commanded  {:?}", r.commanded);
             println!("actual     {:?}", r.actual);

@@ -1,20 +1,26 @@
 //! The host (CPU/DSP) half of the two-level interpolator, in plain Rust:
-//! paths and their file format, velocity planning with look-ahead, coarse
+//! G-code programs and `.path` files into toolpaths of lines and arcs,
+//! velocity planning with look-ahead under per-axis limits, coarse
 //! interpolation into per-period step counts, and a driver that streams
 //! them into `motion_controller` over its register map.
 
 pub mod bus;
 pub mod driver;
 pub mod gcode;
+pub mod geometry;
 pub mod interpolator;
+pub mod machine;
 pub mod path;
 pub mod planner;
 pub mod servo;
 pub mod simulation;
+pub mod toolpath;
 
 pub use bus::{ControllerBus, ModelBus, RecordingBus, RtlBus};
 pub use driver::{Driver, DriverConfig, DriverError, RunReport};
 pub use interpolator::{interpolate, Interpolation};
 pub use path::{Path, PathError, Segment};
-pub use planner::{plan, PlannedSegment};
+pub use machine::MachineSettings;
+pub use planner::{plan, plan_toolpath, PlannedSegment, Shape};
+pub use toolpath::{Arc, Item, Move, MoveKind, Plane, Toolpath};
 pub use servo::{DriveScale, FollowingError, LoopOutput, PositionLoop, ServoError, ServoGains, ServoMotor};

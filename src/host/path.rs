@@ -21,6 +21,9 @@
 
 use thiserror::Error;
 
+use super::machine::MachineSettings;
+use super::toolpath::{Item, Move, MoveKind, Toolpath};
+
 /// A problem in a path file or a path.
 #[derive(Debug, Error, PartialEq)]
 pub enum PathError {
@@ -44,18 +47,23 @@ pub struct Segment {
     pub end: [i64; 3],
 }
 
-/// A path in steps with its limits (all in steps and seconds).
+/// A path in steps with its limits in its units (steps, or mm with
+/// `steps_per_unit`) and seconds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Path {
     /// Start position in steps.
     pub start: [i64; 3],
     /// The moves, in order.
     pub segments: Vec<Segment>,
-    /// Path feed rate, steps per second (along the path, Euclidean in steps).
+    /// Steps per unit, per axis (1 for a path in steps): the path is
+    /// planned in its units, so an axis with more steps per mm is not
+    /// driven faster than the others.
+    pub steps_per_unit: [f64; 3],
+    /// Path feed rate, units per second (along the path).
     pub feed: f64,
-    /// Maximum path acceleration, steps per second^2.
+    /// Maximum path acceleration, units per second^2.
     pub accel: f64,
-    /// Maximum contour error at a corner, steps.
+    /// Maximum contour error at a corner, units.
     pub contour_error: f64,
     /// Interpolation period T in seconds.
     pub period: f64,
@@ -74,6 +82,7 @@ impl Path {
         let path = Self {
             start,
             segments: ends.iter().map(|&end| Segment { end }).collect(),
+            steps_per_unit: [1.0; 3],
             feed,
             accel,
             contour_error,
@@ -110,6 +119,39 @@ impl Path {
     /// The end position of the path.
     pub fn end(&self) -> [i64; 3] {
         self.segments.last().map_or(self.start, |s| s.end)
+    }
+
+    /// The path as lines in its units, every one at the path's feed.
+    pub fn toolpath(&self) -> Toolpath {
+        let units = |p: [i64; 3]| std::array::from_fn(|k| p[k] as f64 / self.steps_per_unit[k]);
+        Toolpath {
+            start: units(self.start),
+            items: self
+                .segments
+                .iter()
+                .map(|s| {
+                    Item::Move(Move {
+                        kind: MoveKind::Line,
+                        end: units(s.end),
+                        feed: Some(self.feed),
+                        line: 0,
+                    })
+                })
+                .collect(),
+        }
+    }
+
+    /// The path's limits as a machine: its acceleration along the path, no
+    /// per-axis limits.
+    pub fn machine(&self) -> MachineSettings {
+        MachineSettings {
+            steps_per_mm: self.steps_per_unit,
+            max_velocity: [f64::INFINITY; 3],
+            max_accel: [f64::INFINITY; 3],
+            path_accel: self.accel,
+            contour_error: self.contour_error,
+            period: self.period,
+        }
     }
 
     /// Parses a path file (see the [module documentation](self)).
@@ -192,9 +234,8 @@ impl Path {
                 other => return Err(err(format!("unknown statement `{other}`"))),
             }
         }
-        // Everything in steps: positions rounded to the nearest step, speeds
-        // along the path scaled by the X axis's resolution when in mm
-        // (paths in mm with unequal axes are planned in steps).
+        // Positions rounded to the nearest step; speeds stay in the path's
+        // units, planned in them.
         let scale = match (mm, steps_per_mm) {
             (false, _) => [1.0; 3],
             (true, Some(s)) => s,
@@ -211,7 +252,6 @@ impl Path {
             }
             Ok(out)
         };
-        let speed_scale = scale[0];
         let ends = lines
             .iter()
             .map(|&(line, p)| {
@@ -223,13 +263,8 @@ impl Path {
             .collect::<Result<Vec<_>, _>>()?;
         let feed = feed.ok_or_else(|| PathError::Invalid("missing `feed`".into()))?;
         let accel = accel.ok_or_else(|| PathError::Invalid("missing `accel`".into()))?;
-        Self::new(
-            to_steps(start)?,
-            &ends,
-            feed * speed_scale,
-            accel * speed_scale,
-            contour * speed_scale,
-            period_us * 1e-6,
-        )
+        let mut path = Self::new(to_steps(start)?, &ends, feed, accel, contour, period_us * 1e-6)?;
+        path.steps_per_unit = scale;
+        Ok(path)
     }
 }

@@ -1,42 +1,99 @@
-//! Velocity planning with look-ahead: a trapezoidal speed profile per
-//! segment, junction speeds limited by acceleration and contour error.
+//! Velocity planning with look-ahead over lines, arcs and dwells: a
+//! trapezoidal speed profile per move, junction speeds limited by
+//! acceleration and contour error, every limit per axis.
 //!
-//! * Corner speed (the junction-deviation rule): a corner between unit
-//!   directions u1 and u2 is passed at most at
-//!   v = sqrt(a * e * s / (1 - s)), s = sin(theta / 2), theta the angle
-//!   between -u1 and u2 (180 degrees for a straight continuation, 0 for a
-//!   reversal): the speed at which a circular arc of deviation e from the
-//!   corner is driven at acceleration a. A reversal gives 0, a straight
-//!   continuation only the feed limit.
-//! * Look-ahead: a backward pass caps each entry speed so that the segment
-//!   can still decelerate to its exit speed (v0^2 <= v1^2 + 2aL), a forward
-//!   pass caps each exit speed by what the segment can reach
-//!   (v1^2 <= v0^2 + 2aL). So no segment is entered faster than it can be
-//!   left, and the path starts and ends at rest.
-//! * Each segment then accelerates to min(feed, the triangle peak
+//! All in machine units (mm; steps for a `.path` file in steps) and
+//! seconds.
+//!
+//! * **Speed limit of a move** (`v_limit`): its feed (a rapid has none),
+//!   and each axis's maximum velocity over the share of the move it
+//!   carries. A line with unit direction u: v <= vmax_k / |u_k|. An arc's
+//!   plane axes each carry at most the plane share p of the speed, its
+//!   normal axis the share h (a helix): v <= vmax_k / p, vmax_n / h.
+//! * **Acceleration of a move** (`accel`, along the path): a line's is
+//!   min(path accel, amax_k / |u_k|). An arc's plane axes also carry the
+//!   centripetal acceleration; with A the smaller plane-axis limit, an arc
+//!   gives half of A to the tangential acceleration and sqrt(3)/2 of A to
+//!   the centripetal one (LinuxCNC's split), so that on any plane axis
+//!   sqrt(a_t^2 + a_n^2) <= A. Its speed is limited by v^2 p^2 / r <=
+//!   sqrt(3)/2 A (r the smaller radius).
+//! * **Chord error of an arc**: the controller moves in a straight line
+//!   within a period, so an arc is followed by chords of one period each.
+//!   A chord of angle phi on radius r deviates r (1 - cos(phi / 2)) from
+//!   the arc; the speed is limited so that this stays within the contour
+//!   error e: v p T / r <= 2 acos(1 - e / r). An arc needs e > 0.
+//! * **Corner speed** (the junction-deviation rule): a corner between the
+//!   unit tangents u1 (end of one move) and u2 (start of the next) is
+//!   passed at most at v = sqrt(a e s / (1 - s)), s = sin(theta / 2),
+//!   theta the angle between -u1 and u2, a the smaller of the two moves'
+//!   accelerations: the speed at which a circular arc of deviation e from
+//!   the corner is driven at acceleration a. A reversal gives 0; a tangent
+//!   junction (a line into an arc along its tangent) only the moves' own
+//!   limits. A dwell stops the path on both sides.
+//! * **Look-ahead**: a backward pass caps each entry speed so that the
+//!   move can still decelerate to its exit speed (v0^2 <= v1^2 + 2aL), a
+//!   forward pass caps each exit speed by what the move can reach
+//!   (v1^2 <= v0^2 + 2aL). The path starts and ends at rest.
+//! * Each move then accelerates to min(v_limit, the triangle peak
 //!   sqrt((2aL + v0^2 + v1^2) / 2)), cruises, and decelerates.
 //!
-//! Lengths are Euclidean in steps; speeds in steps per second.
+//! What a corner does to the axes is the contour-error rule's business: a
+//! corner's speed changes direction within a period, which the per-axis
+//! acceleration limits do not cover (as in Grbl and Marlin).
 
-use super::path::Path;
+use super::geometry::{unit, ArcGeometry};
+use super::machine::MachineSettings;
+use super::path::{Path, PathError};
+use super::toolpath::{Item, MoveKind, Toolpath};
 
-/// One segment with its speed profile.
+/// The shape of a planned move, in machine units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A straight line between two points.
+    Line {
+        /// Start point.
+        from: [f64; 3],
+        /// End point.
+        to: [f64; 3],
+    },
+    /// A circular, spiral or helical arc.
+    Arc(ArcGeometry),
+    /// A pause at rest.
+    Dwell {
+        /// How long, seconds.
+        seconds: f64,
+        /// Where, machine units.
+        at: [f64; 3],
+    },
+}
+
+/// One move with its speed profile.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlannedSegment {
     /// Start position, steps.
     pub start: [i64; 3],
     /// End position, steps.
     pub end: [i64; 3],
-    /// Length, steps.
+    /// The move's shape, machine units.
+    pub shape: Shape,
+    /// Steps per machine unit, per axis (to place an arc's points).
+    pub steps_per_unit: [f64; 3],
+    /// Length, machine units.
     pub length: f64,
+    /// The move's own speed limit (feed, axes, and for an arc the
+    /// centripetal and chord limits).
+    pub v_limit: f64,
     /// Entry speed.
     pub v_entry: f64,
     /// Cruise (peak) speed.
     pub v_cruise: f64,
     /// Exit speed.
     pub v_exit: f64,
-    /// Acceleration used.
+    /// Acceleration along the path.
     pub accel: f64,
+    /// The 1-based program line it came from (0 for a `.path` file's
+    /// moves made in code).
+    pub line: usize,
 }
 
 impl PlannedSegment {
@@ -53,6 +110,9 @@ impl PlannedSegment {
     }
 
     fn phase_times(&self) -> (f64, f64, f64) {
+        if let Shape::Dwell { seconds, .. } = self.shape {
+            return (0.0, seconds, 0.0);
+        }
         let ta = (self.v_cruise - self.v_entry).max(0.0) / self.accel;
         let td = (self.v_cruise - self.v_exit).max(0.0) / self.accel;
         let tc = if self.v_cruise > 0.0 {
@@ -63,15 +123,18 @@ impl PlannedSegment {
         (ta, tc, td)
     }
 
-    /// Time to drive the segment, seconds.
+    /// Time to drive the move (or to dwell), seconds.
     pub fn duration(&self) -> f64 {
         let (ta, tc, td) = self.phase_times();
         ta + tc + td
     }
 
-    /// (distance along the segment, speed) at time `t` after its start,
-    /// clamped to the segment.
+    /// (distance along the move, speed) at time `t` after its start,
+    /// clamped to the move.
     pub fn state_at(&self, t: f64) -> (f64, f64) {
+        if let Shape::Dwell { .. } = self.shape {
+            return (0.0, 0.0);
+        }
         let (ta, tc, td) = self.phase_times();
         let a = self.accel;
         let t = t.clamp(0.0, ta + tc + td);
@@ -85,12 +148,32 @@ impl PlannedSegment {
             (d.min(self.length), (self.v_cruise - a * u).max(self.v_exit))
         }
     }
-}
 
-fn direction(from: [i64; 3], to: [i64; 3]) -> ([f64; 3], f64) {
-    let d: Vec<f64> = (0..3).map(|k| (to[k] - from[k]) as f64).collect();
-    let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    ([d[0] / length, d[1] / length, d[2] / length], length)
+    /// The point `distance` along the move, machine units.
+    pub fn point_at(&self, distance: f64) -> [f64; 3] {
+        let fraction = if self.length > 0.0 {
+            (distance / self.length).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        match self.shape {
+            Shape::Line { from, to } => std::array::from_fn(|k| from[k] + (to[k] - from[k]) * fraction),
+            Shape::Arc(arc) => arc.point(fraction),
+            Shape::Dwell { at, .. } => at,
+        }
+    }
+
+    /// Unit tangents at the start and at the end (zero for a dwell).
+    pub fn tangents(&self) -> ([f64; 3], [f64; 3]) {
+        match self.shape {
+            Shape::Line { from, to } => {
+                let u = unit(std::array::from_fn(|k| to[k] - from[k])).0;
+                (u, u)
+            }
+            Shape::Arc(arc) => (arc.tangent(0.0), arc.tangent(1.0)),
+            Shape::Dwell { .. } => ([0.0; 3], [0.0; 3]),
+        }
+    }
 }
 
 /// The corner speed limit between two directions (see the module docs).
@@ -103,47 +186,159 @@ pub fn junction_speed(u1: [f64; 3], u2: [f64; 3], accel: f64, contour_error: f64
     (accel * contour_error * sin_half / (1.0 - sin_half)).sqrt().min(feed)
 }
 
-/// Plans `path`: zero-length moves are dropped; the path starts and ends
-/// at rest.
-pub fn plan(path: &Path) -> Vec<PlannedSegment> {
+/// A position in machine units to the nearest step.
+pub fn to_steps(p: [f64; 3], steps_per_unit: [f64; 3]) -> [i64; 3] {
+    std::array::from_fn(|k| (p[k] * steps_per_unit[k]).round() as i64)
+}
+
+/// The fraction of `u`'s length along each axis, as a speed or
+/// acceleration limit: the smallest limit_k / |u_k|.
+fn axis_limit(u: [f64; 3], limits: [f64; 3]) -> f64 {
+    (0..3)
+        .filter(|&k| u[k] != 0.0)
+        .map(|k| limits[k] / u[k].abs())
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// A line's or an arc's speed limit and acceleration (see the module
+/// docs), or why it has none.
+fn limits_of(shape: &Shape, feed: f64, machine: &MachineSettings) -> Result<(f64, f64), String> {
+    match shape {
+        Shape::Line { from, to } => {
+            let u = unit(std::array::from_fn(|k| to[k] - from[k])).0;
+            let v = feed.min(axis_limit(u, machine.max_velocity));
+            let a = machine.path_accel.min(axis_limit(u, machine.max_accel));
+            Ok((v, a))
+        }
+        Shape::Arc(arc) => {
+            let (a_axis, b_axis, n_axis) = arc.plane.axes();
+            let h = arc.normal_share();
+            let p = (1.0 - h * h).max(0.0).sqrt();
+            let plane_accel = machine.max_accel[a_axis].min(machine.max_accel[b_axis]);
+            let plane_velocity = machine.max_velocity[a_axis].min(machine.max_velocity[b_axis]);
+            let share = |limit: f64, s: f64| if s > 0.0 { limit / s } else { f64::INFINITY };
+            let r = arc.min_radius();
+            let e = machine.contour_error;
+            if e <= 0.0 {
+                return Err("an arc needs a contour error above 0 (its chords would have to be points)".into());
+            }
+            // The largest angle per period whose chord stays within e.
+            let chord_angle = if e < r { 2.0 * (1.0 - e / r).acos() } else { std::f64::consts::PI };
+            let centripetal = 0.75f64.sqrt() * plane_accel;
+            let v = feed
+                .min(share(plane_velocity, p))
+                .min(share(machine.max_velocity[n_axis], h))
+                .min(share((centripetal * r).sqrt(), p))
+                .min(share(chord_angle * r / machine.period, p));
+            let a = machine
+                .path_accel
+                .min(share(0.5 * plane_accel, p))
+                .min(share(machine.max_accel[n_axis], h));
+            Ok((v, a))
+        }
+        Shape::Dwell { .. } => Ok((0.0, 1.0)),
+    }
+}
+
+/// Plans `toolpath` on `machine`: zero-length moves are dropped; the path
+/// starts and ends at rest, and stops for every dwell.
+pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<Vec<PlannedSegment>, PathError> {
+    machine.validate()?;
+    let spu = machine.steps_per_mm;
     let mut segments: Vec<PlannedSegment> = Vec::new();
-    let mut directions: Vec<[f64; 3]> = Vec::new();
-    let mut at = path.start;
-    for s in &path.segments {
-        if s.end == at {
+    let mut at = toolpath.start;
+    let mut at_steps = to_steps(at, spu);
+    for item in &toolpath.items {
+        let (shape, end, feed, line) = match item {
+            Item::Dwell { seconds, line } => {
+                if !(seconds.is_finite() && *seconds >= 0.0) {
+                    return Err(PathError::Syntax { line: *line, message: format!("dwell of {seconds} s") });
+                }
+                (Shape::Dwell { seconds: *seconds, at }, at, f64::INFINITY, *line)
+            }
+            Item::Move(m) => {
+                let shape = match m.kind {
+                    MoveKind::Line => Shape::Line { from: at, to: m.end },
+                    MoveKind::Arc(arc) => Shape::Arc(ArcGeometry::new(&arc, at, m.end)),
+                };
+                (shape, m.end, m.feed.unwrap_or(f64::INFINITY), m.line)
+            }
+        };
+        let length = match &shape {
+            Shape::Line { from, to } => unit(std::array::from_fn(|k| to[k] - from[k])).1,
+            Shape::Arc(arc) => arc.length(),
+            Shape::Dwell { .. } => 0.0,
+        };
+        let end_steps = to_steps(end, spu);
+        let is_dwell = matches!(shape, Shape::Dwell { .. });
+        // A move too short to leave a step behind is dropped with its
+        // length: the next one starts where this one would have ended.
+        if !is_dwell && (length == 0.0 || (end_steps == at_steps && length * spu.iter().fold(0.0, |m: f64, &s| m.max(s)) < 0.5)) {
+            at = end;
             continue;
         }
-        let (u, length) = direction(at, s.end);
+        let (v_limit, accel) = limits_of(&shape, feed, machine).map_err(|message| PathError::Syntax { line, message })?;
+        let usable = v_limit > 0.0 && accel > 0.0 && v_limit.is_finite();
+        if !is_dwell && !usable {
+            return Err(PathError::Syntax {
+                line,
+                message: format!("the move has no usable speed limit (speed {v_limit}, acceleration {accel})"),
+            });
+        }
         segments.push(PlannedSegment {
-            start: at,
-            end: s.end,
+            start: at_steps,
+            end: end_steps,
+            shape,
+            steps_per_unit: spu,
             length,
+            v_limit,
             v_entry: 0.0,
             v_cruise: 0.0,
             v_exit: 0.0,
-            accel: path.accel,
+            accel,
+            line,
         });
-        directions.push(u);
-        at = s.end;
+        at = end;
+        at_steps = end_steps;
     }
     let n = segments.len();
-    // Junction limits: v[i] is the speed between segment i-1 and i.
+    // Junction limits: v[i] is the speed between move i-1 and move i.
     let mut v = vec![0.0; n + 1];
     for i in 1..n {
-        v[i] = junction_speed(directions[i - 1], directions[i], path.accel, path.contour_error, path.feed);
+        let (before, after) = (&segments[i - 1], &segments[i]);
+        if matches!(before.shape, Shape::Dwell { .. }) || matches!(after.shape, Shape::Dwell { .. }) {
+            continue;
+        }
+        let corner = junction_speed(
+            before.tangents().1,
+            after.tangents().0,
+            before.accel.min(after.accel),
+            machine.contour_error,
+            f64::INFINITY,
+        );
+        v[i] = corner.min(before.v_limit).min(after.v_limit);
     }
-    let reach = |v0: f64, length: f64| (v0 * v0 + 2.0 * path.accel * length).sqrt();
+    let reach = |v0: f64, s: &PlannedSegment| (v0 * v0 + 2.0 * s.accel * s.length).sqrt();
     for i in (0..n).rev() {
-        v[i] = v[i].min(reach(v[i + 1], segments[i].length));
+        v[i] = v[i].min(reach(v[i + 1], &segments[i]));
     }
     for i in 0..n {
-        v[i + 1] = v[i + 1].min(reach(v[i], segments[i].length));
+        v[i + 1] = v[i + 1].min(reach(v[i], &segments[i]));
     }
     for (i, s) in segments.iter_mut().enumerate() {
         s.v_entry = v[i];
         s.v_exit = v[i + 1];
-        let peak = ((2.0 * path.accel * s.length + v[i] * v[i] + v[i + 1] * v[i + 1]) / 2.0).sqrt();
-        s.v_cruise = path.feed.min(peak).max(v[i]).max(v[i + 1]);
+        if matches!(s.shape, Shape::Dwell { .. }) {
+            continue;
+        }
+        let peak = ((2.0 * s.accel * s.length + v[i] * v[i] + v[i + 1] * v[i + 1]) / 2.0).sqrt();
+        s.v_cruise = s.v_limit.min(peak).max(v[i]).max(v[i + 1]);
     }
-    segments
+    Ok(segments)
+}
+
+/// Plans a `.path` file's path: its lines at its feed, its acceleration
+/// along the path, in its units.
+pub fn plan(path: &Path) -> Result<Vec<PlannedSegment>, PathError> {
+    plan_toolpath(&path.toolpath(), &path.machine())
 }

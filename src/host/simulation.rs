@@ -1,5 +1,5 @@
-//! `motion-hdl simulate`: a path file through the simulated 3-axis
-//! controller (RTL, every step looped back into its axis's encoder, or an
+//! `motion-hdl simulate`: a G-code program or a path file through the
+//! simulated 3-axis controller (RTL, every step looped back into its axis's encoder, or an
 //! axis run as an analog servo: its DAC drives a simulated drive and motor
 //! whose encoder closes the host's position loop), with
 //! optional machine-input events ([`Trip`]: an E-stop, a limit switch or a
@@ -11,15 +11,108 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::gcode::{interpret, Ignored, Units};
+use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
-use super::{interpolate, plan, Driver, DriverConfig, Path, RtlBus};
+use super::{interpolate, plan_toolpath, Driver, DriverConfig, MachineSettings, Path, RtlBus, Toolpath};
 use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::plots::{plot_following_error, plot_path_xy, plot_speed};
 use crate::sim::Backend;
 
+/// What a simulated file holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputFormat {
+    /// A G-code program (`.nc`, `.ngc`, `.gcode`, `.tap`), run on the
+    /// [`MachineSettings`] of the options.
+    Gcode,
+    /// A `.path` file (see [`Path`]), with its own settings.
+    Path,
+}
+
+impl InputFormat {
+    /// The format a file's extension names, if any (case-insensitive).
+    pub fn from_extension(file: &FsPath) -> Option<Self> {
+        let extension = file.extension()?.to_str()?.to_ascii_lowercase();
+        match extension.as_str() {
+            "nc" | "ngc" | "gcode" | "tap" => Some(Self::Gcode),
+            "path" => Some(Self::Path),
+            _ => None,
+        }
+    }
+
+    /// `gcode` or `path`.
+    pub fn parse(name: &str) -> Result<Self, String> {
+        match name.to_ascii_lowercase().as_str() {
+            "gcode" => Ok(Self::Gcode),
+            "path" => Ok(Self::Path),
+            other => Err(format!("unknown format `{other}` (gcode or path)")),
+        }
+    }
+}
+
+/// A file read for simulation: the toolpath, the machine it runs on, and
+/// for G-code what the program itself says.
+#[derive(Clone, Debug)]
+pub struct Job {
+    /// The moves, machine units.
+    pub toolpath: Toolpath,
+    /// The limits and resolution.
+    pub machine: MachineSettings,
+    /// G-code only: the program's final position in its units.
+    pub program_end: Option<([f64; 3], Units)>,
+    /// G-code only: the words that do not change motion, each once.
+    pub ignored: Vec<Ignored>,
+}
+
+impl Job {
+    /// Reads `file` as `format` (default: from its extension); a G-code
+    /// program runs on `machine` (default: [`MachineSettings::default`]).
+    pub fn read(file: &FsPath, format: Option<InputFormat>, machine: Option<MachineSettings>) -> Result<Job, String> {
+        let format = format.or_else(|| InputFormat::from_extension(file)).ok_or_else(|| {
+            format!(
+                "{}: unknown file type: G-code ends in .nc, .ngc, .gcode or .tap, a path file in .path (or give --format)",
+                file.display()
+            )
+        })?;
+        let text = std::fs::read_to_string(file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        let located = |e: &dyn std::fmt::Display| format!("{}: {e}", file.display());
+        match format {
+            InputFormat::Path => {
+                if machine.is_some() {
+                    return Err(format!(
+                        "{}: machine settings apply to G-code; a path file carries its own",
+                        file.display()
+                    ));
+                }
+                let path = Path::parse(&text).map_err(|e| located(&e))?;
+                Ok(Job { toolpath: path.toolpath(), machine: path.machine(), program_end: None, ignored: Vec::new() })
+            }
+            InputFormat::Gcode => {
+                let program = interpret(&text).map_err(|e| located(&e))?;
+                let machine = machine.unwrap_or_default();
+                machine.validate().map_err(|e| located(&e))?;
+                if program.toolpath.items.is_empty() {
+                    return Err(format!("{}: the program has no motion", file.display()));
+                }
+                Ok(Job {
+                    toolpath: program.toolpath,
+                    machine,
+                    program_end: Some((program.final_position, program.units)),
+                    ignored: program.ignored,
+                })
+            }
+        }
+    }
+}
+
 /// Settings of a simulation run.
 #[derive(Clone, Debug)]
 pub struct SimulationOptions {
+    /// The file's format (default: from its extension).
+    pub format: Option<InputFormat>,
+    /// The machine a G-code program runs on (default:
+    /// [`MachineSettings::default`]); a path file carries its own.
+    pub machine: Option<MachineSettings>,
     /// System clock, Hz (sets the clocks per interpolation period).
     pub clock_hz: f64,
     /// Per axis: the uniform pulse generator instead of the DDA.
@@ -120,6 +213,10 @@ fn trip_schedule(trips: &[Trip]) -> Vec<(f64, MachinePins)> {
 pub struct SimulationReport {
     /// The path's end, steps.
     pub target: [i64; 3],
+    /// G-code: the program's final position in its own units.
+    pub program_end: Option<([f64; 3], Units)>,
+    /// G-code: the words ignored because they do not change motion.
+    pub ignored: Vec<Ignored>,
     /// Final commanded positions (steps emitted), per axis.
     pub commanded: [i32; 3],
     /// Final actual (encoder) positions.
@@ -159,14 +256,27 @@ pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), Strin
         .ok_or_else(|| format!("no tick divisor splits {clocks} clocks into at most 65535 ticks"))
 }
 
-/// Runs `path_file` through the RTL controller.
+/// The most periods a simulation plans (a day at 1 ms): a longer program
+/// is refused before its step counts are allocated.
+pub const MAX_PERIODS: u64 = 86_400_000;
+
+/// Runs `path_file` (G-code or a path file) through the RTL controller.
 pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<SimulationReport, String> {
-    let text = std::fs::read_to_string(path_file)
-        .map_err(|e| format!("cannot read {}: {e}", path_file.display()))?;
-    let path = Path::parse(&text).map_err(|e| format!("{}: {e}", path_file.display()))?;
-    let (tick_divisor, period_ticks) = period_settings(path.period, options.clock_hz)?;
-    let segments = plan(&path);
-    let interpolation = interpolate(path.start, &segments, path.period);
+    let job = Job::read(path_file, options.format, options.machine)?;
+    let machine = job.machine;
+    let start = to_steps(job.toolpath.start, machine.steps_per_mm);
+    let target = to_steps(job.toolpath.end(), machine.steps_per_mm);
+    let (tick_divisor, period_ticks) = period_settings(machine.period, options.clock_hz)?;
+    let segments = plan_toolpath(&job.toolpath, &machine).map_err(|e| format!("{}: {e}", path_file.display()))?;
+    let seconds: f64 = segments.iter().map(|s| s.duration()).sum();
+    if !(seconds / machine.period <= MAX_PERIODS as f64) {
+        return Err(format!(
+            "{}: the program takes {seconds:.0} s, more than {MAX_PERIODS} periods of {} s",
+            path_file.display(),
+            machine.period
+        ));
+    }
+    let interpolation = interpolate(start, &segments, machine.period);
     let config = DriverConfig {
         tick_divisor,
         period_ticks,
@@ -249,18 +359,19 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         bar.finish();
     }
     let bus = driver.bus();
-    let offset = |p: [i64; 3]| [p[0] + path.start[0], p[1] + path.start[1], p[2] + path.start[2]];
+    let offset = |p: [i64; 3]| [p[0] + start[0], p[1] + start[1], p[2] + start[2]];
     let mut figures = Vec::new();
     if let Some(dir) = &options.out_dir {
         std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         let stem = path_file.file_stem().and_then(|s| s.to_str()).unwrap_or("path");
         let xy = dir.join(format!("{stem}-path.svg"));
         let measured: Vec<[i64; 3]> = bus.samples().iter().map(|&p| offset(p)).collect();
-        let mut planned = vec![path.start];
+        let mut planned = vec![start];
         planned.extend(&interpolation.positions);
         plot_path_xy(&planned, &measured, &xy).map_err(|e| e.to_string())?;
         let speed = dir.join(format!("{stem}-speed.svg"));
-        plot_speed(&interpolation.speeds, path.period, &speed).map_err(|e| e.to_string())?;
+        let unit = if job.program_end.is_some() || machine.steps_per_mm != [1.0; 3] { "mm/s" } else { "steps/s" };
+        plot_speed(&interpolation.speeds, machine.period, unit, &speed).map_err(|e| e.to_string())?;
         figures = vec![xy, speed];
         if servo {
             let names = ["x", "y", "z"];
@@ -274,7 +385,9 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
     let commanded = to_path(report.commanded);
     let actual = to_path(report.actual);
     Ok(SimulationReport {
-        target: path.end(),
+        target,
+        program_end: job.program_end,
+        ignored: job.ignored,
         commanded: commanded.map(|v| v as i32),
         actual: actual.map(|v| v as i32),
         peak_rate: bus.peak_steps_per_clock().map(|r| r * options.clock_hz),

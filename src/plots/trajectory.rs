@@ -62,8 +62,8 @@ pub fn plot_path_xy(planned: &[[i64; 3]], measured: &[[i64; 3]], path: &Path) ->
     root.present().map_err(|e| err(e.to_string()))
 }
 
-/// Draws the planned path speed (steps/s) at the end of each period.
-pub fn plot_speed(speeds: &[f64], period_s: f64, path: &Path) -> Result<(), PlotError> {
+/// Draws the planned path speed (in `unit`, e.g. "mm/s") at the end of each period.
+pub fn plot_speed(speeds: &[f64], period_s: f64, unit: &str, path: &Path) -> Result<(), PlotError> {
     let err = draw_error(path);
     let end = (speeds.len() as f64 * period_s).max(period_s);
     let (_, top) = bounds(speeds.iter().copied().chain([0.0]));
@@ -79,7 +79,7 @@ pub fn plot_speed(speeds: &[f64], period_s: f64, path: &Path) -> Result<(), Plot
     chart
         .configure_mesh()
         .x_desc("time (s)")
-        .y_desc("steps/s")
+        .y_desc(unit)
         .draw()
         .map_err(|e| err(e.to_string()))?;
     chart

@@ -132,6 +132,8 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
     let square = motion_hdl::tools::repo_root().join("examples/square.path");
     let dir = tempfile::tempdir().unwrap();
     let options = SimulationOptions {
+        format: None,
+        machine: None,
         clock_hz: 4e6,
         uniform: [false; 3],
         servo: [true, false, false],

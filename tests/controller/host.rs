@@ -39,7 +39,7 @@ fn a_closed_50_segment_polygon_through_the_rtl_ends_exactly_at_its_start() {
     let config = DriverConfig::default();
     let period = config.period_ticks as f64 * config.tick_divisor as f64 / 50e6;
     let path = Path::new([0, 0, 0], &polygon(50, 400.0), 1e7, 2e10, 2.0, period).unwrap();
-    let segments = plan(&path);
+    let segments = plan(&path).unwrap();
     let interpolation = interpolate(path.start, &segments, path.period);
     let bus = RtlBus::new(Backend::from_env_or(Backend::RustHdl).unwrap(), None).unwrap();
     let mut driver = Driver::new(bus, config).unwrap();
@@ -68,7 +68,7 @@ fn single(end: [i64; 3], feed: f64, accel: f64) -> Path {
 fn a_long_straight_move_accelerates_cruises_and_decelerates() {
     // 10,000 steps at 1,000 steps/s with 2,000 steps/s^2: 0.5 s and 250
     // steps to reach the feed, the same to stop, 9,500 steps of cruise.
-    let segments = plan(&single([10_000, 0, 0], 1000.0, 2000.0));
+    let segments = plan(&single([10_000, 0, 0], 1000.0, 2000.0)).unwrap();
     let s = segments[0];
     assert_eq!((s.v_entry, s.v_cruise, s.v_exit), (0.0, 1000.0, 0.0));
     assert!((s.duration() - (0.5 + 9.5 + 0.5)).abs() < 1e-9);
@@ -85,7 +85,7 @@ fn a_long_straight_move_accelerates_cruises_and_decelerates() {
 fn a_very_short_move_is_a_triangle() {
     // 100 steps at 2,000 steps/s^2 never reaches a 1,000 steps/s feed:
     // peak sqrt(a L) = 447.2 steps/s at the middle.
-    let s = plan(&single([0, 100, 0], 1000.0, 2000.0))[0];
+    let s = plan(&single([0, 100, 0], 1000.0, 2000.0)).unwrap()[0];
     assert!((s.v_cruise - (2000.0f64 * 100.0).sqrt()).abs() < 1e-9);
     assert!((s.duration() - 2.0 * (100.0f64 / 2000.0).sqrt()).abs() < 1e-9);
 }
@@ -93,7 +93,7 @@ fn a_very_short_move_is_a_triangle() {
 #[test]
 fn a_right_angle_corner_is_taken_at_the_contour_error_speed() {
     let path = Path::new([0, 0, 0], &[[5000, 0, 0], [5000, 5000, 0]], 1000.0, 2000.0, 1.0, PERIOD).unwrap();
-    let segments = plan(&path);
+    let segments = plan(&path).unwrap();
     // sin(90/2) = 0.7071: v = sqrt(a e s / (1 - s)) = sqrt(2000 * 2.414).
     let expected = (2000.0 * 1.0 * 0.5f64.sqrt() / (1.0 - 0.5f64.sqrt())).sqrt();
     assert!((segments[0].v_exit - expected).abs() < 1e-6, "{}", segments[0].v_exit);
@@ -104,10 +104,10 @@ fn a_right_angle_corner_is_taken_at_the_contour_error_speed() {
 #[test]
 fn a_reversal_stops_and_a_straight_continuation_does_not() {
     let reversal = Path::new([0, 0, 0], &[[3000, 0, 0], [0, 0, 0]], 1000.0, 2000.0, 5.0, PERIOD).unwrap();
-    assert_eq!(plan(&reversal)[0].v_exit, 0.0);
+    assert_eq!(plan(&reversal).unwrap()[0].v_exit, 0.0);
     let straight = Path::new([0, 0, 0], &[[3000, 0, 0], [6000, 0, 0]], 1000.0, 2000.0, 5.0, PERIOD).unwrap();
-    assert_eq!(plan(&straight)[0].v_exit, 1000.0);
-    let i = interpolate([0, 0, 0], &plan(&reversal), PERIOD);
+    assert_eq!(plan(&straight).unwrap()[0].v_exit, 1000.0);
+    let i = interpolate([0, 0, 0], &plan(&reversal).unwrap(), PERIOD);
     assert_eq!(*i.positions.last().unwrap(), [0, 0, 0]);
     assert_eq!(i.positions.iter().map(|p| p[0]).max(), Some(3000));
 }
@@ -127,7 +127,7 @@ fn random_paths_end_exactly_within_their_limits_without_drift() {
         let feed = rng.gen_range(100.0..5000.0);
         let accel = rng.gen_range(500.0..50_000.0);
         let path = Path::new([rng.gen_range(-50..50), 0, 0], &ends, feed, accel, rng.gen_range(0.0..5.0), PERIOD).unwrap();
-        let segments = plan(&path);
+        let segments = plan(&path).unwrap();
         for s in &segments {
             assert!(s.v_cruise <= feed * (1.0 + 1e-12), "case {case}: cruise above feed");
             assert!(s.v_entry.powi(2) <= s.v_exit.powi(2) + 2.0 * accel * s.length + 1e-6, "case {case}: cannot stop in time");
@@ -177,7 +177,9 @@ fn path_files_parse_and_bad_ones_name_the_line_and_problem() {
     let text = "# demo\nunits mm\nsteps_per_mm 100 100 400\nfeed 10\naccel 100\ncontour_error 0.01\nperiod_us 500\nline 1 0 0\nline 1 2 0.5\n";
     let path = Path::parse(text).unwrap();
     assert_eq!(path.end(), [100, 200, 200]);
-    assert_eq!((path.feed, path.accel, path.period), (1000.0, 10_000.0, 5e-4));
+    // Planned in mm: Z's 400 steps/mm do not make it a faster axis.
+    assert_eq!((path.feed, path.accel, path.period), (10.0, 100.0, 5e-4));
+    assert_eq!(path.steps_per_unit, [100.0, 100.0, 400.0]);
     for (bad, expected) in [
         ("feed 10\naccel 1\nline 1 2\n", "line 3: `line` takes 3 number(s), found 2"),
         ("feed x\n", "line 1: `x` is not a number"),
@@ -420,7 +422,7 @@ fn a_2000_segment_circle_through_the_rtl_ends_exactly() {
     let config = DriverConfig::default();
     let period = config.period_ticks as f64 * config.tick_divisor as f64 / 48e6;
     let path = Path::new([0, 0, 0], &polygon(2000, 3000.0), 1e7, 2e10, 2.0, period).unwrap();
-    let interpolation = interpolate(path.start, &plan(&path), path.period);
+    let interpolation = interpolate(path.start, &plan(&path).unwrap(), path.period);
     let bus = RtlBus::new(Backend::from_env_or(Backend::Verilator).unwrap(), None).unwrap();
     let mut driver = Driver::new(bus, config).unwrap();
     let started = std::time::Instant::now();

@@ -10,6 +10,8 @@ mod motion_controller;
 mod dda_only;
 mod machine_io;
 mod host;
+mod arcs;
+mod gcode;
 mod compiled_backend;
 mod controller_behind_bus_adapter;
 mod analog_servo;

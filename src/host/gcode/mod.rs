@@ -1,14 +1,119 @@
-//! G-code (RS-274) programs as the controller's input.
+//! G-code (RS-274/NGC) programs as the controller's input: a subset with
+//! LinuxCNC's semantics, read into a [`Toolpath`](crate::host::toolpath::Toolpath)
+//! of lines, arcs and dwells in mm by [`interpret`].
 //!
-//! Work in progress (issue #22): the line lexer is here; the modal
-//! interpreter (G0 to G3, planes, units, distance modes, F, G4, M2/M30,
-//! refusal of the words that change motion), arcs in the planner and
-//! `simulate` on G-code are not built yet.
+//! # Reading
+//! [`lex_program`] reads lines into blocks of words (see [`lexer`]): either
+//! case, spaces anywhere, `N` numbers, `( )` and `;` comments, block delete
+//! `/`, RepRap `*NN` checksums, `%` lines. Values are `f64`; G and M codes
+//! are compared as integers (tenths: G90.1 is 901). The lexer is our own:
+//! the `gcode` crate (0.7.0, and 0.6.1) keeps values as `f32` (`X1234.5678`
+//! reads 1234.5677), rejects block delete and checksums, and drops a
+//! malformed G number without an error.
 //!
-//! The lexer is our own: the `gcode` crate (0.7.0, and 0.6.1) keeps values
-//! as `f32` (`X1234.5678` reads 1234.5677), rejects block delete and
-//! checksums, and drops a malformed G number without an error.
+//! # Modal state at the start
+//! G17 (XY plane), G21 (mm), G90 (absolute), G91.1 (I, J, K are offsets
+//! from the arc's start), G94 (feed per minute), no motion mode, no feed,
+//! the position [`interpret_from`]'s `start` (the origin for [`interpret`]).
+//!
+//! # Order within a block
+//! All words are read first (errors for unknown or repeated words), then
+//! applied as RS-274 orders them: G20/G21, G17/G18/G19, G90/G91 and
+//! G90.1/G91.1, F, G4, the motion (G0 to G3 with X, Y, Z, I, J, K, R, P),
+//! then M2/M30. A block deleted by `/` is skipped whole. After M2 or M30
+//! nothing more is interpreted (the lexer has read every line by then, so
+//! a malformed line after the end is still an error).
+//!
+//! # Supported
+//! | Words | Effect |
+//! |---|---|
+//! | G0 | rapid line (`Move::feed` is `None`) |
+//! | G1 | line at the modal feed |
+//! | G2, G3 | clockwise, counter-clockwise arc seen from the plane's positive normal; the normal axis may move (helix) |
+//! | G4 P | dwell, P in **seconds** (RS-274/NGC and LinuxCNC; not Fanuc's milliseconds), P ≥ 0; non-modal, keeps the motion mode |
+//! | G17, G18, G19 | arc plane XY, ZX, YZ |
+//! | G20, G21 | inch, mm: every later length and F in those units |
+//! | G90, G91 | X, Y, Z absolute or incremental |
+//! | G90.1, G91.1 | I, J, K absolute positions or offsets from the arc's start |
+//! | X Y Z | the end, in the current units; an axis not written keeps its position |
+//! | F | feed, units per minute, > 0, modal; stored as mm/s (F600 in G21 is 10 mm/s) |
+//! | M2, M30 | end of program ([`Program::end`]) |
+//! | G94, G54, G40, G49, G80 | accepted, no effect: the only feed mode, the only coordinate system (no offsets), and cancels of modes that are never on. G80 does not cancel G0 to G3 (as in Fanuc, where it is in a group of its own). |
+//!
+//! Motion is modal: a block with only axis words runs the last G0 to G3. A
+//! G0 or G1 (or a G2, G3) with no axis word only sets the mode; a line
+//! ending exactly where it starts adds no move.
+//!
+//! Arcs: the center is either I, J, K (the plane's two: I and J for G17,
+//! K and I for G18's (Z, X), J and K for G19; a missing one counts 0), or
+//! R. With I, J, K an end equal to the start in the plane (within 1e-9 mm)
+//! is a full circle; the radius at the end must match the start's within
+//! max(0.002 mm, 0.1 %). R > 0 is the arc of at most half a circle, R < 0
+//! the longer one (LinuxCNC's rule); |R| short of half the chord by less
+//! than 1e-6 mm is taken as a half circle. P, the number of turns (a
+//! whole number, at least 1, the default), gives `Arc::turns` = P − 1. An
+//! arc needs at least one of the plane's two axis words.
+//!
+//! # Ignored, reported once
+//! These words do not change the motion; each is listed in
+//! [`Program::ignored`] at its first occurrence (once per M code, per G
+//! code, per letter S, T, H, D) and otherwise ignored:
+//! M0, M1, M60 (program pause); M3, M4, M5, G96, G97 (spindle); S (spindle
+//! speed); M6 (tool change); T, M61 (tool); H, D (tool offset, used only by
+//! the refused G41, G43); M7, M8, M9 (coolant); M48 to M53 (override); M62
+//! to M68 (digital and analog I/O); G61, G61.1, G64 with its P and Q (path
+//! control: the planner always blends within its own contour error); G98,
+//! G99 (canned cycle return level); and **any other M code** ("unknown M
+//! code": user M100 to M199 macros and RepRap's M104, M106... run nothing
+//! here, so the path is the program's own).
+//!
+//! # Errors
+//! Every error is a [`GcodeError`], "line N: message", naming the word:
+//! * `G41 (cutter radius compensation) changes the motion and is not
+//!   supported`; likewise G41.1, G42, G42.1; G43, G43.1, G43.2 (tool
+//!   length offset); G28, G28.1, G30, G30.1 (return to a stored
+//!   position); G53 (machine coordinates); G55 to G59.3 (another
+//!   coordinate system); G52, G92 to G92.3 (coordinate offset); G10
+//!   (setting offsets); G33, G33.1 (spindle-synchronized motion); G38.2
+//!   to G38.5 (probing); G73, G74, G76, G81 to G89 (canned cycle); G93
+//!   (inverse-time feed); G95 (feed per revolution); G5 to G5.3 (spline);
+//!   G7, G8 (lathe diameter, radius mode).
+//! * `G12 is not a supported G code`; `G1.25 is not a G code`;
+//!   `M1.5 is not an M code`.
+//! * `A5 moves an axis this machine does not have (X, Y and Z only)` (A, B,
+//!   C, U, V, W); `E5 drives an extruder (RepRap), an axis this machine
+//!   does not have`; `O100: subroutines and flow control (O words) are not
+//!   supported`; `L2 is used only by G10 and canned cycles, which are not
+//!   supported`.
+//! * `X appears twice`; `G0 and G1 in one block: one motion per block`;
+//!   `G90 and G91 in one block: both select the distance mode` (and so for
+//!   every modal group); `M2 and M30 in one block: both stop the program`.
+//! * `X10 needs a motion mode (G0, G1, G2 or G3) first`; `G1 needs a feed
+//!   rate: no F word so far` (G2, G3 likewise); `F0 is not a feed rate: it
+//!   must be above zero`.
+//! * `G4 needs a dwell time: P, in seconds`; `P-1 is not a dwell time: it
+//!   must be 0 or more seconds`; `X1 on a G4 block: a dwell moves no axis`;
+//!   `G1 and G4 in one block: one motion per block` (with axis words).
+//! * `P2 has no G2, G3, G4 or G64 to use it`; `Q1 has no G64 to use it`;
+//!   `I5 has no G2 or G3 to use it` (I, J, K, R without an arc).
+//! * Arcs: `G2 needs a center (I, J or K) or a radius (R)`; `R5 with I, J
+//!   or K: give the center or the radius, not both`; `K5 is not in the G17
+//!   plane's offsets (I and J)`; `G2 needs X or Y (its end in the G17
+//!   plane)`; `R cannot make a full circle (the end is the start); give
+//!   the center with I, J or K`; `R5 cannot reach the end: |R| must be at
+//!   least half the chord, 6.0000 mm`; `the arc's radius is 10.0000 mm at
+//!   its start and 10.0100 mm at its end`; `the arc's center is its start
+//!   (zero radius)` (or `its end`); `P1.5 is not a number of turns: a whole
+//!   number, 1 or more`. Lengths are in the program's units, 4 decimals.
+//! * `the X axis would be at 2000000.0000 mm, beyond ±1000000 mm` (and
+//!   `the arc's center ...`); `X1000…0 is not a finite number` (more digits
+//!   than f64 holds).
+//! * The lexer's errors, with their line and message unchanged.
 
+mod arc_center;
+mod block_words;
+pub mod interpreter;
 pub mod lexer;
 
+pub use interpreter::{interpret, interpret_from, GcodeError, Ignored, Program, Units};
 pub use lexer::{lex_line, lex_program, Block, LexError, Word};

@@ -1,0 +1,270 @@
+//! One block's words, read and sorted by their role, with the tables of
+//! the G and M codes this interpreter runs, accepts, ignores or refuses.
+//! Errors come back as messages without the line.
+
+use std::collections::HashSet;
+
+use super::interpreter::Units;
+use super::lexer::{Block, Word};
+use crate::host::toolpath::Plane;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum Motion {
+    Rapid,
+    Line,
+    Clockwise,
+    CounterClockwise,
+}
+
+impl Motion {
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Motion::Rapid => "G0",
+            Motion::Line => "G1",
+            Motion::Clockwise => "G2",
+            Motion::CounterClockwise => "G3",
+        }
+    }
+
+    pub(super) fn is_arc(self) -> bool {
+        matches!(self, Motion::Clockwise | Motion::CounterClockwise)
+    }
+}
+
+/// What a supported or accepted G code does.
+#[derive(Clone, Copy)]
+enum GEffect {
+    Motion(Motion),
+    Dwell,
+    Plane(Plane),
+    Units(Units),
+    Incremental(bool),
+    ArcIncremental(bool),
+    /// G64, G61, G61.1: reported; G64 may carry P and Q.
+    PathControl,
+    /// Accepted, no effect, not reported: the default or a cancel.
+    Nothing,
+    /// Accepted, no effect on the motion, reported.
+    Ignored(&'static str),
+}
+
+/// A G code's effect and its modal group, named by what two codes of the
+/// group in one block would both do (the end of the error message).
+fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
+    use GEffect::*;
+    Some(match code {
+        0 => (Motion(self::Motion::Rapid), "one motion per block"),
+        10 => (Motion(self::Motion::Line), "one motion per block"),
+        20 => (Motion(self::Motion::Clockwise), "one motion per block"),
+        30 => (Motion(self::Motion::CounterClockwise), "one motion per block"),
+        40 => (Dwell, "one dwell per block"),
+        170 => (Plane(self::Plane::Xy), "both select the plane"),
+        180 => (Plane(self::Plane::Zx), "both select the plane"),
+        190 => (Plane(self::Plane::Yz), "both select the plane"),
+        200 => (Units(self::Units::Inch), "both select the units"),
+        210 => (Units(self::Units::Millimetre), "both select the units"),
+        900 => (Incremental(false), "both select the distance mode"),
+        910 => (Incremental(true), "both select the distance mode"),
+        901 => (ArcIncremental(false), "both select the arc center mode"),
+        911 => (ArcIncremental(true), "both select the arc center mode"),
+        610 | 611 | 640 => (PathControl, "both select path control"),
+        940 => (Nothing, "both select the feed mode"),
+        540 => (Nothing, "both select the coordinate system"),
+        400 => (Nothing, "both set cutter radius compensation"),
+        490 => (Nothing, "both set the tool length offset"),
+        800 => (Nothing, "both cancel canned cycles"),
+        960 | 970 => (Ignored("spindle"), "both select the spindle speed mode"),
+        980 | 990 => (
+            Ignored("canned cycle return level"),
+            "both select the canned cycle return level",
+        ),
+        _ => return None,
+    })
+}
+
+/// The G codes refused because they would change the motion, with what
+/// they do.
+fn g_refused(code: u32) -> Option<&'static str> {
+    Some(match code {
+        50..=53 => "spline",
+        70 => "lathe diameter mode",
+        80 => "lathe radius mode",
+        100 => "setting offsets",
+        280 | 281 | 300 | 301 => "return to a stored position",
+        330 | 331 => "spindle-synchronized motion",
+        382..=385 => "probing",
+        410 | 411 | 420 | 421 => "cutter radius compensation",
+        430..=432 => "tool length offset",
+        520 | 920..=923 => "coordinate offset",
+        530 => "machine coordinates",
+        550 | 560 | 570 | 580 | 590..=593 => "another coordinate system",
+        730 | 740 | 760 => "canned cycle",
+        c if (810..=890).contains(&c) && c % 10 == 0 => "canned cycle",
+        930 => "inverse-time feed",
+        950 => "feed per revolution",
+        _ => return None,
+    })
+}
+
+/// What an M code does (`None`: the end of the program), and the group
+/// within which two in one block are an error.
+fn m_effect(code: u32) -> (Option<&'static str>, Option<&'static str>) {
+    const STOP: Option<&str> = Some("both stop the program");
+    match code {
+        20 | 300 => (None, STOP),
+        0 | 10 | 600 => (Some("program pause"), STOP),
+        30 | 40 | 50 => (Some("spindle"), Some("both set the spindle")),
+        60 => (Some("tool change"), None),
+        610 => (Some("tool"), None),
+        70 | 80 | 90 => (Some("coolant"), None),
+        480..=530 => (Some("override"), None),
+        620..=680 => (Some("digital and analog I/O"), None),
+        _ => (Some("unknown M code"), None),
+    }
+}
+
+/// One block's words, sorted by their role.
+#[derive(Default)]
+pub(super) struct Words<'a> {
+    pub(super) motion: Option<(&'a Word, Motion)>,
+    pub(super) dwell: Option<&'a Word>,
+    pub(super) plane: Option<Plane>,
+    pub(super) units: Option<Units>,
+    pub(super) incremental: Option<bool>,
+    pub(super) arc_incremental: Option<bool>,
+    pub(super) path_control: bool,
+    pub(super) end: bool,
+    pub(super) axes: [Option<&'a Word>; 3],
+    pub(super) offsets: [Option<&'a Word>; 3],
+    pub(super) radius: Option<&'a Word>,
+    /// The first X, Y or Z and the first I, J, K or R as written, for the
+    /// messages.
+    pub(super) first_axis: Option<&'a Word>,
+    pub(super) first_center: Option<&'a Word>,
+    pub(super) feed: Option<&'a Word>,
+    pub(super) p: Option<&'a Word>,
+    pub(super) q: Option<&'a Word>,
+    /// (the word, what it controls, the key it is reported once under).
+    pub(super) ignored: Vec<(&'a Word, &'static str, String)>,
+}
+
+impl<'a> Words<'a> {
+    pub(super) fn read(block: &'a Block) -> Result<Self, String> {
+        let mut words = Words::default();
+        let mut groups: Vec<(&'static str, &Word)> = Vec::new();
+        let mut letters = HashSet::new();
+        for word in &block.words {
+            let name = word.name();
+            if !word.value.is_finite() {
+                return Err(format!("{name} is not a finite number"));
+            }
+            let mut group = |group: &'static str| match groups.iter().find(|(g, _)| *g == group) {
+                Some((_, first)) => Err(format!("{} and {name} in one block: {group}", first.name())),
+                None => {
+                    groups.push((group, word));
+                    Ok(())
+                }
+            };
+            match word.letter {
+                'G' => {
+                    let code = word.code().ok_or_else(|| format!("{name} is not a G code"))?;
+                    if let Some(what) = g_refused(code) {
+                        return Err(format!("{name} ({what}) changes the motion and is not supported"));
+                    }
+                    let (effect, g) = g_effect(code).ok_or_else(|| format!("{name} is not a supported G code"))?;
+                    group(g)?;
+                    match effect {
+                        GEffect::Motion(m) => words.motion = Some((word, m)),
+                        GEffect::Dwell => words.dwell = Some(word),
+                        GEffect::Plane(p) => words.plane = Some(p),
+                        GEffect::Units(u) => words.units = Some(u),
+                        GEffect::Incremental(i) => words.incremental = Some(i),
+                        GEffect::ArcIncremental(i) => words.arc_incremental = Some(i),
+                        GEffect::PathControl => {
+                            words.path_control = true;
+                            words.ignored.push((word, "path control", g_name(code)));
+                        }
+                        GEffect::Nothing => {}
+                        GEffect::Ignored(what) => words.ignored.push((word, what, g_name(code))),
+                    }
+                }
+                'M' => {
+                    let code = word
+                        .code()
+                        .filter(|c| c % 10 == 0)
+                        .ok_or_else(|| format!("{name} is not an M code"))?;
+                    let (effect, m) = m_effect(code);
+                    if let Some(m) = m {
+                        group(m)?;
+                    }
+                    match effect {
+                        None => words.end = true,
+                        Some(what) => words.ignored.push((word, what, format!("M{}", code / 10))),
+                    }
+                }
+                letter => {
+                    if !letters.insert(letter) {
+                        return Err(format!("{letter} appears twice"));
+                    }
+                    match letter {
+                        'X' | 'Y' | 'Z' => words.first_axis = words.first_axis.or(Some(word)),
+                        'I' | 'J' | 'K' | 'R' => words.first_center = words.first_center.or(Some(word)),
+                        _ => {}
+                    }
+                    let slot = match letter {
+                        'X' | 'Y' | 'Z' => &mut words.axes[axis_index(letter, 'X')],
+                        'I' | 'J' | 'K' => &mut words.offsets[axis_index(letter, 'I')],
+                        'R' => &mut words.radius,
+                        'F' => &mut words.feed,
+                        'P' => &mut words.p,
+                        'Q' => &mut words.q,
+                        'S' | 'T' | 'H' | 'D' => {
+                            let what = match letter {
+                                'S' => "spindle speed",
+                                'T' => "tool",
+                                _ => "tool offset",
+                            };
+                            words.ignored.push((word, what, letter.to_string()));
+                            continue;
+                        }
+                        'A' | 'B' | 'C' | 'U' | 'V' | 'W' => {
+                            return Err(format!(
+                                "{name} moves an axis this machine does not have (X, Y and Z only)"
+                            ))
+                        }
+                        'E' => {
+                            return Err(format!(
+                                "{name} drives an extruder (RepRap), an axis this machine does not have"
+                            ))
+                        }
+                        'O' => {
+                            return Err(format!(
+                                "{name}: subroutines and flow control (O words) are not supported"
+                            ))
+                        }
+                        'L' => {
+                            return Err(format!(
+                                "{name} is used only by G10 and canned cycles, which are not supported"
+                            ))
+                        }
+                        _ => return Err(format!("{name} is not a word this interpreter knows")),
+                    };
+                    *slot = Some(word);
+                }
+            }
+        }
+        Ok(words)
+    }
+}
+
+fn axis_index(letter: char, first: char) -> usize {
+    (letter as u8 - first as u8) as usize
+}
+
+/// G64.0 as "G64", G61.1 as "G61.1".
+fn g_name(code: u32) -> String {
+    match code % 10 {
+        0 => format!("G{}", code / 10),
+        minor => format!("G{}.{minor}", code / 10),
+    }
+}

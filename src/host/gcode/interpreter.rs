@@ -1,0 +1,413 @@
+//! The modal interpreter: blocks of words into a [`Toolpath`] in mm.
+//! What it supports and refuses is listed in the [module doc](super).
+
+use std::collections::HashSet;
+
+use thiserror::Error;
+
+use super::arc_center::{center_from_radius, check_center};
+use super::block_words::{Motion, Words};
+use super::lexer::{lex_program, Block, LexError};
+// An arc whose end is within SAME_POINT of its start, in its plane, is a
+// full circle (and its end is set to the start exactly).
+use crate::host::geometry::SAME_POINT;
+use crate::host::toolpath::{Arc, Item, Move, MoveKind, Plane, Toolpath};
+
+/// Positions (ends and arc centers) beyond this many mm from zero are
+/// refused: far outside any machine, and where f64 mm keep too few
+/// fractional digits for the 1e-9 mm full-circle test.
+pub const POSITION_LIMIT_MM: f64 = 1e6;
+
+/// A program that cannot be interpreted.
+#[derive(Debug, Error, PartialEq, Eq, Clone)]
+#[error("line {line}: {message}")]
+pub struct GcodeError {
+    /// The 1-based line of the file.
+    pub line: usize,
+    /// What is wrong, naming the word at fault.
+    pub message: String,
+}
+
+impl From<LexError> for GcodeError {
+    fn from(e: LexError) -> Self {
+        GcodeError {
+            line: e.line,
+            message: e.message,
+        }
+    }
+}
+
+/// The length unit of a program's numbers (G20, G21).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Units {
+    /// G21, the default.
+    #[default]
+    Millimetre,
+    /// G20.
+    Inch,
+}
+
+impl Units {
+    /// "mm" or "in".
+    pub fn name(self) -> &'static str {
+        match self {
+            Units::Millimetre => "mm",
+            Units::Inch => "in",
+        }
+    }
+
+    /// Millimetres in one unit: 1 or 25.4.
+    pub fn mm_per_unit(self) -> f64 {
+        match self {
+            Units::Millimetre => 1.0,
+            Units::Inch => 25.4,
+        }
+    }
+
+    /// A length in mm shown in these units with 4 decimals: "0.3937 in".
+    pub(super) fn show(self, mm: f64) -> String {
+        format!("{:.4} {}", mm / self.mm_per_unit(), self.name())
+    }
+}
+
+/// A word read and accepted with no effect on the motion.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Ignored {
+    /// The 1-based line of its first occurrence.
+    pub line: usize,
+    /// The word as first written: "M3", "S12000", "G64".
+    pub word: String,
+    /// What it controls: "spindle", "coolant", "tool", "path control"...
+    pub what: &'static str,
+}
+
+/// An interpreted program.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Program {
+    /// The moves and dwells, absolute, in mm, feeds in mm/s.
+    pub toolpath: Toolpath,
+    /// The units mode in force at the end.
+    pub units: Units,
+    /// Where the program ends, in `units` (the toolpath's end, converted).
+    pub final_position: [f64; 3],
+    /// The words that do nothing here, each once, at its first line:
+    /// once per M code, per ignored G code, and per letter S, T, H and D.
+    pub ignored: Vec<Ignored>,
+    /// The line of the M2 or M30 that ended the program, if one did.
+    pub end: Option<usize>,
+}
+
+/// Interprets `program` from the origin. See the [module doc](super).
+pub fn interpret(program: &str) -> Result<Program, GcodeError> {
+    interpret_from(program, [0.0; 3])
+}
+
+/// Interprets `program` from `start` (absolute, mm): a program's first
+/// incremental moves and arc centers count from there.
+pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeError> {
+    let mut state = State::new(start);
+    for block in lex_program(program)? {
+        if block.deleted {
+            continue;
+        }
+        state.apply(&block).map_err(|message| GcodeError {
+            line: block.line,
+            message,
+        })?;
+        if state.end.is_some() {
+            break;
+        }
+    }
+    Ok(state.finish())
+}
+
+const AXES: [char; 3] = ['X', 'Y', 'Z'];
+
+/// The modal state and what the program has produced so far.
+struct State {
+    units: Units,
+    plane: Plane,
+    incremental: bool,
+    arc_incremental: bool,
+    motion: Option<Motion>,
+    /// mm/s.
+    feed: Option<f64>,
+    /// The position in the program's current units: kept apart from the
+    /// mm one so that a program's own sums (G91 in inches) come out as it
+    /// computes them, not through a round trip by 25.4.
+    position: [f64; 3],
+    position_mm: [f64; 3],
+    toolpath: Toolpath,
+    ignored: Vec<Ignored>,
+    reported: HashSet<String>,
+    end: Option<usize>,
+}
+
+impl State {
+    fn new(start: [f64; 3]) -> Self {
+        State {
+            units: Units::Millimetre,
+            plane: Plane::Xy,
+            incremental: false,
+            arc_incremental: true,
+            motion: None,
+            feed: None,
+            position: start,
+            position_mm: start,
+            toolpath: Toolpath {
+                start,
+                items: Vec::new(),
+            },
+            ignored: Vec::new(),
+            reported: HashSet::new(),
+            end: None,
+        }
+    }
+
+    fn finish(self) -> Program {
+        Program {
+            toolpath: self.toolpath,
+            units: self.units,
+            final_position: self.position,
+            ignored: self.ignored,
+            end: self.end,
+        }
+    }
+
+    /// One block, in RS-274's order of execution.
+    fn apply(&mut self, block: &Block) -> Result<(), String> {
+        let words = Words::read(block)?;
+        let motion = self.motion_to_run(&words)?;
+        if let Some(p) = words.p {
+            let used = words.dwell.is_some() || words.path_control || motion.is_some_and(Motion::is_arc);
+            if !used {
+                return Err(format!("{} has no G2, G3, G4 or G64 to use it", p.name()));
+            }
+        }
+        if let Some(q) = words.q.filter(|_| !words.path_control) {
+            return Err(format!("{} has no G64 to use it", q.name()));
+        }
+
+        for (word, what, key) in &words.ignored {
+            if self.reported.insert(key.clone()) {
+                self.ignored.push(Ignored {
+                    line: block.line,
+                    word: word.name(),
+                    what,
+                });
+            }
+        }
+        if let Some(units) = words.units.filter(|u| *u != self.units) {
+            self.units = units;
+            self.position = self.position_mm.map(|mm| mm / units.mm_per_unit());
+        }
+        self.plane = words.plane.unwrap_or(self.plane);
+        self.incremental = words.incremental.unwrap_or(self.incremental);
+        self.arc_incremental = words.arc_incremental.unwrap_or(self.arc_incremental);
+        if let Some(f) = words.feed {
+            if f.value <= 0.0 {
+                return Err(format!("{} is not a feed rate: it must be above zero", f.name()));
+            }
+            self.feed = Some(f.value * self.units.mm_per_unit() / 60.0);
+        }
+        if words.dwell.is_some() {
+            let p = words.p.ok_or("G4 needs a dwell time: P, in seconds")?;
+            if p.value < 0.0 {
+                return Err(format!(
+                    "{} is not a dwell time: it must be 0 or more seconds",
+                    p.name()
+                ));
+            }
+            self.toolpath.items.push(Item::Dwell {
+                seconds: p.value,
+                line: block.line,
+            });
+        }
+        if let Some((_, m)) = words.motion {
+            self.motion = Some(m);
+        }
+        if let Some(motion) = motion {
+            self.run(motion, &words, block.line)?;
+        }
+        if words.end {
+            self.end = Some(block.line);
+        }
+        Ok(())
+    }
+
+    /// The motion the block runs, if it runs one: its own G0 to G3 or the
+    /// modal one, when it has axis words (or, for an arc, center words).
+    fn motion_to_run(&self, words: &Words) -> Result<Option<Motion>, String> {
+        let (axis, center) = (words.first_axis, words.first_center);
+        if let Some(dwell) = words.dwell {
+            if let (Some((written, _)), Some(_)) = (words.motion, axis.or(center)) {
+                return Err(format!(
+                    "{} and {} in one block: one motion per block",
+                    written.name(),
+                    dwell.name()
+                ));
+            }
+            if let Some(axis) = axis {
+                return Err(format!("{} on a G4 block: a dwell moves no axis", axis.name()));
+            }
+            if let Some(center) = center {
+                return Err(format!("{} has no G2 or G3 to use it", center.name()));
+            }
+            return Ok(None);
+        }
+        let motion = match words.motion {
+            Some((_, m)) => Some(m),
+            None if axis.or(center).is_some() => self.motion,
+            None => None,
+        };
+        if let (None, Some(axis)) = (motion, axis) {
+            return Err(format!("{} needs a motion mode (G0, G1, G2 or G3) first", axis.name()));
+        }
+        if let Some(center) = center.filter(|_| !motion.is_some_and(Motion::is_arc)) {
+            return Err(format!("{} has no G2 or G3 to use it", center.name()));
+        }
+        // G0 or G1 with no axis word sets the mode and moves nothing; so
+        // does a bare G2 or G3.
+        Ok(motion.filter(|_| axis.or(center).is_some()))
+    }
+
+    fn run(&mut self, motion: Motion, words: &Words, line: usize) -> Result<(), String> {
+        let feed = match motion {
+            Motion::Rapid => None,
+            _ => Some(
+                self.feed
+                    .ok_or_else(|| format!("{} needs a feed rate: no F word so far", motion.name()))?,
+            ),
+        };
+        let scale = self.units.mm_per_unit();
+        let start_mm = self.position_mm;
+        let mut end = self.position;
+        for (axis, word) in words.axes.iter().enumerate() {
+            if let Some(word) = word {
+                end[axis] = if self.incremental {
+                    end[axis] + word.value
+                } else {
+                    word.value
+                };
+            }
+        }
+        let mut end_mm = start_mm;
+        for axis in 0..3 {
+            if words.axes[axis].is_some() {
+                end_mm[axis] = end[axis] * scale;
+                check_range(&format!("the {} axis", AXES[axis]), end_mm[axis])?;
+            }
+        }
+        let kind = if motion.is_arc() {
+            let arc = self.arc(motion, words, &mut end, &mut end_mm)?;
+            MoveKind::Arc(arc)
+        } else if end_mm == start_mm {
+            return Ok(());
+        } else {
+            MoveKind::Line
+        };
+        self.position = end;
+        self.position_mm = end_mm;
+        self.toolpath.items.push(Item::Move(Move {
+            kind,
+            end: end_mm,
+            feed,
+            line,
+        }));
+        Ok(())
+    }
+
+    /// The arc's shape; a full circle's end (`end` in program units and
+    /// `end_mm`) is set to its start exactly, so that the planner sees the
+    /// full circle the program meant rather than a sliver.
+    fn arc(&self, motion: Motion, words: &Words, end: &mut [f64; 3], end_mm: &mut [f64; 3]) -> Result<Arc, String> {
+        let (first, second, normal) = self.plane.axes();
+        let start = self.position_mm;
+        let (mut a, mut b) = (AXES[first], AXES[second]);
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        let name = motion.name();
+        if words.axes[first].is_none() && words.axes[second].is_none() {
+            return Err(format!(
+                "{name} needs {a} or {b} (its end in the {} plane)",
+                self.plane.gcode()
+            ));
+        }
+        if let Some(k) = words.offsets[normal] {
+            let (i, j) = (a as u8 - b'X' + b'I', b as u8 - b'X' + b'I');
+            return Err(format!(
+                "{} is not in the {} plane's offsets ({} and {})",
+                k.name(),
+                self.plane.gcode(),
+                i as char,
+                j as char
+            ));
+        }
+        let has_offset = words.offsets.iter().any(Option::is_some);
+        if let (true, Some(r)) = (has_offset, words.radius) {
+            return Err(format!(
+                "{} with I, J or K: give the center or the radius, not both",
+                r.name()
+            ));
+        }
+        let turns = match words.p {
+            None => 0,
+            Some(p) if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(u32::MAX) => p.value as u32 - 1,
+            Some(p) => {
+                return Err(format!(
+                    "{} is not a number of turns: a whole number, 1 or more",
+                    p.name()
+                ))
+            }
+        };
+        let clockwise = motion == Motion::Clockwise;
+        let from = [start[first], start[second]];
+        let to = [end_mm[first], end_mm[second]];
+        let full = (to[0] - from[0]).hypot(to[1] - from[1]) <= SAME_POINT;
+        let scale = self.units.mm_per_unit();
+        let center = if let Some(r) = words.radius {
+            if full {
+                return Err(
+                    "R cannot make a full circle (the end is the start); give the center with I, J or K".into(),
+                );
+            }
+            center_from_radius(from, to, r.value * scale, clockwise, &r.name(), self.units)?
+        } else if has_offset {
+            let center = [first, second].map(|axis| {
+                let offset = words.offsets[axis].map_or(0.0, |w| w.value);
+                let base = if self.arc_incremental { self.position[axis] } else { 0.0 };
+                (base + offset) * scale
+            });
+            if full {
+                for axis in [first, second] {
+                    end[axis] = self.position[axis];
+                    end_mm[axis] = start[axis];
+                }
+            }
+            check_center(from, if full { from } else { to }, center, self.units)?;
+            center
+        } else {
+            return Err(format!("{name} needs a center (I, J or K) or a radius (R)"));
+        };
+        check_range("the arc's center", center[0])?;
+        check_range("the arc's center", center[1])?;
+        Ok(Arc {
+            plane: self.plane,
+            center,
+            clockwise,
+            turns,
+        })
+    }
+}
+
+fn check_range(what: &str, mm: f64) -> Result<(), String> {
+    if mm.abs() > POSITION_LIMIT_MM {
+        return Err(format!("{what} would be at {mm:.4} mm, beyond ±{POSITION_LIMIT_MM} mm"));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+#[path = "interpreter_tests.rs"]
+mod tests;

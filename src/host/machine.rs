@@ -1,0 +1,150 @@
+//! Machine settings: what the planner needs to know about the machine a
+//! G-code program runs on, from a small settings file or the defaults.
+//!
+//! ## Settings file
+//! Plain text, one setting per line, `#` starts a comment; any setting left
+//! out keeps its default:
+//!
+//! ```text
+//! steps_per_mm 100 100 400     # X Y Z
+//! max_velocity 50 50 20        # mm/s per axis (G0 runs at these)
+//! max_accel 500 500 200        # mm/s^2 per axis
+//! contour_error 0.01           # mm: corner deviation and arc chord error
+//! period_us 1000               # interpolation period T
+//! ```
+//!
+//! | setting | default | meaning |
+//! |---|---|---|
+//! | `steps_per_mm` | 100 100 400 | steps (encoder counts) per mm, X Y Z |
+//! | `max_velocity` | 50 50 20 | per-axis speed limit, mm/s (3000/3000/1200 mm/min) |
+//! | `max_accel` | 500 500 200 | per-axis acceleration limit, mm/s^2 |
+//! | `contour_error` | 0.01 | mm: how far a corner is rounded, and the chord error of an arc's per-period chords |
+//! | `period_us` | 1000 | interpolation period T, microseconds |
+//!
+//! The defaults are a small stepper mill: 1.8 degree motors at 1/8
+//! microstep on 16 mm-lead (X, Y) and 4 mm-lead (Z) screws.
+
+use super::path::PathError;
+
+/// The machine's limits and resolution, in mm and seconds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MachineSettings {
+    /// Steps per mm, X Y Z.
+    pub steps_per_mm: [f64; 3],
+    /// Per-axis maximum velocity, mm/s (infinite: no limit).
+    pub max_velocity: [f64; 3],
+    /// Per-axis maximum acceleration, mm/s^2 (infinite: no limit).
+    pub max_accel: [f64; 3],
+    /// Maximum path acceleration, mm/s^2, beside the per-axis ones
+    /// (infinite for G-code: only the axes limit; a `.path` file's `accel`).
+    pub path_accel: f64,
+    /// Contour error, mm: corner deviation and arc chord error.
+    pub contour_error: f64,
+    /// Interpolation period, seconds.
+    pub period: f64,
+}
+
+impl Default for MachineSettings {
+    fn default() -> Self {
+        Self {
+            steps_per_mm: [100.0, 100.0, 400.0],
+            max_velocity: [50.0, 50.0, 20.0],
+            max_accel: [500.0, 500.0, 200.0],
+            path_accel: f64::INFINITY,
+            contour_error: 0.01,
+            period: 1e-3,
+        }
+    }
+}
+
+impl MachineSettings {
+    /// Checks every setting: resolutions, velocities and accelerations
+    /// positive (infinite allowed for the limits, but some acceleration
+    /// limit must be finite), the contour error 0 or positive, the period
+    /// positive.
+    pub fn validate(&self) -> Result<(), PathError> {
+        let invalid = |message: String| Err(PathError::Invalid(message));
+        for (name, values, infinite_ok) in [
+            ("steps_per_mm", self.steps_per_mm, false),
+            ("max_velocity", self.max_velocity, true),
+            ("max_accel", self.max_accel, true),
+        ] {
+            for (axis, v) in ["X", "Y", "Z"].iter().zip(values) {
+                if !(v > 0.0 && (v.is_finite() || (infinite_ok && v == f64::INFINITY))) {
+                    return invalid(format!("{name} for {axis} must be a positive number, not {v}"));
+                }
+            }
+        }
+        if self.path_accel.is_nan() || self.path_accel <= 0.0 {
+            return invalid(format!("the path acceleration must be positive, not {}", self.path_accel));
+        }
+        if self.max_accel.iter().all(|a| a.is_infinite()) && self.path_accel.is_infinite() {
+            return invalid("no acceleration limit: set max_accel".into());
+        }
+        if !(self.contour_error.is_finite() && self.contour_error >= 0.0) {
+            return invalid(format!("contour_error must be 0 or positive, not {}", self.contour_error));
+        }
+        if !(self.period.is_finite() && self.period > 0.0) {
+            return invalid(format!("period must be positive, not {} s", self.period));
+        }
+        Ok(())
+    }
+
+    /// Reads a settings file (see the [module documentation](self)) over
+    /// the defaults; every error names the line.
+    pub fn parse(text: &str) -> Result<Self, PathError> {
+        let mut settings = Self::default();
+        for (index, raw) in text.lines().enumerate() {
+            let line = index + 1;
+            let err = |message: String| PathError::Syntax { line, message };
+            let content = raw.split('#').next().unwrap_or("").trim();
+            let mut words = content.split_whitespace();
+            let Some(key) = words.next() else { continue };
+            let numbers: Vec<f64> = words
+                .map(|w| {
+                    w.parse::<f64>()
+                        .ok()
+                        .filter(|v| v.is_finite())
+                        .ok_or_else(|| err(format!("`{w}` is not a number")))
+                })
+                .collect::<Result<_, _>>()?;
+            let want = |n: usize| {
+                if numbers.len() == n {
+                    Ok(())
+                } else {
+                    Err(err(format!("`{key}` takes {n} number(s), found {}", numbers.len())))
+                }
+            };
+            let three = |numbers: &[f64]| [numbers[0], numbers[1], numbers[2]];
+            match key {
+                "steps_per_mm" => {
+                    want(3)?;
+                    settings.steps_per_mm = three(&numbers);
+                }
+                "max_velocity" => {
+                    want(3)?;
+                    settings.max_velocity = three(&numbers);
+                }
+                "max_accel" => {
+                    want(3)?;
+                    settings.max_accel = three(&numbers);
+                }
+                "contour_error" => {
+                    want(1)?;
+                    settings.contour_error = numbers[0];
+                }
+                "period_us" => {
+                    want(1)?;
+                    settings.period = numbers[0] * 1e-6;
+                }
+                other => {
+                    return Err(err(format!(
+                        "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us)"
+                    )))
+                }
+            }
+            settings.validate().map_err(|e| err(e.to_string()))?;
+        }
+        Ok(settings)
+    }
+}

@@ -1,0 +1,115 @@
+//! Toolpaths: the moves a program asks for, in machine units (mm for
+//! G-code, steps for a `.path` file in steps), before any planning.
+//!
+//! A toolpath is a start position and a list of [`Item`]s: straight lines,
+//! circular arcs (helical when the axis normal to the arc's plane moves)
+//! and dwells. Every position is absolute. The interpreters (the G-code
+//! one and the `.path` file) produce it; the planner consumes it.
+
+/// The plane of an arc (G17, G18, G19), with its axes ordered so that a
+/// positive angle is counter-clockwise seen from the positive normal axis
+/// (G3): XY about Z, ZX about Y, YZ about X.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Plane {
+    /// G17: X and Y, normal Z.
+    #[default]
+    Xy,
+    /// G18: Z and X, normal Y.
+    Zx,
+    /// G19: Y and Z, normal X.
+    Yz,
+}
+
+impl Plane {
+    /// The plane's (first, second, normal) axis indices (X = 0).
+    pub fn axes(self) -> (usize, usize, usize) {
+        match self {
+            Plane::Xy => (0, 1, 2),
+            Plane::Zx => (2, 0, 1),
+            Plane::Yz => (1, 2, 0),
+        }
+    }
+
+    /// The G code that selects it: "G17".
+    pub fn gcode(self) -> &'static str {
+        match self {
+            Plane::Xy => "G17",
+            Plane::Zx => "G18",
+            Plane::Yz => "G19",
+        }
+    }
+}
+
+/// A circular arc's shape beyond its end point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Arc {
+    /// The plane of the circle.
+    pub plane: Plane,
+    /// The center, absolute, in the plane's (first, second) coordinates.
+    pub center: [f64; 2],
+    /// G2 (clockwise) or G3.
+    pub clockwise: bool,
+    /// Full turns beyond the first (G-code `P` minus 1): an arc whose end
+    /// equals its start in the plane is a full circle, and `turns` more.
+    pub turns: u32,
+}
+
+/// What kind of move.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MoveKind {
+    /// A straight line.
+    Line,
+    /// A circular or helical arc.
+    Arc(Arc),
+}
+
+/// One move from the previous position to `end`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Move {
+    /// Line or arc.
+    pub kind: MoveKind,
+    /// End position, absolute, machine units.
+    pub end: [f64; 3],
+    /// Path speed, machine units per second; `None` for a rapid (G0): as
+    /// fast as every axis's maximum velocity allows.
+    pub feed: Option<f64>,
+    /// The 1-based line of the program it came from.
+    pub line: usize,
+}
+
+/// One item of a toolpath.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Item {
+    /// A move.
+    Move(Move),
+    /// A pause at rest (G4), seconds.
+    Dwell {
+        /// How long.
+        seconds: f64,
+        /// The 1-based line of the program.
+        line: usize,
+    },
+}
+
+/// A start position and the moves from it.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Toolpath {
+    /// Start position, machine units.
+    pub start: [f64; 3],
+    /// The moves and dwells, in order.
+    pub items: Vec<Item>,
+}
+
+impl Toolpath {
+    /// The position after the last move.
+    pub fn end(&self) -> [f64; 3] {
+        self.items
+            .iter()
+            .rev()
+            .find_map(|item| match item {
+                Item::Move(m) => Some(m.end),
+                Item::Dwell { .. } => None,
+            })
+            .unwrap_or(self.start)
+    }
+}
