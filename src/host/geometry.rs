@@ -63,10 +63,17 @@ impl ArcGeometry {
         }
     }
 
-    /// Length along the helix (the mean radius for a spiral).
+    /// The length the planner drives: the fastest rate at which the point
+    /// moves with the fraction, |dp/df| at the larger radius. For a circle
+    /// or a helix that is its exact length. A spiral's is a little more
+    /// than its true length (it is driven a little slower than planned),
+    /// so that no point of it, and no axis, moves faster than planned:
+    /// with the mean radius, a short spiral whose radius change is most of
+    /// its motion would run several times over its limits.
     pub fn length(&self) -> f64 {
-        let r = 0.5 * (self.radius[0] + self.radius[1]);
-        (r * self.sweep).hypot(self.normal[1] - self.normal[0])
+        let r = self.radius[0].max(self.radius[1]);
+        let dr = self.radius[1] - self.radius[0];
+        ((r * self.sweep).hypot(dr)).hypot(self.normal[1] - self.normal[0])
     }
 
     /// The smaller radius: the tightest curvature (a helix curves less).
@@ -99,8 +106,9 @@ impl ArcGeometry {
         unit(d).0
     }
 
-    /// The fraction of the move's length that its plane part takes: the
-    /// normal axis's share is what is left (1 for a flat arc).
+    /// The normal axis's share of the move's speed: its travel over the
+    /// length (0 for a flat arc). The plane axes share at most
+    /// sqrt(1 - share^2).
     pub fn normal_share(&self) -> f64 {
         let length = self.length();
         if length > 0.0 {

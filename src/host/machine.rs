@@ -26,6 +26,9 @@
 
 use super::path::PathError;
 
+/// The finest resolution accepted: a nanometre a step.
+pub const MAX_STEPS_PER_MM: f64 = 1e6;
+
 /// The machine's limits and resolution, in mm and seconds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MachineSettings {
@@ -64,6 +67,13 @@ impl MachineSettings {
     /// positive.
     pub fn validate(&self) -> Result<(), PathError> {
         let invalid = |message: String| Err(PathError::Invalid(message));
+        if let Some(k) = (0..3).find(|&k| self.steps_per_mm[k] > MAX_STEPS_PER_MM) {
+            return invalid(format!(
+                "steps_per_mm for {} is {}, beyond {MAX_STEPS_PER_MM} (a nanometre a step)",
+                ["X", "Y", "Z"][k],
+                self.steps_per_mm[k]
+            ));
+        }
         for (name, values, infinite_ok) in [
             ("steps_per_mm", self.steps_per_mm, false),
             ("max_velocity", self.max_velocity, true),

@@ -186,6 +186,27 @@ pub fn junction_speed(u1: [f64; 3], u2: [f64; 3], accel: f64, contour_error: f64
     (accel * contour_error * sin_half / (1.0 - sin_half)).sqrt().min(feed)
 }
 
+/// The most steps a position may be from zero (2^40: exact in f64, and
+/// far beyond any machine).
+pub const MAX_POSITION_STEPS: f64 = (1u64 << 40) as f64;
+
+/// The most steps a move may take in one period on one axis (2^30: a
+/// period's count is an `i32`).
+pub const MAX_STEPS_PER_PERIOD: f64 = (1u64 << 30) as f64;
+
+/// Refuses a position that is not finite or is beyond
+/// [`MAX_POSITION_STEPS`] in steps.
+fn check_position(what: &str, p: [f64; 3], spu: [f64; 3], line: usize) -> Result<(), PathError> {
+    for k in 0..3 {
+        let steps = p[k] * spu[k];
+        if !(steps.abs() <= MAX_POSITION_STEPS) {
+            let message = format!("{what} {:?} is {steps} steps on axis {k}, beyond +-2^40", p);
+            return Err(if line == 0 { PathError::Invalid(message) } else { PathError::Syntax { line, message } });
+        }
+    }
+    Ok(())
+}
+
 /// A position in machine units to the nearest step.
 pub fn to_steps(p: [f64; 3], steps_per_unit: [f64; 3]) -> [i64; 3] {
     std::array::from_fn(|k| (p[k] * steps_per_unit[k]).round() as i64)
@@ -241,10 +262,15 @@ fn limits_of(shape: &Shape, feed: f64, machine: &MachineSettings) -> Result<(f64
 }
 
 /// Plans `toolpath` on `machine`: zero-length moves are dropped; the path
-/// starts and ends at rest, and stops for every dwell.
+/// starts and ends at rest, and stops for every dwell. A position that is
+/// not finite or beyond [`MAX_POSITION_STEPS`], a feed that is not a
+/// positive speed, an arc with no contour error, or a move that could take
+/// more than [`MAX_STEPS_PER_PERIOD`] steps in a period is an error naming
+/// its line.
 pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<Vec<PlannedSegment>, PathError> {
     machine.validate()?;
     let spu = machine.steps_per_mm;
+    check_position("the start", toolpath.start, spu, 0)?;
     let mut segments: Vec<PlannedSegment> = Vec::new();
     let mut at = toolpath.start;
     let mut at_steps = to_steps(at, spu);
@@ -257,6 +283,16 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
                 (Shape::Dwell { seconds: *seconds, at }, at, f64::INFINITY, *line)
             }
             Item::Move(m) => {
+                let line = m.line;
+                check_position("the end", m.end, spu, line)?;
+                if let MoveKind::Arc(arc) = m.kind {
+                    if !arc.center.iter().all(|c| c.is_finite()) {
+                        return Err(PathError::Syntax { line, message: format!("the arc's center {:?} is not a position", arc.center) });
+                    }
+                }
+                if let Some(feed) = m.feed.filter(|f| !(f.is_finite() && *f > 0.0)) {
+                    return Err(PathError::Syntax { line, message: format!("feed {feed} is not a speed") });
+                }
                 let shape = match m.kind {
                     MoveKind::Line => Shape::Line { from: at, to: m.end },
                     MoveKind::Arc(arc) => Shape::Arc(ArcGeometry::new(&arc, at, m.end)),
@@ -283,6 +319,15 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
             return Err(PathError::Syntax {
                 line,
                 message: format!("the move has no usable speed limit (speed {v_limit}, acceleration {accel})"),
+            });
+        }
+        let steps_per_period = v_limit * machine.period * spu.iter().fold(0.0, |m: f64, &s| m.max(s));
+        if !is_dwell && steps_per_period > MAX_STEPS_PER_PERIOD {
+            return Err(PathError::Syntax {
+                line,
+                message: format!(
+                    "the move may take {steps_per_period:.0} steps a period, beyond the {MAX_STEPS_PER_PERIOD} an axis's count holds"
+                ),
             });
         }
         segments.push(PlannedSegment {

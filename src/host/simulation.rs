@@ -256,9 +256,10 @@ pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), Strin
         .ok_or_else(|| format!("no tick divisor splits {clocks} clocks into at most 65535 ticks"))
 }
 
-/// The most periods a simulation plans (a day at 1 ms): a longer program
-/// is refused before its step counts are allocated.
-pub const MAX_PERIODS: u64 = 86_400_000;
+/// The most periods a simulation plans (2.8 hours at 1 ms, about 800 MB
+/// of per-period counts, positions and speeds): a longer program is
+/// refused before they are allocated.
+pub const MAX_PERIODS: u64 = 10_000_000;
 
 /// Runs `path_file` (G-code or a path file) through the RTL controller.
 pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<SimulationReport, String> {

@@ -173,6 +173,69 @@ fn an_arc_without_contour_error_is_refused_by_its_line() {
     );
 }
 
+#[test]
+fn a_spiral_whose_radius_change_is_most_of_its_motion_keeps_every_axis_limit() {
+    // A G3 from (100, 0) about (0, 0) to a point 0.0999 mm further out:
+    // within the interpreter's 0.1 % radius tolerance, and mostly radial.
+    // Planned with the mean radius's length it ran X at 2.7 times its
+    // limit; the planner's length is the fastest rate of the point.
+    let machine = MachineSettings::default();
+    let toolpath = Toolpath {
+        start: [0.0, 0.0, 0.0],
+        items: vec![
+            line([100.0, 0.0, 0.0], 50.0),
+            arc([100.0999, 0.01001, 0.0], [0.0, 0.0], false, 50.0),
+            line([200.0, 0.0, 0.0], 50.0),
+        ],
+    };
+    let (segments, i) = run(&toolpath, &machine);
+    let true_length = 0.0999f64.hypot(0.01001);
+    assert!(segments[1].length >= true_length, "{} < {true_length}", segments[1].length);
+    let mut previous = toolpath.start;
+    for (k, p) in i.points.iter().enumerate() {
+        for axis in 0..3 {
+            let v = (p[axis] - previous[axis]).abs() / machine.period;
+            assert!(v <= machine.max_velocity[axis] * (1.0 + 1e-9), "period {k}: axis {axis} at {v} mm/s");
+        }
+        previous = *p;
+    }
+    assert_eq!(*i.positions.last().unwrap(), [20_000, 0, 0]);
+}
+
+#[test]
+fn a_toolpath_that_is_not_a_set_of_positions_is_refused_by_its_line() {
+    let machine = MachineSettings::default();
+    let plan = |items: Vec<Item>| {
+        let items = items
+            .into_iter()
+            .map(|item| match item {
+                Item::Move(m) => Item::Move(Move { line: 4, ..m }),
+                other => other,
+            })
+            .collect();
+        plan_toolpath(&Toolpath { start: [0.0; 3], items }, &machine).unwrap_err().to_string()
+    };
+    assert_eq!(
+        plan(vec![line([f64::NAN, 0.0, 0.0], 10.0), line([1.0, 0.0, 0.0], 10.0)]),
+        "line 4: the end [NaN, 0.0, 0.0] is NaN steps on axis 0, beyond +-2^40"
+    );
+    assert_eq!(
+        plan(vec![line([f64::INFINITY, 0.0, 0.0], 10.0)]),
+        "line 4: the end [inf, 0.0, 0.0] is inf steps on axis 0, beyond +-2^40"
+    );
+    assert_eq!(plan(vec![line([1.0, 0.0, 0.0], f64::NAN)]), "line 4: feed NaN is not a speed");
+    assert_eq!(
+        plan(vec![arc([1.0, 0.0, 0.0], [f64::NAN, 0.0], false, 10.0)]),
+        "line 4: the arc's center [NaN, 0.0] is not a position"
+    );
+    let fast = MachineSettings { steps_per_mm: [1e6; 3], max_velocity: [1e9; 3], ..MachineSettings::default() };
+    let toolpath = Toolpath { start: [0.0; 3], items: vec![line([1.0, 0.0, 0.0], 1e7)] };
+    assert_eq!(
+        plan_toolpath(&toolpath, &fast).unwrap_err().to_string(),
+        "line 0: the move may take 10000000000 steps a period, beyond the 1073741824 an axis's count holds"
+    );
+}
+
 /// The angle between two unit tangents, radians.
 fn tangent_angle(u1: [f64; 3], u2: [f64; 3]) -> f64 {
     let dot: f64 = (0..3).map(|k| u1[k] * u2[k]).sum();

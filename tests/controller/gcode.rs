@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use motion_hdl::host::gcode::{interpret, Units};
 use motion_hdl::host::planner::to_steps;
 use motion_hdl::host::simulation::{simulate, InputFormat, Job, SimulationOptions};
-use motion_hdl::host::{interpolate, plan_toolpath, MachineSettings};
+use motion_hdl::host::{interpolate, plan_toolpath, Item, MachineSettings, Move, MoveKind};
 use motion_hdl::sim::Backend;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -114,6 +114,19 @@ fn random_programs_of_lines_and_arcs_end_exactly() {
 }
 
 #[test]
+fn an_r_arc_a_little_short_of_the_half_chord_is_a_half_circle() {
+    // CAM writes R to 4 decimals: 4.9999 for a half circle of 10 mm is
+    // within LinuxCNC's 0.005 mm and runs as the half circle.
+    let program = interpret("G1 X10 F600\nG2 X0 R4.9999\n").unwrap();
+    let Item::Move(Move { kind: MoveKind::Arc(arc), .. }) = program.toolpath.items[1] else { panic!("an arc") };
+    assert_eq!(arc.center, [5.0, 0.0]);
+    assert_eq!(
+        interpret("G1 X10 F600\nG2 X0 R4.99\n").unwrap_err().to_string(),
+        "line 2: R4.99 cannot reach the end: |R| must be at least half the chord, 5.0000 mm"
+    );
+}
+
+#[test]
 fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
     let dir = tempfile::tempdir().unwrap();
     let write = |name: &str, text: &str| {
@@ -146,7 +159,7 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
     // Refused before any step count is allocated or the RTL is built.
     let endless = write("endless.ngc", "G21 F100\nG1 X1\nG4 P1000000000\nM2\n");
     let refused = simulate(&endless, &options(dir.path())).unwrap_err().replace(&format!("{}", dir.path().display()), "DIR");
-    assert_eq!(refused, "DIR/endless.ngc: the program takes 1000000001 s, more than 86400000 periods of 0.001 s");
+    assert_eq!(refused, "DIR/endless.ngc: the program takes 1000000001 s, more than 10000000 periods of 0.001 s");
 }
 
 #[test]
@@ -163,6 +176,10 @@ fn machine_settings_files_read_over_the_defaults_and_name_bad_lines() {
         "line 1: unknown setting `feed` (steps_per_mm, max_velocity, max_accel, contour_error, period_us)"
     );
     assert_eq!(message("contour_error x"), "line 1: `x` is not a number");
+    assert_eq!(
+        message("steps_per_mm 1e12 100 400"),
+        "line 1: steps_per_mm for X is 1000000000000, beyond 1000000 (a nanometre a step)"
+    );
 }
 
 /// The options the tests simulate with: the compiled backend, step axes,

@@ -7,7 +7,8 @@ use super::interpreter::Units;
 
 /// A half chord longer than |R| by less than this is taken as a half
 /// circle: `R` written with a few decimals rarely reaches the end exactly.
-pub(super) const HALF_CIRCLE_SNAP_MM: f64 = 1e-6;
+/// LinuxCNC's tolerance in mm programs (`TOLERANCE_MM`).
+pub(super) const HALF_CIRCLE_SNAP_MM: f64 = 0.005;
 
 /// A radius below this is no radius at all.
 const ZERO_RADIUS_MM: f64 = 1e-9;

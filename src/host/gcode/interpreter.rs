@@ -197,6 +197,14 @@ impl State {
                 });
             }
         }
+        // RS-274/NGC's order of execution sets F (step 3) before the units
+        // (step 12): an F beside a G20 is in the units in force before it.
+        if let Some(f) = words.feed {
+            if f.value <= 0.0 {
+                return Err(format!("{} is not a feed rate: it must be above zero", f.name()));
+            }
+            self.feed = Some(f.value * self.units.mm_per_unit() / 60.0);
+        }
         if let Some(units) = words.units.filter(|u| *u != self.units) {
             self.units = units;
             self.position = self.position_mm.map(|mm| mm / units.mm_per_unit());
@@ -204,12 +212,6 @@ impl State {
         self.plane = words.plane.unwrap_or(self.plane);
         self.incremental = words.incremental.unwrap_or(self.incremental);
         self.arc_incremental = words.arc_incremental.unwrap_or(self.arc_incremental);
-        if let Some(f) = words.feed {
-            if f.value <= 0.0 {
-                return Err(format!("{} is not a feed rate: it must be above zero", f.name()));
-            }
-            self.feed = Some(f.value * self.units.mm_per_unit() / 60.0);
-        }
         if words.dwell.is_some() {
             let p = words.p.ok_or("G4 needs a dwell time: P, in seconds")?;
             if p.value < 0.0 {

@@ -108,11 +108,14 @@ fn incremental_moves_sum_exactly() {
 #[test]
 fn inches_convert_positions_and_feeds() {
     assert_eq!(
-        moves("G20 G1 X1 F10"),
-        vec![line([25.4, 0.0, 0.0], Some(25.4 * 10.0 / 60.0), 1)]
+        moves("G20\nG1 X1 F10"),
+        vec![line([25.4, 0.0, 0.0], Some(25.4 * 10.0 / 60.0), 2)]
     );
-    // F is read after G20 in its block, and stays in mm/s when units change.
-    assert_eq!(moves("G20 F60\nG21 G1 Y1")[0].feed, Some(25.4));
+    // RS-274/NGC sets F (step 3 of a block) before the units (step 12):
+    // F10 beside a G20 is still in mm/min, and a feed keeps its speed when
+    // the units change.
+    assert_eq!(moves("G20 G1 X1 F10")[0].feed, Some(10.0 / 60.0));
+    assert_eq!(moves("G20\nF60\nG21 G1 Y1")[0].feed, Some(25.4));
     let p = run("G1 X25.4 F100\nG20\nG91 X1 Y0.5");
     assert_eq!(p.toolpath.end(), [50.8, 12.7, 0.0]);
     assert_eq!((p.units, p.final_position), (Units::Inch, [2.0, 0.5, 0.0]));

@@ -18,9 +18,11 @@
 //!
 //! # Order within a block
 //! All words are read first (errors for unknown or repeated words), then
-//! applied as RS-274 orders them: G20/G21, G17/G18/G19, G90/G91 and
-//! G90.1/G91.1, F, G4, the motion (G0 to G3 with X, Y, Z, I, J, K, R, P),
-//! then M2/M30. A block deleted by `/` is skipped whole. After M2 or M30
+//! applied in RS-274/NGC's order of execution: F (in the units in force
+//! before the block: F comes before G20/G21 in that order), G20/G21,
+//! G17/G18/G19, G90/G91 and G90.1/G91.1, G4, the motion (G0 to G3 with X,
+//! Y, Z, I, J, K, R, P), then M2/M30. A feed keeps its speed across a
+//! change of units (it is held in mm/s), as in LinuxCNC. A block deleted by `/` is skipped whole. After M2 or M30
 //! nothing more is interpreted (the lexer has read every line by then, so
 //! a malformed line after the end is still an error).
 //!
@@ -50,7 +52,7 @@
 //! is a full circle; the radius at the end must match the start's within
 //! max(0.002 mm, 0.1 %). R > 0 is the arc of at most half a circle, R < 0
 //! the longer one (LinuxCNC's rule); |R| short of half the chord by less
-//! than 1e-6 mm is taken as a half circle. P, the number of turns (a
+//! than 0.005 mm (LinuxCNC's tolerance) is taken as a half circle. P, the number of turns (a
 //! whole number, at least 1, the default), gives `Arc::turns` = P − 1. An
 //! arc needs at least one of the plane's two axis words.
 //!
@@ -61,7 +63,7 @@
 //! M0, M1, M60 (program pause); M3, M4, M5, G96, G97 (spindle); S (spindle
 //! speed); M6 (tool change); T, M61 (tool); H, D (tool offset, used only by
 //! the refused G41, G43); M7, M8, M9 (coolant); M48 to M53 (override); M62
-//! to M68 (digital and analog I/O); G61, G61.1, G64 with its P and Q (path
+//! to M68 (digital and analog I/O); G61, G61.1, G64, and a P or Q beside them (path
 //! control: the planner always blends within its own contour error); G98,
 //! G99 (canned cycle return level); and **any other M code** ("unknown M
 //! code": user M100 to M199 macros and RepRap's M104, M106... run nothing
