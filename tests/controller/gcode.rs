@@ -230,3 +230,19 @@ fn the_pocket_program_runs_through_the_rtl_controller_to_its_exact_end() {
     assert_eq!(words, ["M6", "T1", "M3", "S12000", "M8", "M9", "M5"]);
     assert_eq!(r.figures.len(), 2);
 }
+
+/// The engraving (600 chords of about 0.3 mm, G64 reported and ignored)
+/// through the RTL controller: it ends exactly where the program ends.
+#[test]
+fn the_engraving_program_runs_through_the_rtl_controller_to_its_exact_end() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = simulate(&example("engraving.nc"), &options(dir.path())).unwrap_or_else(|e| panic!("{e}"));
+    println!("engraving: {} periods, {} clocks in {:.1} s, actual {:?}", r.periods, r.cycles, r.seconds, r.actual);
+    assert_eq!(r.program_end, Some(([0.0, 0.0, 2.0], Units::Millimetre)));
+    assert_eq!(r.target, [0, 0, 800]);
+    assert_eq!(r.commanded.map(i64::from), r.target);
+    assert_eq!(r.actual.map(i64::from), r.target);
+    assert_eq!(r.underruns, 0);
+    let words: Vec<&str> = r.ignored.iter().map(|i| i.word.as_str()).collect();
+    assert_eq!(words, ["G64", "M3", "S20000", "M5", "M9"]);
+}
