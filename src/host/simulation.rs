@@ -261,6 +261,43 @@ pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), Strin
 /// refused before they are allocated.
 pub const MAX_PERIODS: u64 = 10_000_000;
 
+/// Clocks a run may take before [`slow_run_hint`] suggests a lower clock
+/// (about 3 minutes on the compiled backend).
+pub const SLOW_RUN_CLOCKS: f64 = 1e8;
+
+/// For a run of more than [`SLOW_RUN_CLOCKS`] at `options.clock_hz`: the
+/// lowest clock (to 0.01 MHz, twice what the busiest period's steps need
+/// at step_len + step_space clocks a step, or two ticks a step on a
+/// uniform axis) that runs the same counts, as a sentence. `None` when the
+/// run is short or the clock is already that low.
+pub fn slow_run_hint(counts: &[[i32; 3]], period: f64, options: &SimulationOptions) -> Option<String> {
+    let clocks = counts.len() as f64 * period * options.clock_hz;
+    if clocks <= SLOW_RUN_CLOCKS {
+        return None;
+    }
+    let per_step = (options.step_len.max(1) + options.step_space.max(1)) as f64;
+    let needed = (0..3)
+        .map(|k| {
+            let peak = counts.iter().map(|c| c[k].unsigned_abs()).max().unwrap_or(0) as f64;
+            let per_step = if options.uniform[k] { per_step.max(2.0) } else { per_step };
+            peak * per_step
+        })
+        .fold(1.0, f64::max);
+    let mhz = ((2.0 * needed / period / 1e6) * 100.0).ceil() / 100.0;
+    (mhz < options.clock_hz / 1e6).then(|| {
+        format!(
+            "this run is {:.2e} clocks at {} MHz (about {:.0} minutes at 500,000 clocks/s); \
+             its busiest period needs {needed:.0} clocks of {:.0}, \
+             so --clock-mhz {mhz} runs the same steps {:.0} times sooner",
+            clocks,
+            options.clock_hz / 1e6,
+            clocks / 5e5 / 60.0,
+            period * options.clock_hz,
+            options.clock_hz / 1e6 / mhz
+        )
+    })
+}
+
 /// Runs `path_file` (G-code or a path file) through the RTL controller.
 pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<SimulationReport, String> {
     let job = Job::read(path_file, options.format, options.machine)?;
@@ -278,6 +315,11 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         ));
     }
     let interpolation = interpolate(start, &segments, machine.period);
+    if options.progress {
+        if let Some(hint) = slow_run_hint(&interpolation.counts, machine.period, options) {
+            eprintln!("motion-hdl: {hint}");
+        }
+    }
     let config = DriverConfig {
         tick_divisor,
         period_ticks,

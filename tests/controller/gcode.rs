@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use motion_hdl::host::gcode::{interpret, Units};
 use motion_hdl::host::planner::to_steps;
-use motion_hdl::host::simulation::{simulate, InputFormat, Job, SimulationOptions};
+use motion_hdl::host::simulation::{simulate, slow_run_hint, InputFormat, Job, SimulationOptions};
 use motion_hdl::host::{interpolate, plan_toolpath, Item, MachineSettings, Move, MoveKind};
 use motion_hdl::sim::Backend;
 use rand::rngs::StdRng;
@@ -245,4 +245,22 @@ fn the_engraving_program_runs_through_the_rtl_controller_to_its_exact_end() {
     assert_eq!(r.underruns, 0);
     let words: Vec<&str> = r.ignored.iter().map(|i| i.word.as_str()).collect();
     assert_eq!(words, ["G64", "M3", "S20000", "M5", "M9"]);
+}
+
+#[test]
+fn a_long_run_at_a_high_clock_is_told_the_clock_that_would_do() {
+    // 40,000 periods of 1 ms at 48 MHz with at most 8 steps a period: 1.9e9
+    // clocks; 8 steps of 4 clocks need 32 of the period's 48,000, so twice
+    // that, 64 clocks a millisecond, is 0.07 MHz rounded up.
+    let mut counts = vec![[5, -5, 0]; 40_000];
+    counts[7] = [0, 0, 8];
+    let mut options = options(std::path::Path::new("."));
+    options.clock_hz = 48e6;
+    assert_eq!(
+        slow_run_hint(&counts, 1e-3, &options).unwrap(),
+        "this run is 1.92e9 clocks at 48 MHz (about 64 minutes at 500,000 clocks/s); its busiest period needs \
+         32 clocks of 48000, so --clock-mhz 0.07 runs the same steps 686 times sooner"
+    );
+    options.clock_hz = 2e6;
+    assert_eq!(slow_run_hint(&counts, 1e-3, &options), None, "8e7 clocks: short enough");
 }
