@@ -408,13 +408,14 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
         std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         let stem = path_file.file_stem().and_then(|s| s.to_str()).unwrap_or("path");
         let xy = dir.join(format!("{stem}-path.svg"));
-        let measured: Vec<[i64; 3]> = bus.samples().iter().map(|&p| offset(p)).collect();
-        let mut planned = vec![start];
-        planned.extend(&interpolation.positions);
-        plot_path_xy(&planned, &measured, &xy).map_err(|e| e.to_string())?;
+        let unit = if job.program_end.is_some() || machine.steps_per_mm != [1.0; 3] { "mm" } else { "steps" };
+        // In the program's units (steps for a path file in steps).
+        let units = |p: [i64; 3]| -> [f64; 3] { std::array::from_fn(|k| p[k] as f64 / machine.steps_per_mm[k]) };
+        let measured: Vec<[f64; 3]> = bus.samples().iter().map(|&p| units(offset(p))).collect();
+        let planned: Vec<[f64; 3]> = std::iter::once(start).chain(interpolation.positions.iter().copied()).map(units).collect();
+        plot_path_xy(&planned, &measured, unit, &xy).map_err(|e| e.to_string())?;
         let speed = dir.join(format!("{stem}-speed.svg"));
-        let unit = if job.program_end.is_some() || machine.steps_per_mm != [1.0; 3] { "mm/s" } else { "steps/s" };
-        plot_speed(&interpolation.speeds, machine.period, unit, &speed).map_err(|e| e.to_string())?;
+        plot_speed(&interpolation.speeds, machine.period, &format!("{unit}/s"), &speed).map_err(|e| e.to_string())?;
         figures = vec![xy, speed];
         if servo {
             let names = ["x", "y", "z"];

@@ -12,21 +12,23 @@ fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     if lo > hi {
         return (0.0, 1.0);
     }
-    let pad = ((hi - lo) * 0.05).max(1.0);
+    // 5 % on each side; a flat series gets a unit of room.
+    let pad = if hi > lo { (hi - lo) * 0.05 } else { 1.0 };
     (lo - pad, hi + pad)
 }
 
 /// Draws the XY path: `planned` positions (one per period) and `measured`
-/// ones (sampled from the encoders), in steps.
-pub fn plot_path_xy(planned: &[[i64; 3]], measured: &[[i64; 3]], path: &Path) -> Result<(), PlotError> {
+/// ones (sampled from the encoders), in `unit` ("mm", "steps").
+pub fn plot_path_xy(planned: &[[f64; 3]], measured: &[[f64; 3]], unit: &str, path: &Path) -> Result<(), PlotError> {
     let err = draw_error(path);
     let all = || planned.iter().chain(measured);
-    let (x0, x1) = bounds(all().map(|p| p[0] as f64));
-    let (y0, y1) = bounds(all().map(|p| p[1] as f64));
+    let (x0, x1) = bounds(all().map(|p| p[0]));
+    let (y0, y1) = bounds(all().map(|p| p[1]));
+    let caption = format!("Path in the XY plane ({unit}): planned, and measured by the encoders");
     let root = SVGBackend::new(path, (800, 800)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption("Path in the XY plane (steps): planned, and measured by the encoders", ("sans-serif", 18))
+        .caption(caption, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(60)
@@ -34,13 +36,13 @@ pub fn plot_path_xy(planned: &[[i64; 3]], measured: &[[i64; 3]], path: &Path) ->
         .map_err(|e| err(e.to_string()))?;
     chart
         .configure_mesh()
-        .x_desc("X")
-        .y_desc("Y")
+        .x_desc(format!("X ({unit})"))
+        .y_desc(format!("Y ({unit})"))
         .draw()
         .map_err(|e| err(e.to_string()))?;
     chart
         .draw_series(LineSeries::new(
-            planned.iter().map(|p| (p[0] as f64, p[1] as f64)),
+            planned.iter().map(|p| (p[0], p[1])),
             BLUE.stroke_width(3),
         ))
         .map_err(|e| err(e.to_string()))?
@@ -48,7 +50,7 @@ pub fn plot_path_xy(planned: &[[i64; 3]], measured: &[[i64; 3]], path: &Path) ->
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE));
     chart
         .draw_series(LineSeries::new(
-            measured.iter().map(|p| (p[0] as f64, p[1] as f64)),
+            measured.iter().map(|p| (p[0], p[1])),
             RED.stroke_width(1),
         ))
         .map_err(|e| err(e.to_string()))?
