@@ -25,6 +25,7 @@
 //! microstep on 16 mm-lead (X, Y) and 4 mm-lead (Z) screws.
 
 use super::path::PathError;
+use super::statements::statements;
 
 /// The finest resolution accepted: a nanometre a step.
 pub const MAX_STEPS_PER_MM: f64 = 1e6;
@@ -104,56 +105,21 @@ impl MachineSettings {
     /// the defaults; every error names the line.
     pub fn parse(text: &str) -> Result<Self, PathError> {
         let mut settings = Self::default();
-        for (index, raw) in text.lines().enumerate() {
-            let line = index + 1;
-            let err = |message: String| PathError::Syntax { line, message };
-            let content = raw.split('#').next().unwrap_or("").trim();
-            let mut words = content.split_whitespace();
-            let Some(key) = words.next() else { continue };
-            let numbers: Vec<f64> = words
-                .map(|w| {
-                    w.parse::<f64>()
-                        .ok()
-                        .filter(|v| v.is_finite())
-                        .ok_or_else(|| err(format!("`{w}` is not a number")))
-                })
-                .collect::<Result<_, _>>()?;
-            let want = |n: usize| {
-                if numbers.len() == n {
-                    Ok(())
-                } else {
-                    Err(err(format!("`{key}` takes {n} number(s), found {}", numbers.len())))
-                }
-            };
-            let three = |numbers: &[f64]| [numbers[0], numbers[1], numbers[2]];
-            match key {
-                "steps_per_mm" => {
-                    want(3)?;
-                    settings.steps_per_mm = three(&numbers);
-                }
-                "max_velocity" => {
-                    want(3)?;
-                    settings.max_velocity = three(&numbers);
-                }
-                "max_accel" => {
-                    want(3)?;
-                    settings.max_accel = three(&numbers);
-                }
-                "contour_error" => {
-                    want(1)?;
-                    settings.contour_error = numbers[0];
-                }
-                "period_us" => {
-                    want(1)?;
-                    settings.period = numbers[0] * 1e-6;
-                }
+        for statement in statements(text) {
+            let numbers = statement.numbers()?;
+            match statement.keyword {
+                "steps_per_mm" => settings.steps_per_mm = numbers.exactly()?,
+                "max_velocity" => settings.max_velocity = numbers.exactly()?,
+                "max_accel" => settings.max_accel = numbers.exactly()?,
+                "contour_error" => [settings.contour_error] = numbers.exactly()?,
+                "period_us" => settings.period = numbers.exactly::<1>()?[0] * 1e-6,
                 other => {
-                    return Err(err(format!(
+                    return Err(statement.error(format!(
                         "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us)"
                     )))
                 }
             }
-            settings.validate().map_err(|e| err(e.to_string()))?;
+            settings.validate().map_err(|e| statement.error(e.to_string()))?;
         }
         Ok(settings)
     }

@@ -14,6 +14,7 @@ pub mod path;
 pub mod planner;
 pub mod servo;
 pub mod simulation;
+mod statements;
 pub mod toolpath;
 
 pub use bus::{ControllerBus, ModelBus, RecordingBus, RtlBus};

@@ -22,6 +22,8 @@
 use thiserror::Error;
 
 use super::machine::MachineSettings;
+use super::planner::MAX_POSITION_STEPS;
+use super::statements::statements;
 use super::toolpath::{Item, Move, MoveKind, Toolpath};
 
 /// A problem in a path file or a path.
@@ -162,59 +164,37 @@ impl Path {
         let mut period_us = 1000.0;
         let mut start = [0.0; 3];
         let mut lines: Vec<(usize, [f64; 3])> = Vec::new();
-        for (index, raw) in text.lines().enumerate() {
-            let line = index + 1;
-            let err = |message: String| PathError::Syntax { line, message };
-            let content = raw.split('#').next().unwrap_or("").trim();
-            if content.is_empty() {
-                continue;
-            }
-            let mut words = content.split_whitespace();
-            let keyword = words.next().unwrap_or_default();
+        for statement in statements(text) {
+            let (line, keyword) = (statement.line, statement.keyword);
             let settings_before_lines = |lines: &Vec<(usize, [f64; 3])>| {
                 if lines.is_empty() {
                     Ok(())
                 } else {
-                    Err(err(format!("`{keyword}` must come before the first `line`")))
+                    Err(statement.error(format!("`{keyword}` must come before the first `line`")))
                 }
             };
             if keyword == "units" {
                 settings_before_lines(&lines)?;
-                mm = match words.next().unwrap_or("") {
+                mm = match statement.words.first().copied().unwrap_or("") {
                     "mm" => true,
                     "steps" => false,
-                    other => return Err(err(format!("unknown unit `{other}` (mm or steps)"))),
+                    other => return Err(statement.error(format!("unknown unit `{other}` (mm or steps)"))),
                 };
                 continue;
             }
-            let numbers: Vec<f64> = words
-                .map(|w| {
-                    w.parse::<f64>()
-                        .ok()
-                        .filter(|v| v.is_finite())
-                        .ok_or_else(|| err(format!("`{w}` is not a number")))
-                })
-                .collect::<Result<_, _>>()?;
-            let want = |n: usize| {
-                if numbers.len() == n {
-                    Ok(())
-                } else {
-                    Err(err(format!("`{keyword}` takes {n} number(s), found {}", numbers.len())))
-                }
-            };
+            let numbers = statement.numbers()?;
             match keyword {
                 "steps_per_mm" => {
-                    want(3)?;
+                    let values = numbers.exactly::<3>()?;
                     settings_before_lines(&lines)?;
-                    if numbers.iter().any(|&v| v <= 0.0) {
-                        return Err(err("steps_per_mm must be positive".into()));
+                    if values.iter().any(|&v| v <= 0.0) {
+                        return Err(statement.error("steps_per_mm must be positive".into()));
                     }
-                    steps_per_mm = Some([numbers[0], numbers[1], numbers[2]]);
+                    steps_per_mm = Some(values);
                 }
                 "feed" | "accel" | "contour_error" | "period_us" => {
-                    want(1)?;
+                    let [v] = numbers.exactly()?;
                     settings_before_lines(&lines)?;
-                    let v = numbers[0];
                     match keyword {
                         "feed" => feed = Some(v),
                         "accel" => accel = Some(v),
@@ -223,15 +203,11 @@ impl Path {
                     }
                 }
                 "start" => {
-                    want(3)?;
+                    start = numbers.exactly()?;
                     settings_before_lines(&lines)?;
-                    start = [numbers[0], numbers[1], numbers[2]];
                 }
-                "line" => {
-                    want(3)?;
-                    lines.push((line, [numbers[0], numbers[1], numbers[2]]));
-                }
-                other => return Err(err(format!("unknown statement `{other}`"))),
+                "line" => lines.push((line, numbers.exactly()?)),
+                other => return Err(statement.error(format!("unknown statement `{other}`"))),
             }
         }
         // Positions rounded to the nearest step; speeds stay in the path's
@@ -245,7 +221,7 @@ impl Path {
             let mut out = [0i64; 3];
             for k in 0..3 {
                 let v = (p[k] * scale[k]).round();
-                if v.abs() > (1u64 << 40) as f64 {
+                if v.abs() > MAX_POSITION_STEPS {
                     return Err(PathError::Invalid(format!("position {} is out of range", p[k])));
                 }
                 out[k] = v as i64;
