@@ -199,7 +199,7 @@ pub const MAX_STEPS_PER_PERIOD: f64 = (1u64 << 30) as f64;
 fn check_position(what: &str, p: [f64; 3], spu: [f64; 3], line: usize) -> Result<(), PathError> {
     for k in 0..3 {
         let steps = p[k] * spu[k];
-        if !(steps.abs() <= MAX_POSITION_STEPS) {
+        if steps.is_nan() || steps.abs() > MAX_POSITION_STEPS {
             let message = format!("{what} {:?} is {steps} steps on axis {k}, beyond +-2^40", p);
             return Err(if line == 0 { PathError::Invalid(message) } else { PathError::Syntax { line, message } });
         }
@@ -257,6 +257,8 @@ fn limits_of(shape: &Shape, feed: f64, machine: &MachineSettings) -> Result<(f64
                 .min(share(machine.max_accel[n_axis], h));
             Ok((v, a))
         }
+        // At rest: speed 0; the acceleration only keeps the profile's
+        // arithmetic finite.
         Shape::Dwell { .. } => Ok((0.0, 1.0)),
     }
 }
@@ -271,79 +273,76 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
     machine.validate()?;
     let spu = machine.steps_per_mm;
     check_position("the start", toolpath.start, spu, 0)?;
+    let finest = spu.iter().fold(0.0, |m: f64, &s| m.max(s));
     let mut segments: Vec<PlannedSegment> = Vec::new();
     let mut at = toolpath.start;
     let mut at_steps = to_steps(at, spu);
+    // A segment from `start` (steps); the look-ahead below sets its speeds.
+    let segment = |start, shape, end, length, v_limit, accel, line| PlannedSegment {
+        start,
+        end,
+        shape,
+        steps_per_unit: spu,
+        length,
+        v_limit,
+        v_entry: 0.0,
+        v_cruise: 0.0,
+        v_exit: 0.0,
+        accel,
+        line,
+    };
     for item in &toolpath.items {
-        let (shape, end, feed, line) = match item {
+        let m = match item {
             Item::Dwell { seconds, line } => {
                 if !(seconds.is_finite() && *seconds >= 0.0) {
                     return Err(PathError::Syntax { line: *line, message: format!("dwell of {seconds} s") });
                 }
-                (Shape::Dwell { seconds: *seconds, at }, at, f64::INFINITY, *line)
+                let shape = Shape::Dwell { seconds: *seconds, at };
+                let (v_limit, accel) = limits_of(&shape, 0.0, machine).map_err(|message| PathError::Syntax { line: *line, message })?;
+                segments.push(segment(at_steps, shape, at_steps, 0.0, v_limit, accel, *line));
+                continue;
             }
-            Item::Move(m) => {
-                let line = m.line;
-                check_position("the end", m.end, spu, line)?;
-                if let MoveKind::Arc(arc) = m.kind {
-                    if !arc.center.iter().all(|c| c.is_finite()) {
-                        return Err(PathError::Syntax { line, message: format!("the arc's center {:?} is not a position", arc.center) });
-                    }
-                }
-                if let Some(feed) = m.feed.filter(|f| !(f.is_finite() && *f > 0.0)) {
-                    return Err(PathError::Syntax { line, message: format!("feed {feed} is not a speed") });
-                }
-                let shape = match m.kind {
-                    MoveKind::Line => Shape::Line { from: at, to: m.end },
-                    MoveKind::Arc(arc) => Shape::Arc(ArcGeometry::new(&arc, at, m.end)),
-                };
-                (shape, m.end, m.feed.unwrap_or(f64::INFINITY), m.line)
+            Item::Move(m) => m,
+        };
+        let line = m.line;
+        let error = |message: String| PathError::Syntax { line, message };
+        check_position("the end", m.end, spu, line)?;
+        if let MoveKind::Arc(arc) = m.kind {
+            if !arc.center.iter().all(|c| c.is_finite()) {
+                return Err(error(format!("the arc's center {:?} is not a position", arc.center)));
+            }
+        }
+        if let Some(feed) = m.feed.filter(|f| !(f.is_finite() && *f > 0.0)) {
+            return Err(error(format!("feed {feed} is not a speed")));
+        }
+        let (shape, length) = match m.kind {
+            MoveKind::Line => (Shape::Line { from: at, to: m.end }, unit(std::array::from_fn(|k| m.end[k] - at[k])).1),
+            MoveKind::Arc(arc) => {
+                let geometry = ArcGeometry::new(&arc, at, m.end);
+                (Shape::Arc(geometry), geometry.length())
             }
         };
-        let length = match &shape {
-            Shape::Line { from, to } => unit(std::array::from_fn(|k| to[k] - from[k])).1,
-            Shape::Arc(arc) => arc.length(),
-            Shape::Dwell { .. } => 0.0,
-        };
-        let end_steps = to_steps(end, spu);
-        let is_dwell = matches!(shape, Shape::Dwell { .. });
+        let end_steps = to_steps(m.end, spu);
         // A move too short to leave a step behind is dropped with its
         // length: the next one starts where this one would have ended.
-        if !is_dwell && (length == 0.0 || (end_steps == at_steps && length * spu.iter().fold(0.0, |m: f64, &s| m.max(s)) < 0.5)) {
-            at = end;
+        if length == 0.0 || (end_steps == at_steps && length * finest < 0.5) {
+            at = m.end;
             continue;
         }
-        let (v_limit, accel) = limits_of(&shape, feed, machine).map_err(|message| PathError::Syntax { line, message })?;
-        let usable = v_limit > 0.0 && accel > 0.0 && v_limit.is_finite();
-        if !is_dwell && !usable {
-            return Err(PathError::Syntax {
-                line,
-                message: format!("the move has no usable speed limit (speed {v_limit}, acceleration {accel})"),
-            });
+        let (v_limit, accel) = limits_of(&shape, m.feed.unwrap_or(f64::INFINITY), machine).map_err(error)?;
+        if !(v_limit > 0.0 && accel > 0.0 && v_limit.is_finite()) {
+            return Err(error(format!(
+                "the move has no usable speed limit (speed {v_limit}, acceleration {accel})"
+            )));
         }
-        let steps_per_period = v_limit * machine.period * spu.iter().fold(0.0, |m: f64, &s| m.max(s));
-        if !is_dwell && steps_per_period > MAX_STEPS_PER_PERIOD {
-            return Err(PathError::Syntax {
-                line,
-                message: format!(
-                    "the move may take {steps_per_period:.0} steps a period, beyond the {MAX_STEPS_PER_PERIOD} an axis's count holds"
-                ),
-            });
+        let steps_per_period = v_limit * machine.period * finest;
+        if steps_per_period > MAX_STEPS_PER_PERIOD {
+            return Err(error(format!(
+                "the move may take {steps_per_period:.0} steps a period, beyond the {MAX_STEPS_PER_PERIOD} an axis's count holds"
+            )));
         }
-        segments.push(PlannedSegment {
-            start: at_steps,
-            end: end_steps,
-            shape,
-            steps_per_unit: spu,
-            length,
-            v_limit,
-            v_entry: 0.0,
-            v_cruise: 0.0,
-            v_exit: 0.0,
-            accel,
-            line,
-        });
-        at = end;
+        segments.push(segment(at_steps, shape, end_steps, length, v_limit, accel, line));
+        at = m.end;
         at_steps = end_steps;
     }
     let n = segments.len();

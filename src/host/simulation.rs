@@ -307,7 +307,8 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
     let (tick_divisor, period_ticks) = period_settings(machine.period, options.clock_hz)?;
     let segments = plan_toolpath(&job.toolpath, &machine).map_err(|e| format!("{}: {e}", path_file.display()))?;
     let seconds: f64 = segments.iter().map(|s| s.duration()).sum();
-    if !(seconds / machine.period <= MAX_PERIODS as f64) {
+    let periods = seconds / machine.period;
+    if periods.is_nan() || periods > MAX_PERIODS as f64 {
         return Err(format!(
             "{}: the program takes {seconds:.0} s, more than {MAX_PERIODS} periods of {} s",
             path_file.display(),
