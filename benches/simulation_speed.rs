@@ -11,11 +11,11 @@ use std::time::Instant;
 use motion_hdl::blocks::dda_integrator::DdaIntegrator;
 use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
 use motion_hdl::blocks::freq_divider::FreqDivider;
-use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
-use motion_hdl::blocks::step_channel::StepChannel;
 use motion_hdl::blocks::motion_controller::model::ControllerInputs;
 use motion_hdl::blocks::motion_controller::registers::register_map;
 use motion_hdl::blocks::motion_controller::MotionController;
+use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
+use motion_hdl::blocks::step_channel::StepChannel;
 use motion_hdl::sim::compiled::plain_loop;
 use motion_hdl::sim::{CompiledStepper, Harness, Stepper, VectorPorts};
 use rand::rngs::StdRng;
@@ -106,8 +106,9 @@ fn controller_rates() {
     let through_rust = median(
         (0..5)
             .map(|_| {
-                let mut compiled = CompiledStepper::new("motion_controller", Controller::default(), false)
-                    .unwrap_or_else(|e| panic!("{e}"));
+                let mut compiled =
+                    CompiledStepper::new("motion_controller", Controller::default(), false)
+                        .unwrap_or_else(|e| panic!("{e}"));
                 let mut outputs = vec![0; compiled.output_count()];
                 let mut fold = 0u64;
                 let start = Instant::now();
@@ -121,16 +122,39 @@ fn controller_rates() {
             })
             .collect(),
     );
-    let plain = plain_loop("motion_controller", &mut Controller::default(), &stimulus, 5)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let plain = plain_loop(
+        "motion_controller",
+        &mut Controller::default(),
+        &stimulus,
+        5,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let plain_rate = median(plain.iter().map(|p| p.cycles as f64 / p.seconds).collect());
-    let same = folds.iter().chain(plain.iter().map(|p| &p.checksum)).all(|&f| f == folds[0]);
+    let same = folds
+        .iter()
+        .chain(plain.iter().map(|p| &p.checksum))
+        .all(|&f| f == folds[0]);
     println!("motion_controller (3 axes), cycles per second, one stimulus, medians:");
-    println!("  rust-hdl harness (3 runs of 10k cycles)      {:>12.0}", rust_hdl);
-    println!("  compiled backend through Stepper (5 x 200k)  {:>12.0}", through_rust);
-    println!("  plain C++ loop, same model (5 x 200k)        {:>12.0}", plain_rate);
-    println!("  compiled / rust-hdl                          {:>12.1}x", through_rust / rust_hdl);
-    println!("  compiled / plain C++ loop                    {:>12.2}", through_rust / plain_rate);
+    println!(
+        "  rust-hdl harness (3 runs of 10k cycles)      {:>12.0}",
+        rust_hdl
+    );
+    println!(
+        "  compiled backend through Stepper (5 x 200k)  {:>12.0}",
+        through_rust
+    );
+    println!(
+        "  plain C++ loop, same model (5 x 200k)        {:>12.0}",
+        plain_rate
+    );
+    println!(
+        "  compiled / rust-hdl                          {:>12.1}x",
+        through_rust / rust_hdl
+    );
+    println!(
+        "  compiled / plain C++ loop                    {:>12.2}",
+        through_rust / plain_rate
+    );
     println!(
         "  outputs identical in all compiled runs       {:>12}",
         if same { "yes" } else { "NO" }

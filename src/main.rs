@@ -177,7 +177,10 @@ fn run(cli: Cli) -> Result<(), String> {
             backend,
             trip,
         } => {
-            let trips = trip.iter().map(|t| Trip::parse(t)).collect::<Result<Vec<_>, _>>()?;
+            let trips = trip
+                .iter()
+                .map(|t| Trip::parse(t))
+                .collect::<Result<Vec<_>, _>>()?;
             let backend = match backend {
                 Some(name) => Backend::parse(&name).map_err(|e| e.to_string())?,
                 None if Backend::Verilator.available() => Backend::Verilator,
@@ -207,7 +210,9 @@ fn run(cli: Cli) -> Result<(), String> {
                         "x" => chosen[0] = true,
                         "y" => chosen[1] = true,
                         "z" => chosen[2] = true,
-                        other => return Err(format!("--{option}: unknown axis `{other}` (x, y or z)")),
+                        other => {
+                            return Err(format!("--{option}: unknown axis `{other}` (x, y or z)"))
+                        }
                     }
                 }
                 Ok(chosen)
@@ -220,8 +225,8 @@ fn run(cli: Cli) -> Result<(), String> {
             let format = format.map(|f| InputFormat::parse(&f)).transpose()?;
             let machine = machine
                 .map(|file| {
-                    let text =
-                        std::fs::read_to_string(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+                    let text = std::fs::read_to_string(&file)
+                        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
                     MachineSettings::parse(&text).map_err(|e| format!("{}: {e}", file.display()))
                 })
                 .transpose()?;
@@ -241,7 +246,10 @@ fn run(cli: Cli) -> Result<(), String> {
             };
             let r = simulate(&path_file, &options)?;
             for ignored in &r.ignored {
-                println!("ignored    {} on line {} ({}: does not change the motion)", ignored.word, ignored.line, ignored.what);
+                println!(
+                    "ignored    {} on line {} ({}: does not change the motion)",
+                    ignored.word, ignored.line, ignored.what
+                );
             }
             if let Some((end, units)) = r.program_end {
                 let unit = units.name();
@@ -316,15 +324,26 @@ fn run(cli: Cli) -> Result<(), String> {
             let specs = formal::formal_catalog();
             let known: Vec<&str> = specs.iter().map(|s| s.name).collect();
             if let Some(unknown) = proofs.iter().find(|p| !known.contains(&p.as_str())) {
-                return Err(format!("unknown proof `{unknown}`; proofs: {}", known.join(", ")));
+                return Err(format!(
+                    "unknown proof `{unknown}`; proofs: {}",
+                    known.join(", ")
+                ));
             }
             let mut failed = Vec::new();
             print!("{}", formal::TABLE_HEADER);
-            for spec in specs.iter().filter(|s| proofs.is_empty() || proofs.iter().any(|p| p == s.name)) {
+            for spec in specs
+                .iter()
+                .filter(|s| proofs.is_empty() || proofs.iter().any(|p| p == s.name))
+            {
                 let report = formal::prove(spec).map_err(|e| e.to_string())?;
                 match &report.outcome {
                     formal::Outcome::Proved => println!("{}", formal::table_row(spec, &report)),
-                    formal::Outcome::Counterexample { check, steps, assertion, vcd } => {
+                    formal::Outcome::Counterexample {
+                        check,
+                        steps,
+                        assertion,
+                        vcd,
+                    } => {
                         eprintln!(
                             "motion-hdl: {}: {check:?} check fails: {assertion} after {steps} clocks; trace {}",
                             spec.name,
@@ -359,8 +378,8 @@ fn run(cli: Cli) -> Result<(), String> {
             let seeds: Vec<u64> = (1..=seeds).collect();
             if scaling {
                 let out = out.unwrap_or_else(|| PathBuf::from("rtl-out/scaling-report.md"));
-                let target = catalog::find("motion_controller")
-                    .map_or(100.0, |spec| spec.fmax_target_mhz);
+                let target =
+                    catalog::find("motion_controller").map_or(100.0, |spec| spec.fmax_target_mhz);
                 let rows = scaling::measure(&seeds, target).map_err(|e| e.to_string())?;
                 std::fs::write(&out, scaling::render(&rows, &seeds, target))
                     .map_err(|e| format!("cannot write {}: {e}", out.display()))?;

@@ -33,4 +33,3 @@ pub fn width_mask(width: u32) -> u64 {
     assert!((1..=64).contains(&width), "width must be 1..=64");
     u64::MAX >> (64 - width)
 }
-

@@ -10,10 +10,11 @@ use crate::blocks::dpram_mailbox::{self, DpramMailbox1024x16};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::host_links::{self, SeedHostLinks};
-use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
 use crate::blocks::motion_controller::{
-    self, MotionController1, MotionController3, MotionController3Dda, MotionController3Servo, MotionController6,
+    self, MotionController1, MotionController3, MotionController3Dda, MotionController3Servo,
+    MotionController6,
 };
+use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};

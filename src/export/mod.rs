@@ -111,10 +111,22 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
     use crate::blocks::{dac_interface, motion_controller, sync_fifo_bridge};
     // The register maps of the exported configurations (see the catalog).
     let maps = [
-        ("dac_interface_regs", dac_interface::registers::register_map(3, 16)?),
-        ("motion_controller_regs", motion_controller::registers::register_map(3, 4, true, false)?),
-        ("motion_controller_dda_regs", motion_controller::registers::register_map(3, 4, false, false)?),
-        ("motion_controller_servo_regs", motion_controller::registers::register_map(3, 4, false, true)?),
+        (
+            "dac_interface_regs",
+            dac_interface::registers::register_map(3, 16)?,
+        ),
+        (
+            "motion_controller_regs",
+            motion_controller::registers::register_map(3, 4, true, false)?,
+        ),
+        (
+            "motion_controller_dda_regs",
+            motion_controller::registers::register_map(3, 4, false, false)?,
+        ),
+        (
+            "motion_controller_servo_regs",
+            motion_controller::registers::register_map(3, 4, false, true)?,
+        ),
         (
             "sync_fifo_bridge_master_regs",
             sync_fifo_bridge::registers::master_map(

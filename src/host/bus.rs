@@ -16,8 +16,8 @@ use crate::blocks::motion_controller::model::{
 };
 use crate::blocks::motion_controller::{MotionController3, MotionController3Servo};
 use crate::host::servo::{DriveScale, ServoMotor};
-use crate::sim::{quadrature_state, Ad669Bank};
 use crate::regmap::RegisterMap;
+use crate::sim::{quadrature_state, Ad669Bank};
 use crate::sim::{stepper, Backend, SimError, SimulatedEncoder, Stepper, VectorPorts};
 
 /// A `motion_controller` register bus as firmware sees it. An
@@ -115,7 +115,12 @@ impl RtlBus {
     /// signal goes to that file (on Verilator, a build with its tracer).
     pub fn new(backend: Backend, vcd: Option<&Path>) -> Result<Self, SimError> {
         Ok(Self {
-            rtl: stepper(backend, "motion_controller", MotionController3::default(), vcd)?,
+            rtl: stepper(
+                backend,
+                "motion_controller",
+                MotionController3::default(),
+                vcd,
+            )?,
             inputs: ControllerInputs {
                 encoders: vec![(false, false, false); 3],
                 ..Default::default()
@@ -150,7 +155,12 @@ impl RtlBus {
         clock_hz: f64,
     ) -> Result<Self, SimError> {
         let mut bus = Self::new(backend, vcd)?;
-        bus.rtl = stepper(backend, "motion_controller_servo", MotionController3Servo::default(), vcd)?;
+        bus.rtl = stepper(
+            backend,
+            "motion_controller_servo",
+            MotionController3Servo::default(),
+            vcd,
+        )?;
         bus.outputs = vec![0; MotionController3Servo::output_names().len()];
         bus.servos = servos.map(|m| m.map(|motor| ServoPlant { motor, scale }));
         bus.clock_s = 1.0 / clock_hz;
@@ -209,7 +219,8 @@ impl RtlBus {
     /// Peak step rate per axis at the pins, in steps per clock, measured
     /// over windows of [`RtlBus::set_rate_window`] clocks.
     pub fn peak_steps_per_clock(&self) -> [f64; 3] {
-        self.peak_window_steps.map(|n| n as f64 / self.rate_window as f64)
+        self.peak_window_steps
+            .map(|n| n as f64 / self.rate_window as f64)
     }
 }
 
@@ -219,7 +230,13 @@ impl ControllerBus for RtlBus {
         self.inputs.write_data = data;
         self.inputs.write = write;
         self.inputs.read = read;
-        for (k, (pins, e)) in self.inputs.encoders.iter_mut().zip(&self.encoders).enumerate() {
+        for (k, (pins, e)) in self
+            .inputs
+            .encoders
+            .iter_mut()
+            .zip(&self.encoders)
+            .enumerate()
+        {
             *pins = match &self.servos[k] {
                 Some(plant) => {
                     let (a, b) = quadrature_state(plant.motor.counts());
@@ -228,7 +245,8 @@ impl ControllerBus for RtlBus {
                 None => e.outputs(),
             };
         }
-        self.schedule.apply(self.rtl.cycles(), &mut self.inputs.pins);
+        self.schedule
+            .apply(self.rtl.cycles(), &mut self.inputs.pins);
         self.inputs.write_vector(&mut self.vector);
         self.rtl
             .step_into(&self.vector, &mut self.outputs)
@@ -241,10 +259,13 @@ impl ControllerBus for RtlBus {
             self.window_steps[i] += e.total - before;
         }
         let cycles = self.rtl.cycles();
-        self.dacs.clock(out.dac.data, out.dac.cs_n, out.dac.l1_n, out.dac.ldac);
+        self.dacs
+            .clock(out.dac.data, out.dac.cs_n, out.dac.l1_n, out.dac.ldac);
         for (k, servo) in self.servos.iter_mut().enumerate() {
             if let Some(plant) = servo {
-                plant.motor.advance(plant.scale.volts(self.dacs.code(k)), self.clock_s);
+                plant
+                    .motor
+                    .advance(plant.scale.volts(self.dacs.code(k)), self.clock_s);
             }
         }
         if self.sample_every > 0 && cycles % self.sample_every == 0 {
@@ -382,7 +403,11 @@ impl<B: ControllerBus> ControllerBus for RecordingBus<B> {
                 .iter()
                 .find(|(a, _)| *a == address)
                 .map_or_else(|| format!("{address:#04x}"), |(_, n)| n.clone());
-            let _ = writeln!(self.log, "@{:<10} {name} <- {write_data:#010x}", self.inner.cycles());
+            let _ = writeln!(
+                self.log,
+                "@{:<10} {name} <- {write_data:#010x}",
+                self.inner.cycles()
+            );
         }
         self.inner.clock(address, write_data, write, read)
     }

@@ -175,7 +175,9 @@ impl<B: ControllerBus> Driver<B> {
     /// configuration, and programs it (stopped).
     pub fn new(bus: B, config: DriverConfig) -> Result<Self, DriverError> {
         if config.tick_divisor == 0 {
-            return Err(DriverError::Config("tick_divisor must be at least 1".into()));
+            return Err(DriverError::Config(
+                "tick_divisor must be at least 1".into(),
+            ));
         }
         if !(1..=65535).contains(&config.period_ticks) {
             return Err(DriverError::Config(format!(
@@ -189,7 +191,9 @@ impl<B: ControllerBus> Driver<B> {
             ("dir_time", config.dir_time),
         ] {
             if v > 65535 {
-                return Err(DriverError::Config(format!("{name} {v} does not fit 16 bits")));
+                return Err(DriverError::Config(format!(
+                    "{name} {v} does not fit 16 bits"
+                )));
             }
         }
         // CONFIG is at the same address in every build: read it with the
@@ -208,7 +212,9 @@ impl<B: ControllerBus> Driver<B> {
         let build = driver.read("CONFIG", 0)?;
         let axes = driver.field("CONFIG", "AXES", build)?;
         if axes != 3 {
-            return Err(DriverError::Identity(format!("{axes} axes, this driver drives 3")));
+            return Err(DriverError::Identity(format!(
+                "{axes} axes, this driver drives 3"
+            )));
         }
         driver.depth = 1 << driver.field("CONFIG", "FIFO_DEPTH_LOG2", build)?;
         let uniform = driver.field("CONFIG", "DDA_ONLY", build)? == 0;
@@ -284,7 +290,11 @@ impl<B: ControllerBus> Driver<B> {
             // expiry or its alarm).
             let io = self.pack(
                 "IO_CONFIG",
-                &[("LIMIT_ENABLE", 1), ("ALARM_ENABLE", 1), ("DRIVE_ENABLE", 1)],
+                &[
+                    ("LIMIT_ENABLE", 1),
+                    ("ALARM_ENABLE", 1),
+                    ("DRIVE_ENABLE", 1),
+                ],
             )?;
             self.write("IO_CONFIG", axis, io)?;
         }
@@ -357,7 +367,10 @@ impl<B: ControllerBus> Driver<B> {
         for (axis, s) in axis_status.iter_mut().enumerate() {
             *s = self.read("AXIS_STATUS", axis as u32)?;
         }
-        Ok(DriverError::Fault { status, axis_status })
+        Ok(DriverError::Fault {
+            status,
+            axis_status,
+        })
     }
 
     /// What holds `RUN` refused now (empty: nothing). Waits first for the
@@ -385,7 +398,11 @@ impl<B: ControllerBus> Driver<B> {
             reasons.push("the watchdog expired (clear STATUS.WATCHDOG)".to_string());
         }
         for axis in 0..3u32 {
-            reasons.extend(self.axis_trips(axis)?.into_iter().map(|t| format!("axis {axis}: {t}")));
+            reasons.extend(
+                self.axis_trips(axis)?
+                    .into_iter()
+                    .map(|t| format!("axis {axis}: {t}")),
+            );
         }
         Ok(reasons)
     }
@@ -415,8 +432,12 @@ impl<B: ControllerBus> Driver<B> {
                 trips.push(what.to_string());
             }
         }
-        if self.field("IO_STATUS", "HOME_SEEN", status)? == 1 && self.field("IO_CONFIG", "STOP_ON_HOME", config)? == 1 {
-            trips.push("home switch seen with STOP_ON_HOME; clear with IO_COMMAND.CLEAR_HOME".to_string());
+        if self.field("IO_STATUS", "HOME_SEEN", status)? == 1
+            && self.field("IO_CONFIG", "STOP_ON_HOME", config)? == 1
+        {
+            trips.push(
+                "home switch seen with STOP_ON_HOME; clear with IO_COMMAND.CLEAR_HOME".to_string(),
+            );
         }
         Ok(trips)
     }
@@ -426,7 +447,10 @@ impl<B: ControllerBus> Driver<B> {
         let word = self.read("STOP_CAUSE", 0)?;
         let cause = StopCause::from_code(self.field("STOP_CAUSE", "CAUSE", word)? as u32);
         let axis = self.field("STOP_CAUSE", "AXIS", word)? as usize;
-        let per_axis = matches!(cause, StopCause::Home | StopCause::Limit | StopCause::DriveAlarm);
+        let per_axis = matches!(
+            cause,
+            StopCause::Home | StopCause::Limit | StopCause::DriveAlarm
+        );
         Ok((cause, per_axis.then_some(axis)))
     }
 
@@ -448,13 +472,17 @@ impl<B: ControllerBus> Driver<B> {
             }
         }
         if cause == StopCause::Estop {
-            details.push("every drive disabled; release the E-stop, then clear STATUS.ESTOP".to_string());
+            details.push(
+                "every drive disabled; release the E-stop, then clear STATUS.ESTOP".to_string(),
+            );
         }
         if cause == StopCause::Watchdog {
             details.push("clear STATUS.WATCHDOG".to_string());
         }
         if details.is_empty() {
-            details.push("the FIFOs keep the periods not taken; CONTROL.FLUSH empties them".to_string());
+            details.push(
+                "the FIFOs keep the periods not taken; CONTROL.FLUSH empties them".to_string(),
+            );
         }
         let mut commanded = [0; 3];
         for (k, c) in commanded.iter_mut().enumerate() {
@@ -494,7 +522,10 @@ impl<B: ControllerBus> Driver<B> {
         let mut next = 0;
         self.queue(counts, &mut next)?;
         self.write("CONTROL", 0, 1)?;
-        let faults = self.pack("STATUS", &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("AXIS_FAULT", 1)])?;
+        let faults = self.pack(
+            "STATUS",
+            &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("AXIS_FAULT", 1)],
+        )?;
         let mut quiet = 0;
         loop {
             if self.bus.wait(8) {

@@ -44,7 +44,9 @@ fn position_on(s: &PlannedSegment, distance: f64) -> [i64; 3] {
     match s.shape {
         Shape::Arc(_) => to_steps(s.point_at(distance), s.steps_per_unit),
         Shape::Line { .. } | Shape::Dwell { .. } => {
-            let q = ((distance / s.length) * ONE as f64).floor().clamp(0.0, ONE as f64) as i128;
+            let q = ((distance / s.length) * ONE as f64)
+                .floor()
+                .clamp(0.0, ONE as f64) as i128;
             std::array::from_fn(|k| {
                 let delta = (s.end[k] - s.start[k]) as i128;
                 s.start[k] + (delta * q).div_euclid(ONE) as i64
@@ -84,7 +86,9 @@ pub fn interpolate(start: [i64; 3], segments: &[PlannedSegment], period: f64) ->
             let (distance, speed) = s.state_at(t - segment_start);
             (position_on(s, distance), s.point_at(distance), speed, index)
         };
-        out.counts.push(std::array::from_fn(|axis| (position[axis] - last[axis]) as i32));
+        out.counts.push(std::array::from_fn(|axis| {
+            (position[axis] - last[axis]) as i32
+        }));
         out.speeds.push(speed);
         out.positions.push(position);
         out.points.push(point);

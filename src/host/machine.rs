@@ -82,18 +82,26 @@ impl MachineSettings {
         ] {
             for (axis, v) in ["X", "Y", "Z"].iter().zip(values) {
                 if !(v > 0.0 && (v.is_finite() || (infinite_ok && v == f64::INFINITY))) {
-                    return invalid(format!("{name} for {axis} must be a positive number, not {v}"));
+                    return invalid(format!(
+                        "{name} for {axis} must be a positive number, not {v}"
+                    ));
                 }
             }
         }
         if self.path_accel.is_nan() || self.path_accel <= 0.0 {
-            return invalid(format!("the path acceleration must be positive, not {}", self.path_accel));
+            return invalid(format!(
+                "the path acceleration must be positive, not {}",
+                self.path_accel
+            ));
         }
         if self.max_accel.iter().all(|a| a.is_infinite()) && self.path_accel.is_infinite() {
             return invalid("no acceleration limit: set max_accel".into());
         }
         if !(self.contour_error.is_finite() && self.contour_error >= 0.0) {
-            return invalid(format!("contour_error must be 0 or positive, not {}", self.contour_error));
+            return invalid(format!(
+                "contour_error must be 0 or positive, not {}",
+                self.contour_error
+            ));
         }
         if !(self.period.is_finite() && self.period > 0.0) {
             return invalid(format!("period must be positive, not {} s", self.period));
@@ -119,7 +127,9 @@ impl MachineSettings {
                     )))
                 }
             }
-            settings.validate().map_err(|e| statement.error(e.to_string()))?;
+            settings
+                .validate()
+                .map_err(|e| statement.error(e.to_string()))?;
         }
         Ok(settings)
     }

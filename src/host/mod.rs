@@ -20,8 +20,10 @@ pub mod toolpath;
 pub use bus::{ControllerBus, ModelBus, RecordingBus, RtlBus};
 pub use driver::{Driver, DriverConfig, DriverError, RunReport};
 pub use interpolator::{interpolate, Interpolation};
-pub use path::{Path, PathError, Segment};
 pub use machine::MachineSettings;
+pub use path::{Path, PathError, Segment};
 pub use planner::{plan, plan_toolpath, PlannedSegment, Shape};
+pub use servo::{
+    DriveScale, FollowingError, LoopOutput, PositionLoop, ServoError, ServoGains, ServoMotor,
+};
 pub use toolpath::{Arc, Item, Move, MoveKind, Plane, Toolpath};
-pub use servo::{DriveScale, FollowingError, LoopOutput, PositionLoop, ServoError, ServoGains, ServoMotor};

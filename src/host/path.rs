@@ -103,7 +103,9 @@ impl Path {
             ("period", self.period),
         ] {
             if !(value.is_finite() && value > 0.0) {
-                return Err(PathError::Invalid(format!("{name} must be a positive number, not {value}")));
+                return Err(PathError::Invalid(format!(
+                    "{name} must be a positive number, not {value}"
+                )));
             }
         }
         if !(self.contour_error.is_finite() && self.contour_error >= 0.0) {
@@ -178,7 +180,9 @@ impl Path {
                 mm = match statement.words.first().copied().unwrap_or("") {
                     "mm" => true,
                     "steps" => false,
-                    other => return Err(statement.error(format!("unknown unit `{other}` (mm or steps)"))),
+                    other => {
+                        return Err(statement.error(format!("unknown unit `{other}` (mm or steps)")))
+                    }
                 };
                 continue;
             }
@@ -222,7 +226,10 @@ impl Path {
             for k in 0..3 {
                 let v = (p[k] * scale[k]).round();
                 if v.abs() > MAX_POSITION_STEPS {
-                    return Err(PathError::Invalid(format!("position {} is out of range", p[k])));
+                    return Err(PathError::Invalid(format!(
+                        "position {} is out of range",
+                        p[k]
+                    )));
                 }
                 out[k] = v as i64;
             }
@@ -239,7 +246,14 @@ impl Path {
             .collect::<Result<Vec<_>, _>>()?;
         let feed = feed.ok_or_else(|| PathError::Invalid("missing `feed`".into()))?;
         let accel = accel.ok_or_else(|| PathError::Invalid("missing `accel`".into()))?;
-        let mut path = Self::new(to_steps(start)?, &ends, feed, accel, contour, period_us * 1e-6)?;
+        let mut path = Self::new(
+            to_steps(start)?,
+            &ends,
+            feed,
+            accel,
+            contour,
+            period_us * 1e-6,
+        )?;
         path.steps_per_unit = scale;
         Ok(path)
     }

@@ -141,10 +141,14 @@ impl PlannedSegment {
         if t <= ta {
             (self.v_entry * t + 0.5 * a * t * t, self.v_entry + a * t)
         } else if t <= ta + tc {
-            (self.accel_distance() + self.v_cruise * (t - ta), self.v_cruise)
+            (
+                self.accel_distance() + self.v_cruise * (t - ta),
+                self.v_cruise,
+            )
         } else {
             let u = t - ta - tc;
-            let d = self.accel_distance() + self.cruise_distance() + self.v_cruise * u - 0.5 * a * u * u;
+            let d = self.accel_distance() + self.cruise_distance() + self.v_cruise * u
+                - 0.5 * a * u * u;
             (d.min(self.length), (self.v_cruise - a * u).max(self.v_exit))
         }
     }
@@ -157,7 +161,9 @@ impl PlannedSegment {
             1.0
         };
         match self.shape {
-            Shape::Line { from, to } => std::array::from_fn(|k| from[k] + (to[k] - from[k]) * fraction),
+            Shape::Line { from, to } => {
+                std::array::from_fn(|k| from[k] + (to[k] - from[k]) * fraction)
+            }
             Shape::Arc(arc) => arc.point(fraction),
             Shape::Dwell { at, .. } => at,
         }
@@ -177,13 +183,21 @@ impl PlannedSegment {
 }
 
 /// The corner speed limit between two directions (see the module docs).
-pub fn junction_speed(u1: [f64; 3], u2: [f64; 3], accel: f64, contour_error: f64, feed: f64) -> f64 {
+pub fn junction_speed(
+    u1: [f64; 3],
+    u2: [f64; 3],
+    accel: f64,
+    contour_error: f64,
+    feed: f64,
+) -> f64 {
     let cos_theta = -(u1[0] * u2[0] + u1[1] * u2[1] + u1[2] * u2[2]);
     let sin_half = (0.5 * (1.0 - cos_theta)).max(0.0).sqrt();
     if sin_half >= 1.0 - 1e-12 {
         return feed;
     }
-    (accel * contour_error * sin_half / (1.0 - sin_half)).sqrt().min(feed)
+    (accel * contour_error * sin_half / (1.0 - sin_half))
+        .sqrt()
+        .min(feed)
 }
 
 /// The most steps a position may be from zero (2^40: exact in f64, and
@@ -201,7 +215,11 @@ fn check_position(what: &str, p: [f64; 3], spu: [f64; 3], line: usize) -> Result
         let steps = p[k] * spu[k];
         if steps.is_nan() || steps.abs() > MAX_POSITION_STEPS {
             let message = format!("{what} {:?} is {steps} steps on axis {k}, beyond +-2^40", p);
-            return Err(if line == 0 { PathError::Invalid(message) } else { PathError::Syntax { line, message } });
+            return Err(if line == 0 {
+                PathError::Invalid(message)
+            } else {
+                PathError::Syntax { line, message }
+            });
         }
     }
     Ok(())
@@ -241,10 +259,17 @@ fn limits_of(shape: &Shape, feed: f64, machine: &MachineSettings) -> Result<(f64
             let r = arc.min_radius();
             let e = machine.contour_error;
             if e <= 0.0 {
-                return Err("an arc needs a contour error above 0 (its chords would have to be points)".into());
+                return Err(
+                    "an arc needs a contour error above 0 (its chords would have to be points)"
+                        .into(),
+                );
             }
             // The largest angle per period whose chord stays within e.
-            let chord_angle = if e < r { 2.0 * (1.0 - e / r).acos() } else { std::f64::consts::PI };
+            let chord_angle = if e < r {
+                2.0 * (1.0 - e / r).acos()
+            } else {
+                std::f64::consts::PI
+            };
             let centripetal = 0.75f64.sqrt() * plane_accel;
             let v = feed
                 .min(share(plane_velocity, p))
@@ -269,7 +294,10 @@ fn limits_of(shape: &Shape, feed: f64, machine: &MachineSettings) -> Result<(f64
 /// positive speed, an arc with no contour error, or a move that could take
 /// more than [`MAX_STEPS_PER_PERIOD`] steps in a period is an error naming
 /// its line.
-pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<Vec<PlannedSegment>, PathError> {
+pub fn plan_toolpath(
+    toolpath: &Toolpath,
+    machine: &MachineSettings,
+) -> Result<Vec<PlannedSegment>, PathError> {
     machine.validate()?;
     let spu = machine.steps_per_mm;
     check_position("the start", toolpath.start, spu, 0)?;
@@ -295,11 +323,23 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
         let m = match item {
             Item::Dwell { seconds, line } => {
                 if !(seconds.is_finite() && *seconds >= 0.0) {
-                    return Err(PathError::Syntax { line: *line, message: format!("dwell of {seconds} s") });
+                    return Err(PathError::Syntax {
+                        line: *line,
+                        message: format!("dwell of {seconds} s"),
+                    });
                 }
-                let shape = Shape::Dwell { seconds: *seconds, at };
-                let (v_limit, accel) = limits_of(&shape, 0.0, machine).map_err(|message| PathError::Syntax { line: *line, message })?;
-                segments.push(segment(at_steps, shape, at_steps, 0.0, v_limit, accel, *line));
+                let shape = Shape::Dwell {
+                    seconds: *seconds,
+                    at,
+                };
+                let (v_limit, accel) =
+                    limits_of(&shape, 0.0, machine).map_err(|message| PathError::Syntax {
+                        line: *line,
+                        message,
+                    })?;
+                segments.push(segment(
+                    at_steps, shape, at_steps, 0.0, v_limit, accel, *line,
+                ));
                 continue;
             }
             Item::Move(m) => m,
@@ -309,14 +349,23 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
         check_position("the end", m.end, spu, line)?;
         if let MoveKind::Arc(arc) = m.kind {
             if !arc.center.iter().all(|c| c.is_finite()) {
-                return Err(error(format!("the arc's center {:?} is not a position", arc.center)));
+                return Err(error(format!(
+                    "the arc's center {:?} is not a position",
+                    arc.center
+                )));
             }
         }
         if let Some(feed) = m.feed.filter(|f| !(f.is_finite() && *f > 0.0)) {
             return Err(error(format!("feed {feed} is not a speed")));
         }
         let (shape, length) = match m.kind {
-            MoveKind::Line => (Shape::Line { from: at, to: m.end }, unit(std::array::from_fn(|k| m.end[k] - at[k])).1),
+            MoveKind::Line => (
+                Shape::Line {
+                    from: at,
+                    to: m.end,
+                },
+                unit(std::array::from_fn(|k| m.end[k] - at[k])).1,
+            ),
             MoveKind::Arc(arc) => {
                 let geometry = ArcGeometry::new(&arc, at, m.end);
                 (Shape::Arc(geometry), geometry.length())
@@ -329,7 +378,8 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
             at = m.end;
             continue;
         }
-        let (v_limit, accel) = limits_of(&shape, m.feed.unwrap_or(f64::INFINITY), machine).map_err(error)?;
+        let (v_limit, accel) =
+            limits_of(&shape, m.feed.unwrap_or(f64::INFINITY), machine).map_err(error)?;
         if !(v_limit > 0.0 && accel > 0.0 && v_limit.is_finite()) {
             return Err(error(format!(
                 "the move has no usable speed limit (speed {v_limit}, acceleration {accel})"
@@ -341,7 +391,9 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
                 "the move may take {steps_per_period:.0} steps a period, beyond the {MAX_STEPS_PER_PERIOD} an axis's count holds"
             )));
         }
-        segments.push(segment(at_steps, shape, end_steps, length, v_limit, accel, line));
+        segments.push(segment(
+            at_steps, shape, end_steps, length, v_limit, accel, line,
+        ));
         at = m.end;
         at_steps = end_steps;
     }
@@ -350,7 +402,8 @@ pub fn plan_toolpath(toolpath: &Toolpath, machine: &MachineSettings) -> Result<V
     let mut v = vec![0.0; n + 1];
     for i in 1..n {
         let (before, after) = (&segments[i - 1], &segments[i]);
-        if matches!(before.shape, Shape::Dwell { .. }) || matches!(after.shape, Shape::Dwell { .. }) {
+        if matches!(before.shape, Shape::Dwell { .. }) || matches!(after.shape, Shape::Dwell { .. })
+        {
             continue;
         }
         let corner = junction_speed(

@@ -14,7 +14,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use super::gcode::{interpret, Ignored, Units};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
-use super::{interpolate, plan_toolpath, Driver, DriverConfig, MachineSettings, Path, RtlBus, Toolpath};
+use super::{
+    interpolate, plan_toolpath, Driver, DriverConfig, MachineSettings, Path, RtlBus, Toolpath,
+};
 use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::plots::{plot_following_error, plot_path_xy, plot_speed};
 use crate::sim::Backend;
@@ -67,14 +69,19 @@ pub struct Job {
 impl Job {
     /// Reads `file` as `format` (default: from its extension); a G-code
     /// program runs on `machine` (default: [`MachineSettings::default`]).
-    pub fn read(file: &FsPath, format: Option<InputFormat>, machine: Option<MachineSettings>) -> Result<Job, String> {
+    pub fn read(
+        file: &FsPath,
+        format: Option<InputFormat>,
+        machine: Option<MachineSettings>,
+    ) -> Result<Job, String> {
         let format = format.or_else(|| InputFormat::from_extension(file)).ok_or_else(|| {
             format!(
                 "{}: unknown file type: G-code ends in .nc, .ngc, .gcode or .tap, a path file in .path (or give --format)",
                 file.display()
             )
         })?;
-        let text = std::fs::read_to_string(file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        let text = std::fs::read_to_string(file)
+            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
         let located = |e: &dyn std::fmt::Display| format!("{}: {e}", file.display());
         match format {
             InputFormat::Path => {
@@ -85,7 +92,12 @@ impl Job {
                     ));
                 }
                 let path = Path::parse(&text).map_err(|e| located(&e))?;
-                Ok(Job { toolpath: path.toolpath(), machine: path.machine(), program_end: None, ignored: Vec::new() })
+                Ok(Job {
+                    toolpath: path.toolpath(),
+                    machine: path.machine(),
+                    program_end: None,
+                    ignored: Vec::new(),
+                })
             }
             InputFormat::Gcode => {
                 let program = interpret(&text).map_err(|e| located(&e))?;
@@ -175,7 +187,11 @@ impl Trip {
                 "x" => 1,
                 "y" => 2,
                 "z" => 4,
-                _ => return Err(format!("--trip `{text}`: unknown axis `{axis}` (x, y or z)")),
+                _ => {
+                    return Err(format!(
+                        "--trip `{text}`: unknown axis `{axis}` (x, y or z)"
+                    ))
+                }
             };
             match what {
                 "limit-pos" => pins.limit_pos = bit,
@@ -184,7 +200,10 @@ impl Trip {
                 _ => return Err(format!("--trip `{text}`: unknown input `{input}`: {usage}")),
             }
         }
-        Ok(Trip { at_s: ms * 1e-3, pins })
+        Ok(Trip {
+            at_s: ms * 1e-3,
+            pins,
+        })
     }
 }
 
@@ -246,7 +265,9 @@ pub struct SimulationReport {
 pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), String> {
     let clocks = (period_s * clock_hz).round();
     if !(2.0..=4e9).contains(&clocks) {
-        return Err(format!("a period of {period_s} s is {clocks} clocks at {clock_hz} Hz"));
+        return Err(format!(
+            "a period of {period_s} s is {clocks} clocks at {clock_hz} Hz"
+        ));
     }
     let clocks = clocks as u64;
     let first = clocks.div_ceil(65_535).max(1);
@@ -270,7 +291,11 @@ pub const SLOW_RUN_CLOCKS: f64 = 1e8;
 /// at step_len + step_space clocks a step, or two ticks a step on a
 /// uniform axis) that runs the same counts, as a sentence. `None` when the
 /// run is short or the clock is already that low.
-pub fn slow_run_hint(counts: &[[i32; 3]], period: f64, options: &SimulationOptions) -> Option<String> {
+pub fn slow_run_hint(
+    counts: &[[i32; 3]],
+    period: f64,
+    options: &SimulationOptions,
+) -> Option<String> {
     let clocks = counts.len() as f64 * period * options.clock_hz;
     if clocks <= SLOW_RUN_CLOCKS {
         return None;
@@ -278,8 +303,16 @@ pub fn slow_run_hint(counts: &[[i32; 3]], period: f64, options: &SimulationOptio
     let per_step = (options.step_len.max(1) + options.step_space.max(1)) as f64;
     let needed = (0..3)
         .map(|k| {
-            let peak = counts.iter().map(|c| c[k].unsigned_abs()).max().unwrap_or(0) as f64;
-            let per_step = if options.uniform[k] { per_step.max(2.0) } else { per_step };
+            let peak = counts
+                .iter()
+                .map(|c| c[k].unsigned_abs())
+                .max()
+                .unwrap_or(0) as f64;
+            let per_step = if options.uniform[k] {
+                per_step.max(2.0)
+            } else {
+                per_step
+            };
             peak * per_step
         })
         .fold(1.0, f64::max);
@@ -299,13 +332,17 @@ pub fn slow_run_hint(counts: &[[i32; 3]], period: f64, options: &SimulationOptio
 }
 
 /// Runs `path_file` (G-code or a path file) through the RTL controller.
-pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<SimulationReport, String> {
+pub fn simulate(
+    path_file: &FsPath,
+    options: &SimulationOptions,
+) -> Result<SimulationReport, String> {
     let job = Job::read(path_file, options.format, options.machine)?;
     let machine = job.machine;
     let start = to_steps(job.toolpath.start, machine.steps_per_mm);
     let target = to_steps(job.toolpath.end(), machine.steps_per_mm);
     let (tick_divisor, period_ticks) = period_settings(machine.period, options.clock_hz)?;
-    let segments = plan_toolpath(&job.toolpath, &machine).map_err(|e| format!("{}: {e}", path_file.display()))?;
+    let segments = plan_toolpath(&job.toolpath, &machine)
+        .map_err(|e| format!("{}: {e}", path_file.display()))?;
     let seconds: f64 = segments.iter().map(|s| s.duration()).sum();
     let periods = seconds / machine.period;
     if periods.is_nan() || periods > MAX_PERIODS as f64 {
@@ -332,7 +369,10 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
     };
     let servo = options.servo.iter().any(|&s| s);
     if let Some(axis) = (0..3).find(|&k| options.servo[k] && options.uniform[k]) {
-        return Err(format!("axis {} cannot be both uniform and an analog servo", ["x", "y", "z"][axis]));
+        return Err(format!(
+            "axis {} cannot be both uniform and an analog servo",
+            ["x", "y", "z"][axis]
+        ));
     }
     if servo && options.uniform.iter().any(|&u| u) {
         return Err("--uniform needs the motion_controller build, --servo the motion_controller_servo build (DDA only): use one of them".into());
@@ -340,7 +380,13 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
     let period_s = tick_divisor as f64 * period_ticks as f64 / options.clock_hz;
     let mut bus = if servo {
         let motors = options.servo.map(|s| s.then(ServoMotor::default));
-        RtlBus::with_servos(options.backend, options.vcd.as_deref(), motors, DriveScale::default(), options.clock_hz)
+        RtlBus::with_servos(
+            options.backend,
+            options.vcd.as_deref(),
+            motors,
+            DriveScale::default(),
+            options.clock_hz,
+        )
     } else {
         RtlBus::new(options.backend, options.vcd.as_deref())
     }
@@ -356,8 +402,10 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
     let bar = if options.progress {
         let bar = ProgressBar::new(interpolation.counts.len() as u64);
         bar.set_style(
-            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} periods ({per_sec})")
-                .map_err(|e| e.to_string())?,
+            ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:40}] {pos}/{len} periods ({per_sec})",
+            )
+            .map_err(|e| e.to_string())?,
         );
         Some(bar)
     } else {
@@ -382,12 +430,14 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
                 );
             }
         }
-        driver.run_servo(&interpolation.counts, &mut loops, period_s, show).map(|r| {
-            following = r.following;
-            errors = r.errors;
-            settle_periods = r.settle_periods;
-            r.run
-        })
+        driver
+            .run_servo(&interpolation.counts, &mut loops, period_s, show)
+            .map(|r| {
+                following = r.following;
+                errors = r.errors;
+                settle_periods = r.settle_periods;
+                r.run
+            })
     } else {
         driver.run(&interpolation.counts, show)
     };
@@ -406,21 +456,43 @@ pub fn simulate(path_file: &FsPath, options: &SimulationOptions) -> Result<Simul
     let offset = |p: [i64; 3]| [p[0] + start[0], p[1] + start[1], p[2] + start[2]];
     let mut figures = Vec::new();
     if let Some(dir) = &options.out_dir {
-        std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-        let stem = path_file.file_stem().and_then(|s| s.to_str()).unwrap_or("path");
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        let stem = path_file
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("path");
         let xy = dir.join(format!("{stem}-path.svg"));
-        let unit = if job.program_end.is_some() || machine.steps_per_mm != [1.0; 3] { "mm" } else { "steps" };
+        let unit = if job.program_end.is_some() || machine.steps_per_mm != [1.0; 3] {
+            "mm"
+        } else {
+            "steps"
+        };
         // In the program's units (steps for a path file in steps).
-        let units = |p: [i64; 3]| -> [f64; 3] { std::array::from_fn(|k| p[k] as f64 / machine.steps_per_mm[k]) };
+        let units = |p: [i64; 3]| -> [f64; 3] {
+            std::array::from_fn(|k| p[k] as f64 / machine.steps_per_mm[k])
+        };
         let measured: Vec<[f64; 3]> = bus.samples().iter().map(|&p| units(offset(p))).collect();
-        let planned: Vec<[f64; 3]> = std::iter::once(start).chain(interpolation.positions.iter().copied()).map(units).collect();
+        let planned: Vec<[f64; 3]> = std::iter::once(start)
+            .chain(interpolation.positions.iter().copied())
+            .map(units)
+            .collect();
         plot_path_xy(&planned, &measured, unit, &xy).map_err(|e| e.to_string())?;
         let speed = dir.join(format!("{stem}-speed.svg"));
-        plot_speed(&interpolation.speeds, machine.period, &format!("{unit}/s"), &speed).map_err(|e| e.to_string())?;
+        plot_speed(
+            &interpolation.speeds,
+            machine.period,
+            &format!("{unit}/s"),
+            &speed,
+        )
+        .map_err(|e| e.to_string())?;
         figures = vec![xy, speed];
         if servo {
             let names = ["x", "y", "z"];
-            let axes: Vec<(usize, &str)> = (0..3).filter(|&k| options.servo[k]).map(|k| (k, names[k])).collect();
+            let axes: Vec<(usize, &str)> = (0..3)
+                .filter(|&k| options.servo[k])
+                .map(|k| (k, names[k]))
+                .collect();
             let fe = dir.join(format!("{stem}-following-error.svg"));
             plot_following_error(&errors, &axes, period_s, &fe).map_err(|e| e.to_string())?;
             figures.push(fe);

@@ -19,7 +19,11 @@ pub(crate) fn statements(text: &str) -> impl Iterator<Item = Statement<'_>> {
     text.lines().enumerate().filter_map(|(index, raw)| {
         let mut words = raw.split('#').next().unwrap_or("").split_whitespace();
         let keyword = words.next()?;
-        Some(Statement { line: index + 1, keyword, words: words.collect() })
+        Some(Statement {
+            line: index + 1,
+            keyword,
+            words: words.collect(),
+        })
     })
 }
 
@@ -33,7 +37,10 @@ pub(crate) struct Numbers<'s> {
 impl<'a> Statement<'a> {
     /// An error at this statement's line.
     pub fn error(&self, message: String) -> PathError {
-        PathError::Syntax { line: self.line, message }
+        PathError::Syntax {
+            line: self.line,
+            message,
+        }
     }
 
     /// Every word after the keyword as a finite number.
@@ -48,7 +55,10 @@ impl<'a> Statement<'a> {
                     .ok_or_else(|| self.error(format!("`{w}` is not a number")))
             })
             .collect::<Result<_, _>>()?;
-        Ok(Numbers { statement: self, values })
+        Ok(Numbers {
+            statement: self,
+            values,
+        })
     }
 }
 

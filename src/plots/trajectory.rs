@@ -19,7 +19,12 @@ fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
 
 /// Draws the XY path: `planned` positions (one per period) and `measured`
 /// ones (sampled from the encoders), in `unit` ("mm", "steps").
-pub fn plot_path_xy(planned: &[[f64; 3]], measured: &[[f64; 3]], unit: &str, path: &Path) -> Result<(), PlotError> {
+pub fn plot_path_xy(
+    planned: &[[f64; 3]],
+    measured: &[[f64; 3]],
+    unit: &str,
+    path: &Path,
+) -> Result<(), PlotError> {
     let err = draw_error(path);
     let all = || planned.iter().chain(measured);
     let (x0, x1) = bounds(all().map(|p| p[0]));
@@ -72,7 +77,10 @@ pub fn plot_speed(speeds: &[f64], period_s: f64, unit: &str, path: &Path) -> Res
     let root = SVGBackend::new(path, (1000, 450)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption("Path speed over time (trapezoidal profile with look-ahead)", ("sans-serif", 18))
+        .caption(
+            "Path speed over time (trapezoidal profile with look-ahead)",
+            ("sans-serif", 18),
+        )
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)
@@ -86,7 +94,10 @@ pub fn plot_speed(speeds: &[f64], period_s: f64, unit: &str, path: &Path) -> Res
         .map_err(|e| err(e.to_string()))?;
     chart
         .draw_series(LineSeries::new(
-            speeds.iter().enumerate().map(|(k, v)| ((k + 1) as f64 * period_s, *v)),
+            speeds
+                .iter()
+                .enumerate()
+                .map(|(k, v)| ((k + 1) as f64 * period_s, *v)),
             BLUE.stroke_width(1),
         ))
         .map_err(|e| err(e.to_string()))?;
@@ -103,11 +114,19 @@ pub fn plot_following_error(
 ) -> Result<(), PlotError> {
     let err = draw_error(path);
     let end = (errors.len() as f64 * period_s).max(period_s);
-    let (low, high) = bounds(errors.iter().flat_map(|e| axes.iter().map(|&(k, _)| e[k])).chain([0.0]));
+    let (low, high) = bounds(
+        errors
+            .iter()
+            .flat_map(|e| axes.iter().map(|&(k, _)| e[k]))
+            .chain([0.0]),
+    );
     let root = SVGBackend::new(path, (1000, 450)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption("Following error of the analog servo axes", ("sans-serif", 18))
+        .caption(
+            "Following error of the analog servo axes",
+            ("sans-serif", 18),
+        )
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)
@@ -123,7 +142,10 @@ pub fn plot_following_error(
         let color = Palette99::pick(i).to_rgba();
         chart
             .draw_series(LineSeries::new(
-                errors.iter().enumerate().map(|(j, e)| ((j + 1) as f64 * period_s, e[k])),
+                errors
+                    .iter()
+                    .enumerate()
+                    .map(|(j, e)| ((j + 1) as f64 * period_s, e[k])),
                 color.stroke_width(1),
             ))
             .map_err(|e| err(e.to_string()))?

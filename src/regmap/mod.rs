@@ -126,7 +126,12 @@ pub fn field(name: &'static str, lsb: u32, width: u32, access: Access, doc: &'st
 }
 
 /// A single register (count 1) of `fields`.
-pub fn register(name: &'static str, address: u32, doc: &'static str, fields: Vec<Field>) -> Register {
+pub fn register(
+    name: &'static str,
+    address: u32,
+    doc: &'static str,
+    fields: Vec<Field>,
+) -> Register {
     Register {
         name,
         address,

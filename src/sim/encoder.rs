@@ -32,7 +32,11 @@ impl SimulatedEncoder {
     /// Watches the step/dir pins after an edge; returns (a, b, index).
     pub fn follow(&mut self, (step, dir): (bool, bool)) -> (bool, bool, bool) {
         if step && !self.last_step {
-            self.state = if dir { (self.state + 1) % 4 } else { (self.state + 3) % 4 };
+            self.state = if dir {
+                (self.state + 1) % 4
+            } else {
+                (self.state + 3) % 4
+            };
             self.net += if dir { 1 } else { -1 };
             self.total += 1;
         }

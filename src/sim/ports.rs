@@ -65,7 +65,9 @@ impl<const N: usize> PortValue for Bits<N> {
 }
 
 /// The vector columns of the port `signal` selects (for [`crate::vector_ports!`]).
-pub fn port_words<B, D: Direction, T: Synth + PortValue>(_signal: fn(&B) -> &Signal<D, T>) -> usize {
+pub fn port_words<B, D: Direction, T: Synth + PortValue>(
+    _signal: fn(&B) -> &Signal<D, T>,
+) -> usize {
     T::WORDS
 }
 

@@ -215,7 +215,9 @@ pub fn compare_compiled<B: VectorPorts>(
         .collect();
     let mut outputs = vec![0; names.len()];
     for (cycle, (inputs, want)) in stimulus.iter().zip(expected).enumerate() {
-        compiled.step_into(inputs, &mut outputs).map_err(|e| setup(&e))?;
+        compiled
+            .step_into(inputs, &mut outputs)
+            .map_err(|e| setup(&e))?;
         if let Some(index) = (0..names.len()).find(|&i| outputs[i] != want[i]) {
             return Err(CosimError::Mismatch(Mismatch {
                 simulator: Simulator::Compiled,
@@ -354,7 +356,9 @@ fn check_vector_ports<B: VectorPorts>(block: &B) -> Result<(), CosimError> {
             .collect()
     };
     let (inputs, outputs) = (names(PortDirection::Input), names(PortDirection::Output));
-    if words(PortDirection::Input) != B::input_words() || words(PortDirection::Output) != B::output_words() {
+    if words(PortDirection::Input) != B::input_words()
+        || words(PortDirection::Output) != B::output_words()
+    {
         return Err(CosimError::Setup(format!(
             "vector_ports! gives input columns {:?} output columns {:?}, but the port widths need {:?} {:?}",
             B::input_words(),

@@ -163,7 +163,11 @@ fn read_all(mut file: std::fs::File) -> String {
 /// with gcc as strict `standard` C (`c89`, `c99`: `-pedantic -Wall -Wextra
 /// -Werror`), runs it and returns what it printed: how the tests check a
 /// generated register header against its Rust map.
-pub fn run_c_program(include_dir: &std::path::Path, standard: &str, program: &str) -> Result<String, ToolError> {
+pub fn run_c_program(
+    include_dir: &std::path::Path,
+    standard: &str,
+    program: &str,
+) -> Result<String, ToolError> {
     let dir = work_dir("c-program")?;
     let source = dir.path().join("main.c");
     std::fs::write(&source, program).map_err(|source| ToolError::Io {
@@ -181,9 +185,11 @@ pub fn run_c_program(include_dir: &std::path::Path, standard: &str, program: &st
             .arg(&source),
         false,
     )?;
-    let output = Command::new(&exe).output().map_err(|source| ToolError::Io {
-        context: "running the C program".into(),
-        source,
-    })?;
+    let output = Command::new(&exe)
+        .output()
+        .map_err(|source| ToolError::Io {
+            context: "running the C program".into(),
+            source,
+        })?;
     Ok(String::from_utf8_lossy(&output.stdout).into_owned())
 }

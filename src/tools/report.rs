@@ -36,11 +36,18 @@ pub fn measure(
 ) -> Result<Vec<ReportRow>, ToolError> {
     let rtl = |spec: &ModuleSpec| rtl_dir.join(format!("{}.v", spec.name));
     let mut order: Vec<usize> = (0..specs.len()).collect();
-    let size = |i: &usize| std::fs::metadata(rtl(&specs[*i])).map(|m| m.len()).unwrap_or(0);
+    let size = |i: &usize| {
+        std::fs::metadata(rtl(&specs[*i]))
+            .map(|m| m.len())
+            .unwrap_or(0)
+    };
     order.sort_by_key(|i| std::cmp::Reverse(size(i)));
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(specs.len().max(1));
-    let mut rows: Vec<Option<Result<ReportRow, ToolError>>> = (0..specs.len()).map(|_| None).collect();
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(specs.len().max(1));
+    let mut rows: Vec<Option<Result<ReportRow, ToolError>>> =
+        (0..specs.len()).map(|_| None).collect();
     std::thread::scope(|scope| {
         let handles: Vec<_> = (0..workers)
             .map(|_| {
@@ -51,14 +58,20 @@ pub fn measure(
                         let Some(&i) = order.get(k) else { break done };
                         let spec = &specs[i];
                         let ports = crate::export::top_ports((spec.build)().as_ref());
-                        let row = synthesize_top(&rtl(spec), spec.name, &ports, seeds, spec.fmax_target_mhz)
-                            .map(|(figures, _)| ReportRow {
-                                module: spec.name.to_string(),
-                                target_mhz: spec.fmax_target_mhz,
-                                lut4_budget: spec.lut4_budget,
-                                logic_cell_budget: spec.logic_cell_budget,
-                                figures,
-                            });
+                        let row = synthesize_top(
+                            &rtl(spec),
+                            spec.name,
+                            &ports,
+                            seeds,
+                            spec.fmax_target_mhz,
+                        )
+                        .map(|(figures, _)| ReportRow {
+                            module: spec.name.to_string(),
+                            target_mhz: spec.fmax_target_mhz,
+                            lut4_budget: spec.lut4_budget,
+                            logic_cell_budget: spec.logic_cell_budget,
+                            figures,
+                        });
                         done.push((i, row));
                     }
                 })
@@ -70,7 +83,9 @@ pub fn measure(
             }
         }
     });
-    rows.into_iter().map(|row| row.expect("every module measured")).collect()
+    rows.into_iter()
+        .map(|row| row.expect("every module measured"))
+        .collect()
 }
 
 /// The report as Markdown.

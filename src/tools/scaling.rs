@@ -25,7 +25,9 @@ pub fn measure(seeds: &[u64], target_mhz: f64) -> Result<Vec<ScalingRow>, ToolEr
     controller_scaling()
         .into_iter()
         .map(|variant| {
-            let rtl = dir.path().join(format!("motion_controller_k{}.v", variant.axes));
+            let rtl = dir
+                .path()
+                .join(format!("motion_controller_k{}.v", variant.axes));
             write_verilog(&rtl, &mut *(variant.build)())?;
             Ok(ScalingRow {
                 axes: variant.axes,
@@ -35,7 +37,10 @@ pub fn measure(seeds: &[u64], target_mhz: f64) -> Result<Vec<ScalingRow>, ToolEr
         .collect()
 }
 
-fn write_verilog(path: &Path, block: &mut dyn rust_hdl::core::prelude::Block) -> Result<(), ToolError> {
+fn write_verilog(
+    path: &Path,
+    block: &mut dyn rust_hdl::core::prelude::Block,
+) -> Result<(), ToolError> {
     let verilog = module_verilog("motion_controller", block).map_err(|e| ToolError::Parse {
         tool: "rust-hdl".into(),
         detail: e.to_string(),
@@ -100,11 +105,23 @@ mod tests {
             fmax_mhz,
         };
         let rows = [
-            ScalingRow { axes: 1, figures: figures(3840, vec![101.0, 99.0, 100.0]) },
-            ScalingRow { axes: 6, figures: figures(15360, vec![]) },
+            ScalingRow {
+                axes: 1,
+                figures: figures(3840, vec![101.0, 99.0, 100.0]),
+            },
+            ScalingRow {
+                axes: 6,
+                figures: figures(15360, vec![]),
+            },
         ];
         let md = render(&rows, &[1, 2, 3], 100.0);
-        assert!(md.contains("| 1 | 1 | 2 | 3 | 4 | 3840 | 50 % | 100.0 | 101.0, 99.0, 100.0 |"), "{md}");
-        assert!(md.contains("| 6 | 1 | 2 | 3 | 4 | 15360 | 200 % | does not fit | - |"), "{md}");
+        assert!(
+            md.contains("| 1 | 1 | 2 | 3 | 4 | 3840 | 50 % | 100.0 | 101.0, 99.0, 100.0 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| 6 | 1 | 2 | 3 | 4 | 15360 | 200 % | does not fit | - |"),
+            "{md}"
+        );
     }
 }

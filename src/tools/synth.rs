@@ -322,8 +322,8 @@ fn read_nextpnr_utilization(path: &Path) -> Result<u32, ToolError> {
 
 fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
     let json = read_nextpnr_json(path)?;
-    let fmax = slowest_fmax(&json)
-        .ok_or_else(|| nextpnr_parse_error("no achieved Fmax in the report"))?;
+    let fmax =
+        slowest_fmax(&json).ok_or_else(|| nextpnr_parse_error("no achieved Fmax in the report"))?;
     Ok((fmax, utilization(&json)?))
 }
 

@@ -52,8 +52,13 @@ fn outputs(v: &[u64]) -> CommandFifoOutputs {
 fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
     let capacity = 1u64 << N;
     let backend = Backend::from_env_or(Backend::Verilator).unwrap();
-    let mut h = stepper(backend, "command_fifo", CommandFifo::<N, NP1>::default(), None)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let mut h = stepper(
+        backend,
+        "command_fifo",
+        CommandFifo::<N, NP1>::default(),
+        None,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let mut model = CommandFifoModel::new(capacity as usize);
     let (mut fulls, mut empties, mut overflows, mut underflows, mut heads) = (0, 0, 0, 0, 0);
     // The three read-during-write cases of the head bypass, counted from

@@ -5,7 +5,9 @@
 //! reset; cross-simulation.
 
 use motion_hdl::blocks::dac_interface::model::{DacInputs, DacModel, DacOutputs};
-use motion_hdl::blocks::dac_interface::registers::{field_of, register_map, ADDRESS_BITS, CODE_BASE};
+use motion_hdl::blocks::dac_interface::registers::{
+    field_of, register_map, ADDRESS_BITS, CODE_BASE,
+};
 use motion_hdl::blocks::dac_interface::{safe_latency, DacInterface, DacInterface3};
 use motion_hdl::blocks::width_mask;
 use motion_hdl::regmap::RegisterMap;

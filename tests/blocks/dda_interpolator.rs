@@ -137,8 +137,13 @@ impl Driver {
 /// (default: Verilator, for speed).
 fn long_run_rtl() -> Box<dyn Stepper> {
     let backend = Backend::from_env_or(Backend::Verilator).unwrap();
-    stepper(backend, "dda_interpolator", DdaInterpolator::<K>::default(), None)
-        .unwrap_or_else(|e| panic!("{e}"))
+    stepper(
+        backend,
+        "dda_interpolator",
+        DdaInterpolator::<K>::default(),
+        None,
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]

@@ -2,20 +2,22 @@
 //! emulated DSP doing random reads and writes at the datasheet's minimum
 //! timing against a register-file slave, and cross-simulation.
 
+use crate::support::pin_bench::{random_pins, BusView, Length, PinBench, PinWidths};
 use motion_hdl::blocks::external_bus_adapter::model::{
     ExternalBusInputs, ExternalBusModel, ExternalBusOutputs,
 };
 use motion_hdl::blocks::external_bus_adapter::ExternalBusAdapter;
 use motion_hdl::sim::Harness;
-use crate::support::pin_bench::{random_pins, BusView, Length, PinBench, PinWidths};
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-
 type Adapter = ExternalBusAdapter<8>;
 
-const WIDTHS: PinWidths = PinWidths { address_bits: 8, data_bits: 32 };
+const WIDTHS: PinWidths = PinWidths {
+    address_bits: 8,
+    data_bits: 32,
+};
 
 #[test]
 fn rtl_matches_model_on_random_pins() {
@@ -50,7 +52,14 @@ fn view(v: &[u64]) -> BusView {
 
 /// A DSP on the pins, a register file of 256 words on the bus.
 fn system(resolve: Option<u64>) -> PinBench<Adapter> {
-    PinBench::new("external_bus_adapter", Adapter::default(), view, WIDTHS, 256, resolve)
+    PinBench::new(
+        "external_bus_adapter",
+        Adapter::default(),
+        view,
+        WIDTHS,
+        256,
+        resolve,
+    )
 }
 
 /// Random writes and reads at the datasheet's minimum timing: 3-clock
@@ -73,7 +82,8 @@ fn dsp_session(seed: u64, resolve: bool, access: std::ops::Range<u32>) -> u32 {
             writes += 1;
         } else {
             let clocks = rng.gen_range(access.clone());
-            wrong += (sys.read(&mut rng, address, Length::Clocks(clocks)).0 != expected[address as usize]) as u32;
+            wrong += (sys.read(&mut rng, address, Length::Clocks(clocks)).0
+                != expected[address as usize]) as u32;
             reads += 1;
         }
     }
@@ -144,7 +154,10 @@ fn a_read_right_after_a_put_off_read_is_issued() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000, WIDTHS).iter().map(ExternalBusInputs::to_vector).collect();
+    let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000, WIDTHS)
+        .iter()
+        .map(ExternalBusInputs::to_vector)
+        .collect();
     cross_simulate(
         &CosimDesign::exported("external_bus_adapter"),
         Adapter::default(),

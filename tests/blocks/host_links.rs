@@ -24,8 +24,14 @@ use crate::support::pin_bench::{random_pins, resolve_pins, PinWidths};
 
 const NAME: &str = "host_links";
 const G: HostLinksGeometry = HostLinksGeometry::seed();
-const DSP_PINS: PinWidths = PinWidths { address_bits: 11, data_bits: 16 };
-const PC_PINS: PinWidths = PinWidths { address_bits: 11, data_bits: 8 };
+const DSP_PINS: PinWidths = PinWidths {
+    address_bits: 11,
+    data_bits: 16,
+};
+const PC_PINS: PinWidths = PinWidths {
+    address_bits: 11,
+    data_bits: 8,
+};
 const TO_DSP: u64 = mailbox_to_b(10);
 const TO_PC: u64 = mailbox_to_a(10);
 
@@ -161,7 +167,12 @@ struct Master {
 
 impl Master {
     fn new(widths: PinWidths, timing: Timing, seed: u64, resolve: bool) -> Self {
-        let idle = BusPinInputs { cs_n: true, we_n: true, rd_n: true, ..Default::default() };
+        let idle = BusPinInputs {
+            cs_n: true,
+            we_n: true,
+            rd_n: true,
+            ..Default::default()
+        };
         Self {
             widths,
             timing,
@@ -301,20 +312,30 @@ impl Card {
             self.registers[o.reg_address as usize] = o.reg_write_data;
             self.reg_writes += 1;
         }
-        assert!(!o.mailbox_overrun && !o.mailbox_collision, "clock {}: {o:?}", self.clock);
+        assert!(
+            !o.mailbox_overrun && !o.mailbox_collision,
+            "clock {}: {o:?}",
+            self.clock
+        );
         self.order_errors += (o.dsp_order_error || o.pc_order_error) as u32;
         self.dsp.after(o.dsp_data_out, o.dsp_ready);
         self.pc.after(o.pc_data_out, o.pc_ready);
         // An interrupt rises only after the other side's ring: the ring is
         // the last access that side finished (a ring is always its last).
-        let rang = |m: &Master, address: u64| {
-            matches!(m.last_finished, Some(Op::Write { address: a, .. }) if a == address)
-        };
+        let rang = |m: &Master, address: u64| matches!(m.last_finished, Some(Op::Write { address: a, .. }) if a == address);
         if o.irq_dsp && !self.last.irq_dsp {
-            assert!(rang(&self.pc, G.pc_address(TO_DSP, 1)), "clock {}: irq_dsp without a ring", self.clock);
+            assert!(
+                rang(&self.pc, G.pc_address(TO_DSP, 1)),
+                "clock {}: irq_dsp without a ring",
+                self.clock
+            );
         }
         if o.irq_pc && !self.last.irq_pc {
-            assert!(rang(&self.dsp, G.dsp_mailbox_address(TO_PC)), "clock {}: irq_pc without a ring", self.clock);
+            assert!(
+                rang(&self.dsp, G.dsp_mailbox_address(TO_PC)),
+                "clock {}: irq_pc without a ring",
+                self.clock
+            );
         }
         self.last = o;
     }
@@ -343,17 +364,30 @@ impl Card {
 }
 
 fn dsp_word_write(address: u64, data: u64) -> Op {
-    Op::Write { address: G.dsp_mailbox_address(address), data }
+    Op::Write {
+        address: G.dsp_mailbox_address(address),
+        data,
+    }
 }
 
 fn pc_word_write(m: &mut Master, word: u64, data: u64) {
-    m.queue.push_back(Op::Write { address: G.pc_address(word, 0), data: data & 0xff });
-    m.queue.push_back(Op::Write { address: G.pc_address(word, 1), data: data >> 8 });
+    m.queue.push_back(Op::Write {
+        address: G.pc_address(word, 0),
+        data: data & 0xff,
+    });
+    m.queue.push_back(Op::Write {
+        address: G.pc_address(word, 1),
+        data: data >> 8,
+    });
 }
 
 fn pc_word_read(m: &mut Master, word: u64) {
-    m.queue.push_back(Op::Read { address: G.pc_address(word, 0) });
-    m.queue.push_back(Op::Read { address: G.pc_address(word, 1) });
+    m.queue.push_back(Op::Read {
+        address: G.pc_address(word, 0),
+    });
+    m.queue.push_back(Op::Read {
+        address: G.pc_address(word, 1),
+    });
 }
 
 fn pc_words(m: &mut Master, count: usize) -> Vec<u64> {
@@ -392,18 +426,31 @@ fn session(dsp_timing: Timing, seed: u64, resolve: bool, rounds: usize) {
             let register = rng.gen_range(0..256u64);
             if rng.gen_bool(0.5) {
                 let value = rng.gen::<u32>() as u64;
-                card.dsp.queue.push_back(Op::Write { address: G.dsp_register_address(register, 0), data: value & 0xffff });
-                card.dsp.queue.push_back(Op::Write { address: G.dsp_register_address(register, 1), data: value >> 16 });
+                card.dsp.queue.push_back(Op::Write {
+                    address: G.dsp_register_address(register, 0),
+                    data: value & 0xffff,
+                });
+                card.dsp.queue.push_back(Op::Write {
+                    address: G.dsp_register_address(register, 1),
+                    data: value >> 16,
+                });
                 expected[register as usize] = value;
                 reg_writes += 1;
             } else {
-                card.dsp.queue.push_back(Op::Read { address: G.dsp_register_address(register, 0) });
-                card.dsp.queue.push_back(Op::Read { address: G.dsp_register_address(register, 1) });
+                card.dsp.queue.push_back(Op::Read {
+                    address: G.dsp_register_address(register, 0),
+                });
+                card.dsp.queue.push_back(Op::Read {
+                    address: G.dsp_register_address(register, 1),
+                });
                 dsp_reads.push(expected[register as usize]);
                 reg_reads += 1;
             }
         }
-        assert!(!card.last.irq_dsp, "round {round}: irq_dsp before the PC rang");
+        assert!(
+            !card.last.irq_dsp,
+            "round {round}: irq_dsp before the PC rang"
+        );
         card.settle();
         card.wait_for(|o| o.irq_dsp, 20);
         for want in dsp_reads {
@@ -414,20 +461,38 @@ fn session(dsp_timing: Timing, seed: u64, resolve: bool, rounds: usize) {
 
         // The DSP takes the ring (clears irq_dsp), reads the message, writes
         // its reply (each word + 1, after the message) and rings the PC.
-        card.dsp.queue.push_back(Op::Read { address: G.dsp_mailbox_address(TO_DSP) });
+        card.dsp.queue.push_back(Op::Read {
+            address: G.dsp_mailbox_address(TO_DSP),
+        });
         for k in 0..len {
-            card.dsp.queue.push_back(Op::Read { address: G.dsp_mailbox_address(base + k) });
+            card.dsp.queue.push_back(Op::Read {
+                address: G.dsp_mailbox_address(base + k),
+            });
         }
         for (k, &w) in message.iter().enumerate() {
-            card.dsp.queue.push_back(dsp_word_write(base + len + k as u64, (w + 1) & 0xffff));
+            card.dsp
+                .queue
+                .push_back(dsp_word_write(base + len + k as u64, (w + 1) & 0xffff));
         }
         card.dsp.queue.push_back(dsp_word_write(TO_PC, 1));
-        assert!(!card.last.irq_pc, "round {round}: irq_pc before the DSP rang");
+        assert!(
+            !card.last.irq_pc,
+            "round {round}: irq_pc before the DSP rang"
+        );
         card.settle();
-        assert!(!card.last.irq_dsp, "round {round}: irq_dsp not cleared by the DSP's read");
+        assert!(
+            !card.last.irq_dsp,
+            "round {round}: irq_dsp not cleared by the DSP's read"
+        );
         card.wait_for(|o| o.irq_pc, 20);
-        assert_eq!(card.dsp.reads.pop_front(), Some(1), "round {round}: the ring word");
-        let got: Vec<u64> = (0..len).map(|_| card.dsp.reads.pop_front().unwrap()).collect();
+        assert_eq!(
+            card.dsp.reads.pop_front(),
+            Some(1),
+            "round {round}: the ring word"
+        );
+        let got: Vec<u64> = (0..len)
+            .map(|_| card.dsp.reads.pop_front().unwrap())
+            .collect();
         assert_eq!(got, message, "round {round}: message");
 
         // The PC takes its ring (clears irq_pc) and reads the reply.
@@ -436,13 +501,19 @@ fn session(dsp_timing: Timing, seed: u64, resolve: bool, rounds: usize) {
             pc_word_read(&mut card.pc, base + len + k);
         }
         card.settle();
-        assert!(!card.last.irq_pc, "round {round}: irq_pc not cleared by the PC's read");
+        assert!(
+            !card.last.irq_pc,
+            "round {round}: irq_pc not cleared by the PC's read"
+        );
         let got = pc_words(&mut card.pc, 1 + len as usize);
         assert_eq!(got[0], 1, "round {round}: the ring word");
         let want: Vec<u64> = message.iter().map(|w| (w + 1) & 0xffff).collect();
         assert_eq!(&got[1..], &want[..], "round {round}: reply");
     }
-    assert_eq!(card.reg_writes, reg_writes, "register writes lost or doubled");
+    assert_eq!(
+        card.reg_writes, reg_writes,
+        "register writes lost or doubled"
+    );
     assert_eq!(card.reg_reads, reg_reads, "register reads lost or doubled");
     assert_eq!(card.registers, expected);
     assert_eq!(card.order_errors, 0);
@@ -464,8 +535,14 @@ fn the_exchange_survives_randomly_resolved_samples_and_xready() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> =
-        random_inputs(0x417, 40_000).iter().map(HostLinksInputs::to_vector).collect();
-    cross_simulate(&CosimDesign::exported(NAME), SeedHostLinks::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let stimulus: Vec<Vec<u64>> = random_inputs(0x417, 40_000)
+        .iter()
+        .map(HostLinksInputs::to_vector)
+        .collect();
+    cross_simulate(
+        &CosimDesign::exported(NAME),
+        SeedHostLinks::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

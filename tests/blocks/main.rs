@@ -3,25 +3,25 @@
 //! cross-simulation of its exported Verilog. One binary, so that the
 //! crate's simulation code is compiled once for all of them.
 
-mod support;
 mod command_fifo;
 mod dac_interface;
 mod dda_integrator;
 mod dda_interpolator;
-mod external_bus_adapter;
-mod narrow_bus_adapter;
-mod word_assembler;
 mod dpram_mailbox;
-mod host_links;
+mod external_bus_adapter;
 mod freq_divider;
 mod glitch_filter;
+mod host_links;
 mod input_conditioner;
 mod interrupt_controller;
+mod narrow_bus_adapter;
 mod pulse_counter;
 mod quadrature_decoder;
 mod sequential_divider;
 mod step_channel;
 mod step_output;
+mod support;
+mod sync_fifo_bridge;
 mod uniform_pulse_gen;
 mod watchdog;
-mod sync_fifo_bridge;
+mod word_assembler;

@@ -4,6 +4,7 @@
 //! register file, with and without metastable pin samples; the tearing
 //! test; cross-simulation.
 
+use crate::support::pin_bench::{random_pins, BusView, Length, PinBench, PinWidths};
 use motion_hdl::blocks::bus_synchronizer::model::BusPinInputs;
 use motion_hdl::blocks::narrow_bus_adapter::model::{NarrowBusModel, NarrowBusOutputs};
 use motion_hdl::blocks::narrow_bus_adapter::{
@@ -14,8 +15,6 @@ use motion_hdl::sim::Harness;
 use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use crate::support::pin_bench::{random_pins, BusView, Length, PinBench, PinWidths};
-
 
 fn view(v: &[u64]) -> BusView {
     let o = NarrowBusOutputs::from_vector(v);
@@ -190,8 +189,16 @@ fn session<B: motion_hdl::sim::VectorPorts>(
         }
     }
     m.bench.hold(10);
-    assert_eq!(m.bench.bus_writes, writes, "{}: writes lost or doubled", width.name);
-    assert_eq!(m.bench.bus_reads, reads, "{}: reads lost or doubled", width.name);
+    assert_eq!(
+        m.bench.bus_writes, writes,
+        "{}: writes lost or doubled",
+        width.name
+    );
+    assert_eq!(
+        m.bench.bus_reads, reads,
+        "{}: reads lost or doubled",
+        width.name
+    );
     assert_eq!(m.bench.order_errors, 0, "{}: order errors", width.name);
     assert_eq!(m.bench.registers[..], expected[..]);
     wrong
@@ -200,16 +207,28 @@ fn session<B: motion_hdl::sim::VectorPorts>(
 #[test]
 fn masters_of_each_width_read_back_every_write_at_the_minimum_timing() {
     let fixed = Timing::Fixed { access: 6 };
-    assert_eq!(session(ExternalBusAdapter16::default(), W16, fixed, 0x160, false), 0);
-    assert_eq!(session(ExternalBusAdapter8::default(), W8, fixed, 0x80, false), 0);
+    assert_eq!(
+        session(ExternalBusAdapter16::default(), W16, fixed, 0x160, false),
+        0
+    );
+    assert_eq!(
+        session(ExternalBusAdapter8::default(), W8, fixed, 0x80, false),
+        0
+    );
 }
 
 /// Every pin change resolved randomly, bit by bit, on its first sample.
 #[test]
 fn accesses_of_each_width_survive_randomly_resolved_samples() {
     let fixed = Timing::Fixed { access: 7 };
-    assert_eq!(session(ExternalBusAdapter16::default(), W16, fixed, 0x161, true), 0);
-    assert_eq!(session(ExternalBusAdapter8::default(), W8, fixed, 0x81, true), 0);
+    assert_eq!(
+        session(ExternalBusAdapter16::default(), W16, fixed, 0x161, true),
+        0
+    );
+    assert_eq!(
+        session(ExternalBusAdapter8::default(), W8, fixed, 0x81, true),
+        0
+    );
 }
 
 /// A master that waits for `ready` instead of counting wait states gets
@@ -217,8 +236,26 @@ fn accesses_of_each_width_survive_randomly_resolved_samples() {
 #[test]
 fn masters_that_wait_for_ready_need_no_fixed_wait_states() {
     for resolve in [false, true] {
-        assert_eq!(session(ExternalBusAdapter16::default(), W16, Timing::Ready, 0x162, resolve), 0);
-        assert_eq!(session(ExternalBusAdapter8::default(), W8, Timing::Ready, 0x82, resolve), 0);
+        assert_eq!(
+            session(
+                ExternalBusAdapter16::default(),
+                W16,
+                Timing::Ready,
+                0x162,
+                resolve
+            ),
+            0
+        );
+        assert_eq!(
+            session(
+                ExternalBusAdapter8::default(),
+                W8,
+                Timing::Ready,
+                0x82,
+                resolve
+            ),
+            0
+        );
     }
 }
 
@@ -228,20 +265,31 @@ fn masters_that_wait_for_ready_need_no_fixed_wait_states() {
 #[test]
 fn ready_timing_is_the_documented_minimum() {
     let mut rng = StdRng::seed_from_u64(7);
-    let mut b = PinBench::new(W16.name, ExternalBusAdapter16::default(), view, W16.pins(), 256, None);
+    let mut b = PinBench::new(
+        W16.name,
+        ExternalBusAdapter16::default(),
+        view,
+        W16.pins(),
+        256,
+        None,
+    );
     let mut too_early_wrong = 0;
     for k in 0..200u64 {
         let register = k % 256;
         let (lo, hi) = (k * 7 + 1, k * 13 + 2);
         assert_eq!(b.write(&mut rng, register * 2, lo, Length::UntilReady), 3);
-        assert_eq!(b.write(&mut rng, register * 2 + 1, hi, Length::UntilReady), 3);
+        assert_eq!(
+            b.write(&mut rng, register * 2 + 1, hi, Length::UntilReady),
+            3
+        );
         let (data, clocks) = b.read(&mut rng, register * 2, Length::UntilReady);
         assert_eq!((data, clocks), (lo, 6));
         let (data, clocks) = b.read(&mut rng, register * 2 + 1, Length::UntilReady);
         assert_eq!((data, clocks), (hi, 6));
         b.write(&mut rng, register * 2, !lo & 0xffff, Length::Clocks(3));
         b.write(&mut rng, register * 2 + 1, !hi & 0xffff, Length::Clocks(3));
-        too_early_wrong += (b.read(&mut rng, register * 2, Length::Clocks(5)).0 != !lo & 0xffff) as u32;
+        too_early_wrong +=
+            (b.read(&mut rng, register * 2, Length::Clocks(5)).0 != !lo & 0xffff) as u32;
     }
     assert!(too_early_wrong > 150, "{too_early_wrong}");
 }
@@ -252,12 +300,19 @@ fn ready_timing_is_the_documented_minimum() {
 /// under way. Reads of every phase (random start, 0 to 40 idle clocks
 /// between the parts) never combine parts of two values. Returns the
 /// number of torn reads.
-fn tearing<B: motion_hdl::sim::VectorPorts>(block: B, width: Width, seed: u64, high_first: bool) -> u32 {
+fn tearing<B: motion_hdl::sim::VectorPorts>(
+    block: B,
+    width: Width,
+    seed: u64,
+    high_first: bool,
+) -> u32 {
     let g = width.geometry;
     let mut m = Master::new(block, width, Timing::Fixed { access: 7 }, seed, true);
     m.bench.counting = Some((
         5,
-        Box::new(move |w| (0..g.parts()).fold(0, |next, p| g.with_part(next, p, g.part_of(w, p) + 1))),
+        Box::new(move |w| {
+            (0..g.parts()).fold(0, |next, p| g.with_part(next, p, g.part_of(w, p) + 1))
+        }),
     ));
     let counting_from = m.bench.clocks;
     let part_mask = motion_hdl::blocks::width_mask(g.narrow_bits);
@@ -283,7 +338,11 @@ fn tearing<B: motion_hdl::sim::VectorPorts>(block: B, width: Width, seed: u64, h
         torn += !coherent as u32;
         if !high_first {
             let age = low.wrapping_sub(began) & part_mask;
-            assert!(age <= ended - began, "{}: read a value the counter never had during the read", width.name);
+            assert!(
+                age <= ended - began,
+                "{}: read a value the counter never had during the read",
+                width.name
+            );
         }
     }
     torn
@@ -291,7 +350,10 @@ fn tearing<B: motion_hdl::sim::VectorPorts>(block: B, width: Width, seed: u64, h
 
 #[test]
 fn a_counter_read_in_parts_never_tears() {
-    assert_eq!(tearing(ExternalBusAdapter16::default(), W16, 0x7ea, false), 0);
+    assert_eq!(
+        tearing(ExternalBusAdapter16::default(), W16, 0x7ea, false),
+        0
+    );
     assert_eq!(tearing(ExternalBusAdapter8::default(), W8, 0x7eb, false), 0);
 }
 
@@ -299,7 +361,13 @@ fn a_counter_read_in_parts_never_tears() {
 /// gets torn words (and the adapter flags every such read).
 #[test]
 fn the_tearing_check_catches_high_part_first_reads() {
-    let mut m = Master::new(ExternalBusAdapter16::default(), W16, Timing::Fixed { access: 7 }, 1, false);
+    let mut m = Master::new(
+        ExternalBusAdapter16::default(),
+        W16,
+        Timing::Fixed { access: 7 },
+        1,
+        false,
+    );
     assert!(tearing(ExternalBusAdapter16::default(), W16, 0x7ec, true) > 1_000);
     let _ = m.read_part(W16.geometry.narrow_address(5, 1));
     m.bench.hold(3);
@@ -312,14 +380,23 @@ fn the_tearing_check_catches_high_part_first_reads() {
 #[test]
 fn a_torn_write_never_reaches_the_register() {
     let g = W8.geometry;
-    let mut m = Master::new(ExternalBusAdapter8::default(), W8, Timing::Fixed { access: 7 }, 2, false);
+    let mut m = Master::new(
+        ExternalBusAdapter8::default(),
+        W8,
+        Timing::Fixed { access: 7 },
+        2,
+        false,
+    );
     m.write_register(9, 0x1122_3344);
     m.write_part(g.narrow_address(9, 3), 0xaa);
     m.write_part(g.narrow_address(9, 0), 0x55);
     m.write_part(g.narrow_address(10, 1), 0x66);
     m.write_part(g.narrow_address(9, 3), 0xbb);
     m.bench.hold(4);
-    assert_eq!((m.bench.registers[9], m.bench.registers[10]), (0x1122_3344, 0));
+    assert_eq!(
+        (m.bench.registers[9], m.bench.registers[10]),
+        (0x1122_3344, 0)
+    );
     assert_eq!((m.bench.bus_writes, m.bench.order_errors), (1, 3));
 }
 
@@ -341,4 +418,3 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     cosim::<9, 16>(W16, 0x16c);
     cosim::<10, 8>(W8, 0x8c);
 }
-

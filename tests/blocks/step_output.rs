@@ -20,7 +20,13 @@ fn rtl_clock(rtl: &mut dyn Stepper, inputs: &StepOutputInputs) -> StepOutputOutp
 /// `MOTION_HDL_BACKEND` names (default: Verilator, for speed).
 fn long_run_rtl() -> Box<dyn Stepper> {
     let backend = Backend::from_env_or(Backend::Verilator).unwrap();
-    stepper(backend, "step_output", StepOutput::<16, 16>::default(), None).unwrap_or_else(|e| panic!("{e}"))
+    stepper(
+        backend,
+        "step_output",
+        StepOutput::<16, 16>::default(),
+        None,
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Runs of requests, each with one mode and one set of timings: bursts of
@@ -196,7 +202,10 @@ fn narrow_pending_count_saturates_and_clears_like_the_model() {
         saturated_flushes += (inputs.flush && (before == 7 || before == -8)) as u32;
         last = rtl;
     }
-    assert!(overruns > 50 && clears > 50, "{overruns} overruns, {clears} clears");
+    assert!(
+        overruns > 50 && clears > 50,
+        "{overruns} overruns, {clears} clears"
+    );
     flushes.assert_at_least(20, true);
     assert!(
         saturated_flushes > 20,
@@ -308,7 +317,10 @@ impl PinMonitor {
         if out.emitted {
             self.strobed += if out.emitted_forward { 1 } else { -1 };
         }
-        assert_eq!(self.strobed, self.emitted, "emitted strobes disagree with the pins");
+        assert_eq!(
+            self.strobed, self.emitted,
+            "emitted strobes disagree with the pins"
+        );
     }
 
     fn sample(&mut self, cycle: u64, (a, b): (bool, bool)) {
@@ -467,8 +479,13 @@ fn pins_keep_every_timing_rule_and_the_net_count_in_each_mode() {
         );
         // Quadrature has no pulse to flush in.
         flushes.assert_at_least(100, mode != 2);
-        println!("mode {mode}: {runs_checked} runs, {checks} checks, {flushed_steps} steps flushed");
-        assert!(flushed_steps > 1000, "mode {mode}: {flushed_steps} steps flushed");
+        println!(
+            "mode {mode}: {runs_checked} runs, {checks} checks, {flushed_steps} steps flushed"
+        );
+        assert!(
+            flushed_steps > 1000,
+            "mode {mode}: {flushed_steps} steps flushed"
+        );
     }
 }
 
@@ -584,7 +601,13 @@ fn timing_diagram() -> String {
         ..Default::default()
     };
     // Clock 0 is the reset the diagram starts after.
-    rtl_clock(&mut harness, &StepOutputInputs { reset: true, ..settings });
+    rtl_clock(
+        &mut harness,
+        &StepOutputInputs {
+            reset: true,
+            ..settings
+        },
+    );
     let (mut a, mut b, mut req) = (String::new(), String::new(), String::new());
     for clock in 1..=36 {
         let mut inputs = settings;
@@ -681,7 +704,10 @@ fn one_early_step(mode: u8, forward: bool, start: Start, delay: u32) -> PinLog {
             for _ in 0..3 {
                 clock(tied);
             }
-            clock(StepOutputInputs { reset: true, ..tied });
+            clock(StepOutputInputs {
+                reset: true,
+                ..tied
+            });
         }
         Start::ResetMidPulseInAnotherMode => {
             let other = StepOutputInputs {
@@ -694,11 +720,18 @@ fn one_early_step(mode: u8, forward: bool, start: Start, delay: u32) -> PinLog {
             };
             // Reset on the first clock a pin is high in the other mode.
             let in_pulse = (0..60).any(|_| {
-                let out = clock(StepOutputInputs { step: true, dir: true, ..other });
+                let out = clock(StepOutputInputs {
+                    step: true,
+                    dir: true,
+                    ..other
+                });
                 out.out_a || out.out_b
             });
             assert!(in_pulse, "the other mode never drove a pin");
-            clock(StepOutputInputs { reset: true, ..tied });
+            clock(StepOutputInputs {
+                reset: true,
+                ..tied
+            });
         }
     }
     let mut log = PinLog::default();
@@ -780,7 +813,11 @@ fn a_mode_tied_from_time_0_holds_for_a_step_on_each_of_the_first_20_clocks() {
     let mut runs = 0;
     for mode in 0..4u8 {
         for forward in [true, false] {
-            for start in [Start::PowerUp, Start::Reset, Start::ResetMidPulseInAnotherMode] {
+            for start in [
+                Start::PowerUp,
+                Start::Reset,
+                Start::ResetMidPulseInAnotherMode,
+            ] {
                 for delay in 1..=20 {
                     let seen = one_early_step(mode, forward, start, delay);
                     assert_eq!(

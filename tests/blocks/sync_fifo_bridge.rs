@@ -33,7 +33,12 @@ fn pack(map: &RegisterMap, register: &str, fields: &[(&str, u64)]) -> u64 {
 }
 
 fn field(map: &RegisterMap, register: &str, name: &str, word: u64) -> u64 {
-    map.register(register).unwrap().field(name).unwrap().extract(word as u32).unwrap()
+    map.register(register)
+        .unwrap()
+        .field(name)
+        .unwrap()
+        .extract(word as u32)
+        .unwrap()
 }
 
 /// The RTL and the model stepped together; every output compared on every clock.
@@ -146,7 +151,10 @@ impl Traffic {
             50..=57 => (address(m, "LEVELS", k), 0),
             58..=67 => (address(m, "FLAGS", k), rng.gen_range(0..4u64) * 0x101),
             68..=79 => (address(m, "SYNC", 0), rng.gen::<u32>() as u64),
-            80..=82 => (address(m, "CONTROL", 0), pack(m, "CONTROL", &[("TICK_MODE", rng.gen_range(0..2))])),
+            80..=82 => (
+                address(m, "CONTROL", 0),
+                pack(m, "CONTROL", &[("TICK_MODE", rng.gen_range(0..2))]),
+            ),
             83..=89 => (address(m, "STATE", 0), 0),
             90..=92 => (address(m, if rng.gen() { "ID" } else { "CONFIG" }, 0), 0),
             _ => (rng.gen_range(0..256), rng.gen::<u32>() as u64),
@@ -317,44 +325,48 @@ fn run_system(mode: Mode, seed: u64, steps: usize, delay: Option<usize>) -> Syst
 
     // One clock of the whole system: the slaves act on the outputs of the
     // last clock, the tick generator runs, RTL and model step.
-    let mut clock = |b: &mut Bench<MidBridge>, cpus: &mut Vec<SlaveCpu>, releases: &mut Vec<u64>| {
-        for (k, cpu) in cpus.iter_mut().enumerate() {
-            let raw = b.out.s_data_ready.get(k).copied().unwrap_or(false);
-            let ready = if delay == Some(k) { delayed[k] } else { raw };
-            delayed[k] = raw;
-            if cpu.pending_read {
-                let word = b.out.s_read_data[k];
-                cpu.groups.last_mut().expect("a read follows a rise").push(word);
-                cpu.to_push.push_back(status_of(word));
-                cpu.pending_read = false;
+    let mut clock =
+        |b: &mut Bench<MidBridge>, cpus: &mut Vec<SlaveCpu>, releases: &mut Vec<u64>| {
+            for (k, cpu) in cpus.iter_mut().enumerate() {
+                let raw = b.out.s_data_ready.get(k).copied().unwrap_or(false);
+                let ready = if delay == Some(k) { delayed[k] } else { raw };
+                delayed[k] = raw;
+                if cpu.pending_read {
+                    let word = b.out.s_read_data[k];
+                    cpu.groups
+                        .last_mut()
+                        .expect("a read follows a rise")
+                        .push(word);
+                    cpu.to_push.push_back(status_of(word));
+                    cpu.pending_read = false;
+                }
+                if ready && !cpu.prev_ready {
+                    cpu.rises.push(b.cycle - 1);
+                    cpu.groups.push(vec![]);
+                }
+                cpu.prev_ready = ready;
+                if cpu_rng.gen_ratio(1, 4) {
+                    continue; // busy
+                }
+                let bus = &mut b.i.slaves[k];
+                if ready {
+                    bus.address = cmd_address;
+                    bus.read = true;
+                    cpu.pending_read = true;
+                } else if let Some(status) = cpu.to_push.pop_front() {
+                    bus.address = status_address;
+                    bus.write_data = status;
+                    bus.write = true;
+                }
             }
-            if ready && !cpu.prev_ready {
-                cpu.rises.push(b.cycle - 1);
-                cpu.groups.push(vec![]);
+            if let Mode::Tick(period) = mode {
+                b.i.period_tick = b.cycle % period == period - 1;
             }
-            cpu.prev_ready = ready;
-            if cpu_rng.gen_ratio(1, 4) {
-                continue; // busy
+            b.clock();
+            if b.model.events.release {
+                releases.push(b.cycle - 1);
             }
-            let bus = &mut b.i.slaves[k];
-            if ready {
-                bus.address = cmd_address;
-                bus.read = true;
-                cpu.pending_read = true;
-            } else if let Some(status) = cpu.to_push.pop_front() {
-                bus.address = status_address;
-                bus.write_data = status;
-                bus.write = true;
-            }
-        }
-        if let Mode::Tick(period) = mode {
-            b.i.period_tick = b.cycle % period == period - 1;
-        }
-        b.clock();
-        if b.model.events.release {
-            releases.push(b.cycle - 1);
-        }
-    };
+        };
     // Master bus operations, each one clock of the system.
     macro_rules! m_write {
         ($reg:expr, $index:expr, $data:expr) => {{
@@ -385,13 +397,23 @@ fn run_system(mode: Mode, seed: u64, steps: usize, delay: Option<usize>) -> Syst
             loop {
                 let counts: Vec<u64> = room
                     .iter()
-                    .map(|&r| if rng.gen_ratio(1, 4) { 0 } else { rng.gen_range(0..=r) })
+                    .map(|&r| {
+                        if rng.gen_ratio(1, 4) {
+                            0
+                        } else {
+                            rng.gen_range(0..=r)
+                        }
+                    })
                     .collect();
                 if counts.iter().any(|&c| c > 0) {
                     return counts
                         .iter()
                         .enumerate()
-                        .map(|(k, &c)| (0..c).map(|j| (step as u64 + 1) << 12 | (k as u64) << 8 | j).collect())
+                        .map(|(k, &c)| {
+                            (0..c)
+                                .map(|j| (step as u64 + 1) << 12 | (k as u64) << 8 | j)
+                                .collect()
+                        })
                         .collect();
                 }
             }
@@ -431,7 +453,9 @@ fn run_system(mode: Mode, seed: u64, steps: usize, delay: Option<usize>) -> Syst
         }
         sent.push(commands);
         // Collect the answers: every status of this step, and every slave drained.
-        let expected: Vec<usize> = (0..K).map(|k| sent.iter().map(|s| s[k].len()).sum()).collect();
+        let expected: Vec<usize> = (0..K)
+            .map(|k| sent.iter().map(|s| s[k].len()).sum())
+            .collect();
         loop {
             let state = m_read!("STATE", 0);
             let pending = field(&b.master, "STATE", "STATUS_PENDING", state);
@@ -461,7 +485,11 @@ fn run_system(mode: Mode, seed: u64, steps: usize, delay: Option<usize>) -> Syst
 /// the clock of that step's release; the others saw no rise.
 fn check_same_clock(run: &SystemRun) -> Result<(), String> {
     if run.releases.len() < run.sent.len() {
-        return Err(format!("{} releases for {} steps", run.releases.len(), run.sent.len()));
+        return Err(format!(
+            "{} releases for {} steps",
+            run.releases.len(),
+            run.sent.len()
+        ));
     }
     let mut seen = [0usize; K];
     for (step, commands) in run.sent.iter().enumerate() {
@@ -480,7 +508,11 @@ fn check_same_clock(run: &SystemRun) -> Result<(), String> {
     }
     for k in 0..K {
         if run.slaves[k].rises.len() != seen[k] {
-            return Err(format!("slave {k}: {} rises for {} steps with commands", run.slaves[k].rises.len(), seen[k]));
+            return Err(format!(
+                "slave {k}: {} rises for {} steps with commands",
+                run.slaves[k].rises.len(),
+                seen[k]
+            ));
         }
     }
     Ok(())
@@ -490,14 +522,26 @@ fn check_same_clock(run: &SystemRun) -> Result<(), String> {
 /// status word reached the master once, in order.
 fn check_commands(run: &SystemRun) -> Result<(), String> {
     for k in 0..K {
-        let expected: Vec<&Vec<u64>> = run.sent.iter().map(|s| &s[k]).filter(|l| !l.is_empty()).collect();
+        let expected: Vec<&Vec<u64>> = run
+            .sent
+            .iter()
+            .map(|s| &s[k])
+            .filter(|l| !l.is_empty())
+            .collect();
         let got: Vec<&Vec<u64>> = run.slaves[k].groups.iter().collect();
         if expected != got {
             return Err(format!("slave {k}: sent {expected:?}\nread {got:?}"));
         }
-        let answers: Vec<u64> = run.sent.iter().flat_map(|s| s[k].iter().map(|&c| status_of(c))).collect();
+        let answers: Vec<u64> = run
+            .sent
+            .iter()
+            .flat_map(|s| s[k].iter().map(|&c| status_of(c)))
+            .collect();
         if answers != run.statuses[k] {
-            return Err(format!("slave {k}: status words {:?}, expected {answers:?}", run.statuses[k]));
+            return Err(format!(
+                "slave {k}: status words {:?}, expected {answers:?}",
+                run.statuses[k]
+            ));
         }
     }
     Ok(())
@@ -507,7 +551,11 @@ fn check_commands(run: &SystemRun) -> Result<(), String> {
 /// released commands to two or more slaves at once.
 fn assert_busy(run: &SystemRun) {
     let rises: Vec<usize> = run.slaves.iter().map(|s| s.rises.len()).collect();
-    let together = run.sent.iter().filter(|s| s.iter().filter(|l| !l.is_empty()).count() >= 2).count();
+    let together = run
+        .sent
+        .iter()
+        .filter(|s| s.iter().filter(|l| !l.is_empty()).count() >= 2)
+        .count();
     assert!(
         rises.iter().all(|&r| r > 200) && together > 250,
         "rises per slave {rises:?}, {together} steps with 2 or more slaves"
@@ -553,11 +601,19 @@ fn a_full_command_fifo_refuses_writes_and_overwrites_nothing() {
     }
     assert_eq!(b.m_field("LEVELS", 1, "CMD_LEVEL"), depth);
     assert_eq!(b.m_field("FLAGS", 1, "CMD_OVERFLOW"), 1);
-    assert_eq!(b.m_field("FLAGS", 0, "CMD_OVERFLOW"), 0, "only slave 1's FIFO");
+    assert_eq!(
+        b.m_field("FLAGS", 0, "CMD_OVERFLOW"),
+        0,
+        "only slave 1's FIFO"
+    );
     b.m_write("SYNC", 0, 0);
     assert!(b.out.s_data_ready[1] && !b.out.s_data_ready[0]);
     let got: Vec<u64> = (0..depth).map(|_| b.s_read(1, "CMD")).collect();
-    assert_eq!(got, (0..depth).map(|c| 0x100 + c).collect::<Vec<_>>(), "the first words, in order");
+    assert_eq!(
+        got,
+        (0..depth).map(|c| 0x100 + c).collect::<Vec<_>>(),
+        "the first words, in order"
+    );
     assert!(!b.out.s_data_ready[1]);
     // Sticky until written 1; writing 0 (or other bits) leaves it.
     assert_eq!(b.m_field("FLAGS", 1, "CMD_OVERFLOW"), 1);
@@ -616,7 +672,11 @@ fn staged_commands_cannot_be_popped_before_the_release() {
     assert_eq!(b.s_field(0, "FLAGS", "CMD_UNDERFLOW"), 1);
     assert_eq!(b.s_field(0, "LEVELS", "CMD_READY"), 0);
     let levels = b.m_read("LEVELS", 0);
-    assert_eq!(field(&b.master, "LEVELS", "CMD_LEVEL", levels), 3, "nothing popped");
+    assert_eq!(
+        field(&b.master, "LEVELS", "CMD_LEVEL", levels),
+        3,
+        "nothing popped"
+    );
     assert_eq!(field(&b.master, "LEVELS", "CMD_RELEASED", levels), 0);
     // The SYNC's own clock raises data_ready: it is high in the outputs
     // after that edge.
@@ -652,16 +712,27 @@ fn tick_mode_arms_on_sync_and_releases_on_the_next_tick() {
     b.m_write("CMD", 0, 3);
     for _ in 0..5 {
         b.clock();
-        assert!(b.out.s_data_ready.iter().all(|r| !r), "nothing before the tick");
+        assert!(
+            b.out.s_data_ready.iter().all(|r| !r),
+            "nothing before the tick"
+        );
     }
     b.i.period_tick = true;
     let out = b.clock();
-    assert_eq!(out.s_data_ready, vec![true, false, true], "on the tick's edge, together");
+    assert_eq!(
+        out.s_data_ready,
+        vec![true, false, true],
+        "on the tick's edge, together"
+    );
     assert_eq!(b.m_field("STATE", 0, "ARMED"), 0);
     assert_eq!(b.m_field("LEVELS", 0, "CMD_RELEASED"), 1);
     assert_eq!(b.m_field("LEVELS", 0, "CMD_LEVEL"), 2);
     assert_eq!(b.s_read(0, "CMD"), 1);
-    assert_eq!(b.s_read(0, "CMD"), 0, "the command written after the SYNC is staged");
+    assert_eq!(
+        b.s_read(0, "CMD"),
+        0,
+        "the command written after the SYNC is staged"
+    );
     assert_eq!(b.s_read(2, "CMD"), 2);
     // The next SYNC and tick release it.
     b.m_write("SYNC", 0, 0);
@@ -703,7 +774,11 @@ fn a_write_and_a_pop_on_the_release_clock_are_not_part_of_the_release() {
     let out = b.clock();
     assert_eq!(out.s_read_data[0], 10, "the pop of the release clock");
     assert_eq!(b.m_field("STATE", 0, "ARMED"), 1, "armed again");
-    assert_eq!(b.s_field(0, "LEVELS", "CMD_READY"), 2, "11 and 12 released, 10 read");
+    assert_eq!(
+        b.s_field(0, "LEVELS", "CMD_READY"),
+        2,
+        "11 and 12 released, 10 read"
+    );
     assert_eq!(b.s_read(0, "CMD"), 11);
     assert_eq!(b.s_read(0, "CMD"), 12);
     assert_eq!(b.s_read(0, "CMD"), 0, "13 waits for the next tick");
@@ -746,10 +821,12 @@ int main(void) {
     return 0;
 }
 "#;
-    let printed = motion_hdl::tools::run_c_program(&root, "c89", program).unwrap_or_else(|e| panic!("{e}"));
+    let printed =
+        motion_hdl::tools::run_c_program(&root, "c89", program).unwrap_or_else(|e| panic!("{e}"));
     let model = BridgeModel::new(K, EXPORTED_FIFO_LOG2 as u32);
     let (m, s) = (model.master_map(), model.slave_map());
-    let mask = |map: &RegisterMap, r: &str, f: &str| map.register(r).unwrap().field(f).unwrap().mask();
+    let mask =
+        |map: &RegisterMap, r: &str, f: &str| map.register(r).unwrap().field(f).unwrap().mask();
     assert_eq!(
         printed,
         format!(

@@ -28,8 +28,13 @@ impl<const W: usize> Pair<W> {
     }
 
     fn on(backend: Backend) -> Self {
-        let rtl = stepper(backend, "uniform_pulse_gen", UniformPulseGen::<W>::default(), None)
-            .unwrap_or_else(|e| panic!("{e}"));
+        let rtl = stepper(
+            backend,
+            "uniform_pulse_gen",
+            UniformPulseGen::<W>::default(),
+            None,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         Self {
             rtl_outputs: vec![0; rtl.output_count()],
             rtl,
@@ -43,7 +48,9 @@ impl<const W: usize> Pair<W> {
     }
 
     fn clock(&mut self, i: &UniformPulseGenInputs) -> UniformPulseGenOutputs {
-        self.rtl.step_into(&i.to_vector(), &mut self.rtl_outputs).unwrap();
+        self.rtl
+            .step_into(&i.to_vector(), &mut self.rtl_outputs)
+            .unwrap();
         let rtl = UniformPulseGenOutputs::from_vector(&self.rtl_outputs);
         let model = self.model.step(*i);
         assert_eq!(rtl, model, "cycle {}: {i:?}", self.cycle);
@@ -330,7 +337,9 @@ fn cosim_stimulus(
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus = cosim_stimulus(0xc0c0, UniformPulseGenModel::new(), 40_000, |rng| rng.gen_range(0..300));
+    let stimulus = cosim_stimulus(0xc0c0, UniformPulseGenModel::new(), 40_000, |rng| {
+        rng.gen_range(0..300)
+    });
     cross_simulate(
         &CosimDesign::exported("uniform_pulse_gen"),
         UniformPulseGen::<32>::default(),
@@ -346,8 +355,12 @@ fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus(0x12b, UniformPulseGenModel::with_width(12), 30_000, |rng| {
         [rng.gen_range(0..300), rng.gen_range(0..5000)][rng.gen_range(0..2)]
     });
-    cross_simulate_generated("uniform_pulse_gen_12", UniformPulseGen::<12>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    cross_simulate_generated(
+        "uniform_pulse_gen_12",
+        UniformPulseGen::<12>::default(),
+        &stimulus,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// The same pin-level checks with a sparse time base (a tick every third

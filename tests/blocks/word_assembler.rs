@@ -11,7 +11,11 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
 fn lockstep<const NA: usize, const N: usize, const W: usize>(seed: u64, cycles: u32) {
-    let geometry = PartGeometry { narrow_bits: N as u32, wide_bits: W as u32, address_bits: 4 };
+    let geometry = PartGeometry {
+        narrow_bits: N as u32,
+        wide_bits: W as u32,
+        address_bits: 4,
+    };
     let mut h = Harness::new("word_assembler", WordAssembler::<4, NA, N, W>::default()).unwrap();
     let mut model = WordAssemblerModel::new(geometry);
     let mut rng = StdRng::seed_from_u64(seed);
@@ -23,7 +27,11 @@ fn lockstep<const NA: usize, const N: usize, const W: usize>(seed: u64, cycles: 
         if rng.gen_ratio(1, 8) {
             register = rng.gen_range(0..16);
         }
-        part = if rng.gen_ratio(1, 6) { rng.gen_range(0..geometry.parts()) } else { (part + 1) % geometry.parts() };
+        part = if rng.gen_ratio(1, 6) {
+            rng.gen_range(0..geometry.parts())
+        } else {
+            (part + 1) % geometry.parts()
+        };
         let i = WordAssemblerInputs {
             reset: rng.gen_ratio(1, 20_000),
             narrow_address: geometry.narrow_address(register, part),

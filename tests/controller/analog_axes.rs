@@ -56,12 +56,18 @@ fn check_periods(
             };
             let got: [i64; 3] = std::array::from_fn(|k| bank.code(k));
             if got != expected {
-                return Err(format!("clock {clock}: update {n} left {got:?} at the outputs, not {expected:?}"));
+                return Err(format!(
+                    "clock {clock}: update {n} left {got:?} at the outputs, not {expected:?}"
+                ));
             }
         }
     }
     if rises.len() != codes.len() + 1 {
-        return Err(format!("{} LDAC pulses for {} periods and the stop", rises.len(), codes.len()));
+        return Err(format!(
+            "{} LDAC pulses for {} periods and the stop",
+            rises.len(),
+            codes.len()
+        ));
     }
     for (j, &rise) in rises.iter().take(codes.len()).enumerate() {
         let due = first + j as u64 * period;
@@ -127,26 +133,53 @@ fn each_period_s_codes_leave_in_one_update_at_a_fixed_lag_and_an_underrun_sets_0
         [5, 0, 13],
         [0, 3, -1],
     ];
-    let trace = run_codes(&mut b, &codes, (codes.len() as u64 + 1) * period as u64 + 60);
+    let trace = run_codes(
+        &mut b,
+        &codes,
+        (codes.len() as u64 + 1) * period as u64 + 60,
+    );
     // The RUN write's clock is 0; the first boundary pops in clock 1.
     let (s, w, h, _) = TIMING;
     let first = 1 + latency::analog_ldac(3, s, w, h);
-    let rises = check_periods(&trace, period as u64, first, &codes, analog).unwrap_or_else(|e| panic!("{e}"));
+    let rises = check_periods(&trace, period as u64, first, &codes, analog)
+        .unwrap_or_else(|e| panic!("{e}"));
     let underrun = 1 + codes.len() as u64 * period as u64;
     let zero = rises.last().unwrap() - underrun;
-    println!("LDAC {} clocks after each boundary; the underrun's 0 V LDAC {zero} clocks after it", first - 1);
-    assert_eq!(zero, 3 + 3 * (s + w + h), "the 0 V update after the underrun");
+    println!(
+        "LDAC {} clocks after each boundary; the underrun's 0 V LDAC {zero} clocks after it",
+        first - 1
+    );
+    assert_eq!(
+        zero,
+        3 + 3 * (s + w + h),
+        "the 0 V update after the underrun"
+    );
 
     crate::motion_controller::drain(&mut b);
     assert_eq!(b.pin_steps(1), 9, "the step axis took its steps");
-    assert_eq!(b.pin_steps(0) + b.pin_steps(2), 0, "no step on an analog axis");
+    assert_eq!(
+        b.pin_steps(0) + b.pin_steps(2),
+        0,
+        "no step on an analog axis"
+    );
     let cause = b.read("STOP_CAUSE", 0);
-    assert_eq!(b.field("STOP_CAUSE", "CAUSE", cause), StopCause::Underrun as u64);
+    assert_eq!(
+        b.field("STOP_CAUSE", "CAUSE", cause),
+        StopCause::Underrun as u64
+    );
     for axis in 0..3 {
-        assert_eq!(b.read("DAC_APPLIED", axis), 0, "axis {axis}: 0 V after the underrun");
+        assert_eq!(
+            b.read("DAC_APPLIED", axis),
+            0,
+            "axis {axis}: 0 V after the underrun"
+        );
         let status = b.read("AXIS_STATUS", axis);
         let flagged = b.field("AXIS_STATUS", "INTERP_OVERRANGE", status);
-        assert_eq!(flagged, (axis == 2) as u64, "axis {axis}: only axis 2's codes were saturated");
+        assert_eq!(
+            flagged,
+            (axis == 2) as u64,
+            "axis {axis}: only axis 2's codes were saturated"
+        );
     }
 }
 
@@ -165,7 +198,11 @@ fn the_period_check_catches_a_dropped_late_or_torn_update() {
     check_periods(&trace, period as u64, first, &codes, analog).unwrap_or_else(|e| panic!("{e}"));
 
     let ldac_clocks: Vec<usize> = (0..trace.len()).filter(|&c| trace[c].ldac).collect();
-    let second_pulse: Vec<usize> = ldac_clocks.iter().copied().filter(|&c| c > first as usize + 50 && c < first as usize + 150).collect();
+    let second_pulse: Vec<usize> = ldac_clocks
+        .iter()
+        .copied()
+        .filter(|&c| c > first as usize + 50 && c < first as usize + 150)
+        .collect();
     let mut dropped = trace.clone();
     for &c in &second_pulse {
         dropped[c].ldac = false;
@@ -187,7 +224,9 @@ fn the_period_check_catches_a_dropped_late_or_torn_update() {
         ("a torn code", torn, "at the outputs"),
     ] {
         let verdict = check_periods(&mutant, period as u64, first, &codes, analog);
-        let message = verdict.err().unwrap_or_else(|| panic!("{name}: not caught"));
+        let message = verdict
+            .err()
+            .unwrap_or_else(|| panic!("{name}: not caught"));
         assert!(message.contains(rule), "{name}: caught, but by `{message}`");
     }
 }
@@ -222,17 +261,29 @@ fn an_estop_at_any_clock_of_an_update_reaches_0v_within_the_bound() {
             b.idle(1);
             clock_bank(&mut bank, &b.last.dac);
             if clock == estop_at - 1 {
-                assert_eq!(bank.code(0), 20_000, "offset {offset}: the first period's code is out");
+                assert_eq!(
+                    bank.code(0),
+                    20_000,
+                    "offset {offset}: the first period's code is out"
+                );
             }
             if clock >= estop_at && zero_at.is_none() && (0..3).all(|k| bank.code(k) == 0) {
                 zero_at = Some(clock - estop_at);
             }
         }
-        let took = zero_at.unwrap_or_else(|| panic!("offset {offset}: the outputs never reached 0 V"));
-        assert!(took <= bound, "offset {offset}: 0 V after {took} clocks, bound {bound}");
+        let took =
+            zero_at.unwrap_or_else(|| panic!("offset {offset}: the outputs never reached 0 V"));
+        assert!(
+            took <= bound,
+            "offset {offset}: 0 V after {took} clocks, bound {bound}"
+        );
         worst = worst.max(took);
         let status = b.read("DAC_STATUS", 0);
-        assert_eq!(b.field("DAC_STATUS", "FORCE_SAFE", status), 1, "the abort holds the DAC safe");
+        assert_eq!(
+            b.field("DAC_STATUS", "FORCE_SAFE", status),
+            1,
+            "the abort holds the DAC safe"
+        );
         assert_eq!(b.field("DAC_STATUS", "SAFE", status), 1);
     }
     println!("E-stop pin to 0 V at every output: at most {worst} clocks (bound {bound})");
@@ -254,15 +305,30 @@ fn a_code_toward_an_active_limit_never_reaches_the_output() {
     for _ in 0..3 * period {
         b.idle(1);
         clock_bank(&mut bank, &b.last.dac);
-        assert_eq!(bank.code(0), 0, "the code toward the limit reached the output");
+        assert_eq!(
+            bank.code(0),
+            0,
+            "the code toward the limit reached the output"
+        );
     }
     let io = b.read("IO_STATUS", 0);
-    assert_eq!(b.field("IO_STATUS", "LIMIT_POS_TRIPPED", io), 1, "the limit tripped");
+    assert_eq!(
+        b.field("IO_STATUS", "LIMIT_POS_TRIPPED", io),
+        1,
+        "the limit tripped"
+    );
     let cause = b.read("STOP_CAUSE", 0);
-    assert_eq!(b.field("STOP_CAUSE", "CAUSE", cause), StopCause::Limit as u64);
+    assert_eq!(
+        b.field("STOP_CAUSE", "CAUSE", cause),
+        StopCause::Limit as u64
+    );
 
     // Back off: away from the limit, still active.
-    b.write("IO_COMMAND", 0, b.pack("IO_COMMAND", &[("CLEAR_LIMITS", 1)]));
+    b.write(
+        "IO_COMMAND",
+        0,
+        b.pack("IO_COMMAND", &[("CLEAR_LIMITS", 1)]),
+    );
     b.write("CONTROL", 0, b.pack("CONTROL", &[("FLUSH", 1)]));
     queue_periods(&mut b, &[[-3000, 0, 0]; 2]);
     b.write("CONTROL", 0, 1);
@@ -281,9 +347,15 @@ fn a_code_toward_an_active_limit_never_reaches_the_output() {
 /// lockstep with the model built the same way (about 1 s).
 #[test]
 fn servo_build_matches_its_model_under_random_traffic() {
-    let backend = motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator).unwrap();
+    let backend =
+        motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator).unwrap();
     let run = crate::motion_controller::chaos_run_on(Analog3::on(backend), 0xdda_0009, 300_000);
-    assert_eq!(run.status_seen, crate::motion_controller::ALL_STATUS, "every STATUS bit seen set: {:#x}", run.status_seen);
+    assert_eq!(
+        run.status_seen,
+        crate::motion_controller::ALL_STATUS,
+        "every STATUS bit seen set: {:#x}",
+        run.status_seen
+    );
     run.assert_busy("K=3 servo", 60_000, 3_000, 75);
 }
 

@@ -142,7 +142,8 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
         out_dir: Some(dir.path().to_path_buf()),
         vcd: None,
         progress: false,
-        backend: motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator).unwrap(),
+        backend: motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator)
+            .unwrap(),
         trips: Vec::new(),
     };
     let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
@@ -151,7 +152,12 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
         "X servo: following error max {:.1}, RMS {:.2} counts over {} periods; settled {} periods after the path; ended at {:?} for {:?}",
         fe.max, fe.rms, fe.periods, r.settle_periods, r.actual, r.target
     );
-    assert!((r.actual[0] as i64 - r.target[0]).abs() <= 1, "X ended at {}, target {}", r.actual[0], r.target[0]);
+    assert!(
+        (r.actual[0] as i64 - r.target[0]).abs() <= 1,
+        "X ended at {}, target {}",
+        r.actual[0],
+        r.target[0]
+    );
     for k in 1..3 {
         assert_eq!(r.commanded[k] as i64, r.target[k], "axis {k} commanded");
         assert_eq!(r.actual[k] as i64, r.target[k], "axis {k} actual");
@@ -159,7 +165,10 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
     assert_eq!(r.underruns, 0);
     assert_eq!(r.commanded[0], 0, "the analog axis took no steps");
     assert!(fe.periods as usize >= r.periods, "one figure per period");
-    assert!(r.figures.iter().any(|f| f.ends_with("square-following-error.svg")));
+    assert!(r
+        .figures
+        .iter()
+        .any(|f| f.ends_with("square-following-error.svg")));
 }
 
 /// The CLI names a bad `--servo` axis and a servo axis asked for the
@@ -181,9 +190,15 @@ fn simulate_names_a_bad_servo_option() {
         stderr
     };
     let stderr = run(&["--servo", "w"]);
-    assert!(stderr.contains("--servo: unknown axis `w` (x, y or z)"), "{stderr}");
+    assert!(
+        stderr.contains("--servo: unknown axis `w` (x, y or z)"),
+        "{stderr}"
+    );
     let stderr = run(&["--servo", "x", "--uniform", "x"]);
-    assert!(stderr.contains("axis x cannot be both uniform and an analog servo"), "{stderr}");
+    assert!(
+        stderr.contains("axis x cannot be both uniform and an analog servo"),
+        "{stderr}"
+    );
     let stderr = run(&["--servo", "x", "--uniform", "y"]);
     assert!(stderr.contains("--uniform needs the motion_controller build, --servo the motion_controller_servo build"), "{stderr}");
 }

@@ -15,7 +15,13 @@ use motion_hdl::sim::{stepper, Backend, SimulatedEncoder, Stepper, VectorPorts};
 
 /// RTL and model of a K-axis controller with 2^N-entry FIFOs, with uniform
 /// generators if `UNIFORM`, in lockstep.
-pub struct Bench<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> {
+pub struct Bench<
+    const K: usize,
+    const N: usize,
+    const NP1: usize,
+    const UNIFORM: bool,
+    const ANALOG: bool,
+> {
     rtl: Box<dyn Stepper>,
     vector: Vec<u64>,
     rtl_outputs: Vec<u64>,
@@ -40,7 +46,9 @@ pub struct Bench<const K: usize, const N: usize, const NP1: usize, const UNIFORM
     pub recording: Option<Vec<Vec<u64>>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Bench<K, N, NP1, UNIFORM, ANALOG> {
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
+    Bench<K, N, NP1, UNIFORM, ANALOG>
+{
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
     /// it runs 70 times faster).
@@ -58,12 +66,20 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             (true, true) => "motion_controller_uniform_servo",
             (false, false) => "motion_controller_dda",
         };
-        let rtl = stepper(backend, module, MotionController::<K, N, NP1, UNIFORM, ANALOG>::default(), None)
-            .unwrap_or_else(|e| panic!("{e}"));
+        let rtl = stepper(
+            backend,
+            module,
+            MotionController::<K, N, NP1, UNIFORM, ANALOG>::default(),
+            None,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         Self {
             rtl,
             vector: Vec::new(),
-            rtl_outputs: vec![0; MotionController::<K, N, NP1, UNIFORM, ANALOG>::output_names().len()],
+            rtl_outputs: vec![
+                0;
+                MotionController::<K, N, NP1, UNIFORM, ANALOG>::output_names().len()
+            ],
             model,
             map,
             encoders: vec![(false, false, false); K],
@@ -97,12 +113,25 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
 
     /// Unpacks field `field` of register `name` from `word`.
     pub fn field(&self, name: &str, field: &str, word: u32) -> u64 {
-        self.map.register(name).unwrap().field(field).unwrap().extract(word).unwrap()
+        self.map
+            .register(name)
+            .unwrap()
+            .field(field)
+            .unwrap()
+            .extract(word)
+            .unwrap()
     }
 
     /// One clock with these bus inputs, on the RTL and the model; panics
     /// where they disagree.
-    pub fn clock(&mut self, reset: bool, address: u32, write_data: u32, write: bool, read: bool) -> &ControllerOutputs {
+    pub fn clock(
+        &mut self,
+        reset: bool,
+        address: u32,
+        write_data: u32,
+        write: bool,
+        read: bool,
+    ) -> &ControllerOutputs {
         let inputs = ControllerInputs {
             reset,
             address,
@@ -113,14 +142,23 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             pins: self.pins,
         };
         inputs.write_vector(&mut self.vector);
-        debug_assert_eq!(self.vector.len(), MotionController::<K, N, NP1, UNIFORM, ANALOG>::input_names().len());
-        self.rtl.step_into(&self.vector, &mut self.rtl_outputs).unwrap();
+        debug_assert_eq!(
+            self.vector.len(),
+            MotionController::<K, N, NP1, UNIFORM, ANALOG>::input_names().len()
+        );
+        self.rtl
+            .step_into(&self.vector, &mut self.rtl_outputs)
+            .unwrap();
         if let Some(recording) = self.recording.as_mut() {
             recording.push(self.vector.clone());
         }
         let expected = self.model.step(&inputs);
         let got = ControllerOutputs::from_vector(&self.rtl_outputs, K);
-        assert_eq!(got, expected, "cycle {}: RTL and model differ ({inputs:?})", self.cycles);
+        assert_eq!(
+            got, expected,
+            "cycle {}: RTL and model differ ({inputs:?})",
+            self.cycles
+        );
         self.cycles += 1;
         if let Some(encoders) = self.loopback.as_mut() {
             for (i, encoder) in encoders.iter_mut().enumerate() {
@@ -175,9 +213,19 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
 /// Random switch activity on one K-bit pin word: each of the `axes` pins
 /// flips with probability 1/`active` per clock while active (1) and
 /// 1/`inactive` while inactive: the mean clocks it stays in each level.
-pub fn toggle_pins(rng: &mut impl rand::Rng, word: &mut u32, axes: usize, active: u32, inactive: u32) {
+pub fn toggle_pins(
+    rng: &mut impl rand::Rng,
+    word: &mut u32,
+    axes: usize,
+    active: u32,
+    inactive: u32,
+) {
     for k in 0..axes {
-        let rate = if *word >> k & 1 != 0 { active } else { inactive };
+        let rate = if *word >> k & 1 != 0 {
+            active
+        } else {
+            inactive
+        };
         if rng.gen_ratio(1, rate) {
             *word ^= 1 << k;
         }
@@ -195,13 +243,20 @@ pub trait Lockstep {
     fn set_pins(&mut self, encoders: Vec<(bool, bool, bool)>, pins: MachinePins);
     /// One clock with these bus inputs; the outputs after it. Panics where
     /// an RTL and its model (or two RTLs) disagree.
-    fn step(&mut self, reset: bool, address: u32, write_data: u32, write: bool, read: bool) -> ControllerOutputs;
+    fn step(
+        &mut self,
+        reset: bool,
+        address: u32,
+        write_data: u32,
+        write: bool,
+        read: bool,
+    ) -> ControllerOutputs;
     /// Outputs after the last clock.
     fn last(&self) -> &ControllerOutputs;
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Lockstep
-    for Bench<K, N, NP1, UNIFORM, ANALOG>
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
+    Lockstep for Bench<K, N, NP1, UNIFORM, ANALOG>
 {
     fn axes(&self) -> usize {
         K
@@ -216,7 +271,14 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.pins = pins;
     }
 
-    fn step(&mut self, reset: bool, address: u32, write_data: u32, write: bool, read: bool) -> ControllerOutputs {
+    fn step(
+        &mut self,
+        reset: bool,
+        address: u32,
+        write_data: u32,
+        write: bool,
+        read: bool,
+    ) -> ControllerOutputs {
         self.clock(reset, address, write_data, write, read).clone()
     }
 

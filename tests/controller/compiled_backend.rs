@@ -93,10 +93,22 @@ fn wide_ports_and_mangled_names_match_the_rust_simulation() {
         step_rust(&mut rust);
         let expected = rust.wide_out.val();
         let got = model.get_words(wide_out);
-        assert_eq!(bits70([got[0], got[1]]), expected, "cycle {cycle}: wide_out");
+        assert_eq!(
+            bits70([got[0], got[1]]),
+            expected,
+            "cycle {cycle}: wide_out"
+        );
         assert_eq!(got[1] >> 6, 0, "cycle {cycle}: bits above 70 are clean");
-        assert_eq!(model.get(sum), rust.sum.val().to_u64(), "cycle {cycle}: sum");
-        assert_eq!(model.get(count), (cycle + 1) & 0xff, "cycle {cycle}: count from power-up 0");
+        assert_eq!(
+            model.get(sum),
+            rust.sum.val().to_u64(),
+            "cycle {cycle}: sum"
+        );
+        assert_eq!(
+            model.get(count),
+            (cycle + 1) & 0xff,
+            "cycle {cycle}: count from power-up 0"
+        );
     }
 }
 
@@ -139,7 +151,13 @@ fn a_second_build_of_the_same_verilog_comes_from_the_cache() {
 fn both_backends_step_identically_through_one_interface() {
     let mut rng = StdRng::seed_from_u64(0xbac);
     let stimulus: Vec<Vec<u64>> = (0..20_000)
-        .map(|i| vec![(i % 5000 == 0) as u64, rng.gen_bool(0.9) as u64, rng.gen_range(0..9)])
+        .map(|i| {
+            vec![
+                (i % 5000 == 0) as u64,
+                rng.gen_bool(0.9) as u64,
+                rng.gen_range(0..9),
+            ]
+        })
         .collect();
     let mut sims: Vec<_> = Backend::ALL
         .iter()
@@ -149,7 +167,13 @@ fn both_backends_step_identically_through_one_interface() {
     for (cycle, inputs) in stimulus.iter().enumerate() {
         let a = sims[0].step_vector(inputs).unwrap();
         let b = sims[1].step_vector(inputs).unwrap();
-        assert_eq!(a, b, "cycle {cycle}: {:?} vs {:?}", sims[0].backend(), sims[1].backend());
+        assert_eq!(
+            a,
+            b,
+            "cycle {cycle}: {:?} vs {:?}",
+            sims[0].backend(),
+            sims[1].backend()
+        );
     }
     assert_eq!(sims[0].cycles(), sims[1].cycles());
 }
@@ -159,8 +183,13 @@ fn verilators_tracer_writes_a_vcd_of_the_run() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("divider.vcd");
     {
-        let mut sim = stepper(Backend::Verilator, "freq_divider", FreqDivider::<8>::default(), Some(&path))
-            .unwrap_or_else(|e| panic!("{e}"));
+        let mut sim = stepper(
+            Backend::Verilator,
+            "freq_divider",
+            FreqDivider::<8>::default(),
+            Some(&path),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         for _ in 0..50 {
             sim.step_vector(&[0, 1, 3]).unwrap();
         }
@@ -168,13 +197,19 @@ fn verilators_tracer_writes_a_vcd_of_the_run() {
     let vcd = std::fs::read_to_string(&path).unwrap();
     assert!(vcd.contains("$enddefinitions"), "no VCD header");
     assert!(vcd.contains("latched_divisor"), "internal signal missing");
-    assert!(vcd.lines().filter(|l| l.starts_with('#')).count() >= 100, "fewer than 2 stamps per clock");
+    assert!(
+        vcd.lines().filter(|l| l.starts_with('#')).count() >= 100,
+        "fewer than 2 stamps per clock"
+    );
 }
 
 #[test]
 fn a_model_built_without_tracing_refuses_a_vcd() {
-    let mut model = CompiledModel::from_block("no_trace", &mut FreqDivider::<8>::default(), false).unwrap();
-    let error = model.record_vcd(std::path::Path::new("/tmp/never.vcd")).unwrap_err();
+    let mut model =
+        CompiledModel::from_block("no_trace", &mut FreqDivider::<8>::default(), false).unwrap();
+    let error = model
+        .record_vcd(std::path::Path::new("/tmp/never.vcd"))
+        .unwrap_err();
     assert!(error.to_string().contains("without tracing"), "{error}");
     // And the harness still agrees on the design: both start from power-up.
     let mut harness = Harness::new("freq_divider", FreqDivider::<8>::default()).unwrap();

@@ -7,7 +7,6 @@
 //! encoders.
 
 #[allow(dead_code)]
-
 use crate::bench::Bench;
 use motion_hdl::blocks::external_bus_adapter::model::{
     ExternalBusInputs, ExternalBusModel, ExternalBusOutputs,
@@ -37,7 +36,8 @@ struct Board {
 impl Board {
     fn new() -> Self {
         Self {
-            adapter: Harness::new("external_bus_adapter", ExternalBusAdapter::<8>::default()).unwrap(),
+            adapter: Harness::new("external_bus_adapter", ExternalBusAdapter::<8>::default())
+                .unwrap(),
             adapter_model: ExternalBusModel::new(8),
             controller: Bench::new().with_loopback(),
             pins: ExternalBusInputs::default(),
@@ -53,9 +53,18 @@ impl Board {
     fn clock(&mut self) {
         let mut inputs = self.pins;
         inputs.bus_read_data = self.controller.last.read_data as u64;
-        debug_assert_eq!(inputs.to_vector().len(), ExternalBusAdapter::<8>::input_names().len());
-        let out = ExternalBusOutputs::from_vector(&self.adapter.step_vector(&inputs.to_vector()).unwrap());
-        assert_eq!(out, self.adapter_model.step(inputs), "adapter RTL and model differ");
+        debug_assert_eq!(
+            inputs.to_vector().len(),
+            ExternalBusAdapter::<8>::input_names().len()
+        );
+        let out = ExternalBusOutputs::from_vector(
+            &self.adapter.step_vector(&inputs.to_vector()).unwrap(),
+        );
+        assert_eq!(
+            out,
+            self.adapter_model.step(inputs),
+            "adapter RTL and model differ"
+        );
         let bus = self.bus;
         self.controller.clock(
             false,
@@ -96,7 +105,10 @@ impl Board {
         self.pins.cs_n = false;
         self.pins.rd_n = false;
         self.hold(6);
-        assert!(self.bus.data_oe, "the adapter drives the data pins during a read");
+        assert!(
+            self.bus.data_oe,
+            "the adapter drives the data pins during a read"
+        );
         let value = self.bus.data_out as u32;
         self.pins.rd_n = true;
         self.pins.cs_n = true;
@@ -126,7 +138,10 @@ fn a_dsp_runs_moves_through_the_bus_adapter() {
     }
     let mut expected = [0i64; 3];
     for axis in 0..3u32 {
-        let config = board.controller.pack("AXIS_CONFIG", &[("UNIFORM", (axis == 1) as u64), ("INTERLEAVED", 1)]);
+        let config = board.controller.pack(
+            "AXIS_CONFIG",
+            &[("UNIFORM", (axis == 1) as u64), ("INTERLEAVED", 1)],
+        );
         board.write("AXIS_CONFIG", axis, config);
         writes += 1;
         for timer in ["STEP_LEN", "STEP_SPACE", "DIR_SETUP", "DIR_HOLD"] {
@@ -149,7 +164,10 @@ fn a_dsp_runs_moves_through_the_bus_adapter() {
             let status = board.read("AXIS_STATUS", axis);
             reads += 1;
             board.controller.field("AXIS_STATUS", "STEP_BUSY", status) == 1
-                || board.controller.field("AXIS_STATUS", "UNIFORM_RUNNING", status) == 1
+                || board
+                    .controller
+                    .field("AXIS_STATUS", "UNIFORM_RUNNING", status)
+                    == 1
         });
         reads += 1;
         polls += 1;
@@ -163,8 +181,15 @@ fn a_dsp_runs_moves_through_the_bus_adapter() {
         let commanded = board.read("CMD_POSITION", axis) as i32 as i64;
         let actual = board.read("ACT_POSITION", axis) as i32 as i64;
         reads += 2;
-        assert_eq!((commanded, actual), (expected[axis as usize], expected[axis as usize]), "axis {axis}");
-        assert_eq!(board.controller.pin_steps(axis as usize), expected[axis as usize]);
+        assert_eq!(
+            (commanded, actual),
+            (expected[axis as usize], expected[axis as usize]),
+            "axis {axis}"
+        );
+        assert_eq!(
+            board.controller.pin_steps(axis as usize),
+            expected[axis as usize]
+        );
     }
     let status = board.read("STATUS", 0);
     reads += 1;
@@ -174,6 +199,10 @@ fn a_dsp_runs_moves_through_the_bus_adapter() {
         "the move ends with the underrun of the empty FIFOs"
     );
     board.hold(10);
-    assert_eq!((board.writes_seen, board.reads_seen), (writes, reads), "strobes lost or doubled");
+    assert_eq!(
+        (board.writes_seen, board.reads_seen),
+        (writes, reads),
+        "strobes lost or doubled"
+    );
     assert!(expected.iter().all(|&e| e != 0));
 }

@@ -6,7 +6,9 @@
 //! `analog_axes.rs`.)
 
 use crate::bench::{Bench, Lockstep};
-use crate::motion_controller::{chaos_run_on, configure, cross_simulate_exported, drain, queue, ALL_STATUS};
+use crate::motion_controller::{
+    chaos_run_on, configure, cross_simulate_exported, drain, queue, ALL_STATUS,
+};
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::model::ControllerOutputs;
 use motion_hdl::regmap::RegisterMap;
@@ -23,10 +25,21 @@ type Full3 = Bench<3, 4, 5, true, false>;
 /// built without uniform generators.
 fn dda_chaos(seed: u64, cycles: u64) {
     let started = std::time::Instant::now();
-    let run = chaos_run_on(Dda3::on(Backend::from_env_or(Backend::Verilator).unwrap()), seed, cycles);
-    assert_eq!(run.status_seen, ALL_STATUS, "every STATUS bit seen set: {:#x}", run.status_seen);
+    let run = chaos_run_on(
+        Dda3::on(Backend::from_env_or(Backend::Verilator).unwrap()),
+        seed,
+        cycles,
+    );
+    assert_eq!(
+        run.status_seen, ALL_STATUS,
+        "every STATUS bit seen set: {:#x}",
+        run.status_seen
+    );
     run.assert_busy("K=3 DDA only", cycles / 5, cycles / 100, cycles / 4000);
-    println!("{cycles} lockstep cycles in {:.1} s", started.elapsed().as_secs_f64());
+    println!(
+        "{cycles} lockstep cycles in {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
 }
 
 /// 3 x 10^5 clocks (about 5 s), in the default suite.
@@ -64,7 +77,9 @@ impl Twins {
         let axis_config = full.map.register("AXIS_CONFIG").unwrap();
         Self {
             axis_config: axis_config.addresses().collect(),
-            uniform_bits: axis_config.pack(&[("UNIFORM", 1), ("INTERLEAVED", 1)]).unwrap(),
+            uniform_bits: axis_config
+                .pack(&[("UNIFORM", 1), ("INTERLEAVED", 1)])
+                .unwrap(),
             config: full.address("CONFIG", 0),
             dda: Dda3::on(backend),
             full,
@@ -87,7 +102,14 @@ impl Lockstep for Twins {
         self.full.set_pins(encoders, pins);
     }
 
-    fn step(&mut self, reset: bool, address: u32, write_data: u32, write: bool, read: bool) -> ControllerOutputs {
+    fn step(
+        &mut self,
+        reset: bool,
+        address: u32,
+        write_data: u32,
+        write: bool,
+        read: bool,
+    ) -> ControllerOutputs {
         let write_data = if write && self.axis_config.contains(&address) {
             write_data & !self.uniform_bits
         } else {
@@ -96,7 +118,11 @@ impl Lockstep for Twins {
         let read = read && address != self.config;
         let full = self.full.step(reset, address, write_data, write, read);
         let dda = self.dda.step(reset, address, write_data, write, read);
-        assert_eq!(full, dda, "cycle {}: the full and the DDA-only controller differ", self.cycles);
+        assert_eq!(
+            full, dda,
+            "cycle {}: the full and the DDA-only controller differ",
+            self.cycles
+        );
         self.cycles += 1;
         full
     }
@@ -128,18 +154,37 @@ fn dda_only_build_reads_the_uniform_bits_as_0_and_runs_its_dda() {
     let mut full = Full3::new();
     let mut dda = Dda3::new().with_loopback();
     let config = full.read("CONFIG", 0);
-    assert_eq!(full.field("CONFIG", "DDA_ONLY", config), 0, "the full build has the uniform generators");
+    assert_eq!(
+        full.field("CONFIG", "DDA_ONLY", config),
+        0,
+        "the full build has the uniform generators"
+    );
     let config = dda.read("CONFIG", 0);
-    assert_eq!(dda.field("CONFIG", "DDA_ONLY", config), 1, "CONFIG.DDA_ONLY of the DDA-only build");
+    assert_eq!(
+        dda.field("CONFIG", "DDA_ONLY", config),
+        1,
+        "CONFIG.DDA_ONLY of the DDA-only build"
+    );
 
     let others = [("ENC_FILTER", 5), ("INDEX_ONCE", 1)];
-    let written = full.pack("AXIS_CONFIG", &[("UNIFORM", 1), ("INTERLEAVED", 1), others[0], others[1]]);
+    let written = full.pack(
+        "AXIS_CONFIG",
+        &[("UNIFORM", 1), ("INTERLEAVED", 1), others[0], others[1]],
+    );
     let kept = full.pack("AXIS_CONFIG", &others);
     for axis in 0..3 {
         full.write("AXIS_CONFIG", axis, written);
         dda.write("AXIS_CONFIG", axis, written);
-        assert_eq!(full.read("AXIS_CONFIG", axis), written, "axis {axis}: the full build keeps the uniform bits");
-        assert_eq!(dda.read("AXIS_CONFIG", axis), kept, "axis {axis}: the DDA-only build reads them 0");
+        assert_eq!(
+            full.read("AXIS_CONFIG", axis),
+            written,
+            "axis {axis}: the full build keeps the uniform bits"
+        );
+        assert_eq!(
+            dda.read("AXIS_CONFIG", axis),
+            kept,
+            "axis {axis}: the DDA-only build reads them 0"
+        );
     }
 
     // Every axis of the DDA-only build asks for the uniform generator,
@@ -162,10 +207,22 @@ fn dda_only_build_reads_the_uniform_bits_as_0_and_runs_its_dda() {
     }
     drain(&mut dda);
     for axis in 0..3u32 {
-        assert_eq!(dda.pin_steps(axis as usize), expected[axis as usize], "axis {axis}: steps at the pins");
-        assert_eq!(dda.read("CMD_POSITION", axis) as i32 as i64, expected[axis as usize], "axis {axis}");
+        assert_eq!(
+            dda.pin_steps(axis as usize),
+            expected[axis as usize],
+            "axis {axis}: steps at the pins"
+        );
+        assert_eq!(
+            dda.read("CMD_POSITION", axis) as i32 as i64,
+            expected[axis as usize],
+            "axis {axis}"
+        );
         let status = dda.read("AXIS_STATUS", axis);
-        assert_eq!(dda.field("AXIS_STATUS", "INTERP_OVERRANGE", status), 0, "axis {axis}: nothing clamped");
+        assert_eq!(
+            dda.field("AXIS_STATUS", "INTERP_OVERRANGE", status),
+            0,
+            "axis {axis}: nothing clamped"
+        );
     }
 }
 

@@ -32,13 +32,19 @@ fn plan_program(text: &str) -> ([i64; 3], usize, [i64; 3]) {
 
 #[test]
 fn the_example_programs_plan_to_their_exact_ends() {
-    for (name, end_mm) in [("pocket.ngc", [0.0, 0.0, 5.0]), ("engraving.nc", [0.0, 0.0, 2.0])] {
+    for (name, end_mm) in [
+        ("pocket.ngc", [0.0, 0.0, 5.0]),
+        ("engraving.nc", [0.0, 0.0, 2.0]),
+    ] {
         let text = std::fs::read_to_string(example(name)).unwrap();
         let program = interpret(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(program.final_position, end_mm, "{name}");
         assert_eq!(program.units, Units::Millimetre);
         let (last, periods, end) = plan_program(&text);
-        assert_eq!(last, end, "{name}: the last period ends at the program's end");
+        assert_eq!(
+            last, end,
+            "{name}: the last period ends at the program's end"
+        );
         println!("{name}: {periods} periods of 1 ms, ends at {end:?} steps");
     }
 }
@@ -71,22 +77,39 @@ fn random_programs_of_lines_and_arcs_end_exactly() {
             let feed = rng.gen_range(60..3000);
             match rng.gen_range(0..6) {
                 0 | 1 => {
-                    at = [rng.gen_range(-30.0..30.0), rng.gen_range(-30.0..30.0), rng.gen_range(-3.0..3.0)];
-                    text.push_str(&format!("G1 X{:.4} Y{:.4} Z{:.4} F{feed}\n", at[0], at[1], at[2]));
+                    at = [
+                        rng.gen_range(-30.0..30.0),
+                        rng.gen_range(-30.0..30.0),
+                        rng.gen_range(-3.0..3.0),
+                    ];
+                    text.push_str(&format!(
+                        "G1 X{:.4} Y{:.4} Z{:.4} F{feed}\n",
+                        at[0], at[1], at[2]
+                    ));
                     // What the interpreter reads back.
                     at = at.map(|v| format!("{v:.4}").parse().unwrap());
                 }
                 2 | 3 => {
                     let r: f64 = rng.gen_range(0.5..12.0);
                     let a0: f64 = rng.gen_range(0.0..std::f64::consts::TAU);
-                    let (i, j) = ((-r * a0.cos() * 1e4).round() / 1e4, (-r * a0.sin() * 1e4).round() / 1e4);
+                    let (i, j) = (
+                        (-r * a0.cos() * 1e4).round() / 1e4,
+                        (-r * a0.sin() * 1e4).round() / 1e4,
+                    );
                     let (cx, cy) = (at[0] + i, at[1] + j);
                     let r = i.hypot(j);
                     let a1 = (at[1] - cy).atan2(at[0] - cx) + rng.gen_range(-3.0..3.0);
                     let end = [cx + r * a1.cos(), cy + r * a1.sin()];
                     let g = if rng.gen_bool(0.5) { 2 } else { 3 };
-                    let z = if rng.gen_bool(0.3) { format!(" Z{:.4}", at[2] - 0.5) } else { String::new() };
-                    text.push_str(&format!("G{g} X{:.4} Y{:.4}{z} I{i:.4} J{j:.4} F{feed}\n", end[0], end[1]));
+                    let z = if rng.gen_bool(0.3) {
+                        format!(" Z{:.4}", at[2] - 0.5)
+                    } else {
+                        String::new()
+                    };
+                    text.push_str(&format!(
+                        "G{g} X{:.4} Y{:.4}{z} I{i:.4} J{j:.4} F{feed}\n",
+                        end[0], end[1]
+                    ));
                     at[0] = format!("{:.4}", end[0]).parse().unwrap();
                     at[1] = format!("{:.4}", end[1]).parse().unwrap();
                     if !z.is_empty() {
@@ -94,7 +117,10 @@ fn random_programs_of_lines_and_arcs_end_exactly() {
                     }
                 }
                 4 => {
-                    let (dx, dy) = (rng.gen_range(-8i32..8) as f64 * 0.25, rng.gen_range(-8i32..8) as f64 * 0.25);
+                    let (dx, dy) = (
+                        rng.gen_range(-8i32..8) as f64 * 0.25,
+                        rng.gen_range(-8i32..8) as f64 * 0.25,
+                    );
                     text.push_str(&format!("G91 G1 X{dx} Y{dy} F{feed}\nG90\n"));
                     at[0] += dx;
                     at[1] += dy;
@@ -105,11 +131,21 @@ fn random_programs_of_lines_and_arcs_end_exactly() {
         text.push_str("M2\n");
         let program = interpret(&text).unwrap_or_else(|e| panic!("case {case}: {e}\n{text}"));
         for k in 0..3 {
-            assert!((program.final_position[k] - at[k]).abs() < 1e-9, "case {case}: {:?} vs {at:?}", program.final_position);
+            assert!(
+                (program.final_position[k] - at[k]).abs() < 1e-9,
+                "case {case}: {:?} vs {at:?}",
+                program.final_position
+            );
         }
         let (last, _, end) = plan_program(&text);
         assert_eq!(last, end, "case {case}:\n{text}");
-        assert_eq!(end, to_steps(program.final_position, MachineSettings::default().steps_per_mm));
+        assert_eq!(
+            end,
+            to_steps(
+                program.final_position,
+                MachineSettings::default().steps_per_mm
+            )
+        );
     }
 }
 
@@ -118,10 +154,18 @@ fn an_r_arc_a_little_short_of_the_half_chord_is_a_half_circle() {
     // CAM writes R to 4 decimals: 4.9999 for a half circle of 10 mm is
     // within LinuxCNC's 0.005 mm and runs as the half circle.
     let program = interpret("G1 X10 F600\nG2 X0 R4.9999\n").unwrap();
-    let Item::Move(Move { kind: MoveKind::Arc(arc), .. }) = program.toolpath.items[1] else { panic!("an arc") };
+    let Item::Move(Move {
+        kind: MoveKind::Arc(arc),
+        ..
+    }) = program.toolpath.items[1]
+    else {
+        panic!("an arc")
+    };
     assert_eq!(arc.center, [5.0, 0.0]);
     assert_eq!(
-        interpret("G1 X10 F600\nG2 X0 R4.99\n").unwrap_err().to_string(),
+        interpret("G1 X10 F600\nG2 X0 R4.99\n")
+            .unwrap_err()
+            .to_string(),
         "line 2: R4.99 cannot reach the end: |R| must be at least half the chord, 5.0000 mm"
     );
 }
@@ -134,43 +178,70 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
         std::fs::write(&file, text).unwrap();
         file
     };
-    let message = |file: &PathBuf, format: Option<InputFormat>, machine: Option<MachineSettings>| {
-        Job::read(file, format, machine).unwrap_err().replace(&format!("{}", dir.path().display()), "DIR")
-    };
+    let message =
+        |file: &PathBuf, format: Option<InputFormat>, machine: Option<MachineSettings>| {
+            Job::read(file, format, machine)
+                .unwrap_err()
+                .replace(&format!("{}", dir.path().display()), "DIR")
+        };
     let program = write("part.txt", "G1 X1 F100\n");
     assert_eq!(
         message(&program, None, None),
         "DIR/part.txt: unknown file type: G-code ends in .nc, .ngc, .gcode or .tap, a path file in .path (or give --format)"
     );
-    assert!(Job::read(&program, Some(InputFormat::Gcode), None).is_ok(), "--format gcode reads any name");
+    assert!(
+        Job::read(&program, Some(InputFormat::Gcode), None).is_ok(),
+        "--format gcode reads any name"
+    );
     let bad = write("bad.ngc", "G21\nG1 X1 F100\nG41 D1\n");
     assert_eq!(
         message(&bad, None, None),
         "DIR/bad.ngc: line 3: G41 (cutter radius compensation) changes the motion and is not supported"
     );
     let empty = write("empty.tap", "G21 G90\nM3 S1000\nM2\n");
-    assert_eq!(message(&empty, None, None), "DIR/empty.tap: the program has no motion");
+    assert_eq!(
+        message(&empty, None, None),
+        "DIR/empty.tap: the program has no motion"
+    );
     let path = write("square.path", "feed 10\naccel 100\nline 10 0 0\n");
     assert_eq!(
         message(&path, None, Some(MachineSettings::default())),
         "DIR/square.path: machine settings apply to G-code; a path file carries its own"
     );
-    assert_eq!(InputFormat::parse("nc").unwrap_err(), "unknown format `nc` (gcode or path)");
+    assert_eq!(
+        InputFormat::parse("nc").unwrap_err(),
+        "unknown format `nc` (gcode or path)"
+    );
     // Refused before any step count is allocated or the RTL is built.
     let endless = write("endless.ngc", "G21 F100\nG1 X1\nG4 P1000000000\nM2\n");
-    let refused = simulate(&endless, &options(dir.path())).unwrap_err().replace(&format!("{}", dir.path().display()), "DIR");
-    assert_eq!(refused, "DIR/endless.ngc: the program takes 1000000001 s, more than 10000000 periods of 0.001 s");
+    let refused = simulate(&endless, &options(dir.path()))
+        .unwrap_err()
+        .replace(&format!("{}", dir.path().display()), "DIR");
+    assert_eq!(
+        refused,
+        "DIR/endless.ngc: the program takes 1000000001 s, more than 10000000 periods of 0.001 s"
+    );
 }
 
 #[test]
 fn machine_settings_files_read_over_the_defaults_and_name_bad_lines() {
-    let settings = MachineSettings::parse("# a router\nsteps_per_mm 80 80 400\nperiod_us 500\n").unwrap();
+    let settings =
+        MachineSettings::parse("# a router\nsteps_per_mm 80 80 400\nperiod_us 500\n").unwrap();
     assert_eq!(settings.steps_per_mm, [80.0, 80.0, 400.0]);
     assert_eq!(settings.period, 5e-4);
-    assert_eq!(settings.max_velocity, MachineSettings::default().max_velocity);
+    assert_eq!(
+        settings.max_velocity,
+        MachineSettings::default().max_velocity
+    );
     let message = |text: &str| MachineSettings::parse(text).unwrap_err().to_string();
-    assert_eq!(message("steps_per_mm 80 80\n"), "line 1: `steps_per_mm` takes 3 number(s), found 2");
-    assert_eq!(message("\nmax_accel 100 -1 100"), "line 2: max_accel for Y must be a positive number, not -1");
+    assert_eq!(
+        message("steps_per_mm 80 80\n"),
+        "line 1: `steps_per_mm` takes 3 number(s), found 2"
+    );
+    assert_eq!(
+        message("\nmax_accel 100 -1 100"),
+        "line 2: max_accel for Y must be a positive number, not -1"
+    );
     assert_eq!(
         message("feed 100"),
         "line 1: unknown setting `feed` (steps_per_mm, max_velocity, max_accel, contour_error, period_us)"
@@ -236,8 +307,12 @@ fn the_pocket_program_runs_through_the_rtl_controller_to_its_exact_end() {
 #[test]
 fn the_engraving_program_runs_through_the_rtl_controller_to_its_exact_end() {
     let dir = tempfile::tempdir().unwrap();
-    let r = simulate(&example("engraving.nc"), &options(dir.path())).unwrap_or_else(|e| panic!("{e}"));
-    println!("engraving: {} periods, {} clocks in {:.1} s, actual {:?}", r.periods, r.cycles, r.seconds, r.actual);
+    let r =
+        simulate(&example("engraving.nc"), &options(dir.path())).unwrap_or_else(|e| panic!("{e}"));
+    println!(
+        "engraving: {} periods, {} clocks in {:.1} s, actual {:?}",
+        r.periods, r.cycles, r.seconds, r.actual
+    );
     assert_eq!(r.program_end, Some(([0.0, 0.0, 2.0], Units::Millimetre)));
     assert_eq!(r.target, [0, 0, 800]);
     assert_eq!(r.commanded.map(i64::from), r.target);
@@ -262,5 +337,9 @@ fn a_long_run_at_a_high_clock_is_told_the_clock_that_would_do() {
          32 clocks of 48000, so --clock-mhz 0.07 runs the same steps 686 times sooner"
     );
     options.clock_hz = 2e6;
-    assert_eq!(slow_run_hint(&counts, 1e-3, &options), None, "8e7 clocks: short enough");
+    assert_eq!(
+        slow_run_hint(&counts, 1e-3, &options),
+        None,
+        "8e7 clocks: short enough"
+    );
 }

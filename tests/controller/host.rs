@@ -5,11 +5,11 @@
 
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::registers::{register_map, StopCause};
+use motion_hdl::host::planner::junction_speed;
 use motion_hdl::host::{
     interpolate, plan, ControllerBus, Driver, DriverConfig, DriverError, ModelBus, Path, PathError,
     RecordingBus, RtlBus,
 };
-use motion_hdl::host::planner::junction_speed;
 use motion_hdl::sim::Backend;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -53,8 +53,15 @@ fn a_closed_50_segment_polygon_through_the_rtl_ends_exactly_at_its_start() {
         .iter()
         .map(|c| c.iter().map(|n| n.unsigned_abs() as u64).sum::<u64>())
         .sum();
-    assert_eq!(travelled, expected, "every step of every period left the pins");
-    assert!(expected > 2500 && report.periods > 100, "{expected} steps, {} periods", report.periods);
+    assert_eq!(
+        travelled, expected,
+        "every step of every period left the pins"
+    );
+    assert!(
+        expected > 2500 && report.periods > 100,
+        "{expected} steps, {} periods",
+        report.periods
+    );
     println!("{report:?}");
 }
 
@@ -92,20 +99,51 @@ fn a_very_short_move_is_a_triangle() {
 
 #[test]
 fn a_right_angle_corner_is_taken_at_the_contour_error_speed() {
-    let path = Path::new([0, 0, 0], &[[5000, 0, 0], [5000, 5000, 0]], 1000.0, 2000.0, 1.0, PERIOD).unwrap();
+    let path = Path::new(
+        [0, 0, 0],
+        &[[5000, 0, 0], [5000, 5000, 0]],
+        1000.0,
+        2000.0,
+        1.0,
+        PERIOD,
+    )
+    .unwrap();
     let segments = plan(&path).unwrap();
     // sin(90/2) = 0.7071: v = sqrt(a e s / (1 - s)) = sqrt(2000 * 2.414).
     let expected = (2000.0 * 1.0 * 0.5f64.sqrt() / (1.0 - 0.5f64.sqrt())).sqrt();
-    assert!((segments[0].v_exit - expected).abs() < 1e-6, "{}", segments[0].v_exit);
+    assert!(
+        (segments[0].v_exit - expected).abs() < 1e-6,
+        "{}",
+        segments[0].v_exit
+    );
     assert_eq!(segments[0].v_exit, segments[1].v_entry);
-    assert!((junction_speed([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 2000.0, 1.0, 1e9) - expected).abs() < 1e-9);
+    assert!(
+        (junction_speed([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], 2000.0, 1.0, 1e9) - expected).abs()
+            < 1e-9
+    );
 }
 
 #[test]
 fn a_reversal_stops_and_a_straight_continuation_does_not() {
-    let reversal = Path::new([0, 0, 0], &[[3000, 0, 0], [0, 0, 0]], 1000.0, 2000.0, 5.0, PERIOD).unwrap();
+    let reversal = Path::new(
+        [0, 0, 0],
+        &[[3000, 0, 0], [0, 0, 0]],
+        1000.0,
+        2000.0,
+        5.0,
+        PERIOD,
+    )
+    .unwrap();
     assert_eq!(plan(&reversal).unwrap()[0].v_exit, 0.0);
-    let straight = Path::new([0, 0, 0], &[[3000, 0, 0], [6000, 0, 0]], 1000.0, 2000.0, 5.0, PERIOD).unwrap();
+    let straight = Path::new(
+        [0, 0, 0],
+        &[[3000, 0, 0], [6000, 0, 0]],
+        1000.0,
+        2000.0,
+        5.0,
+        PERIOD,
+    )
+    .unwrap();
     assert_eq!(plan(&straight).unwrap()[0].v_exit, 1000.0);
     let i = interpolate([0, 0, 0], &plan(&reversal).unwrap(), PERIOD);
     assert_eq!(*i.positions.last().unwrap(), [0, 0, 0]);
@@ -122,16 +160,39 @@ fn random_paths_end_exactly_within_their_limits_without_drift() {
     for case in 0..200 {
         let n = rng.gen_range(1..12);
         let ends: Vec<[i64; 3]> = (0..n)
-            .map(|_| [rng.gen_range(-3000..3000), rng.gen_range(-3000..3000), rng.gen_range(-300..300)])
+            .map(|_| {
+                [
+                    rng.gen_range(-3000..3000),
+                    rng.gen_range(-3000..3000),
+                    rng.gen_range(-300..300),
+                ]
+            })
             .collect();
         let feed = rng.gen_range(100.0..5000.0);
         let accel = rng.gen_range(500.0..50_000.0);
-        let path = Path::new([rng.gen_range(-50..50), 0, 0], &ends, feed, accel, rng.gen_range(0.0..5.0), PERIOD).unwrap();
+        let path = Path::new(
+            [rng.gen_range(-50..50), 0, 0],
+            &ends,
+            feed,
+            accel,
+            rng.gen_range(0.0..5.0),
+            PERIOD,
+        )
+        .unwrap();
         let segments = plan(&path).unwrap();
         for s in &segments {
-            assert!(s.v_cruise <= feed * (1.0 + 1e-12), "case {case}: cruise above feed");
-            assert!(s.v_entry.powi(2) <= s.v_exit.powi(2) + 2.0 * accel * s.length + 1e-6, "case {case}: cannot stop in time");
-            assert!(s.v_exit.powi(2) <= s.v_entry.powi(2) + 2.0 * accel * s.length + 1e-6, "case {case}: exit unreachable");
+            assert!(
+                s.v_cruise <= feed * (1.0 + 1e-12),
+                "case {case}: cruise above feed"
+            );
+            assert!(
+                s.v_entry.powi(2) <= s.v_exit.powi(2) + 2.0 * accel * s.length + 1e-6,
+                "case {case}: cannot stop in time"
+            );
+            assert!(
+                s.v_exit.powi(2) <= s.v_entry.powi(2) + 2.0 * accel * s.length + 1e-6,
+                "case {case}: exit unreachable"
+            );
         }
         let i = interpolate(path.start, &segments, PERIOD);
         assert_eq!(*i.positions.last().unwrap(), path.end(), "case {case}");
@@ -141,11 +202,18 @@ fn random_paths_end_exactly_within_their_limits_without_drift() {
                 sum[k] += c[k] as i64;
             }
         }
-        assert_eq!(sum, path.end(), "case {case}: the counts add up to the move");
+        assert_eq!(
+            sum,
+            path.end(),
+            "case {case}: the counts add up to the move"
+        );
         let mut previous = 0.0;
         for v in &i.speeds {
             assert!(*v <= feed * (1.0 + 1e-9));
-            assert!((v - previous).abs() <= accel * PERIOD * (1.0 + 1e-9) + 1e-9, "case {case}: acceleration");
+            assert!(
+                (v - previous).abs() <= accel * PERIOD * (1.0 + 1e-9) + 1e-9,
+                "case {case}: acceleration"
+            );
             previous = *v;
         }
         // No drift: each period's position is the floor of the planned one.
@@ -164,8 +232,12 @@ fn random_paths_end_exactly_within_their_limits_without_drift() {
             let s = &segments[at];
             let (d, _) = s.state_at(t - start_time);
             for axis in 0..3 {
-                let exact = s.start[axis] as f64 + (s.end[axis] - s.start[axis]) as f64 * d / s.length;
-                assert!((p[axis] as f64 - exact).abs() < 1.0 + 1e-6, "case {case} period {k}: drift");
+                let exact =
+                    s.start[axis] as f64 + (s.end[axis] - s.start[axis]) as f64 * d / s.length;
+                assert!(
+                    (p[axis] as f64 - exact).abs() < 1.0 + 1e-6,
+                    "case {case} period {k}: drift"
+                );
             }
         }
         let _ = t;
@@ -181,14 +253,26 @@ fn path_files_parse_and_bad_ones_name_the_line_and_problem() {
     assert_eq!((path.feed, path.accel, path.period), (10.0, 100.0, 5e-4));
     assert_eq!(path.steps_per_unit, [100.0, 100.0, 400.0]);
     for (bad, expected) in [
-        ("feed 10\naccel 1\nline 1 2\n", "line 3: `line` takes 3 number(s), found 2"),
+        (
+            "feed 10\naccel 1\nline 1 2\n",
+            "line 3: `line` takes 3 number(s), found 2",
+        ),
         ("feed x\n", "line 1: `x` is not a number"),
-        ("feed 10\naccel 1\nline 1 2 3\nfeed 5\n", "line 4: `feed` must come before the first `line`"),
+        (
+            "feed 10\naccel 1\nline 1 2 3\nfeed 5\n",
+            "line 4: `feed` must come before the first `line`",
+        ),
         ("spin 3\n", "line 1: unknown statement `spin`"),
-        ("units mm\nfeed 1\naccel 1\nline 1 1 1\n", "units mm needs steps_per_mm"),
+        (
+            "units mm\nfeed 1\naccel 1\nline 1 1 1\n",
+            "units mm needs steps_per_mm",
+        ),
         ("feed 10\naccel 1\n", "the path has no `line`"),
         ("accel 1\nline 1 1 1\n", "missing `feed`"),
-        ("feed -3\naccel 1\nline 1 1 1\n", "feed must be a positive number, not -3"),
+        (
+            "feed -3\naccel 1\nline 1 1 1\n",
+            "feed must be a positive number, not -3",
+        ),
         ("units inch\n", "line 1: unknown unit `inch` (mm or steps)"),
     ] {
         let error: PathError = Path::parse(bad).unwrap_err();
@@ -205,11 +289,24 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
         ..Default::default()
     };
     let error = Driver::new(ModelBus::new(), bad).err().unwrap();
-    assert_eq!(error.to_string(), "invalid configuration: period_ticks 70000 is outside 1..=65535");
-    let map = motion_hdl::blocks::motion_controller::registers::register_map(3, 4, true, false).unwrap();
-    let mut driver = Driver::new(RecordingBus::new(ModelBus::new(), &map), DriverConfig::default()).unwrap();
+    assert_eq!(
+        error.to_string(),
+        "invalid configuration: period_ticks 70000 is outside 1..=65535"
+    );
+    let map =
+        motion_hdl::blocks::motion_controller::registers::register_map(3, 4, true, false).unwrap();
+    let mut driver = Driver::new(
+        RecordingBus::new(ModelBus::new(), &map),
+        DriverConfig::default(),
+    )
+    .unwrap();
     let error = driver.run(&[[0, 101, 0]], |_| {}).unwrap_err();
-    assert!(error.to_string().contains("axis 1: 101 steps exceed the limit of 50"), "{error}");
+    assert!(
+        error
+            .to_string()
+            .contains("axis 1: 101 steps exceed the limit of 50"),
+        "{error}"
+    );
     let report = driver.run(&[[3, -2, 1], [0, 0, 0]], |_| {}).unwrap();
     assert_eq!(report.commanded, [3, -2, 1]);
     assert_eq!(report.underruns, 0);
@@ -225,7 +322,10 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
 fn write_fields(bus: &mut impl ControllerBus, name: &str, index: u32, fields: &[(&str, u64)]) {
     let map = register_map(3, 4, true, false).unwrap();
     let register = map.register(name).unwrap();
-    bus.write(register.address_of(index).unwrap(), register.pack(fields).unwrap());
+    bus.write(
+        register.address_of(index).unwrap(),
+        register.pack(fields).unwrap(),
+    );
 }
 
 /// An E-stop in the middle of a move through the RTL: the run fails naming
@@ -247,17 +347,32 @@ fn an_e_stop_in_the_middle_of_a_move_is_reported_by_its_cause() {
     let error = driver.run(&counts, |_| {}).unwrap_err();
     let message = error.to_string();
     assert!(message.starts_with("motion stopped: E-stop"), "{message}");
-    let DriverError::Stopped { cause, axis, commanded, .. } = error else {
+    let DriverError::Stopped {
+        cause,
+        axis,
+        commanded,
+        ..
+    } = error
+    else {
         panic!("not a stop: {message}")
     };
     assert_eq!((cause, axis), (StopCause::Estop, None));
     let pins = driver.bus().encoders().map(|e| e.net as i32);
-    assert_eq!(commanded, pins, "the commanded position is the steps at the pins");
-    assert!(commanded[0] > 0 && commanded[0] < 20 * 30, "stopped part way: {commanded:?}");
+    assert_eq!(
+        commanded, pins,
+        "the commanded position is the steps at the pins"
+    );
+    assert!(
+        commanded[0] > 0 && commanded[0] < 20 * 30,
+        "stopped part way: {commanded:?}"
+    );
 
     // Held: the input is still active.
     let error = driver.run(&[[1, 0, 0]], |_| {}).unwrap_err().to_string();
-    assert!(error.starts_with("RUN refused: the E-stop input is active"), "{error}");
+    assert!(
+        error.starts_with("RUN refused: the E-stop input is active"),
+        "{error}"
+    );
     // Released, but latched until STATUS.ESTOP is cleared.
     driver.bus_mut().set_pins(MachinePins::default());
     driver.bus_mut().wait(20);
@@ -267,7 +382,10 @@ fn an_e_stop_in_the_middle_of_a_move_is_reported_by_its_cause() {
     write_fields(driver.bus_mut(), "STATUS", 0, &[("ESTOP", 1)]);
     write_fields(driver.bus_mut(), "CONTROL", 0, &[("FLUSH", 1)]);
     let report = driver.run(&[[3, 2, 1], [0, 0, 0]], |_| {}).unwrap();
-    assert_eq!(report.commanded, [commanded[0] + 3, commanded[1] + 2, commanded[2] + 1]);
+    assert_eq!(
+        report.commanded,
+        [commanded[0] + 3, commanded[1] + 2, commanded[2] + 1]
+    );
     assert_eq!(report.actual, report.commanded);
 }
 
@@ -288,20 +406,34 @@ fn a_limit_switch_or_a_drive_alarm_is_reported_with_its_axis() {
     let mut driver = Driver::new(bus, DriverConfig::default()).unwrap();
     let error = driver.run(&toward, |_| {}).unwrap_err();
     let message = error.to_string();
-    assert!(message.starts_with("motion stopped: limit switch on axis 1"), "{message}");
+    assert!(
+        message.starts_with("motion stopped: limit switch on axis 1"),
+        "{message}"
+    );
     assert!(message.contains("negative limit"), "{message}");
-    let DriverError::Stopped { cause, axis, commanded, .. } = error else {
+    let DriverError::Stopped {
+        cause,
+        axis,
+        commanded,
+        ..
+    } = error
+    else {
         panic!("not a stop: {message}")
     };
     assert_eq!((cause, axis), (StopCause::Limit, Some(1)));
     assert!(commanded[1] < 0 && commanded[1] > -300, "{commanded:?}");
 
     let error = driver.run(&[[0, 5, 0]], |_| {}).unwrap_err().to_string();
-    assert!(error.starts_with("RUN refused: axis 1: negative limit"), "{error}");
+    assert!(
+        error.starts_with("RUN refused: axis 1: negative limit"),
+        "{error}"
+    );
     // Back off: clear the trip, flush, move away (the switch still active).
     write_fields(driver.bus_mut(), "IO_COMMAND", 1, &[("CLEAR_LIMITS", 1)]);
     write_fields(driver.bus_mut(), "CONTROL", 0, &[("FLUSH", 1)]);
-    let report = driver.run(&[[0, 5, 0], [0, 5, 0], [0, 0, 0]], |_| {}).unwrap();
+    let report = driver
+        .run(&[[0, 5, 0], [0, 5, 0], [0, 0, 0]], |_| {})
+        .unwrap();
     assert_eq!(report.commanded, [0, commanded[1] + 10, 0]);
 
     // A drive alarm on axis 2 stops every axis.
@@ -314,8 +446,17 @@ fn a_limit_switch_or_a_drive_alarm_is_reported_with_its_axis() {
     let mut driver = Driver::new(bus, DriverConfig::default()).unwrap();
     let error = driver.run(&vec![[10, 10, 0]; 30], |_| {}).unwrap_err();
     let message = error.to_string();
-    assert!(message.starts_with("motion stopped: drive alarm on axis 2"), "{message}");
-    let DriverError::Stopped { cause, axis, commanded, .. } = error else {
+    assert!(
+        message.starts_with("motion stopped: drive alarm on axis 2"),
+        "{message}"
+    );
+    let DriverError::Stopped {
+        cause,
+        axis,
+        commanded,
+        ..
+    } = error
+    else {
         panic!("not a stop: {message}")
     };
     assert_eq!((cause, axis), (StopCause::DriveAlarm, Some(2)));
@@ -340,12 +481,18 @@ fn simulate_reports_an_abort_by_its_cause_and_fails() {
     let out = run("estop@2");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{stderr}");
-    assert!(stderr.contains("motion-hdl: motion stopped: E-stop"), "{stderr}");
+    assert!(
+        stderr.contains("motion-hdl: motion stopped: E-stop"),
+        "{stderr}"
+    );
     assert!(!stderr.contains("panicked"), "{stderr}");
     let out = run("w-limit-pos@2");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
-    assert!(stderr.contains("--trip `w-limit-pos@2`: unknown axis `w`"), "{stderr}");
+    assert!(
+        stderr.contains("--trip `w-limit-pos@2`: unknown axis `w`"),
+        "{stderr}"
+    );
 }
 
 /// The CLI: a malformed path file stops with the file, line and problem,
@@ -362,7 +509,10 @@ fn simulate_rejects_a_malformed_path_file_with_a_clear_message() {
         .unwrap();
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("bad.path: line 3: `two` is not a number"), "{stderr}");
+    assert!(
+        stderr.contains("bad.path: line 3: `two` is not a number"),
+        "{stderr}"
+    );
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
@@ -390,7 +540,10 @@ fn simulate_names_the_install_line_when_verilator_is_missing() {
     );
     assert!(!stderr.contains("panicked"), "{stderr}");
     let stderr = run(&["--backend", "icarus"]);
-    assert!(stderr.contains("unknown simulation backend `icarus`"), "{stderr}");
+    assert!(
+        stderr.contains("unknown simulation backend `icarus`"),
+        "{stderr}"
+    );
 }
 
 /// Each subcommand's help is its own: `simulate` once took over the doc
@@ -409,8 +562,14 @@ fn every_subcommand_has_its_own_help_line() {
             .to_string()
     };
     assert!(line("simulate").contains("Run a path file"), "{help}");
-    assert!(!line("simulate").contains("uniform pulse generator's figures"), "{help}");
-    assert!(line("plot-pulses").contains("uniform pulse generator's figures"), "{help}");
+    assert!(
+        !line("simulate").contains("uniform pulse generator's figures"),
+        "{help}"
+    );
+    assert!(
+        line("plot-pulses").contains("uniform pulse generator's figures"),
+        "{help}"
+    );
 }
 
 /// The long run: a 2000-segment circle approximation through the exported
@@ -433,5 +592,8 @@ fn a_2000_segment_circle_through_the_rtl_ends_exactly() {
         report.cycles,
         report.cycles as f64 / seconds
     );
-    assert_eq!((report.commanded, report.actual, report.underruns), ([0; 3], [0; 3], 0));
+    assert_eq!(
+        (report.commanded, report.actual, report.underruns),
+        ([0; 3], [0; 3], 0)
+    );
 }

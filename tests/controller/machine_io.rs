@@ -7,7 +7,6 @@
 //! every clock too; the assertions here are written from the datasheet's
 //! latencies ([`latency`]) and counted at the pins, not taken from the model.
 
-
 use crate::bench::Bench;
 use motion_hdl::blocks::motion_controller::latency;
 use motion_hdl::blocks::motion_controller::model::ControllerOutputs;
@@ -69,7 +68,14 @@ fn setup(b: &mut Controller3, modes: [u8; 3], step_len: [u32; 3], filter: u64, p
         for timer in ["STEP_SPACE", "DIR_SETUP", "DIR_HOLD"] {
             b.write(timer, axis, 2);
         }
-        let io = b.pack("IO_CONFIG", &[("LIMIT_ENABLE", 1), ("ALARM_ENABLE", 1), ("DRIVE_ENABLE", 1)]);
+        let io = b.pack(
+            "IO_CONFIG",
+            &[
+                ("LIMIT_ENABLE", 1),
+                ("ALARM_ENABLE", 1),
+                ("DRIVE_ENABLE", 1),
+            ],
+        );
         b.write("IO_CONFIG", axis, io);
     }
     b.idle(20);
@@ -97,7 +103,12 @@ struct PinLog {
 
 impl PinLog {
     fn new(b: &Controller3, modes: [u8; 3]) -> Self {
-        Self { modes, last: b.last.steps.clone(), net: [0; 3], steps: Vec::new() }
+        Self {
+            modes,
+            last: b.last.steps.clone(),
+            net: [0; 3],
+            steps: Vec::new(),
+        }
     }
 
     fn clock(&mut self, b: &mut Controller3) -> ControllerOutputs {
@@ -132,7 +143,10 @@ fn cmd_position(b: &mut Controller3, axis: u32) -> i64 {
 
 fn stop_cause(b: &mut Controller3) -> (StopCause, u64) {
     let word = b.read("STOP_CAUSE", 0);
-    (StopCause::from_code(b.field("STOP_CAUSE", "CAUSE", word) as u32), b.field("STOP_CAUSE", "AXIS", word))
+    (
+        StopCause::from_code(b.field("STOP_CAUSE", "CAUSE", word) as u32),
+        b.field("STOP_CAUSE", "AXIS", word),
+    )
 }
 
 /// A positive limit closing under a moving axis, at every phase of its
@@ -148,7 +162,13 @@ fn a_limit_cuts_its_axis_and_aborts_all_within_the_stated_latency() {
         let (mut worst_own, mut worst_other) = (0, 0);
         for phase in 0..16u64 {
             let mut b = Controller3::new();
-            setup(&mut b, [STEP_DIR, UP_DOWN, QUADRATURE], [2, 3, 2], filter, 200);
+            setup(
+                &mut b,
+                [STEP_DIR, UP_DOWN, QUADRATURE],
+                [2, 3, 2],
+                filter,
+                200,
+            );
             b.write("IRQ_ENABLE", 0, b.pack("IRQ_ENABLE", &[("LIMIT", 1)]));
             queue_and_run(&mut b, [40, -30, 35], 8);
             let mut log = PinLog::new(&b, [STEP_DIR, UP_DOWN, QUADRATURE]);
@@ -165,7 +185,10 @@ fn a_limit_cuts_its_axis_and_aborts_all_within_the_stated_latency() {
                 }
             }
             let own = log.last_step(0, Some(1)).unwrap_or(0).saturating_sub(c);
-            assert!(own <= seen + latency::LIMIT_OWN_AXIS, "filter {filter} phase {phase}: own axis stepped at c + {own}");
+            assert!(
+                own <= seen + latency::LIMIT_OWN_AXIS,
+                "filter {filter} phase {phase}: own axis stepped at c + {own}"
+            );
             // The other axes abort when a step toward the limit is cut,
             // which may be later than the limit closing: the next forward
             // step. The cut is seen at the pins as the LIMIT interrupt,
@@ -173,8 +196,16 @@ fn a_limit_cuts_its_axis_and_aborts_all_within_the_stated_latency() {
             // at that edge, irq registered one more).
             let cut = irq_at.expect("the LIMIT interrupt") - 2;
             assert!(cut + 2 > c + seen, "the cut follows the filtered level");
-            let other = [1, 2].iter().filter_map(|&a| log.last_step(a, None)).max().unwrap_or(0).saturating_sub(cut);
-            assert!(other <= latency::ABORT_ALL_AXES, "filter {filter} phase {phase}: other axis at cut + {other}");
+            let other = [1, 2]
+                .iter()
+                .filter_map(|&a| log.last_step(a, None))
+                .max()
+                .unwrap_or(0)
+                .saturating_sub(cut);
+            assert!(
+                other <= latency::ABORT_ALL_AXES,
+                "filter {filter} phase {phase}: other axis at cut + {other}"
+            );
             worst_own = worst_own.max(own);
             worst_other = worst_other.max(other);
             assert!(!b.last.running, "RUN cleared");
@@ -185,11 +216,23 @@ fn a_limit_cuts_its_axis_and_aborts_all_within_the_stated_latency() {
             assert_eq!(b.field("STATUS", "LIMIT", status), 1);
             assert_eq!(stop_cause(&mut b), (StopCause::Limit, 0));
             for axis in 0..3 {
-                assert_eq!(cmd_position(&mut b, axis as u32), log.net[axis], "axis {axis} commanded = pins");
+                assert_eq!(
+                    cmd_position(&mut b, axis as u32),
+                    log.net[axis],
+                    "axis {axis} commanded = pins"
+                );
             }
         }
-        assert_eq!(worst_own, seen + latency::LIMIT_OWN_AXIS, "filter {filter}: own-axis bound is exact");
-        assert_eq!(worst_other, latency::ABORT_ALL_AXES, "filter {filter}: abort bound is exact");
+        assert_eq!(
+            worst_own,
+            seen + latency::LIMIT_OWN_AXIS,
+            "filter {filter}: own-axis bound is exact"
+        );
+        assert_eq!(
+            worst_other,
+            latency::ABORT_ALL_AXES,
+            "filter {filter}: abort bound is exact"
+        );
     }
 }
 
@@ -220,18 +263,34 @@ fn backing_off_a_limit_after_clearing_its_flag() {
     let refused = b.read("STATE", 0);
     assert_eq!(b.field("STATE", "ABORTED", refused), 1);
     // Clear, flush the stale periods, back off.
-    b.write("IO_COMMAND", 0, b.pack("IO_COMMAND", &[("CLEAR_LIMITS", 1)]));
+    b.write(
+        "IO_COMMAND",
+        0,
+        b.pack("IO_COMMAND", &[("CLEAR_LIMITS", 1)]),
+    );
     b.write("CONTROL", 0, b.pack("CONTROL", &[("FLUSH", 1)]));
     let start = log.net[0];
     queue_and_run(&mut b, [-10, 0, 0], 3);
     for _ in 0..600 {
         log.clock(&mut b);
     }
-    assert_eq!(log.net[0], start - 30, "every step away from the active limit left");
+    assert_eq!(
+        log.net[0],
+        start - 30,
+        "every step away from the active limit left"
+    );
     assert_eq!(cmd_position(&mut b, 0), log.net[0]);
     let io = b.read("IO_STATUS", 0);
-    assert_eq!(b.field("IO_STATUS", "LIMIT_POS", io), 1, "the switch is still active");
-    assert_eq!(b.field("IO_STATUS", "LIMIT_POS_TRIPPED", io), 0, "backing off is no trip");
+    assert_eq!(
+        b.field("IO_STATUS", "LIMIT_POS", io),
+        1,
+        "the switch is still active"
+    );
+    assert_eq!(
+        b.field("IO_STATUS", "LIMIT_POS_TRIPPED", io),
+        0,
+        "backing off is no trip"
+    );
     assert_eq!(stop_cause(&mut b).0, StopCause::Underrun);
     // Toward the switch again: cut, no step leaves.
     let before = log.net[0];
@@ -271,9 +330,22 @@ fn home_latches_the_position_of_its_clock_at_every_phase_of_a_step() {
                 act_at_latch = Some(b.model.axes()[0].actual_position());
             }
         }
-        let expected = log.steps.iter().filter(|s| s.1 == 0 && s.0 < c + seen).map(|s| s.2).sum::<i64>();
-        assert_eq!(b.read("HOME_CMD_POSITION", 0) as i32 as i64, expected, "phase {phase}");
-        assert_eq!(b.read("HOME_ACT_POSITION", 0) as i32, act_at_latch.unwrap(), "phase {phase}");
+        let expected = log
+            .steps
+            .iter()
+            .filter(|s| s.1 == 0 && s.0 < c + seen)
+            .map(|s| s.2)
+            .sum::<i64>();
+        assert_eq!(
+            b.read("HOME_CMD_POSITION", 0) as i32 as i64,
+            expected,
+            "phase {phase}"
+        );
+        assert_eq!(
+            b.read("HOME_ACT_POSITION", 0) as i32,
+            act_at_latch.unwrap(),
+            "phase {phase}"
+        );
         let io = b.read("IO_STATUS", 0);
         assert_eq!(b.field("IO_STATUS", "HOME_SEEN", io), 1);
         assert!(b.last.running, "without STOP_ON_HOME the move goes on");
@@ -286,7 +358,11 @@ fn home_latches_the_position_of_its_clock_at_every_phase_of_a_step() {
 fn stop_on_home_aborts_and_the_latch_holds_the_first_edge() {
     let mut b = Controller3::new();
     setup(&mut b, [STEP_DIR; 3], [2; 3], 2, 100);
-    b.write("IO_CONFIG", 1, b.pack("IO_CONFIG", &[("LIMIT_ENABLE", 1), ("STOP_ON_HOME", 1)]));
+    b.write(
+        "IO_CONFIG",
+        1,
+        b.pack("IO_CONFIG", &[("LIMIT_ENABLE", 1), ("STOP_ON_HOME", 1)]),
+    );
     queue_and_run(&mut b, [10, 10, 10], 10);
     b.idle(300);
     b.pins.home = 0b010;
@@ -298,12 +374,20 @@ fn stop_on_home_aborts_and_the_latch_holds_the_first_edge() {
     b.idle(20);
     b.pins.home = 0b010;
     b.idle(20);
-    assert_eq!(b.read("HOME_CMD_POSITION", 1), latched, "the first edge stays latched");
+    assert_eq!(
+        b.read("HOME_CMD_POSITION", 1),
+        latched,
+        "the first edge stays latched"
+    );
     b.write("IO_COMMAND", 1, b.pack("IO_COMMAND", &[("CLEAR_HOME", 1)]));
     // ABORTED is the registered hold: one clock after the flag.
     b.idle(1);
     let state = b.read("STATE", 0);
-    assert_eq!(b.field("STATE", "ABORTED", state), 0, "CLEAR_HOME releases the stop");
+    assert_eq!(
+        b.field("STATE", "ABORTED", state),
+        0,
+        "CLEAR_HOME releases the stop"
+    );
 }
 
 /// E-stop in the middle of a long step pulse: the pulse keeps its full
@@ -333,7 +417,12 @@ fn estop_during_a_step_pulse_finishes_the_pulse_and_stops_everything() {
         // Pulses already high at c count from their rise.
         let mut high_run: [u64; 3] = std::array::from_fn(|axis| {
             if b.last.steps[axis].0 {
-                log.steps.iter().filter(|s| s.1 == axis).map(|s| c - s.0).next_back().unwrap_or(0)
+                log.steps
+                    .iter()
+                    .filter(|s| s.1 == axis)
+                    .map(|s| c - s.0)
+                    .next_back()
+                    .unwrap_or(0)
             } else {
                 0
             }
@@ -345,19 +434,34 @@ fn estop_during_a_step_pulse_finishes_the_pulse_and_stops_everything() {
                 if out.steps[axis].0 {
                     high_run[axis] += 1;
                 } else if high_run[axis] > 0 {
-                    assert_eq!(high_run[axis], 30, "phase {phase} axis {axis}: pulse cut short");
+                    assert_eq!(
+                        high_run[axis], 30,
+                        "phase {phase} axis {axis}: pulse cut short"
+                    );
                     high_run[axis] = 0;
                 }
             }
             if n >= c + seen + latency::DRIVE_ENABLE {
-                assert_eq!(out.drive_enable, 0, "phase {phase}: drive enables at c + {}", n - c);
+                assert_eq!(
+                    out.drive_enable,
+                    0,
+                    "phase {phase}: drive enables at c + {}",
+                    n - c
+                );
                 assert_eq!(out.gpio_out, 0b1100_0000, "safe outputs dropped");
             } else {
-                assert_eq!(out.drive_enable, 0b111, "drive enables held until the latency");
+                assert_eq!(
+                    out.drive_enable, 0b111,
+                    "drive enables held until the latency"
+                );
             }
         }
         let last = (0..3).filter_map(|a| log.last_step(a, None)).max().unwrap();
-        assert!(last <= c + seen + latency::ABORT_ALL_AXES, "phase {phase}: step at c + {}", last - c);
+        assert!(
+            last <= c + seen + latency::ABORT_ALL_AXES,
+            "phase {phase}: step at c + {}",
+            last - c
+        );
         assert_eq!(stop_cause(&mut b), (StopCause::Estop, 0));
         b.write("CONTROL", 0, 1);
         b.idle(5);
@@ -374,7 +478,10 @@ fn estop_during_a_step_pulse_finishes_the_pulse_and_stops_everything() {
         b.write("CONTROL", 0, 1);
         b.idle(5);
         assert!(b.last.running, "restart after the acknowledge");
-        assert_eq!(b.last.drive_enable, 0b111, "drive enables back with their register bits");
+        assert_eq!(
+            b.last.drive_enable, 0b111,
+            "drive enables back with their register bits"
+        );
         for axis in 0..3u32 {
             assert_eq!(cmd_position(&mut b, axis), log.net[axis as usize]);
         }
@@ -400,7 +507,11 @@ fn an_alarm_on_one_axis_stops_all_and_disables_only_its_drive() {
     for _ in 0..100 {
         let out = log.clock(&mut b);
         let n = b.cycles - 1;
-        let expected = if n >= c + seen + latency::DRIVE_ENABLE { 0b101 } else { 0b111 };
+        let expected = if n >= c + seen + latency::DRIVE_ENABLE {
+            0b101
+        } else {
+            0b111
+        };
         assert_eq!(out.drive_enable, expected, "at c + {}", n - c);
     }
     let last = (0..3).filter_map(|a| log.last_step(a, None)).max().unwrap();
@@ -483,11 +594,25 @@ impl SafetyMonitor {
 
     /// One clock: the pins applied in `clock`, the bus write of that clock,
     /// and the outputs after its edge.
-    fn clock(&mut self, clock: u64, b: &Controller3, write: Option<(u32, u32)>, out: &ControllerOutputs) {
+    fn clock(
+        &mut self,
+        clock: u64,
+        b: &Controller3,
+        write: Option<(u32, u32)>,
+        out: &ControllerOutputs,
+    ) {
         let p = b.pins;
         for k in 0..3 {
-            Self::track(&mut self.limit_pos_since[k], p.limit_pos >> k & 1 != 0, clock);
-            Self::track(&mut self.limit_neg_since[k], p.limit_neg >> k & 1 != 0, clock);
+            Self::track(
+                &mut self.limit_pos_since[k],
+                p.limit_pos >> k & 1 != 0,
+                clock,
+            );
+            Self::track(
+                &mut self.limit_neg_since[k],
+                p.limit_neg >> k & 1 != 0,
+                clock,
+            );
             Self::track(&mut self.alarm_since[k], p.drive_alarm >> k & 1 != 0, clock);
         }
         Self::track(&mut self.estop_since, p.estop, clock);
@@ -495,7 +620,9 @@ impl SafetyMonitor {
             if address == global::WATCHDOG_KICK {
                 self.last_kick = Some(clock);
             }
-            if address == global::STATUS && data >> motion_hdl::blocks::motion_controller::registers::irq::WATCHDOG & 1 != 0 {
+            if address == global::STATUS
+                && data >> motion_hdl::blocks::motion_controller::registers::irq::WATCHDOG & 1 != 0
+            {
                 self.lapsed = None;
             }
         }
@@ -513,7 +640,9 @@ impl SafetyMonitor {
         let from = |since: Option<u64>, latency: u64| since.is_some_and(|s| clock >= s + latency);
         let stopped_by = if due(self.estop_since, self.seen + latency::ABORT_ALL_AXES) {
             Some(format!("E-stop since {:?}", self.estop_since))
-        } else if let Some(k) = (0..3).find(|&k| due(self.alarm_since[k], self.seen + latency::ABORT_ALL_AXES)) {
+        } else if let Some(k) =
+            (0..3).find(|&k| due(self.alarm_since[k], self.seen + latency::ABORT_ALL_AXES))
+        {
             Some(format!("alarm {k} since {:?}", self.alarm_since[k]))
         } else if due(self.lapsed, latency::WATCHDOG_ALL_AXES) {
             Some(format!("watchdog lapse at {:?}", self.lapsed))
@@ -529,9 +658,15 @@ impl SafetyMonitor {
                     let text = format!("clock {clock}: axis {k} stepped after {cause}");
                     self.violation(text);
                 }
-                let limit = if step > 0 { self.limit_pos_since[k] } else { self.limit_neg_since[k] };
+                let limit = if step > 0 {
+                    self.limit_pos_since[k]
+                } else {
+                    self.limit_neg_since[k]
+                };
                 if due(limit, self.seen + latency::LIMIT_OWN_AXIS) {
-                    self.violation(format!("clock {clock}: axis {k} stepped {step:+} toward its active limit"));
+                    self.violation(format!(
+                        "clock {clock}: axis {k} stepped {step:+} toward its active limit"
+                    ));
                 }
             }
             // Pulse lengths: exact in step/dir and up/down, at least the
@@ -545,7 +680,10 @@ impl SafetyMonitor {
                 self.high_for[k] += 1;
             } else if self.high_for[k] > 0 {
                 if self.high_for[k] != self.step_len[k].max(1) {
-                    self.violation(format!("clock {clock}: axis {k} pulse {} clocks high", self.high_for[k]));
+                    self.violation(format!(
+                        "clock {clock}: axis {k} pulse {} clocks high",
+                        self.high_for[k]
+                    ));
                 }
                 self.high_for[k] = 0;
             }
@@ -574,17 +712,29 @@ struct MonitoredRun {
 /// model, watched by the [`SafetyMonitor`]. With `limits_disabled` the
 /// firmware turns the limits off behind the monitor's back: a controller
 /// that ignores its limits, which the monitor must catch.
-fn monitored_run(seed: u64, cycles: u64, limits_disabled: bool) -> Result<MonitoredRun, Vec<String>> {
+fn monitored_run(
+    seed: u64,
+    cycles: u64,
+    limits_disabled: bool,
+) -> Result<MonitoredRun, Vec<String>> {
     let mut rng = StdRng::seed_from_u64(seed);
     let modes = [STEP_DIR, UP_DOWN, QUADRATURE];
-    let step_len = [rng.gen_range(1..5), rng.gen_range(1..5), rng.gen_range(1..5)];
+    let step_len = [
+        rng.gen_range(1..5),
+        rng.gen_range(1..5),
+        rng.gen_range(1..5),
+    ];
     let filter = [0, 1, 3, 6][rng.gen_range(0..4)];
     let timeout = 4000;
     let mut b = Controller3::new();
     setup(&mut b, modes, step_len.map(|l| l as u32), filter, 120);
     if limits_disabled {
         for axis in 0..3 {
-            b.write("IO_CONFIG", axis, b.pack("IO_CONFIG", &[("ALARM_ENABLE", 1), ("DRIVE_ENABLE", 1)]));
+            b.write(
+                "IO_CONFIG",
+                axis,
+                b.pack("IO_CONFIG", &[("ALARM_ENABLE", 1), ("DRIVE_ENABLE", 1)]),
+            );
         }
     }
     b.write("WATCHDOG_TIMEOUT", 0, timeout);
@@ -592,8 +742,20 @@ fn monitored_run(seed: u64, cycles: u64, limits_disabled: bool) -> Result<Monito
     let mut run = MonitoredRun::default();
     let mut stopped_for = 0u64;
     let mut kicking = true;
-    let clear_all = b.pack("IO_COMMAND", &[("CLEAR_LIMITS", 1), ("CLEAR_ALARM", 1), ("CLEAR_HOME", 1)]);
-    let ack = b.pack("STATUS", &[("ESTOP", 1), ("WATCHDOG", 1), ("LIMIT", 1), ("ALARM", 1), ("UNDERRUN", 1)]);
+    let clear_all = b.pack(
+        "IO_COMMAND",
+        &[("CLEAR_LIMITS", 1), ("CLEAR_ALARM", 1), ("CLEAR_HOME", 1)],
+    );
+    let ack = b.pack(
+        "STATUS",
+        &[
+            ("ESTOP", 1),
+            ("WATCHDOG", 1),
+            ("LIMIT", 1),
+            ("ALARM", 1),
+            ("UNDERRUN", 1),
+        ],
+    );
     let cause_address = b.address("STOP_CAUSE", 0);
     let mut firmware: std::collections::VecDeque<(u32, u32, bool)> = Default::default();
     for _ in 0..cycles {
@@ -675,7 +837,10 @@ fn monitored_run(seed: u64, cycles: u64, limits_disabled: bool) -> Result<Monito
     for axis in 0..3u32 {
         let cmd = b.read("CMD_POSITION", axis) as i32 as i64;
         if cmd != monitor.net[axis as usize] {
-            monitor.violation(format!("axis {axis}: CMD_POSITION {cmd}, pins {}", monitor.net[axis as usize]));
+            monitor.violation(format!(
+                "axis {axis}: CMD_POSITION {cmd}, pins {}",
+                monitor.net[axis as usize]
+            ));
         }
     }
     if monitor.violations.is_empty() {
@@ -697,9 +862,15 @@ fn the_pin_monitor_holds_over_a_million_clocks_of_random_switches() {
         let (seed, result) = run.join().expect("lockstep failed");
         let run = result.unwrap_or_else(|v| panic!("seed {seed:#x}: {v:#?}"));
         println!("seed {seed:#x}: {run:?}");
-        assert!(run.steps > 20_000 && run.running > 100_000 && run.restarts > 20, "seed {seed:#x} idle: {run:?}");
+        assert!(
+            run.steps > 20_000 && run.running > 100_000 && run.restarts > 20,
+            "seed {seed:#x} idle: {run:?}"
+        );
         for cause in ["Limit", "DriveAlarm", "Estop", "Watchdog"] {
-            assert!(run.causes.contains(cause), "seed {seed:#x}: no stop by {cause}: {run:?}");
+            assert!(
+                run.causes.contains(cause),
+                "seed {seed:#x}: no stop by {cause}: {run:?}"
+            );
         }
     }
 }
@@ -711,7 +882,9 @@ fn the_pin_monitor_holds_over_a_million_clocks_of_random_switches() {
 fn the_pin_monitor_catches_a_controller_that_ignores_its_limits() {
     let violations = monitored_run(0x5afe_0001, 200_000, true).expect_err("the monitor must fail");
     assert!(
-        violations.iter().any(|v| v.contains("toward its active limit")),
+        violations
+            .iter()
+            .any(|v| v.contains("toward its active limit")),
         "{violations:#?}"
     );
 }

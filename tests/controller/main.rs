@@ -4,15 +4,15 @@
 //! One binary, so that the controller's simulation is compiled (and
 //! monomorphized) once.
 
+mod analog_axes;
+mod analog_servo;
+mod arcs;
 #[allow(dead_code)] // each test module uses part of the bench
 mod bench;
-mod motion_controller;
-mod dda_only;
-mod machine_io;
-mod host;
-mod arcs;
-mod gcode;
 mod compiled_backend;
 mod controller_behind_bus_adapter;
-mod analog_servo;
-mod analog_axes;
+mod dda_only;
+mod gcode;
+mod host;
+mod machine_io;
+mod motion_controller;

@@ -2,8 +2,6 @@
 //! the register bus, firmware-style runs with the steps looped back into
 //! the encoders, every fault, and cross-simulation.
 
-
-
 use crate::bench::{Bench, Lockstep};
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::registers::{irq, register_map};
@@ -76,7 +74,9 @@ impl ChaosDriver {
     /// bounce, so that the filters, the trips and their clears all happen.
     fn machine_pins(&mut self, axes: usize) -> MachinePins {
         let rng = &mut self.rng;
-        let mut toggle = |word: &mut u32, active, inactive| crate::bench::toggle_pins(rng, word, axes, active, inactive);
+        let mut toggle = |word: &mut u32, active, inactive| {
+            crate::bench::toggle_pins(rng, word, axes, active, inactive)
+        };
         toggle(&mut self.pins.limit_pos, 3_000, 100_000);
         toggle(&mut self.pins.limit_neg, 3_000, 100_000);
         toggle(&mut self.pins.home, 2_000, 8_000);
@@ -130,7 +130,13 @@ impl ChaosDriver {
         let axis = rng.gen_range(0..b.axes() as u32);
         let small = |rng: &mut StdRng| [0, 1, 2, 3, rng.gen_range(0..20)][rng.gen_range(0..5)];
         let w = |name: &str, index: u32, value: u32| {
-            (false, register(name).address_of(index).unwrap(), value, true, false)
+            (
+                false,
+                register(name).address_of(index).unwrap(),
+                value,
+                true,
+                false,
+            )
         };
         match rng.gen_range(0..100) {
             0..=29 => {
@@ -147,9 +153,17 @@ impl ChaosDriver {
             34..=36 => w("STATUS", 0, rng.gen_range(0..1 << irq::COUNT)),
             37 => w("IRQ_ENABLE", 0, rng.gen()),
             38 => w("TICK_DIVISOR", 0, [0, 1, 1, 1, 2, 3][rng.gen_range(0..6)]),
-            39 => w("PERIOD_TICKS", 0, [0, 1, 2, 60, 100, 150, 64][rng.gen_range(0..7)]),
+            39 => w(
+                "PERIOD_TICKS",
+                0,
+                [0, 1, 2, 60, 100, 150, 64][rng.gen_range(0..7)],
+            ),
             40 => w("FIFO_LOW_WATER", 0, rng.gen_range(0..40)),
-            41 => w("WATCHDOG_TIMEOUT", 0, [0, 0, 300, 2000, 20_000][rng.gen_range(0..5)]),
+            41 => w(
+                "WATCHDOG_TIMEOUT",
+                0,
+                [0, 0, 300, 2000, 20_000][rng.gen_range(0..5)],
+            ),
             42..=49 => w("WATCHDOG_KICK", 0, rng.gen()),
             50..=51 => w("SNAPSHOT", 0, 0),
             52..=54 => {
@@ -171,8 +185,17 @@ impl ChaosDriver {
                 // An analog axis, in a build with the analog outputs (drawn
                 // only there, so the other builds' traffic is unchanged).
                 let analog = map.register("DAC_TIMING").is_ok() && rng.gen_ratio(1, 3);
-                let value = value | if analog { pack("AXIS_CONFIG", &[("ANALOG", 1)]) } else { 0 };
-                w("AXIS_CONFIG", axis, value | (rng.gen_ratio(1, 10) as u32 * rng.gen::<u32>()))
+                let value = value
+                    | if analog {
+                        pack("AXIS_CONFIG", &[("ANALOG", 1)])
+                    } else {
+                        0
+                    };
+                w(
+                    "AXIS_CONFIG",
+                    axis,
+                    value | (rng.gen_ratio(1, 10) as u32 * rng.gen::<u32>()),
+                )
             }
             55 => w("STEP_LEN", axis, small(rng)),
             56 => w("STEP_SPACE", axis, small(rng)),
@@ -181,7 +204,15 @@ impl ChaosDriver {
             59 => w("ENC_SAMPLE_RATE", axis, [0, 0, 1, 2][rng.gen_range(0..4)]),
             60..=62 => w("AXIS_COMMAND", axis, rng.gen_range(0..16)),
             63 => (false, rng.gen_range(0..256), rng.gen(), true, false),
-            64..=65 => w("IO_COMMAND", axis, if rng.gen_ratio(3, 4) { 7 } else { rng.gen_range(0..8) }),
+            64..=65 => w(
+                "IO_COMMAND",
+                axis,
+                if rng.gen_ratio(3, 4) {
+                    7
+                } else {
+                    rng.gen_range(0..8)
+                },
+            ),
             66 => {
                 let value = pack(
                     "IO_CONFIG",
@@ -201,7 +232,10 @@ impl ChaosDriver {
             68 if rng.gen_ratio(1, 4) => {
                 let value = pack(
                     "INPUT_FILTER",
-                    &[("LENGTH", rng.gen_range(0..16)), ("SAMPLE_RATE", [0, 0, 1, 3][rng.gen_range(0..4)])],
+                    &[
+                        ("LENGTH", rng.gen_range(0..16)),
+                        ("SAMPLE_RATE", [0, 0, 1, 3][rng.gen_range(0..4)]),
+                    ],
                 );
                 w("INPUT_FILTER", 0, value)
             }
@@ -217,7 +251,11 @@ impl ChaosDriver {
                         ("GPIO", rng.gen_range(0..256)),
                     ],
                 );
-                w("INPUT_POLARITY", 0, if rng.gen_ratio(1, 2) { 0 } else { value })
+                w(
+                    "INPUT_POLARITY",
+                    0,
+                    if rng.gen_ratio(1, 2) { 0 } else { value },
+                )
             }
             70 => w("GPIO_OUT", 0, rng.gen()),
             71 => w("GPIO_SAFE", 0, rng.gen()),
@@ -225,19 +263,31 @@ impl ChaosDriver {
             73 => w("GPIO_EDGES", 0, rng.gen()),
             // The DAC's registers, in a build with the analog outputs.
             78 if map.register("DAC_TIMING").is_ok() => {
-                let timing = if rng.gen_ratio(1, 4) { rng.gen() } else { rng.gen::<u32>() & 0x0303_0303 };
+                let timing = if rng.gen_ratio(1, 4) {
+                    rng.gen()
+                } else {
+                    rng.gen::<u32>() & 0x0303_0303
+                };
                 w("DAC_TIMING", 0, timing)
             }
             79 if map.register("DAC_CONTROL").is_ok() => w("DAC_CONTROL", 0, rng.gen_range(0..2)),
             80 if map.register("DAC_STATUS").is_ok() => w("DAC_STATUS", 0, rng.gen()),
-            81 if map.register("DAC_APPLIED").is_ok() => {
-                (false, register("DAC_APPLIED").address_of(axis).unwrap(), 0, false, true)
-            }
+            81 if map.register("DAC_APPLIED").is_ok() => (
+                false,
+                register("DAC_APPLIED").address_of(axis).unwrap(),
+                0,
+                false,
+                true,
+            ),
             // The slots above took reads from the random-address arm below:
             // give STATUS its reads back.
-            82..=84 if map.register("DAC_APPLIED").is_ok() => {
-                (false, register("STATUS").address_of(0).unwrap(), 0, false, true)
-            }
+            82..=84 if map.register("DAC_APPLIED").is_ok() => (
+                false,
+                register("STATUS").address_of(0).unwrap(),
+                0,
+                false,
+                true,
+            ),
             _ => (false, rng.gen_range(0..256), 0, false, true),
         }
     }
@@ -313,7 +363,11 @@ fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
     // compiled Verilog. About a sixth of the clocks run: random trips hold
     // the axes stopped until the firmware clears them.
     let run = chaos_run_on(Controller3::on(Backend::RustHdl), 0xc0_ffee, 200_000);
-    assert_eq!(run.status_seen, ALL_STATUS, "every STATUS bit seen set: {:#x}", run.status_seen);
+    assert_eq!(
+        run.status_seen, ALL_STATUS,
+        "every STATUS bit seen set: {:#x}",
+        run.status_seen
+    );
     run.assert_busy("K=3, 16 entries", 25_000, 2_500, 50);
 }
 
@@ -325,11 +379,19 @@ fn two_compiled_chaos_runs(seeds: [u64; 2], cycles: u64) {
     let started = std::time::Instant::now();
     let runs: Vec<_> = seeds
         .into_iter()
-        .map(|seed| std::thread::spawn(move || chaos_run_on(Controller3::on(Backend::Verilator), seed, cycles)))
+        .map(|seed| {
+            std::thread::spawn(move || {
+                chaos_run_on(Controller3::on(Backend::Verilator), seed, cycles)
+            })
+        })
         .collect();
     for run in runs {
         let run = run.join().expect("a lockstep run failed");
-        assert_eq!(run.status_seen, ALL_STATUS, "every STATUS bit seen set: {:#x}", run.status_seen);
+        assert_eq!(
+            run.status_seen, ALL_STATUS,
+            "every STATUS bit seen set: {:#x}",
+            run.status_seen
+        );
         // A fifth of the clocks running: random trips hold the axes stopped
         // until the firmware clears them (22 % to 32 % measured).
         run.assert_busy("K=3 compiled", cycles / 5, cycles / 100, cycles / 4000);
@@ -338,7 +400,11 @@ fn two_compiled_chaos_runs(seeds: [u64; 2], cycles: u64) {
             run.running_cycles, run.steps, run.irq_rises
         );
     }
-    println!("{} lockstep cycles in {:.1} s", 2 * cycles, started.elapsed().as_secs_f64());
+    println!(
+        "{} lockstep cycles in {:.1} s",
+        2 * cycles,
+        started.elapsed().as_secs_f64()
+    );
 }
 
 /// The exported controller against the model under the chaos firmware,
@@ -374,8 +440,22 @@ fn compiled_controller_matches_model_for_a_hundred_million_cycles() {
 fn other_axis_counts_and_fifo_depths_match_the_model() {
     let backend = Backend::from_env_or(Backend::Verilator).unwrap();
     for (name, run) in [
-        ("K=1, 256 entries", chaos_run_on(Bench::<1, 8, 9, true, false>::on(backend), 0x1_a515, 1_000_000)),
-        ("K=2, 32 entries", chaos_run_on(Bench::<2, 5, 6, true, false>::on(backend), 0x2_a515, 1_000_000)),
+        (
+            "K=1, 256 entries",
+            chaos_run_on(
+                Bench::<1, 8, 9, true, false>::on(backend),
+                0x1_a515,
+                1_000_000,
+            ),
+        ),
+        (
+            "K=2, 32 entries",
+            chaos_run_on(
+                Bench::<2, 5, 6, true, false>::on(backend),
+                0x2_a515,
+                1_000_000,
+            ),
+        ),
     ] {
         run.assert_busy(name, 200_000, 7_000, 200);
     }
@@ -383,11 +463,20 @@ fn other_axis_counts_and_fifo_depths_match_the_model() {
 
 /// Firmware set-up: base tick every clock, `period` clocks per period,
 /// step/dir outputs with 1-clock timing, axis `i` uniform if `uniform[i]`.
-pub(crate) fn configure<const U: bool, const A: bool>(b: &mut Bench<3, 4, 5, U, A>, period: u32, uniform: [bool; 3]) {
+pub(crate) fn configure<const U: bool, const A: bool>(
+    b: &mut Bench<3, 4, 5, U, A>,
+    period: u32,
+    uniform: [bool; 3],
+) {
     configure_with_tick(b, 1, period, uniform);
 }
 
-fn configure_with_tick<const U: bool, const A: bool>(b: &mut Bench<3, 4, 5, U, A>, tick_divisor: u32, period: u32, uniform: [bool; 3]) {
+fn configure_with_tick<const U: bool, const A: bool>(
+    b: &mut Bench<3, 4, 5, U, A>,
+    tick_divisor: u32,
+    period: u32,
+    uniform: [bool; 3],
+) {
     b.write("TICK_DIVISOR", 0, tick_divisor);
     b.write("PERIOD_TICKS", 0, period);
     b.write("FIFO_LOW_WATER", 0, 4);
@@ -450,7 +539,8 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
         let mut queue_period = |b: &mut Controller3, rng: &mut StdRng, queued: &mut [i64; 3]| {
             for axis in 0..3 {
                 // A random walk in velocity: smooth moves with reversals.
-                velocity[axis] = (velocity[axis] + rng.gen_range(-6..=6)).clamp(-top_speed, top_speed);
+                velocity[axis] =
+                    (velocity[axis] + rng.gen_range(-6..=6)).clamp(-top_speed, top_speed);
                 b.write("FIFO_WRITE", axis as u32, velocity[axis] as u32);
                 queued[axis] += velocity[axis] as i64;
             }
@@ -466,7 +556,11 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
                 continue;
             }
             let status = b.read("STATUS", 0);
-            assert_eq!(status & !b.pack("STATUS", &[("FIFO_LOW", 1), ("PERIOD_DONE", 1)]), 0, "fault: {status:#x}");
+            assert_eq!(
+                status & !b.pack("STATUS", &[("FIFO_LOW", 1), ("PERIOD_DONE", 1)]),
+                0,
+                "fault: {status:#x}"
+            );
             b.write("STATUS", 0, status);
             let level = b.read("FIFO_STATUS", 0);
             let room = 16 - b.field("FIFO_STATUS", "LEVEL", level);
@@ -483,7 +577,10 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
                     // The encoder sees a step 6 clocks after the pins
                     // (simulated encoder 1, decoder 5): at 2 clocks per
                     // step at most 3 steps behind.
-                    assert!((cmd - act).abs() <= 3, "axis {axis}: snapshot cmd {cmd} act {act}");
+                    assert!(
+                        (cmd - act).abs() <= 3,
+                        "axis {axis}: snapshot cmd {cmd} act {act}"
+                    );
                 }
                 snapshots += 1;
             }
@@ -494,20 +591,44 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
         drain(&mut b);
         let status = b.read("STATUS", 0);
         assert_eq!(b.field("STATUS", "UNDERRUN", status), 1);
-        assert_eq!(status & b.pack("STATUS", &[("OVERFLOW", 1), ("AXIS_FAULT", 1), ("ENCODER_ERROR", 1)]), 0);
+        assert_eq!(
+            status
+                & b.pack(
+                    "STATUS",
+                    &[("OVERFLOW", 1), ("AXIS_FAULT", 1), ("ENCODER_ERROR", 1)]
+                ),
+            0
+        );
         b.write("STATUS", 0, status);
         for axis in 0..3u32 {
             let (cmd, act) = positions(&mut b, axis);
-            assert_eq!(cmd as i64, queued[axis as usize], "run {run} axis {axis}: commanded");
-            assert_eq!(b.pin_steps(axis as usize), queued[axis as usize], "axis {axis}: pins");
+            assert_eq!(
+                cmd as i64, queued[axis as usize],
+                "run {run} axis {axis}: commanded"
+            );
+            assert_eq!(
+                b.pin_steps(axis as usize),
+                queued[axis as usize],
+                "axis {axis}: pins"
+            );
             assert_eq!(act, cmd, "run {run} axis {axis}: actual");
         }
     }
-    assert!(periods >= 2000 && snapshots > 20, "{periods} periods, {snapshots} snapshots");
-    assert_eq!(b.steps_while_inactive, 0, "a step left with the drive enable (active) low");
+    assert!(
+        periods >= 2000 && snapshots > 20,
+        "{periods} periods, {snapshots} snapshots"
+    );
+    assert_eq!(
+        b.steps_while_inactive, 0,
+        "a step left with the drive enable (active) low"
+    );
 }
 
-pub(crate) fn queue<const U: bool, const A: bool>(b: &mut Bench<3, 4, 5, U, A>, axis: u32, counts: &[i32]) -> i64 {
+pub(crate) fn queue<const U: bool, const A: bool>(
+    b: &mut Bench<3, 4, 5, U, A>,
+    axis: u32,
+    counts: &[i32],
+) -> i64 {
     for n in counts {
         b.write("FIFO_WRITE", axis, *n as u32);
     }
@@ -539,10 +660,17 @@ fn underrun_stops_every_axis_on_the_same_boundary_and_restarts_cleanly() {
     assert_eq!(b.read("PERIOD_COUNT", 0), 3);
     for axis in 0..3u32 {
         let (cmd, act) = positions(&mut b, axis);
-        assert_eq!(cmd, 3 * first[axis as usize], "axis {axis}: three periods, no more, no less");
+        assert_eq!(
+            cmd,
+            3 * first[axis as usize],
+            "axis {axis}: three periods, no more, no less"
+        );
         assert_eq!((act, b.pin_steps(axis as usize)), (cmd, cmd as i64));
         let level = b.read("FIFO_STATUS", axis);
-        assert_eq!(b.field("FIFO_STATUS", "LEVEL", level), [2, 2, 0][axis as usize]);
+        assert_eq!(
+            b.field("FIFO_STATUS", "LEVEL", level),
+            [2, 2, 0][axis as usize]
+        );
     }
     assert_pins_quiet(&mut b, 2000);
     // Restart: refill, clear, run.
@@ -553,7 +681,11 @@ fn underrun_stops_every_axis_on_the_same_boundary_and_restarts_cleanly() {
     drain(&mut b);
     for axis in 0..3u32 {
         let (cmd, act) = positions(&mut b, axis);
-        assert_eq!(cmd, 5 * first[axis as usize], "axis {axis}: after the restart");
+        assert_eq!(
+            cmd,
+            5 * first[axis as usize],
+            "axis {axis}: after the restart"
+        );
         assert_eq!(act, cmd);
     }
     assert_eq!(b.read("PERIOD_COUNT", 0), 5);
@@ -578,7 +710,11 @@ fn a_write_to_a_full_fifo_is_refused_and_overwrites_nothing() {
     b.write("CONTROL", 0, 1);
     drain(&mut b);
     let (cmd, act) = positions(&mut b, 0);
-    assert_eq!((cmd as i64, act as i64), (expected, expected), "the 16 accepted entries, not the refused one");
+    assert_eq!(
+        (cmd as i64, act as i64),
+        (expected, expected),
+        "the 16 accepted entries, not the refused one"
+    );
     assert_eq!(b.read("PERIOD_COUNT", 0), 16);
 }
 
@@ -599,7 +735,11 @@ fn watchdog_stops_all_stepping_and_blocks_restart_until_cleared() {
     // The host goes silent in mid-period.
     b.idle(600);
     let state = b.read("STATE", 0);
-    assert_eq!(b.field("STATE", "RUNNING", state), 0, "the watchdog stopped the run");
+    assert_eq!(
+        b.field("STATE", "RUNNING", state),
+        0,
+        "the watchdog stopped the run"
+    );
     assert_eq!(b.field("STATE", "WATCHDOG_EXPIRED", state), 1);
     let status = b.read("STATUS", 0);
     assert_eq!(b.field("STATUS", "WATCHDOG", status), 1);
@@ -611,13 +751,24 @@ fn watchdog_stops_all_stepping_and_blocks_restart_until_cleared() {
         let (cmd, act) = positions(&mut b, axis);
         // Stopped inside a period: fewer than all queued steps, every one
         // that left is counted.
-        assert!(cmd > 0 && cmd < 16 * 40 && cmd % 40 != 0, "axis {axis}: {cmd}");
-        assert_eq!((act, b.pin_steps(axis as usize)), (cmd, cmd as i64), "axis {axis}");
+        assert!(
+            cmd > 0 && cmd < 16 * 40 && cmd % 40 != 0,
+            "axis {axis}: {cmd}"
+        );
+        assert_eq!(
+            (act, b.pin_steps(axis as usize)),
+            (cmd, cmd as i64),
+            "axis {axis}"
+        );
         stopped_at[axis as usize] = cmd;
     }
     // RUN is refused while expired.
     b.write("CONTROL", 0, 1);
-    assert_eq!(b.read("CONTROL", 0), 0, "RUN refused while the watchdog is expired");
+    assert_eq!(
+        b.read("CONTROL", 0),
+        0,
+        "RUN refused while the watchdog is expired"
+    );
     assert_pins_quiet(&mut b, 500);
     // Clear, kick, run again: the remaining periods run.
     b.write("STATUS", 0, status);
@@ -644,7 +795,11 @@ fn encoder_error_is_flagged_counts_nothing_and_clears() {
     assert_eq!(b.read("ACT_POSITION", 1), 1);
     b.encoders[1] = (false, true, false);
     b.idle(10);
-    assert_eq!(b.read("ACT_POSITION", 1), 1, "an illegal transition counts nothing");
+    assert_eq!(
+        b.read("ACT_POSITION", 1),
+        1,
+        "an illegal transition counts nothing"
+    );
     let axis_status = b.read("AXIS_STATUS", 1);
     assert_eq!(b.field("AXIS_STATUS", "ENCODER_ERROR", axis_status), 1);
     assert_eq!(b.read("AXIS_STATUS", 0) & 8, 0, "only the faulty axis");
@@ -689,7 +844,11 @@ fn reset_in_mid_period_returns_every_register_to_its_reset_value() {
     // Reconfigured, it runs exactly from zero.
     configure(&mut b, 100, [false, true, false]);
     let moved: Vec<i64> = (0..3).map(|axis| b.pin_steps(axis)).collect();
-    let expected = [queue(&mut b, 0, &[5, 6]), queue(&mut b, 1, &[-7, 8]), queue(&mut b, 2, &[9, -10])];
+    let expected = [
+        queue(&mut b, 0, &[5, 6]),
+        queue(&mut b, 1, &[-7, 8]),
+        queue(&mut b, 2, &[9, -10]),
+    ];
     b.write("CONTROL", 0, 1);
     drain(&mut b);
     for axis in 0..3u32 {
@@ -704,13 +863,21 @@ fn assert_reset_values(b: &mut Controller3) {
     let registers: Vec<_> = b.map.registers.clone();
     for register in &registers {
         for address in register.addresses() {
-            let readable = register.fields.iter().any(|f| f.access != motion_hdl::regmap::Access::WriteOnly);
+            let readable = register
+                .fields
+                .iter()
+                .any(|f| f.access != motion_hdl::regmap::Access::WriteOnly);
             if !readable {
                 continue;
             }
             b.clock(false, address, 0, false, true);
             let value = b.clock(false, 0, 0, false, false).read_data;
-            assert_eq!(value, register.reset_value(), "{} at {address:#x}", register.name);
+            assert_eq!(
+                value,
+                register.reset_value(),
+                "{} at {address:#x}",
+                register.name
+            );
         }
     }
 }
@@ -732,7 +899,12 @@ fn power_up_reads_reset_values_and_every_rw_field_reads_back() {
                 b.clock(false, address, value, true, false);
                 b.clock(false, address, 0, false, true);
                 let read = b.clock(false, 0, 0, false, false).read_data;
-                assert_eq!(read & mask, value & mask, "{} at {address:#x}", register.name);
+                assert_eq!(
+                    read & mask,
+                    value & mask,
+                    "{} at {address:#x}",
+                    register.name
+                );
             }
         }
     }
@@ -741,7 +913,11 @@ fn power_up_reads_reset_values_and_every_rw_field_reads_back() {
     for address in (0..256).filter(|a| !used.contains(a)) {
         b.clock(false, address, u32::MAX, true, false);
         b.clock(false, address, 0, false, true);
-        assert_eq!(b.clock(false, 0, 0, false, false).read_data, 0, "{address:#x}");
+        assert_eq!(
+            b.clock(false, 0, 0, false, false).read_data,
+            0,
+            "{address:#x}"
+        );
     }
 }
 
@@ -762,7 +938,11 @@ pub(crate) fn cross_simulate_exported<const U: bool, const A: bool>(module: &str
     configure(&mut b, 60, [false, true, false]);
     for period in 0..12 {
         for axis in 0..3u32 {
-            b.write("FIFO_WRITE", axis, ((period * 7 + axis as i32 * 5) % 29 - 14) as u32);
+            b.write(
+                "FIFO_WRITE",
+                axis,
+                ((period * 7 + axis as i32 * 5) % 29 - 14) as u32,
+            );
         }
     }
     b.write("WATCHDOG_TIMEOUT", 0, 5000);
@@ -832,8 +1012,9 @@ int main(void) {{
             !uniform as u32,
         );
         for standard in ["c89", "c99"] {
-            let printed = motion_hdl::tools::run_c_program(&repo_root().join("rtl-out"), standard, &program)
-                .unwrap_or_else(|e| panic!("{name} {standard}: {e}"));
+            let printed =
+                motion_hdl::tools::run_c_program(&repo_root().join("rtl-out"), standard, &program)
+                    .unwrap_or_else(|e| panic!("{name} {standard}: {e}"));
             assert_eq!(printed, expected, "{name} {standard}");
         }
     }
@@ -866,8 +1047,14 @@ fn a_restart_right_after_an_underrun_loses_nothing() {
         drain(&mut b);
         for axis in 0..3u32 {
             let (cmd, act) = positions(&mut b, axis);
-            assert_eq!(cmd as i64, expected[axis as usize], "delay {delay} axis {axis}");
-            assert_eq!((act as i64, b.pin_steps(axis as usize)), (cmd as i64, cmd as i64));
+            assert_eq!(
+                cmd as i64, expected[axis as usize],
+                "delay {delay} axis {axis}"
+            );
+            assert_eq!(
+                (act as i64, b.pin_steps(axis as usize)),
+                (cmd as i64, cmd as i64)
+            );
         }
         assert_eq!(b.steps_while_inactive, 0, "delay {delay}");
     }
@@ -904,7 +1091,11 @@ fn clocks_to_first_irq(second: i32, enabled: &[(&str, u64)]) -> u64 {
 fn an_oversized_entry_is_flagged_one_clock_after_it_is_taken() {
     let boundary = clocks_to_first_irq(70_000, &[("PERIOD_DONE", 1)]);
     let fault = clocks_to_first_irq(70_000, &[("AXIS_FAULT", 1)]);
-    assert_eq!(fault, boundary + 2, "boundary irq at {boundary}, fault irq at {fault}");
+    assert_eq!(
+        fault,
+        boundary + 2,
+        "boundary irq at {boundary}, fault irq at {fault}"
+    );
     let in_range = clocks_to_first_irq(65_535, &[("AXIS_FAULT", 1)]);
     assert!(
         in_range > fault,
@@ -931,7 +1122,11 @@ fn interpolator_faults_are_sticky_until_cleared_and_interrupt_each_time() {
     drain(&mut b);
     for axis in 0..2u32 {
         let s = b.read("AXIS_STATUS", axis);
-        assert_eq!(b.field("AXIS_STATUS", "INTERP_OVERRANGE", s), 1, "axis {axis}");
+        assert_eq!(
+            b.field("AXIS_STATUS", "INTERP_OVERRANGE", s),
+            1,
+            "axis {axis}"
+        );
     }
     assert_eq!(b.read("AXIS_STATUS", 2) & 2, 0);
     // A stop and a restart do not clear them.
@@ -940,7 +1135,11 @@ fn interpolator_faults_are_sticky_until_cleared_and_interrupt_each_time() {
     queue(&mut b, 2, &[1]);
     b.write("CONTROL", 0, 1);
     b.write("CONTROL", 0, 0);
-    assert_eq!(b.read("AXIS_STATUS", 0) & 2, 2, "still flagged after a restart and a stop");
+    assert_eq!(
+        b.read("AXIS_STATUS", 0) & 2,
+        2,
+        "still flagged after a restart and a stop"
+    );
     // CLEAR_FAULTS clears; a new fault raises AXIS_FAULT again.
     let clear = b.pack("AXIS_COMMAND", &[("CLEAR_FAULTS", 1)]);
     b.write("AXIS_COMMAND", 0, clear);
@@ -953,7 +1152,11 @@ fn interpolator_faults_are_sticky_until_cleared_and_interrupt_each_time() {
     b.write("CONTROL", 0, 1);
     b.idle(30);
     let status = b.read("STATUS", 0);
-    assert_eq!(b.field("STATUS", "AXIS_FAULT", status), 1, "a second fault interrupts again");
+    assert_eq!(
+        b.field("STATUS", "AXIS_FAULT", status),
+        1,
+        "a second fault interrupts again"
+    );
     assert_eq!(b.read("AXIS_STATUS", 0) & 2, 2);
     // A uniform period shorter than the generator's set-up is refused.
     drain(&mut b);
@@ -990,13 +1193,27 @@ fn uniform_axes_take_turns_at_the_shared_divider() {
                 }
             }
         }
-        rises.iter().map(|rise| rise.expect("every axis steps in its first period")).collect()
+        rises
+            .iter()
+            .map(|rise| rise.expect("every axis steps in its first period"))
+            .collect()
     };
     let all_uniform = first_rises([true; 3]);
-    assert_eq!(all_uniform[1] - all_uniform[0], UNIFORM_TURN, "{all_uniform:?}");
-    assert_eq!(all_uniform[2] - all_uniform[0], 2 * UNIFORM_TURN, "{all_uniform:?}");
+    assert_eq!(
+        all_uniform[1] - all_uniform[0],
+        UNIFORM_TURN,
+        "{all_uniform:?}"
+    );
+    assert_eq!(
+        all_uniform[2] - all_uniform[0],
+        2 * UNIFORM_TURN,
+        "{all_uniform:?}"
+    );
     let last_only = first_rises([false, false, true]);
-    assert_eq!(last_only[2], all_uniform[0], "a lone uniform axis takes the first turn");
+    assert_eq!(
+        last_only[2], all_uniform[0],
+        "a lone uniform axis takes the first turn"
+    );
 }
 
 /// PERIOD_DONE fires once per period after the first; IRQ_ENABLE gates
@@ -1062,20 +1279,29 @@ fn clear_position_in_motion_loses_no_step() {
         b.write("AXIS_COMMAND", 0, clear);
         let just_after = b.read("CMD_POSITION", 0) as i32 as i64;
         if pins_before != pins_earlier {
-            assert_eq!(just_after, pins_before, "phase {phase}: the old count keeps its last step");
+            assert_eq!(
+                just_after, pins_before,
+                "phase {phase}: the old count keeps its last step"
+            );
         } else {
             assert_eq!(just_after, 0, "phase {phase}: cleared at once");
         }
         drain(&mut b);
         let cmd = b.read("CMD_POSITION", 0) as i32 as i64;
         assert_eq!(cmd, b.pin_steps(0) - pins_before, "phase {phase}");
-        assert!(cmd > 0 && cmd < 13 * 6, "phase {phase}: the clear came in mid-motion");
+        assert!(
+            cmd > 0 && cmd < 13 * 6,
+            "phase {phase}: the clear came in mid-motion"
+        );
         // Axes 1 and 2 were never cleared.
         for axis in 1..3u32 {
             assert_eq!(b.read("CMD_POSITION", axis) as i64, 13 * 6);
         }
     }
-    assert!(coincident > 0, "no phase put a step on the clear's own clock");
+    assert!(
+        coincident > 0,
+        "no phase put a step on the clear's own clock"
+    );
 }
 
 /// Each output stage holds a backlog of +127 / -128 steps
@@ -1095,8 +1321,16 @@ fn a_stage_backlog_beyond_its_limit_is_flagged() {
         b.write("CONTROL", 0, 1);
         b.idle(600);
         let status = b.read("AXIS_STATUS", 0);
-        assert_eq!(b.field("AXIS_STATUS", "STEP_OVERRUN", status), overrun as u64, "{n} steps");
-        assert_eq!(b.read("CMD_POSITION", 0) as i32, n.signum(), "{n} steps: one emitted");
+        assert_eq!(
+            b.field("AXIS_STATUS", "STEP_OVERRUN", status),
+            overrun as u64,
+            "{n} steps"
+        );
+        assert_eq!(
+            b.read("CMD_POSITION", 0) as i32,
+            n.signum(),
+            "{n} steps: one emitted"
+        );
     }
 }
 
@@ -1115,7 +1349,10 @@ fn snapshot_is_coherent_across_axes() {
         }
         b.write("SNAPSHOT", 0, 0);
         let snaps: Vec<u32> = (0..3).map(|axis| b.read("ACT_SNAPSHOT", axis)).collect();
-        assert!(snaps.iter().all(|&s| s == snaps[0]), "round {round}: {snaps:?}");
+        assert!(
+            snaps.iter().all(|&s| s == snaps[0]),
+            "round {round}: {snaps:?}"
+        );
     }
     assert!(b.read("ACT_SNAPSHOT", 0) > 50);
 }

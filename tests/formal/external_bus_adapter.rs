@@ -94,14 +94,22 @@ fn external_bus_adapter_proof_catches_a_write_address_sampled_too_late() {
 /// bus_read itself (not yet valid).
 #[test]
 fn external_bus_adapter_proof_catches_read_data_taken_a_clock_early() {
-    assert_mutation_caught("external_bus_adapter_a2", "if (read_answer__q) begin", "if (bus_read_reg__q) begin");
+    assert_mutation_caught(
+        "external_bus_adapter_a2",
+        "if (read_answer__q) begin",
+        "if (bus_read_reg__q) begin",
+    );
 }
 
 /// The data pins driven during a write with rd_n also low (the master
 /// drives them then): data_oe without its `we_n` term.
 #[test]
 fn external_bus_adapter_proof_catches_pins_driven_against_a_write() {
-    assert_mutation_caught("external_bus_adapter_a2", "data_oe = ~cs_n & ~rd_n & we_n;", "data_oe = ~cs_n & ~rd_n;");
+    assert_mutation_caught(
+        "external_bus_adapter_a2",
+        "data_oe = ~cs_n & ~rd_n & we_n;",
+        "data_oe = ~cs_n & ~rd_n;",
+    );
 }
 
 /// A torn write: the highest part commits the word without checking that

@@ -15,5 +15,9 @@ fn freq_divider_exported_32_bit_strobes_are_proved() {
 /// The interval's end compared one count late: every interval one clock long.
 #[test]
 fn freq_divider_proof_catches_an_interval_one_clock_long() {
-    assert_mutation_caught("freq_divider_w4", "count__q != latched_divisor__q", "count__q != latched_divisor__q + 1");
+    assert_mutation_caught(
+        "freq_divider_w4",
+        "count__q != latched_divisor__q",
+        "count__q != latched_divisor__q + 1",
+    );
 }

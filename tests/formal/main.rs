@@ -2,8 +2,8 @@
 //! `motion_hdl::tools::formal`): each proof, and for each property file a
 //! deliberate bug that its proof must catch with a counterexample.
 
-mod support;
 mod readme;
+mod support;
 
 mod command_fifo;
 mod external_bus_adapter;

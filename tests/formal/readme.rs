@@ -23,5 +23,9 @@ fn the_readme_lists_every_proof_with_its_depths() {
             spec.name
         );
     }
-    assert_eq!(rows.len(), catalog.len(), "README.md's \"What is proved\" has rows for proofs the catalog does not have");
+    assert_eq!(
+        rows.len(),
+        catalog.len(),
+        "README.md's \"What is proved\" has rows for proofs the catalog does not have"
+    );
 }

@@ -1,7 +1,9 @@
 //! The two checks every property file gets: its proofs pass, and a
 //! deliberate bug in the block fails them with a counterexample.
 
-use motion_hdl::tools::formal::{find, instance_verilog, prove, prove_verilog, Checks, FailedCheck, FormalSpec, Outcome};
+use motion_hdl::tools::formal::{
+    find, instance_verilog, prove, prove_verilog, Checks, FailedCheck, FormalSpec, Outcome,
+};
 
 fn spec(name: &str) -> FormalSpec {
     find(name).unwrap_or_else(|| panic!("no proof named {name} in formal_catalog()"))
@@ -20,7 +22,11 @@ pub fn assert_proved(name: &str) {
         spec.induction_depth,
         report.induction_time.as_secs_f64()
     );
-    assert!(matches!(report.outcome, Outcome::Proved), "{name}: {:?}", report.outcome);
+    assert!(
+        matches!(report.outcome, Outcome::Proved),
+        "{name}: {:?}",
+        report.outcome
+    );
 }
 
 /// Replaces the one occurrence of `find` in the generated Verilog of proof
@@ -36,7 +42,8 @@ pub fn assert_mutation_caught(name: &str, find: &str, replace: &str) {
         "{name}: the mutation's text `{find}` must occur exactly once in the generated Verilog"
     );
     let mutant = verilog.replacen(find, replace, 1);
-    let report = prove_verilog(&spec, &mutant, Checks::ContractBounded).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let report = prove_verilog(&spec, &mutant, Checks::ContractBounded)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
     match report.outcome {
         Outcome::Counterexample { check, steps, assertion, vcd } => {
             println!("{name} with `{find}` -> `{replace}`: {assertion} fails after {steps} clocks ({})", vcd.display());

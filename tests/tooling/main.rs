@@ -2,9 +2,9 @@
 //! cross-simulation, the harness, plots, and synthesis of every exported
 //! module and the board example.
 
-mod rtl_out;
-mod regmap;
 mod cross_simulation;
 mod harness;
 mod plots;
+mod regmap;
+mod rtl_out;
 mod synthesis;

@@ -2,7 +2,6 @@
 //! round-trips through bitvec, and the generated C header compiles and
 //! agrees with the Rust map.
 
-
 use motion_hdl::regmap::{c_header, markdown, Access, Field, RegMapError, Register, RegisterMap};
 
 fn field(name: &'static str, lsb: u32, width: u32, access: Access, reset: u64) -> Field {

@@ -138,15 +138,39 @@ fn rustdoc_ports(source: &str) -> BTreeSet<String> {
 /// `__k` ports, documented once as `__i`).
 #[test]
 fn port_docs_and_the_rustdoc_port_table_name_the_exported_ports() {
-    for spec in catalog().into_iter().filter(|s| s.name != "dda_interpolator") {
+    for spec in catalog()
+        .into_iter()
+        .filter(|s| s.name != "dda_interpolator")
+    {
         let block = (spec.build)();
-        let top: BTreeSet<String> =
-            motion_hdl::export::top_ports(block.as_ref()).into_iter().map(|p| p.name).collect();
-        let documented: BTreeSet<String> = spec.port_docs.iter().map(|(name, _)| name.to_string()).collect();
+        let top: BTreeSet<String> = motion_hdl::export::top_ports(block.as_ref())
+            .into_iter()
+            .map(|p| p.name)
+            .collect();
+        let documented: BTreeSet<String> = spec
+            .port_docs
+            .iter()
+            .map(|(name, _)| name.to_string())
+            .collect();
         assert!(top.len() > 3, "{}: {top:?}", spec.name);
-        assert_eq!(documented, top, "{}: PORT_DOCS against the exported ports", spec.name);
-        let source = std::fs::read_to_string(repo_root().join(format!("src/blocks/{}/mod.rs", spec.block))).unwrap();
-        assert_eq!(rustdoc_ports(&source), top, "{}: rustdoc port table against the exported ports", spec.name);
-        assert!(top.iter().all(|p| !p.contains("__")), "{}: a port name with `__`: {top:?}", spec.name);
+        assert_eq!(
+            documented, top,
+            "{}: PORT_DOCS against the exported ports",
+            spec.name
+        );
+        let source =
+            std::fs::read_to_string(repo_root().join(format!("src/blocks/{}/mod.rs", spec.block)))
+                .unwrap();
+        assert_eq!(
+            rustdoc_ports(&source),
+            top,
+            "{}: rustdoc port table against the exported ports",
+            spec.name
+        );
+        assert!(
+            top.iter().all(|p| !p.contains("__")),
+            "{}: a port name with `__`: {top:?}",
+            spec.name
+        );
     }
 }

@@ -73,7 +73,11 @@ fn place_board(top: &str, modules: &[&str]) -> String {
         ))
         .output()
         .expect("yosys runs");
-    assert!(yosys.status.success(), "{}", String::from_utf8_lossy(&yosys.stderr));
+    assert!(
+        yosys.status.success(),
+        "{}",
+        String::from_utf8_lossy(&yosys.stderr)
+    );
     let nextpnr = Command::new("nextpnr-ice40")
         .args(["--hx8k", "--package", "ct256", "--freq", "48", "--pcf"])
         .arg(board.join(format!("{top}.pcf")))
@@ -84,7 +88,10 @@ fn place_board(top: &str, modules: &[&str]) -> String {
         .output()
         .expect("nextpnr-ice40 runs");
     let log = String::from_utf8_lossy(&nextpnr.stderr).into_owned();
-    assert!(nextpnr.status.success(), "{top}: nextpnr failed (pins or timing at 48 MHz):\n{log}");
+    assert!(
+        nextpnr.status.success(),
+        "{top}: nextpnr failed (pins or timing at 48 MHz):\n{log}"
+    );
     assert!(log.contains("PASS at 48.00 MHz"), "{log}");
     log
 }
@@ -102,7 +109,10 @@ fn place_board(top: &str, modules: &[&str]) -> String {
 /// an enable shared by fewer than 4 flip-flops into their LUTs, places.
 #[test]
 fn the_board_example_places_with_its_pin_file() {
-    place_board("motion_board", &["motion_controller", "external_bus_adapter"]);
+    place_board(
+        "motion_board",
+        &["motion_controller", "external_bus_adapter"],
+    );
 }
 
 /// The seed card (`seed_board.v`): an F28335 on the 16-bit bus and a CH365
@@ -119,5 +129,8 @@ fn the_seed_board_places_with_its_pin_file_and_room_to_spare() {
             rest.split('/').next()?.trim().parse::<u32>().ok()
         })
         .expect("nextpnr reports its logic cells");
-    assert!(used * 100 <= 7680 * 85, "seed board: {used} of 7680 logic cells, less than 15 % free");
+    assert!(
+        used * 100 <= 7680 * 85,
+        "seed board: {used} of 7680 logic cells, less than 15 % free"
+    );
 }

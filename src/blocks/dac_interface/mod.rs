@@ -362,7 +362,11 @@ impl<const K: usize, const W: usize> Default for DacInterface<K, W> {
                 "TIMING.{name} moved: update() slices it at {lsb}"
             );
         }
-        assert_eq!(field_of(&map, "CODE", "VALUE").width as usize, W, "CODE.VALUE is the W-bit staged code");
+        assert_eq!(
+            field_of(&map, "CODE", "VALUE").width as usize,
+            W,
+            "CODE.VALUE is the W-bit staged code"
+        );
         let address = |name: &str| {
             Constant::new(
                 (map.register(name).expect("a register of the map").address as u64).into(),
@@ -533,8 +537,7 @@ impl<const K: usize, const W: usize> Logic for DacInterface<K, W> {
             self.l1_active.d.next = self.phase.q.val() == self.p_width.val();
             for k in 0..K {
                 if (self.channel.q.val() & self.chan_bit[k].val()) != self.zero_k.val() {
-                    self.data_pin.d.next =
-                        self.shadow[k].q.val() ^ self.flip.val();
+                    self.data_pin.d.next = self.shadow[k].q.val() ^ self.flip.val();
                 }
             }
         }

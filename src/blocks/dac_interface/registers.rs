@@ -120,5 +120,6 @@ pub fn register_map(channels: usize, width: usize) -> Result<RegisterMap, RegMap
 /// Register `name`'s field `field` in `map`, which must have it (a
 /// lookup of the block's own map by a name fixed in its source).
 pub fn field_of<'a>(map: &'a RegisterMap, name: &str, field: &str) -> &'a Field {
-    map.field(name, field).unwrap_or_else(|e| panic!("dac_interface map: {e}"))
+    map.field(name, field)
+        .unwrap_or_else(|e| panic!("dac_interface map: {e}"))
 }

@@ -164,7 +164,14 @@ impl<const W: usize> Default for FreqDivider<W> {
 impl<const W: usize> Logic for FreqDivider<W> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, latched_divisor, count, mid_interval, strobe_reg);
+        dff_setup!(
+            self,
+            clock,
+            latched_divisor,
+            count,
+            mid_interval,
+            strobe_reg
+        );
         self.strobe.next = self.strobe_reg.q.val();
         self.divisor_at_most_one.next =
             (self.divisor.val() & self.high_bits.val()) == self.zero.val();

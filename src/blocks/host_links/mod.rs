@@ -286,9 +286,18 @@ impl<const CA: usize, const CNA: usize, const MA: usize, const DA: usize> Defaul
     /// Panics on a parameter set that does not fit together (a build-time
     /// error): `CNA != CA + 1`, `DA != MA + 1` or `MA < CNA`.
     fn default() -> Self {
-        assert!(CNA == CA + 1, "HostLinks: CNA must be CA + 1 (16-bit halves)");
-        assert!(DA == MA + 1, "HostLinks: DA must be MA + 1 (the window bit)");
-        assert!(MA >= CNA, "HostLinks: the mailbox window must cover the register window");
+        assert!(
+            CNA == CA + 1,
+            "HostLinks: CNA must be CA + 1 (16-bit halves)"
+        );
+        assert!(
+            DA == MA + 1,
+            "HostLinks: DA must be MA + 1 (the window bit)"
+        );
+        assert!(
+            MA >= CNA,
+            "HostLinks: the mailbox window must cover the register window"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),

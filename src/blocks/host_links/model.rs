@@ -10,9 +10,7 @@ use crate::blocks::dpram_mailbox::model::{
 };
 use crate::blocks::narrow_bus_adapter::model::{NarrowBusModel, NarrowBusOutputs};
 use crate::blocks::width_mask;
-use crate::blocks::word_assembler::model::{
-    PartGeometry, WordAssemblerInputs, WordAssemblerModel,
-};
+use crate::blocks::word_assembler::model::{PartGeometry, WordAssemblerInputs, WordAssemblerModel};
 
 /// The block's parameters as numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -26,7 +24,10 @@ pub struct HostLinksGeometry {
 impl HostLinksGeometry {
     /// The exported `host_links`: 256 registers, 1024 mailbox words.
     pub const fn seed() -> Self {
-        Self { register_bits: 8, mailbox_bits: 10 }
+        Self {
+            register_bits: 8,
+            mailbox_bits: 10,
+        }
     }
 
     /// Pin address width of both masters (DA).
@@ -50,11 +51,19 @@ impl HostLinksGeometry {
     }
 
     fn registers(&self) -> PartGeometry {
-        PartGeometry { narrow_bits: 16, wide_bits: 32, address_bits: self.register_bits }
+        PartGeometry {
+            narrow_bits: 16,
+            wide_bits: 32,
+            address_bits: self.register_bits,
+        }
     }
 
     fn pc_words(&self) -> PartGeometry {
-        PartGeometry { narrow_bits: 8, wide_bits: 16, address_bits: self.mailbox_bits }
+        PartGeometry {
+            narrow_bits: 8,
+            wide_bits: 16,
+            address_bits: self.mailbox_bits,
+        }
     }
 }
 
@@ -74,7 +83,15 @@ pub struct HostLinksInputs {
 impl HostLinksInputs {
     /// The RTL's input vector.
     pub fn to_vector(&self) -> Vec<u64> {
-        let pins = |p: &BusPinInputs| [p.cs_n as u64, p.we_n as u64, p.rd_n as u64, p.address, p.data_in];
+        let pins = |p: &BusPinInputs| {
+            [
+                p.cs_n as u64,
+                p.we_n as u64,
+                p.rd_n as u64,
+                p.address,
+                p.data_in,
+            ]
+        };
         let mut v = vec![self.reset as u64];
         v.extend(pins(&self.dsp));
         v.extend(pins(&self.pc));
@@ -188,7 +205,8 @@ impl HostLinksModel {
         let to_registers = !self.to_mailbox();
         WordAssemblerInputs {
             reset: i.reset,
-            narrow_address: self.dsp_shown.bus_address & width_mask(self.geometry.register_bits + 1),
+            narrow_address: self.dsp_shown.bus_address
+                & width_mask(self.geometry.register_bits + 1),
             narrow_write_data: self.dsp_shown.bus_write_data,
             narrow_write: self.dsp_shown.bus_write && to_registers,
             narrow_read: self.dsp_shown.bus_read && to_registers,

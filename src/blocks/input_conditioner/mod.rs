@@ -101,7 +101,10 @@ pub struct InputConditioner<const W: usize> {
 
 impl<const W: usize> Default for InputConditioner<W> {
     fn default() -> Self {
-        assert!((1..=32).contains(&W), "InputConditioner takes 1 to 32 inputs");
+        assert!(
+            (1..=32).contains(&W),
+            "InputConditioner takes 1 to 32 inputs"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -155,7 +158,8 @@ impl<const W: usize> Logic for InputConditioner<W> {
             self.filters[i].reset.next = self.reset.val();
             // A mask, not a bit select: rust-hdl declares a 1-bit vector
             // without a range, where `x[0]` is illegal Verilog.
-            self.filters[i].raw.next = (self.sync_2.q.val() & self.bit_mask[i].val()) != self.zero_w.val();
+            self.filters[i].raw.next =
+                (self.sync_2.q.val() & self.bit_mask[i].val()) != self.zero_w.val();
             self.filters[i].sample.next = self.sample.val();
             self.filters[i].length.next = self.length.val();
             self.filters[i].prime.next = self.priming.val();

@@ -114,7 +114,13 @@ impl InputConditionerModel {
     pub fn step(&mut self, i: InputConditionerInputs) -> InputConditionerOutputs {
         let priming = self.primed != 3;
         for (bit, filter) in self.filters[..self.width].iter_mut().enumerate() {
-            filter.step(i.reset, self.sync_2 >> bit & 1 != 0, i.sample, i.length, priming);
+            filter.step(
+                i.reset,
+                self.sync_2 >> bit & 1 != 0,
+                i.sample,
+                i.length,
+                priming,
+            );
         }
         self.sync_2 = self.sync_1;
         self.sync_1 = i.raw & self.mask;

@@ -11,7 +11,6 @@
 
 use rust_hdl::prelude::*;
 
-
 use super::axis_io::AxisIo;
 use super::registers::{axis, fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
 use super::{PERIOD_BITS, STAGE_PENDING_BITS};
@@ -311,7 +310,11 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
         let c4 = |v: u32| Constant::new((v as u64).into());
         // rust-hdl prints a named constant by name: update() reads the
         // field at this literal bit.
-        assert_eq!(fields::AXIS_ANALOG, 13, "AXIS_CONFIG.ANALOG moved: update() reads bit 13");
+        assert_eq!(
+            fields::AXIS_ANALOG,
+            13,
+            "AXIS_CONFIG.ANALOG moved: update() reads bit 13"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -436,7 +439,9 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             window: Constant::new((window as u64).into()),
             has_uniform: Constant::new(uniform),
             has_analog: Constant::new(analog),
-            above_code: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(DAC_BITS as u32 - 1)).into()),
+            above_code: Constant::new(
+                (0xffff_ffffu64 & !crate::blocks::width_mask(DAC_BITS as u32 - 1)).into(),
+            ),
             zero_code: Constant::new(0u64.into()),
             bit0_32: Constant::new((1u64 << 0).into()),
             bit16_32: Constant::new((1u64 << 16).into()),
@@ -452,7 +457,9 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             zero32: Constant::new(0u64.into()),
             zero_count: Constant::new(0u64.into()),
             max_count: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
-            above_count: Constant::new((0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into()),
+            above_count: Constant::new(
+                (0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into(),
+            ),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
             mask16: Constant::new(0xffffu64.into()),
             config_mask: Constant::new((config_mask as u64).into()),
@@ -532,8 +539,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
 
         // Register window decode: bits 7..5 the window (AXIS_STRIDE_LOG2 =
         // 5), bit 4 the half (motion core or machine I/O), 3..0 the offset.
-        self.selected.next =
-            (self.address.val().get_bits::<3>(5) == self.window.val()) & !self.address.val().get_bit(4);
+        self.selected.next = (self.address.val().get_bits::<3>(5) == self.window.val())
+            & !self.address.val().get_bit(4);
         self.offset.next = self.address.val().get_bits::<4>(0);
         self.command.next =
             self.write.val() & self.selected.val() & (self.offset.val() == self.off_command.val());
@@ -571,15 +578,15 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.empty.next = self.fifo.empty.val();
         self.low.next = self.fifo.low.val();
         // CommandFifo refuses a write when full unless a pop frees a slot.
-        self.overflow_event.next =
-            self.fifo.write.val() & self.fifo.full.val() & !self.pop.val();
+        self.overflow_event.next = self.fifo.write.val() & self.fifo.full.val() & !self.pop.val();
         self.popped_valid.d.next = self.pop.val();
         self.underrun_d.d.next = self.underrun.val();
         self.tick_d.d.next = self.tick.val();
         // |entry| saturated to the interpolators' width, without a 32-bit
         // negation: too large is decided on the upper half alone (and
         // -2^16 itself), the count negates only the lower half.
-        self.upper_ones.next = (self.fifo.head.val() & self.above_count.val()) == self.above_count.val();
+        self.upper_ones.next =
+            (self.fifo.head.val() & self.above_count.val()) == self.above_count.val();
         self.upper_zero.next = (self.fifo.head.val() & self.above_count.val()) == self.zero32.val();
         if self.pop.val() {
             self.popped.d.next = self.fifo.head.val();
@@ -587,7 +594,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.popped_upper_ones.d.next = self.upper_ones.val();
             self.popped_low_nonzero.d.next =
                 self.fifo.head.val().get_bits::<PERIOD_BITS>(0) != self.zero_count.val();
-            self.code_wide.d.next = ((self.fifo.head.val() & self.above_code.val()) != self.zero32.val())
+            self.code_wide.d.next = ((self.fifo.head.val() & self.above_code.val())
+                != self.zero32.val())
                 & ((self.fifo.head.val() & self.above_code.val()) != self.above_code.val());
         }
         // The analog code; the controller saturates it (one saturator after
@@ -595,12 +603,14 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.dac_code.next = self.popped.q.val().get_bits::<DAC_BITS>(0);
         self.code_out_of_range.next = self.code_wide.q.val();
         self.code_negative.next = self.popped.q.val().get_bit(31);
-        self.code_nonzero.next =
-            (self.popped.q.val().get_bits::<DAC_BITS>(0) != self.zero_code.val()) | self.code_wide.q.val();
+        self.code_nonzero.next = (self.popped.q.val().get_bits::<DAC_BITS>(0)
+            != self.zero_code.val())
+            | self.code_wide.q.val();
         self.analog.next = self.analog_active.q.val();
         self.low_half.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
         if self.popped.q.val().get_bit(31) {
-            self.too_large.next = !self.popped_upper_ones.q.val() | !self.popped_low_nonzero.q.val();
+            self.too_large.next =
+                !self.popped_upper_ones.q.val() | !self.popped_low_nonzero.q.val();
             self.count.next = self.zero_count.val() - self.low_half.val();
         } else {
             self.too_large.next = self.popped_upper_nonzero.q.val();
@@ -662,7 +672,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
                 self.integrand.d.next = self.count.val();
             }
             if self.analog_active.q.val() {
-                self.code_forward.d.next = !self.popped.q.val().get_bit(31) & self.code_nonzero.val();
+                self.code_forward.d.next =
+                    !self.popped.q.val().get_bit(31) & self.code_nonzero.val();
                 self.code_backward.d.next = self.popped.q.val().get_bit(31);
             }
         }
@@ -782,8 +793,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
 
         // Machine I/O: limits, alarm, home and drive enable.
         self.io.reset.next = self.reset.val();
-        self.io.selected.next =
-            (self.address.val().get_bits::<3>(5) == self.window.val()) & self.address.val().get_bit(4);
+        self.io.selected.next = (self.address.val().get_bits::<3>(5) == self.window.val())
+            & self.address.val().get_bit(4);
         self.io.offset.next = self.address.val().get_bits::<4>(0);
         self.io.write.next = self.write.val();
         self.io.write_data.next = self.write_data.val();

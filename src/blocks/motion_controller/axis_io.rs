@@ -196,7 +196,13 @@ impl Default for AxisIo {
             off_home_cmd: c4(axis::HOME_CMD_POSITION),
             off_home_act: c4(axis::HOME_ACT_POSITION),
             config_reset: Constant::new((fields::IO_CONFIG_RESET as u64).into()),
-            config_mask: Constant::new((m4u(fields::LIMIT_ENABLE) | m4u(fields::ALARM_ENABLE) | m4u(fields::STOP_ON_HOME) | m4u(fields::DRIVE_ENABLE)).into()),
+            config_mask: Constant::new(
+                (m4u(fields::LIMIT_ENABLE)
+                    | m4u(fields::ALARM_ENABLE)
+                    | m4u(fields::STOP_ON_HOME)
+                    | m4u(fields::DRIVE_ENABLE))
+                .into(),
+            ),
             zero32: Constant::new(0u64.into()),
             m_limit_pos: m32(fields::IO_LIMIT_POS),
             m_limit_neg: m32(fields::IO_LIMIT_NEG),
@@ -264,7 +270,9 @@ impl Logic for AxisIo {
         self.limit_event.next = (self.cut_forward.val() & !self.limit_forward_tripped.q.val())
             | (self.cut_backward.val() & !self.limit_backward_tripped.q.val());
         // A trip on the clearing clock wins.
-        if self.command.val() & ((self.write_data.val() & self.k_clear_limits.val()) != self.zero32.val()) {
+        if self.command.val()
+            & ((self.write_data.val() & self.k_clear_limits.val()) != self.zero32.val())
+        {
             self.limit_forward_tripped.d.next = false;
             self.limit_backward_tripped.d.next = false;
         }
@@ -278,13 +286,16 @@ impl Logic for AxisIo {
             self.limit_forward_tripped.d.next = false;
             self.limit_backward_tripped.d.next = false;
         }
-        self.limit_held.next = self.limit_forward_tripped.q.val() | self.limit_backward_tripped.q.val();
+        self.limit_held.next =
+            self.limit_forward_tripped.q.val() | self.limit_backward_tripped.q.val();
 
         // Drive alarm: sticky while active, cleared only once it is gone.
         self.alarm_now.next = self.alarm.val()
             & ((self.io_config.val() & self.c_alarm_enable.val()) != self.zero32.val());
         self.alarm_tripped_next.next = self.alarm_tripped.q.val();
-        if self.command.val() & ((self.write_data.val() & self.k_clear_alarm.val()) != self.zero32.val()) {
+        if self.command.val()
+            & ((self.write_data.val() & self.k_clear_alarm.val()) != self.zero32.val())
+        {
             self.alarm_tripped_next.next = false;
         }
         if self.alarm_now.val() {
@@ -301,7 +312,9 @@ impl Logic for AxisIo {
         // this clock.
         self.home_latch.next = self.home_rise.val() & !self.home_seen.q.val();
         self.home_event.next = self.home_latch.val();
-        if self.command.val() & ((self.write_data.val() & self.k_clear_home.val()) != self.zero32.val()) {
+        if self.command.val()
+            & ((self.write_data.val() & self.k_clear_home.val()) != self.zero32.val())
+        {
             self.home_seen.d.next = false;
         }
         if self.home_latch.val() {

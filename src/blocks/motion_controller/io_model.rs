@@ -136,10 +136,16 @@ impl MachineIoModel {
 
     /// The combinational values of this clock.
     pub fn comb(&self, reset: bool, address: u32, estop_clear: bool) -> MachineIoComb {
-        let lp = self.limit_pos.outputs(self.class_invert(fields::POLARITY_LIMIT_POS));
-        let ln = self.limit_neg.outputs(self.class_invert(fields::POLARITY_LIMIT_NEG));
+        let lp = self
+            .limit_pos
+            .outputs(self.class_invert(fields::POLARITY_LIMIT_POS));
+        let ln = self
+            .limit_neg
+            .outputs(self.class_invert(fields::POLARITY_LIMIT_NEG));
         let hm = self.home.outputs(self.class_invert(fields::POLARITY_HOME));
-        let al = self.alarm.outputs(self.class_invert(fields::POLARITY_DRIVE_ALARM));
+        let al = self
+            .alarm
+            .outputs(self.class_invert(fields::POLARITY_DRIVE_ALARM));
         let es = self.estop.outputs(0);
         let estop_active = es.active & 1 != 0;
         let mut estop_next = self.estop_latch && !estop_clear;
@@ -220,7 +226,8 @@ impl MachineIoModel {
         if let Some((address, data)) = write {
             match address {
                 global::INPUT_FILTER => {
-                    self.filter = data & (0xf << fields::FILTER_LENGTH | 0xff << fields::FILTER_SAMPLE_RATE)
+                    self.filter =
+                        data & (0xf << fields::FILTER_LENGTH | 0xff << fields::FILTER_SAMPLE_RATE)
                 }
                 global::INPUT_POLARITY => {
                     self.polarity = data
@@ -356,12 +363,20 @@ impl AxisIoModel {
 
     /// The combinational values of this clock. `command` is the
     /// IO_COMMAND data written in this clock, if any.
-    pub fn comb(&self, reset: bool, s: &AxisSwitches, path: &StepPath, command: Option<u32>) -> AxisIoComb {
+    pub fn comb(
+        &self,
+        reset: bool,
+        s: &AxisSwitches,
+        path: &StepPath,
+        command: Option<u32>,
+    ) -> AxisIoComb {
         let limits = self.config(fields::LIMIT_ENABLE);
         let block_forward = s.limit_forward && limits;
         let block_backward = s.limit_backward && limits;
         let cut_forward = block_forward
-            && (path.pending_forward || (path.request && path.request_forward) || (path.pulse && path.pulse_forward));
+            && (path.pending_forward
+                || (path.request && path.request_forward)
+                || (path.pulse && path.pulse_forward));
         let cut_backward = block_backward
             && (path.pending_backward
                 || (path.request && !path.request_forward)

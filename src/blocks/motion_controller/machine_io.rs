@@ -214,8 +214,13 @@ impl<const K: usize> Default for MachineIo<K> {
             a_gpio_safe: a8(global::GPIO_SAFE),
             a_gpio_irq_enable: a8(global::GPIO_IRQ_ENABLE),
             a_gpio_edges: a8(global::GPIO_EDGES),
-            filter_mask: Constant::new(((0xfu64 << fields::FILTER_LENGTH) | (0xffu64 << fields::FILTER_SAMPLE_RATE)).into()),
-            filter_reset: Constant::new((fields::FILTER_LENGTH_RESET << fields::FILTER_LENGTH).into()),
+            filter_mask: Constant::new(
+                ((0xfu64 << fields::FILTER_LENGTH) | (0xffu64 << fields::FILTER_SAMPLE_RATE))
+                    .into(),
+            ),
+            filter_reset: Constant::new(
+                (fields::FILTER_LENGTH_RESET << fields::FILTER_LENGTH).into(),
+            ),
             polarity_mask: Constant::new(
                 ((1u64 << fields::POLARITY_LIMIT_POS)
                     | (1u64 << fields::POLARITY_LIMIT_NEG)
@@ -236,8 +241,12 @@ impl<const K: usize> Default for MachineIo<K> {
             ones_k: Constant::new(crate::blocks::width_mask(K as u32).into()),
             zero1: Constant::new(0u64.into()),
             one1: Constant::new(1u64.into()),
-            rise_mask: array_init::array_init(|i| Constant::new((1u64 << (fields::GPIO_RISE as usize + i)).into())),
-            fall_mask: array_init::array_init(|i| Constant::new((1u64 << (fields::GPIO_FALL as usize + i)).into())),
+            rise_mask: array_init::array_init(|i| {
+                Constant::new((1u64 << (fields::GPIO_RISE as usize + i)).into())
+            }),
+            fall_mask: array_init::array_init(|i| {
+                Constant::new((1u64 << (fields::GPIO_FALL as usize + i)).into())
+            }),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
         }
     }
@@ -258,12 +267,22 @@ impl<const K: usize> Logic for MachineIo<K> {
             gpio_irq_enable,
             gpio_edges
         );
-        clock!(self, clock, limit_pos_in, limit_neg_in, home_in, alarm_in, estop_in, gpio);
+        clock!(
+            self,
+            clock,
+            limit_pos_in,
+            limit_neg_in,
+            home_in,
+            alarm_in,
+            estop_in,
+            gpio
+        );
 
         // INPUT_FILTER and INPUT_POLARITY.
         self.filter.next = self.filter_x.q.val() ^ self.filter_reset.val();
         if self.write.val() & (self.address.val() == self.a_filter.val()) {
-            self.filter_x.d.next = (self.write_data.val() & self.filter_mask.val()) ^ self.filter_reset.val();
+            self.filter_x.d.next =
+                (self.write_data.val() & self.filter_mask.val()) ^ self.filter_reset.val();
         }
         if self.write.val() & (self.address.val() == self.a_polarity.val()) {
             self.polarity.d.next = self.write_data.val() & self.polarity_mask.val();
@@ -359,7 +378,8 @@ impl<const K: usize> Logic for MachineIo<K> {
         self.estop_latch.d.next = self.estop_next.val();
         self.estop_latched.next = self.estop_latch.q.val();
         self.estop_latched_next.next = self.estop_next.val();
-        self.estop_event.next = (self.estop_in.active.val() != self.zero1.val()) & !self.estop_latch.q.val();
+        self.estop_event.next =
+            (self.estop_in.active.val() != self.zero1.val()) & !self.estop_latch.q.val();
 
         // General outputs: the safe ones are cleared, and held 0, from the
         // edge that latches the E-stop and while the watchdog is expired.
@@ -395,10 +415,12 @@ impl<const K: usize> Logic for MachineIo<K> {
         }
         self.gpio_edges_next.next = self.gpio_edges.q.val();
         if self.write.val() & (self.address.val() == self.a_gpio_edges.val()) {
-            self.gpio_edges_next.next = self.gpio_edges.q.val() & !self.write_data.val().get_bits::<16>(0);
+            self.gpio_edges_next.next =
+                self.gpio_edges.q.val() & !self.write_data.val().get_bits::<16>(0);
         }
         self.gpio_edges.d.next = self.gpio_edges_next.val() | self.edges_now.val();
-        self.gpio_event.next = (self.edges_now.val() & self.gpio_irq_enable.q.val()) != self.zero16.val();
+        self.gpio_event.next =
+            (self.edges_now.val() & self.gpio_irq_enable.q.val()) != self.zero16.val();
         if self.reset.val() {
             self.gpio_irq_enable.d.next = self.zero16.val();
             self.gpio_edges.d.next = self.zero16.val();

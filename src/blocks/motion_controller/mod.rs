@@ -406,15 +406,16 @@ pub mod registers;
 
 use rust_hdl::prelude::*;
 
-
+use crate::blocks::dac_interface::DacInterface;
 use crate::blocks::freq_divider::FreqDivider;
 use crate::blocks::interrupt_controller::InterruptController;
 use crate::blocks::sequential_divider::SequentialDivider;
 use crate::blocks::watchdog::Watchdog;
 use axis::MotionAxis;
 use machine_io::MachineIo;
-use crate::blocks::dac_interface::DacInterface;
-use registers::{fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, DAC_BITS, ID_VALUE, VERSION_VALUE};
+use registers::{
+    fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, DAC_BITS, ID_VALUE, VERSION_VALUE,
+};
 
 /// The machine-I/O latencies in clocks, as the tests measure them. Clock
 /// c is the first clock whose inputs carry a pin's new level; "at c + n"
@@ -553,23 +554,50 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
         "active",
         "steps are still leaving (running, or an output stage or uniform generator busy)",
     ),
-    ("step_a", "bit k: axis k's step (step/dir), up (up/down) or A (quadrature)"),
+    (
+        "step_a",
+        "bit k: axis k's step (step/dir), up (up/down) or A (quadrature)",
+    ),
     ("step_b", "bit k: axis k's dir, down or B"),
     ("enc_a", "bit k: axis k's encoder A, asynchronous"),
     ("enc_b", "bit k: axis k's encoder B, asynchronous"),
     ("enc_index", "bit k: axis k's encoder index, asynchronous"),
-    ("limit_pos", "bit k: positive-end limit switch of axis k, 1 = tripped, asynchronous"),
-    ("limit_neg", "bit k: negative-end limit switch of axis k, 1 = tripped, asynchronous"),
-    ("home", "bit k: home switch of axis k, 1 = active, asynchronous"),
-    ("drive_alarm", "bit k: alarm of axis k's drive, 1 = in alarm, asynchronous"),
-    ("estop", "emergency stop chain, 1 = stopped, asynchronous (no polarity setting)"),
+    (
+        "limit_pos",
+        "bit k: positive-end limit switch of axis k, 1 = tripped, asynchronous",
+    ),
+    (
+        "limit_neg",
+        "bit k: negative-end limit switch of axis k, 1 = tripped, asynchronous",
+    ),
+    (
+        "home",
+        "bit k: home switch of axis k, 1 = active, asynchronous",
+    ),
+    (
+        "drive_alarm",
+        "bit k: alarm of axis k's drive, 1 = in alarm, asynchronous",
+    ),
+    (
+        "estop",
+        "emergency stop chain, 1 = stopped, asynchronous (no polarity setting)",
+    ),
     ("gpio_in", "general inputs, asynchronous"),
     ("drive_enable", "bit k: enable (servo-on) of axis k's drive"),
     ("gpio_out", "general outputs (GPIO_OUT)"),
-    ("dac_data", "DAC data bus, shared by the analog channels (0 in a build without them)"),
-    ("dac_cs_n", "bit k: chip select of axis k's DAC, active low (1 in a build without them)"),
+    (
+        "dac_data",
+        "DAC data bus, shared by the analog channels (0 in a build without them)",
+    ),
+    (
+        "dac_cs_n",
+        "bit k: chip select of axis k's DAC, active low (1 in a build without them)",
+    ),
     ("dac_l1_n", "DAC first-rank load, active low, shared"),
-    ("dac_ldac", "DAC second-rank load, active high, shared: every analog output changes on its rise"),
+    (
+        "dac_ldac",
+        "DAC second-rank load, active high, shared: every analog output changes on its rise",
+    ),
 ];
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
@@ -577,7 +605,13 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
 /// DDA only) and the analog outputs if `ANALOG` (K <= 8): see "Build
 /// options". See the [module documentation](self).
 #[derive(LogicBlock)]
-pub struct MotionController<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> {
+pub struct MotionController<
+    const K: usize,
+    const N: usize,
+    const NP1: usize,
+    const UNIFORM: bool,
+    const ANALOG: bool,
+> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
     /// Synchronous reset, active high.
@@ -840,8 +874,8 @@ pub struct MotionController<const K: usize, const N: usize, const NP1: usize, co
     level_mask: Constant<Bits<32>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Default
-    for MotionController<K, N, NP1, UNIFORM, ANALOG>
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
+    Default for MotionController<K, N, NP1, UNIFORM, ANALOG>
 {
     fn default() -> Self {
         assert!(
@@ -849,7 +883,10 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             "MotionController: 1 to {} axes",
             registers::MAX_AXES
         );
-        assert!(NP1 == N + 1 && (2..=8).contains(&N), "MotionController: N in 2..=8, NP1 = N + 1");
+        assert!(
+            NP1 == N + 1 && (2..=8).contains(&N),
+            "MotionController: N in 2..=8, NP1 = N + 1"
+        );
         let a8 = |v: u32| Constant::new((v as u64).into());
         let ev = |bit: u32| Constant::new((1u64 << bit).into());
         let m32 = |bit: u32| Constant::new((1u64 << bit).into());
@@ -858,13 +895,26 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             .expect("the controller's own register map validates");
         let dac_map = crate::blocks::dac_interface::registers::register_map(K, DAC_BITS)
             .expect("a dac_interface of K channels");
-        let dac_applied = dac_map.register("APPLIED").expect("the DAC's APPLIED").address as u64;
+        let dac_applied = dac_map
+            .register("APPLIED")
+            .expect("the DAC's APPLIED")
+            .address as u64;
         // The forwarded addresses are built so that CODE's cannot occur
         // (see `dac_low`): the DAC's map must keep this layout.
-        assert_eq!(dac_applied, 0b11000, "the DAC's APPLIED moved: dac_address builds 0x18 + k");
-        assert_eq!(crate::blocks::dac_interface::registers::CODE_BASE, 0b10000, "the DAC's CODE moved");
+        assert_eq!(
+            dac_applied, 0b11000,
+            "the DAC's APPLIED moved: dac_address builds 0x18 + k"
+        );
+        assert_eq!(
+            crate::blocks::dac_interface::registers::CODE_BASE,
+            0b10000,
+            "the DAC's CODE moved"
+        );
         for (_, _, name) in registers::DAC_GLOBAL {
-            assert!(dac_map.register(name).expect("a DAC register").address < 8, "DAC {name} moved above 7");
+            assert!(
+                dac_map.register(name).expect("a DAC register").address < 8,
+                "DAC {name} moved above 7"
+            );
         }
         let reg = |name: &str| map.register(name).expect("the controller's own register");
         let config = reg("CONFIG").reset_value();
@@ -922,15 +972,37 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             read_out: Default::default(),
             a_dac_global: array_init::array_init(|i| a8(registers::DAC_GLOBAL[i].1)),
             d_dac_global: array_init::array_init(|i| {
-                Constant::new((dac_map.register(registers::DAC_GLOBAL[i].2).expect("a dac_interface register").address as u64).into())
+                Constant::new(
+                    (dac_map
+                        .register(registers::DAC_GLOBAL[i].2)
+                        .expect("a dac_interface register")
+                        .address as u64)
+                        .into(),
+                )
             }),
-            a_dac_applied: array_init::array_init(|k| a8(AXIS_BASE + k as u32 * AXIS_STRIDE + registers::axis::DAC_APPLIED)),
+            a_dac_applied: array_init::array_init(|k| {
+                a8(AXIS_BASE + k as u32 * AXIS_STRIDE + registers::axis::DAC_APPLIED)
+            }),
             d_dac_applied: array_init::array_init(|k| Constant::new((k as u64).into())),
             zero5: Constant::new(0u64.into()),
             last_axis: Constant::new((1u64 << (K - 1)).into()),
             zero_code: Constant::new(0u64.into()),
-            dac_data_mask: Constant::new((if ANALOG { crate::blocks::width_mask(DAC_BITS as u32) } else { 0 }).into()),
-            dac_cs_idle: Constant::new((if ANALOG { 0 } else { crate::blocks::width_mask(K as u32) }).into()),
+            dac_data_mask: Constant::new(
+                (if ANALOG {
+                    crate::blocks::width_mask(DAC_BITS as u32)
+                } else {
+                    0
+                })
+                .into(),
+            ),
+            dac_cs_idle: Constant::new(
+                (if ANALOG {
+                    0
+                } else {
+                    crate::blocks::width_mask(K as u32)
+                })
+                .into(),
+            ),
             tick_divider: Default::default(),
             watchdog: Default::default(),
             interrupts: Default::default(),
@@ -1049,7 +1121,9 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             cause_limit: cause(StopCause::Limit),
             cause_alarm: cause(StopCause::DriveAlarm),
             cause_estop: cause(StopCause::Estop),
-            cause_axis: array_init::array_init(|k| Constant::new(((k as u64) << fields::STOP_CAUSE_AXIS).into())),
+            cause_axis: array_init::array_init(|k| {
+                Constant::new(((k as u64) << fields::STOP_CAUSE_AXIS).into())
+            }),
             axis_bit: array_init::array_init(|k| Constant::new((1u64 << k).into())),
             zero_k: Constant::new(0u64.into()),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
@@ -1058,8 +1132,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
     }
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool> Logic
-    for MotionController<K, N, NP1, UNIFORM, ANALOG>
+impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
+    Logic for MotionController<K, N, NP1, UNIFORM, ANALOG>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -1090,7 +1164,16 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             dac_read_sel,
             stop_zero_d
         );
-        clock!(self, clock, tick_divider, watchdog, interrupts, io, divider, dac);
+        clock!(
+            self,
+            clock,
+            tick_divider,
+            watchdog,
+            interrupts,
+            io,
+            divider,
+            dac
+        );
 
         // Global register writes.
         if self.bus_write.val() {
@@ -1184,10 +1267,11 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         // Run control and the period boundary.
         self.write_control.next =
             self.bus_write.val() & (self.bus_address.val() == self.a_control.val());
-        self.start.next =
-            self.write_control.val() & self.bus_write_data.val().get_bit(0) & !self.refuse_run.val();
-        self.halt.next = (self.write_control.val() & !self.bus_write_data.val().get_bit(0))
-            | self.abort.val();
+        self.start.next = self.write_control.val()
+            & self.bus_write_data.val().get_bit(0)
+            & !self.refuse_run.val();
+        self.halt.next =
+            (self.write_control.val() & !self.bus_write_data.val().get_bit(0)) | self.abort.val();
         self.all_ready.next = true;
         self.any_low.next = false;
         self.any_overflow.next = false;
@@ -1348,14 +1432,22 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             self.axes[i].address.next = self.bus_address.val();
             self.axes[i].write.next = self.bus_write.val();
             self.axes[i].write_data.next = self.bus_write_data.val();
-            self.axes[i].enc_a.next = (self.enc_a.val() & self.axis_bit[i].val()) != self.zero_k.val();
-            self.axes[i].enc_b.next = (self.enc_b.val() & self.axis_bit[i].val()) != self.zero_k.val();
-            self.axes[i].enc_index.next = (self.enc_index.val() & self.axis_bit[i].val()) != self.zero_k.val();
-            self.axes[i].limit_forward.next = (self.io.limit_pos_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
-            self.axes[i].limit_backward.next = (self.io.limit_neg_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
-            self.axes[i].home.next = (self.io.home_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
-            self.axes[i].home_rise.next = (self.io.home_rise.val() & self.axis_bit[i].val()) != self.zero_k.val();
-            self.axes[i].alarm.next = (self.io.alarm_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].enc_a.next =
+                (self.enc_a.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].enc_b.next =
+                (self.enc_b.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].enc_index.next =
+                (self.enc_index.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].limit_forward.next =
+                (self.io.limit_pos_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].limit_backward.next =
+                (self.io.limit_neg_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].home.next =
+                (self.io.home_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].home_rise.next =
+                (self.io.home_rise.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].alarm.next =
+                (self.io.alarm_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
             self.axes[i].drive_allowed.next = self.drive_allowed.val();
             if self.axes[i].out_a.val() {
                 self.steps_a.next = self.steps_a.val() | self.axis_bit[i].val();
@@ -1409,9 +1501,12 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             }
         }
         self.dac_walk.d.next = self.walk_now.val() << 1;
-        self.dac_update.d.next = ((self.walk_now.val() & self.last_axis.val()) != self.zero_k.val())
+        self.dac_update.d.next = ((self.walk_now.val() & self.last_axis.val())
+            != self.zero_k.val())
             & (self.analog_axes.val() != self.zero_k.val());
-        self.stop_zero.next = self.has_analog.val() & self.run.q.val() & (self.underrun.val() | self.halt.val())
+        self.stop_zero.next = self.has_analog.val()
+            & self.run.q.val()
+            & (self.underrun.val() | self.halt.val())
             & !self.abort.val();
         self.stop_zero_d.d.next = self.stop_zero.val();
         if self.stop_zero_d.q.val() {

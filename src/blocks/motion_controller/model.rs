@@ -6,21 +6,27 @@
 //! is computed in two phases, like the hardware: first the combinational
 //! values from the registered state of every part, then the edge.
 
-use super::io_model::{AxisIoComb, AxisIoModel, AxisSwitches, MachineIoModel, MachinePins, StepPath};
+use super::io_model::{
+    AxisIoComb, AxisIoModel, AxisSwitches, MachineIoModel, MachinePins, StepPath,
+};
 use super::registers::{
     self, axis, fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, ID_VALUE,
     VERSION_VALUE,
 };
 use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
 use crate::blocks::dac_interface::model::{DacInputs, DacModel, DacOutputs};
-use crate::blocks::dda_integrator::model::{DdaIntegratorInputs, DdaIntegratorModel, DdaIntegratorOutputs};
+use crate::blocks::dda_integrator::model::{
+    DdaIntegratorInputs, DdaIntegratorModel, DdaIntegratorOutputs,
+};
 use crate::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
 use crate::blocks::interrupt_controller::model::InterruptControllerModel;
-use crate::blocks::pulse_counter::model::{PulseCounterInputs, PulseCounterModel, PulseCounterOutputs};
-use crate::blocks::sequential_divider::model::{SequentialDividerInputs, SequentialDividerModel};
+use crate::blocks::pulse_counter::model::{
+    PulseCounterInputs, PulseCounterModel, PulseCounterOutputs,
+};
 use crate::blocks::quadrature_decoder::model::{
     QuadratureDecoderInputs, QuadratureDecoderModel, QuadratureDecoderOutputs,
 };
+use crate::blocks::sequential_divider::model::{SequentialDividerInputs, SequentialDividerModel};
 use crate::blocks::step_output::model::{StepOutputInputs, StepOutputModel, StepOutputOutputs};
 use crate::blocks::uniform_pulse_gen::model::{
     UniformPulseGenInputs, UniformPulseGenModel, UniformPulseGenOutputs,
@@ -130,7 +136,9 @@ impl ControllerOutputs {
             irq: v[1] != 0,
             running: v[2] != 0,
             active: v[3] != 0,
-            steps: (0..axes).map(|k| (v[4] >> k & 1 != 0, v[5] >> k & 1 != 0)).collect(),
+            steps: (0..axes)
+                .map(|k| (v[4] >> k & 1 != 0, v[5] >> k & 1 != 0))
+                .collect(),
             drive_enable: v[6] as u32,
             gpio_out: v[7] as u8,
             dac: DacPins {
@@ -318,7 +326,10 @@ impl AxisModel {
     /// clock, and its direction.
     fn candidate(&self) -> (bool, bool) {
         if self.glue.uniform_active {
-            (self.uniform_out.pulse && !self.glue.uniform_pulse_prev, self.uniform_forward())
+            (
+                self.uniform_out.pulse && !self.glue.uniform_pulse_prev,
+                self.uniform_forward(),
+            )
         } else {
             (self.dda_out.pulse, self.glue.forward_2)
         }
@@ -344,7 +355,11 @@ impl AxisModel {
     pub fn dac_code(&self) -> u64 {
         let popped = self.glue.popped as i32;
         let code = if self.glue.code_wide {
-            if popped < 0 { i16::MIN } else { i16::MAX }
+            if popped < 0 {
+                i16::MIN
+            } else {
+                i16::MAX
+            }
         } else {
             popped as i16
         };
@@ -389,7 +404,11 @@ impl AxisModel {
         let (pulse, pulse_forward) = self.candidate();
         // An analog axis moves the way its code points.
         let pulse = pulse || self.glue.code_forward || self.glue.code_backward;
-        let pulse_forward = if self.glue.analog_active { self.glue.code_forward } else { pulse_forward };
+        let pulse_forward = if self.glue.analog_active {
+            self.glue.code_forward
+        } else {
+            pulse_forward
+        };
         let path = StepPath {
             pending_forward: self.stage_out.pending_forward,
             pending_backward: self.stage_out.pending_backward,
@@ -399,45 +418,51 @@ impl AxisModel {
             pulse_forward,
         };
         let io_offset = address & (AXIS_STRIDE - 1);
-        let io_command = (write && self.io_selected(address) && io_offset == axis::IO_COMMAND).then_some(write_data);
+        let io_command = (write && self.io_selected(address) && io_offset == axis::IO_COMMAND)
+            .then_some(write_data);
         let io = self.io.comb(reset, &switches, &path, io_command);
         let fifo_write = write && selected && offset == axis::FIFO_WRITE;
         let low = self.fifo_out.level <= low_water;
-        let io_read = if self.io_selected(address) { self.io.read(io_offset, &switches) } else { 0 };
-        let read_data = io_read | if !selected {
-            0
+        let io_read = if self.io_selected(address) {
+            self.io.read(io_offset, &switches)
         } else {
-            match offset {
-                axis::FIFO_STATUS => {
-                    self.fifo_out.level as u32
-                        | (self.fifo_out.empty as u32) << 16
-                        | (self.fifo_out.full as u32) << 17
-                        | (low as u32) << 18
-                }
-                axis::AXIS_CONFIG => self.glue.config,
-                axis::STEP_LEN => self.glue.step_len,
-                axis::STEP_SPACE => self.glue.step_space,
-                axis::DIR_SETUP => self.glue.dir_setup,
-                axis::DIR_HOLD => self.glue.dir_hold,
-                axis::ENC_SAMPLE_RATE => self.glue.sample_rate,
-                axis::CMD_POSITION => self.position_out.count as u32,
-                axis::ACT_POSITION => self.encoder_out.count as u32,
-                axis::CMD_SNAPSHOT => self.glue.cmd_snapshot,
-                axis::ACT_SNAPSHOT => self.glue.act_snapshot,
-                axis::AXIS_STATUS => {
-                    self.stage_out.overrun as u32
-                        | (self.glue.overrange_flag as u32) << 1
-                        | (self.glue.overflow_flag as u32) << 2
-                        | (self.encoder_out.error as u32) << 3
-                        | (self.encoder_out.index_seen as u32) << 4
-                        | (self.stage_out.busy as u32) << 5
-                        | (self.uniform_out.running as u32) << 6
-                        | ((((self.glue.config >> 2) & 3) == 3) as u32) << 7
-                }
-                axis::INDEX_POSITION => self.encoder_out.index_count as u32,
-                _ => 0,
-            }
+            0
         };
+        let read_data = io_read
+            | if !selected {
+                0
+            } else {
+                match offset {
+                    axis::FIFO_STATUS => {
+                        self.fifo_out.level as u32
+                            | (self.fifo_out.empty as u32) << 16
+                            | (self.fifo_out.full as u32) << 17
+                            | (low as u32) << 18
+                    }
+                    axis::AXIS_CONFIG => self.glue.config,
+                    axis::STEP_LEN => self.glue.step_len,
+                    axis::STEP_SPACE => self.glue.step_space,
+                    axis::DIR_SETUP => self.glue.dir_setup,
+                    axis::DIR_HOLD => self.glue.dir_hold,
+                    axis::ENC_SAMPLE_RATE => self.glue.sample_rate,
+                    axis::CMD_POSITION => self.position_out.count as u32,
+                    axis::ACT_POSITION => self.encoder_out.count as u32,
+                    axis::CMD_SNAPSHOT => self.glue.cmd_snapshot,
+                    axis::ACT_SNAPSHOT => self.glue.act_snapshot,
+                    axis::AXIS_STATUS => {
+                        self.stage_out.overrun as u32
+                            | (self.glue.overrange_flag as u32) << 1
+                            | (self.glue.overflow_flag as u32) << 2
+                            | (self.encoder_out.error as u32) << 3
+                            | (self.encoder_out.index_seen as u32) << 4
+                            | (self.stage_out.busy as u32) << 5
+                            | (self.uniform_out.running as u32) << 6
+                            | ((((self.glue.config >> 2) & 3) == 3) as u32) << 7
+                    }
+                    axis::INDEX_POSITION => self.encoder_out.index_count as u32,
+                    _ => 0,
+                }
+            };
         AxisComb {
             io,
             low,
@@ -490,7 +515,11 @@ impl AxisModel {
             next.glue.overflow_flag = false;
         }
         next.glue.saturated = self.glue.popped_valid
-            && if self.glue.analog_active { self.glue.code_wide } else { self.too_large() };
+            && if self.glue.analog_active {
+                self.glue.code_wide
+            } else {
+                self.too_large()
+            };
         if self.glue.saturated || dda_rise || uniform_overrange_rise {
             next.glue.overrange_flag = true;
         }
@@ -547,7 +576,9 @@ impl AxisModel {
                 period: c.period_active,
                 count: magnitude,
                 mode: self.glue.config & 2 != 0,
-                load: self.glue.popped_valid && self.glue.uniform_active && !self.glue.analog_active,
+                load: self.glue.popped_valid
+                    && self.glue.uniform_active
+                    && !self.glue.analog_active,
                 clear_flags: clear_faults || c.start,
             },
             div_granted,
@@ -564,7 +595,11 @@ impl AxisModel {
         next.glue.uniform_running_forward = self.uniform_forward();
         // An abort or a blocked direction keeps the offered step out.
         let (candidate, candidate_forward) = self.candidate();
-        let blocked = if candidate_forward { comb.io.block_forward } else { comb.io.block_backward };
+        let blocked = if candidate_forward {
+            comb.io.block_forward
+        } else {
+            comb.io.block_backward
+        };
         next.glue.request = candidate && !c.abort && !blocked;
         next.glue.request_forward = candidate_forward;
         let (step, dir) = (self.glue.request, self.glue.request_forward);
@@ -615,12 +650,16 @@ impl AxisModel {
         }
         next.glue.encoder_error_prev = self.encoder_out.error;
         let io_offset = c.address & (AXIS_STRIDE - 1);
-        let io_write = (c.write && self.io_selected(c.address)).then_some((io_offset, c.write_data));
+        let io_write =
+            (c.write && self.io_selected(c.address)).then_some((io_offset, c.write_data));
         next.io.edge(
             c.reset,
             io_write,
             &comb.io,
-            (self.position_out.count as u32, self.encoder_out.count as u32),
+            (
+                self.position_out.count as u32,
+                self.encoder_out.count as u32,
+            ),
             c.drive_allowed,
         );
         if c.reset {
@@ -695,7 +734,8 @@ impl MotionControllerModel {
         analog: bool,
     ) -> Result<Self, crate::regmap::RegMapError> {
         let map = registers::register_map(axes, fifo_log2, uniform, analog)?;
-        let dac_map = crate::blocks::dac_interface::registers::register_map(axes, registers::DAC_BITS)?;
+        let dac_map =
+            crate::blocks::dac_interface::registers::register_map(axes, registers::DAC_BITS)?;
         let mut dac_addresses = Vec::new();
         for (_, address, name) in registers::DAC_GLOBAL {
             dac_addresses.push((address, dac_map.register(name)?.address as u64));
@@ -713,7 +753,9 @@ impl MotionControllerModel {
         Ok(Self {
             fifo_log2,
             config_value,
-            axes: (0..axes).map(|i| AxisModel::new(i, fifo_log2, config_mask)).collect(),
+            axes: (0..axes)
+                .map(|i| AxisModel::new(i, fifo_log2, config_mask))
+                .collect(),
             tick_divider: FreqDividerModel::new(32),
             tick: false,
             watchdog: WatchdogModel::new(),
@@ -798,11 +840,20 @@ impl MotionControllerModel {
                 ldac: self.dac_out.dac_ldac,
             }
         } else {
-            DacPins { data: 0, cs_n: crate::blocks::width_mask(k), l1_n: true, ldac: false }
+            DacPins {
+                data: 0,
+                cs_n: crate::blocks::width_mask(k),
+                l1_n: true,
+                ldac: false,
+            }
         };
         ControllerOutputs {
             dac,
-            read_data: if self.dac_read_sel { self.dac_out.bus_read_data as u32 } else { self.read_data },
+            read_data: if self.dac_read_sel {
+                self.dac_out.bus_read_data as u32
+            } else {
+                self.read_data
+            },
             irq: self.irq,
             running: self.run,
             active: self.run || self.axes.iter().any(AxisModel::busy),
@@ -851,7 +902,11 @@ impl MotionControllerModel {
 
     /// One rising clock edge; returns the outputs after it.
     pub fn step(&mut self, i: &ControllerInputs) -> ControllerOutputs {
-        assert_eq!(i.encoders.len(), self.axes.len(), "one encoder input per axis");
+        assert_eq!(
+            i.encoders.len(),
+            self.axes.len(),
+            "one encoder input per axis"
+        );
         let level_mask = (1u32 << (self.fifo_log2 + 1)) - 1;
         let address = i.address & 0xff;
         let write = |a: u32| i.write && address == a;
@@ -887,7 +942,17 @@ impl MotionControllerModel {
             .axes
             .iter()
             .zip(&io.switches)
-            .map(|(a, s)| a.comb(i.reset, address, i.write, i.write_data, pop, self.low_water as u64, *s))
+            .map(|(a, s)| {
+                a.comb(
+                    i.reset,
+                    address,
+                    i.write,
+                    i.write_data,
+                    pop,
+                    self.low_water as u64,
+                    *s,
+                )
+            })
             .collect();
         let any_low = combs.iter().any(|c| c.low);
         let mut events = 0u64;
@@ -896,7 +961,10 @@ impl MotionControllerModel {
         set(irq::FIFO_LOW, any_low && self.any_low_prev_n);
         set(irq::UNDERRUN, underrun);
         set(irq::OVERFLOW, combs.iter().any(|c| c.overflow_event));
-        set(irq::ENCODER_ERROR, combs.iter().any(|c| c.encoder_error_event));
+        set(
+            irq::ENCODER_ERROR,
+            combs.iter().any(|c| c.encoder_error_event),
+        );
         set(irq::WATCHDOG, expired && !self.expired_prev);
         set(irq::AXIS_FAULT, combs.iter().any(|c| c.fault_event));
         set(irq::LIMIT, combs.iter().any(|c| c.io.limit_event));
@@ -977,10 +1045,17 @@ impl MotionControllerModel {
             next.in_period = false;
         }
         if self.run && (underrun || halt) {
-            next.stop_cause = (cause_now.0 as u32) << fields::STOP_CAUSE_CAUSE | cause_now.1 << fields::STOP_CAUSE_AXIS;
+            next.stop_cause = (cause_now.0 as u32) << fields::STOP_CAUSE_CAUSE
+                | cause_now.1 << fields::STOP_CAUSE_AXIS;
         }
         next.abort_hold = io.estop_latched || any_limit_held || any_alarm_held || any_home_held;
-        next.io.edge(i.reset, &i.pins, i.write.then_some((address, i.write_data)), &io, expired);
+        next.io.edge(
+            i.reset,
+            &i.pins,
+            i.write.then_some((address, i.write_data)),
+            &io,
+            expired,
+        );
         let control = AxisControl {
             reset: i.reset,
             tick,
@@ -1010,7 +1085,9 @@ impl MotionControllerModel {
             .fold(0u64, |w, (k, a)| w | (a.analog() as u64) << k);
         let walk_now = if self.pop_d { 1 } else { self.dac_walk };
         let mut load = walk_now & analog_axes;
-        let mut load_code = (0..axes).find(|k| walk_now >> k & 1 == 1).map_or(0, |k| self.axes[k].dac_code());
+        let mut load_code = (0..axes)
+            .find(|k| walk_now >> k & 1 == 1)
+            .map_or(0, |k| self.axes[k].dac_code());
         next.dac_walk = (walk_now << 1) & crate::blocks::width_mask(axes as u32);
         next.dac_update = walk_now >> (axes - 1) & 1 == 1 && analog_axes != 0;
         next.stop_zero_d = self.analog && self.run && (underrun || halt) && !abort;
@@ -1042,14 +1119,21 @@ impl MotionControllerModel {
             next.dac_read_sel = dac_target.is_some();
         }
         let grant = next.divider_edge(i.reset || halt, &self.axes);
-        for (k, ((axis, pins), comb)) in next.axes.iter_mut().zip(&i.encoders).zip(&combs).enumerate() {
+        for (k, ((axis, pins), comb)) in next
+            .axes
+            .iter_mut()
+            .zip(&i.encoders)
+            .zip(&combs)
+            .enumerate()
+        {
             axis.edge(&control, *pins, comb, grant == Some(k));
         }
         next.any_low_prev_n = !any_low;
         next.expired_prev = expired;
         let clear = status_write.map(|d| (d & ((1 << irq::COUNT) - 1)) as u64);
         (next.status, next.irq) =
-            next.interrupts.step(i.reset, events, clear, self.irq_enable as u64);
+            next.interrupts
+                .step(i.reset, events, clear, self.irq_enable as u64);
         if i.read {
             next.read_data = read_word;
         }

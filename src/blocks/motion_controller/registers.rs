@@ -203,7 +203,10 @@ impl StopCause {
 
     /// The cause a `STOP_CAUSE.CAUSE` value encodes (`None` for 8 to 15).
     pub fn from_code(code: u32) -> StopCause {
-        Self::ALL.get(code as usize).copied().unwrap_or(StopCause::None)
+        Self::ALL
+            .get(code as usize)
+            .copied()
+            .unwrap_or(StopCause::None)
     }
 
     /// What the cause is, for people.
@@ -310,7 +313,12 @@ pub mod irq {
 
 /// A read-write register whose low `width` bits hold a number.
 fn number(name: &'static str, address: u32, width: u32, doc: &'static str) -> Register {
-    register(name, address, doc, vec![field("VALUE", 0, width, Access::ReadWrite, doc)])
+    register(
+        name,
+        address,
+        doc,
+        vec![field("VALUE", 0, width, Access::ReadWrite, doc)],
+    )
 }
 
 fn irq_fields(access: Access) -> Vec<Field> {

@@ -4,9 +4,7 @@
 use crate::blocks::bus_synchronizer::model::{
     BusPinInputs, BusSynchronizerModel, BusSynchronizerOutputs,
 };
-use crate::blocks::word_assembler::model::{
-    PartGeometry, WordAssemblerInputs, WordAssemblerModel,
-};
+use crate::blocks::word_assembler::model::{PartGeometry, WordAssemblerInputs, WordAssemblerModel};
 
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -68,12 +66,20 @@ impl NarrowBusModel {
 
     /// The exported 16-bit adapter's geometry.
     pub const fn geometry_16() -> PartGeometry {
-        PartGeometry { narrow_bits: 16, wide_bits: 32, address_bits: 8 }
+        PartGeometry {
+            narrow_bits: 16,
+            wide_bits: 32,
+            address_bits: 8,
+        }
     }
 
     /// The exported 8-bit adapter's geometry.
     pub const fn geometry_8() -> PartGeometry {
-        PartGeometry { narrow_bits: 8, wide_bits: 32, address_bits: 8 }
+        PartGeometry {
+            narrow_bits: 8,
+            wide_bits: 32,
+            address_bits: 8,
+        }
     }
 
     fn assembler_inputs(&self, i: &BusPinInputs) -> WordAssemblerInputs {
@@ -92,7 +98,10 @@ impl NarrowBusModel {
     pub fn step(&mut self, i: BusPinInputs) -> NarrowBusOutputs {
         let before = self.assembler_inputs(&i);
         let answer = self.words.outputs(&before).narrow_read_data;
-        self.shown = self.pins.step(BusPinInputs { bus_read_data: answer, ..i });
+        self.shown = self.pins.step(BusPinInputs {
+            bus_read_data: answer,
+            ..i
+        });
         self.words.clock(&before);
         let words = self.words.outputs(&self.assembler_inputs(&i));
         NarrowBusOutputs {

@@ -548,8 +548,9 @@ impl<const W: usize, const S: usize, const TS: usize> Logic for QuadratureDecode
         if self.down.q.val() {
             self.dir_reg.d.next = false;
         }
-        self.error_reg.d.next = (self.error_reg.q.val() & !self.clear.val() & !self.clear_error.val())
-            | self.double.q.val();
+        self.error_reg.d.next =
+            (self.error_reg.q.val() & !self.clear.val() & !self.clear_error.val())
+                | self.double.q.val();
         if self.up.q.val() | self.down.q.val() {
             self.count_time_reg.d.next = self.samples.q.val();
         }

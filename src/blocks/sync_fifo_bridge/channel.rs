@@ -12,7 +12,11 @@ use crate::regmap::Field;
 
 /// `[1 << (field.lsb + i)]` for the bits of a level field.
 fn level_bits<const NP1: usize>(field: &Field) -> [Constant<Bits<32>>; NP1] {
-    assert_eq!(field.width as usize, NP1, "{}: a level field is N + 1 bits", field.name);
+    assert_eq!(
+        field.width as usize, NP1,
+        "{}: a level field is N + 1 bits",
+        field.name
+    );
     array_init::array_init(|i| Constant::new((1u64 << (field.lsb as usize + i)).into()))
 }
 

@@ -148,7 +148,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("m_address", "master bus word address"),
     ("m_write_data", "master bus write data"),
     ("m_write", "master one-clock write strobe"),
-    ("m_read", "master one-clock read strobe (a STATUS read pops once)"),
+    (
+        "m_read",
+        "master one-clock read strobe (a STATUS read pops once)",
+    ),
     (
         "period_tick",
         "tick mode: the first pulse after a SYNC releases it; synchronous, one clock per pulse",
@@ -156,7 +159,10 @@ pub const PORT_DOCS: &[(&str, &str)] = &[
     ("s_address", "slave k's word address in bits [4k, 4k+4)"),
     ("s_write_data", "slave k's write data in bits [32k, 32k+32)"),
     ("s_write", "bit k: slave k's one-clock write strobe"),
-    ("s_read", "bit k: slave k's one-clock read strobe (a CMD read pops once)"),
+    (
+        "s_read",
+        "bit k: slave k's one-clock read strobe (a CMD read pops once)",
+    ),
     (
         "m_read_data",
         "master read data, valid in the clock after m_read, held until the next read",
@@ -373,7 +379,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const KSA: usize, const K
             self.any_pending.next = self.any_pending.val() | self.channels[i].status_pending.val();
             for b in 0..32 {
                 if self.channels[i].s_read_data.val().get_bit(b) {
-                    self.packed_read.next = self.packed_read.val() | self.wide_bit[i * 32 + b].val();
+                    self.packed_read.next =
+                        self.packed_read.val() | self.wide_bit[i * 32 + b].val();
                 }
             }
         }

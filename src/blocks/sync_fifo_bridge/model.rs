@@ -3,8 +3,8 @@
 //! come from the register maps, by name.
 
 use super::registers::{master_map, slave_map, SLAVE_ADDRESS_BITS};
-use crate::blocks::width_mask;
 use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
+use crate::blocks::width_mask;
 use crate::regmap::RegisterMap;
 
 /// One slave port's bus inputs in one clock.
@@ -62,7 +62,10 @@ impl BridgeInputs {
     pub fn to_vector(&self) -> Vec<u64> {
         let k = self.slaves.len();
         let bits = |f: fn(&SlaveBus) -> bool| {
-            self.slaves.iter().enumerate().fold(0, |v, (i, s)| v | (f(s) as u64) << i)
+            self.slaves
+                .iter()
+                .enumerate()
+                .fold(0, |v, (i, s)| v | (f(s) as u64) << i)
         };
         let mut v = vec![
             self.reset as u64,
@@ -71,7 +74,10 @@ impl BridgeInputs {
             self.m_write as u64,
             self.m_read as u64,
             self.period_tick as u64,
-            self.slaves.iter().enumerate().fold(0, |v, (i, s)| v | (s.address & width_mask(SLAVE_ADDRESS_BITS)) << (SLAVE_ADDRESS_BITS as usize * i)),
+            self.slaves.iter().enumerate().fold(0, |v, (i, s)| {
+                v | (s.address & width_mask(SLAVE_ADDRESS_BITS))
+                    << (SLAVE_ADDRESS_BITS as usize * i)
+            }),
         ];
         v.extend(pack_words(self.slaves.iter().map(|s| s.write_data), k));
         v.push(bits(|s| s.write));
@@ -102,7 +108,9 @@ impl BridgeOutputs {
         Self {
             m_read_data: v[0],
             m_irq: v[1] != 0,
-            s_read_data: (0..slaves).map(|k| wide[k / 2] >> (32 * (k % 2)) & width_mask(32)).collect(),
+            s_read_data: (0..slaves)
+                .map(|k| wide[k / 2] >> (32 * (k % 2)) & width_mask(32))
+                .collect(),
             s_data_ready: (0..slaves).map(|k| ready >> k & 1 != 0).collect(),
         }
     }
@@ -193,11 +201,16 @@ pub struct BridgeModel {
 }
 
 fn flag(map: &RegisterMap, register: &str, field: &str) -> u64 {
-    map.register(register).and_then(|r| r.field(field)).expect("a field of the bridge's map").mask() as u64
+    map.register(register)
+        .and_then(|r| r.field(field))
+        .expect("a field of the bridge's map")
+        .mask() as u64
 }
 
 fn pack(map: &RegisterMap, register: &str, fields: &[(&str, u64)]) -> u64 {
-    map.register(register).and_then(|r| r.pack(fields)).expect("a field of the bridge's map") as u64
+    map.register(register)
+        .and_then(|r| r.pack(fields))
+        .expect("a field of the bridge's map") as u64
 }
 
 impl BridgeModel {
@@ -207,7 +220,10 @@ impl BridgeModel {
         let slave = slave_map(fifo_log2).expect("valid bridge configuration");
         let global = |name: &str| master.register(name).expect("a global register").address as u64;
         let at = |name: &str, k: usize| {
-            master.register(name).and_then(|r| r.address_of(k as u32)).expect("a slave window") as u64
+            master
+                .register(name)
+                .and_then(|r| r.address_of(k as u32))
+                .expect("a slave window") as u64
         };
         let local = |name: &str| slave.register(name).expect("a slave register").address as u64;
         let windows = (0..slaves)
@@ -258,7 +274,11 @@ impl BridgeModel {
 
     /// One rising clock edge; returns the outputs after it.
     pub fn step(&mut self, i: &BridgeInputs) -> BridgeOutputs {
-        assert_eq!(i.slaves.len(), self.channels.len(), "one SlaveBus per slave");
+        assert_eq!(
+            i.slaves.len(),
+            self.channels.len(),
+            "one SlaveBus per slave"
+        );
         let mut events = BridgeEvents::default();
         let m_data = i.m_write_data & width_mask(32);
         let sync_write = i.m_write && i.m_address == self.a_sync;
@@ -272,17 +292,32 @@ impl BridgeModel {
         if i.m_read {
             let a = i.m_address;
             if a == self.a_id {
-                m_word = pack(&self.master, "ID", &[("VALUE", super::registers::ID_VALUE as u64)]);
+                m_word = pack(
+                    &self.master,
+                    "ID",
+                    &[("VALUE", super::registers::ID_VALUE as u64)],
+                );
             }
             if a == self.a_config {
-                m_word = self.master.register("CONFIG").expect("CONFIG").reset_value() as u64;
+                m_word = self
+                    .master
+                    .register("CONFIG")
+                    .expect("CONFIG")
+                    .reset_value() as u64;
             }
             if a == self.a_control {
-                m_word = pack(&self.master, "CONTROL", &[("TICK_MODE", self.tick_mode as u64)]);
+                m_word = pack(
+                    &self.master,
+                    "CONTROL",
+                    &[("TICK_MODE", self.tick_mode as u64)],
+                );
             }
             if a == self.a_state {
                 let bits = |f: fn(&Channel) -> bool| {
-                    self.channels.iter().enumerate().fold(0, |v, (k, c)| v | (f(c) as u64) << k)
+                    self.channels
+                        .iter()
+                        .enumerate()
+                        .fold(0, |v, (k, c)| v | (f(c) as u64) << k)
                 };
                 m_word = pack(
                     &self.master,
@@ -351,7 +386,10 @@ impl BridgeModel {
                     c.s_read_data = pack(
                         &self.slave,
                         "LEVELS",
-                        &[("CMD_READY", c.released), ("STATUS_LEVEL", c.status_out.level)],
+                        &[
+                            ("CMD_READY", c.released),
+                            ("STATUS_LEVEL", c.status_out.level),
+                        ],
                     );
                 }
                 if s_at(self.s_flags) {
@@ -396,10 +434,13 @@ impl BridgeModel {
             events.pops += pop as u32;
             events.status_pops += (status_pop && !c.status_out.empty) as u32;
             events.overflows += (cmd_write && c.cmd_out.full && !pop) as u32;
-            events.overflows += (status_write && c.status_out.full && !(status_pop && !c.status_out.empty)) as u32;
+            events.overflows +=
+                (status_write && c.status_out.full && !(status_pop && !c.status_out.empty)) as u32;
 
             c.cmd_out = c.cmd.step(i.reset, cmd_write, m_data, pop, 0, cmd_clear);
-            c.status_out = c.status.step(i.reset, status_write, s_data, status_pop, 0, status_clear);
+            c.status_out =
+                c.status
+                    .step(i.reset, status_write, s_data, status_pop, 0, status_clear);
         }
 
         if i.m_write && i.m_address == self.a_control {

@@ -53,7 +53,13 @@ pub fn master_map(slaves: usize, fifo_log2: u32) -> Result<RegisterMap, RegMapEr
         "build configuration",
         vec![
             field("SLAVES", 0, 8, ReadOnly, "number of slave ports K"),
-            field("FIFO_DEPTH_LOG2", 8, 4, ReadOnly, "every FIFO holds 2^n words"),
+            field(
+                "FIFO_DEPTH_LOG2",
+                8,
+                4,
+                ReadOnly,
+                "every FIFO holds 2^n words",
+            ),
         ],
     );
     config.fields[0].reset = slaves as u64;
@@ -179,10 +185,16 @@ pub fn slave_map(fifo_log2: u32) -> Result<RegisterMap, RegMapError> {
 
 /// One named field of a map: its register and the field, or a panic naming
 /// what is missing (the maps are fixed in this file, so a miss is a bug).
-pub fn field_of<'a>(map: &'a RegisterMap, register: &str, field: &str) -> (&'a Register, &'a Field) {
+pub fn field_of<'a>(
+    map: &'a RegisterMap,
+    register: &str,
+    field: &str,
+) -> (&'a Register, &'a Field) {
     let r = map
         .register(register)
         .unwrap_or_else(|e| panic!("{}: {e}", map.name));
-    let f = r.field(field).unwrap_or_else(|e| panic!("{}: {e}", map.name));
+    let f = r
+        .field(field)
+        .unwrap_or_else(|e| panic!("{}: {e}", map.name));
     (r, f)
 }

@@ -74,8 +74,8 @@
 //! error steps are stored in the slot: the steps are formed when a period
 //! starts, from N1, N2 and the order.
 
-pub mod pulse_core;
 pub mod model;
+pub mod pulse_core;
 
 use rust_hdl::prelude::*;
 
@@ -177,7 +177,10 @@ pub struct UniformPulseGen<const W: usize> {
 
 impl<const W: usize> Default for UniformPulseGen<W> {
     fn default() -> Self {
-        assert!((4..=32).contains(&W), "UniformPulseGen: W must be 4 to 32 bits");
+        assert!(
+            (4..=32).contains(&W),
+            "UniformPulseGen: W must be 4 to 32 bits"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),

@@ -127,7 +127,10 @@ pub struct UniformPulseCore<const W: usize> {
 
 impl<const W: usize> Default for UniformPulseCore<W> {
     fn default() -> Self {
-        assert!((4..=32).contains(&W), "UniformPulseGen: W must be 4 to 32 bits");
+        assert!(
+            (4..=32).contains(&W),
+            "UniformPulseGen: W must be 4 to 32 bits"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),

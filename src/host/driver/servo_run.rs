@@ -68,7 +68,10 @@ impl<B: ControllerBus> Driver<B> {
             following: std::array::from_fn(|k| self.config.analog[k].then(FollowingError::default)),
             ..Default::default()
         };
-        let faults = self.pack("STATUS", &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("AXIS_FAULT", 1)])?;
+        let faults = self.pack(
+            "STATUS",
+            &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("AXIS_FAULT", 1)],
+        )?;
 
         // Entry j, with the analog axes measured after `done` periods.
         let mut next_entry = |j: usize, done: usize, measured: [i64; 3]| -> [i32; 3] {
@@ -112,8 +115,17 @@ impl<B: ControllerBus> Driver<B> {
                 let state = self.read("STATE", 0)?;
                 if self.field("STATE", "RUNNING", state)? == 0 {
                     let (cause, axis) = self.stop_cause()?;
-                    let cause = if cause == StopCause::None { StopCause::Stop } else { cause };
-                    return Err(self.stopped(cause, axis, queued.min(counts.len()), counts.len())?);
+                    let cause = if cause == StopCause::None {
+                        StopCause::Stop
+                    } else {
+                        cause
+                    };
+                    return Err(self.stopped(
+                        cause,
+                        axis,
+                        queued.min(counts.len()),
+                        counts.len(),
+                    )?);
                 }
             }
             let status = self.read("STATUS", 0)?;

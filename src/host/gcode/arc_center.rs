@@ -55,7 +55,12 @@ pub(super) fn center_from_radius(
 /// Checks a center given by I, J, K: the radius at the start and at the
 /// end must agree within max(0.002 mm, 0.1 % of the start radius), close
 /// to LinuxCNC's tolerance for the rounding of a program's decimals.
-pub(super) fn check_center(start: [f64; 2], end: [f64; 2], center: [f64; 2], units: Units) -> Result<(), String> {
+pub(super) fn check_center(
+    start: [f64; 2],
+    end: [f64; 2],
+    center: [f64; 2],
+    units: Units,
+) -> Result<(), String> {
     let r0 = (start[0] - center[0]).hypot(start[1] - center[1]);
     let r1 = (end[0] - center[0]).hypot(end[1] - center[1]);
     if r0 < ZERO_RADIUS_MM {

@@ -56,7 +56,10 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
         0 => (Motion(self::Motion::Rapid), "one motion per block"),
         10 => (Motion(self::Motion::Line), "one motion per block"),
         20 => (Motion(self::Motion::Clockwise), "one motion per block"),
-        30 => (Motion(self::Motion::CounterClockwise), "one motion per block"),
+        30 => (
+            Motion(self::Motion::CounterClockwise),
+            "one motion per block",
+        ),
         40 => (Dwell, "one dwell per block"),
         170 => (Plane(self::Plane::Xy), "both select the plane"),
         180 => (Plane(self::Plane::Zx), "both select the plane"),
@@ -159,7 +162,9 @@ impl<'a> Words<'a> {
                 return Err(format!("{name} is not a finite number"));
             }
             let mut group = |group: &'static str| match groups.iter().find(|(g, _)| *g == group) {
-                Some((_, first)) => Err(format!("{} and {name} in one block: {group}", first.name())),
+                Some((_, first)) => {
+                    Err(format!("{} and {name} in one block: {group}", first.name()))
+                }
                 None => {
                     groups.push((group, word));
                     Ok(())
@@ -167,11 +172,16 @@ impl<'a> Words<'a> {
             };
             match word.letter {
                 'G' => {
-                    let code = word.code().ok_or_else(|| format!("{name} is not a G code"))?;
+                    let code = word
+                        .code()
+                        .ok_or_else(|| format!("{name} is not a G code"))?;
                     if let Some(what) = g_refused(code) {
-                        return Err(format!("{name} ({what}) changes the motion and is not supported"));
+                        return Err(format!(
+                            "{name} ({what}) changes the motion and is not supported"
+                        ));
                     }
-                    let (effect, g) = g_effect(code).ok_or_else(|| format!("{name} is not a supported G code"))?;
+                    let (effect, g) = g_effect(code)
+                        .ok_or_else(|| format!("{name} is not a supported G code"))?;
                     group(g)?;
                     match effect {
                         GEffect::Motion(m) => words.motion = Some((word, m)),
@@ -208,7 +218,9 @@ impl<'a> Words<'a> {
                     }
                     match letter {
                         'X' | 'Y' | 'Z' => words.first_axis = words.first_axis.or(Some(word)),
-                        'I' | 'J' | 'K' | 'R' => words.first_center = words.first_center.or(Some(word)),
+                        'I' | 'J' | 'K' | 'R' => {
+                            words.first_center = words.first_center.or(Some(word))
+                        }
                         _ => {}
                     }
                     let slot = match letter {

@@ -179,7 +179,8 @@ impl State {
         let words = Words::read(block)?;
         let motion = self.motion_to_run(&words)?;
         if let Some(p) = words.p {
-            let used = words.dwell.is_some() || words.path_control || motion.is_some_and(Motion::is_arc);
+            let used =
+                words.dwell.is_some() || words.path_control || motion.is_some_and(Motion::is_arc);
             if !used {
                 return Err(format!("{} has no G2, G3, G4 or G64 to use it", p.name()));
             }
@@ -201,7 +202,10 @@ impl State {
         // (step 12): an F beside a G20 is in the units in force before it.
         if let Some(f) = words.feed {
             if f.value <= 0.0 {
-                return Err(format!("{} is not a feed rate: it must be above zero", f.name()));
+                return Err(format!(
+                    "{} is not a feed rate: it must be above zero",
+                    f.name()
+                ));
             }
             self.feed = Some(f.value * self.units.mm_per_unit() / 60.0);
         }
@@ -250,7 +254,10 @@ impl State {
                 ));
             }
             if let Some(axis) = axis {
-                return Err(format!("{} on a G4 block: a dwell moves no axis", axis.name()));
+                return Err(format!(
+                    "{} on a G4 block: a dwell moves no axis",
+                    axis.name()
+                ));
             }
             if let Some(center) = center {
                 return Err(format!("{} has no G2 or G3 to use it", center.name()));
@@ -263,7 +270,10 @@ impl State {
             None => None,
         };
         if let (None, Some(axis)) = (motion, axis) {
-            return Err(format!("{} needs a motion mode (G0, G1, G2 or G3) first", axis.name()));
+            return Err(format!(
+                "{} needs a motion mode (G0, G1, G2 or G3) first",
+                axis.name()
+            ));
         }
         if let Some(center) = center.filter(|_| !motion.is_some_and(Motion::is_arc)) {
             return Err(format!("{} has no G2 or G3 to use it", center.name()));
@@ -274,13 +284,13 @@ impl State {
     }
 
     fn run(&mut self, motion: Motion, words: &Words, line: usize) -> Result<(), String> {
-        let feed = match motion {
-            Motion::Rapid => None,
-            _ => Some(
-                self.feed
-                    .ok_or_else(|| format!("{} needs a feed rate: no F word so far", motion.name()))?,
-            ),
-        };
+        let feed =
+            match motion {
+                Motion::Rapid => None,
+                _ => Some(self.feed.ok_or_else(|| {
+                    format!("{} needs a feed rate: no F word so far", motion.name())
+                })?),
+            };
         let scale = self.units.mm_per_unit();
         let start_mm = self.position_mm;
         let mut end = self.position;
@@ -322,7 +332,13 @@ impl State {
     /// The arc's shape; a full circle's end (`end` in program units and
     /// `end_mm`) is set to its start exactly, so that the planner sees the
     /// full circle the program meant rather than a sliver.
-    fn arc(&self, motion: Motion, words: &Words, end: &mut [f64; 3], end_mm: &mut [f64; 3]) -> Result<Arc, String> {
+    fn arc(
+        &self,
+        motion: Motion,
+        words: &Words,
+        end: &mut [f64; 3],
+        end_mm: &mut [f64; 3],
+    ) -> Result<Arc, String> {
         let (first, second, normal) = self.plane.axes();
         let start = self.position_mm;
         let (mut a, mut b) = (AXES[first], AXES[second]);
@@ -355,7 +371,11 @@ impl State {
         }
         let turns = match words.p {
             None => 0,
-            Some(p) if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(u32::MAX) => p.value as u32 - 1,
+            Some(p)
+                if p.value >= 1.0 && p.value.fract() == 0.0 && p.value <= f64::from(u32::MAX) =>
+            {
+                p.value as u32 - 1
+            }
             Some(p) => {
                 return Err(format!(
                     "{} is not a number of turns: a whole number, 1 or more",
@@ -378,7 +398,11 @@ impl State {
         } else if has_offset {
             let center = [first, second].map(|axis| {
                 let offset = words.offsets[axis].map_or(0.0, |w| w.value);
-                let base = if self.arc_incremental { self.position[axis] } else { 0.0 };
+                let base = if self.arc_incremental {
+                    self.position[axis]
+                } else {
+                    0.0
+                };
                 (base + offset) * scale
             });
             if full {
@@ -405,7 +429,9 @@ impl State {
 
 fn check_range(what: &str, mm: f64) -> Result<(), String> {
     if mm.abs() > POSITION_LIMIT_MM {
-        return Err(format!("{what} would be at {mm:.4} mm, beyond ±{POSITION_LIMIT_MM} mm"));
+        return Err(format!(
+            "{what} would be at {mm:.4} mm, beyond ±{POSITION_LIMIT_MM} mm"
+        ));
     }
     Ok(())
 }

@@ -72,10 +72,16 @@ fn lines_rapids_and_modal_motion_with_file_lines() {
 #[test]
 fn blocks_that_move_nothing_emit_nothing() {
     // A bare motion code sets the mode; a line to where it is adds nothing.
-    assert_eq!(run("G1 F60\nG0\nG2\nG1 X0 Y0\nG0 Z0").toolpath.items, vec![]);
+    assert_eq!(
+        run("G1 F60\nG0\nG2\nG1 X0 Y0\nG0 Z0").toolpath.items,
+        vec![]
+    );
     assert_eq!(
         moves("G1 F60\nX1\nG0\nX2"),
-        vec![line([1.0, 0.0, 0.0], Some(1.0), 2), line([2.0, 0.0, 0.0], None, 4)]
+        vec![
+            line([1.0, 0.0, 0.0], Some(1.0), 2),
+            line([2.0, 0.0, 0.0], None, 4)
+        ]
     );
 }
 
@@ -121,20 +127,38 @@ fn inches_convert_positions_and_feeds() {
     assert_eq!((p.units, p.final_position), (Units::Inch, [2.0, 0.5, 0.0]));
     assert_eq!(run("G20 G1 X1 F1\nG21").final_position, [25.4, 0.0, 0.0]);
     // Repeating the units in force keeps the program's own sums.
-    assert_eq!(run("G20 G0 X0.1\nG20 G91 X0.2").final_position, [0.1 + 0.2, 0.0, 0.0]);
-    assert_eq!((Units::Inch.name(), Units::Inch.mm_per_unit()), ("in", 25.4));
-    assert_eq!((Units::Millimetre.name(), Units::Millimetre.mm_per_unit()), ("mm", 1.0));
+    assert_eq!(
+        run("G20 G0 X0.1\nG20 G91 X0.2").final_position,
+        [0.1 + 0.2, 0.0, 0.0]
+    );
+    assert_eq!(
+        (Units::Inch.name(), Units::Inch.mm_per_unit()),
+        ("in", 25.4)
+    );
+    assert_eq!(
+        (Units::Millimetre.name(), Units::Millimetre.mm_per_unit()),
+        ("mm", 1.0)
+    );
 }
 
 #[test]
 fn feed_rates() {
-    assert_eq!(error("G1 X1"), "line 1: G1 needs a feed rate: no F word so far");
-    assert_eq!(error("G3 X10 I5"), "line 1: G3 needs a feed rate: no F word so far");
+    assert_eq!(
+        error("G1 X1"),
+        "line 1: G1 needs a feed rate: no F word so far"
+    );
+    assert_eq!(
+        error("G3 X10 I5"),
+        "line 1: G3 needs a feed rate: no F word so far"
+    );
     assert_eq!(
         error("G0 X1\nG1 F0"),
         "line 2: F0 is not a feed rate: it must be above zero"
     );
-    assert_eq!(error("G1 F-5"), "line 1: F-5 is not a feed rate: it must be above zero");
+    assert_eq!(
+        error("G1 F-5"),
+        "line 1: F-5 is not a feed rate: it must be above zero"
+    );
     assert_eq!(moves("G0 X1\nG1 X2 F30")[1].feed, Some(0.5));
 }
 
@@ -223,7 +247,11 @@ fn radius_arcs_take_the_short_or_long_way() {
     assert!(close(arc.center, below), "{:?}", arc.center);
     // In inches, R converts too.
     let (arc, _) = only_arc("G20 G2 X2 R2 F60");
-    assert!(close(arc.center, [25.4, -(3.0f64).sqrt() * 25.4]), "{:?}", arc.center);
+    assert!(
+        close(arc.center, [25.4, -(3.0f64).sqrt() * 25.4]),
+        "{:?}",
+        arc.center
+    );
 }
 
 #[test]
@@ -258,14 +286,19 @@ fn full_circles_turns_and_helices() {
     );
     assert_eq!(end, [0.0; 3]);
     let (arc, end) = only_arc("G3 X0 Y0 Z-2 I5 P3 F60");
-    assert_eq!((arc.turns, arc.clockwise, end), (2, false, [0.0, 0.0, -2.0]));
+    assert_eq!(
+        (arc.turns, arc.clockwise, end),
+        (2, false, [0.0, 0.0, -2.0])
+    );
     let (arc, end) = only_arc("G17 G2 X10 Y0 Z5 I5 F60");
     assert_eq!((arc.center, end), ([5.0, 0.0], [10.0, 0.0, 5.0]));
     // An end a rounding error away from the start is the start: a full
     // circle, not a sliver.
     let start = 25.4 / 3.0;
     let p = interpret_from("G20 G2 X0.3333333333333333 I1 F1", [start, 0.0, 0.0]).unwrap();
-    let Item::Move(m) = p.toolpath.items[0] else { panic!() };
+    let Item::Move(m) = p.toolpath.items[0] else {
+        panic!()
+    };
     assert_eq!(m.end, [start, 0.0, 0.0]);
     assert_eq!(p.final_position, [start / 25.4, 0.0, 0.0]);
 }
@@ -325,7 +358,10 @@ fn arc_errors() {
         error("G2 X0 I5 F60 P0"),
         "line 1: P0 is not a number of turns: a whole number, 1 or more"
     );
-    assert_eq!(error("G1 X1 I5 F60"), "line 1: I5 has no G2 or G3 to use it");
+    assert_eq!(
+        error("G1 X1 I5 F60"),
+        "line 1: I5 has no G2 or G3 to use it"
+    );
     assert_eq!(error("G0 X1 R5"), "line 1: R5 has no G2 or G3 to use it");
     assert_eq!(error("J5"), "line 1: J5 has no G2 or G3 to use it");
 }
@@ -333,9 +369,24 @@ fn arc_errors() {
 #[test]
 fn dwells() {
     let p = run("G1 X1 F60\nG4 P1.5\nX2\nG4 P0");
-    assert_eq!(p.toolpath.items[1], Item::Dwell { seconds: 1.5, line: 2 });
-    assert_eq!(p.toolpath.items[2], Item::Move(line([2.0, 0.0, 0.0], Some(1.0), 3)));
-    assert_eq!(p.toolpath.items[3], Item::Dwell { seconds: 0.0, line: 4 });
+    assert_eq!(
+        p.toolpath.items[1],
+        Item::Dwell {
+            seconds: 1.5,
+            line: 2
+        }
+    );
+    assert_eq!(
+        p.toolpath.items[2],
+        Item::Move(line([2.0, 0.0, 0.0], Some(1.0), 3))
+    );
+    assert_eq!(
+        p.toolpath.items[3],
+        Item::Dwell {
+            seconds: 0.0,
+            line: 4
+        }
+    );
     // A motion code beside G4 only sets the mode.
     assert_eq!(run("G1 G4 P1 F60\nX1").toolpath.items.len(), 2);
     assert_eq!(error("G4"), "line 1: G4 needs a dwell time: P, in seconds");
@@ -352,12 +403,18 @@ fn dwells() {
         "line 1: G1 and G4 in one block: one motion per block"
     );
     assert_eq!(error("G4 P1 P2"), "line 1: P appears twice");
-    assert_eq!(error("G4 G4 P2"), "line 1: G4 and G4 in one block: one dwell per block");
+    assert_eq!(
+        error("G4 G4 P2"),
+        "line 1: G4 and G4 in one block: one dwell per block"
+    );
 }
 
 #[test]
 fn block_delete_and_program_end() {
-    assert_eq!(moves("/G1 X5 F60\nG0 X1\n/G41"), vec![line([1.0, 0.0, 0.0], None, 2)]);
+    assert_eq!(
+        moves("/G1 X5 F60\nG0 X1\n/G41"),
+        vec![line([1.0, 0.0, 0.0], None, 2)]
+    );
     let p = run("G0 X1\nM30\nG41\nG0 X5");
     assert_eq!((p.end, p.toolpath.items.len()), (Some(2), 1));
     // The motion on the end's own block runs first.
@@ -371,7 +428,11 @@ fn block_delete_and_program_end() {
 #[test]
 fn ignored_words_are_reported_once_at_their_first_line() {
     let p = run("T1 M6\nM3 S12000 M8\nG64 P0.01 Q0.01\nM3 S8000 T2\nM5 M9 M0\nG61\nH1 D2\nM104 S200\nG97 M1 M104\nM2");
-    let got: Vec<_> = p.ignored.iter().map(|i| (i.line, i.word.as_str(), i.what)).collect();
+    let got: Vec<_> = p
+        .ignored
+        .iter()
+        .map(|i| (i.line, i.word.as_str(), i.what))
+        .collect();
     assert_eq!(
         got,
         vec![
@@ -467,7 +528,10 @@ fn words_this_machine_does_not_have() {
         "line 1: L2 is used only by G10 and canned cycles, which are not supported"
     );
     assert_eq!(error("G0 X1 Q1"), "line 1: Q1 has no G64 to use it");
-    assert_eq!(error("G1 X1 P2 F60"), "line 1: P2 has no G2, G3, G4 or G64 to use it");
+    assert_eq!(
+        error("G1 X1 P2 F60"),
+        "line 1: P2 has no G2, G3, G4 or G64 to use it"
+    );
 }
 
 #[test]
@@ -501,7 +565,10 @@ fn one_word_per_letter_and_one_code_per_group() {
         error("M2 M30"),
         "line 1: M2 and M30 in one block: both stop the program"
     );
-    assert_eq!(error("M3 M5"), "line 1: M3 and M5 in one block: both set the spindle");
+    assert_eq!(
+        error("M3 M5"),
+        "line 1: M3 and M5 in one block: both set the spindle"
+    );
     // Coolant M7 and M8 may be on together, as in LinuxCNC.
     assert_eq!(run("M7 M8").ignored.len(), 2);
 }

@@ -120,7 +120,9 @@ pub fn lex_line(line: usize, text: &str) -> Result<Option<Block>, LexError> {
                     .ok_or_else(|| error("comment `(` is not closed on its line".into()))?;
                 let comment = &body[at + 1..at + close];
                 if comment.contains('(') {
-                    return Err(error(format!("comment `({comment})` holds a `(`: comments do not nest")));
+                    return Err(error(format!(
+                        "comment `({comment})` holds a `(`: comments do not nest"
+                    )));
                 }
                 block.comments.push(comment.to_string());
                 at += close + 1;
@@ -136,7 +138,10 @@ pub fn lex_line(line: usize, text: &str) -> Result<Option<Block>, LexError> {
                 let word = parse_word(letter, &number).map_err(error)?;
                 if letter == 'N' {
                     if !block.words.is_empty() || block.number.is_some() {
-                        return Err(error(format!("line number {} is not the first word", word.name())));
+                        return Err(error(format!(
+                            "line number {} is not the first word",
+                            word.name()
+                        )));
                     }
                     block.number = Some(word.text.parse().map_err(|_| {
                         error(format!("line number {} is not a whole number", word.name()))
@@ -166,7 +171,9 @@ fn checked_body(line: &str) -> Result<&str, String> {
         .map_err(|_| format!("checksum `*{tail}` is not a number from 0 to 255"))?;
     let computed = body.bytes().fold(0u8, |x, b| x ^ b);
     if given != computed {
-        return Err(format!("checksum *{given} does not match the line (its bytes give *{computed})"));
+        return Err(format!(
+            "checksum *{given} does not match the line (its bytes give *{computed})"
+        ));
     }
     Ok(body)
 }
@@ -243,7 +250,10 @@ mod tests {
     #[test]
     fn words_with_and_without_spaces_and_in_either_case() {
         assert_eq!(words("G1X1Y2"), vec![('G', 1.0), ('X', 1.0), ('Y', 2.0)]);
-        assert_eq!(words("g01 x.5 y-0.25 z+1."), vec![('G', 1.0), ('X', 0.5), ('Y', -0.25), ('Z', 1.0)]);
+        assert_eq!(
+            words("g01 x.5 y-0.25 z+1."),
+            vec![('G', 1.0), ('X', 0.5), ('Y', -0.25), ('Z', 1.0)]
+        );
         assert_eq!(words("G 1 X 1 2.5"), vec![('G', 1.0), ('X', 12.5)]);
         assert_eq!(words("X1234.5678")[0].1, 1234.5678);
     }
@@ -263,18 +273,33 @@ mod tests {
 
     #[test]
     fn line_numbers_comments_block_delete_and_checksums() {
-        let block = lex_line(7, "/N10 G1 X1 (to the edge) Y2 ; and up").unwrap().unwrap();
+        let block = lex_line(7, "/N10 G1 X1 (to the edge) Y2 ; and up")
+            .unwrap()
+            .unwrap();
         assert_eq!(block.line, 7);
         assert!(block.deleted);
         assert_eq!(block.number, Some(10));
         assert_eq!(block.words.len(), 3);
-        assert_eq!(block.comments, vec!["to the edge".to_string(), " and up".to_string()]);
+        assert_eq!(
+            block.comments,
+            vec!["to the edge".to_string(), " and up".to_string()]
+        );
         // N3 T0*57: the RepRap documentation's example.
         let block = lex_line(1, "N3 T0*57").unwrap().unwrap();
-        assert_eq!((block.number, block.words[0].name()), (Some(3), "T0".to_string()));
+        assert_eq!(
+            (block.number, block.words[0].name()),
+            (Some(3), "T0".to_string())
+        );
         assert_eq!(lex_line(1, "%").unwrap(), None);
         assert_eq!(lex_line(1, "   ").unwrap(), None);
-        assert_eq!(lex_line(1, "(only a comment *)").unwrap().unwrap().words.len(), 0);
+        assert_eq!(
+            lex_line(1, "(only a comment *)")
+                .unwrap()
+                .unwrap()
+                .words
+                .len(),
+            0
+        );
     }
 
     #[test]
@@ -284,12 +309,30 @@ mod tests {
         assert_eq!(message("G1 X1.2.3"), "line 12: `X1.2.3` is not a number");
         assert_eq!(message("G1 X-"), "line 12: `X-` is not a number");
         assert_eq!(message("G1 X1 $"), "line 12: unexpected character `$`");
-        assert_eq!(message("G1 (open"), "line 12: comment `(` is not closed on its line");
-        assert_eq!(message("G1 (a (b) c)"), "line 12: comment `(a (b)` holds a `(`: comments do not nest");
-        assert_eq!(message("N3 T0*58"), "line 12: checksum *58 does not match the line (its bytes give *57)");
-        assert_eq!(message("N3 T0*x"), "line 12: checksum `*x` is not a number from 0 to 255");
-        assert_eq!(message("G1 N3"), "line 12: line number N3 is not the first word");
-        assert_eq!(message("N3.5 G1"), "line 12: line number N3.5 is not a whole number");
+        assert_eq!(
+            message("G1 (open"),
+            "line 12: comment `(` is not closed on its line"
+        );
+        assert_eq!(
+            message("G1 (a (b) c)"),
+            "line 12: comment `(a (b)` holds a `(`: comments do not nest"
+        );
+        assert_eq!(
+            message("N3 T0*58"),
+            "line 12: checksum *58 does not match the line (its bytes give *57)"
+        );
+        assert_eq!(
+            message("N3 T0*x"),
+            "line 12: checksum `*x` is not a number from 0 to 255"
+        );
+        assert_eq!(
+            message("G1 N3"),
+            "line 12: line number N3 is not the first word"
+        );
+        assert_eq!(
+            message("N3.5 G1"),
+            "line 12: line number N3.5 is not a whole number"
+        );
         assert_eq!(
             lex_program("G21\n\nG1 X1 @\n").unwrap_err().to_string(),
             "line 3: unexpected character `@`"

@@ -55,13 +55,26 @@ pub(super) struct Layout<'a> {
 
 /// Returns the path of the shared library for `verilog` (with top module
 /// `layout.module`), building it unless the cache has it.
-pub(super) fn library(verilog: &str, layout: &Layout, trace: bool) -> Result<PathBuf, CompiledError> {
+pub(super) fn library(
+    verilog: &str,
+    layout: &Layout,
+    trace: bool,
+) -> Result<PathBuf, CompiledError> {
     let verilator = tool_version("verilator", &["--version"])?;
     let compiler = tool_version("g++", &["--version"])?;
     let wrapper = wrapper_verilog(layout);
     let shim = shim_cpp(layout, trace);
     let mut hasher = DefaultHasher::new();
-    (SHIM_VERSION, verilog, &wrapper, &shim, &verilator, &compiler, trace).hash(&mut hasher);
+    (
+        SHIM_VERSION,
+        verilog,
+        &wrapper,
+        &shim,
+        &verilator,
+        &compiler,
+        trace,
+    )
+        .hash(&mut hasher);
     VERILATOR_FLAGS.hash(&mut hasher);
     CXX_FLAGS.hash(&mut hasher);
     let key = format!("{}-{:016x}", layout.module, hasher.finish());
@@ -81,13 +94,26 @@ pub(super) fn library(verilog: &str, layout: &Layout, trace: bool) -> Result<Pat
         .map_err(|e| io(&root, e))?;
     let dir = work.path();
     let built = dir.join("libmodel.so");
-    compile(dir, verilog, layout, trace, &shim, &runtime, &["-shared"], &built)?;
+    compile(
+        dir,
+        verilog,
+        layout,
+        trace,
+        &shim,
+        &runtime,
+        &["-shared"],
+        &built,
+    )?;
     let staged = work.keep();
     if std::fs::rename(&staged, &done).is_err() && !lib.exists() {
         // A folder left without its library (a cleaner emptied it): replace it.
         let _ = std::fs::remove_dir_all(&done);
         std::fs::rename(&staged, &done).map_err(|e| {
-            CompiledError::Build(format!("cannot move {} to {}: {e}", staged.display(), done.display()))
+            CompiledError::Build(format!(
+                "cannot move {} to {}: {e}",
+                staged.display(),
+                done.display()
+            ))
         })?;
     }
     let _ = std::fs::remove_dir_all(&staged);
@@ -157,7 +183,11 @@ fn compile(
 /// program that runs the same model over a file of input words (one cycle
 /// after another, the shim's cycle), from power-up, a given number of
 /// times, and prints `cycles seconds checksum` for each run.
-pub(super) fn plain_loop(verilog: &str, layout: &Layout, dir: &Path) -> Result<PathBuf, CompiledError> {
+pub(super) fn plain_loop(
+    verilog: &str,
+    layout: &Layout,
+    dir: &Path,
+) -> Result<PathBuf, CompiledError> {
     let verilator = tool_version("verilator", &["--version"])?;
     let compiler = tool_version("g++", &["--version"])?;
     let runtime = runtime_objects(&cache_root(), &verilator, &compiler, false)?;
@@ -280,13 +310,21 @@ fn runtime_objects(
 /// `$VERILATOR_ROOT/include`, as Verilator itself reports it (its first
 /// line: a Perl warning on stderr comes after it).
 fn verilator_include() -> Result<PathBuf, CompiledError> {
-    let root = run(Command::new("verilator").arg("--getenv").arg("VERILATOR_ROOT"))?;
+    let root = run(Command::new("verilator")
+        .arg("--getenv")
+        .arg("VERILATOR_ROOT"))?;
     Ok(PathBuf::from(root.lines().next().unwrap_or_default().trim()).join("include"))
 }
 
 /// The top Verilator builds: the design with its ports renamed `i0..`, `o0..`.
 fn wrapper_verilog(layout: &Layout) -> String {
-    let range = |w: usize| if w > 1 { format!("[{}:0] ", w - 1) } else { String::new() };
+    let range = |w: usize| {
+        if w > 1 {
+            format!("[{}:0] ", w - 1)
+        } else {
+            String::new()
+        }
+    };
     let mut ports = vec!["clock".to_string()];
     let mut declarations = vec!["    input wire clock;".to_string()];
     let mut connections = vec![format!("        .{}(clock)", layout.clock)];
@@ -391,7 +429,11 @@ fn store(member: &str, slot: &Slot) -> String {
         format!("{member} = in[{o}] & 0x{mask:x}ULL;")
     } else {
         let words = w.div_ceil(32);
-        let top_mask = if w % 32 == 0 { u32::MAX } else { (1u32 << (w % 32)) - 1 };
+        let top_mask = if w % 32 == 0 {
+            u32::MAX
+        } else {
+            (1u32 << (w % 32)) - 1
+        };
         format!(
             "for (int k = 0; k < {words}; k++) {member}[k] = (uint32_t)(in[{o} + k / 2] >> (32 * (k % 2))); {member}[{last}] &= 0x{top_mask:x}u;",
             last = words - 1

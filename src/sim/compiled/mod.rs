@@ -17,8 +17,8 @@ use rust_hdl::core::prelude::Block;
 
 use crate::export::{module_verilog, top_ports, Port, PortDirection};
 
-pub use build::{cache_root, INSTALL_LINE};
 pub(crate) use build::tool_version;
+pub use build::{cache_root, INSTALL_LINE};
 
 /// Why a compiled model could not be built, loaded or used.
 #[derive(Debug, thiserror::Error)]
@@ -128,7 +128,11 @@ impl CompiledModel {
     }
 
     /// The Verilog of `block` as generated now (top module `module`).
-    pub fn from_block(module: &str, block: &mut dyn Block, trace: bool) -> Result<Self, CompiledError> {
+    pub fn from_block(
+        module: &str,
+        block: &mut dyn Block,
+        trace: bool,
+    ) -> Result<Self, CompiledError> {
         let verilog = module_verilog(module, block)?;
         let ports = top_ports(block);
         Self::from_verilog(module, &verilog, "clock", &ports, trace)
@@ -153,12 +157,24 @@ impl CompiledModel {
                 .get(b"mh_abi_version")
                 .map_err(|e| load_error(e.to_string()))?;
             if version() != build::SHIM_VERSION {
-                return Err(load_error(format!("glue version {} is not {}", version(), build::SHIM_VERSION)));
+                return Err(load_error(format!(
+                    "glue version {} is not {}",
+                    version(),
+                    build::SHIM_VERSION
+                )));
             }
-            let new: NewFn = *library.get(b"mh_new").map_err(|e| load_error(e.to_string()))?;
-            let cycle_fn: CycleFn = *library.get(b"mh_cycle").map_err(|e| load_error(e.to_string()))?;
-            let free_fn: FreeFn = *library.get(b"mh_free").map_err(|e| load_error(e.to_string()))?;
-            let trace_fn: TraceFn = *library.get(b"mh_trace").map_err(|e| load_error(e.to_string()))?;
+            let new: NewFn = *library
+                .get(b"mh_new")
+                .map_err(|e| load_error(e.to_string()))?;
+            let cycle_fn: CycleFn = *library
+                .get(b"mh_cycle")
+                .map_err(|e| load_error(e.to_string()))?;
+            let free_fn: FreeFn = *library
+                .get(b"mh_free")
+                .map_err(|e| load_error(e.to_string()))?;
+            let trace_fn: TraceFn = *library
+                .get(b"mh_trace")
+                .map_err(|e| load_error(e.to_string()))?;
             let handle = new();
             let input_words = vec![0; inputs.iter().map(Slot::words).sum()];
             let output_words = vec![0; outputs.iter().map(Slot::words).sum()];
@@ -267,8 +283,12 @@ impl CompiledModel {
         // SAFETY: live handle, NUL-terminated path.
         match unsafe { (self.trace_fn)(self.handle, c_path.as_ptr()) } {
             0 => Ok(()),
-            2 => Err(CompiledError::Trace(format!("{text} (the model was built without tracing)"))),
-            3 => Err(CompiledError::Trace(format!("{text} (a VCD is already being written)"))),
+            2 => Err(CompiledError::Trace(format!(
+                "{text} (the model was built without tracing)"
+            ))),
+            3 => Err(CompiledError::Trace(format!(
+                "{text} (a VCD is already being written)"
+            ))),
             _ => Err(CompiledError::Trace(text)),
         }
     }
@@ -312,7 +332,11 @@ pub fn plain_loop(
         .tempdir()
         .map_err(|e| failed(&e))?;
     let program = build::plain_loop(&verilog, &layout, dir.path())?;
-    let bytes: Vec<u8> = stimulus.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+    let bytes: Vec<u8> = stimulus
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
     let words = dir.path().join("stimulus.bin");
     std::fs::write(&words, bytes).map_err(|e| failed(&e))?;
     let output = std::process::Command::new(&program)
@@ -323,14 +347,16 @@ pub fn plain_loop(
     let text = String::from_utf8_lossy(&output.stdout);
     let runs: Vec<PlainLoop> = text
         .lines()
-        .filter_map(|line| match line.split_whitespace().collect::<Vec<_>>().as_slice() {
-            [cycles, seconds, checksum] => Some(PlainLoop {
-                cycles: cycles.parse().ok()?,
-                seconds: seconds.parse().ok()?,
-                checksum: checksum.parse().ok()?,
-            }),
-            _ => None,
-        })
+        .filter_map(
+            |line| match line.split_whitespace().collect::<Vec<_>>().as_slice() {
+                [cycles, seconds, checksum] => Some(PlainLoop {
+                    cycles: cycles.parse().ok()?,
+                    seconds: seconds.parse().ok()?,
+                    checksum: checksum.parse().ok()?,
+                }),
+                _ => None,
+            },
+        )
         .collect();
     if !output.status.success() || runs.len() != repeats {
         return Err(failed(&format!("{} {text}", output.status)));

@@ -8,7 +8,9 @@ use crate::blocks::command_fifo::CommandFifo;
 
 /// The RAM exactly as `CommandFifo<N, _>` builds it (2^N zeroed words).
 fn fifo_ram<const N: usize>() -> Box<dyn Block> {
-    Box::new(RAM::<Bits<32>, N>::from((0..1usize << N).map(|_| Bits::<32>::default())))
+    Box::new(RAM::<Bits<32>, N>::from(
+        (0..1usize << N).map(|_| Bits::<32>::default()),
+    ))
 }
 
 pub(super) fn specs() -> Vec<FormalSpec> {

@@ -3,7 +3,9 @@
 
 use super::FormalSpec;
 use crate::blocks::external_bus_adapter::ExternalBusAdapter;
-use crate::blocks::narrow_bus_adapter::{ExternalBusAdapter16, ExternalBusAdapter8, NarrowBusAdapter};
+use crate::blocks::narrow_bus_adapter::{
+    ExternalBusAdapter16, ExternalBusAdapter8, NarrowBusAdapter,
+};
 
 pub(super) fn specs() -> Vec<FormalSpec> {
     vec![

@@ -178,24 +178,37 @@ pub fn prove(spec: &FormalSpec) -> Result<ProofReport, ToolError> {
 
 /// Checks `spec`'s properties on `verilog` (the generated text, or a
 /// deliberately broken copy of it: the mutation tests).
-pub fn prove_verilog(spec: &FormalSpec, verilog: &str, checks: Checks) -> Result<ProofReport, ToolError> {
-    let properties = std::fs::read_to_string(formal_dir().join(spec.property_file)).map_err(|source| {
-        ToolError::Io {
-            context: format!("reading formal/{}", spec.property_file),
-            source,
-        }
-    })?;
+pub fn prove_verilog(
+    spec: &FormalSpec,
+    verilog: &str,
+    checks: Checks,
+) -> Result<ProofReport, ToolError> {
+    let properties =
+        std::fs::read_to_string(formal_dir().join(spec.property_file)).map_err(|source| {
+            ToolError::Io {
+                context: format!("reading formal/{}", spec.property_file),
+                source,
+            }
+        })?;
     check_spliced(spec, verilog, &properties, checks)
 }
 
 /// Runs `checks` on `properties` spliced into the top module of `verilog`.
-fn check_spliced(spec: &FormalSpec, verilog: &str, properties: &str, checks: Checks) -> Result<ProofReport, ToolError> {
+fn check_spliced(
+    spec: &FormalSpec,
+    verilog: &str,
+    properties: &str,
+    checks: Checks,
+) -> Result<ProofReport, ToolError> {
     if spec.bmc_depth < spec.induction_depth {
         // The induction step assumes the properties for k clocks; only a
         // base case at least as deep makes that sound.
         return Err(ToolError::Parse {
             tool: "formal_catalog".into(),
-            detail: format!("{}: bounded depth {} is below the induction depth {}", spec.name, spec.bmc_depth, spec.induction_depth),
+            detail: format!(
+                "{}: bounded depth {} is below the induction depth {}",
+                spec.name, spec.bmc_depth, spec.induction_depth
+            ),
         });
     }
     let dir = work_dir(&format!("formal-{}", spec.name))?;
@@ -215,7 +228,9 @@ fn check_spliced(spec: &FormalSpec, verilog: &str, properties: &str, checks: Che
         top = spec.module
     );
     run(
-        Command::new("yosys").current_dir(dir.path()).args(["-q", "-p", &script]),
+        Command::new("yosys")
+            .current_dir(dir.path())
+            .args(["-q", "-p", &script]),
         false,
     )?;
     let build_time = started.elapsed();
@@ -229,7 +244,10 @@ fn check_spliced(spec: &FormalSpec, verilog: &str, properties: &str, checks: Che
         (None, Checks::Proof) => {
             let started = Instant::now();
             let induction = smtbmc(dir.path(), true, spec.induction_depth)?;
-            (induction.map(|failure| (FailedCheck::Induction, failure)), started.elapsed())
+            (
+                induction.map(|failure| (FailedCheck::Induction, failure)),
+                started.elapsed(),
+            )
         }
     };
     let outcome = match failure {
@@ -244,7 +262,12 @@ fn check_spliced(spec: &FormalSpec, verilog: &str, properties: &str, checks: Che
     })
 }
 
-fn counterexample(dir: tempfile::TempDir, check: FailedCheck, steps: u32, assertion: String) -> Outcome {
+fn counterexample(
+    dir: tempfile::TempDir,
+    check: FailedCheck,
+    steps: u32,
+    assertion: String,
+) -> Outcome {
     let kept = dir.keep();
     Outcome::Counterexample {
         check,
@@ -278,11 +301,19 @@ fn smtbmc(dir: &Path, induction: bool, depth: u32) -> Result<Option<(u32, String
     // model with more than a few dozen registers when the transition
     // relation stays a recursive function; unrolled, the same models
     // solve in seconds.
-    command.current_dir(dir).args(["-s", SOLVER, "--presat", "--unroll"]);
+    command
+        .current_dir(dir)
+        .args(["-s", SOLVER, "--presat", "--unroll"]);
     if induction {
         command.arg("-i");
     }
-    command.args(["-t", &depth.to_string(), "--dump-vcd", "trace.vcd", "model.smt2"]);
+    command.args([
+        "-t",
+        &depth.to_string(),
+        "--dump-vcd",
+        "trace.vcd",
+        "model.smt2",
+    ]);
     let output = run(&mut command, true)?;
     if output.contains("Status: PASSED") {
         return Ok(None);
@@ -300,7 +331,10 @@ fn smtbmc(dir: &Path, induction: bool, depth: u32) -> Result<Option<(u32, String
 fn failure_of(output: &str, induction: bool, depth: u32) -> (u32, String) {
     let assertion = output
         .lines()
-        .find_map(|l| l.split_once("Assert failed in ").map(|(_, rest)| rest.trim().to_string()))
+        .find_map(|l| {
+            l.split_once("Assert failed in ")
+                .map(|(_, rest)| rest.trim().to_string())
+        })
         .unwrap_or_else(|| "(unnamed)".into());
     // Bounded: "Checking assertions in step N.." is the last step tried,
     // and the trace runs from step 0 to it. Induction: the trace is the
@@ -333,7 +367,11 @@ pub fn table_row_prefix(spec: &FormalSpec) -> String {
 /// One row of the README's "What is proved" table, with the proof's
 /// measured wall time (yosys, bounded check and induction).
 pub fn table_row(spec: &FormalSpec, report: &ProofReport) -> String {
-    format!("{} {:.1} |", table_row_prefix(spec), report.total_time().as_secs_f64())
+    format!(
+        "{} {:.1} |",
+        table_row_prefix(spec),
+        report.total_time().as_secs_f64()
+    )
 }
 
 #[cfg(test)]
@@ -342,7 +380,8 @@ mod tests {
 
     #[test]
     fn the_property_file_is_included_before_the_top_modules_endmodule() {
-        let verilog = "module top(a);\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n";
+        let verilog =
+            "module top(a);\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n";
         assert_eq!(
             splice("top", verilog, "top.sv").unwrap(),
             "module top(a);\n`ifdef FORMAL\n`include \"top.sv\"\n`endif\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n"
@@ -355,7 +394,13 @@ mod tests {
         let bounded = "##   0:00:00  Checking assertions in step 0..\n##   0:00:00  Checking assertions in step 1..\n\
                        ##   0:00:00  Checking assertions in step 2..\n##   0:00:00  BMC failed!\n\
                        ##   0:00:00  Assert failed in top: top.sv:12.5-12.20 ($assert$top.sv:12$3)\n##   0:00:00  Status: FAILED\n";
-        assert_eq!(failure_of(bounded, false, 20), (3, "top: top.sv:12.5-12.20 ($assert$top.sv:12$3)".to_string()));
+        assert_eq!(
+            failure_of(bounded, false, 20),
+            (
+                3,
+                "top: top.sv:12.5-12.20 ($assert$top.sv:12$3)".to_string()
+            )
+        );
         let induction = "##   0:00:00  Trying induction in step 2..\n##   0:00:00  Trying induction in step 1..\n\
                          ##   0:00:00  Trying induction in step 0..\n##   0:00:00  Temporal induction failed!\n\
                          ##   0:00:00  Assert failed in top: top.sv:9.1-9.9 ($assert$top.sv:9$1)\n";

@@ -4,7 +4,10 @@
 
 /// Fails unless `src/blocks/<block>/timing.txt` is `simulated`.
 pub fn assert_timing_diagram_is(block: &str, simulated: &str) {
-    let path = motion_hdl::tools::repo_root().join("src/blocks").join(block).join("timing.txt");
+    let path = motion_hdl::tools::repo_root()
+        .join("src/blocks")
+        .join(block)
+        .join("timing.txt");
     let drawn = std::fs::read_to_string(&path).unwrap_or_default();
     if std::env::var_os("UPDATE_TIMING_DIAGRAM").is_some() {
         std::fs::write(&path, simulated).unwrap();
