@@ -49,4 +49,16 @@ if ! cargo nextest --version >/dev/null 2>&1; then
   echo "installing cargo-nextest"
   cargo install --locked cargo-nextest
 fi
+# Formatting and lints first: a red here takes seconds, not the suite's
+# minutes. The project-wide clippy waivers, each with its reason, are in
+# Cargo.toml's [lints] table.
+for component in rustfmt clippy; do
+  if ! cargo "${component/rustfmt/fmt}" --version >/dev/null 2>&1; then
+    echo "installing the $component component"
+    rustup component add "$component"
+  fi
+done
+cargo fmt --check
+cargo clippy --all-targets -- -D warnings
+
 cargo nextest run

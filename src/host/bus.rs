@@ -268,7 +268,7 @@ impl ControllerBus for RtlBus {
                     .advance(plant.scale.volts(self.dacs.code(k)), self.clock_s);
             }
         }
-        if self.sample_every > 0 && cycles % self.sample_every == 0 {
+        if self.sample_every > 0 && cycles.is_multiple_of(self.sample_every) {
             let positions = self.positions();
             self.samples.push(positions);
         }

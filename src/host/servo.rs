@@ -300,7 +300,7 @@ mod tests {
         let last = *trajectory.last().unwrap();
         for &(position, velocity) in trajectory
             .iter()
-            .chain(std::iter::repeat(&(last.0, 0.0)).take(settle))
+            .chain(std::iter::repeat_n(&(last.0, 0.0), settle))
         {
             let out = servo.step(position, velocity, motor.counts());
             figures.add(out.following_error);

@@ -272,7 +272,7 @@ pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), Strin
     let clocks = clocks as u64;
     let first = clocks.div_ceil(65_535).max(1);
     (first..=clocks)
-        .find(|d| clocks % d == 0 && clocks / d <= 65_535)
+        .find(|d| clocks.is_multiple_of(*d) && clocks / d <= 65_535)
         .map(|d| (d as u32, (clocks / d) as u32))
         .ok_or_else(|| format!("no tick divisor splits {clocks} clocks into at most 65535 ticks"))
 }

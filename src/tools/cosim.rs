@@ -211,7 +211,7 @@ pub fn compare_compiled<B: VectorPorts>(
     let names: Vec<String> = B::output_names()
         .into_iter()
         .zip(B::output_words())
-        .flat_map(|(name, words)| std::iter::repeat(name).take(words))
+        .flat_map(|(name, words)| std::iter::repeat_n(name, words))
         .collect();
     let mut outputs = vec![0; names.len()];
     for (cycle, (inputs, want)) in stimulus.iter().zip(expected).enumerate() {

@@ -706,7 +706,7 @@ fn an_update_follows_the_datasheet_edges_at_the_reset_timing() {
     }
     let pins = b.update();
     let (s, w, h, l) = (1, 5, 2, 5);
-    let edge = |what: &dyn Fn(&DacOutputs) -> bool| pins.iter().position(|p| what(p)).unwrap();
+    let edge = |what: &dyn Fn(&DacOutputs) -> bool| pins.iter().position(what).unwrap();
     for (k, code) in codes.iter().enumerate() {
         let start = 1 + k * (s + w + h);
         assert_eq!(

@@ -154,11 +154,11 @@ fn bresenham_contract_for_every_4_bit_integrand_and_modulus() {
                         "J={integrand} M={modulus} gap={gap}: pulses after {t} ticks"
                     );
                 }
-                if j > 0 {
+                if let Some(shortest) = m.checked_div(j) {
                     for pair in pulse_ticks.windows(2) {
                         let spacing = pair[1] - pair[0];
                         assert!(
-                            spacing == m / j || spacing == m.div_ceil(j),
+                            spacing == shortest || spacing == m.div_ceil(j),
                             "J={integrand} M={modulus}: spacing {spacing}"
                         );
                     }

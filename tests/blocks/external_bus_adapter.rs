@@ -142,7 +142,7 @@ fn a_read_right_after_a_put_off_read_is_issued() {
     // in 1-2, one idle clock, the next read in 4-8.
     let clocks = [(false, true), (false, false), (true, false), (true, true)]
         .into_iter()
-        .chain(std::iter::repeat((true, false)).take(5));
+        .chain(std::iter::repeat_n((true, false), 5));
     for (we_n, rd_n) in clocks {
         (sys.pins.we_n, sys.pins.rd_n) = (we_n, rd_n);
         sys.hold(1);

@@ -179,7 +179,8 @@ impl BusSynchronizerModel {
             *self = Self::new(self.address_bits, self.data_bits);
         }
         let [_, sync, prev, _] = self.stages;
-        let write_open = !i.cs_n && !i.we_n && !(sync.write && prev.write);
+        let write_seen = sync.write && prev.write;
+        let write_open = !i.cs_n && !i.we_n && !write_seen;
         let read_open = !i.cs_n && !i.rd_n && !self.read_done;
         self.out.data_oe = !i.cs_n && !i.rd_n && i.we_n;
         self.out.ready = !write_open && !read_open;

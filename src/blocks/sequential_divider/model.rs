@@ -13,10 +13,9 @@ pub fn expected_result(
     let n_mask = crate::blocks::width_mask(dividend_bits);
     let d_mask = crate::blocks::width_mask(divisor_bits);
     let (dividend, divisor) = (dividend & n_mask, divisor & d_mask);
-    if divisor == 0 {
-        (n_mask, dividend & d_mask, true)
-    } else {
-        (dividend / divisor, dividend % divisor, false)
+    match dividend.checked_div(divisor) {
+        Some(quotient) => (quotient, dividend % divisor, false),
+        None => (n_mask, dividend & d_mask, true),
     }
 }
 

@@ -432,10 +432,10 @@ impl BridgeModel {
             c.released = released - pop as u64;
             c.synced = synced - pop as u64;
             events.pops += pop as u32;
-            events.status_pops += (status_pop && !c.status_out.empty) as u32;
+            let status_popped = status_pop && !c.status_out.empty;
+            events.status_pops += status_popped as u32;
             events.overflows += (cmd_write && c.cmd_out.full && !pop) as u32;
-            events.overflows +=
-                (status_write && c.status_out.full && !(status_pop && !c.status_out.empty)) as u32;
+            events.overflows += (status_write && c.status_out.full && !status_popped) as u32;
 
             c.cmd_out = c.cmd.step(i.reset, cmd_write, m_data, pop, 0, cmd_clear);
             c.status_out =

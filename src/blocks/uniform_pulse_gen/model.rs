@@ -210,6 +210,12 @@ pub struct UniformPulseGenModel {
     out: UniformPulseGenOutputs,
 }
 
+impl Default for UniformPulseGenModel {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl UniformPulseGenModel {
     /// A 32-bit generator in its power-up state.
     pub fn new() -> Self {

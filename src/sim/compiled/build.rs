@@ -429,7 +429,7 @@ fn store(member: &str, slot: &Slot) -> String {
         format!("{member} = in[{o}] & 0x{mask:x}ULL;")
     } else {
         let words = w.div_ceil(32);
-        let top_mask = if w % 32 == 0 {
+        let top_mask = if w.is_multiple_of(32) {
             u32::MAX
         } else {
             (1u32 << (w % 32)) - 1

@@ -10,6 +10,9 @@ use motion_hdl::sim::{Harness, VectorPorts};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
+/// How a counting register changes every clock.
+type RegisterUpdate = Box<dyn Fn(u64) -> u64>;
+
 /// What the bench reads from an adapter's outputs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BusView {
@@ -50,7 +53,7 @@ pub struct PinBench<B: VectorPorts> {
     /// The slave's registers (wide words).
     pub registers: Vec<u64>,
     /// A register that the slave updates every clock with the function.
-    pub counting: Option<(usize, Box<dyn Fn(u64) -> u64>)>,
+    pub counting: Option<(usize, RegisterUpdate)>,
     slave_data: u64,
     pending_read: Option<u64>,
     pub bus_writes: u32,
