@@ -12,20 +12,20 @@
 //   name            dir    width  meaning
 //   clock           in         1  rising-edge clock
 //   reset           in         1  synchronous, active high: registers to their reset values, then the safe update
-//   bus_address     in         5  register word address, with bus_write or bus_read
+//   bus_address     in         5  register word address, with `bus_write` or `bus_read`
 //   bus_write_data  in        32  register write data
 //   bus_write       in         1  one-clock register write strobe
 //   bus_read        in         1  one-clock register read strobe
-//   update          in         1  one-clock update request (the period boundary), as a write of UPDATE.START
+//   update          in         1  one-clock update request (the period boundary), as a write of `UPDATE.START`
 //   force_safe      in         1  level: its rise starts the safe update; while high, codes and updates are refused
-//   load            in         3  bit k: load_code goes into channel k's staged code (as a CODE[k] write; refused while force_safe is high)
-//   load_code       in        16  the code of load, signed
-//   bus_read_data   out       32  register read data, valid in the clock after bus_read, held until the next read
+//   load            in         3  bit k: `load_code` goes into channel k's staged code in this clock (as a `CODE[k]` write; refused while `force_safe` is high); tie to 0 when unused
+//   load_code       in        16  the code of `load`, signed (two's complement)
+//   bus_read_data   out       32  register read data, valid in the clock after `bus_read`, held until the next read
 //   dac_data        out       16  DAC data bus, shared by every channel
 //   dac_cs_n        out        3  bit k: channel k's chip select, active low
 //   dac_l1_n        out        1  first-rank load, active low, shared
 //   dac_ldac        out        1  second-rank load, active high, shared
-//   busy            out        1  an update runs: from the edge it starts until dac_ldac falls
+//   busy            out        1  an update runs: from the edge it starts until `dac_ldac` falls
 //   safe            out        1  the outputs hold the safe code, or its update is pending or running
 // ============================================================================
 

@@ -10,11 +10,11 @@
 // Ports:
 //   name             dir    width  meaning
 //   clock            in         1  rising-edge clock
-//   reset            in         1  synchronous reset, active high: accumulator 0, flags 0
-//   tick             in         1  accumulate enable, for example a freq_divider strobe
-//   integrand        in        32  J, sampled with tick
-//   modulus          in        32  M, sampled with tick; 0 means 2^W
-//   clear_overrange  in         1  clears overrange (tie to 0 if unused)
+//   reset            in         1  synchronous, active high: accumulator 0, flags 0, pipeline empty
+//   tick             in         1  accumulate enable (for example a `freq_divider` strobe)
+//   integrand        in        32  J, sampled with `tick`
+//   modulus          in        32  M, sampled with `tick`; 0 means 2^W (the binary DDA)
+//   clear_overrange  in         1  clears `overrange` (tie to 0 if unused)
 //   pulse            out        1  one-clock pulse per accumulator overflow, 2 clocks after its tick
 //   overrange        out        1  sticky: a tick was processed with J > M (M != 0)
 // ============================================================================

@@ -12,26 +12,26 @@
 // Ports:
 //   name           dir    width  meaning
 //   clock          in         1  rising-edge clock
-//   reset          in         1  synchronous reset, active high: idle, nothing queued, fractions 0, flags 0
-//   tick           in         1  time base, for example a freq_divider strobe
-//   load           in         1  strobe: queue next_period and next_delta__i (taken only while ready)
-//   next_period    in        32  P, the next period's length in ticks (1 to 2^24-1)
-//   next_delta__0  in        32  axis 0's signed Q16.16 steps for the next period, at most one step per tick
-//   next_delta__1  in        32  axis 1's signed Q16.16 steps for the next period, at most one step per tick
-//   next_delta__2  in        32  axis 2's signed Q16.16 steps for the next period, at most one step per tick
-//   clear_status   in         1  clears underrun, overrange and load_error
+//   reset          in         1  synchronous, active high: idle, nothing queued, position fractions 0, flags 0
+//   tick           in         1  time base, for example a `freq_divider` strobe
+//   load           in         1  strobe: queue `next_period` and `next_delta_*` as the next period (taken only while `ready`)
+//   next_period    in        32  P, the next period's length in ticks: 1 to 2^24-1 (167 ms at a 100 MHz tick)
+//   next_delta__0  in        32  axis 0's steps for the next period, signed Q16.16 (-32768.0 to 32767.99998), at most one step per tick
+//   next_delta__1  in        32  axis 1's steps for the next period, signed Q16.16 (-32768.0 to 32767.99998), at most one step per tick
+//   next_delta__2  in        32  axis 2's steps for the next period, signed Q16.16 (-32768.0 to 32767.99998), at most one step per tick
+//   clear_status   in         1  clears `underrun`, `overrange` and `load_error`
 //   step__0        out        1  axis 0's one-clock step pulse
 //   step__1        out        1  axis 1's one-clock step pulse
 //   step__2        out        1  axis 2's one-clock step pulse
-//   dir__0         out        1  axis 0's direction (1 = positive), set with each step
-//   dir__1         out        1  axis 1's direction (1 = positive), set with each step
-//   dir__2         out        1  axis 2's direction (1 = positive), set with each step
+//   dir__0         out        1  axis 0's direction: 1 = positive; set with each step
+//   dir__1         out        1  axis 1's direction: 1 = positive; set with each step
+//   dir__2         out        1  axis 2's direction: 1 = positive; set with each step
 //   period_done    out        1  one-clock strobe after the last tick of every period
-//   ready          out        1  the next-period slot is free: a load now is taken
-//   running        out        1  a period is in progress
+//   ready          out        1  the next-period slot is free: a `load` now is taken
+//   running        out        1  a period is in progress (ticks are being used)
 //   underrun       out        1  sticky: a period ended with no next period queued
 //   overrange      out        1  sticky: a delta asked for more than one step per tick and was clamped
-//   load_error     out        1  sticky: a load was refused (not ready, or P out of range)
+//   load_error     out        1  sticky: a `load` was refused (not `ready`, or P out of range)
 // ============================================================================
 
 `default_nettype none

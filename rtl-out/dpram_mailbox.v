@@ -13,21 +13,21 @@
 // Ports:
 //   name          dir    width  meaning
 //   clock         in         1  rising-edge clock
-//   reset         in         1  synchronous reset, active high: irqs low, pending writes dropped, read data 0; the RAM keeps its words
-//   a_address     in        10  port A word address, with a_write or a_read
+//   reset         in         1  synchronous, active high: irqs low, pending writes dropped, read data 0; the RAM keeps its words
+//   a_address     in        10  port A word address, with `a_write` or `a_read`
 //   a_write_data  in        16  port A write data
 //   a_write       in         1  port A one-clock write strobe
 //   a_read        in         1  port A one-clock read strobe
-//   a_read_data   out       16  port A read data: valid the clock after a_read, held until the next answer
-//   irq_a         out        1  level: port B wrote MAILBOX_TO_A (2^AW - 2); cleared by any port-A access to it
-//   b_address     in        10  port B word address, with b_write or b_read
+//   a_read_data   out       16  port A read data: valid the clock after `a_read`, held until the next answer
+//   irq_a         out        1  level: port B wrote `MAILBOX_TO_A` (2^AW - 2), and port A has not accessed it since
+//   b_address     in        10  port B word address, with `b_write` or `b_read`
 //   b_write_data  in        16  port B write data
 //   b_write       in         1  port B one-clock write strobe
 //   b_read        in         1  port B one-clock read strobe
-//   b_read_data   out       16  port B read data: valid the clock after b_read, held until the next answer
-//   irq_b         out        1  level: port A wrote MAILBOX_TO_B (2^AW - 1); cleared by any port-B access to it
+//   b_read_data   out       16  port B read data: valid the clock after `b_read`, held until the next answer
+//   irq_b         out        1  level: port A wrote `MAILBOX_TO_B` (2^AW - 1), and port B has not accessed it since
 //   collision     out        1  one-clock pulse the clock after both ports wrote the same word on the same clock (B's data stays)
-//   overrun       out        1  one-clock pulse the clock after a port-B write was refused (write queue full)
+//   overrun       out        1  one-clock pulse the clock after a port-B write was refused (its write queue was full: more writes than the block can land)
 // ============================================================================
 
 `default_nettype none

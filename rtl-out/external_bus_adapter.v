@@ -11,19 +11,19 @@
 // Ports:
 //   name            dir    width  meaning
 //   clock           in         1  rising-edge clock
-//   reset           in         1  synchronous reset, active high: no access in progress, outputs 0
+//   reset           in         1  synchronous, active high: no access in progress, outputs 0
 //   cs_n            in         1  chip select, active low, asynchronous
 //   we_n            in         1  write strobe, active low, asynchronous
 //   rd_n            in         1  read strobe (output enable), active low, asynchronous
 //   address         in         8  word address, asynchronous
 //   data_in         in        32  write data from the pins, asynchronous
 //   data_out        out       32  read data to the pins, registered
-//   data_oe         out        1  drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins
-//   bus_address     out        8  address of the current bus strobe
-//   bus_write_data  out       32  data of bus_write
+//   data_oe         out        1  drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins (for the IO buffer's enable)
+//   bus_address     out        8  address of the current bus strobe, registered
+//   bus_write_data  out       32  data of `bus_write`, registered
 //   bus_write       out        1  one-clock write strobe
 //   bus_read        out        1  one-clock read strobe
-//   bus_read_data   in        32  the slave's read data, valid in the clock after bus_read
+//   bus_read_data   in        32  the slave's read data, valid in the clock after `bus_read`
 // ============================================================================
 
 `default_nettype none

@@ -13,20 +13,20 @@
 // Ports:
 //   name            dir    width  meaning
 //   clock           in         1  rising-edge clock
-//   reset           in         1  synchronous reset, active high: no access in progress, latch and holding register empty, outputs 0
+//   reset           in         1  synchronous, active high: no access in progress, latch and holding register empty, outputs 0
 //   cs_n            in         1  chip select, active low, asynchronous
 //   we_n            in         1  write strobe, active low, asynchronous
 //   rd_n            in         1  read strobe (output enable), active low, asynchronous
-//   address         in        10  narrow word address: register address * (32/N) + part, asynchronous
+//   address         in        10  narrow word address: register address * (W/N) + part, asynchronous
 //   data_in         in         8  write data from the pins, asynchronous
 //   data_out        out        8  read data to the pins, registered
-//   data_oe         out        1  drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins
-//   ready           out        1  the access at the pins may end (wait input of the master): low from the strobe's fall until a write has two active samples or a read's answer is on data_out
+//   data_oe         out        1  drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins (for the IO buffer's enable)
+//   ready           out        1  the access at the pins may end (the master's wait input, XREADY): low from the moment a strobe falls until a write has two active samples or a read's answer is on `data_out`; combinational from the pins and registered state
 //   bus_address     out        8  register address of the current bus strobe
-//   bus_write_data  out       32  the whole word of bus_write
+//   bus_write_data  out       32  the whole word of `bus_write`
 //   bus_write       out        1  one-clock write strobe: the highest part completed a word
 //   bus_read        out        1  one-clock read strobe: the lowest part was read
-//   bus_read_data   in        32  the slave's read data, valid in the clock after bus_read
+//   bus_read_data   in        32  the slave's read data, valid in the clock after `bus_read`
 //   order_error     out        1  one-clock pulse: firmware broke the access order (torn write dropped, out-of-order read)
 // ============================================================================
 

@@ -10,10 +10,10 @@
 // Ports:
 //   name     dir    width  meaning
 //   clock    in         1  rising-edge clock
-//   reset    in         1  synchronous reset, active high
-//   enable   in         1  counting runs while high; while low the phase holds and no strobe comes
+//   reset    in         1  synchronous, active high: back to the power-up state after one clock
+//   enable   in         1  counting runs while high; while low the phase holds and no new strobe comes
 //   divisor  in        32  D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped
-//   strobe   out        1  one-clock strobe, registered
+//   strobe   out        1  one-clock pulse, registered
 // ============================================================================
 
 `default_nettype none

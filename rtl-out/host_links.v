@@ -13,15 +13,15 @@
 // Ports:
 //   name               dir    width  meaning
 //   clock              in         1  rising-edge clock
-//   reset              in         1  synchronous reset, active high: no access in progress, latches empty, irqs low, outputs 0; the mailbox RAM keeps its words
+//   reset              in         1  synchronous, active high: no access in progress, latches and holding registers empty, irqs low, outputs 0; the mailbox RAM keeps its words
 //   dsp_cs_n           in         1  DSP zone chip select, active low, asynchronous
 //   dsp_we_n           in         1  DSP write strobe (XWE), active low, asynchronous
 //   dsp_rd_n           in         1  DSP read strobe (XRD), active low, asynchronous
-//   dsp_address        in        11  DSP word address (XA): 0x000-0x3FF controller registers (register * 2 + half), 0x400-0x7FF mailbox words; asynchronous
+//   dsp_address        in        11  DSP word address (XA), asynchronous: 0x000-0x3FF controller registers (register * 2 + half), 0x400-0x7FF mailbox words
 //   dsp_data_in        in        16  DSP write data (XD), asynchronous
 //   dsp_data_out       out       16  DSP read data, registered
-//   dsp_data_oe        out        1  drive XD: !dsp_cs_n & !dsp_rd_n & dsp_we_n, combinational from the pins
-//   dsp_ready          out        1  XREADY: low from the strobe's fall until a write has two active samples or a read's answer is on dsp_data_out
+//   dsp_data_oe        out        1  drive XD: `!dsp_cs_n & !dsp_rd_n & dsp_we_n`, combinational from the pins
+//   dsp_ready          out        1  XREADY: low from the strobe's fall until a write has two active samples or a read's answer is on `dsp_data_out`
 //   dsp_order_error    out        1  one-clock pulse: the DSP broke a 32-bit register's half order (torn write dropped, out-of-order read)
 //   pc_cs_n            in         1  PC bridge chip select, active low, asynchronous
 //   pc_we_n            in         1  PC bridge write strobe, active low, asynchronous
@@ -29,18 +29,18 @@
 //   pc_address         in        11  PC byte address: mailbox word * 2 + byte (low byte first), asynchronous
 //   pc_data_in         in         8  PC write data, asynchronous
 //   pc_data_out        out        8  PC read data, registered
-//   pc_data_oe         out        1  drive the PC data pins: !pc_cs_n & !pc_rd_n & pc_we_n, combinational from the pins
+//   pc_data_oe         out        1  drive the PC data pins: `!pc_cs_n & !pc_rd_n & pc_we_n`, combinational from the pins
 //   pc_ready           out        1  the PC's access may end (for a bridge with a wait input; the CH365 has none)
 //   pc_order_error     out        1  one-clock pulse: the PC broke a mailbox word's byte order (torn write dropped, out-of-order read)
-//   reg_address        out        8  controller register address, with reg_write or reg_read
-//   reg_write_data     out       32  the whole 32-bit word of reg_write
+//   reg_address        out        8  the controller's register address, with `reg_write` or `reg_read`
+//   reg_write_data     out       32  the whole 32-bit word of `reg_write`
 //   reg_write          out        1  one-clock register write strobe
 //   reg_read           out        1  one-clock register read strobe
-//   reg_read_data      in        32  the controller's read data, valid in the clock after reg_read
-//   irq_dsp            out        1  level: the PC wrote MAILBOX_TO_B, the DSP has not accessed it since; registered
-//   irq_pc             out        1  level: the DSP wrote MAILBOX_TO_A, the PC has not accessed it since; registered
-//   mailbox_collision  out        1  one-clock pulse: both masters' writes reached one mailbox word on the same clock (the DSP's word stays)
-//   mailbox_overrun    out        1  one-clock pulse: a DSP mailbox write was refused (cannot happen at the pins' timing)
+//   reg_read_data      in        32  the controller's read data, valid in the clock after `reg_read`
+//   irq_dsp            out        1  level: the PC wrote `MAILBOX_TO_B`, the DSP has not accessed it since; registered
+//   irq_pc             out        1  level: the DSP wrote `MAILBOX_TO_A`, the PC has not accessed it since; registered
+//   mailbox_collision  out        1  one-clock pulse: both masters' writes reached the same mailbox word on one clock (the DSP's word stays)
+//   mailbox_overrun    out        1  one-clock pulse: a DSP mailbox write was refused; cannot happen at the pins' timing
 // ============================================================================
 
 `default_nettype none

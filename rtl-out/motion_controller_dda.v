@@ -13,33 +13,33 @@
 //
 // Ports:
 //   name            dir    width  meaning
-//   clock           in         1  rising-edge clock
-//   reset           in         1  synchronous reset, active high: registers to reset values, FIFOs empty, outputs low
-//   bus_address     in         8  word address of bus_write / bus_read
-//   bus_write_data  in        32  data of bus_write
+//   clock           in         1  rising-edge clock (the step timing and encoder sampling run on it)
+//   reset           in         1  synchronous, active high: every register to its documented reset value, FIFOs empty, outputs low; power-up equals reset
+//   bus_address     in         8  word address of `bus_write` / `bus_read` (`MC_*_INDEX` in the C header)
+//   bus_write_data  in        32  data of `bus_write`
 //   bus_write       in         1  one-clock write strobe
-//   bus_read        in         1  one-clock read strobe (no side effects)
-//   enc_a           in         3  bit k: axis k's encoder A, asynchronous
-//   enc_b           in         3  bit k: axis k's encoder B, asynchronous
-//   enc_index       in         3  bit k: axis k's encoder index, asynchronous
-//   limit_pos       in         3  bit k: positive-end limit switch of axis k, 1 = tripped, asynchronous
-//   limit_neg       in         3  bit k: negative-end limit switch of axis k, 1 = tripped, asynchronous
+//   bus_read        in         1  one-clock read strobe (reads have no side effects)
+//   enc_a           in         3  bit k: axis k's encoder A, asynchronous (synchronized and filtered inside)
+//   enc_b           in         3  bit k: axis k's encoder B, asynchronous (synchronized and filtered inside)
+//   enc_index       in         3  bit k: axis k's encoder index, asynchronous (synchronized and filtered inside)
+//   limit_pos       in         3  bit k: hard limit switch at the positive end of axis k, 1 = tripped, asynchronous
+//   limit_neg       in         3  bit k: hard limit switch at the negative end of axis k, 1 = tripped, asynchronous
 //   home            in         3  bit k: home switch of axis k, 1 = active, asynchronous
-//   drive_alarm     in         3  bit k: alarm of axis k's drive, 1 = in alarm, asynchronous
-//   estop           in         1  emergency stop chain, 1 = stopped, asynchronous (no polarity setting)
+//   drive_alarm     in         3  bit k: alarm output of axis k's drive, 1 = in alarm, asynchronous
+//   estop           in         1  emergency stop chain, 1 = stopped, asynchronous; no polarity setting
 //   gpio_in         in         8  general inputs, asynchronous
-//   bus_read_data   out       32  addressed register, valid in the clock after bus_read, held until the next read
-//   irq             out        1  level interrupt: an enabled STATUS bit is set
-//   running         out        1  periods are running (STATE.RUNNING)
-//   active          out        1  steps are still leaving (running, or an output stage or uniform generator busy)
-//   step_a          out        3  bit k: axis k's step (step/dir), up (up/down) or A (quadrature)
-//   step_b          out        3  bit k: axis k's dir, down or B
-//   drive_enable    out        3  bit k: enable (servo-on) of axis k's drive
-//   gpio_out        out        8  general outputs (GPIO_OUT)
-//   dac_data        out       16  DAC data bus, shared by the analog channels (0 in a build without them)
-//   dac_cs_n        out        3  bit k: chip select of axis k's DAC, active low (1 in a build without them)
-//   dac_l1_n        out        1  DAC first-rank load, active low, shared
-//   dac_ldac        out        1  DAC second-rank load, active high, shared: every analog output changes on its rise
+//   bus_read_data   out       32  the addressed register, registered: valid in the clock after `bus_read`, held until the next read
+//   irq             out        1  level interrupt: an enabled `STATUS` bit is set; registered
+//   running         out        1  periods are running (`STATE.RUNNING`)
+//   active          out        1  `running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls (the drives' enables are `drive_enable`)
+//   step_a          out        3  bit k: axis k's step (step/dir), up (up/down) or A (quadrature); registered
+//   step_b          out        3  bit k: axis k's dir, down or B; registered
+//   drive_enable    out        3  bit k: enable (servo-on) of axis k's drive: `IO_CONFIG.DRIVE_ENABLE`, forced low by an E-stop, a watchdog expiry or that axis's alarm; registered
+//   gpio_out        out        8  general outputs (`GPIO_OUT`; the `GPIO_SAFE` ones drop on E-stop or watchdog expiry); registered
+//   dac_data        out       16  DAC data bus, shared by the analog channels (AD669 style; 0 in a build without them); registered
+//   dac_cs_n        out        3  bit k: chip select of axis k's DAC, active low (1 in a build without them); registered
+//   dac_l1_n        out        1  DAC first-rank load, active low, shared; registered
+//   dac_ldac        out        1  DAC second-rank load, active high, shared: every analog output changes on its rise; registered
 // ============================================================================
 
 `default_nettype none

@@ -10,16 +10,16 @@
 // Ports:
 //   name              dir    width  meaning
 //   clock             in         1  rising-edge clock
-//   reset             in         1  synchronous reset, active high: count <- 0
+//   reset             in         1  synchronous, active high: count <- 0
 //   up                in         1  count +1
-//   down              in         1  count -1; with up in the same clock the count is unchanged
-//   clear             in         1  count <- 0; priority over load and counting
-//   load              in         1  count <- load_value; priority over counting
-//   load_value        in        32  value taken by load
-//   compare_value     in        32  value compared with the count for compare_match
-//   count             out       32  two's complement count, wrapping; registered
-//   compare_match     out        1  count == compare_value, combinational from the registered count
-//   pulse_overridden  out        1  strobe: the previous edge's net up/down pulse was overridden by clear or load
+//   down              in         1  count -1; with `up` in the same clock the count is unchanged and neither pulse is lost
+//   clear             in         1  count <- 0; priority over `load` and counting
+//   load              in         1  count <- `load_value`; priority over counting
+//   load_value        in        32  value for `load`
+//   compare_value     in        32  value for `compare_match`
+//   count             out       32  two's complement, wrapping; registered
+//   compare_match     out        1  `count == compare_value`, combinational from the registered count
+//   pulse_overridden  out        1  registered strobe: the previous edge had a net `up` or `down` pulse that `clear` or `load` overrode, so it was not counted
 // ============================================================================
 
 `default_nettype none

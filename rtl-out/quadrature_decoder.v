@@ -12,27 +12,27 @@
 // Ports:
 //   name          dir    width  meaning
 //   clock         in         1  rising-edge clock
-//   reset         in         1  synchronous reset, active high: everything 0, then 3 start-up clocks without counting
-//   a             in         1  encoder channel A, asynchronous
-//   b             in         1  encoder channel B, asynchronous
-//   index         in         1  index (Z) channel, asynchronous
-//   filter        in         4  k: a change is accepted after k consecutive samples of the new level (0, 1: first sample)
-//   clear         in         1  count <- 0 and error <- 0; a count on the same clock is added after
-//   sample_rate   in         8  a sample every sample_rate + 1 clocks; 0 = every clock
-//   counter_mode  in         1  0 = 4x quadrature; 1 = count rising edges of a, b high = up
-//   index_invert  in         1  0 = index active high, 1 = active low
+//   reset         in         1  synchronous, active high: everything 0; then 3 start-up clocks without counting
+//   a             in         1  encoder channel A, asynchronous to `clock`
+//   b             in         1  encoder channel B, asynchronous to `clock`
+//   index         in         1  index (Z) channel, asynchronous to `clock`
+//   filter        in         4  k: a change of a, b or index is accepted after k consecutive samples of the new level; 0 and 1: at the first sample (synchronizer only)
+//   clear         in         1  count <- 0 and error <- 0 (a count on the same clock is kept, added after the clear)
+//   sample_rate   in         8  a sample every `sample_rate` + 1 clocks; 0 = every clock
+//   counter_mode  in         1  0 = 4x quadrature; 1 = count rising edges of `a`, `b` high = up (step/dir input)
+//   index_invert  in         1  0 = the index is active high, 1 = active low
 //   index_clear   in         1  an index event clears the count
-//   index_latch   in         1  an index event latches the count into index_count
-//   index_once    in         1  act on the first index event only, until index_rearm
-//   index_rearm   in         1  clears index_seen
-//   clear_error   in         1  clears error alone, keeping the count; tie to 0 if unused
-//   count         out       32  signed position, two's complement, wrapping; 4 counts per line
+//   index_latch   in         1  an index event latches the count into `index_count`
+//   index_once    in         1  act on the first index event only, until `index_rearm`
+//   index_rearm   in         1  clears `index_seen` (re-arms a once-only index)
+//   clear_error   in         1  clears `error` alone, keeping the count (an error on the same clock keeps it set); tie to 0 if unused
+//   count         out       32  signed position, two's complement, wrapping; 4 counts per line in quadrature
 //   dir           out        1  1 when the last count was up
-//   error         out        1  sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode); cleared by clear
-//   index_seen    out        1  sticky: an index event was acted on since index_rearm
-//   index_count   out       32  the count latched at the last acted-on index event
-//   count_time    out       16  timestamp latched at the last count
-//   timestamp     out       16  free-running sample counter, wrapping
+//   error         out        1  sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode); cleared by `clear` and `clear_error`
+//   index_seen    out        1  sticky: an index event was acted on since `index_rearm` or reset
+//   index_count   out       32  the count latched at the last acted-on index event (with `index_latch`)
+//   count_time    out       16  `timestamp` latched at the last count
+//   timestamp     out       16  free-running, wrapping, +1 per sample
 // ============================================================================
 
 `default_nettype none

@@ -11,15 +11,15 @@
 // Ports:
 //   name            dir    width  meaning
 //   clock           in         1  rising-edge clock
-//   reset           in         1  synchronous reset, active high: idle, outputs 0
-//   start           in         1  start a division (sampled only while busy is low)
-//   dividend        in        32  unsigned dividend, sampled with start
-//   divisor         in        32  unsigned divisor, sampled with start
-//   busy            out        1  a division is running; start is ignored
-//   done            out        1  one-clock strobe: quotient, remainder and divide_by_zero are valid
-//   quotient        out       32  dividend / divisor; valid from done until the next start
-//   remainder       out       32  dividend % divisor; valid from done until the next start
-//   divide_by_zero  out        1  the divisor was 0 (quotient all ones, remainder = dividend)
+//   reset           in         1  synchronous, active high: idle, outputs 0
+//   start           in         1  start a division of `dividend` by `divisor` (sampled only while `busy` is low)
+//   dividend        in        32  unsigned dividend, sampled with `start`
+//   divisor         in        32  unsigned divisor, sampled with `start`
+//   busy            out        1  a division is running; `start` is ignored
+//   done            out        1  one-clock strobe: `quotient`, `remainder` and `divide_by_zero` are valid
+//   quotient        out       32  `dividend / divisor`; valid from `done` until the next `start`
+//   remainder       out       32  `dividend % divisor`; valid from `done` until the next `start`
+//   divide_by_zero  out        1  the divisor was 0 (quotient all ones, remainder = dividend); valid with the result
 // ============================================================================
 
 `default_nettype none

@@ -11,23 +11,23 @@
 // Ports:
 //   name             dir    width  meaning
 //   clock            in         1  rising-edge clock
-//   reset            in         1  synchronous reset, active high: both blocks in their power-up state
+//   reset            in         1  synchronous, active high: both blocks in their power-up state
 //   tick             in         1  DDA accumulate enable
-//   integrand        in        32  J, steps per M ticks, sampled with tick
-//   modulus          in        32  M, sampled with tick; 0 means 2^W
-//   dir              in         1  direction of this tick's step, 1 = forward; sampled with tick
-//   clear_overrange  in         1  clears overrange (tie to 0 if unused)
-//   mode             in         2  0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)
-//   step_len         in        16  step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state
-//   step_space       in        16  minimum low time between step pulses in clocks (0 acts as 1)
-//   dir_setup        in        16  dir stable at least this many clocks before a step's rising edge (0 acts as 1)
-//   dir_hold         in        16  dir stable at least this many clocks after a step's falling edge (0 acts as 1)
-//   out_a            out        1  step (mode 0), up (mode 1), A (mode 2)
-//   out_b            out        1  dir (mode 0), down (mode 1), B (mode 2)
-//   overrun          out        1  sticky: the pending count saturated and a step was dropped
+//   integrand        in        32  J, steps per M ticks, sampled with `tick`
+//   modulus          in        32  M, sampled with `tick`; 0 means 2^W
+//   dir              in         1  direction of this tick's step: 1 = forward; sampled with `tick`
+//   clear_overrange  in         1  clears `overrange` (tie to 0 if unused)
+//   mode             in         2  0 step/dir, 1 up/down (CW/CCW), 2 quadrature, 3 reserved (acts as 0, `mode_invalid` high)
+//   step_len         in        16  step pulse high time in clocks (0 acts as 1); in quadrature, the minimum time per state
+//   step_space       in        16  minimum low time between step pulses, in clocks (0 acts as 1)
+//   dir_setup        in        16  `out_b` (dir) stable at least this many clocks before a step's rising edge (0 acts as 1)
+//   dir_hold         in        16  `out_b` (dir) stable at least this many clocks after a step's falling edge (0 acts as 1)
+//   out_a            out        1  step (mode 0), up (mode 1), A (mode 2); registered
+//   out_b            out        1  dir (mode 0), down (mode 1), B (mode 2); registered
+//   overrun          out        1  sticky: a request arrived with the pending count saturated and was dropped
 //   overrange        out        1  sticky: a tick was processed with J > M (M != 0)
-//   mode_invalid     out        1  mode is 3 (reserved); the stage runs as step/dir
-//   busy             out        1  steps are pending or a pulse is in progress
+//   mode_invalid     out        1  `mode` is 3 (reserved); the stage runs as step/dir
+//   busy             out        1  steps are pending, a pulse is in progress, or a step_len/step_space/dir_hold/dir_setup interval is still running
 // ============================================================================
 
 `default_nettype none

@@ -11,25 +11,25 @@
 // Ports:
 //   name              dir    width  meaning
 //   clock             in         1  rising-edge clock
-//   reset             in         1  synchronous reset, active high: nothing pending, outputs low, flags 0; mode taken from the mode input
-//   step              in         1  request one step (one-clock pulse)
+//   reset             in         1  synchronous, active high: nothing pending, outputs low, flags 0; the mode is taken from `mode`
+//   step              in         1  request one step (one-clock pulse; a level requests one step per clock)
 //   dir               in         1  direction of that request: 1 = forward
-//   mode              in         2  0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)
-//   step_len          in        16  step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state
-//   step_space        in        16  minimum low time between step pulses in clocks (0 acts as 1)
-//   dir_setup         in        16  dir stable at least this many clocks before a step's rising edge (0 acts as 1)
-//   dir_hold          in        16  dir stable at least this many clocks after a step's falling edge (0 acts as 1)
-//   out_a             out        1  step (mode 0), up (mode 1), A (mode 2)
-//   out_b             out        1  dir (mode 0), down (mode 1), B (mode 2)
+//   mode              in         2  0 step/dir, 1 up/down (CW/CCW), 2 quadrature, 3 reserved (acts as 0, `mode_invalid` high)
+//   step_len          in        16  step pulse high time in clocks (0 acts as 1); in quadrature, the minimum time per state
+//   step_space        in        16  minimum low time between step pulses, in clocks (0 acts as 1)
+//   dir_setup         in        16  `out_b` (dir) stable at least this many clocks before a step's rising edge (0 acts as 1)
+//   dir_hold          in        16  `out_b` (dir) stable at least this many clocks after a step's falling edge (0 acts as 1)
+//   out_a             out        1  step (mode 0), up (mode 1), A (mode 2); registered
+//   out_b             out        1  dir (mode 0), down (mode 1), B (mode 2); registered
 //   overrun           out        1  sticky: a request arrived with the pending count saturated and was dropped
-//   mode_invalid      out        1  mode is 3 (reserved); the stage runs as step/dir
-//   busy              out        1  steps pending, a pulse in progress, or a timing interval still running
-//   clear_overrun     in         1  clears overrun (a drop on the same clock keeps it set); tie to 0 if unused
-//   emitted           out        1  a step left at the last edge (its first pin edge is out now); registered
-//   emitted_forward   out        1  direction of that step: 1 = forward
-//   flush             in         1  drop every pending step and this clock's request; a pulse already high completes; tie to 0 if unused
-//   pending_forward   out        1  the next step to leave is forward (pending count above 0)
-//   pending_backward  out        1  the next step to leave is backward (pending count below 0)
+//   mode_invalid      out        1  `mode` is 3 (reserved); the stage runs as step/dir
+//   busy              out        1  steps are pending, a pulse is in progress, or a step_len/step_space/dir_hold/dir_setup interval is still running
+//   clear_overrun     in         1  clears `overrun` (a request dropped on the same clock keeps it set); tie to 0 if unused
+//   emitted           out        1  a step left the stage at the last edge (its first pin edge is on `out_a`/`out_b` now): one clock per step, registered
+//   emitted_forward   out        1  direction of that step: 1 = forward (valid with `emitted`)
+//   flush             in         1  drop every pending step and this clock's request; a pulse already high keeps its full `step_len` and the intervals run on; tie to 0 if unused
+//   pending_forward   out        1  the next step to leave is forward (the pending count is above 0); from flip-flops
+//   pending_backward  out        1  the next step to leave is backward (the pending count is below 0); from flip-flops
 // ============================================================================
 
 `default_nettype none

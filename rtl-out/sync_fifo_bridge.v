@@ -13,20 +13,20 @@
 // Ports:
 //   name          dir    width  meaning
 //   clock         in         1  rising-edge clock
-//   reset         in         1  synchronous reset, active high: FIFOs empty, flags 0, immediate mode, not armed
+//   reset         in         1  synchronous, active high: every FIFO empty, flags 0, immediate mode, not armed
 //   m_address     in         8  master bus word address
 //   m_write_data  in        32  master bus write data
 //   m_write       in         1  master one-clock write strobe
-//   m_read        in         1  master one-clock read strobe (a STATUS read pops once)
-//   period_tick   in         1  tick mode: the first pulse after a SYNC releases it; synchronous, one clock per pulse
+//   m_read        in         1  master one-clock read strobe (a `STATUS` read pops, once per strobe)
+//   period_tick   in         1  tick mode: releases an armed SYNC; synchronous to `clock`, one clock per pulse
 //   s_address     in        12  slave k's word address in bits [4k, 4k+4)
 //   s_write_data  in        96  slave k's write data in bits [32k, 32k+32)
 //   s_write       in         3  bit k: slave k's one-clock write strobe
-//   s_read        in         3  bit k: slave k's one-clock read strobe (a CMD read pops once)
-//   m_read_data   out       32  master read data, valid in the clock after m_read, held until the next read
-//   m_irq         out        1  level: some status FIFO holds words
-//   s_read_data   out       96  slave k's read data in bits [32k, 32k+32), valid in the clock after its read, held
-//   s_data_ready  out        3  bit k: slave k has released, unread commands (rises on the release edge for every slave)
+//   s_read        in         3  bit k: slave k's one-clock read strobe (a `CMD` read pops, once per strobe)
+//   m_read_data   out       32  master read data, registered: valid in the clock after `m_read`, held until the next read
+//   m_irq         out        1  level: some status FIFO holds words; registered
+//   s_read_data   out       96  slave k's read data in bits [32k, 32k+32), registered: valid in the clock after its read, held
+//   s_data_ready  out        3  bit k: slave k has released commands it has not read (rises on the release edge for every slave); registered
 // ============================================================================
 
 `default_nettype none

@@ -11,20 +11,20 @@
 // Ports:
 //   name         dir    width  meaning
 //   clock        in         1  rising-edge clock
-//   reset        in         1  synchronous reset, active high: idle, slot empty, output low, flags 0
+//   reset        in         1  synchronous, active high: idle, slot empty, output low, flags 0 (the datapath registers are not cleared: they are always loaded before use)
 //   tick         in         1  time base: one tick is the minimum toggle time (tie high for f_clk)
 //   period       in        32  T: the interpolation period in ticks (even)
 //   count        in        32  N: pulses in the period, 0 <= N <= T/2
-//   mode         in         1  0 = paper order (short pulses first), 1 = interleaved (Bresenham)
-//   load         in         1  strobe: queue (period, count, mode) as the next period; taken only while ready
-//   clear_flags  in         1  clears underrun, overrange and overflow (tie to 0 if unused)
-//   pulse        out        1  each pulse high Tp/2 ticks, then low Tp/2 ticks
+//   mode         in         1  0 = paper order (N1 short pulses, then N2 long); 1 = interleaved (Bresenham over the pulse index)
+//   load         in         1  strobe: queue (period, count, mode) as the next period; taken only while `ready` is high
+//   clear_flags  in         1  clears `underrun`, `overrange` and `overflow` (tie to 0 if unused)
+//   pulse        out        1  each pulse is high Tp/2 ticks, then low Tp/2 ticks; registered
 //   period_done  out        1  one-clock strobe when a period's T ticks have elapsed
-//   ready        out        1  the next-period slot is free: a load now is accepted (gapless if 39+ clocks before the period ends)
+//   ready        out        1  the next-period slot is free: a load now is accepted (gapless if 39 or more clocks before the period ends)
 //   running      out        1  a period is in progress
-//   underrun     out        1  sticky: a period ended with no next period ready (output low, waiting)
+//   underrun     out        1  sticky: a period ended with no next period ready; the output stays low and the block waits
 //   overrange    out        1  sticky: an odd or too small T, or N > T/2, was corrected
-//   overflow     out        1  sticky: a load arrived while ready was low and was ignored
+//   overflow     out        1  sticky: a load arrived while `ready` was low and was ignored
 // ============================================================================
 
 `default_nettype none

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use motion_hdl::export::{catalog, write_export};
+use motion_hdl::export::{catalog, write_export, ExportDirs};
 use motion_hdl::host::simulation::{simulate, InputFormat, SimulationOptions, Trip};
 use motion_hdl::host::MachineSettings;
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
@@ -21,8 +21,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Write every exported module as <module>.v, with its index, and its
-    /// vector testbench.
+    /// Write every exported module as <module>.v, with its index, its
+    /// vector testbench, and every datasheet's port table.
     Export {
         /// Folder for the Verilog and its README index.
         #[arg(long, default_value = "rtl-out")]
@@ -30,6 +30,10 @@ enum Command {
         /// Folder for the generated vector testbenches.
         #[arg(long, default_value = "testbench")]
         testbench_out: PathBuf,
+        /// Folder of the blocks' sources, for each datasheet's generated
+        /// port table (`<block>/ports.md`).
+        #[arg(long, default_value = "src/blocks")]
+        datasheet_out: PathBuf,
     },
     /// Synthesize every exported module for iCE40 HX8K and write the
     /// LUT4/DFF/carry/RAM/Fmax report (needs yosys and nextpnr-ice40), then
@@ -359,8 +363,17 @@ fn run(cli: Cli) -> Result<(), String> {
                 Err(format!("not proved: {}", failed.join(", ")))
             }
         }
-        Command::Export { out, testbench_out } => {
-            let written = write_export(&out, &testbench_out).map_err(|e| e.to_string())?;
+        Command::Export {
+            out,
+            testbench_out,
+            datasheet_out,
+        } => {
+            let dirs = ExportDirs {
+                rtl: &out,
+                testbench: &testbench_out,
+                datasheets: &datasheet_out,
+            };
+            let written = write_export(&dirs).map_err(|e| e.to_string())?;
             for path in written {
                 println!("wrote {}", path.display());
             }

@@ -17,6 +17,7 @@ pub mod input_conditioner;
 pub mod interrupt_controller;
 pub mod motion_controller;
 pub mod narrow_bus_adapter;
+pub mod port_doc;
 pub mod pulse_counter;
 pub mod quadrature_decoder;
 pub mod sequential_divider;

@@ -23,8 +23,7 @@ use crate::blocks::step_output::{self, StepOutput};
 use crate::blocks::sync_fifo_bridge::{self, SyncFifoBridge3};
 use crate::blocks::uniform_pulse_gen::{self, UniformPulseGen};
 
-/// One documented port: name and meaning (direction and width come from the RTL).
-pub type PortDoc = (&'static str, &'static str);
+pub use crate::blocks::port_doc::PortDoc;
 
 /// One fixed parameter of an exported module: name, value, meaning.
 pub type ParamDoc = (&'static str, &'static str, &'static str);

@@ -1,4 +1,5 @@
 use super::catalog::ModuleSpec;
+use super::datasheet::array_index;
 use super::ports::Port;
 
 /// `motion-hdl <version> (rust-hdl 0.46)`: the generator line of every file.
@@ -24,19 +25,6 @@ pub struct PortRow<'a> {
     pub meaning: String,
 }
 
-/// The index `n` when `port` is element n of the array documented as
-/// `doc` (`name__i` documents `name__0`, `name__1`, ...); `Some(None)` for
-/// a plain match.
-fn doc_match(doc: &str, port: &str) -> Option<Option<String>> {
-    if doc == port {
-        return Some(None);
-    }
-    let prefix = doc.strip_suffix("__i")?;
-    let index = port.strip_prefix(prefix)?.strip_prefix("__")?;
-    (!index.is_empty() && index.chars().all(|c| c.is_ascii_digit()))
-        .then(|| Some(index.to_string()))
-}
-
 /// Pairs every RTL port with its documentation, failing on any mismatch.
 pub fn port_rows<'a>(
     spec: &ModuleSpec,
@@ -48,15 +36,19 @@ pub fn port_rows<'a>(
             !spec
                 .port_docs
                 .iter()
-                .any(|(name, _)| doc_match(name, &p.name).is_some())
+                .any(|doc| array_index(doc.name, &p.name).is_some())
         })
         .map(|p| p.name.as_str())
         .collect();
     let unknown: Vec<&str> = spec
         .port_docs
         .iter()
-        .filter(|(name, _)| !ports.iter().any(|p| doc_match(name, &p.name).is_some()))
-        .map(|(name, _)| *name)
+        .filter(|doc| {
+            !ports
+                .iter()
+                .any(|p| array_index(doc.name, &p.name).is_some())
+        })
+        .map(|doc| doc.name)
         .collect();
     if !undocumented.is_empty() || !unknown.is_empty() {
         return Err(PortDocError {
@@ -71,9 +63,9 @@ pub fn port_rows<'a>(
             meaning: spec
                 .port_docs
                 .iter()
-                .find_map(|(name, meaning)| match doc_match(name, &port.name)? {
-                    None => Some(meaning.to_string()),
-                    Some(index) => Some(meaning.replace("axis i", &format!("axis {index}"))),
+                .find_map(|doc| match array_index(doc.name, &port.name)? {
+                    None => Some(doc.meaning.to_string()),
+                    Some(index) => Some(doc.meaning.replace("axis i", &format!("axis {index}"))),
                 })
                 .unwrap_or_default(),
         })

@@ -3,6 +3,7 @@
 //! `testbench/` (one vector testbench per module).
 
 pub mod catalog;
+pub mod datasheet;
 mod header;
 mod index;
 mod ports;
@@ -26,6 +27,9 @@ pub enum ExportError {
     /// The catalog's port documentation disagrees with the RTL.
     #[error(transparent)]
     PortDoc(#[from] PortDocError),
+    /// A datasheet's port table disagrees with the RTL.
+    #[error(transparent)]
+    Datasheet(#[from] datasheet::DatasheetError),
     /// A register map does not validate.
     #[error(transparent)]
     RegisterMap(#[from] crate::regmap::RegMapError),
@@ -77,6 +81,30 @@ pub enum OutputDir {
     Rtl,
     /// `testbench/` (or `--testbench-out`).
     Testbench,
+    /// `src/blocks/` (or `--datasheet-out`): each block's port table,
+    /// `<block>/ports.md`, included in its rustdoc.
+    Datasheets,
+}
+
+/// Where `write_export` puts each kind of generated file.
+pub struct ExportDirs<'a> {
+    /// `rtl-out/`.
+    pub rtl: &'a Path,
+    /// `testbench/`.
+    pub testbench: &'a Path,
+    /// `src/blocks/`.
+    pub datasheets: &'a Path,
+}
+
+impl ExportDirs<'_> {
+    /// The folder of `dir`.
+    pub fn of(&self, dir: OutputDir) -> &Path {
+        match dir {
+            OutputDir::Rtl => self.rtl,
+            OutputDir::Testbench => self.testbench,
+            OutputDir::Datasheets => self.datasheets,
+        }
+    }
 }
 
 /// One file of the export, with its contents.
@@ -156,23 +184,26 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
         file_name: "README.md".to_string(),
         contents: index::rtl_index(&modules),
     });
+    for spec in datasheet::datasheets() {
+        files.push(GeneratedFile {
+            dir: OutputDir::Datasheets,
+            file_name: format!("{}/ports.md", spec.block),
+            contents: datasheet::port_table(&spec)?,
+        });
+    }
     Ok(files)
 }
 
-/// Writes the export into `rtl_dir` and `testbench_dir` and returns the paths written.
-pub fn write_export(rtl_dir: &Path, testbench_dir: &Path) -> Result<Vec<PathBuf>, ExportError> {
+/// Writes the export into `dirs` and returns the paths written.
+pub fn write_export(dirs: &ExportDirs) -> Result<Vec<PathBuf>, ExportError> {
     let mut written = Vec::new();
     for file in generated_files()? {
-        let dir = match file.dir {
-            OutputDir::Rtl => rtl_dir,
-            OutputDir::Testbench => testbench_dir,
-        };
-        let io_error = |source| ExportError::Io {
-            path: dir.display().to_string(),
+        let path = dirs.of(file.dir).join(&file.file_name);
+        let parent = path.parent().unwrap_or(Path::new("."));
+        std::fs::create_dir_all(parent).map_err(|source| ExportError::Io {
+            path: parent.display().to_string(),
             source,
-        };
-        std::fs::create_dir_all(dir).map_err(io_error)?;
-        let path = dir.join(&file.file_name);
+        })?;
         std::fs::write(&path, &file.contents).map_err(|source| ExportError::Io {
             path: path.display().to_string(),
             source,

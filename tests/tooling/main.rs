@@ -1,8 +1,10 @@
-//! The export and its tools: `rtl-out/` freshness and lint, register maps,
+//! The export and its tools: `rtl-out/` freshness and lint, the datasheets'
+//! port tables, register maps,
 //! cross-simulation, the harness, plots, and synthesis of every exported
 //! module and the board example.
 
 mod cross_simulation;
+mod datasheets;
 mod harness;
 mod plots;
 mod regmap;

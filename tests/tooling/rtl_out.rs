@@ -15,6 +15,7 @@ fn committed_export_is_fresh() {
         let dir = match file.dir {
             OutputDir::Rtl => "rtl-out",
             OutputDir::Testbench => "testbench",
+            OutputDir::Datasheets => "src/blocks",
         };
         let path = root.join(dir).join(&file.file_name);
         if std::fs::read_to_string(&path).ok().as_deref() != Some(file.contents.as_str()) {
@@ -106,71 +107,55 @@ fn committed_synthesis_report_covers_every_exported_module() {
     );
 }
 
-/// Port names in the first column of a block's rustdoc port table (the
-/// rows of the first `| port | dir |` table of its `mod.rs`).
-fn rustdoc_ports(source: &str) -> BTreeSet<String> {
-    let mut ports = BTreeSet::new();
-    let mut in_table = false;
-    for line in source.lines() {
-        let Some(row) = line.strip_prefix("//! |") else {
-            if in_table {
-                break;
-            }
-            continue;
-        };
-        if row.trim_start().starts_with("port |") {
-            in_table = true;
-            continue;
-        }
-        if !in_table || row.starts_with("---") {
-            continue;
-        }
-        let first = row.split('|').next().unwrap_or("");
-        ports.extend(first.split('`').skip(1).step_by(2).map(str::to_string));
-    }
-    ports
-}
-
-/// One fact, one place: a block's `PORT_DOCS` (the export header and the
-/// `rtl-out` index) names exactly the exported top's ports, and its
-/// rustdoc port table names the same ones. Checked for the blocks whose
-/// ports are all plain names (`dda_interpolator` still has per-axis
-/// `__k` ports, documented once as `__i`).
+/// No top-level port of an exported module contains `__` (VHDL forbids
+/// it, Verilator mangles it), except `dda_interpolator`'s per-axis ports,
+/// documented once as `__i`.
 #[test]
-fn port_docs_and_the_rustdoc_port_table_name_the_exported_ports() {
+fn exported_port_names_have_no_double_underscore() {
     for spec in catalog()
         .into_iter()
         .filter(|s| s.name != "dda_interpolator")
     {
         let block = (spec.build)();
-        let top: BTreeSet<String> = motion_hdl::export::top_ports(block.as_ref())
+        let top: Vec<String> = motion_hdl::export::top_ports(block.as_ref())
             .into_iter()
             .map(|p| p.name)
             .collect();
-        let documented: BTreeSet<String> = spec
-            .port_docs
-            .iter()
-            .map(|(name, _)| name.to_string())
-            .collect();
         assert!(top.len() > 3, "{}: {top:?}", spec.name);
-        assert_eq!(
-            documented, top,
-            "{}: PORT_DOCS against the exported ports",
-            spec.name
-        );
-        let source =
-            std::fs::read_to_string(repo_root().join(format!("src/blocks/{}/mod.rs", spec.block)))
-                .unwrap();
-        assert_eq!(
-            rustdoc_ports(&source),
-            top,
-            "{}: rustdoc port table against the exported ports",
-            spec.name
-        );
         assert!(
             top.iter().all(|p| !p.contains("__")),
             "{}: a port name with `__`: {top:?}",
             spec.name
+        );
+    }
+}
+
+/// Every exported block's datasheet shows its generated port table, and
+/// has no hand-written one beside it.
+#[test]
+fn every_datasheet_includes_its_generated_port_table() {
+    let datasheets = motion_hdl::export::datasheet::datasheets();
+    for spec in catalog() {
+        assert!(
+            datasheets.iter().any(|d| d.block == spec.block),
+            "{}: no datasheet port table for block {}",
+            spec.name,
+            spec.block
+        );
+    }
+    for spec in datasheets {
+        let source =
+            std::fs::read_to_string(repo_root().join(format!("src/blocks/{}/mod.rs", spec.block)))
+                .unwrap();
+        assert!(
+            source.contains("#![doc = include_str!(\"ports.md\")]"),
+            "{}: the datasheet does not include ports.md",
+            spec.block
+        );
+        assert!(
+            !source.contains("//! | port | dir |"),
+            "{}: a hand-written port table beside the generated one",
+            spec.block
         );
     }
 }

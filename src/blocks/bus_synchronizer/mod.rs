@@ -23,23 +23,8 @@
 //! behind a `BusSynchronizer<A, 16>`.
 //!
 //! ## Ports
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: no access in progress, outputs 0 |
-//! | `cs_n` | in | 1 | chip select, active low, asynchronous |
-//! | `we_n` | in | 1 | write strobe, active low, asynchronous |
-//! | `rd_n` | in | 1 | read strobe (output enable), active low, asynchronous |
-//! | `address` | in | A | word address, asynchronous |
-//! | `data_in` | in | D | write data from the pins, asynchronous |
-//! | `data_out` | out | D | read data to the pins, registered |
-//! | `data_oe` | out | 1 | drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins (for the IO buffer's enable) |
-//! | `ready` | out | 1 | the access at the pins may end: low from the moment a strobe falls until a write has two active samples or a read's answer is on `data_out`; combinational from the pins and registered state |
-//! | `bus_address` | out | A | address of the current bus strobe, registered |
-//! | `bus_write_data` | out | D | data of `bus_write`, registered |
-//! | `bus_write` | out | 1 | one-clock write strobe |
-//! | `bus_read` | out | 1 | one-clock read strobe |
-//! | `bus_read_data` | in | D | the slave's read data, valid in the clock after `bus_read` |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Synchronous bus timing
 //! ```text
@@ -101,62 +86,75 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::PortDoc;
+
 /// The meaning of each pin-side and bus-side port, one constant per port,
-/// shared by the port tables of every adapter built on the synchronizer.
+/// shared by the port tables of every adapter built on the synchronizer
+/// (an adapter sets its own width with [`PortDoc::with_width`]).
 pub mod port_docs {
-    /// A documented port: name, meaning.
-    pub type PortDoc = (&'static str, &'static str);
+    use crate::blocks::port_doc::{port, PortDoc};
+
     /// `clock`.
-    pub const CLOCK: PortDoc = ("clock", "rising-edge clock");
+    pub const CLOCK: PortDoc = port("clock", "1", "rising-edge clock");
     /// `reset`.
-    pub const RESET: PortDoc = (
+    pub const RESET: PortDoc = port(
         "reset",
-        "synchronous reset, active high: no access in progress, outputs 0",
+        "1",
+        "synchronous, active high: no access in progress, outputs 0",
     );
     /// `cs_n`.
-    pub const CS_N: PortDoc = ("cs_n", "chip select, active low, asynchronous");
+    pub const CS_N: PortDoc = port("cs_n", "1", "chip select, active low, asynchronous");
     /// `we_n`.
-    pub const WE_N: PortDoc = ("we_n", "write strobe, active low, asynchronous");
+    pub const WE_N: PortDoc = port("we_n", "1", "write strobe, active low, asynchronous");
     /// `rd_n`.
-    pub const RD_N: PortDoc = (
+    pub const RD_N: PortDoc = port(
         "rd_n",
+        "1",
         "read strobe (output enable), active low, asynchronous",
     );
     /// `address`.
-    pub const ADDRESS: PortDoc = ("address", "word address, asynchronous");
+    pub const ADDRESS: PortDoc = port("address", "A", "word address, asynchronous");
     /// `data_in`.
-    pub const DATA_IN: PortDoc = ("data_in", "write data from the pins, asynchronous");
+    pub const DATA_IN: PortDoc = port("data_in", "D", "write data from the pins, asynchronous");
     /// `data_out`.
-    pub const DATA_OUT: PortDoc = ("data_out", "read data to the pins, registered");
+    pub const DATA_OUT: PortDoc = port("data_out", "D", "read data to the pins, registered");
     /// `data_oe`.
-    pub const DATA_OE: PortDoc = (
+    pub const DATA_OE: PortDoc = port(
         "data_oe",
-        "drive the data pins: !cs_n & !rd_n & we_n, combinational from the pins",
+        "1",
+        "drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins (for the IO buffer's enable)",
     );
     /// `ready`.
-    pub const READY: PortDoc = (
+    pub const READY: PortDoc = port(
         "ready",
-        "the access at the pins may end (wait input of the master): low from the strobe's fall until a write has two active samples or a read's answer is on data_out",
+        "1",
+        "the access at the pins may end (the master's wait input, XREADY): low from the moment a strobe falls until a write has two active samples or a read's answer is on `data_out`; combinational from the pins and registered state",
     );
     /// `bus_address`.
-    pub const BUS_ADDRESS: PortDoc = ("bus_address", "address of the current bus strobe");
+    pub const BUS_ADDRESS: PortDoc = port(
+        "bus_address",
+        "A",
+        "address of the current bus strobe, registered",
+    );
     /// `bus_write_data`.
-    pub const BUS_WRITE_DATA: PortDoc = ("bus_write_data", "data of bus_write");
+    pub const BUS_WRITE_DATA: PortDoc =
+        port("bus_write_data", "D", "data of `bus_write`, registered");
     /// `bus_write`.
-    pub const BUS_WRITE: PortDoc = ("bus_write", "one-clock write strobe");
+    pub const BUS_WRITE: PortDoc = port("bus_write", "1", "one-clock write strobe");
     /// `bus_read`.
-    pub const BUS_READ: PortDoc = ("bus_read", "one-clock read strobe");
+    pub const BUS_READ: PortDoc = port("bus_read", "1", "one-clock read strobe");
     /// `bus_read_data`.
-    pub const BUS_READ_DATA: PortDoc = (
+    pub const BUS_READ_DATA: PortDoc = port(
         "bus_read_data",
-        "the slave's read data, valid in the clock after bus_read",
+        "D",
+        "the slave's read data, valid in the clock after `bus_read`",
     );
 }
 
 use port_docs::*;
 
-/// Meaning of every port.
-pub const PORT_DOCS: &[(&str, &str)] = &[
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
     CLOCK,
     RESET,
     CS_N,

@@ -10,16 +10,26 @@
 //! LUT4s.
 //!
 //! ## Ports
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `a` | in | W | first operand |
-//! | `b` | in | W | second operand (for a subtraction a - c, b = !c) |
-//! | `sum` | out | W | (a + b + 1) mod 2^W, combinational |
-//! | `carry_out` | out | 1 | carry out of bit W - 1; for b = !c it is `a >= c` |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! Purely combinational: no clock, no state, defined for every input.
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::port_doc::{port, PortDoc};
+
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("a", "W", "first operand"),
+    port("b", "W", "second operand (for a subtraction a - c, b = !c)"),
+    port("sum", "W", "(a + b + 1) mod 2^W, combinational"),
+    port(
+        "carry_out",
+        "1",
+        "carry out of bit W - 1; for b = !c it is `a >= c`",
+    ),
+];
 
 /// `a + b + 1` with its carry out, as a carry-select adder split at W/2.
 #[derive(Clone, Debug, LogicBlock)]

@@ -8,22 +8,8 @@
 //! (first-word fall-through); nothing is ever overwritten or invented.
 //!
 //! ## Ports (2^N entries of 32 bits)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: flush (empty), flags 0 |
-//! | `write` | in | 1 | push `write_data` (refused when full, unless a pop frees a slot on the same clock) |
-//! | `write_data` | in | 32 | the entry to push |
-//! | `pop` | in | 1 | remove the head entry (refused when empty) |
-//! | `head` | out | 32 | the oldest entry, valid while `empty` is low (while empty: 0 after power-up, else a stale word) |
-//! | `empty` | out | 1 | no entry (registered) |
-//! | `full` | out | 1 | 2^N entries (registered) |
-//! | `level` | out | N+1 | entries held |
-//! | `low_water` | in | N+1 | threshold for `low` |
-//! | `low` | out | 1 | `level` <= `low_water` (combinational from the registered level) |
-//! | `clear_flags` | in | 1 | clears `overflow` and `underflow` |
-//! | `overflow` | out | 1 | sticky: a write was refused (FIFO full); the FIFO is unchanged |
-//! | `underflow` | out | 1 | sticky: a pop was refused (FIFO empty) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! A write at edge e is counted in `level` after e and is on `head` after e
@@ -68,6 +54,26 @@
 pub mod model;
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::port_doc::{port, PortDoc};
+
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: flush (empty), flags 0"),
+    port("write", "1", "push `write_data` (refused when full, unless a pop frees a slot on the same clock)"),
+    port("write_data", "32", "the entry to push"),
+    port("pop", "1", "remove the head entry (refused when empty)"),
+    port("head", "32", "the oldest entry, valid while `empty` is low (while empty: 0 after power-up, else a stale word)"),
+    port("empty", "1", "no entry (registered)"),
+    port("full", "1", "2^N entries (registered)"),
+    port("level", "N+1", "entries held"),
+    port("low_water", "N+1", "threshold for `low`"),
+    port("low", "1", "`level` <= `low_water` (combinational from the registered level)"),
+    port("clear_flags", "1", "clears `overflow` and `underflow`"),
+    port("overflow", "1", "sticky: a write was refused (FIFO full); the FIFO is unchanged"),
+    port("underflow", "1", "sticky: a pop was refused (FIFO empty)"),
+];
 
 /// Block-RAM FIFO of 2^N 32-bit entries with flush and sticky flags. See the
 /// [module documentation](self).

@@ -10,25 +10,8 @@
 //! refuses codes and updates until the abort is cleared.
 //!
 //! ## Ports (`K` channels of `W` bits; the exported `dac_interface` has K = 3, W = 16)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: registers to their reset values, then the safe update |
-//! | `bus_address` | in | 5 | register word address, with `bus_write` or `bus_read` |
-//! | `bus_write_data` | in | 32 | register write data |
-//! | `bus_write` | in | 1 | one-clock register write strobe |
-//! | `bus_read` | in | 1 | one-clock register read strobe |
-//! | `update` | in | 1 | one-clock update request (the period boundary), as a write of `UPDATE.START` |
-//! | `force_safe` | in | 1 | level: its rise starts the safe update; while high, codes and updates are refused |
-//! | `load` | in | K | bit k: `load_code` goes into channel k's staged code in this clock (as a `CODE[k]` write; refused while `force_safe` is high); tie to 0 when unused |
-//! | `load_code` | in | W | the code of `load`, signed (two's complement) |
-//! | `bus_read_data` | out | 32 | register read data, valid in the clock after `bus_read`, held until the next read |
-//! | `dac_data` | out | W | DAC data bus, shared by every channel |
-//! | `dac_cs_n` | out | K | bit k: channel k's chip select, active low |
-//! | `dac_l1_n` | out | 1 | first-rank load, active low, shared |
-//! | `dac_ldac` | out | 1 | second-rank load, active high, shared |
-//! | `busy` | out | 1 | an update runs: from the edge it starts until `dac_ldac` falls |
-//! | `safe` | out | 1 | the outputs hold the safe code, or its update is pending or running |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! Every pin output is a flip-flop (`dac_cs_n` and `dac_l1_n` through an
 //! inverter): no glitch reaches a DAC. At power-up, before any reset, the
@@ -154,6 +137,8 @@ pub mod registers;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use registers::{field_of, register_map, APPLIED_BASE, CODE_BASE, ID_VALUE};
 
 /// One line for the export header and the `rtl-out` index.
@@ -161,48 +146,24 @@ pub const SUMMARY: &str =
     "K parallel DACs (AD669 style) on one data bus: double-buffered, one shared LDAC, safe code on reset and abort, register bus";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous, active high: registers to their reset values, then the safe update",
-    ),
-    (
-        "bus_address",
-        "register word address, with bus_write or bus_read",
-    ),
-    ("bus_write_data", "register write data"),
-    ("bus_write", "one-clock register write strobe"),
-    ("bus_read", "one-clock register read strobe"),
-    (
-        "update",
-        "one-clock update request (the period boundary), as a write of UPDATE.START",
-    ),
-    (
-        "force_safe",
-        "level: its rise starts the safe update; while high, codes and updates are refused",
-    ),
-    (
-        "load",
-        "bit k: load_code goes into channel k's staged code (as a CODE[k] write; refused while force_safe is high)",
-    ),
-    ("load_code", "the code of load, signed"),
-    (
-        "bus_read_data",
-        "register read data, valid in the clock after bus_read, held until the next read",
-    ),
-    ("dac_data", "DAC data bus, shared by every channel"),
-    ("dac_cs_n", "bit k: channel k's chip select, active low"),
-    ("dac_l1_n", "first-rank load, active low, shared"),
-    ("dac_ldac", "second-rank load, active high, shared"),
-    (
-        "busy",
-        "an update runs: from the edge it starts until dac_ldac falls",
-    ),
-    (
-        "safe",
-        "the outputs hold the safe code, or its update is pending or running",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: registers to their reset values, then the safe update"),
+    port("bus_address", "5", "register word address, with `bus_write` or `bus_read`"),
+    port("bus_write_data", "32", "register write data"),
+    port("bus_write", "1", "one-clock register write strobe"),
+    port("bus_read", "1", "one-clock register read strobe"),
+    port("update", "1", "one-clock update request (the period boundary), as a write of `UPDATE.START`"),
+    port("force_safe", "1", "level: its rise starts the safe update; while high, codes and updates are refused"),
+    port("load", "K", "bit k: `load_code` goes into channel k's staged code in this clock (as a `CODE[k]` write; refused while `force_safe` is high); tie to 0 when unused"),
+    port("load_code", "W", "the code of `load`, signed (two's complement)"),
+    port("bus_read_data", "32", "register read data, valid in the clock after `bus_read`, held until the next read"),
+    port("dac_data", "W", "DAC data bus, shared by every channel"),
+    port("dac_cs_n", "K", "bit k: channel k's chip select, active low"),
+    port("dac_l1_n", "1", "first-rank load, active low, shared"),
+    port("dac_ldac", "1", "second-rank load, active high, shared"),
+    port("busy", "1", "an update runs: from the edge it starts until `dac_ldac` falls"),
+    port("safe", "1", "the outputs hold the safe code, or its update is pending or running"),
 ];
 
 /// The exported configuration: three 16-bit channels (three AD669s).

@@ -10,7 +10,7 @@ use crate::regmap::RegisterMap;
 pub struct DacInputs {
     /// Synchronous reset.
     pub reset: bool,
-    /// Register word address (4 bits).
+    /// Register word address (`bus_address`).
     pub bus_address: u64,
     /// Register write data.
     pub bus_write_data: u64,

@@ -8,16 +8,8 @@
 //! fractional remainder carries over from one use to the next.
 //!
 //! ## Ports (`W` = 32 in the exported `dda_integrator`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: accumulator 0, flags 0, pipeline empty |
-//! | `tick` | in | 1 | accumulate enable (for example a `freq_divider` strobe) |
-//! | `integrand` | in | W | J, sampled with `tick` |
-//! | `modulus` | in | W | M, sampled with `tick`; 0 means 2^W (the binary DDA) |
-//! | `clear_overrange` | in | 1 | clears `overrange` (tie to 0 if unused) |
-//! | `pulse` | out | 1 | one-clock pulse per accumulator overflow, 2 clocks after its tick |
-//! | `overrange` | out | 1 | sticky: a tick was processed with J > M (M != 0) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! J and M are sampled together with `tick` at the same rising edge, so a
@@ -51,31 +43,45 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::carry_select_adder::CarrySelectAdder;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str = "DDA integrator: exactly floor(t*J/M) evenly spread pulses after t ticks";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port(
         "reset",
-        "synchronous reset, active high: accumulator 0, flags 0",
+        "1",
+        "synchronous, active high: accumulator 0, flags 0, pipeline empty",
     ),
-    (
+    port(
         "tick",
-        "accumulate enable, for example a freq_divider strobe",
+        "1",
+        "accumulate enable (for example a `freq_divider` strobe)",
     ),
-    ("integrand", "J, sampled with tick"),
-    ("modulus", "M, sampled with tick; 0 means 2^W"),
-    ("clear_overrange", "clears overrange (tie to 0 if unused)"),
-    (
+    port("integrand", "W", "J, sampled with `tick`"),
+    port(
+        "modulus",
+        "W",
+        "M, sampled with `tick`; 0 means 2^W (the binary DDA)",
+    ),
+    port(
+        "clear_overrange",
+        "1",
+        "clears `overrange` (tie to 0 if unused)",
+    ),
+    port(
         "pulse",
+        "1",
         "one-clock pulse per accumulator overflow, 2 clocks after its tick",
     ),
-    (
+    port(
         "overrange",
+        "1",
         "sticky: a tick was processed with J > M (M != 0)",
     ),
 ];

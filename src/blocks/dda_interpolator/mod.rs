@@ -9,23 +9,8 @@
 //! whatever P does from one period to the next.
 //!
 //! ## Ports (`K` = 3 in the exported `dda_interpolator`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: idle, nothing queued, position fractions 0, flags 0 |
-//! | `tick` | in | 1 | time base, for example a `freq_divider` strobe |
-//! | `load` | in | 1 | strobe: queue `next_period` and `next_delta_*` as the next period (taken only while `ready`) |
-//! | `next_period` | in | 32 | P, the next period's length in ticks: 1 to 2^24-1 (167 ms at a 100 MHz tick) |
-//! | `next_delta__i` | in | 32 | axis i's steps for the next period, signed Q16.16 (-32768.0 to 32767.99998), at most one step per tick |
-//! | `clear_status` | in | 1 | clears `underrun`, `overrange` and `load_error` |
-//! | `step__i` | out | 1 | axis i's one-clock step pulse |
-//! | `dir__i` | out | 1 | axis i's direction: 1 = positive; set with each step |
-//! | `period_done` | out | 1 | one-clock strobe after the last tick of every period |
-//! | `ready` | out | 1 | the next-period slot is free: a `load` now is taken |
-//! | `running` | out | 1 | a period is in progress (ticks are being used) |
-//! | `underrun` | out | 1 | sticky: a period ended with no next period queued |
-//! | `overrange` | out | 1 | sticky: a delta asked for more than one step per tick and was clamped |
-//! | `load_error` | out | 1 | sticky: a `load` was refused (not `ready`, or P out of range) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Load protocol
 //! Write `next_period` and `next_delta_*`, then pulse `load` while `ready` is
@@ -76,6 +61,8 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 pub use axis::{InterpolatorAxis, PERIOD_BITS, Q_BITS};
 
 use crate::blocks::sequential_divider::SequentialDivider;
@@ -86,49 +73,22 @@ pub const SUMMARY: &str =
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
 /// Array ports are documented once, as `name__i`.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: idle, nothing queued, fractions 0, flags 0",
-    ),
-    ("tick", "time base, for example a freq_divider strobe"),
-    (
-        "load",
-        "strobe: queue next_period and next_delta__i (taken only while ready)",
-    ),
-    (
-        "next_period",
-        "P, the next period's length in ticks (1 to 2^24-1)",
-    ),
-    (
-        "next_delta__i",
-        "axis i's signed Q16.16 steps for the next period, at most one step per tick",
-    ),
-    ("clear_status", "clears underrun, overrange and load_error"),
-    ("step__i", "axis i's one-clock step pulse"),
-    (
-        "dir__i",
-        "axis i's direction (1 = positive), set with each step",
-    ),
-    (
-        "period_done",
-        "one-clock strobe after the last tick of every period",
-    ),
-    ("ready", "the next-period slot is free: a load now is taken"),
-    ("running", "a period is in progress"),
-    (
-        "underrun",
-        "sticky: a period ended with no next period queued",
-    ),
-    (
-        "overrange",
-        "sticky: a delta asked for more than one step per tick and was clamped",
-    ),
-    (
-        "load_error",
-        "sticky: a load was refused (not ready, or P out of range)",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: idle, nothing queued, position fractions 0, flags 0"),
+    port("tick", "1", "time base, for example a `freq_divider` strobe"),
+    port("load", "1", "strobe: queue `next_period` and `next_delta_*` as the next period (taken only while `ready`)"),
+    port("next_period", "32", "P, the next period's length in ticks: 1 to 2^24-1 (167 ms at a 100 MHz tick)"),
+    port("next_delta__i", "32", "axis i's steps for the next period, signed Q16.16 (-32768.0 to 32767.99998), at most one step per tick"),
+    port("clear_status", "1", "clears `underrun`, `overrange` and `load_error`"),
+    port("step__i", "1", "axis i's one-clock step pulse"),
+    port("dir__i", "1", "axis i's direction: 1 = positive; set with each step"),
+    port("period_done", "1", "one-clock strobe after the last tick of every period"),
+    port("ready", "1", "the next-period slot is free: a `load` now is taken"),
+    port("running", "1", "a period is in progress (ticks are being used)"),
+    port("underrun", "1", "sticky: a period ended with no next period queued"),
+    port("overrange", "1", "sticky: a delta asked for more than one step per tick and was clamped"),
+    port("load_error", "1", "sticky: a `load` was refused (not `ready`, or P out of range)"),
 ];
 
 /// K-axis DDA fine interpolator. See the [module documentation](self) for the datasheet.

@@ -10,24 +10,8 @@
 //! 1 = in use, 0 = done; the block gives the words no meaning of its own.
 //!
 //! ## Ports (AW = 10, D = 16 in the exported `dpram_mailbox`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: irqs low, pending writes dropped, read data 0; the RAM keeps its words |
-//! | `a_address` | in | AW | port A word address, with `a_write` or `a_read` |
-//! | `a_write_data` | in | D | port A write data |
-//! | `a_write` | in | 1 | port A one-clock write strobe |
-//! | `a_read` | in | 1 | port A one-clock read strobe |
-//! | `a_read_data` | out | D | port A read data: valid the clock after `a_read`, held until the next answer |
-//! | `irq_a` | out | 1 | level: port B wrote `MAILBOX_TO_A`, port A has not accessed it since |
-//! | `b_address` | in | AW | port B word address, with `b_write` or `b_read` |
-//! | `b_write_data` | in | D | port B write data |
-//! | `b_write` | in | 1 | port B one-clock write strobe |
-//! | `b_read` | in | 1 | port B one-clock read strobe |
-//! | `b_read_data` | out | D | port B read data: valid the clock after `b_read`, held until the next answer |
-//! | `irq_b` | out | 1 | level: port A wrote `MAILBOX_TO_B`, port B has not accessed it since |
-//! | `collision` | out | 1 | one-clock pulse the clock after both ports wrote the same word on the same clock |
-//! | `overrun` | out | 1 | one-clock pulse the clock after a port-B write was refused (more writes than the block can land, see below) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! Both ports follow the project's register-bus convention (the bus side of
 //! `external_bus_adapter`): `address` with a one-clock `write` or `read`
@@ -130,49 +114,30 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
     "block-RAM dual-port memory (two synchronous register-bus ports) with mailbox interrupts, read-first, collision and overrun flags";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: irqs low, pending writes dropped, read data 0; the RAM keeps its words",
-    ),
-    ("a_address", "port A word address, with a_write or a_read"),
-    ("a_write_data", "port A write data"),
-    ("a_write", "port A one-clock write strobe"),
-    ("a_read", "port A one-clock read strobe"),
-    (
-        "a_read_data",
-        "port A read data: valid the clock after a_read, held until the next answer",
-    ),
-    (
-        "irq_a",
-        "level: port B wrote MAILBOX_TO_A (2^AW - 2); cleared by any port-A access to it",
-    ),
-    ("b_address", "port B word address, with b_write or b_read"),
-    ("b_write_data", "port B write data"),
-    ("b_write", "port B one-clock write strobe"),
-    ("b_read", "port B one-clock read strobe"),
-    (
-        "b_read_data",
-        "port B read data: valid the clock after b_read, held until the next answer",
-    ),
-    (
-        "irq_b",
-        "level: port A wrote MAILBOX_TO_B (2^AW - 1); cleared by any port-B access to it",
-    ),
-    (
-        "collision",
-        "one-clock pulse the clock after both ports wrote the same word on the same clock (B's data stays)",
-    ),
-    (
-        "overrun",
-        "one-clock pulse the clock after a port-B write was refused (write queue full)",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: irqs low, pending writes dropped, read data 0; the RAM keeps its words"),
+    port("a_address", "AW", "port A word address, with `a_write` or `a_read`"),
+    port("a_write_data", "D", "port A write data"),
+    port("a_write", "1", "port A one-clock write strobe"),
+    port("a_read", "1", "port A one-clock read strobe"),
+    port("a_read_data", "D", "port A read data: valid the clock after `a_read`, held until the next answer"),
+    port("irq_a", "1", "level: port B wrote `MAILBOX_TO_A` (2^AW - 2), and port A has not accessed it since"),
+    port("b_address", "AW", "port B word address, with `b_write` or `b_read`"),
+    port("b_write_data", "D", "port B write data"),
+    port("b_write", "1", "port B one-clock write strobe"),
+    port("b_read", "1", "port B one-clock read strobe"),
+    port("b_read_data", "D", "port B read data: valid the clock after `b_read`, held until the next answer"),
+    port("irq_b", "1", "level: port A wrote `MAILBOX_TO_B` (2^AW - 1), and port B has not accessed it since"),
+    port("collision", "1", "one-clock pulse the clock after both ports wrote the same word on the same clock (B's data stays)"),
+    port("overrun", "1", "one-clock pulse the clock after a port-B write was refused (its write queue was full: more writes than the block can land)"),
 ];
 
 /// `MAILBOX_TO_B` for a 2^`aw`-word memory: port A writes it to raise `irq_b`.

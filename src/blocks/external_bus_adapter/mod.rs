@@ -20,22 +20,8 @@
 //! have it); every timing below is the synchronizer's.
 //!
 //! ## Ports (`A` = 8-bit address in the exported `external_bus_adapter`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: no access in progress, outputs 0 |
-//! | `cs_n` | in | 1 | chip select, active low, asynchronous |
-//! | `we_n` | in | 1 | write strobe, active low, asynchronous |
-//! | `rd_n` | in | 1 | read strobe (output enable), active low, asynchronous |
-//! | `address` | in | A | word address, asynchronous |
-//! | `data_in` | in | 32 | write data from the pins, asynchronous |
-//! | `data_out` | out | 32 | read data to the pins, registered |
-//! | `data_oe` | out | 1 | drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins (for the IO buffer's enable) |
-//! | `bus_address` | out | A | address of the current bus strobe, registered |
-//! | `bus_write_data` | out | 32 | data of `bus_write`, registered |
-//! | `bus_write` | out | 1 | one-clock write strobe |
-//! | `bus_read` | out | 1 | one-clock read strobe |
-//! | `bus_read_data` | in | 32 | the slave's read data, valid in the clock after `bus_read` |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Synchronous bus timing
 //! ```text
@@ -112,6 +98,7 @@ use rust_hdl::prelude::*;
 
 use crate::blocks::bus_synchronizer::port_docs::*;
 use crate::blocks::bus_synchronizer::BusSynchronizer;
+use crate::blocks::port_doc::PortDoc;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
@@ -119,21 +106,21 @@ pub const SUMMARY: &str =
 
 /// Meaning of every port, for the export header and the `rtl-out` index
 /// (the synchronizer's, without `ready`).
-pub const PORT_DOCS: &[(&str, &str)] = &[
+pub const PORT_DOCS: &[PortDoc] = &[
     CLOCK,
     RESET,
     CS_N,
     WE_N,
     RD_N,
     ADDRESS,
-    DATA_IN,
-    DATA_OUT,
+    DATA_IN.with_width("32"),
+    DATA_OUT.with_width("32"),
     DATA_OE,
     BUS_ADDRESS,
-    BUS_WRITE_DATA,
+    BUS_WRITE_DATA.with_width("32"),
     BUS_WRITE,
     BUS_READ,
-    BUS_READ_DATA,
+    BUS_READ_DATA.with_width("32"),
 ];
 
 /// Asynchronous external bus adapter. See the [module documentation](self).

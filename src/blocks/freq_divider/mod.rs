@@ -6,13 +6,8 @@
 //! downstream stays in the one clock domain.
 //!
 //! ## Ports (`W` = 32 in the exported `freq_divider`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: back to the power-up state after one clock |
-//! | `enable` | in | 1 | counting runs while high; while low the phase holds and no new strobe comes |
-//! | `divisor` | in | W | D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped |
-//! | `strobe` | out | 1 | one-clock pulse, registered |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! The divider counts enabled clocks (clock edges with `enable` high). The
@@ -83,21 +78,29 @@ pub mod model;
 pub const SUMMARY: &str = "runtime clock-enable generator: one strobe every D enabled clocks";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    ("reset", "synchronous reset, active high"),
-    (
-        "enable",
-        "counting runs while high; while low the phase holds and no strobe comes",
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port(
+        "reset",
+        "1",
+        "synchronous, active high: back to the power-up state after one clock",
     ),
-    (
+    port(
+        "enable",
+        "1",
+        "counting runs while high; while low the phase holds and no new strobe comes",
+    ),
+    port(
         "divisor",
+        "W",
         "D: one strobe every D enabled clocks; 1 = every clock; 0 = stopped",
     ),
-    ("strobe", "one-clock strobe, registered"),
+    port("strobe", "1", "one-clock pulse, registered"),
 ];
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::port_doc::{port, PortDoc};
 
 /// Runtime clock-enable generator: one `strobe` every `divisor` enabled clocks.
 /// See the [module documentation](self) for the datasheet.

@@ -8,16 +8,8 @@
 //! again.
 //!
 //! ## Ports
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: `filtered` 0, run count 0 |
-//! | `raw` | in | 1 | the input, already synchronized to `clock` |
-//! | `sample` | in | 1 | this edge is a sample (tie high to sample every clock) |
-//! | `length` | in | 4 | k: consecutive samples a new level needs; 0 and 1 both accept at the first sample |
-//! | `prime` | in | 1 | load `raw` into `filtered` at once, with no `accept` (start-up) |
-//! | `filtered` | out | 1 | the accepted level, registered |
-//! | `changed` | out | 1 | registered: `filtered` changed at the last edge (high one clock per change) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! A new level that is first sampled at sample s is accepted at sample
@@ -38,6 +30,40 @@
 pub mod model;
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::port_doc::{port, PortDoc};
+
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port(
+        "reset",
+        "1",
+        "synchronous, active high: `filtered` 0, run count 0",
+    ),
+    port("raw", "1", "the input, already synchronized to `clock`"),
+    port(
+        "sample",
+        "1",
+        "this edge is a sample (tie high to sample every clock)",
+    ),
+    port(
+        "length",
+        "4",
+        "k: consecutive samples a new level needs; 0 and 1 both accept at the first sample",
+    ),
+    port(
+        "prime",
+        "1",
+        "load `raw` into `filtered` at once, with no `accept` (start-up)",
+    ),
+    port("filtered", "1", "the accepted level, registered"),
+    port(
+        "changed",
+        "1",
+        "registered: `filtered` changed at the last edge (high one clock per change)",
+    ),
+];
 
 /// Level filter with a run-length threshold. See the [module documentation](self).
 #[derive(Clone, Debug, LogicBlock)]

@@ -39,37 +39,8 @@
 //! queue) are [`DpramMailbox`]'s.
 //!
 //! ## Ports (exported: CA = 8, CNA = 9, MA = 10, DA = 11)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: no access in progress, latches and holding registers empty, irqs low, outputs 0; the mailbox RAM keeps its words |
-//! | `dsp_cs_n` | in | 1 | DSP zone chip select, active low, asynchronous |
-//! | `dsp_we_n` | in | 1 | DSP write strobe (XWE), active low, asynchronous |
-//! | `dsp_rd_n` | in | 1 | DSP read strobe (XRD), active low, asynchronous |
-//! | `dsp_address` | in | DA | DSP word address (XA), asynchronous: see the address map |
-//! | `dsp_data_in` | in | 16 | DSP write data (XD), asynchronous |
-//! | `dsp_data_out` | out | 16 | DSP read data, registered |
-//! | `dsp_data_oe` | out | 1 | drive XD: `!dsp_cs_n & !dsp_rd_n & dsp_we_n`, combinational from the pins |
-//! | `dsp_ready` | out | 1 | XREADY: the DSP's access may end (see [`BusSynchronizer`]) |
-//! | `dsp_order_error` | out | 1 | one-clock pulse: the DSP broke the 32-bit access order (see [`WordAssembler`]) |
-//! | `pc_cs_n` | in | 1 | PC bridge chip select, active low, asynchronous |
-//! | `pc_we_n` | in | 1 | PC bridge write strobe, active low, asynchronous |
-//! | `pc_rd_n` | in | 1 | PC bridge read strobe, active low, asynchronous |
-//! | `pc_address` | in | DA | PC byte address: mailbox word × 2 + byte, asynchronous |
-//! | `pc_data_in` | in | 8 | PC write data, asynchronous |
-//! | `pc_data_out` | out | 8 | PC read data, registered |
-//! | `pc_data_oe` | out | 1 | drive the PC data pins: `!pc_cs_n & !pc_rd_n & pc_we_n`, combinational from the pins |
-//! | `pc_ready` | out | 1 | the PC's access may end (for a bridge with a wait input; the CH365 has none) |
-//! | `pc_order_error` | out | 1 | one-clock pulse: the PC broke the byte order of a mailbox word |
-//! | `reg_address` | out | CA | the controller's register address, with `reg_write` or `reg_read` |
-//! | `reg_write_data` | out | 32 | the whole 32-bit word of `reg_write` |
-//! | `reg_write` | out | 1 | one-clock register write strobe |
-//! | `reg_read` | out | 1 | one-clock register read strobe |
-//! | `reg_read_data` | in | 32 | the controller's read data, valid in the clock after `reg_read` |
-//! | `irq_dsp` | out | 1 | level: the PC wrote `MAILBOX_TO_B`, the DSP has not accessed it since; registered |
-//! | `irq_pc` | out | 1 | level: the DSP wrote `MAILBOX_TO_A`, the PC has not accessed it since; registered |
-//! | `mailbox_collision` | out | 1 | one-clock pulse: both masters' writes reached the same mailbox word on one clock (the DSP's word stays) |
-//! | `mailbox_overrun` | out | 1 | one-clock pulse: a DSP mailbox write was refused; cannot happen at the pins' timing (see below) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! `reg_*` is the project's synchronous register bus: connect it to
 //! `motion_controller`'s `bus_*` ports.
@@ -109,6 +80,8 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::bus_synchronizer::BusSynchronizer;
 use crate::blocks::dpram_mailbox::DpramMailbox;
 use crate::blocks::narrow_bus_adapter::NarrowBusAdapter;
@@ -119,81 +92,36 @@ pub const SUMMARY: &str =
     "the seed card's host side: a 16-bit DSP bus (XINTF, XREADY) onto the controller's 32-bit registers and a 1024 x 16 mailbox, and an 8-bit PC bus (CH365) onto the mailbox's other port";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: no access in progress, latches empty, irqs low, outputs 0; the mailbox RAM keeps its words",
-    ),
-    ("dsp_cs_n", "DSP zone chip select, active low, asynchronous"),
-    ("dsp_we_n", "DSP write strobe (XWE), active low, asynchronous"),
-    ("dsp_rd_n", "DSP read strobe (XRD), active low, asynchronous"),
-    (
-        "dsp_address",
-        "DSP word address (XA): 0x000-0x3FF controller registers (register * 2 + half), 0x400-0x7FF mailbox words; asynchronous",
-    ),
-    ("dsp_data_in", "DSP write data (XD), asynchronous"),
-    ("dsp_data_out", "DSP read data, registered"),
-    (
-        "dsp_data_oe",
-        "drive XD: !dsp_cs_n & !dsp_rd_n & dsp_we_n, combinational from the pins",
-    ),
-    (
-        "dsp_ready",
-        "XREADY: low from the strobe's fall until a write has two active samples or a read's answer is on dsp_data_out",
-    ),
-    (
-        "dsp_order_error",
-        "one-clock pulse: the DSP broke a 32-bit register's half order (torn write dropped, out-of-order read)",
-    ),
-    ("pc_cs_n", "PC bridge chip select, active low, asynchronous"),
-    ("pc_we_n", "PC bridge write strobe, active low, asynchronous"),
-    ("pc_rd_n", "PC bridge read strobe, active low, asynchronous"),
-    (
-        "pc_address",
-        "PC byte address: mailbox word * 2 + byte (low byte first), asynchronous",
-    ),
-    ("pc_data_in", "PC write data, asynchronous"),
-    ("pc_data_out", "PC read data, registered"),
-    (
-        "pc_data_oe",
-        "drive the PC data pins: !pc_cs_n & !pc_rd_n & pc_we_n, combinational from the pins",
-    ),
-    (
-        "pc_ready",
-        "the PC's access may end (for a bridge with a wait input; the CH365 has none)",
-    ),
-    (
-        "pc_order_error",
-        "one-clock pulse: the PC broke a mailbox word's byte order (torn write dropped, out-of-order read)",
-    ),
-    (
-        "reg_address",
-        "controller register address, with reg_write or reg_read",
-    ),
-    ("reg_write_data", "the whole 32-bit word of reg_write"),
-    ("reg_write", "one-clock register write strobe"),
-    ("reg_read", "one-clock register read strobe"),
-    (
-        "reg_read_data",
-        "the controller's read data, valid in the clock after reg_read",
-    ),
-    (
-        "irq_dsp",
-        "level: the PC wrote MAILBOX_TO_B, the DSP has not accessed it since; registered",
-    ),
-    (
-        "irq_pc",
-        "level: the DSP wrote MAILBOX_TO_A, the PC has not accessed it since; registered",
-    ),
-    (
-        "mailbox_collision",
-        "one-clock pulse: both masters' writes reached one mailbox word on the same clock (the DSP's word stays)",
-    ),
-    (
-        "mailbox_overrun",
-        "one-clock pulse: a DSP mailbox write was refused (cannot happen at the pins' timing)",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: no access in progress, latches and holding registers empty, irqs low, outputs 0; the mailbox RAM keeps its words"),
+    port("dsp_cs_n", "1", "DSP zone chip select, active low, asynchronous"),
+    port("dsp_we_n", "1", "DSP write strobe (XWE), active low, asynchronous"),
+    port("dsp_rd_n", "1", "DSP read strobe (XRD), active low, asynchronous"),
+    port("dsp_address", "DA", "DSP word address (XA), asynchronous: 0x000-0x3FF controller registers (register * 2 + half), 0x400-0x7FF mailbox words"),
+    port("dsp_data_in", "16", "DSP write data (XD), asynchronous"),
+    port("dsp_data_out", "16", "DSP read data, registered"),
+    port("dsp_data_oe", "1", "drive XD: `!dsp_cs_n & !dsp_rd_n & dsp_we_n`, combinational from the pins"),
+    port("dsp_ready", "1", "XREADY: low from the strobe's fall until a write has two active samples or a read's answer is on `dsp_data_out`"),
+    port("dsp_order_error", "1", "one-clock pulse: the DSP broke a 32-bit register's half order (torn write dropped, out-of-order read)"),
+    port("pc_cs_n", "1", "PC bridge chip select, active low, asynchronous"),
+    port("pc_we_n", "1", "PC bridge write strobe, active low, asynchronous"),
+    port("pc_rd_n", "1", "PC bridge read strobe, active low, asynchronous"),
+    port("pc_address", "DA", "PC byte address: mailbox word * 2 + byte (low byte first), asynchronous"),
+    port("pc_data_in", "8", "PC write data, asynchronous"),
+    port("pc_data_out", "8", "PC read data, registered"),
+    port("pc_data_oe", "1", "drive the PC data pins: `!pc_cs_n & !pc_rd_n & pc_we_n`, combinational from the pins"),
+    port("pc_ready", "1", "the PC's access may end (for a bridge with a wait input; the CH365 has none)"),
+    port("pc_order_error", "1", "one-clock pulse: the PC broke a mailbox word's byte order (torn write dropped, out-of-order read)"),
+    port("reg_address", "CA", "the controller's register address, with `reg_write` or `reg_read`"),
+    port("reg_write_data", "32", "the whole 32-bit word of `reg_write`"),
+    port("reg_write", "1", "one-clock register write strobe"),
+    port("reg_read", "1", "one-clock register read strobe"),
+    port("reg_read_data", "32", "the controller's read data, valid in the clock after `reg_read`"),
+    port("irq_dsp", "1", "level: the PC wrote `MAILBOX_TO_B`, the DSP has not accessed it since; registered"),
+    port("irq_pc", "1", "level: the DSP wrote `MAILBOX_TO_A`, the PC has not accessed it since; registered"),
+    port("mailbox_collision", "1", "one-clock pulse: both masters' writes reached the same mailbox word on one clock (the DSP's word stays)"),
+    port("mailbox_overrun", "1", "one-clock pulse: a DSP mailbox write was refused; cannot happen at the pins' timing"),
 ];
 
 /// The exported configuration: 256 controller registers (CA = 8, DSP

@@ -6,18 +6,8 @@
 //! [`GlitchFilter`](crate::blocks::glitch_filter) and a polarity inversion.
 //!
 //! ## Ports (`W` bits)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: every `active` bit 0, no edges, `ready` 0 until primed again |
-//! | `raw` | in | W | the pins, asynchronous |
-//! | `invert` | in | W | per bit, 1 = active low (normally-open wiring); applied after the filter |
-//! | `sample` | in | 1 | this edge is a filter sample (tie high to sample every clock) |
-//! | `length` | in | 4 | samples a new level must hold to be accepted; 0 and 1 accept at the first sample |
-//! | `active` | out | W | the accepted level, inverted where `invert` is set (0 while priming); from flip-flops through one LUT |
-//! | `rise` | out | W | `active` rose at the last edge (one clock per accepted change) |
-//! | `fall` | out | W | `active` fell at the last edge |
-//! | `ready` | out | 1 | primed: `active` shows the pins (low for 3 clocks after reset or power-up) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! A pin change that settles before clock edge e is in the second
@@ -52,7 +42,23 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::glitch_filter::GlitchFilter;
+
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: every `active` bit 0, no edges, `ready` 0 until primed again"),
+    port("raw", "W", "the pins, asynchronous"),
+    port("invert", "W", "per bit, 1 = active low (normally-open wiring); applied after the filter"),
+    port("sample", "1", "this edge is a filter sample (tie high to sample every clock)"),
+    port("length", "4", "samples a new level must hold to be accepted; 0 and 1 accept at the first sample"),
+    port("active", "W", "the accepted level, inverted where `invert` is set (0 while priming); from flip-flops through one LUT"),
+    port("rise", "W", "`active` rose at the last edge (one clock per accepted change)"),
+    port("fall", "W", "`active` fell at the last edge"),
+    port("ready", "1", "primed: `active` shows the pins (low for 3 clocks after reset or power-up)"),
+];
 
 /// Priming edges after reset before `ready`: two fill the synchronizer,
 /// the third loads the filters from it.

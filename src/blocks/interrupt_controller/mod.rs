@@ -7,16 +7,8 @@
 //! clear that would remove it leaves the bit set.
 //!
 //! ## Ports
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: status 0, irq low |
-//! | `events` | in | N | bit i high sets status bit i (a pulse or a level; a level keeps it set) |
-//! | `clear` | in | 1 | write strobe of the status register |
-//! | `clear_bits` | in | N | with `clear`: each 1 clears that status bit (write 1 to clear) |
-//! | `enable` | in | N | interrupt enable mask |
-//! | `status` | out | N | the sticky status bits, registered |
-//! | `irq` | out | 1 | level interrupt: any status bit set and enabled, registered |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! An event at edge e shows in `status` after edge e; `irq` follows one
@@ -40,6 +32,32 @@
 pub mod model;
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::port_doc::{port, PortDoc};
+
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: status 0, irq low"),
+    port(
+        "events",
+        "N",
+        "bit i high sets status bit i (a pulse or a level; a level keeps it set)",
+    ),
+    port("clear", "1", "write strobe of the status register"),
+    port(
+        "clear_bits",
+        "N",
+        "with `clear`: each 1 clears that status bit (write 1 to clear)",
+    ),
+    port("enable", "N", "interrupt enable mask"),
+    port("status", "N", "the sticky status bits, registered"),
+    port(
+        "irq",
+        "1",
+        "level interrupt: any status bit set and enabled, registered",
+    ),
+];
 
 /// Sticky status with a level interrupt. See the [module documentation](self).
 #[derive(Clone, Debug, LogicBlock)]

@@ -23,32 +23,8 @@
 //! `rtl-out/motion_controller_regs.h` and `rtl-out/motion_controller_regs.md`).
 //!
 //! ## Ports (`K` axes; the exported `motion_controller` has K = 3 and 16-entry FIFOs)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock (the step timing and encoder sampling run on it) |
-//! | `reset` | in | 1 | synchronous, active high: every register to its documented reset value, FIFOs empty, outputs low |
-//! | `bus_address` | in | 8 | word address of `bus_write` / `bus_read` |
-//! | `bus_write_data` | in | 32 | data of `bus_write` |
-//! | `bus_write` | in | 1 | one-clock write strobe |
-//! | `bus_read` | in | 1 | one-clock read strobe (reads have no side effects) |
-//! | `bus_read_data` | out | 32 | the addressed register, registered: valid in the clock after `bus_read`, held until the next read |
-//! | `irq` | out | 1 | level interrupt: an enabled `STATUS` bit is set; registered |
-//! | `running` | out | 1 | periods are running (`STATE.RUNNING`) |
-//! | `active` | out | 1 | `running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls (the drives' enables are `drive_enable`) |
-//! | `step_a` | out | K | bit k: axis k's step (step/dir), up (up/down) or A (quadrature); registered |
-//! | `step_b` | out | K | bit k: axis k's dir, down or B; registered |
-//! | `enc_a`, `enc_b`, `enc_index` | in | K | bit k: axis k's encoder, asynchronous (synchronized inside) |
-//! | `limit_pos`, `limit_neg` | in | K | bit k: hard limit switch at the positive / negative end of axis k, 1 = tripped, asynchronous |
-//! | `home` | in | K | bit k: home switch of axis k, 1 = active, asynchronous |
-//! | `drive_alarm` | in | K | bit k: alarm output of axis k's drive, 1 = in alarm, asynchronous |
-//! | `estop` | in | 1 | emergency stop chain, 1 = stopped, asynchronous; no polarity setting |
-//! | `gpio_in` | in | 8 | general inputs, asynchronous |
-//! | `drive_enable` | out | K | bit k: enable (servo-on) of axis k's drive; registered |
-//! | `gpio_out` | out | 8 | general outputs (`GPIO_OUT`); registered |
-//! | `dac_data` | out | 16 | DAC data bus, shared by the analog channels (AD669 style; 0 in a build without them); registered |
-//! | `dac_cs_n` | out | K | bit k: chip select of axis k's DAC, active low (1 in a build without them); registered |
-//! | `dac_l1_n` | out | 1 | DAC first-rank load, active low, shared; registered |
-//! | `dac_ldac` | out | 1 | DAC second-rank load, active high, shared: every analog output changes on its rise; registered |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! Every switch, alarm and E-stop input is active high at reset: with the
 //! FPGA's pull-ups and normally-closed contacts to ground, an open or
@@ -406,6 +382,8 @@ pub mod registers;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::dac_interface::DacInterface;
 use crate::blocks::freq_divider::FreqDivider;
 use crate::blocks::interrupt_controller::InterruptController;
@@ -534,70 +512,34 @@ pub const SUMMARY_SERVO: &str =
     "motion controller, DDA interpolators only, with analog outputs: K step or analog (AD669 DAC, velocity servo) axes with encoders, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: registers to reset values, FIFOs empty, outputs low",
-    ),
-    ("bus_address", "word address of bus_write / bus_read"),
-    ("bus_write_data", "data of bus_write"),
-    ("bus_write", "one-clock write strobe"),
-    ("bus_read", "one-clock read strobe (no side effects)"),
-    (
-        "bus_read_data",
-        "addressed register, valid in the clock after bus_read, held until the next read",
-    ),
-    ("irq", "level interrupt: an enabled STATUS bit is set"),
-    ("running", "periods are running (STATE.RUNNING)"),
-    (
-        "active",
-        "steps are still leaving (running, or an output stage or uniform generator busy)",
-    ),
-    (
-        "step_a",
-        "bit k: axis k's step (step/dir), up (up/down) or A (quadrature)",
-    ),
-    ("step_b", "bit k: axis k's dir, down or B"),
-    ("enc_a", "bit k: axis k's encoder A, asynchronous"),
-    ("enc_b", "bit k: axis k's encoder B, asynchronous"),
-    ("enc_index", "bit k: axis k's encoder index, asynchronous"),
-    (
-        "limit_pos",
-        "bit k: positive-end limit switch of axis k, 1 = tripped, asynchronous",
-    ),
-    (
-        "limit_neg",
-        "bit k: negative-end limit switch of axis k, 1 = tripped, asynchronous",
-    ),
-    (
-        "home",
-        "bit k: home switch of axis k, 1 = active, asynchronous",
-    ),
-    (
-        "drive_alarm",
-        "bit k: alarm of axis k's drive, 1 = in alarm, asynchronous",
-    ),
-    (
-        "estop",
-        "emergency stop chain, 1 = stopped, asynchronous (no polarity setting)",
-    ),
-    ("gpio_in", "general inputs, asynchronous"),
-    ("drive_enable", "bit k: enable (servo-on) of axis k's drive"),
-    ("gpio_out", "general outputs (GPIO_OUT)"),
-    (
-        "dac_data",
-        "DAC data bus, shared by the analog channels (0 in a build without them)",
-    ),
-    (
-        "dac_cs_n",
-        "bit k: chip select of axis k's DAC, active low (1 in a build without them)",
-    ),
-    ("dac_l1_n", "DAC first-rank load, active low, shared"),
-    (
-        "dac_ldac",
-        "DAC second-rank load, active high, shared: every analog output changes on its rise",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock (the step timing and encoder sampling run on it)"),
+    port("reset", "1", "synchronous, active high: every register to its documented reset value, FIFOs empty, outputs low; power-up equals reset"),
+    port("bus_address", "8", "word address of `bus_write` / `bus_read` (`MC_*_INDEX` in the C header)"),
+    port("bus_write_data", "32", "data of `bus_write`"),
+    port("bus_write", "1", "one-clock write strobe"),
+    port("bus_read", "1", "one-clock read strobe (reads have no side effects)"),
+    port("bus_read_data", "32", "the addressed register, registered: valid in the clock after `bus_read`, held until the next read"),
+    port("irq", "1", "level interrupt: an enabled `STATUS` bit is set; registered"),
+    port("running", "1", "periods are running (`STATE.RUNNING`)"),
+    port("active", "1", "`running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls (the drives' enables are `drive_enable`)"),
+    port("step_a", "K", "bit k: axis k's step (step/dir), up (up/down) or A (quadrature); registered"),
+    port("step_b", "K", "bit k: axis k's dir, down or B; registered"),
+    port("enc_a", "K", "bit k: axis k's encoder A, asynchronous (synchronized and filtered inside)"),
+    port("enc_b", "K", "bit k: axis k's encoder B, asynchronous (synchronized and filtered inside)"),
+    port("enc_index", "K", "bit k: axis k's encoder index, asynchronous (synchronized and filtered inside)"),
+    port("limit_pos", "K", "bit k: hard limit switch at the positive end of axis k, 1 = tripped, asynchronous"),
+    port("limit_neg", "K", "bit k: hard limit switch at the negative end of axis k, 1 = tripped, asynchronous"),
+    port("home", "K", "bit k: home switch of axis k, 1 = active, asynchronous"),
+    port("drive_alarm", "K", "bit k: alarm output of axis k's drive, 1 = in alarm, asynchronous"),
+    port("estop", "1", "emergency stop chain, 1 = stopped, asynchronous; no polarity setting"),
+    port("gpio_in", "8", "general inputs, asynchronous"),
+    port("drive_enable", "K", "bit k: enable (servo-on) of axis k's drive: `IO_CONFIG.DRIVE_ENABLE`, forced low by an E-stop, a watchdog expiry or that axis's alarm; registered"),
+    port("gpio_out", "8", "general outputs (`GPIO_OUT`; the `GPIO_SAFE` ones drop on E-stop or watchdog expiry); registered"),
+    port("dac_data", "16", "DAC data bus, shared by the analog channels (AD669 style; 0 in a build without them); registered"),
+    port("dac_cs_n", "K", "bit k: chip select of axis k's DAC, active low (1 in a build without them); registered"),
+    port("dac_l1_n", "1", "DAC first-rank load, active low, shared; registered"),
+    port("dac_ldac", "1", "DAC second-rank load, active high, shared: every analog output changes on its rise; registered"),
 ];
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
@@ -648,8 +590,7 @@ pub struct MotionController<
     pub irq: Signal<Out, Bit>,
     /// Periods are running.
     pub running: Signal<Out, Bit>,
-    /// Steps are still leaving (running, or an output stage or uniform
-    /// generator still busy).
+    /// Steps are still leaving (see the port table).
     pub active: Signal<Out, Bit>,
     /// Per axis: step / up / A.
     pub step_a: Signal<Out, Bits<K>>,

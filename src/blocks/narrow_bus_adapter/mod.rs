@@ -18,24 +18,8 @@
 //! lowest-part pin address (`INDEX * 2` and `INDEX * 4`).
 //!
 //! ## Ports
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: no access in progress, latch and holding register empty, outputs 0 |
-//! | `cs_n` | in | 1 | chip select, active low, asynchronous |
-//! | `we_n` | in | 1 | write strobe, active low, asynchronous |
-//! | `rd_n` | in | 1 | read strobe (output enable), active low, asynchronous |
-//! | `address` | in | NA | narrow word address: register address × (32/N) + part, asynchronous |
-//! | `data_in` | in | N | write data from the pins, asynchronous |
-//! | `data_out` | out | N | read data to the pins, registered |
-//! | `data_oe` | out | 1 | drive the data pins: `!cs_n & !rd_n & we_n`, combinational from the pins |
-//! | `ready` | out | 1 | the access at the pins may end (XREADY): see [`BusSynchronizer`] |
-//! | `bus_address` | out | A | register address of the current bus strobe |
-//! | `bus_write_data` | out | W | the whole word of `bus_write` |
-//! | `bus_write` | out | 1 | one-clock write strobe: the highest part completed a word |
-//! | `bus_read` | out | 1 | one-clock read strobe: the lowest part was read |
-//! | `bus_read_data` | in | W | the slave's read data, valid in the clock after `bus_read` |
-//! | `order_error` | out | 1 | one-clock pulse: firmware broke the access order (see [`WordAssembler`]) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! Every narrow access has the [`BusSynchronizer`]'s pin timing, with or
@@ -99,6 +83,7 @@ use rust_hdl::prelude::*;
 
 use crate::blocks::bus_synchronizer::port_docs::*;
 use crate::blocks::bus_synchronizer::BusSynchronizer;
+use crate::blocks::port_doc::{port, PortDoc};
 use crate::blocks::word_assembler::WordAssembler;
 
 /// One line for the export header and the `rtl-out` index (16-bit pins).
@@ -111,33 +96,43 @@ pub const SUMMARY_8: &str =
 
 /// Meaning of every port, for the export header and the `rtl-out` index:
 /// the synchronizer's pins, and the register bus as the assembler makes it.
-pub const PORT_DOCS: &[(&str, &str)] = &[
+pub const PORT_DOCS: &[PortDoc] = &[
     CLOCK,
-    (
-        "reset",
-        "synchronous reset, active high: no access in progress, latch and holding register empty, outputs 0",
+    RESET.with_meaning(
+        "synchronous, active high: no access in progress, latch and holding register empty, outputs 0",
     ),
     CS_N,
     WE_N,
     RD_N,
-    (
+    port(
         "address",
-        "narrow word address: register address * (32/N) + part, asynchronous",
+        "NA",
+        "narrow word address: register address * (W/N) + part, asynchronous",
     ),
-    DATA_IN,
-    DATA_OUT,
+    DATA_IN.with_width("N"),
+    DATA_OUT.with_width("N"),
     DATA_OE,
     READY,
-    ("bus_address", "register address of the current bus strobe"),
-    ("bus_write_data", "the whole word of bus_write"),
-    (
+    port(
+        "bus_address",
+        "A",
+        "register address of the current bus strobe",
+    ),
+    port("bus_write_data", "W", "the whole word of `bus_write`"),
+    port(
         "bus_write",
+        "1",
         "one-clock write strobe: the highest part completed a word",
     ),
-    ("bus_read", "one-clock read strobe: the lowest part was read"),
-    BUS_READ_DATA,
-    (
+    port(
+        "bus_read",
+        "1",
+        "one-clock read strobe: the lowest part was read",
+    ),
+    BUS_READ_DATA.with_width("W"),
+    port(
         "order_error",
+        "1",
         "one-clock pulse: firmware broke the access order (torn write dropped, out-of-order read)",
     ),
 ];

@@ -5,19 +5,8 @@
 //! comparing the count with a programmable value.
 //!
 //! ## Ports (`W` = 32 in the exported `pulse_counter`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: count <- 0 |
-//! | `up` | in | 1 | count +1 |
-//! | `down` | in | 1 | count -1; with `up` in the same clock the count is unchanged and neither pulse is lost |
-//! | `clear` | in | 1 | count <- 0; priority over `load` and counting |
-//! | `load` | in | 1 | count <- `load_value`; priority over counting |
-//! | `load_value` | in | W | value for `load` |
-//! | `compare_value` | in | W | value for `compare_match` |
-//! | `count` | out | W | two's complement, wrapping; registered |
-//! | `compare_match` | out | 1 | `count == compare_value`, combinational from the registered count |
-//! | `pulse_overridden` | out | 1 | registered strobe: the previous edge had a net `up` or `down` pulse that `clear` or `load` overrode, so it was not counted |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! `count` is registered: one clock after an edge, it shows the result of
@@ -47,34 +36,24 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str = "up/down pulse counter with clear, load and a compare output";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    ("reset", "synchronous reset, active high: count <- 0"),
-    ("up", "count +1"),
-    (
-        "down",
-        "count -1; with up in the same clock the count is unchanged",
-    ),
-    ("clear", "count <- 0; priority over load and counting"),
-    ("load", "count <- load_value; priority over counting"),
-    ("load_value", "value taken by load"),
-    (
-        "compare_value",
-        "value compared with the count for compare_match",
-    ),
-    ("count", "two's complement count, wrapping; registered"),
-    (
-        "compare_match",
-        "count == compare_value, combinational from the registered count",
-    ),
-    (
-        "pulse_overridden",
-        "strobe: the previous edge's net up/down pulse was overridden by clear or load",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: count <- 0"),
+    port("up", "1", "count +1"),
+    port("down", "1", "count -1; with `up` in the same clock the count is unchanged and neither pulse is lost"),
+    port("clear", "1", "count <- 0; priority over `load` and counting"),
+    port("load", "1", "count <- `load_value`; priority over counting"),
+    port("load_value", "W", "value for `load`"),
+    port("compare_value", "W", "value for `compare_match`"),
+    port("count", "W", "two's complement, wrapping; registered"),
+    port("compare_match", "1", "`count == compare_value`, combinational from the registered count"),
+    port("pulse_overridden", "1", "registered strobe: the previous edge had a net `up` or `down` pulse that `clear` or `load` overrode, so it was not counted"),
 ];
 
 /// Up/down pulse counter. See the [module documentation](self) for the datasheet.
@@ -100,7 +79,7 @@ pub struct PulseCounter<const W: usize> {
     pub count: Signal<Out, Bits<W>>,
     /// `count == compare_value`.
     pub compare_match: Signal<Out, Bit>,
-    /// The previous edge's net pulse was overridden by clear, load or reset.
+    /// The previous edge's net pulse was overridden (see the port table).
     pub pulse_overridden: Signal<Out, Bit>,
     value: DFF<Bits<W>>,
     overridden: DFF<Bit>,

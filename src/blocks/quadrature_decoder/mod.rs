@@ -10,29 +10,8 @@
 //! the same clock (see "Collisions").
 //!
 //! ## Ports (`W` = 32-bit count, `S` = 8-bit sample rate, `TS` = 16-bit timestamp in the exported `quadrature_decoder`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: everything 0; then 3 start-up clocks (below) |
-//! | `a`, `b` | in | 1 each | encoder channels, asynchronous to `clock` |
-//! | `index` | in | 1 | Z channel, asynchronous |
-//! | `filter` | in | 4 | k: a change of a, b or index is accepted after k consecutive samples of the new level; 0 and 1: at the first sample (synchronizer only) |
-//! | `clear` | in | 1 | count <- 0 and error <- 0 (a count on the same clock is kept: see "Collisions") |
-//! | `sample_rate` | in | S | a sample every `sample_rate` + 1 clocks; 0 = every clock |
-//! | `counter_mode` | in | 1 | 0 = 4x quadrature; 1 = count rising edges of `a`, `b` high = up (step/dir input) |
-//! | `index_invert` | in | 1 | 0 = the index is active high, 1 = active low |
-//! | `index_clear` | in | 1 | an index event clears the count |
-//! | `index_latch` | in | 1 | an index event latches the count into `index_count` |
-//! | `index_once` | in | 1 | act on the first index event only, until `index_rearm` |
-//! | `index_rearm` | in | 1 | clears `index_seen` (re-arms a once-only index) |
-//! | `clear_error` | in | 1 | clears `error` alone, keeping the count (an error on the same clock keeps it set); tie to 0 if unused |
-//! | `count` | out | W | signed position, two's complement, wrapping; 4 counts per line in quadrature |
-//! | `dir` | out | 1 | 1 when the last count was up |
-//! | `error` | out | 1 | sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode) |
-//! | `index_seen` | out | 1 | sticky: an index event was acted on since `index_rearm` or reset |
-//! | `index_count` | out | W | the count latched at the last acted-on index event (with `index_latch`) |
-//! | `count_time` | out | TS | `timestamp` latched at the last count |
-//! | `timestamp` | out | TS | free-running, wrapping, +1 per sample |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Counting
 //! Quadrature: forward is A leading B, (a,b) = 00 -> 10 -> 11 -> 01 -> 00,
@@ -141,6 +120,8 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::glitch_filter::GlitchFilter;
 
 /// One line for the export header and the `rtl-out` index.
@@ -148,65 +129,29 @@ pub const SUMMARY: &str =
     "quadrature decoder: 4x or step/dir counting, glitch filter, error flag, index latch/clear, timestamp";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: everything 0, then 3 start-up clocks without counting",
-    ),
-    ("a", "encoder channel A, asynchronous"),
-    ("b", "encoder channel B, asynchronous"),
-    ("index", "index (Z) channel, asynchronous"),
-    (
-        "filter",
-        "k: a change is accepted after k consecutive samples of the new level (0, 1: first sample)",
-    ),
-    (
-        "clear",
-        "count <- 0 and error <- 0; a count on the same clock is added after",
-    ),
-    (
-        "sample_rate",
-        "a sample every sample_rate + 1 clocks; 0 = every clock",
-    ),
-    (
-        "counter_mode",
-        "0 = 4x quadrature; 1 = count rising edges of a, b high = up",
-    ),
-    ("index_invert", "0 = index active high, 1 = active low"),
-    ("index_clear", "an index event clears the count"),
-    (
-        "index_latch",
-        "an index event latches the count into index_count",
-    ),
-    (
-        "index_once",
-        "act on the first index event only, until index_rearm",
-    ),
-    ("index_rearm", "clears index_seen"),
-    (
-        "clear_error",
-        "clears error alone, keeping the count; tie to 0 if unused",
-    ),
-    (
-        "count",
-        "signed position, two's complement, wrapping; 4 counts per line",
-    ),
-    ("dir", "1 when the last count was up"),
-    (
-        "error",
-        "sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode); cleared by clear",
-    ),
-    (
-        "index_seen",
-        "sticky: an index event was acted on since index_rearm",
-    ),
-    (
-        "index_count",
-        "the count latched at the last acted-on index event",
-    ),
-    ("count_time", "timestamp latched at the last count"),
-    ("timestamp", "free-running sample counter, wrapping"),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: everything 0; then 3 start-up clocks without counting"),
+    port("a", "1", "encoder channel A, asynchronous to `clock`"),
+    port("b", "1", "encoder channel B, asynchronous to `clock`"),
+    port("index", "1", "index (Z) channel, asynchronous to `clock`"),
+    port("filter", "4", "k: a change of a, b or index is accepted after k consecutive samples of the new level; 0 and 1: at the first sample (synchronizer only)"),
+    port("clear", "1", "count <- 0 and error <- 0 (a count on the same clock is kept, added after the clear)"),
+    port("sample_rate", "S", "a sample every `sample_rate` + 1 clocks; 0 = every clock"),
+    port("counter_mode", "1", "0 = 4x quadrature; 1 = count rising edges of `a`, `b` high = up (step/dir input)"),
+    port("index_invert", "1", "0 = the index is active high, 1 = active low"),
+    port("index_clear", "1", "an index event clears the count"),
+    port("index_latch", "1", "an index event latches the count into `index_count`"),
+    port("index_once", "1", "act on the first index event only, until `index_rearm`"),
+    port("index_rearm", "1", "clears `index_seen` (re-arms a once-only index)"),
+    port("clear_error", "1", "clears `error` alone, keeping the count (an error on the same clock keeps it set); tie to 0 if unused"),
+    port("count", "W", "signed position, two's complement, wrapping; 4 counts per line in quadrature"),
+    port("dir", "1", "1 when the last count was up"),
+    port("error", "1", "sticky: a and b changed on the same sample (quadrature), or b changed on the sample where a rose (counter mode); cleared by `clear` and `clear_error`"),
+    port("index_seen", "1", "sticky: an index event was acted on since `index_rearm` or reset"),
+    port("index_count", "W", "the count latched at the last acted-on index event (with `index_latch`)"),
+    port("count_time", "TS", "`timestamp` latched at the last count"),
+    port("timestamp", "TS", "free-running, wrapping, +1 per sample"),
 ];
 
 /// Clocks after reset in which the filters take the pins' levels without

@@ -12,18 +12,7 @@
 //! bits (D <= N). The remainder is below the divisor, so the subtractor is
 //! only D bits long: a narrow divisor makes a faster divider.
 //!
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: idle, outputs 0 |
-//! | `start` | in | 1 | start a division of `dividend` by `divisor` (sampled only while `busy` is low) |
-//! | `dividend` | in | N | unsigned dividend, sampled with `start` |
-//! | `divisor` | in | D | unsigned divisor, sampled with `start` |
-//! | `busy` | out | 1 | a division is running; `start` is ignored |
-//! | `done` | out | 1 | one-clock strobe: `quotient`, `remainder` and `divide_by_zero` are valid |
-//! | `quotient` | out | N | `dividend / divisor`; valid from `done` until the next `start` |
-//! | `remainder` | out | D | `dividend % divisor`; valid from `done` until the next `start` |
-//! | `divide_by_zero` | out | 1 | the divisor was 0; valid with the result |
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! ```text
@@ -56,6 +45,8 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::carry_select_adder::CarrySelectAdder;
 
 /// One line for the export header and the `rtl-out` index.
@@ -63,28 +54,36 @@ pub const SUMMARY: &str =
     "unsigned N-by-D-bit restoring divider: quotient and remainder N clocks after start";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    ("reset", "synchronous reset, active high: idle, outputs 0"),
-    ("start", "start a division (sampled only while busy is low)"),
-    ("dividend", "unsigned dividend, sampled with start"),
-    ("divisor", "unsigned divisor, sampled with start"),
-    ("busy", "a division is running; start is ignored"),
-    (
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: idle, outputs 0"),
+    port(
+        "start",
+        "1",
+        "start a division of `dividend` by `divisor` (sampled only while `busy` is low)",
+    ),
+    port("dividend", "N", "unsigned dividend, sampled with `start`"),
+    port("divisor", "D", "unsigned divisor, sampled with `start`"),
+    port("busy", "1", "a division is running; `start` is ignored"),
+    port(
         "done",
-        "one-clock strobe: quotient, remainder and divide_by_zero are valid",
+        "1",
+        "one-clock strobe: `quotient`, `remainder` and `divide_by_zero` are valid",
     ),
-    (
+    port(
         "quotient",
-        "dividend / divisor; valid from done until the next start",
+        "N",
+        "`dividend / divisor`; valid from `done` until the next `start`",
     ),
-    (
+    port(
         "remainder",
-        "dividend % divisor; valid from done until the next start",
+        "D",
+        "`dividend % divisor`; valid from `done` until the next `start`",
     ),
-    (
+    port(
         "divide_by_zero",
-        "the divisor was 0 (quotient all ones, remainder = dividend)",
+        "1",
+        "the divisor was 0 (quotient all ones, remainder = dividend); valid with the result",
     ),
 ];
 

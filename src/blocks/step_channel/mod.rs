@@ -13,26 +13,8 @@
 //! rule.
 //!
 //! ## Ports (`W` = 32-bit DDA, `T` = 16-bit timers in the exported `step_channel`)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: both blocks in their power-up state |
-//! | `tick` | in | 1 | DDA accumulate enable |
-//! | `integrand` | in | W | J, steps per M ticks, sampled with `tick` |
-//! | `modulus` | in | W | M, sampled with `tick`; 0 means 2^W |
-//! | `dir` | in | 1 | direction of this tick's step: 1 = forward; sampled with `tick` |
-//! | `clear_overrange` | in | 1 | clears `overrange` (tie to 0 if unused) |
-//! | `mode` | in | 2 | output mode, as `step_output` |
-//! | `step_len` | in | T | as `step_output` |
-//! | `step_space` | in | T | as `step_output` |
-//! | `dir_setup` | in | T | as `step_output` |
-//! | `dir_hold` | in | T | as `step_output` |
-//! | `out_a` | out | 1 | step (mode 0), up (mode 1), A (mode 2) |
-//! | `out_b` | out | 1 | dir (mode 0), down (mode 1), B (mode 2) |
-//! | `overrun` | out | 1 | sticky: the pending count saturated and a step was dropped |
-//! | `overrange` | out | 1 | sticky: a tick was processed with J > M (M != 0) |
-//! | `mode_invalid` | out | 1 | `mode` is 3 (reserved) |
-//! | `busy` | out | 1 | steps are pending or a pulse is in progress |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! A tick that overflows the accumulator at edge t is a step request at
@@ -43,62 +25,54 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::dda_integrator::DdaIntegrator;
-use crate::blocks::step_output::StepOutput;
+use crate::blocks::step_output::{self, StepOutput};
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str = "step channel: a dda_integrator driving a step_output";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port(
         "reset",
-        "synchronous reset, active high: both blocks in their power-up state",
+        "1",
+        "synchronous, active high: both blocks in their power-up state",
     ),
-    ("tick", "DDA accumulate enable"),
-    ("integrand", "J, steps per M ticks, sampled with tick"),
-    ("modulus", "M, sampled with tick; 0 means 2^W"),
-    (
+    port("tick", "1", "DDA accumulate enable"),
+    port(
+        "integrand",
+        "W",
+        "J, steps per M ticks, sampled with `tick`",
+    ),
+    port("modulus", "W", "M, sampled with `tick`; 0 means 2^W"),
+    port(
         "dir",
-        "direction of this tick's step, 1 = forward; sampled with tick",
+        "1",
+        "direction of this tick's step: 1 = forward; sampled with `tick`",
     ),
-    ("clear_overrange", "clears overrange (tie to 0 if unused)"),
-    (
-        "mode",
-        "0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)",
+    port(
+        "clear_overrange",
+        "1",
+        "clears `overrange` (tie to 0 if unused)",
     ),
-    (
-        "step_len",
-        "step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state",
-    ),
-    (
-        "step_space",
-        "minimum low time between step pulses in clocks (0 acts as 1)",
-    ),
-    (
-        "dir_setup",
-        "dir stable at least this many clocks before a step's rising edge (0 acts as 1)",
-    ),
-    (
-        "dir_hold",
-        "dir stable at least this many clocks after a step's falling edge (0 acts as 1)",
-    ),
-    ("out_a", "step (mode 0), up (mode 1), A (mode 2)"),
-    ("out_b", "dir (mode 0), down (mode 1), B (mode 2)"),
-    (
-        "overrun",
-        "sticky: the pending count saturated and a step was dropped",
-    ),
-    (
+    PortDoc::same_as(step_output::PORT_DOCS, "mode"),
+    PortDoc::same_as(step_output::PORT_DOCS, "step_len"),
+    PortDoc::same_as(step_output::PORT_DOCS, "step_space"),
+    PortDoc::same_as(step_output::PORT_DOCS, "dir_setup"),
+    PortDoc::same_as(step_output::PORT_DOCS, "dir_hold"),
+    PortDoc::same_as(step_output::PORT_DOCS, "out_a"),
+    PortDoc::same_as(step_output::PORT_DOCS, "out_b"),
+    PortDoc::same_as(step_output::PORT_DOCS, "overrun"),
+    port(
         "overrange",
+        "1",
         "sticky: a tick was processed with J > M (M != 0)",
     ),
-    (
-        "mode_invalid",
-        "mode is 3 (reserved); the stage runs as step/dir",
-    ),
-    ("busy", "steps are pending or a pulse is in progress"),
+    PortDoc::same_as(step_output::PORT_DOCS, "mode_invalid"),
+    PortDoc::same_as(step_output::PORT_DOCS, "busy"),
 ];
 
 /// The DDA's pulse latency in clocks, which `dir` is delayed by.

@@ -10,28 +10,8 @@
 //! runs from -2^(P-1) to 2^(P-1) - 1; a request beyond it is dropped and
 //! flagged (`overrun`). P = 8 saves about 15 LUT4 and shortens the
 //! emit-to-count adder; `motion_controller` uses it.
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: nothing pending, outputs low, flags 0; the mode is taken from `mode` |
-//! | `step` | in | 1 | request one step (one-clock pulse; a level requests one step per clock) |
-//! | `dir` | in | 1 | direction of that request: 1 = forward |
-//! | `mode` | in | 2 | 0 step/dir, 1 up/down (CW/CCW), 2 quadrature, 3 reserved (acts as 0, `mode_invalid` high) |
-//! | `step_len` | in | T | step pulse high time in clocks (0 acts as 1); in quadrature, the minimum time per state |
-//! | `step_space` | in | T | minimum low time between step pulses, in clocks (0 acts as 1) |
-//! | `dir_setup` | in | T | `out_b` (dir) stable at least this many clocks before a step's rising edge (0 acts as 1) |
-//! | `dir_hold` | in | T | `out_b` (dir) stable at least this many clocks after a step's falling edge (0 acts as 1) |
-//! | `out_a` | out | 1 | step (mode 0), up (mode 1), A (mode 2); registered |
-//! | `out_b` | out | 1 | dir (mode 0), down (mode 1), B (mode 2); registered |
-//! | `overrun` | out | 1 | sticky: a request arrived with the pending count saturated and was dropped |
-//! | `mode_invalid` | out | 1 | `mode` is 3 (reserved); the stage runs as step/dir |
-//! | `busy` | out | 1 | steps are pending, a pulse is in progress, or a step_len/step_space/dir_hold/dir_setup interval is still running |
-//! | `clear_overrun` | in | 1 | clears `overrun` (a request dropped on the same clock keeps it set); tie to 0 if unused |
-//! | `emitted` | out | 1 | a step left the stage at the last edge (its first pin edge is on `out_a`/`out_b` now): one clock per step, registered |
-//! | `emitted_forward` | out | 1 | direction of that step: 1 = forward (valid with `emitted`) |
-//! | `flush` | in | 1 | drop every pending step and this clock's request; a pulse already high keeps its full `step_len` and the intervals run on; tie to 0 if unused |
-//! | `pending_forward` | out | 1 | the next step to leave is forward (the pending count is above 0); from flip-flops |
-//! | `pending_backward` | out | 1 | the next step to leave is backward (the pending count is below 0); from flip-flops |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! Step/dir after reset, step_len = 2, step_space = 3, dir_setup = 2,
@@ -148,6 +128,8 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 /// Width `P` of the signed pending-step count in the exported `step_output`.
 pub const PENDING_BITS: usize = 16;
 
@@ -159,63 +141,27 @@ pub const SUMMARY: &str =
     "step output stage: step/dir, up/down or quadrature with hardware-enforced timing";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: nothing pending, outputs low, flags 0; mode taken from the mode input",
-    ),
-    ("step", "request one step (one-clock pulse)"),
-    ("dir", "direction of that request: 1 = forward"),
-    (
-        "mode",
-        "0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0)",
-    ),
-    (
-        "step_len",
-        "step pulse high time in clocks (0 acts as 1); quadrature: minimum time per state",
-    ),
-    (
-        "step_space",
-        "minimum low time between step pulses in clocks (0 acts as 1)",
-    ),
-    (
-        "dir_setup",
-        "dir stable at least this many clocks before a step's rising edge (0 acts as 1)",
-    ),
-    (
-        "dir_hold",
-        "dir stable at least this many clocks after a step's falling edge (0 acts as 1)",
-    ),
-    ("out_a", "step (mode 0), up (mode 1), A (mode 2)"),
-    ("out_b", "dir (mode 0), down (mode 1), B (mode 2)"),
-    (
-        "overrun",
-        "sticky: a request arrived with the pending count saturated and was dropped",
-    ),
-    (
-        "mode_invalid",
-        "mode is 3 (reserved); the stage runs as step/dir",
-    ),
-    (
-        "busy",
-        "steps pending, a pulse in progress, or a timing interval still running",
-    ),
-    (
-        "clear_overrun",
-        "clears overrun (a drop on the same clock keeps it set); tie to 0 if unused",
-    ),
-    (
-        "emitted",
-        "a step left at the last edge (its first pin edge is out now); registered",
-    ),
-    ("emitted_forward", "direction of that step: 1 = forward"),
-    (
-        "flush",
-        "drop every pending step and this clock's request; a pulse already high completes; tie to 0 if unused",
-    ),
-    ("pending_forward", "the next step to leave is forward (pending count above 0)"),
-    ("pending_backward", "the next step to leave is backward (pending count below 0)"),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: nothing pending, outputs low, flags 0; the mode is taken from `mode`"),
+    port("step", "1", "request one step (one-clock pulse; a level requests one step per clock)"),
+    port("dir", "1", "direction of that request: 1 = forward"),
+    port("mode", "2", "0 step/dir, 1 up/down (CW/CCW), 2 quadrature, 3 reserved (acts as 0, `mode_invalid` high)"),
+    port("step_len", "T", "step pulse high time in clocks (0 acts as 1); in quadrature, the minimum time per state"),
+    port("step_space", "T", "minimum low time between step pulses, in clocks (0 acts as 1)"),
+    port("dir_setup", "T", "`out_b` (dir) stable at least this many clocks before a step's rising edge (0 acts as 1)"),
+    port("dir_hold", "T", "`out_b` (dir) stable at least this many clocks after a step's falling edge (0 acts as 1)"),
+    port("out_a", "1", "step (mode 0), up (mode 1), A (mode 2); registered"),
+    port("out_b", "1", "dir (mode 0), down (mode 1), B (mode 2); registered"),
+    port("overrun", "1", "sticky: a request arrived with the pending count saturated and was dropped"),
+    port("mode_invalid", "1", "`mode` is 3 (reserved); the stage runs as step/dir"),
+    port("busy", "1", "steps are pending, a pulse is in progress, or a step_len/step_space/dir_hold/dir_setup interval is still running"),
+    port("clear_overrun", "1", "clears `overrun` (a request dropped on the same clock keeps it set); tie to 0 if unused"),
+    port("emitted", "1", "a step left the stage at the last edge (its first pin edge is on `out_a`/`out_b` now): one clock per step, registered"),
+    port("emitted_forward", "1", "direction of that step: 1 = forward (valid with `emitted`)"),
+    port("flush", "1", "drop every pending step and this clock's request; a pulse already high keeps its full `step_len` and the intervals run on; tie to 0 if unused"),
+    port("pending_forward", "1", "the next step to leave is forward (the pending count is above 0); from flip-flops"),
+    port("pending_backward", "1", "the next step to leave is backward (the pending count is below 0); from flip-flops"),
 ];
 
 /// Step output stage with `T`-bit timers and a `P`-bit pending count. See

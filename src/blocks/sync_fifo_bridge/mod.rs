@@ -18,23 +18,7 @@
 //! ## Ports (`K` slaves; the exported `sync_fifo_bridge` has K = 3 and 64-word FIFOs)
 //! Slave k's signals are bits `[k*w, (k+1)*w)` of each `s_*` vector.
 //!
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: every FIFO empty, flags 0, immediate mode, not armed |
-//! | `m_address` | in | 8 | master bus word address |
-//! | `m_write_data` | in | 32 | master bus write data |
-//! | `m_write` | in | 1 | master one-clock write strobe |
-//! | `m_read` | in | 1 | master one-clock read strobe (a `STATUS` read pops, once per strobe) |
-//! | `period_tick` | in | 1 | tick mode: releases an armed SYNC; synchronous to `clock`, one clock per pulse |
-//! | `s_address` | in | 4K | slave k's word address in bits [4k, 4k+4) |
-//! | `s_write_data` | in | 32K | slave k's write data in bits [32k, 32k+32) |
-//! | `s_write` | in | K | bit k: slave k's one-clock write strobe |
-//! | `s_read` | in | K | bit k: slave k's one-clock read strobe (a `CMD` read pops, once per strobe) |
-//! | `m_read_data` | out | 32 | master read data, registered: valid in the clock after `m_read`, held until the next read |
-//! | `m_irq` | out | 1 | level: some status FIFO holds words; registered |
-//! | `s_read_data` | out | 32K | slave k's read data in bits [32k, 32k+32), registered: valid in the clock after its read, held |
-//! | `s_data_ready` | out | K | bit k: slave k has released commands it has not read; registered |
+#![doc = include_str!("ports.md")]
 //!
 //! ```text
 //! clock          |  c   | c+1  | c+2  |
@@ -123,6 +107,8 @@ pub mod registers;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use channel::BridgeChannel;
 use registers::{field_of, master_map, ID_VALUE};
 
@@ -139,43 +125,22 @@ pub const SUMMARY: &str =
     "one master, K slave register buses: per slave a command FIFO released to all slaves on one clock edge (SYNC or period tick) and a status FIFO";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: FIFOs empty, flags 0, immediate mode, not armed",
-    ),
-    ("m_address", "master bus word address"),
-    ("m_write_data", "master bus write data"),
-    ("m_write", "master one-clock write strobe"),
-    (
-        "m_read",
-        "master one-clock read strobe (a STATUS read pops once)",
-    ),
-    (
-        "period_tick",
-        "tick mode: the first pulse after a SYNC releases it; synchronous, one clock per pulse",
-    ),
-    ("s_address", "slave k's word address in bits [4k, 4k+4)"),
-    ("s_write_data", "slave k's write data in bits [32k, 32k+32)"),
-    ("s_write", "bit k: slave k's one-clock write strobe"),
-    (
-        "s_read",
-        "bit k: slave k's one-clock read strobe (a CMD read pops once)",
-    ),
-    (
-        "m_read_data",
-        "master read data, valid in the clock after m_read, held until the next read",
-    ),
-    ("m_irq", "level: some status FIFO holds words"),
-    (
-        "s_read_data",
-        "slave k's read data in bits [32k, 32k+32), valid in the clock after its read, held",
-    ),
-    (
-        "s_data_ready",
-        "bit k: slave k has released, unread commands (rises on the release edge for every slave)",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: every FIFO empty, flags 0, immediate mode, not armed"),
+    port("m_address", "8", "master bus word address"),
+    port("m_write_data", "32", "master bus write data"),
+    port("m_write", "1", "master one-clock write strobe"),
+    port("m_read", "1", "master one-clock read strobe (a `STATUS` read pops, once per strobe)"),
+    port("period_tick", "1", "tick mode: releases an armed SYNC; synchronous to `clock`, one clock per pulse"),
+    port("s_address", "4K", "slave k's word address in bits [4k, 4k+4)"),
+    port("s_write_data", "32K", "slave k's write data in bits [32k, 32k+32)"),
+    port("s_write", "K", "bit k: slave k's one-clock write strobe"),
+    port("s_read", "K", "bit k: slave k's one-clock read strobe (a `CMD` read pops, once per strobe)"),
+    port("m_read_data", "32", "master read data, registered: valid in the clock after `m_read`, held until the next read"),
+    port("m_irq", "1", "level: some status FIFO holds words; registered"),
+    port("s_read_data", "32K", "slave k's read data in bits [32k, 32k+32), registered: valid in the clock after its read, held"),
+    port("s_data_ready", "K", "bit k: slave k has released commands it has not read (rises on the release edge for every slave); registered"),
 ];
 
 /// The bridge: `K` slaves with FIFOs of 2^`N` words (`NP1` = N + 1,

@@ -9,23 +9,8 @@
 //! runs, so loaded periods follow each other with zero idle ticks.
 //!
 //! ## Ports
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: idle, slot empty, output low, flags 0 (the datapath registers are not cleared: they are always loaded before use, and clearing them would cost about 70 LUT4) |
-//! | `tick` | in | 1 | time base: one tick is the minimum toggle time (tie high for f_clk) |
-//! | `period` | in | 32 | T: the interpolation period in ticks (even) |
-//! | `count` | in | 32 | N: pulses in the period, 0 <= N <= T/2 |
-//! | `mode` | in | 1 | 0 = paper order (N1 short pulses, then N2 long); 1 = interleaved (Bresenham over the pulse index) |
-//! | `load` | in | 1 | strobe: queue (period, count, mode) as the next period; taken only while `ready` is high |
-//! | `clear_flags` | in | 1 | clears `underrun`, `overrange` and `overflow` (tie to 0 if unused) |
-//! | `pulse` | out | 1 | each pulse is high Tp/2 ticks, then low Tp/2 ticks; registered |
-//! | `period_done` | out | 1 | one-clock strobe when a period's T ticks have elapsed |
-//! | `ready` | out | 1 | the next-period slot is free: a load now is accepted |
-//! | `running` | out | 1 | a period is in progress |
-//! | `underrun` | out | 1 | sticky: a period ended with no next period ready; the output stays low and the block waits |
-//! | `overrange` | out | 1 | sticky: an odd or too small T, or N > T/2, was corrected |
-//! | `overflow` | out | 1 | sticky: a load arrived while `ready` was low and was ignored |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Formulas (ticks)
 //! * Tp1 = 2 * floor(T / 2N), Tp2 = Tp1 + 2.
@@ -79,6 +64,8 @@ pub mod pulse_core;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 use crate::blocks::sequential_divider::SequentialDivider;
 
 pub use pulse_core::UniformPulseCore;
@@ -90,52 +77,22 @@ pub const SUMMARY: &str =
     "dual-period uniform pulse generator: N pulses filling T ticks exactly, next period computed in the background";
 
 /// Meaning of every port, for the export header and the `rtl-out` index.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: idle, slot empty, output low, flags 0",
-    ),
-    (
-        "tick",
-        "time base: one tick is the minimum toggle time (tie high for f_clk)",
-    ),
-    ("period", "T: the interpolation period in ticks (even)"),
-    ("count", "N: pulses in the period, 0 <= N <= T/2"),
-    (
-        "mode",
-        "0 = paper order (short pulses first), 1 = interleaved (Bresenham)",
-    ),
-    (
-        "load",
-        "strobe: queue (period, count, mode) as the next period; taken only while ready",
-    ),
-    (
-        "clear_flags",
-        "clears underrun, overrange and overflow (tie to 0 if unused)",
-    ),
-    ("pulse", "each pulse high Tp/2 ticks, then low Tp/2 ticks"),
-    (
-        "period_done",
-        "one-clock strobe when a period's T ticks have elapsed",
-    ),
-    (
-        "ready",
-        "the next-period slot is free: a load now is accepted (gapless if 39+ clocks before the period ends)",
-    ),
-    ("running", "a period is in progress"),
-    (
-        "underrun",
-        "sticky: a period ended with no next period ready (output low, waiting)",
-    ),
-    (
-        "overrange",
-        "sticky: an odd or too small T, or N > T/2, was corrected",
-    ),
-    (
-        "overflow",
-        "sticky: a load arrived while ready was low and was ignored",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: idle, slot empty, output low, flags 0 (the datapath registers are not cleared: they are always loaded before use)"),
+    port("tick", "1", "time base: one tick is the minimum toggle time (tie high for f_clk)"),
+    port("period", "32", "T: the interpolation period in ticks (even)"),
+    port("count", "32", "N: pulses in the period, 0 <= N <= T/2"),
+    port("mode", "1", "0 = paper order (N1 short pulses, then N2 long); 1 = interleaved (Bresenham over the pulse index)"),
+    port("load", "1", "strobe: queue (period, count, mode) as the next period; taken only while `ready` is high"),
+    port("clear_flags", "1", "clears `underrun`, `overrange` and `overflow` (tie to 0 if unused)"),
+    port("pulse", "1", "each pulse is high Tp/2 ticks, then low Tp/2 ticks; registered"),
+    port("period_done", "1", "one-clock strobe when a period's T ticks have elapsed"),
+    port("ready", "1", "the next-period slot is free: a load now is accepted (gapless if 39 or more clocks before the period ends)"),
+    port("running", "1", "a period is in progress"),
+    port("underrun", "1", "sticky: a period ended with no next period ready; the output stays low and the block waits"),
+    port("overrange", "1", "sticky: an odd or too small T, or N > T/2, was corrected"),
+    port("overflow", "1", "sticky: a load arrived while `ready` was low and was ignored"),
 ];
 
 /// Dual-period uniform pulse generator. See the [module documentation](self).

@@ -8,16 +8,8 @@
 //! this is the defence.
 //!
 //! ## Ports (`W` bits of timeout)
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: disarmed, `expired` 0 |
-//! | `tick` | in | 1 | time base: the counter counts ticks (tie high to count clocks) |
-//! | `timeout` | in | W | ticks allowed between kicks; 0 disarms the watchdog |
-//! | `kick` | in | 1 | reload the counter with `timeout` (and arm it) |
-//! | `clear` | in | 1 | clear `expired` (a countdown in progress goes on; after an expiry the counter stays disarmed until the next kick) |
-//! | `expired` | out | 1 | sticky: `timeout` ticks passed without a kick |
-//! | `armed` | out | 1 | the counter is running |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing
 //! A kick at edge k arms the watchdog with T = `timeout`; `expired` is set
@@ -50,6 +42,20 @@
 pub mod model;
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::port_doc::{port, PortDoc};
+
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: disarmed, `expired` 0"),
+    port("tick", "1", "time base: the counter counts ticks (tie high to count clocks)"),
+    port("timeout", "W", "ticks allowed between kicks; 0 disarms the watchdog"),
+    port("kick", "1", "reload the counter with `timeout` (and arm it)"),
+    port("clear", "1", "clear `expired` (a countdown in progress goes on; after an expiry the counter stays disarmed until the next kick)"),
+    port("expired", "1", "sticky: `timeout` ticks passed without a kick"),
+    port("armed", "1", "the counter is running"),
+];
 
 /// Host watchdog. See the [module documentation](self).
 #[derive(Clone, Debug, LogicBlock)]

@@ -22,21 +22,8 @@
 //! register slave; [`crate::blocks::narrow_bus_adapter`] composes the two.
 //!
 //! ## Ports
-//! | port | dir | width | meaning |
-//! |---|---|---|---|
-//! | `clock` | in | 1 | rising-edge clock |
-//! | `reset` | in | 1 | synchronous, active high: read latch and write holding register empty (0), no error |
-//! | `narrow_address` | in | NA | narrow word address: wide address × (W/N) + part |
-//! | `narrow_write_data` | in | N | data of `narrow_write` |
-//! | `narrow_write` | in | 1 | one-clock narrow write strobe |
-//! | `narrow_read` | in | 1 | one-clock narrow read strobe |
-//! | `narrow_read_data` | out | N | the read part, valid in the clock after `narrow_read` |
-//! | `bus_address` | out | A | wide address (`narrow_address` without its part bits), combinational |
-//! | `bus_write_data` | out | W | the assembled word of `bus_write`, combinational |
-//! | `bus_write` | out | 1 | one-clock wide write strobe: the highest part completed a word |
-//! | `bus_read` | out | 1 | one-clock wide read strobe: part 0 was read (or an out-of-order part, see below) |
-//! | `bus_read_data` | in | W | the slave's read data, valid in the clock after `bus_read` |
-//! | `order_error` | out | 1 | one-clock pulse: the master broke the access order (below) |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing, in clocks
 //! | event | latency |
@@ -75,42 +62,23 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::port_doc::{port, PortDoc};
+
 /// Meaning of every port.
-pub const PORT_DOCS: &[(&str, &str)] = &[
-    ("clock", "rising-edge clock"),
-    (
-        "reset",
-        "synchronous reset, active high: read latch and write holding register empty",
-    ),
-    (
-        "narrow_address",
-        "narrow word address: wide address * (W/N) + part",
-    ),
-    ("narrow_write_data", "data of narrow_write"),
-    ("narrow_write", "one-clock narrow write strobe"),
-    ("narrow_read", "one-clock narrow read strobe"),
-    (
-        "narrow_read_data",
-        "the read part, valid in the clock after narrow_read",
-    ),
-    ("bus_address", "wide address, combinational"),
-    ("bus_write_data", "the assembled word of bus_write"),
-    (
-        "bus_write",
-        "one-clock wide write strobe: the highest part completed a word",
-    ),
-    (
-        "bus_read",
-        "one-clock wide read strobe: part 0 (or an out-of-order part) was read",
-    ),
-    (
-        "bus_read_data",
-        "the slave's read data, valid in the clock after bus_read",
-    ),
-    (
-        "order_error",
-        "one-clock pulse: the master broke the access order",
-    ),
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock"),
+    port("reset", "1", "synchronous, active high: read latch and write holding register empty (0), no error"),
+    port("narrow_address", "NA", "narrow word address: wide address * (W/N) + part"),
+    port("narrow_write_data", "N", "data of `narrow_write`"),
+    port("narrow_write", "1", "one-clock narrow write strobe"),
+    port("narrow_read", "1", "one-clock narrow read strobe"),
+    port("narrow_read_data", "N", "the read part, valid in the clock after `narrow_read`"),
+    port("bus_address", "A", "wide address (`narrow_address` without its part bits), combinational"),
+    port("bus_write_data", "W", "the assembled word of `bus_write`, combinational"),
+    port("bus_write", "1", "one-clock wide write strobe: the highest part completed a word"),
+    port("bus_read", "1", "one-clock wide read strobe: part 0 was read (or an out-of-order part)"),
+    port("bus_read_data", "W", "the slave's read data, valid in the clock after `bus_read`"),
+    port("order_error", "1", "one-clock pulse: the master broke the access order (torn write dropped, out-of-order read)"),
 ];
 
 /// Narrow-to-wide register bus bridge. See the [module documentation](self).
