@@ -93,3 +93,68 @@ fn widths_in_model_docs_are_the_ports() {
         "no model states a port width: the test checks nothing"
     );
 }
+
+/// Vendor capacities, not measurements: quoted beside the reports so
+/// that a reader can set one against the other.
+const CAPACITIES: &[&str] = &["7680", "8640", "24288"];
+
+/// Measured figures live in the reports (`rtl-out/synthesis-report.md`,
+/// `rtl-out/scaling-report.md`): every resource count or Fmax that the
+/// README or a rustdoc quotes must be one of theirs, so a quote cannot
+/// outlive the measurement (the README once said 6,717 LC at 88.5 MHz
+/// where the report said 6,761 and 99.5).
+#[test]
+fn quoted_figures_are_in_the_reports() {
+    let figure = Regex::new(
+        r"(\d{2,}\.\d+) ?MHz|(\d[\d,]*(?:\.\d+)?) ?(?:LC\b|logic cells|LUT4|DFF|flip-flops|TRELLIS_COMB)",
+    )
+    .unwrap();
+    let number = Regex::new(r"\d+(?:\.\d+)?").unwrap();
+    let mut reported = std::collections::BTreeSet::new();
+    for report in ["synthesis-report.md", "scaling-report.md"] {
+        let text = std::fs::read_to_string(repo_root().join("rtl-out").join(report)).unwrap();
+        reported.extend(number.find_iter(&text).map(|m| m.as_str().to_string()));
+    }
+    let mut quoted = vec![("README.md".to_string(), {
+        std::fs::read_to_string(repo_root().join("README.md")).unwrap()
+    })];
+    for entry in walk(&repo_root().join("src")) {
+        let text = std::fs::read_to_string(&entry).unwrap();
+        let docs: String = text
+            .lines()
+            .filter(|l| l.trim_start().starts_with("//!") || l.trim_start().starts_with("///"))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        quoted.push((entry.display().to_string(), docs));
+    }
+    let mut stale = vec![];
+    let mut checked = 0;
+    for (file, text) in &quoted {
+        for c in figure.captures_iter(text) {
+            let value = c.get(1).or(c.get(2)).unwrap().as_str().replace(',', "");
+            checked += 1;
+            if !reported.contains(&value) && !CAPACITIES.contains(&value.as_str()) {
+                stale.push(format!("{file}: `{}`", &c[0]));
+            }
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "figures quoted outside the reports, not in them (quote the report, or link to it): {stale:#?}"
+    );
+    assert!(checked > 0, "no figure found: the test checks nothing");
+}
+
+/// Every `.rs` file below `dir`.
+fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files = vec![];
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            files.extend(walk(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            files.push(path);
+        }
+    }
+    files
+}

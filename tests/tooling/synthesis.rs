@@ -101,8 +101,8 @@ fn place_board(top: &str, modules: &[&str]) -> String {
 /// input and output on a pin, synthesizes and places with its pin file at
 /// its 48 MHz clock.
 ///
-/// The board fills about 91 % of the HX8K's logic cells (96 % before
-/// #19). With yosys's
+/// The board nearly fills the HX8K (the test prints its logic cells).
+/// With yosys's
 /// defaults (every enable on the cells' clock enable, which the 8 cells of
 /// a tile share) nextpnr could not legalise the placement ("Unable to find
 /// legal placement for all cells", 97 %); `-dffe_min_ce_use 4`, which puts

@@ -103,11 +103,10 @@
 //! entry for that word). Each port's answer is the RAM copy's output on
 //! the clock after the read, and a hold register after that.
 //!
-//! Measured at AW = 10, D = 16 (yosys `synth_ice40`, nextpnr-ice40 HX8K,
-//! `rtl-out/synthesis-report.md`): 352 LUT4, 137 DFF, 8 SB_RAM40_4K,
-//! 371 logic cells, Fmax 144.6 MHz (median of 5 seeds). Of those, 45
-//! flip-flops and 50 LUT4 are yosys's emulation of the Verilog's read-first
-//! RAM on SB_RAM40_4K, whose read-during-write result is undefined
+//! The exported AW = 10, D = 16 on iCE40 HX8K is its row in
+//! `rtl-out/synthesis-report.md` (8 SB_RAM40_4K). Part of its flip-flops
+//! and LUT4 are yosys's emulation of the Verilog's read-first RAM on
+//! SB_RAM40_4K, whose read-during-write result is undefined
 //! (`emulate_read_first`: the write is delayed a clock and bypassed).
 
 pub mod model;

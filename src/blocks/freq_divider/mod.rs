@@ -67,10 +67,9 @@
 //!
 //! The trade: the latched D is W flip-flops with no logic in front of them.
 //! On iCE40 each takes a logic cell of its own (with a pass-through LUT that
-//! yosys does not count as a LUT4), so for W = 32 the block is 71 LUT4 and 66
-//! flip-flops in 106 logic cells; the down-counter design was 90 LUT4 and 34
-//! flip-flops in 93 logic cells. Current figures for the exported 32-bit
-//! module are in `rtl-out/synthesis-report.md`.
+//! yosys does not count as a LUT4): fewer LUT4 than the down-counter
+//! design, a few more logic cells. The exported 32-bit module's figures
+//! are its row in `rtl-out/synthesis-report.md`.
 
 pub mod model;
 

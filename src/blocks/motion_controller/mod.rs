@@ -327,11 +327,10 @@
 //! (a double-buffered period plan; the divider is shared by all axes), a
 //! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
 //! a quadrature decoder, a FIFO, its machine I/O (two 32-bit home latches)
-//! and its register window with two 32-bit snapshots: about 1900 logic
-//! cells an axis, over about 1100 for the rest. The DDA-only build
-//! (`motion_controller_dda`, 5,110 LC) and the servo build
-//! (`motion_controller_servo`, 5,712 LC: the DAC and its walk add about
-//! 600) have their own rows in the report.
+//! and its register window with two 32-bit snapshots; `rtl-out/scaling-report.md`
+//! gives the cost of an axis (K = 1, 3 and 6). The DDA-only build
+//! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
+//! the DAC and its walk) have their own rows in the synthesis report.
 //!
 //! ## Build options: DDA only, analog outputs
 //! `ANALOG` = true builds the analog outputs (see "Analog axes"); without
@@ -344,14 +343,16 @@
 //! generators and their shared divider: the seed design's own DDA-only
 //! scheme. The two options are exported as:
 //! * `motion_controller` ([`MotionController3`]): uniform generators, no
-//!   analog outputs (with the board's bus adapter it fills 91 % of an
+//!   analog outputs (with the board's bus adapter it nearly fills an
 //!   iCE40 HX8K: the DAC does not fit beside it);
 //! * `motion_controller_dda` ([`MotionController3Dda`]): DDA only, no
 //!   analog outputs: small enough for an iCE40 HX8K with the host links
-//!   and mailbox with 15 % of it free (the seed card, `seed_board.v`);
+//!   and mailbox, with the 15 % of it free the seed card asks for
+//!   (`seed_board.v`, checked by its placement test);
 //! * `motion_controller_servo` ([`MotionController3Servo`]): DDA only,
 //!   with the analog outputs (step and AD669 servo drives). With the host
-//!   links it needs 86 % of an HX8K: the seed card does not take it yet.
+//!   links it needs more than 85 % of an HX8K: the seed card does not
+//!   take it yet (#35).
 //!
 //! Without the uniform generators the ports are the same; for software:
 //! * `CONFIG.DDA_ONLY` reads 1 (0 in the full build, and in cores older

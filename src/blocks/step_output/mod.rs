@@ -8,8 +8,8 @@
 //! ## Ports (`T` = 16-bit timers and `P` = 16-bit pending count in the exported `step_output`)
 //! `P` (3 to 32) sets the slack for steps the timing holds back: the count
 //! runs from -2^(P-1) to 2^(P-1) - 1; a request beyond it is dropped and
-//! flagged (`overrun`). P = 8 saves about 15 LUT4 and shortens the
-//! emit-to-count adder; `motion_controller` uses it.
+//! flagged (`overrun`). P = 8 saves LUT4 and shortens the emit-to-count
+//! adder; `motion_controller` uses it.
 //!
 #![doc = include_str!("ports.md")]
 //!

@@ -92,13 +92,13 @@
 //! Each FIFO is two 256x16 block RAMs up to 256 words, so K = 3 uses 12 of
 //! the HX8K's 32 block RAMs for any depth up to 2^8 (64 words exported).
 //! The exported top has 290 port bits, more than the package's pins, so
-//! `rtl-out/synthesis-report.md` measures it inside a pin wrapper: 1122
-//! LUT4, 624 flip-flops and 1540 logic cells at K = 3 (half of them the
-//! six FIFOs with their bypass registers, most of the rest the 32-bit read
-//! multiplexers and read-data registers), and a median Fmax of 111.8 MHz
-//! (target 100). `data_ready`'s next value is compared before the pop's
-//! subtraction, not after it (96.9 MHz before); the longest path is now a
-//! status FIFO's count and full flag. In a board design the slave ports
+//! `rtl-out/synthesis-report.md` measures it inside a pin wrapper (its
+//! row: LUT4, flip-flops, logic cells and Fmax at K = 3). About half the
+//! logic cells are the six FIFOs with their bypass registers, most of the
+//! rest the 32-bit read multiplexers and read-data registers.
+//! `data_ready`'s next value is compared before the pop's subtraction, not
+//! after it, which took that subtraction off the longest path; the longest
+//! path is now a status FIFO's count and full flag. In a board design the slave ports
 //! connect to bus adapters inside the FPGA, not to pins.
 
 pub mod channel;
