@@ -58,7 +58,7 @@ for component in rustfmt clippy; do
     rustup component add "$component"
   fi
 done
-cargo fmt --check
-cargo clippy --all-targets -- -D warnings
+cargo fmt --all --check
+cargo clippy --workspace --all-targets -- -D warnings
 
-cargo nextest run
+cargo nextest run --workspace

@@ -228,7 +228,7 @@ pub fn port_table(spec: &DatasheetSpec) -> Result<String, DatasheetError> {
         return Err(error(format!("undocumented ports {undocumented:?}")));
     }
     let mut md = String::from(
-        "<!-- Generated from PORT_DOCS by `motion-hdl export`. Do not edit. -->\n\n\
+        "<!-- Generated from PORT_DOCS (motion_hdl::export::datasheet). Do not edit. -->\n\n\
          | port | dir | width | meaning |\n|---|---|---|---|\n",
     );
     for doc in spec.port_docs {

@@ -118,7 +118,7 @@ fn quoted_figures_are_in_the_reports() {
     let mut quoted = vec![("README.md".to_string(), {
         std::fs::read_to_string(repo_root().join("README.md")).unwrap()
     })];
-    for entry in walk(&repo_root().join("src")) {
+    for entry in crate::rust_files(&repo_root().join("src")) {
         let text = std::fs::read_to_string(&entry).unwrap();
         let docs: String = text
             .lines()
@@ -143,18 +143,4 @@ fn quoted_figures_are_in_the_reports() {
         "figures quoted outside the reports, not in them (quote the report, or link to it): {stale:#?}"
     );
     assert!(checked > 0, "no figure found: the test checks nothing");
-}
-
-/// Every `.rs` file below `dir`.
-fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
-    let mut files = vec![];
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            files.extend(walk(&path));
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            files.push(path);
-        }
-    }
-    files
 }

@@ -1,12 +1,27 @@
 //! The export and its tools: `rtl-out/` freshness and lint, the datasheets'
 //! port tables, register maps,
 //! cross-simulation, the harness, plots, and synthesis of every exported
-//! module and the board example.
+//! module and the board example, and the crate package.
 
 mod cross_simulation;
 mod datasheets;
 mod harness;
+mod package;
 mod plots;
 mod regmap;
 mod rtl_out;
 mod synthesis;
+
+/// Every `.rs` file below `dir`.
+fn rust_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files = vec![];
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            files.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            files.push(path);
+        }
+    }
+    files
+}
