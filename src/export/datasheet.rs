@@ -204,6 +204,15 @@ pub(crate) fn array_index(doc: &str, port: &str) -> Option<Option<String>> {
         .then(|| Some(index.to_string()))
 }
 
+/// The RTL ports that no entry of `docs` documents.
+pub(crate) fn undocumented_ports<'a>(docs: &[PortDoc], ports: &'a [Port]) -> Vec<&'a str> {
+    ports
+        .iter()
+        .filter(|p| !docs.iter().any(|d| array_index(d.name, &p.name).is_some()))
+        .map(|p| p.name.as_str())
+        .collect()
+}
+
 /// `src/blocks/<block>/ports.md` for one datasheet, after checking every
 /// port against the RTL: each documented, none unknown, each width equal
 /// to the RTL's.
@@ -214,16 +223,7 @@ pub fn port_table(spec: &DatasheetSpec) -> Result<String, DatasheetError> {
     };
     let block = (spec.build)();
     let ports = top_ports(block.as_ref());
-    let undocumented: Vec<&str> = ports
-        .iter()
-        .filter(|p| {
-            !spec
-                .port_docs
-                .iter()
-                .any(|d| array_index(d.name, &p.name).is_some())
-        })
-        .map(|p| p.name.as_str())
-        .collect();
+    let undocumented = undocumented_ports(spec.port_docs, &ports);
     if !undocumented.is_empty() {
         return Err(error(format!("undocumented ports {undocumented:?}")));
     }

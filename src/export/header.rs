@@ -1,5 +1,5 @@
 use super::catalog::ModuleSpec;
-use super::datasheet::array_index;
+use super::datasheet::{array_index, documented_ports, undocumented_ports};
 use super::ports::Port;
 
 /// `motion-hdl <version> (rust-hdl 0.46)`: the generator line of every file.
@@ -30,24 +30,11 @@ pub fn port_rows<'a>(
     spec: &ModuleSpec,
     ports: &'a [Port],
 ) -> Result<Vec<PortRow<'a>>, PortDocError> {
-    let undocumented: Vec<&str> = ports
-        .iter()
-        .filter(|p| {
-            !spec
-                .port_docs
-                .iter()
-                .any(|doc| array_index(doc.name, &p.name).is_some())
-        })
-        .map(|p| p.name.as_str())
-        .collect();
+    let undocumented = undocumented_ports(spec.port_docs, ports);
     let unknown: Vec<&str> = spec
         .port_docs
         .iter()
-        .filter(|doc| {
-            !ports
-                .iter()
-                .any(|p| array_index(doc.name, &p.name).is_some())
-        })
+        .filter(|doc| documented_ports(doc, ports).is_empty())
         .map(|doc| doc.name)
         .collect();
     if !undocumented.is_empty() || !unknown.is_empty() {
