@@ -126,10 +126,12 @@ pub mod fields {
     pub const GPIO_WIDTH: u32 = 8;
     /// `GPIO_IN.LEVEL`, `GPIO_OUT.LEVEL` and `GPIO_SAFE.MASK`.
     pub const GPIO_LEVEL: u32 = 0;
-    /// `STOP_CAUSE.CAUSE` (4 bits, a [`super::StopCause`]).
+    /// `STOP_CAUSE.CAUSE` (a [`super::StopCause`]).
     pub const STOP_CAUSE_CAUSE: u32 = 0;
-    /// `STOP_CAUSE.AXIS` (4 bits).
+    /// `STOP_CAUSE.AXIS`.
     pub const STOP_CAUSE_AXIS: u32 = 8;
+    /// Width of `STOP_CAUSE.CAUSE` and `STOP_CAUSE.AXIS`.
+    pub const STOP_CAUSE_WIDTH: u32 = 4;
     /// `GPIO_IRQ_ENABLE.RISE` and `GPIO_EDGES.RISE` ([`GPIO_WIDTH`] bits).
     pub const GPIO_RISE: u32 = 0;
     /// `GPIO_IRQ_ENABLE.FALL` and `GPIO_EDGES.FALL` ([`GPIO_WIDTH`] bits).
@@ -138,6 +140,8 @@ pub mod fields {
     pub const CONFIG_DDA_ONLY: u32 = 24;
     /// `CONFIG.ANALOG`: the build has the analog outputs.
     pub const CONFIG_ANALOG: u32 = 25;
+    /// `FIFO_STATUS.LEVEL` and `FIFO_LOW_WATER.LEVEL` (FIFO depth + 1 bits).
+    pub const FIFO_LEVEL: u32 = 0;
     /// `FIFO_STATUS.EMPTY`.
     pub const FIFO_EMPTY: u32 = 16;
     /// `FIFO_STATUS.FULL`.
@@ -553,7 +557,7 @@ pub fn register_map(
                 "FIFO_LOW_WATER",
                 global::FIFO_LOW_WATER,
                 "FIFO low-water threshold",
-                vec![field("LEVEL", 0, level_bits, ReadWrite, "FIFO_LOW is raised when a level falls to this or below")],
+                vec![field("LEVEL", fields::FIFO_LEVEL, level_bits, ReadWrite, "FIFO_LOW is raised when a level falls to this or below")],
             ),
             Register::word("WATCHDOG_TIMEOUT", global::WATCHDOG_TIMEOUT, ReadWrite, 0, "base ticks allowed between kicks, taken at each kick; 0 disarms"),
             Register::word("WATCHDOG_KICK", global::WATCHDOG_KICK, WriteOnly, 0, "any write kicks (and arms) the watchdog"),
@@ -599,8 +603,8 @@ pub fn register_map(
                 global::STOP_CAUSE,
                 "why RUN last fell (kept until the next stop)",
                 vec![
-                    field("CAUSE", fields::STOP_CAUSE_CAUSE, 4, ReadOnly, "0 none, 1 RUN written 0, 2 underrun, 3 watchdog, 4 home, 5 limit, 6 drive alarm, 7 E-stop (the highest of simultaneous causes)"),
-                    field("AXIS", fields::STOP_CAUSE_AXIS, 4, ReadOnly, "home, limit, drive alarm: the lowest axis holding that cause"),
+                    field("CAUSE", fields::STOP_CAUSE_CAUSE, fields::STOP_CAUSE_WIDTH, ReadOnly, "0 none, 1 RUN written 0, 2 underrun, 3 watchdog, 4 home, 5 limit, 6 drive alarm, 7 E-stop (the highest of simultaneous causes)"),
+                    field("AXIS", fields::STOP_CAUSE_AXIS, fields::STOP_CAUSE_WIDTH, ReadOnly, "home, limit, drive alarm: the lowest axis holding that cause"),
                 ],
             ),
             register("GPIO_IN", global::GPIO_IN, "general inputs", vec![field("LEVEL", fields::GPIO_LEVEL, fields::GPIO_WIDTH, ReadOnly, "filtered levels, polarity applied (0 until the inputs are ready)")]),
@@ -630,7 +634,7 @@ pub fn register_map(
                 at(axis::FIFO_STATUS),
                 "FIFO level and flags",
                 vec![
-                    field("LEVEL", 0, level_bits, ReadOnly, "periods queued"),
+                    field("LEVEL", fields::FIFO_LEVEL, level_bits, ReadOnly, "periods queued"),
                     Field { reset: 1, ..field("EMPTY", fields::FIFO_EMPTY, 1, ReadOnly, "no period queued") },
                     field("FULL", fields::FIFO_FULL, 1, ReadOnly, "no room: a write now is refused"),
                     Field { reset: 1, ..field("LOW", fields::FIFO_LOW, 1, ReadOnly, "LEVEL <= FIFO_LOW_WATER") },
