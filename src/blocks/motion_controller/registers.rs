@@ -5,11 +5,15 @@
 //! tests (which drive the RTL through the bus with this map) all come from
 //! here.
 //!
-//! The RTL decodes addresses with constants taken from this map. Field bit
-//! positions appear in the RTL as literals (rust-hdl prints a named Rust
-//! constant literally into the Verilog), so every field is exercised
-//! through the bus by the tests, packed and unpacked with this map: a field
-//! moved here and not in the RTL fails them.
+//! The RTL decodes addresses with constants taken from this map. Field
+//! positions are written once, in [`fields`], and the map is built from
+//! them. The RTL takes its multi-bit fields through `field_slices!`
+//! (positioned by [`fields`] when the Verilog is generated); a single bit
+//! stays a literal (rust-hdl prints a named Rust constant by name into the
+//! Verilog) tied to its [`fields`] constant by a compile-time assertion
+//! next to the block. The tests pack and unpack every field by name with
+//! this map, and `tests/tooling/regmap.rs` checks each [`fields`] constant
+//! against the field it names.
 
 use crate::regmap::{field, register, Access, Field, RegMapError, Register, RegisterMap};
 
