@@ -2,6 +2,59 @@
 //! the rust-hdl implementation and its datasheet, `model.rs` the plain-Rust
 //! reference model the RTL is proven against (in `tests/blocks/<block>.rs`).
 
+/// Named slices of a register word for `#[hdl_gen]` code, placed by the
+/// register map's field constants.
+///
+/// In `#[hdl_gen]` code `x.get_bits::<W>(OFFSET)` prints `OFFSET` by name,
+/// which is broken Verilog. But rust-hdl turns a method call
+/// `x.get_value_f()` into the part-select `x[(offset)+:(width)]`, with
+/// `offset = x.get_my_offset_f()` and `width = x.get_my_width_f()`
+/// evaluated when the Verilog is generated (its mechanism for
+/// `LogicStruct` fields). This macro defines a trait, implemented for every
+/// `Bits<N>`, with those three methods for each field. The offset is an
+/// `i32`, which prints as `32'h..` like the literal offset of a
+/// `get_bits`, so the Verilog text is the same as with literals.
+///
+/// A single bit has no such form (`get_bit(n)` prints an index, a
+/// one-bit slice prints `[(n)+:(1)]`): there the literal stays, tied to
+/// the field constant by a compile-time assertion.
+macro_rules! field_slices {
+    (
+        $(#[$meta:meta])*
+        $vis:vis trait $name:ident {
+            $(
+                $(#[$fmeta:meta])*
+                $value:ident / $offset:ident / $width:ident = ($lsb:expr, $bits:expr);
+            )*
+        }
+    ) => {
+        $(#[$meta])*
+        $vis trait $name {
+            $(
+                $(#[$fmeta])*
+                fn $value(&self) -> rust_hdl::prelude::Bits<{ ($bits) as usize }>;
+                /// The field's least significant bit, as rust-hdl prints it.
+                fn $offset(&self) -> i32;
+                /// The field's width.
+                fn $width(&self) -> usize;
+            )*
+        }
+        impl<const N: usize> $name for rust_hdl::prelude::Bits<N> {
+            $(
+                fn $value(&self) -> rust_hdl::prelude::Bits<{ ($bits) as usize }> {
+                    self.get_bits::<{ ($bits) as usize }>(($lsb) as usize)
+                }
+                fn $offset(&self) -> i32 {
+                    ($lsb) as i32
+                }
+                fn $width(&self) -> usize {
+                    ($bits) as usize
+                }
+            )*
+        }
+    };
+}
+
 pub mod bus_synchronizer;
 pub mod carry_select_adder;
 pub mod command_fifo;

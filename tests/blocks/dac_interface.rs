@@ -201,9 +201,11 @@ impl Ad669Monitor {
             words.push(*w);
         }
         let mut bound = [if floor { u64::MAX } else { 0 }; 4];
+        let fields = ["SETUP", "WIDTH", "HOLD", "LDAC_WIDTH"]
+            .map(|name| field_of(&self.map, "TIMING", name).clone());
         for word in words {
-            for (f, b) in bound.iter_mut().enumerate() {
-                let v = ((word >> (8 * f)) & 0xff).max(1);
+            for (field, b) in fields.iter().zip(bound.iter_mut()) {
+                let v = field.extract(word as u32).unwrap().max(1);
                 *b = if floor { (*b).min(v) } else { (*b).max(v) };
             }
         }
@@ -249,7 +251,10 @@ impl Ad669Monitor {
         if i.bus_write {
             let a = i.bus_address;
             if a == address(&self.map, "CONTROL") {
-                self.offset_binary = i.bus_write_data & 1 != 0;
+                self.offset_binary = field_of(&self.map, "CONTROL", "OFFSET_BINARY")
+                    .extract(i.bus_write_data as u32)
+                    .unwrap()
+                    != 0;
             } else if a == address(&self.map, "TIMING") {
                 self.timing.push((self.clock, i.bus_write_data));
             } else if (CODE_BASE as u64..CODE_BASE as u64 + self.channels as u64).contains(&a)

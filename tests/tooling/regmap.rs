@@ -234,3 +234,203 @@ fn the_markdown_table_lists_every_register_and_field() {
         assert!(table.contains(text), "table lacks {text:?}:\n{table}");
     }
 }
+
+/// The field constants the RTL, the models and the tests use by name
+/// (`registers::fields`) against the maps, by register and field name:
+/// the maps are built from the constants, and this checks that each
+/// constant went into the field it names (and that every width the RTL
+/// slices is the map's).
+#[test]
+fn the_field_constants_agree_with_the_maps() {
+    use motion_hdl::blocks::dac_interface::registers as dac;
+    use motion_hdl::blocks::motion_controller::registers::{self as mc, fields as f};
+    // (register, field, lsb, width; 0 = the map's own width, which depends
+    // on the build).
+    let controller: &[(&str, &str, u32, u32)] = &[
+        ("CONTROL", "RUN", f::CONTROL_RUN, 1),
+        ("CONTROL", "FLUSH", f::CONTROL_FLUSH, 1),
+        ("STATE", "RUNNING", f::STATE_RUNNING, 1),
+        ("STATE", "WATCHDOG_ARMED", f::STATE_WATCHDOG_ARMED, 1),
+        ("STATE", "WATCHDOG_EXPIRED", f::STATE_WATCHDOG_EXPIRED, 1),
+        ("STATE", "ESTOP_INPUT", f::STATE_ESTOP_INPUT, 1),
+        ("STATE", "ESTOP_LATCHED", f::STATE_ESTOP_LATCHED, 1),
+        ("STATE", "ABORTED", f::STATE_ABORTED, 1),
+        ("STATE", "INPUTS_READY", f::STATE_INPUTS_READY, 1),
+        ("CONFIG", "DDA_ONLY", f::CONFIG_DDA_ONLY, 1),
+        ("CONFIG", "ANALOG", f::CONFIG_ANALOG, 1),
+        ("PERIOD_TICKS", "VALUE", f::VALUE, 0),
+        ("FIFO_LOW_WATER", "LEVEL", f::FIFO_LEVEL, 0),
+        (
+            "INPUT_FILTER",
+            "LENGTH",
+            f::FILTER_LENGTH,
+            f::FILTER_LENGTH_WIDTH,
+        ),
+        (
+            "INPUT_FILTER",
+            "SAMPLE_RATE",
+            f::FILTER_SAMPLE_RATE,
+            f::FILTER_SAMPLE_RATE_WIDTH,
+        ),
+        ("INPUT_POLARITY", "LIMIT_POS", f::POLARITY_LIMIT_POS, 1),
+        ("INPUT_POLARITY", "LIMIT_NEG", f::POLARITY_LIMIT_NEG, 1),
+        ("INPUT_POLARITY", "HOME", f::POLARITY_HOME, 1),
+        ("INPUT_POLARITY", "DRIVE_ALARM", f::POLARITY_DRIVE_ALARM, 1),
+        ("INPUT_POLARITY", "GPIO", f::POLARITY_GPIO, f::GPIO_WIDTH),
+        (
+            "STOP_CAUSE",
+            "CAUSE",
+            f::STOP_CAUSE_CAUSE,
+            f::STOP_CAUSE_WIDTH,
+        ),
+        (
+            "STOP_CAUSE",
+            "AXIS",
+            f::STOP_CAUSE_AXIS,
+            f::STOP_CAUSE_WIDTH,
+        ),
+        ("GPIO_IN", "LEVEL", f::GPIO_LEVEL, f::GPIO_WIDTH),
+        ("GPIO_OUT", "LEVEL", f::GPIO_LEVEL, f::GPIO_WIDTH),
+        ("GPIO_SAFE", "MASK", f::GPIO_LEVEL, f::GPIO_WIDTH),
+        ("GPIO_IRQ_ENABLE", "RISE", f::GPIO_RISE, f::GPIO_WIDTH),
+        ("GPIO_IRQ_ENABLE", "FALL", f::GPIO_FALL, f::GPIO_WIDTH),
+        ("GPIO_EDGES", "RISE", f::GPIO_RISE, f::GPIO_WIDTH),
+        ("GPIO_EDGES", "FALL", f::GPIO_FALL, f::GPIO_WIDTH),
+        ("FIFO_STATUS", "LEVEL", f::FIFO_LEVEL, 0),
+        ("FIFO_STATUS", "EMPTY", f::FIFO_EMPTY, 1),
+        ("FIFO_STATUS", "FULL", f::FIFO_FULL, 1),
+        ("FIFO_STATUS", "LOW", f::FIFO_LOW, 1),
+        ("AXIS_CONFIG", "UNIFORM", f::AXIS_UNIFORM, 1),
+        ("AXIS_CONFIG", "INTERLEAVED", f::AXIS_INTERLEAVED, 1),
+        (
+            "AXIS_CONFIG",
+            "STEP_MODE",
+            f::AXIS_STEP_MODE,
+            f::AXIS_STEP_MODE_WIDTH,
+        ),
+        (
+            "AXIS_CONFIG",
+            "ENC_FILTER",
+            f::AXIS_ENC_FILTER,
+            f::AXIS_ENC_FILTER_WIDTH,
+        ),
+        (
+            "AXIS_CONFIG",
+            "ENC_COUNTER_MODE",
+            f::AXIS_ENC_COUNTER_MODE,
+            1,
+        ),
+        ("AXIS_CONFIG", "INDEX_INVERT", f::AXIS_INDEX_INVERT, 1),
+        ("AXIS_CONFIG", "INDEX_CLEAR", f::AXIS_INDEX_CLEAR, 1),
+        ("AXIS_CONFIG", "INDEX_LATCH", f::AXIS_INDEX_LATCH, 1),
+        ("AXIS_CONFIG", "INDEX_ONCE", f::AXIS_INDEX_ONCE, 1),
+        ("AXIS_CONFIG", "ANALOG", f::AXIS_ANALOG, 1),
+        ("STEP_LEN", "VALUE", f::VALUE, f::STEP_TIMING_WIDTH),
+        ("STEP_SPACE", "VALUE", f::VALUE, f::STEP_TIMING_WIDTH),
+        ("DIR_SETUP", "VALUE", f::VALUE, f::STEP_TIMING_WIDTH),
+        ("DIR_HOLD", "VALUE", f::VALUE, f::STEP_TIMING_WIDTH),
+        (
+            "ENC_SAMPLE_RATE",
+            "VALUE",
+            f::VALUE,
+            f::ENC_SAMPLE_RATE_WIDTH,
+        ),
+        ("AXIS_STATUS", "STEP_OVERRUN", f::STATUS_STEP_OVERRUN, 1),
+        (
+            "AXIS_STATUS",
+            "INTERP_OVERRANGE",
+            f::STATUS_INTERP_OVERRANGE,
+            1,
+        ),
+        (
+            "AXIS_STATUS",
+            "INTERP_OVERFLOW",
+            f::STATUS_INTERP_OVERFLOW,
+            1,
+        ),
+        ("AXIS_STATUS", "ENCODER_ERROR", f::STATUS_ENCODER_ERROR, 1),
+        ("AXIS_STATUS", "INDEX_SEEN", f::STATUS_INDEX_SEEN, 1),
+        ("AXIS_STATUS", "STEP_BUSY", f::STATUS_STEP_BUSY, 1),
+        (
+            "AXIS_STATUS",
+            "UNIFORM_RUNNING",
+            f::STATUS_UNIFORM_RUNNING,
+            1,
+        ),
+        (
+            "AXIS_STATUS",
+            "STEP_MODE_INVALID",
+            f::STATUS_STEP_MODE_INVALID,
+            1,
+        ),
+        ("AXIS_COMMAND", "CLEAR_FAULTS", f::CMD_CLEAR_FAULTS, 1),
+        ("AXIS_COMMAND", "CLEAR_ENCODER", f::CMD_CLEAR_ENCODER, 1),
+        ("AXIS_COMMAND", "REARM_INDEX", f::CMD_REARM_INDEX, 1),
+        ("AXIS_COMMAND", "CLEAR_POSITION", f::CMD_CLEAR_POSITION, 1),
+        (
+            "AXIS_COMMAND",
+            "CLEAR_ENCODER_ERROR",
+            f::CMD_CLEAR_ENCODER_ERROR,
+            1,
+        ),
+        ("IO_CONFIG", "LIMIT_ENABLE", f::LIMIT_ENABLE, 1),
+        ("IO_CONFIG", "ALARM_ENABLE", f::ALARM_ENABLE, 1),
+        ("IO_CONFIG", "STOP_ON_HOME", f::STOP_ON_HOME, 1),
+        ("IO_CONFIG", "DRIVE_ENABLE", f::DRIVE_ENABLE, 1),
+        ("IO_STATUS", "LIMIT_POS", f::IO_LIMIT_POS, 1),
+        ("IO_STATUS", "LIMIT_NEG", f::IO_LIMIT_NEG, 1),
+        ("IO_STATUS", "HOME", f::IO_HOME, 1),
+        ("IO_STATUS", "DRIVE_ALARM", f::IO_DRIVE_ALARM, 1),
+        ("IO_STATUS", "LIMIT_POS_TRIPPED", f::IO_LIMIT_POS_TRIPPED, 1),
+        ("IO_STATUS", "LIMIT_NEG_TRIPPED", f::IO_LIMIT_NEG_TRIPPED, 1),
+        ("IO_STATUS", "ALARM_TRIPPED", f::IO_ALARM_TRIPPED, 1),
+        ("IO_STATUS", "HOME_SEEN", f::IO_HOME_SEEN, 1),
+        ("IO_STATUS", "DRIVE_ENABLE", f::IO_DRIVE_ENABLE, 1),
+        ("IO_COMMAND", "CLEAR_LIMITS", f::CLEAR_LIMITS, 1),
+        ("IO_COMMAND", "CLEAR_ALARM", f::CLEAR_ALARM, 1),
+        ("IO_COMMAND", "CLEAR_HOME", f::CLEAR_HOME, 1),
+    ];
+    let check = |map: &RegisterMap, register: &str, field: &str, lsb: u32, width: u32| {
+        let got = map
+            .field(register, field)
+            .unwrap_or_else(|e| panic!("{}: {e}", map.name));
+        assert_eq!(got.lsb, lsb, "{}: {register}.{field} lsb", map.name);
+        if width != 0 {
+            assert_eq!(got.width, width, "{}: {register}.{field} width", map.name);
+        }
+    };
+    for (uniform, analog) in [(true, false), (false, true), (true, true), (false, false)] {
+        let map = mc::register_map(3, 4, uniform, analog).unwrap();
+        for &(register, field, lsb, width) in controller {
+            check(&map, register, field, lsb, width);
+        }
+        // The interrupt bits: STATUS and IRQ_ENABLE, in event order.
+        for register in ["STATUS", "IRQ_ENABLE"] {
+            let r = map.register(register).unwrap();
+            assert_eq!(r.fields.len(), mc::irq::COUNT);
+            for (n, field) in r.fields.iter().enumerate() {
+                assert_eq!(
+                    (field.lsb, field.width),
+                    (n as u32, 1),
+                    "{register}.{}",
+                    field.name
+                );
+            }
+        }
+        assert_eq!(
+            map.field("FIFO_STATUS", "LEVEL").unwrap().width,
+            map.field("FIFO_LOW_WATER", "LEVEL").unwrap().width
+        );
+    }
+    let map = dac::register_map(3, 16).unwrap();
+    for (field, lsb) in [
+        ("SETUP", dac::fields::TIMING_SETUP),
+        ("WIDTH", dac::fields::TIMING_WIDTH),
+        ("HOLD", dac::fields::TIMING_HOLD),
+        ("LDAC_WIDTH", dac::fields::TIMING_LDAC_WIDTH),
+    ] {
+        check(&map, "TIMING", field, lsb, dac::fields::TIMING_FIELD_BITS);
+    }
+    check(&map, "CODE", "VALUE", dac::fields::CODE_VALUE, 16);
+    check(&map, "APPLIED", "VALUE", dac::fields::CODE_VALUE, 16);
+}

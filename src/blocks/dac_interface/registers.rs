@@ -30,6 +30,25 @@ pub const RESET_HOLD: u64 = 2;
 /// See [`RESET_SETUP`].
 pub const RESET_LDAC_WIDTH: u64 = 5;
 
+/// Bit numbers and widths of the fields the RTL slices at literal
+/// positions (the map below is built from these; the RTL reads them
+/// through `field_slices!` or at a literal tied to them by a compile-time
+/// assertion).
+pub mod fields {
+    /// `TIMING.SETUP`.
+    pub const TIMING_SETUP: u32 = 0;
+    /// `TIMING.WIDTH`.
+    pub const TIMING_WIDTH: u32 = 8;
+    /// `TIMING.HOLD`.
+    pub const TIMING_HOLD: u32 = 16;
+    /// `TIMING.LDAC_WIDTH`.
+    pub const TIMING_LDAC_WIDTH: u32 = 24;
+    /// Width of every `TIMING` field.
+    pub const TIMING_FIELD_BITS: u32 = 8;
+    /// `CODE.VALUE` and `APPLIED.VALUE` (the code width W).
+    pub const CODE_VALUE: u32 = 0;
+}
+
 /// The map of a `channels`-channel interface with `width`-bit codes.
 pub fn register_map(channels: usize, width: usize) -> Result<RegisterMap, RegMapError> {
     if channels == 0 || channels > MAX_CHANNELS || !(2..=MAX_WIDTH).contains(&width) {
@@ -91,24 +110,24 @@ pub fn register_map(channels: usize, width: usize) -> Result<RegisterMap, RegMap
                 0x5,
                 "pin timing in clocks, taken at the start of each update; 0 acts as 1",
                 vec![
-                    field("SETUP", 0, 8, ReadWrite, "CS low and data valid before L1 falls").with_reset(RESET_SETUP),
-                    field("WIDTH", 8, 8, ReadWrite, "L1 low").with_reset(RESET_WIDTH),
-                    field("HOLD", 16, 8, ReadWrite, "CS low and data held after L1 rises").with_reset(RESET_HOLD),
-                    field("LDAC_WIDTH", 24, 8, ReadWrite, "LDAC high").with_reset(RESET_LDAC_WIDTH),
+                    field("SETUP", fields::TIMING_SETUP, fields::TIMING_FIELD_BITS, ReadWrite, "CS low and data valid before L1 falls").with_reset(RESET_SETUP),
+                    field("WIDTH", fields::TIMING_WIDTH, fields::TIMING_FIELD_BITS, ReadWrite, "L1 low").with_reset(RESET_WIDTH),
+                    field("HOLD", fields::TIMING_HOLD, fields::TIMING_FIELD_BITS, ReadWrite, "CS low and data held after L1 rises").with_reset(RESET_HOLD),
+                    field("LDAC_WIDTH", fields::TIMING_LDAC_WIDTH, fields::TIMING_FIELD_BITS, ReadWrite, "LDAC high").with_reset(RESET_LDAC_WIDTH),
                 ],
             ),
             register(
                 "CODE",
                 CODE_BASE,
                 "channel k's staged code, signed (two's complement); 0 is 0 V",
-                vec![field("VALUE", 0, w, ReadWrite, "the code the next update writes")],
+                vec![field("VALUE", fields::CODE_VALUE, w, ReadWrite, "the code the next update writes")],
             )
             .repeated(k, 1),
             register(
                 "APPLIED",
                 APPLIED_BASE,
                 "channel k's code in the DAC's second rank (the output), signed",
-                vec![field("VALUE", 0, w, ReadOnly, "the code of the last LDAC")],
+                vec![field("VALUE", fields::CODE_VALUE, w, ReadOnly, "the code of the last LDAC")],
             )
             .repeated(k, 1),
         ],

@@ -308,13 +308,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
     pub fn new(index: usize, uniform: bool, analog: bool, config_mask: u32) -> Self {
         let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2;
         let c4 = |v: u32| Constant::new((v as u64).into());
-        // rust-hdl prints a named constant by name: update() reads the
-        // field at this literal bit.
-        assert_eq!(
-            fields::AXIS_ANALOG,
-            13,
-            "AXIS_CONFIG.ANALOG moved: update() reads bit 13"
-        );
+        let bit32 = |n: u32| Constant::new((1u64 << n).into());
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -443,17 +437,17 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
                 (0xffff_ffffu64 & !crate::blocks::width_mask(DAC_BITS as u32 - 1)).into(),
             ),
             zero_code: Constant::new(0u64.into()),
-            bit0_32: Constant::new((1u64 << 0).into()),
-            bit16_32: Constant::new((1u64 << 16).into()),
-            bit17_32: Constant::new((1u64 << 17).into()),
-            bit18_32: Constant::new((1u64 << 18).into()),
-            bit1_32: Constant::new((1u64 << 1).into()),
-            bit2_32: Constant::new((1u64 << 2).into()),
-            bit3_32: Constant::new((1u64 << 3).into()),
-            bit4_32: Constant::new((1u64 << 4).into()),
-            bit5_32: Constant::new((1u64 << 5).into()),
-            bit6_32: Constant::new((1u64 << 6).into()),
-            bit7_32: Constant::new((1u64 << 7).into()),
+            bit0_32: bit32(fields::STATUS_STEP_OVERRUN),
+            bit16_32: bit32(fields::FIFO_EMPTY),
+            bit17_32: bit32(fields::FIFO_FULL),
+            bit18_32: bit32(fields::FIFO_LOW),
+            bit1_32: bit32(fields::STATUS_INTERP_OVERRANGE),
+            bit2_32: bit32(fields::STATUS_INTERP_OVERFLOW),
+            bit3_32: bit32(fields::STATUS_ENCODER_ERROR),
+            bit4_32: bit32(fields::STATUS_INDEX_SEEN),
+            bit5_32: bit32(fields::STATUS_STEP_BUSY),
+            bit6_32: bit32(fields::STATUS_UNIFORM_RUNNING),
+            bit7_32: bit32(fields::STATUS_STEP_MODE_INVALID),
             zero32: Constant::new(0u64.into()),
             zero_count: Constant::new(0u64.into()),
             max_count: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
@@ -461,9 +455,9 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
                 (0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into(),
             ),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
-            mask16: Constant::new(0xffffu64.into()),
+            mask16: Constant::new(crate::blocks::width_mask(fields::STEP_TIMING_WIDTH).into()),
             config_mask: Constant::new((config_mask as u64).into()),
-            mask8: Constant::new(0xffu64.into()),
+            mask8: Constant::new(crate::blocks::width_mask(fields::ENC_SAMPLE_RATE_WIDTH).into()),
             off_fifo_write: c4(axis::FIFO_WRITE),
             off_fifo_status: c4(axis::FIFO_STATUS),
             off_config: c4(axis::AXIS_CONFIG),
@@ -482,6 +476,45 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
         }
     }
 }
+
+field_slices! {
+    /// The multi-bit fields `update()` takes from the axis registers.
+    trait AxisFields {
+        get_value_step_mode / get_my_offset_step_mode / get_my_width_step_mode =
+            (fields::AXIS_STEP_MODE, fields::AXIS_STEP_MODE_WIDTH);
+        get_value_enc_filter / get_my_offset_enc_filter / get_my_width_enc_filter =
+            (fields::AXIS_ENC_FILTER, fields::AXIS_ENC_FILTER_WIDTH);
+        get_value_step_timing / get_my_offset_step_timing / get_my_width_step_timing =
+            (fields::VALUE, fields::STEP_TIMING_WIDTH);
+        get_value_enc_sample_rate / get_my_offset_enc_sample_rate / get_my_width_enc_sample_rate =
+            (fields::VALUE, fields::ENC_SAMPLE_RATE_WIDTH);
+    }
+}
+
+// `update()` reads these single-bit fields at literal bits (rust-hdl prints
+// a named constant by name, and has no one-bit form of `field_slices!`):
+// each literal is tied to the map's constant here, so a field moved in the
+// map fails the build.
+const _: () = {
+    // AXIS_COMMAND, written with `command`.
+    assert!(fields::CMD_CLEAR_FAULTS == 0);
+    assert!(fields::CMD_CLEAR_ENCODER == 1);
+    assert!(fields::CMD_REARM_INDEX == 2);
+    assert!(fields::CMD_CLEAR_POSITION == 3);
+    assert!(fields::CMD_CLEAR_ENCODER_ERROR == 4);
+    // AXIS_CONFIG, held in `settings`.
+    assert!(fields::AXIS_UNIFORM == 0);
+    assert!(fields::AXIS_INTERLEAVED == 1);
+    assert!(fields::AXIS_ENC_COUNTER_MODE == 8);
+    assert!(fields::AXIS_INDEX_INVERT == 9);
+    assert!(fields::AXIS_INDEX_CLEAR == 10);
+    assert!(fields::AXIS_INDEX_LATCH == 11);
+    assert!(fields::AXIS_INDEX_ONCE == 12);
+    assert!(fields::AXIS_ANALOG == 13);
+    // Not fields: the address decode (window in bits 7..5, the machine I/O
+    // half in bit 4, the word offset in 3..0).
+    assert!(AXIS_STRIDE_LOG2 == 5 && AXIS_STRIDE == 1 << 5);
+};
 
 impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
     #[hdl_gen]
@@ -538,12 +571,14 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.io.clock.next = self.clock.val();
 
         // Register window decode: bits 7..5 the window (AXIS_STRIDE_LOG2 =
-        // 5), bit 4 the half (motion core or machine I/O), 3..0 the offset.
+        // 5), bit 4 the half (motion core or machine I/O), 3..0 the offset
+        // (address bits, not register fields: asserted above).
         self.selected.next = (self.address.val().get_bits::<3>(5) == self.window.val())
             & !self.address.val().get_bit(4);
         self.offset.next = self.address.val().get_bits::<4>(0);
         self.command.next =
             self.write.val() & self.selected.val() & (self.offset.val() == self.off_command.val());
+        // AXIS_COMMAND.CLEAR_FAULTS
         self.clear_faults.next = self.command.val() & self.write_data.val().get_bit(0);
         if self.write.val() & self.selected.val() {
             if self.offset.val() == self.off_config.val() {
@@ -658,9 +693,11 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // A uniform period still finishing keeps its generator in charge:
         // the switch waits for the next start, and no pulse is cut off.
         if self.start.val() & !self.uniform_running.val() {
+            // AXIS_CONFIG.UNIFORM
             self.uniform_active.d.next = self.settings.q.val().get_bit(0);
         }
-        // An analog axis takes no steps: its entries are DAC codes.
+        // An analog axis takes no steps: its entries are DAC codes
+        // (AXIS_CONFIG.ANALOG).
         if self.start.val() {
             self.analog_active.d.next = self.has_analog.val() & self.settings.q.val().get_bit(13);
         }
@@ -702,6 +739,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.uniform.tick.next = self.tick_d.q.val();
         self.uniform.period.next = self.period_active.val();
         self.uniform.count.next = self.count.val();
+        // AXIS_CONFIG.INTERLEAVED
         self.uniform.mode.next = self.settings.q.val().get_bit(1);
         self.uniform.load.next =
             self.popped_valid.q.val() & self.uniform_active.q.val() & !self.analog_active.q.val();
@@ -748,11 +786,11 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.stage.step.next = self.request.q.val();
         self.stage.dir.next = self.request_forward.q.val();
         self.stage.flush.next = self.abort.val() | self.io.cut.val();
-        self.stage.mode.next = self.settings.q.val().get_bits::<2>(2);
-        self.stage.step_len.next = self.step_len.q.val().get_bits::<16>(0);
-        self.stage.step_space.next = self.step_space.q.val().get_bits::<16>(0);
-        self.stage.dir_setup.next = self.dir_setup.q.val().get_bits::<16>(0);
-        self.stage.dir_hold.next = self.dir_hold.q.val().get_bits::<16>(0);
+        self.stage.mode.next = self.settings.q.val().get_value_step_mode();
+        self.stage.step_len.next = self.step_len.q.val().get_value_step_timing();
+        self.stage.step_space.next = self.step_space.q.val().get_value_step_timing();
+        self.stage.dir_setup.next = self.dir_setup.q.val().get_value_step_timing();
+        self.stage.dir_hold.next = self.dir_hold.q.val().get_value_step_timing();
         self.stage.clear_overrun.next = self.clear_faults.val();
         self.out_a.next = self.stage.out_a.val();
         self.out_b.next = self.stage.out_b.val();
@@ -767,6 +805,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // gives every bit's adder LUT a fourth input, which splits the
         // 32-bit carry chain in placement: nextpnr allows 32 LUT inputs per
         // tile. It was the slowest path of the top.)
+        // AXIS_COMMAND.CLEAR_POSITION
         self.clear_position.next = (self.command.val() & self.write_data.val().get_bit(3))
             | self.clear_position_pending.q.val();
         self.position.clear.next = self.clear_position.val() & !self.stage.emitted.val();
@@ -780,8 +819,11 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder.a.next = self.enc_a.val();
         self.encoder.b.next = self.enc_b.val();
         self.encoder.index.next = self.enc_index.val();
-        self.encoder.filter.next = self.settings.q.val().get_bits::<4>(4);
-        self.encoder.sample_rate.next = self.sample_rate.q.val().get_bits::<8>(0);
+        self.encoder.filter.next = self.settings.q.val().get_value_enc_filter();
+        self.encoder.sample_rate.next = self.sample_rate.q.val().get_value_enc_sample_rate();
+        // AXIS_CONFIG.ENC_COUNTER_MODE, INDEX_INVERT, INDEX_CLEAR,
+        // INDEX_LATCH, INDEX_ONCE; AXIS_COMMAND.CLEAR_ENCODER, REARM_INDEX,
+        // CLEAR_ENCODER_ERROR.
         self.encoder.counter_mode.next = self.settings.q.val().get_bit(8);
         self.encoder.index_invert.next = self.settings.q.val().get_bit(9);
         self.encoder.index_clear.next = self.settings.q.val().get_bit(10);

@@ -85,6 +85,11 @@ fn bit(word: u32, n: u32) -> bool {
     word >> n & 1 != 0
 }
 
+/// All ones in a field of `width` bits.
+fn ones(width: u32) -> u32 {
+    crate::blocks::width_mask(width) as u32
+}
+
 impl MachineIoModel {
     /// Power-up state (the registers read their reset values).
     pub fn new(axes: usize) -> Self {
@@ -122,16 +127,17 @@ impl MachineIoModel {
     }
 
     fn gpio_invert(&self) -> u32 {
-        (self.polarity >> fields::POLARITY_GPIO) & 0xff
+        (self.polarity >> fields::POLARITY_GPIO) & ones(fields::GPIO_WIDTH)
     }
 
     fn length(&self) -> u8 {
-        ((self.filter >> fields::FILTER_LENGTH) & 0xf) as u8
+        ((self.filter >> fields::FILTER_LENGTH) & ones(fields::FILTER_LENGTH_WIDTH)) as u8
     }
 
     fn gpio_edges_now(&self) -> u16 {
         let g = self.gpio.outputs(self.gpio_invert());
-        ((g.rise & 0xff) << fields::GPIO_RISE | (g.fall & 0xff) << fields::GPIO_FALL) as u16
+        let gpio = ones(fields::GPIO_WIDTH);
+        ((g.rise & gpio) << fields::GPIO_RISE | (g.fall & gpio) << fields::GPIO_FALL) as u16
     }
 
     /// The combinational values of this clock.
@@ -216,7 +222,8 @@ impl MachineIoModel {
         step(&mut self.estop, pins.estop as u32);
         step(&mut self.gpio, pins.gpio_in as u32);
         self.sample_count = if sample {
-            ((self.filter >> fields::FILTER_SAMPLE_RATE) & 0xff) as u8
+            ((self.filter >> fields::FILTER_SAMPLE_RATE) & ones(fields::FILTER_SAMPLE_RATE_WIDTH))
+                as u8
         } else {
             self.sample_count.wrapping_sub(1)
         };
@@ -226,8 +233,9 @@ impl MachineIoModel {
         if let Some((address, data)) = write {
             match address {
                 global::INPUT_FILTER => {
-                    self.filter =
-                        data & (0xf << fields::FILTER_LENGTH | 0xff << fields::FILTER_SAMPLE_RATE)
+                    self.filter = data
+                        & (ones(fields::FILTER_LENGTH_WIDTH) << fields::FILTER_LENGTH
+                            | ones(fields::FILTER_SAMPLE_RATE_WIDTH) << fields::FILTER_SAMPLE_RATE)
                 }
                 global::INPUT_POLARITY => {
                     self.polarity = data
@@ -235,7 +243,7 @@ impl MachineIoModel {
                             | 1 << fields::POLARITY_LIMIT_NEG
                             | 1 << fields::POLARITY_HOME
                             | 1 << fields::POLARITY_DRIVE_ALARM
-                            | 0xff << fields::POLARITY_GPIO)
+                            | ones(fields::GPIO_WIDTH) << fields::POLARITY_GPIO)
                 }
                 global::GPIO_OUT => gpio_out = data as u8,
                 global::GPIO_SAFE => self.gpio_safe = data as u8,

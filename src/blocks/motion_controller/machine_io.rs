@@ -16,11 +16,29 @@ use rust_hdl::prelude::*;
 use super::registers::{fields, global};
 use crate::blocks::input_conditioner::InputConditioner;
 
-// The RTL extracts these fields with literal bit positions (rust-hdl
-// prints a named constant into the Verilog by name).
-const _: () = assert!(
-    fields::FILTER_LENGTH == 0 && fields::FILTER_SAMPLE_RATE == 8 && fields::POLARITY_GPIO == 8
-);
+field_slices! {
+    /// The register fields `update()` takes from a register or a written
+    /// word, placed by the map.
+    trait MachineIoFields {
+        get_value_filter_length / get_my_offset_filter_length / get_my_width_filter_length =
+            (fields::FILTER_LENGTH, fields::FILTER_LENGTH_WIDTH);
+        get_value_filter_sample_rate / get_my_offset_filter_sample_rate / get_my_width_filter_sample_rate =
+            (fields::FILTER_SAMPLE_RATE, fields::FILTER_SAMPLE_RATE_WIDTH);
+        get_value_polarity_gpio / get_my_offset_polarity_gpio / get_my_width_polarity_gpio =
+            (fields::POLARITY_GPIO, fields::GPIO_WIDTH);
+        /// `GPIO_OUT.LEVEL`, `GPIO_SAFE.MASK`.
+        get_value_gpio_level / get_my_offset_gpio_level / get_my_width_gpio_level =
+            (fields::GPIO_LEVEL, fields::GPIO_WIDTH);
+        /// `GPIO_IRQ_ENABLE` and `GPIO_EDGES`: `RISE` and `FALL` together.
+        get_value_gpio_edges / get_my_offset_gpio_edges / get_my_width_gpio_edges =
+            (fields::GPIO_RISE, 2 * fields::GPIO_WIDTH);
+    }
+}
+
+// The edge registers are held as one word of RISE then FALL, and the
+// general I/O ports and the per-bit loops of `update()` are 8 wide.
+const _: () =
+    assert!(fields::GPIO_FALL == fields::GPIO_RISE + fields::GPIO_WIDTH && fields::GPIO_WIDTH == 8);
 
 /// Machine I/O shared by `K` axes. See the [module documentation](self).
 #[derive(LogicBlock)]
@@ -296,7 +314,7 @@ impl<const K: usize> Logic for MachineIo<K> {
         self.sample.next = self.sample_count.q.val() == self.zero8.val();
         self.sample_count.d.next = self.sample_count.q.val() - self.one8.val();
         if self.sample.val() {
-            self.sample_count.d.next = self.filter.val().get_bits::<8>(8);
+            self.sample_count.d.next = self.filter.val().get_value_filter_sample_rate();
         }
         if self.reset.val() {
             self.sample_count.d.next = self.zero8.val();
@@ -323,22 +341,22 @@ impl<const K: usize> Logic for MachineIo<K> {
         self.limit_pos_in.raw.next = self.limit_pos.val();
         self.limit_pos_in.invert.next = self.invert_limit_pos.val();
         self.limit_pos_in.sample.next = self.sample.val();
-        self.limit_pos_in.length.next = self.filter.val().get_bits::<4>(0);
+        self.limit_pos_in.length.next = self.filter.val().get_value_filter_length();
         self.limit_neg_in.reset.next = self.reset.val();
         self.limit_neg_in.raw.next = self.limit_neg.val();
         self.limit_neg_in.invert.next = self.invert_limit_neg.val();
         self.limit_neg_in.sample.next = self.sample.val();
-        self.limit_neg_in.length.next = self.filter.val().get_bits::<4>(0);
+        self.limit_neg_in.length.next = self.filter.val().get_value_filter_length();
         self.home_in.reset.next = self.reset.val();
         self.home_in.raw.next = self.home.val();
         self.home_in.invert.next = self.invert_home.val();
         self.home_in.sample.next = self.sample.val();
-        self.home_in.length.next = self.filter.val().get_bits::<4>(0);
+        self.home_in.length.next = self.filter.val().get_value_filter_length();
         self.alarm_in.reset.next = self.reset.val();
         self.alarm_in.raw.next = self.drive_alarm.val();
         self.alarm_in.invert.next = self.invert_alarm.val();
         self.alarm_in.sample.next = self.sample.val();
-        self.alarm_in.length.next = self.filter.val().get_bits::<4>(0);
+        self.alarm_in.length.next = self.filter.val().get_value_filter_length();
         // E-stop has no polarity: always active high (a broken wire stops).
         self.estop_in.reset.next = self.reset.val();
         self.estop_vec.next = self.zero1.val();
@@ -348,12 +366,12 @@ impl<const K: usize> Logic for MachineIo<K> {
         self.estop_in.raw.next = self.estop_vec.val();
         self.estop_in.invert.next = self.zero1.val();
         self.estop_in.sample.next = self.sample.val();
-        self.estop_in.length.next = self.filter.val().get_bits::<4>(0);
+        self.estop_in.length.next = self.filter.val().get_value_filter_length();
         self.gpio.reset.next = self.reset.val();
         self.gpio.raw.next = self.gpio_in.val();
-        self.gpio.invert.next = self.polarity.q.val().get_bits::<8>(8);
+        self.gpio.invert.next = self.polarity.q.val().get_value_polarity_gpio();
         self.gpio.sample.next = self.sample.val();
-        self.gpio.length.next = self.filter.val().get_bits::<4>(0);
+        self.gpio.length.next = self.filter.val().get_value_filter_length();
 
         self.limit_pos_active.next = self.limit_pos_in.active.val();
         self.limit_neg_active.next = self.limit_neg_in.active.val();
@@ -385,10 +403,10 @@ impl<const K: usize> Logic for MachineIo<K> {
         // edge that latches the E-stop and while the watchdog is expired.
         self.gpio_out_next.next = self.gpio_out_reg.q.val();
         if self.write.val() & (self.address.val() == self.a_gpio_out.val()) {
-            self.gpio_out_next.next = self.write_data.val().get_bits::<8>(0);
+            self.gpio_out_next.next = self.write_data.val().get_value_gpio_level();
         }
         if self.write.val() & (self.address.val() == self.a_gpio_safe.val()) {
-            self.gpio_safe.d.next = self.write_data.val().get_bits::<8>(0);
+            self.gpio_safe.d.next = self.write_data.val().get_value_gpio_level();
         }
         if self.estop_next.val() | self.watchdog_expired.val() {
             self.gpio_out_next.next = self.gpio_out_next.val() & !self.gpio_safe.q.val();
@@ -411,12 +429,12 @@ impl<const K: usize> Logic for MachineIo<K> {
             }
         }
         if self.write.val() & (self.address.val() == self.a_gpio_irq_enable.val()) {
-            self.gpio_irq_enable.d.next = self.write_data.val().get_bits::<16>(0);
+            self.gpio_irq_enable.d.next = self.write_data.val().get_value_gpio_edges();
         }
         self.gpio_edges_next.next = self.gpio_edges.q.val();
         if self.write.val() & (self.address.val() == self.a_gpio_edges.val()) {
             self.gpio_edges_next.next =
-                self.gpio_edges.q.val() & !self.write_data.val().get_bits::<16>(0);
+                self.gpio_edges.q.val() & !self.write_data.val().get_value_gpio_edges();
         }
         self.gpio_edges.d.next = self.gpio_edges_next.val() | self.edges_now.val();
         self.gpio_event.next =

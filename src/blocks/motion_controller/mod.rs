@@ -1027,9 +1027,9 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             id_value: Constant::new((ID_VALUE as u64).into()),
             version_value: Constant::new((VERSION_VALUE as u64).into()),
             config_value: Constant::new((config as u64).into()),
-            bit0_32: Constant::new((1u64 << 0).into()),
-            bit1_32: Constant::new((1u64 << 1).into()),
-            bit2_32: Constant::new((1u64 << 2).into()),
+            bit0_32: m32(fields::STATE_RUNNING),
+            bit1_32: m32(fields::STATE_WATCHDOG_ARMED),
+            bit2_32: m32(fields::STATE_WATCHDOG_EXPIRED),
             zero32: Constant::new(0u64.into()),
             one32: Constant::new(1u64.into()),
             zero_p: Constant::new(0u64.into()),
@@ -1073,6 +1073,30 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         }
     }
 }
+
+field_slices! {
+    /// The multi-bit fields `update()` takes from the bus's write data and
+    /// the registers, placed by the map.
+    trait ControllerFields {
+        /// `PERIOD_TICKS.VALUE`.
+        get_value_period_ticks / get_my_offset_period_ticks / get_my_width_period_ticks =
+            (fields::VALUE, PERIOD_BITS);
+        /// `STATUS` and `IRQ_ENABLE`: every interrupt bit, in event order.
+        get_value_irq_bits / get_my_offset_irq_bits / get_my_width_irq_bits =
+            (irq::PERIOD_DONE, IRQ_COUNT);
+    }
+}
+
+// `update()` reads these fields at literal bits (rust-hdl prints a named
+// constant by name; `field_slices!` has no one-bit form and no generic
+// width): each literal is tied to the map's constant here.
+const _: () = {
+    assert!(fields::CONTROL_RUN == 0);
+    assert!(fields::CONTROL_FLUSH == 1);
+    assert!(fields::FIFO_LEVEL == 0);
+    // The interrupt bits are 0..IRQ_COUNT, in event order.
+    assert!(irq::PERIOD_DONE == 0 && irq::GPIO as usize == IRQ_COUNT - 1);
+};
 
 impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
     Logic for MotionController<K, N, NP1, UNIFORM, ANALOG>
@@ -1126,7 +1150,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
                 self.tick_divisor.d.next = self.bus_write_data.val();
             }
             if self.bus_address.val() == self.a_period_ticks.val() {
-                self.period_ticks.d.next = self.bus_write_data.val().get_bits::<PERIOD_BITS>(0);
+                self.period_ticks.d.next = self.bus_write_data.val().get_value_period_ticks();
             }
             if self.bus_address.val() == self.a_low_water.val() {
                 self.low_water.d.next = self.bus_write_data.val() & self.level_mask.val();
@@ -1209,6 +1233,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         // Run control and the period boundary.
         self.write_control.next =
             self.bus_write.val() & (self.bus_address.val() == self.a_control.val());
+        // CONTROL.RUN, CONTROL.FLUSH: literal bits, asserted above.
         self.start.next = self.write_control.val()
             & self.bus_write_data.val().get_bit(0)
             & !self.refuse_run.val();
@@ -1370,6 +1395,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             self.axes[i].modulus.next = self.modulus.q.val();
             self.axes[i].snapshot.next =
                 self.bus_write.val() & (self.bus_address.val() == self.a_snapshot.val());
+            // FIFO_LOW_WATER.LEVEL: its width is NP1, a generic, so not a
+            // field_slices! field; the literal is asserted above.
             self.axes[i].low_water.next = self.low_water.q.val().get_bits::<NP1>(0);
             self.axes[i].address.next = self.bus_address.val();
             self.axes[i].write.next = self.bus_write.val();
@@ -1536,8 +1563,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.interrupts.events.next = self.events.val();
         self.interrupts.clear.next =
             self.bus_write.val() & (self.bus_address.val() == self.a_status.val());
-        self.interrupts.clear_bits.next = self.bus_write_data.val().get_bits::<IRQ_COUNT>(0);
-        self.interrupts.enable.next = self.irq_enable.q.val().get_bits::<IRQ_COUNT>(0);
+        self.interrupts.clear_bits.next = self.bus_write_data.val().get_value_irq_bits();
+        self.interrupts.enable.next = self.irq_enable.q.val().get_value_irq_bits();
         self.irq.next = self.interrupts.irq.val();
 
         // Reads.

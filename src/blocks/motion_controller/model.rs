@@ -252,6 +252,21 @@ struct AxisComb {
     read_data: u32,
 }
 
+/// Whether bit `n` of `word` is set.
+fn bit_set(word: u32, n: u32) -> bool {
+    word >> n & 1 != 0
+}
+
+/// `on` placed at bit `n` of a register word.
+fn flag(on: bool, n: u32) -> u32 {
+    (on as u32) << n
+}
+
+/// The `width`-bit field at `lsb` of `word`.
+fn field_value(word: u32, lsb: u32, width: u32) -> u32 {
+    (word >> lsb) & crate::blocks::width_mask(width) as u32
+}
+
 impl AxisModel {
     fn new(index: usize, fifo_log2: u32, config_mask: u32) -> Self {
         let mut fifo = CommandFifoModel::new(1 << fifo_log2);
@@ -310,6 +325,20 @@ impl AxisModel {
     /// Entries queued in the FIFO.
     pub fn fifo_level(&self) -> u64 {
         self.fifo_out.level
+    }
+
+    /// `AXIS_CONFIG` bit `n`.
+    fn config_bit(&self, n: u32) -> bool {
+        bit_set(self.glue.config, n)
+    }
+
+    /// `AXIS_CONFIG.STEP_MODE`.
+    fn step_mode(&self) -> u32 {
+        field_value(
+            self.glue.config,
+            fields::AXIS_STEP_MODE,
+            fields::AXIS_STEP_MODE_WIDTH,
+        )
     }
 
     /// The bus addresses this axis's motion-core half.
@@ -434,10 +463,10 @@ impl AxisModel {
             } else {
                 match offset {
                     axis::FIFO_STATUS => {
-                        self.fifo_out.level as u32
-                            | (self.fifo_out.empty as u32) << 16
-                            | (self.fifo_out.full as u32) << 17
-                            | (low as u32) << 18
+                        (self.fifo_out.level as u32) << fields::FIFO_LEVEL
+                            | flag(self.fifo_out.empty, fields::FIFO_EMPTY)
+                            | flag(self.fifo_out.full, fields::FIFO_FULL)
+                            | flag(low, fields::FIFO_LOW)
                     }
                     axis::AXIS_CONFIG => self.glue.config,
                     axis::STEP_LEN => self.glue.step_len,
@@ -450,14 +479,14 @@ impl AxisModel {
                     axis::CMD_SNAPSHOT => self.glue.cmd_snapshot,
                     axis::ACT_SNAPSHOT => self.glue.act_snapshot,
                     axis::AXIS_STATUS => {
-                        self.stage_out.overrun as u32
-                            | (self.glue.overrange_flag as u32) << 1
-                            | (self.glue.overflow_flag as u32) << 2
-                            | (self.encoder_out.error as u32) << 3
-                            | (self.encoder_out.index_seen as u32) << 4
-                            | (self.stage_out.busy as u32) << 5
-                            | (self.uniform_out.running as u32) << 6
-                            | ((((self.glue.config >> 2) & 3) == 3) as u32) << 7
+                        flag(self.stage_out.overrun, fields::STATUS_STEP_OVERRUN)
+                            | flag(self.glue.overrange_flag, fields::STATUS_INTERP_OVERRANGE)
+                            | flag(self.glue.overflow_flag, fields::STATUS_INTERP_OVERFLOW)
+                            | flag(self.encoder_out.error, fields::STATUS_ENCODER_ERROR)
+                            | flag(self.encoder_out.index_seen, fields::STATUS_INDEX_SEEN)
+                            | flag(self.stage_out.busy, fields::STATUS_STEP_BUSY)
+                            | flag(self.uniform_out.running, fields::STATUS_UNIFORM_RUNNING)
+                            | flag(self.step_mode() == 3, fields::STATUS_STEP_MODE_INVALID)
                     }
                     axis::INDEX_POSITION => self.encoder_out.index_count as u32,
                     _ => 0,
@@ -486,16 +515,21 @@ impl AxisModel {
         let selected = self.selected(c.address);
         let offset = c.address & 0xf;
         let command = c.write && selected && offset == axis::AXIS_COMMAND;
-        let clear_faults = command && c.write_data & 1 != 0;
+        let command_bit = |n: u32| command && bit_set(c.write_data, n);
+        let clear_faults = command_bit(fields::CMD_CLEAR_FAULTS);
         let mut next = self.clone();
+        let timing = |word: u32| field_value(word, fields::VALUE, fields::STEP_TIMING_WIDTH);
         if c.write && selected {
             match offset {
                 axis::AXIS_CONFIG => next.glue.config = c.write_data & self.config_mask,
-                axis::STEP_LEN => next.glue.step_len = c.write_data & 0xffff,
-                axis::STEP_SPACE => next.glue.step_space = c.write_data & 0xffff,
-                axis::DIR_SETUP => next.glue.dir_setup = c.write_data & 0xffff,
-                axis::DIR_HOLD => next.glue.dir_hold = c.write_data & 0xffff,
-                axis::ENC_SAMPLE_RATE => next.glue.sample_rate = c.write_data & 0xff,
+                axis::STEP_LEN => next.glue.step_len = timing(c.write_data),
+                axis::STEP_SPACE => next.glue.step_space = timing(c.write_data),
+                axis::DIR_SETUP => next.glue.dir_setup = timing(c.write_data),
+                axis::DIR_HOLD => next.glue.dir_hold = timing(c.write_data),
+                axis::ENC_SAMPLE_RATE => {
+                    next.glue.sample_rate =
+                        field_value(c.write_data, fields::VALUE, fields::ENC_SAMPLE_RATE_WIDTH)
+                }
                 _ => {}
             }
         }
@@ -531,10 +565,10 @@ impl AxisModel {
         next.glue.uniform_overrange_prev = self.uniform_out.overrange;
         next.glue.uniform_overflow_prev = self.uniform_out.overflow;
         if c.start && !self.uniform_out.running {
-            next.glue.uniform_active = self.glue.config & 1 != 0;
+            next.glue.uniform_active = self.config_bit(fields::AXIS_UNIFORM);
         }
         if c.start {
-            next.glue.analog_active = self.glue.config & 1 << fields::AXIS_ANALOG != 0;
+            next.glue.analog_active = self.config_bit(fields::AXIS_ANALOG);
         }
         if self.glue.popped_valid {
             next.glue.forward = popped_forward;
@@ -575,7 +609,7 @@ impl AxisModel {
                 tick: self.glue.tick_d,
                 period: c.period_active,
                 count: magnitude,
-                mode: self.glue.config & 2 != 0,
+                mode: self.config_bit(fields::AXIS_INTERLEAVED),
                 load: self.glue.popped_valid
                     && self.glue.uniform_active
                     && !self.glue.analog_active,
@@ -607,7 +641,7 @@ impl AxisModel {
             reset: c.reset,
             step,
             dir,
-            mode: ((self.glue.config >> 2) & 3) as u8,
+            mode: self.step_mode() as u8,
             step_len: self.glue.step_len as u64,
             step_space: self.glue.step_space as u64,
             dir_setup: self.glue.dir_setup as u64,
@@ -616,7 +650,8 @@ impl AxisModel {
             flush: c.abort || comb.io.cut(),
         });
         // CLEAR_POSITION waits for a clock without a counted step.
-        let clear_position = (command && c.write_data & 8 != 0) || self.glue.clear_position_pending;
+        let clear_position =
+            command_bit(fields::CMD_CLEAR_POSITION) || self.glue.clear_position_pending;
         next.glue.clear_position_pending = clear_position && self.stage_out.emitted;
         next.position_out = next.position.step(PulseCounterInputs {
             reset: c.reset,
@@ -627,22 +662,25 @@ impl AxisModel {
             load_value: 0,
             compare_value: 0,
         });
-        let bit = |n: u32| self.glue.config & (1 << n) != 0;
         next.encoder_out = next.encoder.step(QuadratureDecoderInputs {
             reset: c.reset,
             a,
             b,
             index,
-            filter: ((self.glue.config >> 4) & 0xf) as u8,
-            clear: command && c.write_data & 2 != 0,
+            filter: field_value(
+                self.glue.config,
+                fields::AXIS_ENC_FILTER,
+                fields::AXIS_ENC_FILTER_WIDTH,
+            ) as u8,
+            clear: command_bit(fields::CMD_CLEAR_ENCODER),
             sample_rate: self.glue.sample_rate as u64,
-            counter_mode: bit(8),
-            index_invert: bit(9),
-            index_clear: bit(10),
-            index_latch: bit(11),
-            index_once: bit(12),
-            index_rearm: command && c.write_data & 4 != 0,
-            clear_error: command && c.write_data & 16 != 0,
+            counter_mode: self.config_bit(fields::AXIS_ENC_COUNTER_MODE),
+            index_invert: self.config_bit(fields::AXIS_INDEX_INVERT),
+            index_clear: self.config_bit(fields::AXIS_INDEX_CLEAR),
+            index_latch: self.config_bit(fields::AXIS_INDEX_LATCH),
+            index_once: self.config_bit(fields::AXIS_INDEX_ONCE),
+            index_rearm: command_bit(fields::CMD_REARM_INDEX),
+            clear_error: command_bit(fields::CMD_CLEAR_ENCODER_ERROR),
         });
         if c.snapshot {
             next.glue.cmd_snapshot = self.position_out.count as u32;
@@ -817,7 +855,11 @@ impl MotionControllerModel {
 
     /// `STOP_CAUSE.CAUSE`: why RUN last fell.
     pub fn stop_cause(&self) -> StopCause {
-        StopCause::from_code(self.stop_cause >> fields::STOP_CAUSE_CAUSE & 0xf)
+        StopCause::from_code(field_value(
+            self.stop_cause,
+            fields::STOP_CAUSE_CAUSE,
+            fields::STOP_CAUSE_WIDTH,
+        ))
     }
 
     /// The axes, for positions and FIFO levels.
@@ -873,12 +915,11 @@ impl MotionControllerModel {
 
     fn global_read(&self, address: u32, io: &super::io_model::MachineIoComb) -> u32 {
         let (expired, armed) = self.watchdog_out;
-        let bit = |on: bool, n: u32| (on as u32) << n;
         match address {
             global::ID => ID_VALUE,
             global::VERSION => VERSION_VALUE,
             global::CONFIG => self.config_value,
-            global::CONTROL => self.run as u32,
+            global::CONTROL => flag(self.run, fields::CONTROL_RUN),
             global::STATUS => self.status as u32,
             global::IRQ_ENABLE => self.irq_enable,
             global::TICK_DIVISOR => self.tick_divisor,
@@ -886,13 +927,13 @@ impl MotionControllerModel {
             global::FIFO_LOW_WATER => self.low_water,
             global::WATCHDOG_TIMEOUT => self.watchdog_timeout,
             global::STATE => {
-                self.run as u32
-                    | bit(armed, 1)
-                    | bit(expired, 2)
-                    | bit(io.estop_active, fields::STATE_ESTOP_INPUT)
-                    | bit(io.estop_latched, fields::STATE_ESTOP_LATCHED)
-                    | bit(self.abort_hold || expired, fields::STATE_ABORTED)
-                    | bit(io.ready, fields::STATE_INPUTS_READY)
+                flag(self.run, fields::STATE_RUNNING)
+                    | flag(armed, fields::STATE_WATCHDOG_ARMED)
+                    | flag(expired, fields::STATE_WATCHDOG_EXPIRED)
+                    | flag(io.estop_active, fields::STATE_ESTOP_INPUT)
+                    | flag(io.estop_latched, fields::STATE_ESTOP_LATCHED)
+                    | flag(self.abort_hold || expired, fields::STATE_ABORTED)
+                    | flag(io.ready, fields::STATE_INPUTS_READY)
             }
             global::PERIOD_COUNT => self.period_count,
             global::STOP_CAUSE => self.stop_cause,
@@ -931,8 +972,9 @@ impl MotionControllerModel {
             || any_home_held
             || !io.ready;
         let write_control = write(global::CONTROL);
-        let start = write_control && i.write_data & 1 != 0 && !refuse_run;
-        let halt = (write_control && i.write_data & 1 == 0) || abort;
+        let run_written = bit_set(i.write_data, fields::CONTROL_RUN);
+        let start = write_control && run_written && !refuse_run;
+        let halt = (write_control && !run_written) || abort;
         let boundary = self.run && tick && self.boundary_next;
         let all_ready = self.axes.iter().all(|a| !a.fifo_out.empty);
         let pop = boundary && all_ready && !halt;
@@ -1061,7 +1103,7 @@ impl MotionControllerModel {
             tick,
             start,
             halt,
-            flush: write_control && i.write_data & 2 != 0,
+            flush: write_control && bit_set(i.write_data, fields::CONTROL_FLUSH),
             pop,
             underrun,
             period_active: self.period_active as u64,

@@ -5,11 +5,15 @@
 //! tests (which drive the RTL through the bus with this map) all come from
 //! here.
 //!
-//! The RTL decodes addresses with constants taken from this map. Field bit
-//! positions appear in the RTL as literals (rust-hdl prints a named Rust
-//! constant literally into the Verilog), so every field is exercised
-//! through the bus by the tests, packed and unpacked with this map: a field
-//! moved here and not in the RTL fails them.
+//! The RTL decodes addresses with constants taken from this map. Field
+//! positions are written once, in [`fields`], and the map is built from
+//! them. The RTL takes its multi-bit fields through `field_slices!`
+//! (positioned by [`fields`] when the Verilog is generated); a single bit
+//! stays a literal (rust-hdl prints a named Rust constant by name into the
+//! Verilog) tied to its [`fields`] constant by a compile-time assertion
+//! next to the block. The tests pack and unpack every field by name with
+//! this map, and `tests/tooling/regmap.rs` checks each [`fields`] constant
+//! against the field it names.
 
 use crate::regmap::{field, register, Access, Field, RegMapError, Register, RegisterMap};
 
@@ -87,14 +91,27 @@ pub const DAC_GLOBAL: [(&str, u32, &str); 3] = [
 /// the top bits of `dac_data`).
 pub const DAC_BITS: usize = 16;
 
-/// Bit numbers of the fields of the machine I/O registers (the map below
-/// is built from these, and the RTL's masks and the model use them by
-/// name).
+/// Bit numbers (and, for the multi-bit fields the RTL slices, widths) of
+/// the register fields the RTL, the models and the tests use by name. The
+/// map below is built from these: they are the one place a field's
+/// position is written. The RTL reads them through
+/// [`crate::blocks::field_slices`] (slices) or at a literal bit tied to
+/// them by a compile-time assertion (single bits: rust-hdl prints a named
+/// constant by name); the test `fields_agree_with_the_map` checks each
+/// against the map by register and field name.
 pub mod fields {
-    /// `INPUT_FILTER.LENGTH`: samples a level must hold (4 bits).
+    /// `CONTROL.RUN`.
+    pub const CONTROL_RUN: u32 = 0;
+    /// `CONTROL.FLUSH`.
+    pub const CONTROL_FLUSH: u32 = 1;
+    /// `INPUT_FILTER.LENGTH`: samples a level must hold.
     pub const FILTER_LENGTH: u32 = 0;
-    /// `INPUT_FILTER.SAMPLE_RATE`: a sample every n + 1 clocks (8 bits).
+    /// Width of `INPUT_FILTER.LENGTH`.
+    pub const FILTER_LENGTH_WIDTH: u32 = 4;
+    /// `INPUT_FILTER.SAMPLE_RATE`: a sample every n + 1 clocks.
     pub const FILTER_SAMPLE_RATE: u32 = 8;
+    /// Width of `INPUT_FILTER.SAMPLE_RATE`.
+    pub const FILTER_SAMPLE_RATE_WIDTH: u32 = 8;
     /// Reset value of `INPUT_FILTER.LENGTH`.
     pub const FILTER_LENGTH_RESET: u64 = 4;
     /// `INPUT_POLARITY.LIMIT_POS`: limit_pos active low.
@@ -105,22 +122,99 @@ pub mod fields {
     pub const POLARITY_HOME: u32 = 2;
     /// `INPUT_POLARITY.DRIVE_ALARM`.
     pub const POLARITY_DRIVE_ALARM: u32 = 3;
-    /// `INPUT_POLARITY.GPIO`: 8 bits, one per general input.
+    /// `INPUT_POLARITY.GPIO`: one bit per general input.
     pub const POLARITY_GPIO: u32 = 8;
-    /// `STOP_CAUSE.CAUSE` (4 bits, a [`super::StopCause`]).
+    /// Width of `INPUT_POLARITY.GPIO`, and the number of general inputs
+    /// and outputs (`GPIO_IN.LEVEL`, `GPIO_OUT.LEVEL`, `GPIO_SAFE.MASK`,
+    /// `GPIO_IRQ_ENABLE.RISE` and `FALL`, `GPIO_EDGES.RISE` and `FALL`).
+    pub const GPIO_WIDTH: u32 = 8;
+    /// `GPIO_IN.LEVEL`, `GPIO_OUT.LEVEL` and `GPIO_SAFE.MASK`.
+    pub const GPIO_LEVEL: u32 = 0;
+    /// `STOP_CAUSE.CAUSE` (a [`super::StopCause`]).
     pub const STOP_CAUSE_CAUSE: u32 = 0;
-    /// `STOP_CAUSE.AXIS` (4 bits).
+    /// `STOP_CAUSE.AXIS`.
     pub const STOP_CAUSE_AXIS: u32 = 8;
-    /// `GPIO_IRQ_ENABLE.RISE` and `GPIO_EDGES.RISE` (8 bits).
+    /// Width of `STOP_CAUSE.CAUSE` and `STOP_CAUSE.AXIS`.
+    pub const STOP_CAUSE_WIDTH: u32 = 4;
+    /// `GPIO_IRQ_ENABLE.RISE` and `GPIO_EDGES.RISE` ([`GPIO_WIDTH`] bits).
     pub const GPIO_RISE: u32 = 0;
-    /// `GPIO_IRQ_ENABLE.FALL` and `GPIO_EDGES.FALL` (8 bits).
+    /// `GPIO_IRQ_ENABLE.FALL` and `GPIO_EDGES.FALL` ([`GPIO_WIDTH`] bits).
     pub const GPIO_FALL: u32 = 8;
     /// `CONFIG.DDA_ONLY`: the build has no uniform pulse generators.
     pub const CONFIG_DDA_ONLY: u32 = 24;
     /// `CONFIG.ANALOG`: the build has the analog outputs.
     pub const CONFIG_ANALOG: u32 = 25;
+    /// `FIFO_STATUS.LEVEL` and `FIFO_LOW_WATER.LEVEL` (FIFO depth + 1 bits).
+    pub const FIFO_LEVEL: u32 = 0;
+    /// `FIFO_STATUS.EMPTY`.
+    pub const FIFO_EMPTY: u32 = 16;
+    /// `FIFO_STATUS.FULL`.
+    pub const FIFO_FULL: u32 = 17;
+    /// `FIFO_STATUS.LOW`.
+    pub const FIFO_LOW: u32 = 18;
+    /// `AXIS_CONFIG.UNIFORM`: the uniform pulse generator drives the axis.
+    pub const AXIS_UNIFORM: u32 = 0;
+    /// `AXIS_CONFIG.INTERLEAVED`: the uniform generator's order.
+    pub const AXIS_INTERLEAVED: u32 = 1;
+    /// `AXIS_CONFIG.STEP_MODE`: the output stage's pin mode.
+    pub const AXIS_STEP_MODE: u32 = 2;
+    /// Width of `AXIS_CONFIG.STEP_MODE`.
+    pub const AXIS_STEP_MODE_WIDTH: u32 = 2;
+    /// `AXIS_CONFIG.ENC_FILTER`: the encoder glitch filter length.
+    pub const AXIS_ENC_FILTER: u32 = 4;
+    /// Width of `AXIS_CONFIG.ENC_FILTER`.
+    pub const AXIS_ENC_FILTER_WIDTH: u32 = 4;
+    /// `AXIS_CONFIG.ENC_COUNTER_MODE`.
+    pub const AXIS_ENC_COUNTER_MODE: u32 = 8;
+    /// `AXIS_CONFIG.INDEX_INVERT`.
+    pub const AXIS_INDEX_INVERT: u32 = 9;
+    /// `AXIS_CONFIG.INDEX_CLEAR`.
+    pub const AXIS_INDEX_CLEAR: u32 = 10;
+    /// `AXIS_CONFIG.INDEX_LATCH`.
+    pub const AXIS_INDEX_LATCH: u32 = 11;
+    /// `AXIS_CONFIG.INDEX_ONCE`.
+    pub const AXIS_INDEX_ONCE: u32 = 12;
     /// `AXIS_CONFIG.ANALOG`: the axis is an analog (DAC) axis.
     pub const AXIS_ANALOG: u32 = 13;
+    /// `AXIS_STATUS.STEP_OVERRUN`.
+    pub const STATUS_STEP_OVERRUN: u32 = 0;
+    /// `AXIS_STATUS.INTERP_OVERRANGE`.
+    pub const STATUS_INTERP_OVERRANGE: u32 = 1;
+    /// `AXIS_STATUS.INTERP_OVERFLOW`.
+    pub const STATUS_INTERP_OVERFLOW: u32 = 2;
+    /// `AXIS_STATUS.ENCODER_ERROR`.
+    pub const STATUS_ENCODER_ERROR: u32 = 3;
+    /// `AXIS_STATUS.INDEX_SEEN`.
+    pub const STATUS_INDEX_SEEN: u32 = 4;
+    /// `AXIS_STATUS.STEP_BUSY`.
+    pub const STATUS_STEP_BUSY: u32 = 5;
+    /// `AXIS_STATUS.UNIFORM_RUNNING`.
+    pub const STATUS_UNIFORM_RUNNING: u32 = 6;
+    /// `AXIS_STATUS.STEP_MODE_INVALID`.
+    pub const STATUS_STEP_MODE_INVALID: u32 = 7;
+    /// `AXIS_COMMAND.CLEAR_FAULTS`.
+    pub const CMD_CLEAR_FAULTS: u32 = 0;
+    /// `AXIS_COMMAND.CLEAR_ENCODER`.
+    pub const CMD_CLEAR_ENCODER: u32 = 1;
+    /// `AXIS_COMMAND.REARM_INDEX`.
+    pub const CMD_REARM_INDEX: u32 = 2;
+    /// `AXIS_COMMAND.CLEAR_POSITION`.
+    pub const CMD_CLEAR_POSITION: u32 = 3;
+    /// `AXIS_COMMAND.CLEAR_ENCODER_ERROR`.
+    pub const CMD_CLEAR_ENCODER_ERROR: u32 = 4;
+    /// `VALUE`, the one field of a number register (`STEP_LEN`,
+    /// `ENC_SAMPLE_RATE`, `PERIOD_TICKS`...).
+    pub const VALUE: u32 = 0;
+    /// Width of `STEP_LEN`, `STEP_SPACE`, `DIR_SETUP` and `DIR_HOLD`.
+    pub const STEP_TIMING_WIDTH: u32 = 16;
+    /// Width of `ENC_SAMPLE_RATE`.
+    pub const ENC_SAMPLE_RATE_WIDTH: u32 = 8;
+    /// `STATE.RUNNING`.
+    pub const STATE_RUNNING: u32 = 0;
+    /// `STATE.WATCHDOG_ARMED`.
+    pub const STATE_WATCHDOG_ARMED: u32 = 1;
+    /// `STATE.WATCHDOG_EXPIRED`.
+    pub const STATE_WATCHDOG_EXPIRED: u32 = 2;
     /// `STATE.ESTOP_INPUT`.
     pub const STATE_ESTOP_INPUT: u32 = 3;
     /// `STATE.ESTOP_LATCHED`.
@@ -317,7 +411,7 @@ fn number(name: &'static str, address: u32, width: u32, doc: &'static str) -> Re
         name,
         address,
         doc,
-        vec![field("VALUE", 0, width, Access::ReadWrite, doc)],
+        vec![field("VALUE", fields::VALUE, width, Access::ReadWrite, doc)],
     )
 }
 
@@ -445,14 +539,14 @@ pub fn register_map(
                 vec![
                     field(
                         "RUN",
-                        0,
+                        fields::CONTROL_RUN,
                         1,
                         ReadWrite,
                         "write 1 to start (refused while STATE.ABORTED, the E-stop input is active or the inputs are not ready); write 0 to stop at once; cleared by an underrun or an abort (STOP_CAUSE)",
                     ),
                     field(
                         "FLUSH",
-                        1,
+                        fields::CONTROL_FLUSH,
                         1,
                         WriteOnly,
                         "write 1 to empty every FIFO at once (with RUN 0: stop and discard the queued periods)",
@@ -467,7 +561,7 @@ pub fn register_map(
                 "FIFO_LOW_WATER",
                 global::FIFO_LOW_WATER,
                 "FIFO low-water threshold",
-                vec![field("LEVEL", 0, level_bits, ReadWrite, "FIFO_LOW is raised when a level falls to this or below")],
+                vec![field("LEVEL", fields::FIFO_LEVEL, level_bits, ReadWrite, "FIFO_LOW is raised when a level falls to this or below")],
             ),
             Register::word("WATCHDOG_TIMEOUT", global::WATCHDOG_TIMEOUT, ReadWrite, 0, "base ticks allowed between kicks, taken at each kick; 0 disarms"),
             Register::word("WATCHDOG_KICK", global::WATCHDOG_KICK, WriteOnly, 0, "any write kicks (and arms) the watchdog"),
@@ -477,9 +571,9 @@ pub fn register_map(
                 global::STATE,
                 "live state",
                 vec![
-                    field("RUNNING", 0, 1, ReadOnly, "periods are running"),
-                    field("WATCHDOG_ARMED", 1, 1, ReadOnly, "the watchdog is counting"),
-                    field("WATCHDOG_EXPIRED", 2, 1, ReadOnly, "the watchdog expired; cleared with STATUS.WATCHDOG"),
+                    field("RUNNING", fields::STATE_RUNNING, 1, ReadOnly, "periods are running"),
+                    field("WATCHDOG_ARMED", fields::STATE_WATCHDOG_ARMED, 1, ReadOnly, "the watchdog is counting"),
+                    field("WATCHDOG_EXPIRED", fields::STATE_WATCHDOG_EXPIRED, 1, ReadOnly, "the watchdog expired; cleared with STATUS.WATCHDOG"),
                     field("ESTOP_INPUT", fields::STATE_ESTOP_INPUT, 1, ReadOnly, "the E-stop input is active (filtered)"),
                     field("ESTOP_LATCHED", fields::STATE_ESTOP_LATCHED, 1, ReadOnly, "E-stop latched; cleared with STATUS.ESTOP once the input is released"),
                     field("ABORTED", fields::STATE_ABORTED, 1, ReadOnly, "a stop cause is held (E-stop, watchdog, alarm, limit or home trip): every output stage flushed (the FIFOs keep their entries), RUN refused"),
@@ -492,8 +586,8 @@ pub fn register_map(
                 global::INPUT_FILTER,
                 "filter of the switch, alarm, E-stop and general inputs",
                 vec![
-                    Field { reset: fields::FILTER_LENGTH_RESET, ..field("LENGTH", fields::FILTER_LENGTH, 4, ReadWrite, "samples a new level must hold (0 and 1: the first sample)") },
-                    field("SAMPLE_RATE", fields::FILTER_SAMPLE_RATE, 8, ReadWrite, "a filter sample every n + 1 clocks"),
+                    Field { reset: fields::FILTER_LENGTH_RESET, ..field("LENGTH", fields::FILTER_LENGTH, fields::FILTER_LENGTH_WIDTH, ReadWrite, "samples a new level must hold (0 and 1: the first sample)") },
+                    field("SAMPLE_RATE", fields::FILTER_SAMPLE_RATE, fields::FILTER_SAMPLE_RATE_WIDTH, ReadWrite, "a filter sample every n + 1 clocks"),
                 ],
             ),
             register(
@@ -505,7 +599,7 @@ pub fn register_map(
                     field("LIMIT_NEG", fields::POLARITY_LIMIT_NEG, 1, ReadWrite, "limit_neg inputs active low"),
                     field("HOME", fields::POLARITY_HOME, 1, ReadWrite, "home inputs active low"),
                     field("DRIVE_ALARM", fields::POLARITY_DRIVE_ALARM, 1, ReadWrite, "drive_alarm inputs active low"),
-                    field("GPIO", fields::POLARITY_GPIO, 8, ReadWrite, "per general input: active low"),
+                    field("GPIO", fields::POLARITY_GPIO, fields::GPIO_WIDTH, ReadWrite, "per general input: active low"),
                 ],
             ),
             register(
@@ -513,20 +607,20 @@ pub fn register_map(
                 global::STOP_CAUSE,
                 "why RUN last fell (kept until the next stop)",
                 vec![
-                    field("CAUSE", fields::STOP_CAUSE_CAUSE, 4, ReadOnly, "0 none, 1 RUN written 0, 2 underrun, 3 watchdog, 4 home, 5 limit, 6 drive alarm, 7 E-stop (the highest of simultaneous causes)"),
-                    field("AXIS", fields::STOP_CAUSE_AXIS, 4, ReadOnly, "home, limit, drive alarm: the lowest axis holding that cause"),
+                    field("CAUSE", fields::STOP_CAUSE_CAUSE, fields::STOP_CAUSE_WIDTH, ReadOnly, "0 none, 1 RUN written 0, 2 underrun, 3 watchdog, 4 home, 5 limit, 6 drive alarm, 7 E-stop (the highest of simultaneous causes)"),
+                    field("AXIS", fields::STOP_CAUSE_AXIS, fields::STOP_CAUSE_WIDTH, ReadOnly, "home, limit, drive alarm: the lowest axis holding that cause"),
                 ],
             ),
-            register("GPIO_IN", global::GPIO_IN, "general inputs", vec![field("LEVEL", 0, 8, ReadOnly, "filtered levels, polarity applied (0 until the inputs are ready)")]),
-            register("GPIO_OUT", global::GPIO_OUT, "general outputs", vec![field("LEVEL", 0, 8, ReadWrite, "gpio_out pins; the GPIO_SAFE ones are cleared (and held 0) while E-stop is latched or the watchdog expired")]),
-            register("GPIO_SAFE", global::GPIO_SAFE, "outputs that drop on E-stop or watchdog expiry", vec![field("MASK", 0, 8, ReadWrite, "1 = this output drops to 0 (spindle, coolant)")]),
+            register("GPIO_IN", global::GPIO_IN, "general inputs", vec![field("LEVEL", fields::GPIO_LEVEL, fields::GPIO_WIDTH, ReadOnly, "filtered levels, polarity applied (0 until the inputs are ready)")]),
+            register("GPIO_OUT", global::GPIO_OUT, "general outputs", vec![field("LEVEL", fields::GPIO_LEVEL, fields::GPIO_WIDTH, ReadWrite, "gpio_out pins; the GPIO_SAFE ones are cleared (and held 0) while E-stop is latched or the watchdog expired")]),
+            register("GPIO_SAFE", global::GPIO_SAFE, "outputs that drop on E-stop or watchdog expiry", vec![field("MASK", fields::GPIO_LEVEL, fields::GPIO_WIDTH, ReadWrite, "1 = this output drops to 0 (spindle, coolant)")]),
             register(
                 "GPIO_IRQ_ENABLE",
                 global::GPIO_IRQ_ENABLE,
                 "general-input edges that raise STATUS.GPIO",
                 vec![
-                    field("RISE", fields::GPIO_RISE, 8, ReadWrite, "per input: a rise (becoming active)"),
-                    field("FALL", fields::GPIO_FALL, 8, ReadWrite, "per input: a fall"),
+                    field("RISE", fields::GPIO_RISE, fields::GPIO_WIDTH, ReadWrite, "per input: a rise (becoming active)"),
+                    field("FALL", fields::GPIO_FALL, fields::GPIO_WIDTH, ReadWrite, "per input: a fall"),
                 ],
             ),
             register(
@@ -534,8 +628,8 @@ pub fn register_map(
                 global::GPIO_EDGES,
                 "general-input edges seen since cleared, write 1 to clear (every edge, enabled or not)",
                 vec![
-                    field("RISE", fields::GPIO_RISE, 8, WriteOneToClear, "per input: rose"),
-                    field("FALL", fields::GPIO_FALL, 8, WriteOneToClear, "per input: fell"),
+                    field("RISE", fields::GPIO_RISE, fields::GPIO_WIDTH, WriteOneToClear, "per input: rose"),
+                    field("FALL", fields::GPIO_FALL, fields::GPIO_WIDTH, WriteOneToClear, "per input: fell"),
                 ],
             ),
             per_axis(Register::word("FIFO_WRITE", at(axis::FIFO_WRITE), WriteOnly, 0, "push one period's signed step count (refused when full); a magnitude above 65535 is saturated and flagged")),
@@ -544,10 +638,10 @@ pub fn register_map(
                 at(axis::FIFO_STATUS),
                 "FIFO level and flags",
                 vec![
-                    field("LEVEL", 0, level_bits, ReadOnly, "periods queued"),
-                    Field { reset: 1, ..field("EMPTY", 16, 1, ReadOnly, "no period queued") },
-                    field("FULL", 17, 1, ReadOnly, "no room: a write now is refused"),
-                    Field { reset: 1, ..field("LOW", 18, 1, ReadOnly, "LEVEL <= FIFO_LOW_WATER") },
+                    field("LEVEL", fields::FIFO_LEVEL, level_bits, ReadOnly, "periods queued"),
+                    Field { reset: 1, ..field("EMPTY", fields::FIFO_EMPTY, 1, ReadOnly, "no period queued") },
+                    field("FULL", fields::FIFO_FULL, 1, ReadOnly, "no room: a write now is refused"),
+                    Field { reset: 1, ..field("LOW", fields::FIFO_LOW, 1, ReadOnly, "LEVEL <= FIFO_LOW_WATER") },
                 ],
             )),
             per_axis(register(
@@ -555,23 +649,23 @@ pub fn register_map(
                 at(axis::AXIS_CONFIG),
                 "interpolator, output mode and encoder settings",
                 vec![
-                    field("UNIFORM", 0, 1, uniform_access, uniform_doc),
-                    field("INTERLEAVED", 1, 1, uniform_access, interleaved_doc),
-                    field("STEP_MODE", 2, 2, ReadWrite, "0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0); taken while the output is idle"),
-                    field("ENC_FILTER", 4, 4, ReadWrite, "encoder glitch filter: samples a level must hold"),
-                    field("ENC_COUNTER_MODE", 8, 1, ReadWrite, "0 = 4x quadrature, 1 = step/dir input"),
-                    field("INDEX_INVERT", 9, 1, ReadWrite, "index active low"),
-                    field("INDEX_CLEAR", 10, 1, ReadWrite, "an index event clears ACT_POSITION"),
-                    field("INDEX_LATCH", 11, 1, ReadWrite, "an index event latches ACT_POSITION into INDEX_POSITION"),
-                    field("INDEX_ONCE", 12, 1, ReadWrite, "act on the first index only, until REARM_INDEX"),
+                    field("UNIFORM", fields::AXIS_UNIFORM, 1, uniform_access, uniform_doc),
+                    field("INTERLEAVED", fields::AXIS_INTERLEAVED, 1, uniform_access, interleaved_doc),
+                    field("STEP_MODE", fields::AXIS_STEP_MODE, fields::AXIS_STEP_MODE_WIDTH, ReadWrite, "0 step/dir, 1 up/down, 2 quadrature, 3 reserved (acts as 0); taken while the output is idle"),
+                    field("ENC_FILTER", fields::AXIS_ENC_FILTER, fields::AXIS_ENC_FILTER_WIDTH, ReadWrite, "encoder glitch filter: samples a level must hold"),
+                    field("ENC_COUNTER_MODE", fields::AXIS_ENC_COUNTER_MODE, 1, ReadWrite, "0 = 4x quadrature, 1 = step/dir input"),
+                    field("INDEX_INVERT", fields::AXIS_INDEX_INVERT, 1, ReadWrite, "index active low"),
+                    field("INDEX_CLEAR", fields::AXIS_INDEX_CLEAR, 1, ReadWrite, "an index event clears ACT_POSITION"),
+                    field("INDEX_LATCH", fields::AXIS_INDEX_LATCH, 1, ReadWrite, "an index event latches ACT_POSITION into INDEX_POSITION"),
+                    field("INDEX_ONCE", fields::AXIS_INDEX_ONCE, 1, ReadWrite, "act on the first index only, until REARM_INDEX"),
                     field("ANALOG", fields::AXIS_ANALOG, 1, analog_access, analog_doc),
                 ],
             )),
-            per_axis(number("STEP_LEN", at(axis::STEP_LEN), 16, "step pulse high time in clocks (0 acts as 1)")),
-            per_axis(number("STEP_SPACE", at(axis::STEP_SPACE), 16, "minimum step low time in clocks (0 acts as 1)")),
-            per_axis(number("DIR_SETUP", at(axis::DIR_SETUP), 16, "dir stable before a step rises, clocks (0 acts as 1)")),
-            per_axis(number("DIR_HOLD", at(axis::DIR_HOLD), 16, "dir stable after a step falls, clocks (0 acts as 1)")),
-            per_axis(number("ENC_SAMPLE_RATE", at(axis::ENC_SAMPLE_RATE), 8, "encoder sample every n + 1 clocks")),
+            per_axis(number("STEP_LEN", at(axis::STEP_LEN), fields::STEP_TIMING_WIDTH, "step pulse high time in clocks (0 acts as 1)")),
+            per_axis(number("STEP_SPACE", at(axis::STEP_SPACE), fields::STEP_TIMING_WIDTH, "minimum step low time in clocks (0 acts as 1)")),
+            per_axis(number("DIR_SETUP", at(axis::DIR_SETUP), fields::STEP_TIMING_WIDTH, "dir stable before a step rises, clocks (0 acts as 1)")),
+            per_axis(number("DIR_HOLD", at(axis::DIR_HOLD), fields::STEP_TIMING_WIDTH, "dir stable after a step falls, clocks (0 acts as 1)")),
+            per_axis(number("ENC_SAMPLE_RATE", at(axis::ENC_SAMPLE_RATE), fields::ENC_SAMPLE_RATE_WIDTH, "encoder sample every n + 1 clocks")),
             per_axis(Register::word("CMD_POSITION", at(axis::CMD_POSITION), ReadOnly, 0, "commanded position: steps emitted at the pins, signed")),
             per_axis(Register::word("ACT_POSITION", at(axis::ACT_POSITION), ReadOnly, 0, "actual position: encoder count, signed")),
             per_axis(Register::word("CMD_SNAPSHOT", at(axis::CMD_SNAPSHOT), ReadOnly, 0, "CMD_POSITION at the last SNAPSHOT write")),
@@ -581,14 +675,14 @@ pub fn register_map(
                 at(axis::AXIS_STATUS),
                 "axis flags (sticky ones are cleared with AXIS_COMMAND)",
                 vec![
-                    field("STEP_OVERRUN", 0, 1, ReadOnly, "sticky until CLEAR_FAULTS: the output stage's pending count saturated and a step was dropped"),
-                    field("INTERP_OVERRANGE", 1, 1, ReadOnly, "sticky until CLEAR_FAULTS: an entry was clamped (above 65535; DDA: above PERIOD_TICKS; uniform: above half of it, or PERIOD_TICKS odd)"),
-                    field("INTERP_OVERFLOW", 2, 1, ReadOnly, "sticky until CLEAR_FAULTS: the uniform generator refused a period (a period shorter than its 24-clock set-up)"),
-                    field("ENCODER_ERROR", 3, 1, ReadOnly, "sticky: illegal encoder transition; cleared with CLEAR_ENCODER_ERROR (or CLEAR_ENCODER)"),
-                    field("INDEX_SEEN", 4, 1, ReadOnly, "sticky: an index event was acted on; cleared with REARM_INDEX"),
-                    field("STEP_BUSY", 5, 1, ReadOnly, "the output stage has steps pending or an interval running"),
-                    field("UNIFORM_RUNNING", 6, 1, ReadOnly, "the uniform generator is inside a period"),
-                    field("STEP_MODE_INVALID", 7, 1, ReadOnly, "STEP_MODE is 3"),
+                    field("STEP_OVERRUN", fields::STATUS_STEP_OVERRUN, 1, ReadOnly, "sticky until CLEAR_FAULTS: the output stage's pending count saturated and a step was dropped"),
+                    field("INTERP_OVERRANGE", fields::STATUS_INTERP_OVERRANGE, 1, ReadOnly, "sticky until CLEAR_FAULTS: an entry was clamped (above 65535; DDA: above PERIOD_TICKS; uniform: above half of it, or PERIOD_TICKS odd)"),
+                    field("INTERP_OVERFLOW", fields::STATUS_INTERP_OVERFLOW, 1, ReadOnly, "sticky until CLEAR_FAULTS: the uniform generator refused a period (a period shorter than its 24-clock set-up)"),
+                    field("ENCODER_ERROR", fields::STATUS_ENCODER_ERROR, 1, ReadOnly, "sticky: illegal encoder transition; cleared with CLEAR_ENCODER_ERROR (or CLEAR_ENCODER)"),
+                    field("INDEX_SEEN", fields::STATUS_INDEX_SEEN, 1, ReadOnly, "sticky: an index event was acted on; cleared with REARM_INDEX"),
+                    field("STEP_BUSY", fields::STATUS_STEP_BUSY, 1, ReadOnly, "the output stage has steps pending or an interval running"),
+                    field("UNIFORM_RUNNING", fields::STATUS_UNIFORM_RUNNING, 1, ReadOnly, "the uniform generator is inside a period"),
+                    field("STEP_MODE_INVALID", fields::STATUS_STEP_MODE_INVALID, 1, ReadOnly, "STEP_MODE is 3"),
                 ],
             )),
             per_axis(Register::word("INDEX_POSITION", at(axis::INDEX_POSITION), ReadOnly, 0, "ACT_POSITION latched at the last index event")),
@@ -597,11 +691,11 @@ pub fn register_map(
                 at(axis::AXIS_COMMAND),
                 "axis commands: write 1 to act",
                 vec![
-                    field("CLEAR_FAULTS", 0, 1, WriteOnly, "clear STEP_OVERRUN, INTERP_OVERRANGE and INTERP_OVERFLOW"),
-                    field("CLEAR_ENCODER", 1, 1, WriteOnly, "ACT_POSITION <- 0 and ENCODER_ERROR <- 0"),
-                    field("REARM_INDEX", 2, 1, WriteOnly, "clear INDEX_SEEN (re-arm a once-only index)"),
-                    field("CLEAR_POSITION", 3, 1, WriteOnly, "CMD_POSITION <- 0 at the first clock, from this write on, that counts no step (no step is lost)"),
-                    field("CLEAR_ENCODER_ERROR", 4, 1, WriteOnly, "ENCODER_ERROR <- 0, keeping ACT_POSITION (an error on the same clock keeps it set)"),
+                    field("CLEAR_FAULTS", fields::CMD_CLEAR_FAULTS, 1, WriteOnly, "clear STEP_OVERRUN, INTERP_OVERRANGE and INTERP_OVERFLOW"),
+                    field("CLEAR_ENCODER", fields::CMD_CLEAR_ENCODER, 1, WriteOnly, "ACT_POSITION <- 0 and ENCODER_ERROR <- 0"),
+                    field("REARM_INDEX", fields::CMD_REARM_INDEX, 1, WriteOnly, "clear INDEX_SEEN (re-arm a once-only index)"),
+                    field("CLEAR_POSITION", fields::CMD_CLEAR_POSITION, 1, WriteOnly, "CMD_POSITION <- 0 at the first clock, from this write on, that counts no step (no step is lost)"),
+                    field("CLEAR_ENCODER_ERROR", fields::CMD_CLEAR_ENCODER_ERROR, 1, WriteOnly, "ENCODER_ERROR <- 0, keeping ACT_POSITION (an error on the same clock keeps it set)"),
                 ],
             )),
             per_axis(register(
