@@ -122,6 +122,19 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             .unwrap()
     }
 
+    /// The bits of `word` outside every field of register `name` (they
+    /// must read 0).
+    pub fn unused_bits(&self, name: &str, word: u32) -> u32 {
+        let defined = self
+            .map
+            .register(name)
+            .unwrap()
+            .fields
+            .iter()
+            .fold(0u64, |m, f| m | (((1u64 << f.width) - 1) << f.lsb));
+        word & !(defined as u32)
+    }
+
     /// One clock with these bus inputs, on the RTL and the model; panics
     /// where they disagree.
     pub fn clock(

@@ -783,6 +783,7 @@ fn watchdog_stops_all_stepping_and_blocks_restart_until_cleared() {
         assert_eq!((act, b.pin_steps(axis as usize)), (cmd, cmd as i64));
         let fifo_status = b.read("FIFO_STATUS", axis);
         assert_eq!(b.field("FIFO_STATUS", "LEVEL", fifo_status), 0);
+        assert_eq!(b.unused_bits("FIFO_STATUS", fifo_status), 0);
     }
 }
 
@@ -1254,6 +1255,7 @@ fn period_done_fifo_low_and_the_enable_mask() {
         }
         if low_seen_at.is_none() && b.field("STATUS", "FIFO_LOW", status) == 1 {
             let fifo_status = b.read("FIFO_STATUS", 0);
+            assert_eq!(b.unused_bits("FIFO_STATUS", fifo_status), 0);
             low_seen_at = Some(b.field("FIFO_STATUS", "LEVEL", fifo_status));
         }
         let _ = clock;
