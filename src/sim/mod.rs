@@ -11,6 +11,7 @@ mod backend;
 pub mod compiled;
 mod encoder;
 mod harness;
+mod lockstep;
 mod ports;
 mod waveform;
 
@@ -20,5 +21,6 @@ pub use compiled::{CompiledError, CompiledModel};
 
 pub use encoder::{quadrature_state, SimulatedEncoder};
 pub use harness::{Harness, HarnessError};
+pub use lockstep::{Lockstep, LockstepError, LockstepModel, Sample};
 pub use ports::{port_words, push_port, set_port, PortValue, VectorPorts};
 pub use waveform::{render_svg, WaveformError};
