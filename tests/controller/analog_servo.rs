@@ -12,8 +12,9 @@ use motion_hdl::blocks::quadrature_decoder::model::{
     QuadratureDecoderInputs, QuadratureDecoderOutputs,
 };
 use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
-use motion_hdl::host::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
-use motion_hdl::sim::{quadrature_state, Ad669Bank, Harness};
+use motion_hdl::host::{DriveScale, FollowingError, PositionLoop, ServoGains};
+use motion_hdl::sim::plant::{quadrature_state, Ad669Bank, ServoMotor};
+use motion_hdl::sim::Harness;
 
 #[test]
 fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
