@@ -15,9 +15,9 @@ use crate::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
 use crate::blocks::motion_controller::{MotionController3, MotionController3Servo};
-use crate::host::servo::{DriveScale, ServoMotor};
+use crate::host::servo::DriveScale;
 use crate::regmap::RegisterMap;
-use crate::sim::{quadrature_state, Ad669Bank};
+use crate::sim::plant::{quadrature_state, Ad669Bank, ServoMotor};
 use crate::sim::{stepper, Backend, SimError, SimulatedEncoder, Stepper, VectorPorts};
 
 /// A `motion_controller` register bus as firmware sees it. An

@@ -23,7 +23,5 @@ pub use interpolator::{interpolate, Interpolation};
 pub use machine::MachineSettings;
 pub use path::{Path, PathError, Segment};
 pub use planner::{plan, plan_toolpath, PlannedSegment, Shape};
-pub use servo::{
-    DriveScale, FollowingError, LoopOutput, PositionLoop, ServoError, ServoGains, ServoMotor,
-};
+pub use servo::{DriveScale, FollowingError, LoopOutput, PositionLoop, ServoError, ServoGains};
 pub use toolpath::{Arc, Item, Move, MoveKind, Plane, Toolpath};

@@ -1,7 +1,8 @@
 //! The DSP's half of an analog servo axis (#18): a velocity-mode position
 //! loop that turns the commanded position and the encoder count into a DAC
-//! code each period, and a simulated servo (an analog velocity drive and a
-//! motor) that turns the DAC voltage back into encoder counts.
+//! code each period. The simulated servo it closes the loop through (an
+//! analog velocity drive and a motor, turning the DAC voltage back into
+//! encoder counts) is a plant model: [`crate::sim::plant::ServoMotor`].
 //!
 //! Units are the drive's: positions in encoder counts, velocities in
 //! counts/s, the drive's gain in counts/s per volt. The loop's output is a
@@ -187,77 +188,6 @@ impl PositionLoop {
     }
 }
 
-/// A simulated analog servo: a velocity drive (first-order lag towards its
-/// gain times the command voltage, within its velocity and acceleration
-/// limits: the motor's torque over its inertia) turning a motor with an
-/// encoder.
-#[derive(Clone, Debug)]
-pub struct ServoMotor {
-    /// The drive's gain, counts/s per V.
-    pub counts_per_s_per_volt: f64,
-    /// The velocity loop's time constant, s.
-    pub time_constant_s: f64,
-    /// Highest speed, counts/s.
-    pub max_velocity: f64,
-    /// Highest acceleration (peak torque / inertia), counts/s².
-    pub max_acceleration: f64,
-    position: f64,
-    velocity: f64,
-}
-
-impl Default for ServoMotor {
-    /// 10 000 counts/s per V, 2 ms, ±100 000 counts/s, 2·10^6 counts/s².
-    fn default() -> Self {
-        Self::new(10_000.0, 0.002, 100_000.0, 2.0e6)
-    }
-}
-
-impl ServoMotor {
-    /// A motor at rest at count 0.
-    pub fn new(
-        counts_per_s_per_volt: f64,
-        time_constant_s: f64,
-        max_velocity: f64,
-        max_acceleration: f64,
-    ) -> Self {
-        Self {
-            counts_per_s_per_volt,
-            time_constant_s,
-            max_velocity,
-            max_acceleration,
-            position: 0.0,
-            velocity: 0.0,
-        }
-    }
-
-    /// `seconds` under a steady command of `volts`.
-    pub fn advance(&mut self, volts: f64, seconds: f64) {
-        let target =
-            (volts * self.counts_per_s_per_volt).clamp(-self.max_velocity, self.max_velocity);
-        // Steps short against the time constant, so the lag is integrated
-        // accurately whatever the caller's step.
-        let steps = (seconds / (self.time_constant_s / 20.0)).ceil().max(1.0) as u32;
-        let dt = seconds / steps as f64;
-        for _ in 0..steps {
-            let wanted = (target - self.velocity) / self.time_constant_s;
-            let acceleration = wanted.clamp(-self.max_acceleration, self.max_acceleration);
-            let velocity = self.velocity + acceleration * dt;
-            self.position += 0.5 * (self.velocity + velocity) * dt;
-            self.velocity = velocity;
-        }
-    }
-
-    /// The encoder's count (whole counts passed).
-    pub fn counts(&self) -> i64 {
-        self.position.floor() as i64
-    }
-
-    /// The speed, counts/s.
-    pub fn velocity(&self) -> f64 {
-        self.velocity
-    }
-}
-
 /// Following-error figures of a run, in counts.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FollowingError {
@@ -283,6 +213,7 @@ impl FollowingError {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::plant::ServoMotor;
 
     /// Loop and motor at a 1 ms period on a commanded trajectory (position
     /// and velocity per period); returns the motor and the error figures.

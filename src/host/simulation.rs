@@ -13,12 +13,13 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::gcode::{interpret, Ignored, Units};
 use super::planner::to_steps;
-use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
+use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::{
     interpolate, plan_toolpath, Driver, DriverConfig, MachineSettings, Path, RtlBus, Toolpath,
 };
 use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::plots::{plot_following_error, plot_path_xy, plot_speed};
+use crate::sim::plant::ServoMotor;
 use crate::sim::Backend;
 
 /// What a simulated file holds.

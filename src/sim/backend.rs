@@ -73,6 +73,9 @@ pub enum SimError {
     /// A backend name that is not `rust-hdl` or `verilator`.
     #[error("unknown simulation backend `{0}` (use rust-hdl or verilator)")]
     UnknownBackend(String),
+    /// The backend runs whole clock cycles only.
+    #[error("the {} backend cannot show the outputs before a clock edge", .0.name())]
+    NoPeek(Backend),
 }
 
 /// A clocked block driven by port vectors, whichever simulator runs it.
@@ -98,6 +101,14 @@ pub trait Stepper {
     }
     /// Output ports per vector.
     fn output_count(&self) -> usize;
+    /// Applies `inputs` and writes the outputs before the next clock edge
+    /// (the combinational outputs of these inputs and the present state)
+    /// into `outputs`, without clocking; [`Stepper::step_into`] with the
+    /// same inputs then runs the clock. Only rust-hdl's harness can.
+    fn peek_into(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), SimError> {
+        let _ = (inputs, outputs);
+        Err(SimError::NoPeek(self.backend()))
+    }
 }
 
 impl<B: VectorPorts> Stepper for Harness<B> {
@@ -113,6 +124,10 @@ impl<B: VectorPorts> Stepper for Harness<B> {
     }
     fn output_count(&self) -> usize {
         B::output_words().iter().sum()
+    }
+    fn peek_into(&mut self, inputs: &[u64], outputs: &mut [u64]) -> Result<(), SimError> {
+        outputs.copy_from_slice(&self.peek_vector(inputs)?);
+        Ok(())
     }
 }
 

@@ -5,20 +5,20 @@
 //! the calling thread (about 200x faster). [`CompiledModel`] runs the block's
 //! Verilog compiled by Verilator, another 70 times faster on the whole
 //! controller. [`Stepper`] drives either, chosen at run time ([`Backend`]).
+//! [`Lockstep`] runs one of them against a block's reference model, and
+//! [`plant`] holds the models of what hangs on the pins.
 
-mod ad669;
 mod backend;
 pub mod compiled;
-mod encoder;
 mod harness;
+mod lockstep;
+pub mod plant;
 mod ports;
-mod waveform;
 
-pub use ad669::Ad669Bank;
 pub use backend::{stepper, Backend, CompiledStepper, SimError, Stepper, BACKEND_VARIABLE};
 pub use compiled::{CompiledError, CompiledModel};
 
-pub use encoder::{quadrature_state, SimulatedEncoder};
-pub use harness::{Harness, HarnessError};
+pub use harness::{Harness, HarnessError, CLOCK_PERIOD_PS};
+pub use lockstep::{Lockstep, LockstepError, LockstepModel, Sample};
+pub use plant::{quadrature_state, Ad669Bank, ServoMotor, SimulatedEncoder};
 pub use ports::{port_words, push_port, set_port, PortValue, VectorPorts};
-pub use waveform::{render_svg, WaveformError};

@@ -174,6 +174,36 @@ pub fn cross_simulate_generated<B: VectorPorts + Default>(
     cross_simulate(&design, block, stimulus)
 }
 
+/// The instance of a block a cross-simulation test checks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Instance<'a> {
+    /// The committed export, `rtl-out/<module>.v` (the product).
+    Exported(&'a str),
+    /// Verilog generated now from the block's type and named so: an
+    /// instance that is not exported, such as a narrow width.
+    Generated(&'a str),
+}
+
+/// The cross-simulation test of one instance of `B` (built with
+/// `B::default()`): `stimulus` (one input vector per clock, from the block's
+/// model inputs' `to_vector`) through rust-hdl, Icarus, Verilator and the
+/// compiled model, every output compared on every clock. Each block's test
+/// file calls it twice, for the exported instance and for a narrow one.
+/// Panics with the first disagreement (a test's check).
+pub fn check_instance<B: VectorPorts + Default>(
+    instance: Instance,
+    stimulus: impl IntoIterator<Item = Vec<u64>>,
+) -> CosimPass {
+    let stimulus: Vec<Vec<u64>> = stimulus.into_iter().collect();
+    let result = match instance {
+        Instance::Exported(module) => {
+            cross_simulate(&CosimDesign::exported(module), B::default(), &stimulus)
+        }
+        Instance::Generated(module) => cross_simulate_generated(module, B::default(), &stimulus),
+    };
+    result.unwrap_or_else(|e| panic!("{instance:?}: {e}"))
+}
+
 /// The outputs of `block` on every cycle of `stimulus`, from the Rust harness,
 /// after checking that its vector ports match its Verilog ports.
 pub fn rust_outputs<B: VectorPorts>(

@@ -2,16 +2,18 @@
 //! (every fill level, full and empty collisions, flushes), and generated
 //! cross-simulation of a small and a 256-entry instance.
 
-use motion_hdl::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
+use motion_hdl::blocks::command_fifo::model::{
+    CommandFifoInputs, CommandFifoModel, CommandFifoOutputs,
+};
 use motion_hdl::blocks::command_fifo::CommandFifo;
-use motion_hdl::sim::{stepper, Backend};
-use motion_hdl::tools::cosim::cross_simulate_generated;
+use motion_hdl::sim::{Backend, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-/// [reset, write, write_data, pop, low_water, clear_flags] per clock, in
-/// phases that fill, drain, hover at full and at empty.
-fn random_inputs(seed: u64, cycles: usize, capacity: u64) -> Vec<[u64; 6]> {
+/// One clock's inputs per clock, in phases that fill, drain, hover at full
+/// and at empty.
+fn random_inputs(seed: u64, cycles: usize, capacity: u64) -> Vec<CommandFifoInputs> {
     let mut rng = StdRng::seed_from_u64(seed);
     let (mut p_write, mut p_pop) = (0.5, 0.5);
     let mut low_water = capacity / 4;
@@ -23,28 +25,16 @@ fn random_inputs(seed: u64, cycles: usize, capacity: u64) -> Vec<[u64; 6]> {
                     [rng.gen_range(0..5)];
                 low_water = rng.gen_range(0..=capacity);
             }
-            [
-                rng.gen_ratio(1, 20_000) as u64,
-                rng.gen_bool(p_write) as u64,
-                rng.gen::<u32>() as u64,
-                rng.gen_bool(p_pop) as u64,
+            CommandFifoInputs {
+                reset: rng.gen_ratio(1, 20_000),
+                write: rng.gen_bool(p_write),
+                write_data: rng.gen::<u32>() as u64,
+                pop: rng.gen_bool(p_pop),
                 low_water,
-                rng.gen_ratio(1, 500) as u64,
-            ]
+                clear_flags: rng.gen_ratio(1, 500),
+            }
         })
         .collect()
-}
-
-fn outputs(v: &[u64]) -> CommandFifoOutputs {
-    CommandFifoOutputs {
-        head: v[0],
-        empty: v[1] != 0,
-        full: v[2] != 0,
-        level: v[3],
-        low: v[4] != 0,
-        overflow: v[5] != 0,
-        underflow: v[6] != 0,
-    }
 }
 
 /// `cycles` random clocks against the model, on the backend
@@ -52,40 +42,35 @@ fn outputs(v: &[u64]) -> CommandFifoOutputs {
 fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
     let capacity = 1u64 << N;
     let backend = Backend::from_env_or(Backend::Verilator).unwrap();
-    let mut h = stepper(
+    let mut pair = Lockstep::on(
         backend,
         "command_fifo",
         CommandFifo::<N, NP1>::default(),
-        None,
+        CommandFifoModel::new(capacity as usize),
     )
     .unwrap_or_else(|e| panic!("{e}"));
-    let mut model = CommandFifoModel::new(capacity as usize);
     let (mut fulls, mut empties, mut overflows, mut underflows, mut heads) = (0, 0, 0, 0, 0);
     // The three read-during-write cases of the head bypass, counted from
     // the ports: a write into an empty FIFO, write and pop at level 1,
     // write and pop when full.
     let (mut into_empty, mut at_one, mut when_full) = (0, 0, 0);
     let mut last = CommandFifoOutputs::default();
-    for (cycle, v) in random_inputs(seed, cycles, capacity).iter().enumerate() {
-        if v[0] == 0 && v[1] != 0 {
+    // The model leaves `head` unspecified while empty (`agrees`).
+    let stimulus = random_inputs(seed, cycles, capacity);
+    pair.run_all(&stimulus, |_, v, &rtl| {
+        if !v.reset && v.write {
             into_empty += (last.level == 0) as u32;
-            at_one += (v[3] != 0 && last.level == 1) as u32;
-            when_full += (v[3] != 0 && last.full) as u32;
+            at_one += (v.pop && last.level == 1) as u32;
+            when_full += (v.pop && last.full) as u32;
         }
-        let mut rtl = outputs(&h.step_vector(v).unwrap());
-        let expected = model.step(v[0] != 0, v[1] != 0, v[2], v[3] != 0, v[4], v[5] != 0);
-        if rtl.empty {
-            rtl.head = 0; // not specified while empty
-        } else {
-            heads += 1;
-        }
-        assert_eq!(rtl, expected, "capacity {capacity} cycle {cycle}: {v:?}");
+        heads += !rtl.empty as u32;
         fulls += rtl.full as u32;
         empties += rtl.empty as u32;
         overflows += (rtl.overflow && !last.overflow) as u32;
         underflows += (rtl.underflow && !last.underflow) as u32;
         last = rtl;
-    }
+    })
+    .unwrap_or_else(|e| panic!("capacity {capacity}: {e}"));
     assert!(
         fulls > 1000 && empties > 1000 && overflows > 20 && underflows > 20 && heads > 100_000,
         "coverage: {fulls} full, {empties} empty, {overflows} overflows, {underflows} underflows"
@@ -109,22 +94,18 @@ fn rtl_matches_the_queue_model_at_depth_16_and_256() {
 
 #[test]
 fn generated_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_inputs(0xf1f3, 20_000, 4)
-        .iter()
-        .map(|v| v.to_vec())
-        .collect();
-    cross_simulate_generated("command_fifo_4", CommandFifo::<2, 3>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let stimulus: Vec<Vec<u64>> = random_inputs(0xf1f4, 20_000, 256)
-        .iter()
-        .map(|v| v.to_vec())
-        .collect();
-    cross_simulate_generated(
-        "command_fifo_256",
-        CommandFifo::<8, 9>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<CommandFifo<2, 3>>(
+        Instance::Generated("command_fifo_4"),
+        random_inputs(0xf1f3, 20_000, 4)
+            .iter()
+            .map(CommandFifoInputs::to_vector),
+    );
+    check_instance::<CommandFifo<8, 9>>(
+        Instance::Generated("command_fifo_256"),
+        random_inputs(0xf1f4, 20_000, 256)
+            .iter()
+            .map(CommandFifoInputs::to_vector),
+    );
 }
 
 /// The FIFO's memory is block RAM on iCE40, not flip-flops: 256 x 32 bits

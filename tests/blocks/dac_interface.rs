@@ -11,8 +11,8 @@ use motion_hdl::blocks::dac_interface::registers::{
 use motion_hdl::blocks::dac_interface::{safe_latency, DacInterface, DacInterface3};
 use motion_hdl::blocks::width_mask;
 use motion_hdl::regmap::RegisterMap;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -465,19 +465,17 @@ impl Ad669Monitor {
 /// RTL and model in lockstep on `cycles` clocks of [`Traffic`], the pins
 /// watched by the monitor. Returns the monitor for its figures.
 fn lockstep<const K: usize, const W: usize>(seed: u64, cycles: u64) -> Ad669Monitor {
-    let mut rtl = Harness::new("dac_interface", DacInterface::<K, W>::default()).unwrap();
-    let mut model = DacModel::new(K, W);
+    let mut pair = Lockstep::harness(
+        "dac_interface",
+        DacInterface::<K, W>::default(),
+        DacModel::new(K, W),
+    );
     let mut traffic = Traffic::new(seed, K, W);
     let mut monitor = Ad669Monitor::new(K, W);
     let mut recent = std::collections::VecDeque::new();
-    for clock in 0..cycles {
-        let inputs = traffic.next(clock);
-        let out = DacOutputs::from_vector(&rtl.step_vector(&inputs.to_vector()).unwrap());
-        assert_eq!(
-            out,
-            model.step(inputs),
-            "clock {clock}: RTL against the model after {inputs:?}"
-        );
+    let stimulus = |clock, _: &DacModel| (clock < cycles).then(|| traffic.next(clock));
+    let observe = |clock, inputs: &DacInputs, out: &DacOutputs| {
+        let (inputs, out) = (*inputs, *out);
         recent.push_back((clock, inputs, out));
         if recent.len() > 120 {
             recent.pop_front();
@@ -493,7 +491,9 @@ fn lockstep<const K: usize, const W: usize>(seed: u64, cycles: u64) -> Ad669Moni
             }
             panic!("monitor: {e}");
         }
-    }
+    };
+    pair.run(stimulus, observe)
+        .unwrap_or_else(|e| panic!("{e}"));
     monitor
 }
 
@@ -992,20 +992,10 @@ fn reset_writes_the_safe_code_first_and_registers_read_their_reset_values() {
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut traffic = Traffic::new(0xdac4, 3, 16);
     let stimulus: Vec<Vec<u64>> = (0..30_000).map(|c| traffic.next(c).to_vector()).collect();
-    cross_simulate(
-        &CosimDesign::exported("dac_interface"),
-        DacInterface3::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<DacInterface3>(Instance::Exported("dac_interface"), stimulus);
     let mut traffic = Traffic::new(0xdac5, 4, 12);
     let stimulus: Vec<Vec<u64>> = (0..20_000).map(|c| traffic.next(c).to_vector()).collect();
-    cross_simulate_generated(
-        "dac_interface_k4_w12",
-        DacInterface::<4, 12>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<DacInterface<4, 12>>(Instance::Generated("dac_interface_k4_w12"), stimulus);
 }
 
 /// The committed C header (`rtl-out/dac_interface_regs.h`) is today's,

@@ -5,30 +5,13 @@ use motion_hdl::blocks::dda_integrator::model::{
     DdaIntegratorInputs, DdaIntegratorModel, DdaIntegratorOutputs,
 };
 use motion_hdl::blocks::dda_integrator::DdaIntegrator;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
 /// Pulse latency after the tick edge, from the datasheet.
 const LATENCY: usize = 2;
-
-fn vector(i: &DdaIntegratorInputs) -> Vec<u64> {
-    vec![
-        i.reset as u64,
-        i.tick as u64,
-        i.integrand,
-        i.modulus,
-        i.clear_overrange as u64,
-    ]
-}
-
-fn outputs(v: &[u64]) -> DdaIntegratorOutputs {
-    DdaIntegratorOutputs {
-        pulse: v[0] != 0,
-        overrange: v[1] != 0,
-    }
-}
 
 /// Runs of constant J and M (small, large, J > M, J = 0, M = 0, M lowered
 /// below the accumulator), tick densities from sparse to every clock, and
@@ -71,12 +54,13 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<DdaIntegr
 }
 
 fn run_against_model<const W: usize>(stimulus: &[DdaIntegratorInputs]) {
-    let mut harness = Harness::new("dda_integrator", DdaIntegrator::<W>::default()).unwrap();
-    let mut model = DdaIntegratorModel::new(W as u32);
-    for (cycle, inputs) in stimulus.iter().enumerate() {
-        let rtl = outputs(&harness.step_vector(&vector(inputs)).unwrap());
-        assert_eq!(rtl, model.step(*inputs), "W={W} cycle {cycle}: {inputs:?}");
-    }
+    let mut pair = Lockstep::harness(
+        "dda_integrator",
+        DdaIntegrator::<W>::default(),
+        DdaIntegratorModel::new(W as u32),
+    );
+    pair.run_all(stimulus, |_, _, _| {})
+        .unwrap_or_else(|e| panic!("W={W}: {e}"));
 }
 
 #[test]
@@ -109,7 +93,7 @@ fn bresenham_contract_for_every_4_bit_integrand_and_modulus() {
                     reset: true,
                     ..Default::default()
                 };
-                harness.step_vector(&vector(&reset)).unwrap();
+                harness.step_vector(&reset.to_vector()).unwrap();
                 let ticks = 3 * m as usize;
                 let mut pulse_ticks = vec![];
                 let mut tick_cycles = vec![];
@@ -126,7 +110,9 @@ fn bresenham_contract_for_every_4_bit_integrand_and_modulus() {
                         modulus,
                         ..Default::default()
                     };
-                    let out = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+                    let out = DdaIntegratorOutputs::from_vector(
+                        &harness.step_vector(&inputs.to_vector()).unwrap(),
+                    );
                     if out.pulse {
                         let source = cycle
                             .checked_sub(LATENCY - 1)
@@ -171,29 +157,21 @@ fn bresenham_contract_for_every_4_bit_integrand_and_modulus() {
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc055);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 30_000, 32)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported("dda_integrator"),
-        DdaIntegrator::<32>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<DdaIntegrator<32>>(
+        Instance::Exported("dda_integrator"),
+        random_stimulus(&mut rng, 30_000, 32)
+            .iter()
+            .map(DdaIntegratorInputs::to_vector),
+    );
 }
 
 #[test]
 fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc056);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 30_000, 12)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate_generated(
-        "dda_integrator_w12",
-        DdaIntegrator::<12>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<DdaIntegrator<12>>(
+        Instance::Generated("dda_integrator_w12"),
+        random_stimulus(&mut rng, 30_000, 12)
+            .iter()
+            .map(DdaIntegratorInputs::to_vector),
+    );
 }

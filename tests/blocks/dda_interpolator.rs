@@ -8,39 +8,14 @@ use motion_hdl::blocks::dda_interpolator::model::{
     InterpolatorInputs, InterpolatorModel, InterpolatorOutputs,
 };
 use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
-use motion_hdl::sim::{stepper, Backend, Harness, Stepper};
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{stepper, Backend, Harness, Lockstep, Stepper};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
 const K: usize = 3;
 /// Clocks from a used tick's edge to the edge after which its step shows.
 const STEP_LATENCY: usize = 3;
-
-fn vector(i: &InterpolatorInputs) -> Vec<u64> {
-    let mut v = vec![
-        i.reset as u64,
-        i.tick as u64,
-        i.load as u64,
-        i.next_period as u64,
-    ];
-    v.extend(i.next_delta.iter().map(|&d| d as u32 as u64));
-    v.push(i.clear_status as u64);
-    v
-}
-
-fn outputs(v: &[u64], k: usize) -> InterpolatorOutputs {
-    InterpolatorOutputs {
-        step: v[..k].iter().map(|&x| x != 0).collect(),
-        dir: v[k..2 * k].iter().map(|&x| x != 0).collect(),
-        period_done: v[2 * k] != 0,
-        ready: v[2 * k + 1] != 0,
-        running: v[2 * k + 2] != 0,
-        underrun: v[2 * k + 3] != 0,
-        overrange: v[2 * k + 4] != 0,
-        load_error: v[2 * k + 5] != 0,
-    }
-}
 
 /// A random period: mostly long enough for the division to finish in time,
 /// sometimes too short (underruns), deltas from fractional to the one step
@@ -149,18 +124,14 @@ fn long_run_rtl() -> Box<dyn Stepper> {
 #[test]
 fn rtl_matches_model_cycle_by_cycle_over_a_thousand_periods() {
     let mut driver = Driver::new(0x1e7, K);
-    let mut harness = long_run_rtl();
-    let mut model = InterpolatorModel::new(K);
+    let mut pair = Lockstep::new(long_run_rtl(), InterpolatorModel::new(K));
     let mut periods = 0;
-    let mut cycle = 0u64;
     while periods < 1200 {
-        let inputs = driver.next(model.outputs().ready);
-        let rtl = outputs(&harness.step_vector(&vector(&inputs)).unwrap(), K);
-        let expected = model.step(&inputs);
-        assert_eq!(rtl, expected, "cycle {cycle}: {inputs:?}");
+        let inputs = driver.next(pair.model().outputs().ready);
+        let rtl = pair.step(&inputs).unwrap_or_else(|e| panic!("{e}"));
         periods += rtl.period_done as usize;
-        cycle += 1;
     }
+    let cycle = pair.cycles();
     println!(
         "{periods} periods in {cycle} cycles, {} loads",
         driver.loads
@@ -186,9 +157,10 @@ fn every_step_is_where_exact_arithmetic_puts_it() {
     let mut base = [0i64; K]; // position in 2^-16 steps at the current period's start
     let mut expected_steps: VecDeque<(usize, [i64; K])> = VecDeque::new(); // (cycle, positions)
     let mut position = [0i64; K]; // from the step and dir outputs
-    let mut last = outputs(
-        &harness.step_vector(&vector(&driver.next(false))).unwrap(),
-        K,
+    let mut last = InterpolatorOutputs::from_vector(
+        &harness
+            .step_vector(&driver.next(false).to_vector())
+            .unwrap(),
     );
     let mut periods = 0;
     let mut checked = 0u64;
@@ -198,7 +170,8 @@ fn every_step_is_where_exact_arithmetic_puts_it() {
         let accepted =
             inputs.load && last.ready && inputs.next_period != 0 && inputs.next_period < 1 << 24;
         let used_tick = inputs.tick && last.running;
-        let out = outputs(&harness.step_vector(&vector(&inputs)).unwrap(), K);
+        let out =
+            InterpolatorOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap());
         if accepted {
             let period = inputs.next_period as u64;
             let limit = period as i64 * 65536;
@@ -275,7 +248,7 @@ fn underrun_stops_without_inventing_steps_and_resumes_exactly() {
             next_delta: vec![delta],
             ..Default::default()
         };
-        outputs(&harness.step_vector(&vector(&inputs)).unwrap(), 1)
+        InterpolatorOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap())
     };
     // 2.5 steps over 100 ticks, then nothing queued.
     let mut steps = 0;
@@ -316,7 +289,7 @@ fn loads_while_busy_and_zero_periods_are_refused_and_flagged() {
             clear_status: clear,
             ..Default::default()
         };
-        outputs(&harness.step_vector(&vector(&inputs)).unwrap(), 2)
+        InterpolatorOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap())
     };
     let out = apply(true, 0, false);
     assert!(out.load_error && out.ready, "P = 0 must be refused");
@@ -333,7 +306,7 @@ fn loads_while_busy_and_zero_periods_are_refused_and_flagged() {
         next_delta: vec![0, 0],
         ..Default::default()
     };
-    let out = outputs(&harness.step_vector(&vector(&inputs)).unwrap(), 2);
+    let out = InterpolatorOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap());
     assert!(
         out.load_error && out.ready,
         "P = 2^24 does not fit and must be refused"
@@ -349,7 +322,7 @@ fn cosim_stimulus<const N: usize>(seed: u64, cycles: usize) -> Vec<Vec<u64>> {
         .map(|_| {
             let inputs = driver.next(model.outputs().ready);
             model.step(&inputs);
-            vector(&inputs)
+            inputs.to_vector()
         })
         .collect()
 }
@@ -357,21 +330,11 @@ fn cosim_stimulus<const N: usize>(seed: u64, cycles: usize) -> Vec<Vec<u64>> {
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus::<K>(0xc057, 30_000);
-    cross_simulate(
-        &CosimDesign::exported("dda_interpolator"),
-        DdaInterpolator::<K>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<DdaInterpolator<K>>(Instance::Exported("dda_interpolator"), stimulus);
 }
 
 #[test]
 fn single_axis_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus::<1>(0xc058, 20_000);
-    cross_simulate_generated(
-        "dda_interpolator_k1",
-        DdaInterpolator::<1>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<DdaInterpolator<1>>(Instance::Generated("dda_interpolator_k1"), stimulus);
 }

@@ -7,8 +7,8 @@ use motion_hdl::blocks::external_bus_adapter::model::{
     ExternalBusInputs, ExternalBusModel, ExternalBusOutputs,
 };
 use motion_hdl::blocks::external_bus_adapter::ExternalBusAdapter;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::sim::Lockstep;
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -21,15 +21,17 @@ const WIDTHS: PinWidths = PinWidths {
 
 #[test]
 fn rtl_matches_model_on_random_pins() {
-    let mut h = Harness::new("external_bus_adapter", Adapter::default()).unwrap();
-    let mut model = ExternalBusModel::new(8);
+    let mut pair = Lockstep::harness(
+        "external_bus_adapter",
+        Adapter::default(),
+        ExternalBusModel::new(8),
+    );
     let (mut writes, mut reads) = (0, 0);
-    for (cycle, i) in random_pins(0xb05, 1_000_000, WIDTHS).iter().enumerate() {
-        let rtl = ExternalBusOutputs::from_vector(&h.step_vector(&i.to_vector()).unwrap());
-        assert_eq!(rtl, model.step(*i), "cycle {cycle}: {i:?}");
+    pair.run_all(&random_pins(0xb05, 1_000_000, WIDTHS), |_, _, rtl| {
         writes += rtl.bus_write as u32;
         reads += rtl.bus_read as u32;
-    }
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
     assert!(
         writes > 10_000 && reads > 10_000,
         "{writes} writes, {reads} reads"
@@ -154,14 +156,10 @@ fn a_read_right_after_a_put_off_read_is_issued() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_pins(0xb06, 40_000, WIDTHS)
-        .iter()
-        .map(ExternalBusInputs::to_vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported("external_bus_adapter"),
-        Adapter::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<Adapter>(
+        Instance::Exported("external_bus_adapter"),
+        random_pins(0xb06, 40_000, WIDTHS)
+            .iter()
+            .map(ExternalBusInputs::to_vector),
+    );
 }

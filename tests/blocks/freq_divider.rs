@@ -3,8 +3,8 @@
 
 use motion_hdl::blocks::freq_divider::model::{FreqDividerInputs, FreqDividerModel};
 use motion_hdl::blocks::freq_divider::FreqDivider;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -41,10 +41,6 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<FreqDivid
     out.truncate(cycles);
     // No reset at cycle 0: power-up must equal the reset state.
     out
-}
-
-fn vector(inputs: &FreqDividerInputs) -> Vec<u64> {
-    vec![inputs.reset as u64, inputs.enable as u64, inputs.divisor]
 }
 
 /// An independent monitor of the port contract (not derived from the model):
@@ -146,18 +142,14 @@ impl ContractMonitor {
 }
 
 fn run_against_model<const W: usize>(stimulus: &[FreqDividerInputs]) {
-    let mut harness = Harness::new("freq_divider", FreqDivider::<W>::default()).expect("harness");
-    let mut model = FreqDividerModel::new(W as u32);
+    let mut pair = Lockstep::harness(
+        "freq_divider",
+        FreqDivider::<W>::default(),
+        FreqDividerModel::new(W as u32),
+    );
     let mut monitor = ContractMonitor::default();
-    for (cycle, inputs) in stimulus.iter().enumerate() {
-        let rtl = harness.step_vector(&vector(inputs)).expect("step")[0] != 0;
-        let expected = model.step(*inputs);
-        assert_eq!(
-            rtl, expected,
-            "W={W} cycle {cycle}: RTL strobe differs from the model ({inputs:?})"
-        );
-        monitor.edge(inputs, rtl);
-    }
+    pair.run_all(stimulus, |_, inputs, &strobe| monitor.edge(inputs, strobe))
+        .unwrap_or_else(|e| panic!("W={W}: RTL strobe differs from the model: {e}"));
 }
 
 #[test]
@@ -231,10 +223,16 @@ fn monitor_catches_a_missing_strobe_after_a_divisor_change() {
 fn power_up_without_reset_strobes_like_after_reset() {
     let mut from_power_up = Harness::new("freq_divider", FreqDivider::<32>::default()).unwrap();
     let mut from_reset = Harness::new("freq_divider", FreqDivider::<32>::default()).unwrap();
-    from_reset.step_vector(&[1, 1, 3]).unwrap();
+    let run = FreqDividerInputs {
+        reset: false,
+        enable: true,
+        divisor: 3,
+    };
+    let reset = FreqDividerInputs { reset: true, ..run };
+    from_reset.step_vector(&reset.to_vector()).unwrap();
     for cycle in 0..100 {
-        let a = from_power_up.step_vector(&[0, 1, 3]).unwrap();
-        let b = from_reset.step_vector(&[0, 1, 3]).unwrap();
+        let a = from_power_up.step_vector(&run.to_vector()).unwrap();
+        let b = from_reset.step_vector(&run.to_vector()).unwrap();
         assert_eq!(a, b, "cycle {cycle}");
     }
 }
@@ -242,11 +240,23 @@ fn power_up_without_reset_strobes_like_after_reset() {
 #[test]
 fn strobes_are_exactly_d_clocks_apart() {
     for d in [1u64, 2, 3, 7, 100, 1000] {
-        let mut harness = Harness::new("freq_divider", FreqDivider::<32>::default()).unwrap();
-        harness.step_vector(&[1, 0, d]).unwrap();
-        let times: Vec<u64> = (0..5000u64)
-            .filter(|_| harness.step_vector(&[0, 1, d]).unwrap()[0] != 0)
-            .collect();
+        let run = FreqDividerInputs {
+            reset: false,
+            enable: true,
+            divisor: d,
+        };
+        let reset = FreqDividerInputs {
+            reset: true,
+            enable: false,
+            divisor: d,
+        };
+        let mut pair = Lockstep::harness(
+            "freq_divider",
+            FreqDivider::<32>::default(),
+            FreqDividerModel::new(32),
+        );
+        pair.step(&reset).unwrap();
+        let times: Vec<u64> = (0..5000u64).filter(|_| pair.step(&run).unwrap()).collect();
         assert_eq!(times.len() as u64, 5000u64.div_ceil(d), "D={d}");
         assert_eq!(
             times[0], 0,
@@ -262,26 +272,22 @@ fn strobes_are_exactly_d_clocks_apart() {
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc0515);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 32)
-        .iter()
-        .map(vector)
-        .collect();
-    let pass = cross_simulate(
-        &CosimDesign::exported("freq_divider"),
-        FreqDivider::<32>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let pass = check_instance::<FreqDivider<32>>(
+        Instance::Exported("freq_divider"),
+        random_stimulus(&mut rng, 20_000, 32)
+            .iter()
+            .map(FreqDividerInputs::to_vector),
+    );
     assert_eq!(pass.cycles, 20_000);
 }
 
 #[test]
 fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc0516);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 12)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate_generated("freq_divider_w12", FreqDivider::<12>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<FreqDivider<12>>(
+        Instance::Generated("freq_divider_w12"),
+        random_stimulus(&mut rng, 20_000, 12)
+            .iter()
+            .map(FreqDividerInputs::to_vector),
+    );
 }

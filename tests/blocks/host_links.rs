@@ -15,8 +15,8 @@ use motion_hdl::blocks::host_links::model::{
 };
 use motion_hdl::blocks::host_links::SeedHostLinks;
 use motion_hdl::blocks::width_mask;
-use motion_hdl::sim::{stepper, Backend, Harness};
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::sim::{Backend, Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -78,15 +78,12 @@ struct Seen {
 }
 
 fn lockstep(backend: Backend, seed: u64, cycles: usize) -> Seen {
-    let mut rtl = stepper(backend, NAME, SeedHostLinks::default(), None).unwrap();
-    let mut model = HostLinksModel::new(G);
+    let model = HostLinksModel::new(G);
+    let mut pair = Lockstep::on(backend, NAME, SeedHostLinks::default(), model).unwrap();
     let mut seen = Seen::default();
-    let mut outputs = vec![0; rtl.output_count()];
     let mut last = HostLinksOutputs::default();
-    for (cycle, i) in random_inputs(seed, cycles).iter().enumerate() {
-        rtl.step_into(&i.to_vector(), &mut outputs).unwrap();
-        let got = HostLinksOutputs::from_vector(&outputs);
-        assert_eq!(got, model.step(*i), "{backend:?}: cycle {cycle}: {i:?}");
+    let inputs = random_inputs(seed, cycles);
+    pair.run_all(&inputs, |_, _, &got| {
         seen.reg_writes += got.reg_write as u32;
         seen.reg_reads += got.reg_read as u32;
         seen.irq_dsp_rises += (got.irq_dsp && !last.irq_dsp) as u32;
@@ -94,7 +91,8 @@ fn lockstep(backend: Backend, seed: u64, cycles: usize) -> Seen {
         seen.dsp_order_errors += got.dsp_order_error as u32;
         seen.pc_order_errors += got.pc_order_error as u32;
         last = got;
-    }
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
     seen
 }
 
@@ -535,14 +533,10 @@ fn the_exchange_survives_randomly_resolved_samples_and_xready() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_inputs(0x417, 40_000)
-        .iter()
-        .map(HostLinksInputs::to_vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported(NAME),
-        SeedHostLinks::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<SeedHostLinks>(
+        Instance::Exported(NAME),
+        random_inputs(0x417, 40_000)
+            .iter()
+            .map(HostLinksInputs::to_vector),
+    );
 }

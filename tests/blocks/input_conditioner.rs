@@ -12,7 +12,7 @@ use motion_hdl::blocks::input_conditioner::model::{
     InputConditionerInputs, InputConditionerModel, InputConditionerOutputs,
 };
 use motion_hdl::blocks::input_conditioner::{InputConditioner, PRIME_CLOCKS};
-use motion_hdl::sim::Harness;
+use motion_hdl::sim::{Harness, Lockstep};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -163,20 +163,23 @@ struct Seen {
 
 fn lockstep<const W: usize>(seed: u64, cycles: u64) -> Seen {
     let mut driver = Driver::new(seed, W as u32);
-    let mut h = harness::<W>();
-    let mut model = InputConditionerModel::new(W as u32);
+    let mut pair = Lockstep::harness(
+        "input_conditioner",
+        InputConditioner::<W>::default(),
+        InputConditionerModel::new(W as u32),
+    );
     let mut seen = Seen::default();
-    for cycle in 0..cycles {
-        let inputs = driver.next();
-        let rtl = rtl_clock(&mut h, &inputs);
-        let expected = model.step(inputs);
-        assert_eq!(rtl, expected, "W {W} cycle {cycle}: {inputs:?}");
-        seen.rises += rtl.rise.count_ones() as u64;
-        seen.falls += rtl.fall.count_ones() as u64;
-        seen.resets += inputs.reset as u64;
-        seen.not_ready += !rtl.ready as u64;
-        seen.active_bits += rtl.active.count_ones() as u64;
-    }
+    pair.run(
+        |cycle, _| (cycle < cycles).then(|| driver.next()),
+        |_, inputs, rtl| {
+            seen.rises += rtl.rise.count_ones() as u64;
+            seen.falls += rtl.fall.count_ones() as u64;
+            seen.resets += inputs.reset as u64;
+            seen.not_ready += !rtl.ready as u64;
+            seen.active_bits += rtl.active.count_ones() as u64;
+        },
+    )
+    .unwrap_or_else(|e| panic!("W {W}: {e}"));
     seen
 }
 

@@ -11,8 +11,8 @@ use motion_hdl::blocks::narrow_bus_adapter::{
     ExternalBusAdapter16, ExternalBusAdapter8, NarrowBusAdapter,
 };
 use motion_hdl::blocks::word_assembler::model::PartGeometry;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::sim::Lockstep;
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -56,8 +56,11 @@ impl Width {
 }
 
 fn lockstep<const NA: usize, const N: usize>(width: Width, seed: u64, cycles: usize) {
-    let mut h = Harness::new(width.name, NarrowBusAdapter::<8, NA, N, 32>::default()).unwrap();
-    let mut model = NarrowBusModel::new(width.geometry);
+    let mut pair = Lockstep::harness(
+        width.name,
+        NarrowBusAdapter::<8, NA, N, 32>::default(),
+        NarrowBusModel::new(width.geometry),
+    );
     let (mut writes, mut reads, mut errors) = (0, 0, 0);
     // In the second half the address walks the parts of one register in
     // order (a part every 16 clocks, a register every 1024), so that whole
@@ -68,13 +71,12 @@ fn lockstep<const NA: usize, const N: usize>(width: Width, seed: u64, cycles: us
         let cycle = cycle as u64;
         i.address = g.narrow_address((cycle / 1024) % 4, (cycle / 16) % g.parts());
     }
-    for (cycle, i) in pins.iter().enumerate() {
-        let rtl = NarrowBusOutputs::from_vector(&h.step_vector(&i.to_vector()).unwrap());
-        assert_eq!(rtl, model.step(*i), "{}: cycle {cycle}: {i:?}", width.name);
+    pair.run_all(&pins, |_, _, rtl| {
         writes += rtl.bus_write as u32;
         reads += rtl.bus_read as u32;
         errors += rtl.order_error as u32;
-    }
+    })
+    .unwrap_or_else(|e| panic!("{}: {e}", width.name));
     assert!(
         writes > 1_000 && reads > 10_000 && errors > 10_000,
         "{}: {writes} writes, {reads} reads, {errors} order errors",
@@ -401,16 +403,12 @@ fn a_torn_write_never_reaches_the_register() {
 }
 
 fn cosim<const NA: usize, const N: usize>(width: Width, seed: u64) {
-    let stimulus: Vec<Vec<u64>> = random_pins(seed, 40_000, width.pins())
-        .iter()
-        .map(BusPinInputs::to_vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported(width.name),
-        NarrowBusAdapter::<8, NA, N, 32>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<NarrowBusAdapter<8, NA, N, 32>>(
+        Instance::Exported(width.name),
+        random_pins(seed, 40_000, width.pins())
+            .iter()
+            .map(BusPinInputs::to_vector),
+    );
 }
 
 #[test]

@@ -5,30 +5,10 @@ use motion_hdl::blocks::pulse_counter::model::{
     PulseCounterInputs, PulseCounterModel, PulseCounterOutputs,
 };
 use motion_hdl::blocks::pulse_counter::PulseCounter;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-
-fn vector(i: &PulseCounterInputs) -> Vec<u64> {
-    vec![
-        i.reset as u64,
-        i.up as u64,
-        i.down as u64,
-        i.clear as u64,
-        i.load as u64,
-        i.load_value,
-        i.compare_value,
-    ]
-}
-
-fn outputs(v: &[u64]) -> PulseCounterOutputs {
-    PulseCounterOutputs {
-        count: v[0],
-        compare_match: v[1] != 0,
-        pulse_overridden: v[2] != 0,
-    }
-}
 
 /// Random pulses (dense and sparse, both directions, simultaneous up and
 /// down), with clears, loads and resets landing on pulses, loads near the
@@ -70,13 +50,13 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<PulseCoun
 }
 
 fn run_against_model<const W: usize>(stimulus: &[PulseCounterInputs]) {
-    let mut harness = Harness::new("pulse_counter", PulseCounter::<W>::default()).unwrap();
-    let mut model = PulseCounterModel::new(W as u32);
-    for (cycle, inputs) in stimulus.iter().enumerate() {
-        let rtl = outputs(&harness.step_vector(&vector(inputs)).unwrap());
-        let expected = model.step(*inputs);
-        assert_eq!(rtl, expected, "W={W} cycle {cycle}: {inputs:?}");
-    }
+    let mut pair = Lockstep::harness(
+        "pulse_counter",
+        PulseCounter::<W>::default(),
+        PulseCounterModel::new(W as u32),
+    );
+    pair.run_all(stimulus, |_, _, _| {})
+        .unwrap_or_else(|e| panic!("W={W}: {e}"));
 }
 
 #[test]
@@ -105,7 +85,7 @@ fn every_transition_of_a_4_bit_counter() {
                     load_value: start,
                     ..Default::default()
                 };
-                harness.step_vector(&vector(&set)).unwrap();
+                harness.step_vector(&set.to_vector()).unwrap();
                 let bit = |n: u32| controls >> n & 1 != 0;
                 let inputs = PulseCounterInputs {
                     reset: bit(0),
@@ -116,7 +96,9 @@ fn every_transition_of_a_4_bit_counter() {
                     load_value,
                     compare_value,
                 };
-                let got = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+                let got = PulseCounterOutputs::from_vector(
+                    &harness.step_vector(&inputs.to_vector()).unwrap(),
+                );
                 let mut model = PulseCounterModel::new(4);
                 model.step(set);
                 assert_eq!(got, model.step(inputs), "from {start}: {inputs:?}");
@@ -137,7 +119,8 @@ fn no_pulse_is_lost_or_invented_silently() {
     let mut harness = Harness::new("pulse_counter", PulseCounter::<32>::default()).unwrap();
     let mut position: i64 = 0;
     for (cycle, inputs) in stimulus.iter().enumerate() {
-        let out = outputs(&harness.step_vector(&vector(inputs)).unwrap());
+        let out =
+            PulseCounterOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap());
         let net = inputs.up as i64 - inputs.down as i64;
         if inputs.reset || inputs.clear {
             position = 0;
@@ -167,29 +150,21 @@ fn no_pulse_is_lost_or_invented_silently() {
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc051);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 32)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported("pulse_counter"),
-        PulseCounter::<32>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<PulseCounter<32>>(
+        Instance::Exported("pulse_counter"),
+        random_stimulus(&mut rng, 20_000, 32)
+            .iter()
+            .map(PulseCounterInputs::to_vector),
+    );
 }
 
 #[test]
 fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc052);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 12)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate_generated(
-        "pulse_counter_w12",
-        PulseCounter::<12>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<PulseCounter<12>>(
+        Instance::Generated("pulse_counter_w12"),
+        random_stimulus(&mut rng, 20_000, 12)
+            .iter()
+            .map(PulseCounterInputs::to_vector),
+    );
 }

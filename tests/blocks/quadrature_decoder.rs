@@ -7,50 +7,19 @@ use motion_hdl::blocks::quadrature_decoder::model::{
     QuadratureDecoderInputs, QuadratureDecoderModel, QuadratureDecoderOutputs,
 };
 use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
 type Decoder = QuadratureDecoder<32, 8, 16>;
-
-fn vector(i: &QuadratureDecoderInputs) -> Vec<u64> {
-    vec![
-        i.reset as u64,
-        i.a as u64,
-        i.b as u64,
-        i.index as u64,
-        i.filter as u64,
-        i.clear as u64,
-        i.sample_rate,
-        i.counter_mode as u64,
-        i.index_invert as u64,
-        i.index_clear as u64,
-        i.index_latch as u64,
-        i.index_once as u64,
-        i.index_rearm as u64,
-        i.clear_error as u64,
-    ]
-}
-
-fn outputs(v: &[u64]) -> QuadratureDecoderOutputs {
-    QuadratureDecoderOutputs {
-        count: v[0],
-        dir: v[1] != 0,
-        error: v[2] != 0,
-        index_seen: v[3] != 0,
-        index_count: v[4],
-        count_time: v[5],
-        timestamp: v[6],
-    }
-}
 
 fn harness() -> Harness<Decoder> {
     Harness::new("quadrature_decoder", Decoder::default()).unwrap()
 }
 
 fn run(h: &mut Harness<Decoder>, i: &QuadratureDecoderInputs) -> QuadratureDecoderOutputs {
-    outputs(&h.step_vector(&vector(i)).unwrap())
+    QuadratureDecoderOutputs::from_vector(&h.step_vector(&i.to_vector()).unwrap())
 }
 
 use motion_hdl::sim::quadrature_state as gray;
@@ -118,18 +87,20 @@ fn random_stimulus(seed: u64, cycles: usize, sample_mask: u64) -> Vec<Quadrature
 #[test]
 fn rtl_matches_model_on_random_encoder_walks() {
     let stimulus = random_stimulus(0x9ad, 1_000_000, 0xff);
-    let mut h = harness();
-    let mut model = QuadratureDecoderModel::new(32, 8, 16);
+    let mut pair = Lockstep::harness(
+        "quadrature_decoder",
+        Decoder::default(),
+        QuadratureDecoderModel::new(32, 8, 16),
+    );
     let (mut errors, mut index_clears, mut changes) = (0, 0, 0);
     let mut last = QuadratureDecoderOutputs::default();
-    for (cycle, i) in stimulus.iter().enumerate() {
-        let rtl = run(&mut h, i);
-        assert_eq!(rtl, model.step(*i), "cycle {cycle}: {i:?}");
+    pair.run_all(&stimulus, |_, _, &rtl| {
         errors += (rtl.error && !last.error) as u32;
         index_clears += (rtl.index_seen && !last.index_seen) as u32;
         changes += (rtl.count != last.count) as u32;
         last = rtl;
-    }
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
     assert!(
         errors > 100 && index_clears > 100 && changes > 10_000,
         "coverage: {errors} errors, {index_clears} index events, {changes} count changes"
@@ -448,30 +419,22 @@ fn a_count_on_the_clock_of_a_clear_is_never_lost() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_stimulus(0xc05e, 40_000, 0xff)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported("quadrature_decoder"),
-        Decoder::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<Decoder>(
+        Instance::Exported("quadrature_decoder"),
+        random_stimulus(0xc05e, 40_000, 0xff)
+            .iter()
+            .map(QuadratureDecoderInputs::to_vector),
+    );
 }
 
 #[test]
 fn narrow_8_bit_count_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_stimulus(0xc05f, 30_000, 0x7)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate_generated(
-        "quadrature_decoder_w8_s3_t5",
-        QuadratureDecoder::<8, 3, 5>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<QuadratureDecoder<8, 3, 5>>(
+        Instance::Generated("quadrature_decoder_w8_s3_t5"),
+        random_stimulus(0xc05f, 30_000, 0x7)
+            .iter()
+            .map(QuadratureDecoderInputs::to_vector),
+    );
 }
 
 /// An index event on the very clock of a re-arm is acted on (latched,

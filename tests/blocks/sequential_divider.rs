@@ -5,24 +5,10 @@ use motion_hdl::blocks::sequential_divider::model::{
     expected_result, SequentialDividerInputs, SequentialDividerModel, SequentialDividerOutputs,
 };
 use motion_hdl::blocks::sequential_divider::SequentialDivider;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-
-fn vector(i: &SequentialDividerInputs) -> Vec<u64> {
-    vec![i.reset as u64, i.start as u64, i.dividend, i.divisor]
-}
-
-fn outputs(v: &[u64]) -> SequentialDividerOutputs {
-    SequentialDividerOutputs {
-        busy: v[0] != 0,
-        done: v[1] != 0,
-        quotient: v[2],
-        remainder: v[3],
-        divide_by_zero: v[4] != 0,
-    }
-}
 
 /// Operands that stress the algorithm: 0, 1, all ones, powers of two, equal
 /// operands, dividend below divisor, and plain random values.
@@ -51,21 +37,39 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<Sequentia
         .collect()
 }
 
+/// One clock of the RTL, out of reset.
+fn clock<const N: usize, const D: usize>(
+    h: &mut Harness<SequentialDivider<N, D>>,
+    dividend: u64,
+    divisor: u64,
+    start: bool,
+) -> SequentialDividerOutputs {
+    let inputs = SequentialDividerInputs {
+        reset: false,
+        start,
+        dividend,
+        divisor,
+    };
+    SequentialDividerOutputs::from_vector(&h.step_vector(&inputs.to_vector()).unwrap())
+}
+
 /// Runs a stream through the RTL and the model, cycle by cycle, and checks
 /// every result against plain arithmetic.
 fn run_against_model<const N: usize, const D: usize>(
     stimulus: &[SequentialDividerInputs],
 ) -> usize {
-    let mut harness =
-        Harness::new("sequential_divider", SequentialDivider::<N, D>::default()).unwrap();
-    let mut model = SequentialDividerModel::new(N as u32, D as u32);
+    let mut pair = Lockstep::harness(
+        "sequential_divider",
+        SequentialDivider::<N, D>::default(),
+        SequentialDividerModel::new(N as u32, D as u32),
+    );
     let mut operands = None;
     let mut results = 0;
-    for (cycle, inputs) in stimulus.iter().enumerate() {
-        let was_busy = model.outputs().busy;
-        let rtl = outputs(&harness.step_vector(&vector(inputs)).unwrap());
-        let expected = model.step(*inputs);
-        assert_eq!(rtl, expected, "N={N} D={D} cycle {cycle}: {inputs:?}");
+    for inputs in stimulus {
+        let was_busy = pair.model().outputs().busy;
+        let rtl = pair
+            .step(inputs)
+            .unwrap_or_else(|e| panic!("N={N} D={D}: {e}"));
         if inputs.reset {
             operands = None;
         } else if inputs.start && !was_busy {
@@ -89,11 +93,10 @@ fn run_against_model<const N: usize, const D: usize>(
 fn every_8_bit_operand_pair_with_exact_latency() {
     let mut harness =
         Harness::new("sequential_divider", SequentialDivider::<8, 8>::default()).unwrap();
-    let idle =
-        |h: &mut Harness<SequentialDivider<8, 8>>| outputs(&h.step_vector(&[0, 0, 0, 0]).unwrap());
+    let idle = |h: &mut Harness<SequentialDivider<8, 8>>| clock(h, 0, 0, false);
     for dividend in 0..256u64 {
         for divisor in 0..256u64 {
-            let first = outputs(&harness.step_vector(&[0, 1, dividend, divisor]).unwrap());
+            let first = clock(&mut harness, dividend, divisor, true);
             assert!(
                 first.busy && !first.done,
                 "{dividend}/{divisor}: busy after the start edge"
@@ -124,11 +127,11 @@ fn every_8_by_4_bit_operand_pair() {
         Harness::new("sequential_divider", SequentialDivider::<8, 4>::default()).unwrap();
     for dividend in 0..256u64 {
         for divisor in 0..16u64 {
-            harness.step_vector(&[0, 1, dividend, divisor]).unwrap();
+            clock(&mut harness, dividend, divisor, true);
             for _ in 1..8 {
-                harness.step_vector(&[0, 0, 0, 0]).unwrap();
+                clock(&mut harness, 0, 0, false);
             }
-            let last = outputs(&harness.step_vector(&[0, 0, 0, 0]).unwrap());
+            let last = clock(&mut harness, 0, 0, false);
             assert!(last.done, "{dividend}/{divisor}");
             let expected = expected_result(dividend, divisor, 8, 4);
             assert_eq!(
@@ -160,29 +163,21 @@ fn narrow_widths_match_the_model_and_arithmetic() {
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc053);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 32)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported("sequential_divider"),
-        SequentialDivider::<32, 32>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<SequentialDivider<32, 32>>(
+        Instance::Exported("sequential_divider"),
+        random_stimulus(&mut rng, 20_000, 32)
+            .iter()
+            .map(SequentialDividerInputs::to_vector),
+    );
 }
 
 #[test]
 fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
     let mut rng = StdRng::seed_from_u64(0xc054);
-    let stimulus: Vec<Vec<u64>> = random_stimulus(&mut rng, 20_000, 12)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate_generated(
-        "sequential_divider_w12",
-        SequentialDivider::<12, 12>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<SequentialDivider<12, 12>>(
+        Instance::Generated("sequential_divider_w12"),
+        random_stimulus(&mut rng, 20_000, 12)
+            .iter()
+            .map(SequentialDividerInputs::to_vector),
+    );
 }

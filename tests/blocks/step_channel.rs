@@ -5,37 +5,10 @@ use motion_hdl::blocks::step_channel::model::{
     StepChannelInputs, StepChannelModel, StepChannelOutputs,
 };
 use motion_hdl::blocks::step_channel::StepChannel;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-
-fn vector(i: &StepChannelInputs) -> Vec<u64> {
-    vec![
-        i.reset as u64,
-        i.tick as u64,
-        i.integrand,
-        i.modulus,
-        i.dir as u64,
-        i.clear_overrange as u64,
-        i.mode as u64,
-        i.step_len,
-        i.step_space,
-        i.dir_setup,
-        i.dir_hold,
-    ]
-}
-
-fn outputs(v: &[u64]) -> StepChannelOutputs {
-    StepChannelOutputs {
-        out_a: v[0] != 0,
-        out_b: v[1] != 0,
-        overrun: v[2] != 0,
-        overrange: v[3] != 0,
-        mode_invalid: v[4] != 0,
-        busy: v[5] != 0,
-    }
-}
 
 /// Runs of one J/M/direction and one set of timings, with random tick
 /// density; rates from far below to far above what the timing allows (so
@@ -105,16 +78,17 @@ fn random_stimulus(
 #[test]
 fn rtl_matches_the_composed_model_cycle_by_cycle() {
     let stimulus = random_stimulus(0xc4a1, 300_000, 32, 16);
-    let mut harness = Harness::new("step_channel", StepChannel::<32, 16>::default()).unwrap();
-    let mut model = StepChannelModel::new(32, 16);
+    let mut pair = Lockstep::harness(
+        "step_channel",
+        StepChannel::<32, 16>::default(),
+        StepChannelModel::new(32, 16),
+    );
     let (mut high, mut overruns) = (0u64, 0u64);
-    for (cycle, inputs) in stimulus.iter().enumerate() {
-        let rtl = outputs(&harness.step_vector(&vector(inputs)).unwrap());
-        let expected = model.step(*inputs);
-        assert_eq!(rtl, expected, "cycle {cycle}: {inputs:?}");
+    pair.run_all(&stimulus, |_, _, rtl| {
         high += rtl.out_a as u64;
         overruns += rtl.overrun as u64;
-    }
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
     // The stimulus must reach both the normal and the saturated regime.
     assert!(
         high > 10_000 && overruns > 1_000,
@@ -149,7 +123,8 @@ fn pins_show_exactly_floor_t_j_over_m_steps_in_the_ticks_direction() {
         loop {
             let mut inputs = settings;
             inputs.tick = cycle < ticks;
-            let out = outputs(&harness.step_vector(&vector(&inputs)).unwrap());
+            let out =
+                StepChannelOutputs::from_vector(&harness.step_vector(&inputs.to_vector()).unwrap());
             if out.out_a && !last_a {
                 assert_eq!(out.out_b, dir, "run {run}: a step in the wrong direction");
                 steps += 1;
@@ -172,28 +147,20 @@ fn pins_show_exactly_floor_t_j_over_m_steps_in_the_ticks_direction() {
 
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_stimulus(0xc4a2, 30_000, 32, 16)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate(
-        &CosimDesign::exported("step_channel"),
-        StepChannel::<32, 16>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<StepChannel<32, 16>>(
+        Instance::Exported("step_channel"),
+        random_stimulus(0xc4a2, 30_000, 32, 16)
+            .iter()
+            .map(StepChannelInputs::to_vector),
+    );
 }
 
 #[test]
 fn narrow_8_bit_dda_6_bit_timers_match_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_stimulus(0xc4a3, 20_000, 8, 6)
-        .iter()
-        .map(vector)
-        .collect();
-    cross_simulate_generated(
-        "step_channel_w8_t6",
-        StepChannel::<8, 6>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<StepChannel<8, 6>>(
+        Instance::Generated("step_channel_w8_t6"),
+        random_stimulus(0xc4a3, 20_000, 8, 6)
+            .iter()
+            .map(StepChannelInputs::to_vector),
+    );
 }

@@ -6,8 +6,8 @@ use motion_hdl::blocks::step_output::model::{
     pending_limits, StepOutputInputs, StepOutputModel, StepOutputOutputs, PENDING_MAX, PENDING_MIN,
 };
 use motion_hdl::blocks::step_output::StepOutput;
-use motion_hdl::sim::{stepper, Backend, Harness, Stepper};
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{stepper, Backend, Harness, Lockstep, Stepper};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -157,16 +157,14 @@ impl Flushes {
 #[test]
 fn rtl_matches_model_cycle_by_cycle_in_every_mode() {
     let mut driver = Driver::new(0x57e9, vec![0, 1, 2, 3]);
-    let mut dut = long_run_rtl();
-    let mut model = StepOutputModel::new(16, 16);
+    let mut pair = Lockstep::new(long_run_rtl(), StepOutputModel::new(16, 16));
     let mut last = StepOutputOutputs::default();
     let mut flushes = Flushes::default();
     let mut pending_flags = (0, 0);
     for cycle in 0..1_000_000 {
         let mut inputs = driver.next(&last);
         inputs.reset = cycle % 250_000 == 249_999;
-        let rtl = rtl_clock(dut.as_mut(), &inputs);
-        assert_eq!(rtl, model.step(inputs), "cycle {cycle}: {inputs:?}");
+        let rtl = pair.step(&inputs).unwrap_or_else(|e| panic!("{e}"));
         flushes.count(&inputs, &last, &rtl);
         pending_flags.0 += rtl.pending_forward as u32;
         pending_flags.1 += rtl.pending_backward as u32;
@@ -185,17 +183,18 @@ fn rtl_matches_model_cycle_by_cycle_in_every_mode() {
 #[test]
 fn narrow_pending_count_saturates_and_clears_like_the_model() {
     let mut driver = Driver::new(0x4a7, vec![0, 1, 2]);
-    let mut harness = Harness::new("step_output", StepOutput::<16, 4>::default()).unwrap();
-    let mut model = StepOutputModel::new(16, 4);
+    let mut pair = Lockstep::harness(
+        "step_output",
+        StepOutput::<16, 4>::default(),
+        StepOutputModel::new(16, 4),
+    );
     let (mut last, mut overruns, mut clears) = (StepOutputOutputs::default(), 0, 0);
     let mut flushes = Flushes::default();
     let mut saturated_flushes = 0;
-    for cycle in 0..300_000 {
-        let before = model.pending();
+    for _ in 0..300_000 {
+        let before = pair.model().pending();
         let inputs = driver.next(&last);
-        let rtl = rtl_clock(&mut harness, &inputs);
-        let expected = model.step(inputs);
-        assert_eq!(rtl, expected, "cycle {cycle}: {inputs:?}");
+        let rtl = pair.step(&inputs).unwrap_or_else(|e| panic!("{e}"));
         overruns += (!last.overrun && rtl.overrun) as u32;
         clears += (last.overrun && inputs.clear_overrun && !rtl.overrun) as u32;
         flushes.count(&inputs, &last, &rtl);
@@ -571,19 +570,13 @@ fn cosim_stimulus(
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus(0xc059, vec![0, 1, 2, 3], 16, 16, 40_000);
-    cross_simulate(
-        &CosimDesign::exported("step_output"),
-        StepOutput::<16, 16>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<StepOutput<16, 16>>(Instance::Exported("step_output"), stimulus);
 }
 
 #[test]
 fn narrow_6_bit_timers_match_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus(0xc05a, vec![0, 1, 2], 6, 16, 30_000);
-    cross_simulate_generated("step_output_t6", StepOutput::<6, 16>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<StepOutput<6, 16>>(Instance::Generated("step_output_t6"), stimulus);
 }
 
 /// The timing diagram in the datasheet (`src/blocks/step_output/timing.txt`,
@@ -652,8 +645,7 @@ fn an_8_bit_pending_count_saturates_at_its_own_limits() {
 #[test]
 fn an_8_bit_pending_count_matches_its_model_and_verilog() {
     let stimulus = cosim_stimulus(0x8b17, vec![0, 1, 2], 16, 8, 30_000);
-    cross_simulate_generated("step_output_p8", StepOutput::<16, 8>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<StepOutput<16, 8>>(Instance::Generated("step_output_p8"), stimulus);
 }
 
 /// How a stage reaches the clock from which one step is requested.
@@ -683,8 +675,11 @@ struct PinLog {
 /// start. Returns the pins seen from the start on; RTL and model are
 /// compared on every clock as well.
 fn one_early_step(mode: u8, forward: bool, start: Start, delay: u32) -> PinLog {
-    let mut harness = Harness::new("step_output", StepOutput::<16, 16>::default()).unwrap();
-    let mut model = StepOutputModel::new(16, 16);
+    let mut pair = Lockstep::harness(
+        "step_output",
+        StepOutput::<16, 16>::default(),
+        StepOutputModel::new(16, 16),
+    );
     let tied = StepOutputInputs {
         mode,
         step_len: 4,
@@ -694,9 +689,8 @@ fn one_early_step(mode: u8, forward: bool, start: Start, delay: u32) -> PinLog {
         ..Default::default()
     };
     let mut clock = |inputs: StepOutputInputs| {
-        let rtl = rtl_clock(&mut harness, &inputs);
-        assert_eq!(rtl, model.step(inputs), "{start:?} mode {mode}: {inputs:?}");
-        rtl
+        pair.step(&inputs)
+            .unwrap_or_else(|e| panic!("{start:?} mode {mode}: {e}"))
     };
     match start {
         Start::PowerUp => {}

@@ -11,8 +11,8 @@ use motion_hdl::blocks::sync_fifo_bridge::model::{
 use motion_hdl::blocks::sync_fifo_bridge::registers::ID_VALUE;
 use motion_hdl::blocks::sync_fifo_bridge::{SyncFifoBridge, SyncFifoBridge3, EXPORTED_FIFO_LOG2};
 use motion_hdl::regmap::RegisterMap;
-use motion_hdl::sim::{stepper, Backend, Harness, VectorPorts};
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::sim::{Backend, Lockstep, VectorPorts};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -42,9 +42,8 @@ fn field(map: &RegisterMap, register: &str, name: &str, word: u64) -> u64 {
 }
 
 /// The RTL and the model stepped together; every output compared on every clock.
-struct Bench<B: VectorPorts> {
-    h: Harness<B>,
-    model: BridgeModel,
+struct Bench {
+    pair: Lockstep<BridgeModel>,
     master: RegisterMap,
     slave: RegisterMap,
     i: BridgeInputs,
@@ -52,14 +51,13 @@ struct Bench<B: VectorPorts> {
     cycle: u64,
 }
 
-impl<B: VectorPorts> Bench<B> {
-    fn new(block: B, fifo_log2: u32) -> Self {
+impl Bench {
+    fn new<B: VectorPorts + 'static>(block: B, fifo_log2: u32) -> Self {
         let model = BridgeModel::new(K, fifo_log2);
         Self {
-            h: Harness::new("sync_fifo_bridge", block).unwrap(),
             master: model.master_map().clone(),
             slave: model.slave_map().clone(),
-            model,
+            pair: Lockstep::harness("sync_fifo_bridge", block, model),
             i: BridgeInputs::idle(K),
             out: BridgeOutputs::default(),
             cycle: 0,
@@ -68,9 +66,7 @@ impl<B: VectorPorts> Bench<B> {
 
     /// One clock with the inputs set in `self.i`; strobes are then cleared.
     fn clock(&mut self) -> BridgeOutputs {
-        let rtl = BridgeOutputs::from_vector(&self.h.step_vector(&self.i.to_vector()).unwrap(), K);
-        let model = self.model.step(&self.i);
-        assert_eq!(rtl, model, "cycle {}: {:?}", self.cycle, self.i);
+        let rtl = self.pair.step(&self.i).unwrap_or_else(|e| panic!("{e}"));
         self.cycle += 1;
         self.i.m_write = false;
         self.i.m_read = false;
@@ -226,21 +222,19 @@ impl Activity {
 
 /// RTL (on `backend`) against the model on `cycles` clocks of random traffic.
 fn lockstep(backend: Backend, seed: u64, cycles: u64) -> Activity {
-    let mut rtl = stepper(backend, "sync_fifo_bridge", SmallBridge::default(), None).unwrap();
-    let mut model = BridgeModel::new(K, SMALL_LOG2);
+    let mut pair = Lockstep::on(
+        backend,
+        "sync_fifo_bridge",
+        SmallBridge::default(),
+        BridgeModel::new(K, SMALL_LOG2),
+    )
+    .unwrap();
     let mut traffic = Traffic::new(seed, SMALL_LOG2);
     let mut a = Activity::default();
-    let mut outputs = vec![0; rtl.output_count()];
     let mut last = vec![false; K];
-    for cycle in 0..cycles {
-        let i = traffic.next();
-        rtl.step_into(&i.to_vector(), &mut outputs).unwrap();
-        let got = BridgeOutputs::from_vector(&outputs, K);
-        let expected = model.step(&i);
-        if got != expected {
-            panic!("{backend:?}, cycle {cycle}: {i:?}\nRTL   {got:?}\nmodel {expected:?}");
-        }
-        let e = model.events;
+    for _ in 0..cycles {
+        let got = pair.step(&traffic.next()).unwrap_or_else(|e| panic!("{e}"));
+        let e = pair.model().events;
         a.releases += e.release as u64;
         a.pops += e.pops as u64;
         a.status_pops += e.status_pops as u64;
@@ -325,48 +319,47 @@ fn run_system(mode: Mode, seed: u64, steps: usize, delay: Option<usize>) -> Syst
 
     // One clock of the whole system: the slaves act on the outputs of the
     // last clock, the tick generator runs, RTL and model step.
-    let mut clock =
-        |b: &mut Bench<MidBridge>, cpus: &mut Vec<SlaveCpu>, releases: &mut Vec<u64>| {
-            for (k, cpu) in cpus.iter_mut().enumerate() {
-                let raw = b.out.s_data_ready.get(k).copied().unwrap_or(false);
-                let ready = if delay == Some(k) { delayed[k] } else { raw };
-                delayed[k] = raw;
-                if cpu.pending_read {
-                    let word = b.out.s_read_data[k];
-                    cpu.groups
-                        .last_mut()
-                        .expect("a read follows a rise")
-                        .push(word);
-                    cpu.to_push.push_back(status_of(word));
-                    cpu.pending_read = false;
-                }
-                if ready && !cpu.prev_ready {
-                    cpu.rises.push(b.cycle - 1);
-                    cpu.groups.push(vec![]);
-                }
-                cpu.prev_ready = ready;
-                if cpu_rng.gen_ratio(1, 4) {
-                    continue; // busy
-                }
-                let bus = &mut b.i.slaves[k];
-                if ready {
-                    bus.address = cmd_address;
-                    bus.read = true;
-                    cpu.pending_read = true;
-                } else if let Some(status) = cpu.to_push.pop_front() {
-                    bus.address = status_address;
-                    bus.write_data = status;
-                    bus.write = true;
-                }
+    let mut clock = |b: &mut Bench, cpus: &mut Vec<SlaveCpu>, releases: &mut Vec<u64>| {
+        for (k, cpu) in cpus.iter_mut().enumerate() {
+            let raw = b.out.s_data_ready.get(k).copied().unwrap_or(false);
+            let ready = if delay == Some(k) { delayed[k] } else { raw };
+            delayed[k] = raw;
+            if cpu.pending_read {
+                let word = b.out.s_read_data[k];
+                cpu.groups
+                    .last_mut()
+                    .expect("a read follows a rise")
+                    .push(word);
+                cpu.to_push.push_back(status_of(word));
+                cpu.pending_read = false;
             }
-            if let Mode::Tick(period) = mode {
-                b.i.period_tick = b.cycle % period == period - 1;
+            if ready && !cpu.prev_ready {
+                cpu.rises.push(b.cycle - 1);
+                cpu.groups.push(vec![]);
             }
-            b.clock();
-            if b.model.events.release {
-                releases.push(b.cycle - 1);
+            cpu.prev_ready = ready;
+            if cpu_rng.gen_ratio(1, 4) {
+                continue; // busy
             }
-        };
+            let bus = &mut b.i.slaves[k];
+            if ready {
+                bus.address = cmd_address;
+                bus.read = true;
+                cpu.pending_read = true;
+            } else if let Some(status) = cpu.to_push.pop_front() {
+                bus.address = status_address;
+                bus.write_data = status;
+                bus.write = true;
+            }
+        }
+        if let Mode::Tick(period) = mode {
+            b.i.period_tick = b.cycle % period == period - 1;
+        }
+        b.clock();
+        if b.pair.model().events.release {
+            releases.push(b.cycle - 1);
+        }
+    };
     // Master bus operations, each one clock of the system.
     macro_rules! m_write {
         ($reg:expr, $index:expr, $data:expr) => {{
@@ -798,12 +791,7 @@ fn a_write_and_a_pop_on_the_release_clock_are_not_part_of_the_release() {
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let mut traffic = Traffic::new(0x5fc, EXPORTED_FIFO_LOG2 as u32);
     let stimulus: Vec<Vec<u64>> = (0..40_000).map(|_| traffic.next().to_vector()).collect();
-    cross_simulate(
-        &CosimDesign::exported("sync_fifo_bridge"),
-        SyncFifoBridge3::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<SyncFifoBridge3>(Instance::Exported("sync_fifo_bridge"), stimulus);
 }
 
 /// Firmware on the control-level DSP includes both headers (the master's,

@@ -6,16 +6,14 @@ use motion_hdl::blocks::uniform_pulse_gen::model::{
     PulsePlan, UniformPulseGenInputs, UniformPulseGenModel, UniformPulseGenOutputs,
 };
 use motion_hdl::blocks::uniform_pulse_gen::{load_to_ready, UniformPulseGen, LOAD_TO_READY};
-use motion_hdl::sim::{stepper, Backend, Stepper};
-use motion_hdl::tools::cosim::{cross_simulate, cross_simulate_generated, CosimDesign};
+use motion_hdl::sim::{Backend, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
 /// RTL and model side by side; every clock is compared.
 struct Pair<const W: usize = 32> {
-    rtl: Box<dyn Stepper>,
-    rtl_outputs: Vec<u64>,
-    model: UniformPulseGenModel,
+    pair: Lockstep<UniformPulseGenModel>,
     cycle: u64,
     /// The outputs after the last clock (power-up: only `ready`).
     last: UniformPulseGenOutputs,
@@ -28,17 +26,15 @@ impl<const W: usize> Pair<W> {
     }
 
     fn on(backend: Backend) -> Self {
-        let rtl = stepper(
+        let pair = Lockstep::on(
             backend,
             "uniform_pulse_gen",
             UniformPulseGen::<W>::default(),
-            None,
+            UniformPulseGenModel::with_width(W as u32),
         )
         .unwrap_or_else(|e| panic!("{e}"));
         Self {
-            rtl_outputs: vec![0; rtl.output_count()],
-            rtl,
-            model: UniformPulseGenModel::with_width(W as u32),
+            pair,
             cycle: 0,
             last: UniformPulseGenOutputs {
                 ready: true,
@@ -48,12 +44,7 @@ impl<const W: usize> Pair<W> {
     }
 
     fn clock(&mut self, i: &UniformPulseGenInputs) -> UniformPulseGenOutputs {
-        self.rtl
-            .step_into(&i.to_vector(), &mut self.rtl_outputs)
-            .unwrap();
-        let rtl = UniformPulseGenOutputs::from_vector(&self.rtl_outputs);
-        let model = self.model.step(*i);
-        assert_eq!(rtl, model, "cycle {}: {i:?}", self.cycle);
+        let rtl = self.pair.step(i).unwrap_or_else(|e| panic!("{e}"));
         self.cycle += 1;
         self.last = rtl;
         rtl
@@ -340,12 +331,7 @@ fn exported_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus(0xc0c0, UniformPulseGenModel::new(), 40_000, |rng| {
         rng.gen_range(0..300)
     });
-    cross_simulate(
-        &CosimDesign::exported("uniform_pulse_gen"),
-        UniformPulseGen::<32>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<UniformPulseGen<32>>(Instance::Exported("uniform_pulse_gen"), stimulus);
 }
 
 /// A narrow 12-bit instance in Icarus and Verilator: truncated ports and
@@ -355,12 +341,7 @@ fn narrow_12_bit_verilog_matches_rust_in_icarus_and_verilator() {
     let stimulus = cosim_stimulus(0x12b, UniformPulseGenModel::with_width(12), 30_000, |rng| {
         [rng.gen_range(0..300), rng.gen_range(0..5000)][rng.gen_range(0..2)]
     });
-    cross_simulate_generated(
-        "uniform_pulse_gen_12",
-        UniformPulseGen::<12>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<UniformPulseGen<12>>(Instance::Generated("uniform_pulse_gen_12"), stimulus);
 }
 
 /// The same pin-level checks with a sparse time base (a tick every third

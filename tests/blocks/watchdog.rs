@@ -2,16 +2,16 @@
 //! rises exactly at the `timeout`-th tick after a kick with no kick in
 //! between, and never otherwise.
 
-use motion_hdl::blocks::watchdog::model::WatchdogModel;
+use motion_hdl::blocks::watchdog::model::{WatchdogInputs, WatchdogModel, WatchdogOutputs};
 use motion_hdl::blocks::watchdog::Watchdog;
-use motion_hdl::sim::Harness;
-use motion_hdl::tools::cosim::cross_simulate_generated;
+use motion_hdl::sim::{Harness, Lockstep};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-/// [reset, tick, timeout, kick, clear] per clock: a host that kicks on
-/// time, late, or stops; timeouts from 0 (disarmed) up; sparse ticks.
-fn random_inputs(seed: u64, cycles: usize, timeout_mask: u64) -> Vec<[u64; 5]> {
+/// A host that kicks on time, late, or stops; timeouts from 0 (disarmed)
+/// up; sparse ticks.
+fn random_inputs(seed: u64, cycles: usize, timeout_mask: u64) -> Vec<WatchdogInputs> {
     let mut rng = StdRng::seed_from_u64(seed);
     let mut timeout = 10;
     let mut kick_every = 8;
@@ -22,39 +22,39 @@ fn random_inputs(seed: u64, cycles: usize, timeout_mask: u64) -> Vec<[u64; 5]> {
                 kick_every = rng.gen_range(1..50);
             }
             let kick = cycle % kick_every == 0 && rng.gen_ratio(9, 10);
-            [
-                rng.gen_ratio(1, 50_000) as u64,
-                rng.gen_ratio(2, 3) as u64,
+            WatchdogInputs {
+                reset: rng.gen_ratio(1, 50_000),
+                tick: rng.gen_ratio(2, 3),
                 timeout,
-                kick as u64,
-                rng.gen_ratio(1, 60) as u64,
-            ]
+                kick,
+                clear: rng.gen_ratio(1, 60),
+            }
         })
         .collect()
 }
 
 #[test]
 fn rtl_matches_model_and_expires_exactly_on_time() {
-    let mut h = Harness::new("watchdog", Watchdog::<16>::default()).unwrap();
-    let mut model = WatchdogModel::new();
+    let mut pair = Lockstep::harness("watchdog", Watchdog::<16>::default(), WatchdogModel::new());
     // The independent view: ticks counted since the last arming kick.
     let mut since_kick: Option<(u64, u64)> = None; // (ticks, timeout)
     let (mut expiries, mut last_expired) = (0, false);
-    for (cycle, v) in random_inputs(0x3d, 1_000_000, 0xffff).iter().enumerate() {
-        let [reset, tick, timeout, kick, clear] = v.map(|x| x);
-        let out = h.step_vector(v).unwrap();
-        let (expired, armed) = (out[0] != 0, out[1] != 0);
-        assert_eq!(
-            (expired, armed),
-            model.step(reset != 0, tick != 0, timeout, kick != 0, clear != 0),
-            "cycle {cycle}"
-        );
+    let stimulus = random_inputs(0x3d, 1_000_000, 0xffff);
+    pair.run_all(&stimulus, |cycle, v, out| {
+        let WatchdogInputs {
+            reset,
+            tick,
+            timeout,
+            kick,
+            clear,
+        } = *v;
+        let WatchdogOutputs { expired, armed } = *out;
         let mut expires_now = false;
-        if reset != 0 {
+        if reset {
             since_kick = None;
-        } else if kick != 0 {
+        } else if kick {
             since_kick = (timeout != 0).then_some((0, timeout));
-        } else if let (1, Some((ticks, limit))) = (tick, since_kick) {
+        } else if let (true, Some((ticks, limit))) = (tick, since_kick) {
             if ticks + 1 == limit {
                 expires_now = true;
                 since_kick = None;
@@ -62,10 +62,10 @@ fn rtl_matches_model_and_expires_exactly_on_time() {
                 since_kick = Some((ticks + 1, limit));
             }
         }
-        if reset == 0 {
+        if !reset {
             // An expiry sets the flag; the flag is never set (fresh, or
             // again on a clearing edge) without one.
-            let set_now = expired && (!last_expired || clear != 0);
+            let set_now = expired && (!last_expired || clear);
             assert!(!expires_now || expired, "cycle {cycle}: expiry missed");
             assert!(
                 !set_now || expires_now,
@@ -75,30 +75,44 @@ fn rtl_matches_model_and_expires_exactly_on_time() {
         }
         expiries += expires_now as u32;
         last_expired = expired;
-    }
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
     assert!(expiries > 1000, "{expiries} expiries");
 }
 
 #[test]
 fn generated_verilog_matches_rust_in_icarus_and_verilator() {
-    let stimulus: Vec<Vec<u64>> = random_inputs(0x3e, 20_000, 0x3f)
-        .iter()
-        .map(|v| v.to_vec())
-        .collect();
-    cross_simulate_generated("watchdog_w6", Watchdog::<6>::default(), &stimulus)
-        .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<Watchdog<6>>(
+        Instance::Generated("watchdog_w6"),
+        random_inputs(0x3e, 20_000, 0x3f)
+            .iter()
+            .map(WatchdogInputs::to_vector),
+    );
 }
 
 /// The widest timeout counts every one of its ticks.
 #[test]
 fn the_largest_timeout_expires_on_its_last_tick() {
     let mut h = Harness::new("watchdog", Watchdog::<16>::default()).unwrap();
-    let kick = [0, 1, 0xffff, 1, 0];
-    let wait = [0, 1, 0xffff, 0, 0];
-    h.step_vector(&kick).unwrap();
+    let wait = WatchdogInputs {
+        tick: true,
+        timeout: 0xffff,
+        ..Default::default()
+    };
+    let kick = WatchdogInputs { kick: true, ..wait };
+    let mut clock =
+        |i: WatchdogInputs| WatchdogOutputs::from_vector(&h.step_vector(&i.to_vector()).unwrap());
+    clock(kick);
+    let armed = WatchdogOutputs {
+        expired: false,
+        armed: true,
+    };
     for tick in 1..0xffff {
-        let out = h.step_vector(&wait).unwrap();
-        assert_eq!(out, vec![0, 1], "tick {tick}");
+        assert_eq!(clock(wait), armed, "tick {tick}");
     }
-    assert_eq!(h.step_vector(&wait).unwrap(), vec![1, 0], "tick 65535");
+    let expired = WatchdogOutputs {
+        expired: true,
+        armed: false,
+    };
+    assert_eq!(clock(wait), expired, "tick 65535");
 }

@@ -8,9 +8,13 @@
 use motion_hdl::blocks::dac_interface::model::{DacInputs, DacOutputs};
 use motion_hdl::blocks::dac_interface::registers::register_map;
 use motion_hdl::blocks::dac_interface::DacInterface3;
+use motion_hdl::blocks::quadrature_decoder::model::{
+    QuadratureDecoderInputs, QuadratureDecoderOutputs,
+};
 use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
-use motion_hdl::host::{DriveScale, FollowingError, PositionLoop, ServoGains, ServoMotor};
-use motion_hdl::sim::{quadrature_state, Ad669Bank, Harness};
+use motion_hdl::host::{DriveScale, FollowingError, PositionLoop, ServoGains};
+use motion_hdl::sim::plant::{quadrature_state, Ad669Bank, ServoMotor};
+use motion_hdl::sim::Harness;
 
 #[test]
 fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
@@ -78,27 +82,16 @@ fn a_dac_servo_axis_closed_through_the_rtl_ends_within_a_count() {
         let volts = scale.volts(bank.code(0));
         motor.advance(volts, clock_s);
         let (a, b) = quadrature_state(motor.counts());
-        // [reset, a, b, index, filter, clear, sample_rate, counter_mode,
-        //  index_invert, index_clear, index_latch, index_once, index_rearm, clear_error]
-        let decoded = decoder
-            .step_vector(&[
-                (clock == 0) as u64,
-                a as u64,
-                b as u64,
-                0,
-                0,
-                0,
-                0,
-                0,
-                0,
-                0,
-                0,
-                0,
-                0,
-                0,
-            ])
-            .unwrap();
-        count = decoded[0] as u32 as i32 as i64;
+        let encoder = QuadratureDecoderInputs {
+            reset: clock == 0,
+            a,
+            b,
+            ..Default::default()
+        };
+        let decoded = QuadratureDecoderOutputs::from_vector(
+            &decoder.step_vector(&encoder.to_vector()).unwrap(),
+        );
+        count = decoded.count as u32 as i32 as i64;
     }
     println!(
         "{} periods, {ldacs} output changes; following error max {:.1}, RMS {:.2} counts; ended at {count}",

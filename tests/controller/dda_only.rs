@@ -5,7 +5,7 @@
 //! (The build with the analog outputs, `motion_controller_servo`:
 //! `analog_axes.rs`.)
 
-use crate::bench::{Bench, Lockstep};
+use crate::bench::{Bench, ControllerUnderTest};
 use crate::motion_controller::{
     chaos_run_on, configure, cross_simulate_exported, drain, queue, ALL_STATUS,
 };
@@ -88,7 +88,7 @@ impl Twins {
     }
 }
 
-impl Lockstep for Twins {
+impl ControllerUnderTest for Twins {
     fn axes(&self) -> usize {
         3
     }

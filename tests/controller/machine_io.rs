@@ -327,7 +327,7 @@ fn home_latches_the_position_of_its_clock_at_every_phase_of_a_step() {
                 // CMD_POSITION counts a step one clock after its first pin
                 // edge: the register of clock c + seen holds the steps
                 // whose edge came at c + seen - 1 or before.
-                act_at_latch = Some(b.model.axes()[0].actual_position());
+                act_at_latch = Some(b.model().axes()[0].actual_position());
             }
         }
         let expected = log

@@ -2,7 +2,7 @@
 //! the register bus, firmware-style runs with the steps looped back into
 //! the encoders, every fault, and cross-simulation.
 
-use crate::bench::{Bench, Lockstep};
+use crate::bench::{Bench, ControllerUnderTest};
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::registers::{irq, register_map};
 use motion_hdl::blocks::motion_controller::MotionController;
@@ -10,7 +10,7 @@ use motion_hdl::export::generator;
 use motion_hdl::host::driver::SERVICED_INTERRUPTS;
 use motion_hdl::regmap::c_header;
 use motion_hdl::sim::{quadrature_state, Backend};
-use motion_hdl::tools::cosim::{cross_simulate, CosimDesign};
+use motion_hdl::tools::cosim::{check_instance, Instance};
 use motion_hdl::tools::repo_root;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -113,7 +113,7 @@ impl ChaosDriver {
     }
 
     /// One clock's bus inputs to `b`: (reset, address, data, write, read).
-    fn bus(&mut self, b: &impl Lockstep) -> (bool, u32, u32, bool, bool) {
+    fn bus(&mut self, b: &impl ControllerUnderTest) -> (bool, u32, u32, bool, bool) {
         let rng = &mut self.rng;
         let map = b.map();
         let register = |name: &str| map.register(name).unwrap();
@@ -319,7 +319,7 @@ impl ChaosRun {
 
 /// `cycles` clocks of [`ChaosDriver`] traffic on a controller (a bench
 /// compares RTL and model after every clock).
-pub(crate) fn chaos_run_on(mut b: impl Lockstep, seed: u64, cycles: u64) -> ChaosRun {
+pub(crate) fn chaos_run_on(mut b: impl ControllerUnderTest, seed: u64, cycles: u64) -> ChaosRun {
     let axes = b.axes();
     let mut driver = ChaosDriver::new(seed, axes);
     let status_address = b.map().register("STATUS").unwrap().address_of(0).unwrap();
@@ -974,12 +974,7 @@ pub(crate) fn cross_simulate_exported<const U: bool, const A: bool>(module: &str
         b.clock(reset, address, data, write, read);
     }
     let stimulus = b.recording.take().unwrap();
-    cross_simulate(
-        &CosimDesign::exported(module),
-        MotionController::<3, 4, 5, U, A>::default(),
-        &stimulus,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    check_instance::<MotionController<3, 4, 5, U, A>>(Instance::Exported(module), stimulus);
 }
 
 /// The generated C headers (committed in rtl-out/), of the full and the

@@ -1,7 +1,8 @@
 //! The stepping harness: structural checks, loop detection, waveforms.
 
 use motion_hdl::blocks::freq_divider::FreqDivider;
-use motion_hdl::sim::{render_svg, Harness, HarnessError};
+use motion_hdl::plots::render_svg;
+use motion_hdl::sim::{Harness, HarnessError};
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock, Default)]

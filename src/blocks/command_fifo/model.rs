@@ -3,6 +3,37 @@
 
 use std::collections::VecDeque;
 
+/// Inputs of one clock cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CommandFifoInputs {
+    /// Synchronous reset (a flush).
+    pub reset: bool,
+    /// Push `write_data`.
+    pub write: bool,
+    /// The word pushed.
+    pub write_data: u64,
+    /// Drop the head.
+    pub pop: bool,
+    /// `low` threshold.
+    pub low_water: u64,
+    /// Clears `overflow` and `underflow`.
+    pub clear_flags: bool,
+}
+
+impl CommandFifoInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.write as u64,
+            self.write_data,
+            self.pop as u64,
+            self.low_water,
+            self.clear_flags as u64,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CommandFifoOutputs {
@@ -21,6 +52,21 @@ pub struct CommandFifoOutputs {
     pub overflow: bool,
     /// Sticky underflow.
     pub underflow: bool,
+}
+
+impl CommandFifoOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            head: v[0],
+            empty: v[1] != 0,
+            full: v[2] != 0,
+            level: v[3],
+            low: v[4] != 0,
+            overflow: v[5] != 0,
+            underflow: v[6] != 0,
+        }
+    }
 }
 
 /// Queue model of a FIFO of `capacity` entries.
@@ -81,5 +127,31 @@ impl CommandFifoModel {
             overflow: self.overflow,
             underflow: self.underflow,
         }
+    }
+}
+
+impl crate::sim::LockstepModel for CommandFifoModel {
+    type Inputs = CommandFifoInputs;
+    type Outputs = CommandFifoOutputs;
+    fn input_vector(inputs: &CommandFifoInputs, vector: &mut Vec<u64>) {
+        *vector = inputs.to_vector();
+    }
+    fn read_outputs(&self, vector: &[u64]) -> CommandFifoOutputs {
+        CommandFifoOutputs::from_vector(vector)
+    }
+    fn expected(&mut self, i: &CommandFifoInputs) -> CommandFifoOutputs {
+        self.step(
+            i.reset,
+            i.write,
+            i.write_data,
+            i.pop,
+            i.low_water,
+            i.clear_flags,
+        )
+    }
+    /// `head` is not specified while the FIFO is empty.
+    fn agrees(rtl: &CommandFifoOutputs, model: &CommandFifoOutputs) -> bool {
+        let head = if rtl.empty { 0 } else { rtl.head };
+        CommandFifoOutputs { head, ..*rtl } == *model
     }
 }

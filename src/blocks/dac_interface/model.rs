@@ -448,3 +448,9 @@ impl DacModel {
         }
     }
 }
+
+crate::lockstep_model!(DacModel {
+    inputs: DacInputs,
+    outputs: DacOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

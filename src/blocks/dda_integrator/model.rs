@@ -17,6 +17,19 @@ pub struct DdaIntegratorInputs {
     pub clear_overrange: bool,
 }
 
+impl DdaIntegratorInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.tick as u64,
+            self.integrand,
+            self.modulus,
+            self.clear_overrange as u64,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DdaIntegratorOutputs {
@@ -24,6 +37,16 @@ pub struct DdaIntegratorOutputs {
     pub pulse: bool,
     /// Sticky: J > M was used.
     pub overrange: bool,
+}
+
+impl DdaIntegratorOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            pulse: v[0] != 0,
+            overrange: v[1] != 0,
+        }
+    }
 }
 
 /// The accumulator arithmetic alone: one tick of a `width`-bit DDA.
@@ -108,3 +131,9 @@ impl DdaIntegratorModel {
         self.out
     }
 }
+
+crate::lockstep_model!(DdaIntegratorModel {
+    inputs: DdaIntegratorInputs,
+    outputs: DdaIntegratorOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

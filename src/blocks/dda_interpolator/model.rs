@@ -22,6 +22,22 @@ pub struct InterpolatorInputs {
     pub clear_status: bool,
 }
 
+impl InterpolatorInputs {
+    /// The RTL's input vector, in its port order (one `next_delta` column
+    /// per axis).
+    pub fn to_vector(&self) -> Vec<u64> {
+        let mut v = vec![
+            self.reset as u64,
+            self.tick as u64,
+            self.load as u64,
+            self.next_period as u64,
+        ];
+        v.extend(self.next_delta.iter().map(|&d| d as u32 as u64));
+        v.push(self.clear_status as u64);
+        v
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct InterpolatorOutputs {
@@ -41,6 +57,24 @@ pub struct InterpolatorOutputs {
     pub overrange: bool,
     /// Sticky load error.
     pub load_error: bool,
+}
+
+impl InterpolatorOutputs {
+    /// Reads the RTL's output vector, in its port order: a `step` and a
+    /// `dir` column per axis, then six flags.
+    pub fn from_vector(v: &[u64]) -> Self {
+        let k = (v.len() - 6) / 2;
+        Self {
+            step: v[..k].iter().map(|&x| x != 0).collect(),
+            dir: v[k..2 * k].iter().map(|&x| x != 0).collect(),
+            period_done: v[2 * k] != 0,
+            ready: v[2 * k + 1] != 0,
+            running: v[2 * k + 2] != 0,
+            underrun: v[2 * k + 3] != 0,
+            overrange: v[2 * k + 4] != 0,
+            load_error: v[2 * k + 5] != 0,
+        }
+    }
 }
 
 /// A command for one period of one axis: d = q * P + r, 0 <= r < P.
@@ -304,3 +338,9 @@ impl InterpolatorModel {
         self.outputs()
     }
 }
+
+crate::lockstep_model!(InterpolatorModel {
+    inputs: InterpolatorInputs,
+    outputs: InterpolatorOutputs,
+    step: |model, inputs| model.step(inputs),
+});

@@ -182,3 +182,9 @@ impl DpramMailboxModel {
         out
     }
 }
+
+crate::lockstep_model!(DpramMailboxModel {
+    inputs: DpramMailboxInputs,
+    outputs: DpramMailboxOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

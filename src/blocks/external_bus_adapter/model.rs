@@ -70,3 +70,9 @@ impl ExternalBusModel {
         self.pins.step(i).into()
     }
 }
+
+crate::lockstep_model!(ExternalBusModel {
+    inputs: ExternalBusInputs,
+    outputs: ExternalBusOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

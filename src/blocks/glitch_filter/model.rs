@@ -1,5 +1,52 @@
 //! Reference model of [`super::GlitchFilter`], cycle-exact.
 
+/// Inputs of one clock cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GlitchFilterInputs {
+    /// Synchronous reset.
+    pub reset: bool,
+    /// The unfiltered level.
+    pub raw: bool,
+    /// Sample `raw` on this edge.
+    pub sample: bool,
+    /// Samples a new level must hold (0 and 1 both mean one).
+    pub length: u8,
+    /// Take `raw` as the accepted level at once.
+    pub prime: bool,
+}
+
+impl GlitchFilterInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.raw as u64,
+            self.sample as u64,
+            self.length as u64,
+            self.prime as u64,
+        ]
+    }
+}
+
+/// Outputs after one clock edge.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GlitchFilterOutputs {
+    /// The accepted level.
+    pub filtered: bool,
+    /// `filtered` changed at this edge.
+    pub changed: bool,
+}
+
+impl GlitchFilterOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            filtered: v[0] != 0,
+            changed: v[1] != 0,
+        }
+    }
+}
+
 /// Plain-Rust model of one glitch filter.
 #[derive(Clone, Debug, Default)]
 pub struct GlitchFilterModel {
@@ -48,3 +95,15 @@ impl GlitchFilterModel {
         accept
     }
 }
+
+crate::lockstep_model!(GlitchFilterModel {
+    inputs: GlitchFilterInputs,
+    outputs: GlitchFilterOutputs,
+    step: |model, i| {
+        model.step(i.reset, i.raw, i.sample, i.length, i.prime);
+        GlitchFilterOutputs {
+            filtered: model.filtered(),
+            changed: model.changed(),
+        }
+    },
+});

@@ -285,3 +285,9 @@ impl HostLinksModel {
         }
     }
 }
+
+crate::lockstep_model!(HostLinksModel {
+    inputs: HostLinksInputs,
+    outputs: HostLinksOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

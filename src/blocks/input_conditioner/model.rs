@@ -133,3 +133,9 @@ impl InputConditionerModel {
         self.outputs(i.invert)
     }
 }
+
+crate::lockstep_model!(InputConditionerModel {
+    inputs: InputConditionerInputs,
+    outputs: InputConditionerOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -1207,3 +1207,17 @@ impl MotionControllerModel {
         self.outputs()
     }
 }
+
+impl crate::sim::LockstepModel for MotionControllerModel {
+    type Inputs = ControllerInputs;
+    type Outputs = ControllerOutputs;
+    fn input_vector(inputs: &ControllerInputs, vector: &mut Vec<u64>) {
+        inputs.write_vector(vector);
+    }
+    fn read_outputs(&self, vector: &[u64]) -> ControllerOutputs {
+        ControllerOutputs::from_vector(vector, self.axes.len())
+    }
+    fn expected(&mut self, inputs: &ControllerInputs) -> ControllerOutputs {
+        self.step(inputs)
+    }
+}

@@ -116,3 +116,9 @@ impl NarrowBusModel {
         }
     }
 }
+
+crate::lockstep_model!(NarrowBusModel {
+    inputs: BusPinInputs,
+    outputs: NarrowBusOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -19,6 +19,21 @@ pub struct PulseCounterInputs {
     pub compare_value: u64,
 }
 
+impl PulseCounterInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.up as u64,
+            self.down as u64,
+            self.clear as u64,
+            self.load as u64,
+            self.load_value,
+            self.compare_value,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PulseCounterOutputs {
@@ -28,6 +43,17 @@ pub struct PulseCounterOutputs {
     pub compare_match: bool,
     /// The edge's net up/down pulse was overridden by clear or load.
     pub pulse_overridden: bool,
+}
+
+impl PulseCounterOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            count: v[0],
+            compare_match: v[1] != 0,
+            pulse_overridden: v[2] != 0,
+        }
+    }
 }
 
 /// Plain-Rust model of a `width`-bit pulse counter.
@@ -71,3 +97,9 @@ impl PulseCounterModel {
         }
     }
 }
+
+crate::lockstep_model!(PulseCounterModel {
+    inputs: PulseCounterInputs,
+    outputs: PulseCounterOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -35,6 +35,28 @@ pub struct QuadratureDecoderInputs {
     pub index_rearm: bool,
 }
 
+impl QuadratureDecoderInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.a as u64,
+            self.b as u64,
+            self.index as u64,
+            self.filter as u64,
+            self.clear as u64,
+            self.sample_rate,
+            self.counter_mode as u64,
+            self.index_invert as u64,
+            self.index_clear as u64,
+            self.index_latch as u64,
+            self.index_once as u64,
+            self.index_rearm as u64,
+            self.clear_error as u64,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadratureDecoderOutputs {
@@ -52,6 +74,21 @@ pub struct QuadratureDecoderOutputs {
     pub count_time: u64,
     /// The free-running timestamp (samples).
     pub timestamp: u64,
+}
+
+impl QuadratureDecoderOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            count: v[0],
+            dir: v[1] != 0,
+            error: v[2] != 0,
+            index_seen: v[3] != 0,
+            index_count: v[4],
+            count_time: v[5],
+            timestamp: v[6],
+        }
+    }
 }
 
 /// Clocks after reset in which the filters take the pins' levels without
@@ -192,3 +229,9 @@ impl QuadratureDecoderModel {
         self.out
     }
 }
+
+crate::lockstep_model!(QuadratureDecoderModel {
+    inputs: QuadratureDecoderInputs,
+    outputs: QuadratureDecoderOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -32,6 +32,18 @@ pub struct SequentialDividerInputs {
     pub divisor: u64,
 }
 
+impl SequentialDividerInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.start as u64,
+            self.dividend,
+            self.divisor,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SequentialDividerOutputs {
@@ -45,6 +57,19 @@ pub struct SequentialDividerOutputs {
     pub remainder: u64,
     /// The divisor was 0.
     pub divide_by_zero: bool,
+}
+
+impl SequentialDividerOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            busy: v[0] != 0,
+            done: v[1] != 0,
+            quotient: v[2],
+            remainder: v[3],
+            divide_by_zero: v[4] != 0,
+        }
+    }
 }
 
 /// Plain-Rust, cycle-exact model of an N-by-D-bit sequential divider.
@@ -119,3 +144,9 @@ impl SequentialDividerModel {
         self.out
     }
 }
+
+crate::lockstep_model!(SequentialDividerModel {
+    inputs: SequentialDividerInputs,
+    outputs: SequentialDividerOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -31,6 +31,25 @@ pub struct StepChannelInputs {
     pub dir_hold: u64,
 }
 
+impl StepChannelInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.tick as u64,
+            self.integrand,
+            self.modulus,
+            self.dir as u64,
+            self.clear_overrange as u64,
+            self.mode as u64,
+            self.step_len,
+            self.step_space,
+            self.dir_setup,
+            self.dir_hold,
+        ]
+    }
+}
+
 /// Outputs after one clock edge.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct StepChannelOutputs {
@@ -46,6 +65,20 @@ pub struct StepChannelOutputs {
     pub mode_invalid: bool,
     /// Steps pending or a pulse in progress.
     pub busy: bool,
+}
+
+impl StepChannelOutputs {
+    /// Reads the RTL's output vector, in its port order.
+    pub fn from_vector(v: &[u64]) -> Self {
+        Self {
+            out_a: v[0] != 0,
+            out_b: v[1] != 0,
+            overrun: v[2] != 0,
+            overrange: v[3] != 0,
+            mode_invalid: v[4] != 0,
+            busy: v[5] != 0,
+        }
+    }
 }
 
 /// Cycle-exact model of a step channel with a `dda_bits` DDA and
@@ -113,3 +146,9 @@ impl StepChannelModel {
         }
     }
 }
+
+crate::lockstep_model!(StepChannelModel {
+    inputs: StepChannelInputs,
+    outputs: StepChannelOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -295,3 +295,9 @@ impl StepOutputModel {
         self.outputs(i.mode)
     }
 }
+
+crate::lockstep_model!(StepOutputModel {
+    inputs: StepOutputInputs,
+    outputs: StepOutputOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

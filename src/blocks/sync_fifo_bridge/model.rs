@@ -476,3 +476,17 @@ impl BridgeModel {
         }
     }
 }
+
+impl crate::sim::LockstepModel for BridgeModel {
+    type Inputs = BridgeInputs;
+    type Outputs = BridgeOutputs;
+    fn input_vector(inputs: &BridgeInputs, vector: &mut Vec<u64>) {
+        *vector = inputs.to_vector();
+    }
+    fn read_outputs(&self, vector: &[u64]) -> BridgeOutputs {
+        BridgeOutputs::from_vector(vector, self.channels.len())
+    }
+    fn expected(&mut self, inputs: &BridgeInputs) -> BridgeOutputs {
+        self.step(inputs)
+    }
+}

@@ -350,3 +350,9 @@ impl UniformPulseGenModel {
         self.out
     }
 }
+
+crate::lockstep_model!(UniformPulseGenModel {
+    inputs: UniformPulseGenInputs,
+    outputs: UniformPulseGenOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -226,3 +226,22 @@ struct Decision {
     /// The holding register holds parts of this register.
     holding_hit: bool,
 }
+
+/// The wide strobes are combinational from the narrow ones: the model
+/// gives the outputs during the clock, before its edge.
+impl crate::sim::LockstepModel for WordAssemblerModel {
+    type Inputs = WordAssemblerInputs;
+    type Outputs = WordAssemblerOutputs;
+    const SAMPLE: crate::sim::Sample = crate::sim::Sample::BeforeEdge;
+    fn input_vector(inputs: &WordAssemblerInputs, vector: &mut Vec<u64>) {
+        *vector = inputs.to_vector();
+    }
+    fn read_outputs(&self, vector: &[u64]) -> WordAssemblerOutputs {
+        WordAssemblerOutputs::from_vector(vector)
+    }
+    fn expected(&mut self, inputs: &WordAssemblerInputs) -> WordAssemblerOutputs {
+        let outputs = self.outputs(inputs);
+        self.clock(inputs);
+        outputs
+    }
+}
