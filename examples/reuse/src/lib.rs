@@ -254,6 +254,12 @@ impl JogModel {
     }
 }
 
+motion_hdl::lockstep_model!(JogModel {
+    inputs: JogInputs,
+    outputs: JogOutputs,
+    step: |model, inputs| model.step(*inputs),
+});
+
 /// The exported jog's Verilog, top module `jog_generator`, with its
 /// submodules named `jog_generator__*`.
 pub fn verilog() -> Result<String, motion_hdl::export::VerilogError> {
