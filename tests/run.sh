@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The whole motion-hdl test suite, on a fresh machine: installs the FPGA
 # tools it needs (Debian, as root) or stops with the exact install line,
-# then runs every test (with cargo-nextest; the crate has no doctests, and
-# `cargo test` runs the same tests one binary at a time). `.ci/run` calls
+# checks the format and the lints, then runs every test of the workspace
+# (with cargo-nextest; the crates have no doctests, and `cargo test
+# --workspace` runs the same tests one binary at a time). `.ci/run` calls
 # this script. gcc compiles the
 # generated C register headers in the register-map tests; g++ builds the
 # Verilator models of the compiled simulation backend; ccache keeps the
