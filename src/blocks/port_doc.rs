@@ -94,6 +94,9 @@ pub fn eval_width(expression: &str, parameters: &[(&str, usize)]) -> Result<usiz
     };
     let mut total = 0;
     for term in expression.split('+').map(str::trim) {
+        if term.is_empty() {
+            return Err(error("an empty term".to_string()));
+        }
         let digits = term.len() - term.trim_start_matches(|c: char| c.is_ascii_digit()).len();
         let (factor, name) = term.split_at(digits);
         let factor = if factor.is_empty() {
@@ -112,13 +115,10 @@ pub fn eval_width(expression: &str, parameters: &[(&str, usize)]) -> Result<usiz
                 .map(|(_, v)| *v)
                 .ok_or_else(|| error(format!("no value for parameter `{name}`")))?
         };
-        if factor == 0 && name.is_empty() && !term.is_empty() {
-            return Err(error("a width of 0".to_string()));
-        }
-        if term.is_empty() {
-            return Err(error("an empty term".to_string()));
-        }
         total += factor * value;
+    }
+    if total == 0 {
+        return Err(error("a width of 0".to_string()));
     }
     Ok(total)
 }

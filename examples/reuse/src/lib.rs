@@ -61,7 +61,7 @@ pub const PORT_DOCS: &[PortDoc] = &[
 
 /// A constant-speed jog: a `W`-bit divider feeding an output stage with
 /// `T`-bit timers and a `P`-bit pending count.
-#[derive(Clone, Debug, LogicBlock)]
+#[derive(Clone, Debug, Default, LogicBlock)]
 pub struct JogGenerator<const W: usize, const T: usize, const P: usize> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
@@ -91,28 +91,6 @@ pub struct JogGenerator<const W: usize, const T: usize, const P: usize> {
     pub busy: Signal<Out, Bit>,
     divider: FreqDivider<W>,
     stage: StepOutput<T, P>,
-}
-
-impl<const W: usize, const T: usize, const P: usize> Default for JogGenerator<W, T, P> {
-    fn default() -> Self {
-        Self {
-            clock: Default::default(),
-            reset: Default::default(),
-            enable: Default::default(),
-            divisor: Default::default(),
-            dir: Default::default(),
-            mode: Default::default(),
-            step_len: Default::default(),
-            step_space: Default::default(),
-            dir_setup: Default::default(),
-            dir_hold: Default::default(),
-            out_a: Default::default(),
-            out_b: Default::default(),
-            busy: Default::default(),
-            divider: Default::default(),
-            stage: Default::default(),
-        }
-    }
 }
 
 impl<const W: usize, const T: usize, const P: usize> Logic for JogGenerator<W, T, P> {
