@@ -95,6 +95,18 @@ always @(*) begin
     end
 end
 
+// The RAM carries `no_rw_check`: a word read at an edge that writes the
+// same address is undefined on iCE40. The FIFO never shows one: after such
+// an edge, a non-empty FIFO's head is the bypass register.
+reg f_collided = 1'b0;
+always @(posedge clock)
+    f_collided <= ram__read_enable && ram__write_enable
+        && ram__read_address == ram__write_address;
+always @(*) begin
+    if (f_collided && !empty)
+        assert(bypass__q);
+end
+
 // Before the first write taken since power-up, `head` is 0 (from the
 // first clock edge on: the RAM's read register has no initial value in
 // the Verilog, so the state before any edge is not covered).

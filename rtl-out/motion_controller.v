@@ -74,6 +74,22 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     output reg  dac_ldac;
 
     // Constant declarations
+    localparam  shadow_bit__0 = 32'h1;
+    localparam  shadow_bit__1 = 32'h2;
+    localparam  shadow_bit__2 = 32'h4;
+    localparam  shadow_bit__3 = 32'h8;
+    localparam  shadow_bit__4 = 32'h10;
+    localparam  shadow_bit__5 = 32'h20;
+    localparam  shadow_bit__6 = 32'h40;
+    localparam  shadow_bit__7 = 32'h80;
+    localparam  shadow_bit__8 = 32'h100;
+    localparam  shadow_bit__9 = 32'h200;
+    localparam  shadow_bit__10 = 32'h400;
+    localparam  shadow_bit__11 = 32'h800;
+    localparam  shadow_bit__12 = 32'h1000;
+    localparam  shadow_bit__13 = 32'h2000;
+    localparam  shadow_bit__14 = 32'h4000;
+    localparam  shadow_bit__15 = 32'h8000;
     localparam  has_analog = 1'b0;
     localparam  code_max = 16'h7fff;
     localparam  code_min = 16'h8000;
@@ -118,6 +134,26 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     localparam  bit1_32 = 32'h2;
     localparam  bit2_32 = 32'h4;
     localparam  zero32 = 32'h0;
+    localparam  upper_half = 32'hffff0000;
+    localparam  zero_entry = 18'b0;
+    localparam  entry_bit__0 = 18'b1;
+    localparam  entry_bit__1 = 18'b10;
+    localparam  entry_bit__2 = 18'b100;
+    localparam  entry_bit__3 = 18'b1000;
+    localparam  entry_bit__4 = 18'b10000;
+    localparam  entry_bit__5 = 18'b100000;
+    localparam  entry_bit__6 = 18'b1000000;
+    localparam  entry_bit__7 = 18'b10000000;
+    localparam  entry_bit__8 = 18'b100000000;
+    localparam  entry_bit__9 = 18'b1000000000;
+    localparam  entry_bit__10 = 18'b10000000000;
+    localparam  entry_bit__11 = 18'b100000000000;
+    localparam  entry_bit__12 = 18'b1000000000000;
+    localparam  entry_bit__13 = 18'b10000000000000;
+    localparam  entry_bit__14 = 18'b100000000000000;
+    localparam  entry_bit__15 = 18'b1000000000000000;
+    localparam  entry_bit__16 = 18'b10000000000000000;
+    localparam  entry_bit__17 = 18'b100000000000000000;
     localparam  one32 = 32'h1;
     localparam  zero_p = 16'h0;
     localparam  one_p = 16'h1;
@@ -190,6 +226,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [7:0] axes__0__address;
     reg  axes__0__write;
     reg  [31:0] axes__0__write_data;
+    reg  [17:0] axes__0__fifo_entry;
     wire  [31:0] axes__0__read_data;
     reg  axes__0__enc_a;
     reg  axes__0__enc_b;
@@ -241,6 +278,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [7:0] axes__1__address;
     reg  axes__1__write;
     reg  [31:0] axes__1__write_data;
+    reg  [17:0] axes__1__fifo_entry;
     wire  [31:0] axes__1__read_data;
     reg  axes__1__enc_a;
     reg  axes__1__enc_b;
@@ -292,6 +330,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [7:0] axes__2__address;
     reg  axes__2__write;
     reg  [31:0] axes__2__write_data;
+    reg  [17:0] axes__2__fifo_entry;
     wire  [31:0] axes__2__read_data;
     reg  axes__2__enc_a;
     reg  axes__2__enc_b;
@@ -329,6 +368,13 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  [15:0] axes__2__dac_code;
     wire  axes__2__code_out_of_range;
     wire  axes__2__code_negative;
+    reg  config_shadow__clock;
+    reg  config_shadow__reset;
+    reg  [7:0] config_shadow__address;
+    reg  config_shadow__write;
+    reg  [15:0] config_shadow__write_data;
+    reg  config_shadow__read;
+    wire  [15:0] config_shadow__read_data;
     reg  tick_divider__clock;
     reg  tick_divider__reset;
     reg  tick_divider__enable;
@@ -526,6 +572,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [2:0] steps_a;
     reg  [2:0] steps_b;
     reg  [2:0] enables;
+    reg  [17:0] fifo_entry;
 
     // Sub module instances
     motion_controller__axes__0 axes__0(
@@ -543,6 +590,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .address(axes__0__address),
         .write(axes__0__write),
         .write_data(axes__0__write_data),
+        .fifo_entry(axes__0__fifo_entry),
         .read_data(axes__0__read_data),
         .enc_a(axes__0__enc_a),
         .enc_b(axes__0__enc_b),
@@ -596,6 +644,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .address(axes__1__address),
         .write(axes__1__write),
         .write_data(axes__1__write_data),
+        .fifo_entry(axes__1__fifo_entry),
         .read_data(axes__1__read_data),
         .enc_a(axes__1__enc_a),
         .enc_b(axes__1__enc_b),
@@ -649,6 +698,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .address(axes__2__address),
         .write(axes__2__write),
         .write_data(axes__2__write_data),
+        .fifo_entry(axes__2__fifo_entry),
         .read_data(axes__2__read_data),
         .enc_a(axes__2__enc_a),
         .enc_b(axes__2__enc_b),
@@ -686,6 +736,15 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .dac_code(axes__2__dac_code),
         .code_out_of_range(axes__2__code_out_of_range),
         .code_negative(axes__2__code_negative)
+    );
+    motion_controller__config_shadow config_shadow(
+        .clock(config_shadow__clock),
+        .reset(config_shadow__reset),
+        .address(config_shadow__address),
+        .write(config_shadow__write),
+        .write_data(config_shadow__write_data),
+        .read(config_shadow__read),
+        .read_data(config_shadow__read_data)
     );
     motion_controller__tick_divider tick_divider(
         .clock(tick_divider__clock),
@@ -1185,6 +1244,61 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         steps_a = zero_k;
         steps_b = zero_k;
         enables = zero_k;
+        fifo_entry = zero_entry;
+        if (bus_write_data[0]) begin
+            fifo_entry = fifo_entry | entry_bit__0;
+        end
+        if (bus_write_data[1]) begin
+            fifo_entry = fifo_entry | entry_bit__1;
+        end
+        if (bus_write_data[2]) begin
+            fifo_entry = fifo_entry | entry_bit__2;
+        end
+        if (bus_write_data[3]) begin
+            fifo_entry = fifo_entry | entry_bit__3;
+        end
+        if (bus_write_data[4]) begin
+            fifo_entry = fifo_entry | entry_bit__4;
+        end
+        if (bus_write_data[5]) begin
+            fifo_entry = fifo_entry | entry_bit__5;
+        end
+        if (bus_write_data[6]) begin
+            fifo_entry = fifo_entry | entry_bit__6;
+        end
+        if (bus_write_data[7]) begin
+            fifo_entry = fifo_entry | entry_bit__7;
+        end
+        if (bus_write_data[8]) begin
+            fifo_entry = fifo_entry | entry_bit__8;
+        end
+        if (bus_write_data[9]) begin
+            fifo_entry = fifo_entry | entry_bit__9;
+        end
+        if (bus_write_data[10]) begin
+            fifo_entry = fifo_entry | entry_bit__10;
+        end
+        if (bus_write_data[11]) begin
+            fifo_entry = fifo_entry | entry_bit__11;
+        end
+        if (bus_write_data[12]) begin
+            fifo_entry = fifo_entry | entry_bit__12;
+        end
+        if (bus_write_data[13]) begin
+            fifo_entry = fifo_entry | entry_bit__13;
+        end
+        if (bus_write_data[14]) begin
+            fifo_entry = fifo_entry | entry_bit__14;
+        end
+        if (bus_write_data[15]) begin
+            fifo_entry = fifo_entry | entry_bit__15;
+        end
+        if (((bus_write_data & upper_half) == zero32) | ((bus_write_data & upper_half) == upper_half)) begin
+            fifo_entry = fifo_entry | entry_bit__16;
+        end
+        if (bus_write_data[32'h1f]) begin
+            fifo_entry = fifo_entry | entry_bit__17;
+        end
         axes__0__clock = clock;
         axes__0__reset = reset;
         axes__0__tick = tick;
@@ -1201,6 +1315,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__0__address = bus_address;
         axes__0__write = bus_write;
         axes__0__write_data = bus_write_data;
+        axes__0__fifo_entry = fifo_entry;
         axes__0__enc_a = (enc_a & axis_bit__0) != zero_k;
         axes__0__enc_b = (enc_b & axis_bit__0) != zero_k;
         axes__0__enc_index = (enc_index & axis_bit__0) != zero_k;
@@ -1236,6 +1351,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__1__address = bus_address;
         axes__1__write = bus_write;
         axes__1__write_data = bus_write_data;
+        axes__1__fifo_entry = fifo_entry;
         axes__1__enc_a = (enc_a & axis_bit__1) != zero_k;
         axes__1__enc_b = (enc_b & axis_bit__1) != zero_k;
         axes__1__enc_index = (enc_index & axis_bit__1) != zero_k;
@@ -1271,6 +1387,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__2__address = bus_address;
         axes__2__write = bus_write;
         axes__2__write_data = bus_write_data;
+        axes__2__fifo_entry = fifo_entry;
         axes__2__enc_a = (enc_a & axis_bit__2) != zero_k;
         axes__2__enc_b = (enc_b & axis_bit__2) != zero_k;
         axes__2__enc_index = (enc_index & axis_bit__2) != zero_k;
@@ -1591,6 +1708,60 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         if (dac_read_sel__q) begin
             read_out = dac__bus_read_data;
         end
+        config_shadow__clock = clock;
+        config_shadow__reset = reset;
+        config_shadow__address = bus_address;
+        config_shadow__write = bus_write;
+        config_shadow__write_data = bus_write_data[(32'h0)+:(16)];
+        config_shadow__read = bus_read;
+        if (config_shadow__read_data[0]) begin
+            read_out = read_out | shadow_bit__0;
+        end
+        if (config_shadow__read_data[1]) begin
+            read_out = read_out | shadow_bit__1;
+        end
+        if (config_shadow__read_data[2]) begin
+            read_out = read_out | shadow_bit__2;
+        end
+        if (config_shadow__read_data[3]) begin
+            read_out = read_out | shadow_bit__3;
+        end
+        if (config_shadow__read_data[4]) begin
+            read_out = read_out | shadow_bit__4;
+        end
+        if (config_shadow__read_data[5]) begin
+            read_out = read_out | shadow_bit__5;
+        end
+        if (config_shadow__read_data[6]) begin
+            read_out = read_out | shadow_bit__6;
+        end
+        if (config_shadow__read_data[7]) begin
+            read_out = read_out | shadow_bit__7;
+        end
+        if (config_shadow__read_data[8]) begin
+            read_out = read_out | shadow_bit__8;
+        end
+        if (config_shadow__read_data[9]) begin
+            read_out = read_out | shadow_bit__9;
+        end
+        if (config_shadow__read_data[10]) begin
+            read_out = read_out | shadow_bit__10;
+        end
+        if (config_shadow__read_data[11]) begin
+            read_out = read_out | shadow_bit__11;
+        end
+        if (config_shadow__read_data[12]) begin
+            read_out = read_out | shadow_bit__12;
+        end
+        if (config_shadow__read_data[13]) begin
+            read_out = read_out | shadow_bit__13;
+        end
+        if (config_shadow__read_data[14]) begin
+            read_out = read_out | shadow_bit__14;
+        end
+        if (config_shadow__read_data[15]) begin
+            read_out = read_out | shadow_bit__15;
+        end
         bus_read_data = read_out;
         if (reset) begin
             run__d = 1'b0;
@@ -1657,7 +1828,7 @@ module motion_controller__any_low_prev_n(d,q,clock);
 endmodule // motion_controller__any_low_prev_n
 
 
-module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -1674,6 +1845,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  [7:0] address;
     input wire  write;
     input wire  [31:0] write_data;
+    input wire  [17:0] fifo_entry;
     output reg  [31:0] read_data;
     input wire  enc_a;
     input wire  enc_b;
@@ -1716,7 +1888,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
-    localparam  above_code = 32'hffff8000;
     localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
@@ -1732,7 +1903,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
-    localparam  above_count = 32'hffff0000;
+    localparam  zero_entry = 18'b0;
     localparam  bit_mask__0 = 32'h1;
     localparam  bit_mask__1 = 32'h2;
     localparam  bit_mask__2 = 32'h4;
@@ -1761,9 +1932,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  fifo__clock;
     reg  fifo__reset;
     reg  fifo__write;
-    reg  [31:0] fifo__write_data;
+    reg  [17:0] fifo__write_data;
     reg  fifo__pop;
-    wire  [31:0] fifo__head;
+    wire  [17:0] fifo__head;
     wire  fifo__empty;
     wire  fifo__full;
     wire  [4:0] fifo__level;
@@ -1903,8 +2074,8 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] sample_rate__d;
     wire  [31:0] sample_rate__q;
     reg  sample_rate__clock;
-    reg  [31:0] popped__d;
-    wire  [31:0] popped__q;
+    reg  [17:0] popped__d;
+    wire  [17:0] popped__q;
     reg  popped__clock;
     reg  popped_upper_nonzero__d;
     wire  popped_upper_nonzero__q;
@@ -2479,7 +2650,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         end
         fifo__reset = reset | flush;
         fifo__write = write & selected & (offset == off_fifo_write);
-        fifo__write_data = write_data;
+        fifo__write_data = fifo_entry;
         fifo__pop = pop;
         fifo__low_water = low_water;
         fifo__clear_flags = 1'b0;
@@ -2489,22 +2660,22 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
-        upper_ones = (fifo__head & above_count) == above_count;
-        upper_zero = (fifo__head & above_count) == zero32;
+        upper_ones = fifo__head[32'h10] & fifo__head[32'h11];
+        upper_zero = fifo__head[32'h10] & ~fifo__head[32'h11];
         if (pop) begin
             popped__d = fifo__head;
             popped_upper_nonzero__d = ~upper_zero;
             popped_upper_ones__d = upper_ones;
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
-            code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
+            code_wide__d = ~(fifo__head[32'h10] & (fifo__head[32'hf] == fifo__head[32'h11]));
         end
         dac_code = popped__q[(32'h0)+:(16)];
         code_out_of_range = code_wide__q;
-        code_negative = popped__q[32'h1f];
+        code_negative = popped__q[32'h11];
         code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
         analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
-        if (popped__q[32'h1f]) begin
+        if (popped__q[32'h11]) begin
             too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
             count = zero_count - low_half;
         end
@@ -2541,7 +2712,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             analog_active__d = has_analog & settings__q[32'hd];
         end
         if (popped_valid__q) begin
-            forward__d = ~popped__q[32'h1f];
+            forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
             end
@@ -2549,8 +2720,8 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
                 integrand__d = count;
             end
             if (analog_active__q) begin
-                code_forward__d = ~popped__q[32'h1f] & code_nonzero;
-                code_backward__d = popped__q[32'h1f];
+                code_forward__d = ~popped__q[32'h11] & code_nonzero;
+                code_backward__d = popped__q[32'h11];
             end
         end
         if (underrun_d__q | halt) begin
@@ -2576,7 +2747,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
         if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
-            uniform_loaded_forward__d = ~popped__q[32'h1f];
+            uniform_loaded_forward__d = ~popped__q[32'h11];
         end
         uniform_ready_prev__d = uniform_ready;
         uniform_pulse_prev__d = uniform_pulse;
@@ -2728,24 +2899,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             if (offset == off_fifo_status) begin
                 read_data = read_data | fifo_status;
             end
-            if (offset == off_config) begin
-                read_data = read_data | settings__q;
-            end
-            if (offset == off_step_len) begin
-                read_data = read_data | step_len__q;
-            end
-            if (offset == off_step_space) begin
-                read_data = read_data | step_space__q;
-            end
-            if (offset == off_dir_setup) begin
-                read_data = read_data | dir_setup__q;
-            end
-            if (offset == off_dir_hold) begin
-                read_data = read_data | dir_hold__q;
-            end
-            if (offset == off_sample_rate) begin
-                read_data = read_data | sample_rate__q;
-            end
             if (offset == off_cmd_position) begin
                 read_data = read_data | position__count;
             end
@@ -2772,7 +2925,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             dir_setup__d = zero32;
             dir_hold__d = zero32;
             sample_rate__d = zero32;
-            popped__d = zero32;
+            popped__d = zero_entry;
             popped_upper_nonzero__d = 1'b0;
             popped_upper_ones__d = 1'b0;
             popped_low_nonzero__d = 1'b0;
@@ -4628,9 +4781,9 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
     input wire  clock;
     input wire  reset;
     input wire  write;
-    input wire  [31:0] write_data;
+    input wire  [17:0] write_data;
     input wire  pop;
-    output reg  [31:0] head;
+    output reg  [17:0] head;
     output reg  empty;
     output reg  full;
     output reg  [4:0] level;
@@ -4648,13 +4801,13 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
     localparam  capacity = 5'b10000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [3:0] ram__read_address;
-    reg  ram__read_clock;
-    wire  [31:0] ram__read_data;
-    reg  [3:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
+    wire  [17:0] ram__read_data;
     reg  ram__write_enable;
+    reg  [3:0] ram__write_address;
+    reg  [17:0] ram__write_data;
     reg  [3:0] read_pointer__d;
     wire  [3:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -4667,8 +4820,8 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
     reg  bypass__d;
     wire  bypass__q;
     reg  bypass__clock;
-    reg  [31:0] bypass_data__d;
-    wire  [31:0] bypass_data__q;
+    reg  [17:0] bypass_data__d;
+    wire  [17:0] bypass_data__q;
     reg  bypass_data__clock;
     reg  overflow_reg__d;
     wire  overflow_reg__q;
@@ -4692,13 +4845,13 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
 
     // Sub module instances
     motion_controller__axes__0__fifo__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     motion_controller__axes__0__fifo__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -4766,8 +4919,8 @@ module motion_controller__axes__0__fifo(clock,reset,write,write_data,pop,head,em
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -4849,13 +5002,13 @@ endmodule // motion_controller__axes__0__fifo__bypass
 module motion_controller__axes__0__fifo__bypass_data(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [17:0] d;
+    output reg  [17:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 18'h0;
     end
 
     always @(posedge clock) begin
@@ -4941,50 +5094,38 @@ module motion_controller__axes__0__fifo__overflow_reg(d,q,clock);
 endmodule // motion_controller__axes__0__fifo__overflow_reg
 
 
-module motion_controller__axes__0__fifo__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module motion_controller__axes__0__fifo__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [3:0] read_address;
-    input wire  read_clock;
-    output reg  [31:0] read_data;
-    input wire  [3:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
+    output reg  [17:0] read_data;
     input wire  write_enable;
+    input wire  [3:0] write_address;
+    input wire  [17:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[15:0];
+    (* no_rw_check *) reg [17:0] mem [0:15];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[4'h0] = 32'h0;
-    mem[4'h1] = 32'h0;
-    mem[4'h2] = 32'h0;
-    mem[4'h3] = 32'h0;
-    mem[4'h4] = 32'h0;
-    mem[4'h5] = 32'h0;
-    mem[4'h6] = 32'h0;
-    mem[4'h7] = 32'h0;
-    mem[4'h8] = 32'h0;
-    mem[4'h9] = 32'h0;
-    mem[4'ha] = 32'h0;
-    mem[4'hb] = 32'h0;
-    mem[4'hc] = 32'h0;
-    mem[4'hd] = 32'h0;
-    mem[4'he] = 32'h0;
-    mem[4'hf] = 32'h0;
+       for (i = 0; i <= 15; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // motion_controller__axes__0__fifo__ram
 
 
@@ -5602,13 +5743,13 @@ endmodule // motion_controller__axes__0__overrun_prev
 module motion_controller__axes__0__popped(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [17:0] d;
+    output reg  [17:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 18'h0;
     end
 
     always @(posedge clock) begin
@@ -8033,7 +8174,7 @@ module motion_controller__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_running_forward
 
 
-module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -8050,6 +8191,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  [7:0] address;
     input wire  write;
     input wire  [31:0] write_data;
+    input wire  [17:0] fifo_entry;
     output reg  [31:0] read_data;
     input wire  enc_a;
     input wire  enc_b;
@@ -8092,7 +8234,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
-    localparam  above_code = 32'hffff8000;
     localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
@@ -8108,7 +8249,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
-    localparam  above_count = 32'hffff0000;
+    localparam  zero_entry = 18'b0;
     localparam  bit_mask__0 = 32'h1;
     localparam  bit_mask__1 = 32'h2;
     localparam  bit_mask__2 = 32'h4;
@@ -8137,9 +8278,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  fifo__clock;
     reg  fifo__reset;
     reg  fifo__write;
-    reg  [31:0] fifo__write_data;
+    reg  [17:0] fifo__write_data;
     reg  fifo__pop;
-    wire  [31:0] fifo__head;
+    wire  [17:0] fifo__head;
     wire  fifo__empty;
     wire  fifo__full;
     wire  [4:0] fifo__level;
@@ -8279,8 +8420,8 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] sample_rate__d;
     wire  [31:0] sample_rate__q;
     reg  sample_rate__clock;
-    reg  [31:0] popped__d;
-    wire  [31:0] popped__q;
+    reg  [17:0] popped__d;
+    wire  [17:0] popped__q;
     reg  popped__clock;
     reg  popped_upper_nonzero__d;
     wire  popped_upper_nonzero__q;
@@ -8855,7 +8996,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         end
         fifo__reset = reset | flush;
         fifo__write = write & selected & (offset == off_fifo_write);
-        fifo__write_data = write_data;
+        fifo__write_data = fifo_entry;
         fifo__pop = pop;
         fifo__low_water = low_water;
         fifo__clear_flags = 1'b0;
@@ -8865,22 +9006,22 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
-        upper_ones = (fifo__head & above_count) == above_count;
-        upper_zero = (fifo__head & above_count) == zero32;
+        upper_ones = fifo__head[32'h10] & fifo__head[32'h11];
+        upper_zero = fifo__head[32'h10] & ~fifo__head[32'h11];
         if (pop) begin
             popped__d = fifo__head;
             popped_upper_nonzero__d = ~upper_zero;
             popped_upper_ones__d = upper_ones;
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
-            code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
+            code_wide__d = ~(fifo__head[32'h10] & (fifo__head[32'hf] == fifo__head[32'h11]));
         end
         dac_code = popped__q[(32'h0)+:(16)];
         code_out_of_range = code_wide__q;
-        code_negative = popped__q[32'h1f];
+        code_negative = popped__q[32'h11];
         code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
         analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
-        if (popped__q[32'h1f]) begin
+        if (popped__q[32'h11]) begin
             too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
             count = zero_count - low_half;
         end
@@ -8917,7 +9058,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             analog_active__d = has_analog & settings__q[32'hd];
         end
         if (popped_valid__q) begin
-            forward__d = ~popped__q[32'h1f];
+            forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
             end
@@ -8925,8 +9066,8 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
                 integrand__d = count;
             end
             if (analog_active__q) begin
-                code_forward__d = ~popped__q[32'h1f] & code_nonzero;
-                code_backward__d = popped__q[32'h1f];
+                code_forward__d = ~popped__q[32'h11] & code_nonzero;
+                code_backward__d = popped__q[32'h11];
             end
         end
         if (underrun_d__q | halt) begin
@@ -8952,7 +9093,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
         if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
-            uniform_loaded_forward__d = ~popped__q[32'h1f];
+            uniform_loaded_forward__d = ~popped__q[32'h11];
         end
         uniform_ready_prev__d = uniform_ready;
         uniform_pulse_prev__d = uniform_pulse;
@@ -9104,24 +9245,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             if (offset == off_fifo_status) begin
                 read_data = read_data | fifo_status;
             end
-            if (offset == off_config) begin
-                read_data = read_data | settings__q;
-            end
-            if (offset == off_step_len) begin
-                read_data = read_data | step_len__q;
-            end
-            if (offset == off_step_space) begin
-                read_data = read_data | step_space__q;
-            end
-            if (offset == off_dir_setup) begin
-                read_data = read_data | dir_setup__q;
-            end
-            if (offset == off_dir_hold) begin
-                read_data = read_data | dir_hold__q;
-            end
-            if (offset == off_sample_rate) begin
-                read_data = read_data | sample_rate__q;
-            end
             if (offset == off_cmd_position) begin
                 read_data = read_data | position__count;
             end
@@ -9148,7 +9271,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             dir_setup__d = zero32;
             dir_hold__d = zero32;
             sample_rate__d = zero32;
-            popped__d = zero32;
+            popped__d = zero_entry;
             popped_upper_nonzero__d = 1'b0;
             popped_upper_ones__d = 1'b0;
             popped_low_nonzero__d = 1'b0;
@@ -11004,9 +11127,9 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
     input wire  clock;
     input wire  reset;
     input wire  write;
-    input wire  [31:0] write_data;
+    input wire  [17:0] write_data;
     input wire  pop;
-    output reg  [31:0] head;
+    output reg  [17:0] head;
     output reg  empty;
     output reg  full;
     output reg  [4:0] level;
@@ -11024,13 +11147,13 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
     localparam  capacity = 5'b10000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [3:0] ram__read_address;
-    reg  ram__read_clock;
-    wire  [31:0] ram__read_data;
-    reg  [3:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
+    wire  [17:0] ram__read_data;
     reg  ram__write_enable;
+    reg  [3:0] ram__write_address;
+    reg  [17:0] ram__write_data;
     reg  [3:0] read_pointer__d;
     wire  [3:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -11043,8 +11166,8 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
     reg  bypass__d;
     wire  bypass__q;
     reg  bypass__clock;
-    reg  [31:0] bypass_data__d;
-    wire  [31:0] bypass_data__q;
+    reg  [17:0] bypass_data__d;
+    wire  [17:0] bypass_data__q;
     reg  bypass_data__clock;
     reg  overflow_reg__d;
     wire  overflow_reg__q;
@@ -11068,13 +11191,13 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
 
     // Sub module instances
     motion_controller__axes__1__fifo__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     motion_controller__axes__1__fifo__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -11142,8 +11265,8 @@ module motion_controller__axes__1__fifo(clock,reset,write,write_data,pop,head,em
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -11225,13 +11348,13 @@ endmodule // motion_controller__axes__1__fifo__bypass
 module motion_controller__axes__1__fifo__bypass_data(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [17:0] d;
+    output reg  [17:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 18'h0;
     end
 
     always @(posedge clock) begin
@@ -11317,50 +11440,38 @@ module motion_controller__axes__1__fifo__overflow_reg(d,q,clock);
 endmodule // motion_controller__axes__1__fifo__overflow_reg
 
 
-module motion_controller__axes__1__fifo__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module motion_controller__axes__1__fifo__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [3:0] read_address;
-    input wire  read_clock;
-    output reg  [31:0] read_data;
-    input wire  [3:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
+    output reg  [17:0] read_data;
     input wire  write_enable;
+    input wire  [3:0] write_address;
+    input wire  [17:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[15:0];
+    (* no_rw_check *) reg [17:0] mem [0:15];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[4'h0] = 32'h0;
-    mem[4'h1] = 32'h0;
-    mem[4'h2] = 32'h0;
-    mem[4'h3] = 32'h0;
-    mem[4'h4] = 32'h0;
-    mem[4'h5] = 32'h0;
-    mem[4'h6] = 32'h0;
-    mem[4'h7] = 32'h0;
-    mem[4'h8] = 32'h0;
-    mem[4'h9] = 32'h0;
-    mem[4'ha] = 32'h0;
-    mem[4'hb] = 32'h0;
-    mem[4'hc] = 32'h0;
-    mem[4'hd] = 32'h0;
-    mem[4'he] = 32'h0;
-    mem[4'hf] = 32'h0;
+       for (i = 0; i <= 15; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // motion_controller__axes__1__fifo__ram
 
 
@@ -11978,13 +12089,13 @@ endmodule // motion_controller__axes__1__overrun_prev
 module motion_controller__axes__1__popped(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [17:0] d;
+    output reg  [17:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 18'h0;
     end
 
     always @(posedge clock) begin
@@ -14409,7 +14520,7 @@ module motion_controller__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_running_forward
 
 
-module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -14426,6 +14537,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  [7:0] address;
     input wire  write;
     input wire  [31:0] write_data;
+    input wire  [17:0] fifo_entry;
     output reg  [31:0] read_data;
     input wire  enc_a;
     input wire  enc_b;
@@ -14468,7 +14580,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
-    localparam  above_code = 32'hffff8000;
     localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
@@ -14484,7 +14595,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
     localparam  max_count = 16'hffff;
-    localparam  above_count = 32'hffff0000;
+    localparam  zero_entry = 18'b0;
     localparam  bit_mask__0 = 32'h1;
     localparam  bit_mask__1 = 32'h2;
     localparam  bit_mask__2 = 32'h4;
@@ -14513,9 +14624,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  fifo__clock;
     reg  fifo__reset;
     reg  fifo__write;
-    reg  [31:0] fifo__write_data;
+    reg  [17:0] fifo__write_data;
     reg  fifo__pop;
-    wire  [31:0] fifo__head;
+    wire  [17:0] fifo__head;
     wire  fifo__empty;
     wire  fifo__full;
     wire  [4:0] fifo__level;
@@ -14655,8 +14766,8 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [31:0] sample_rate__d;
     wire  [31:0] sample_rate__q;
     reg  sample_rate__clock;
-    reg  [31:0] popped__d;
-    wire  [31:0] popped__q;
+    reg  [17:0] popped__d;
+    wire  [17:0] popped__q;
     reg  popped__clock;
     reg  popped_upper_nonzero__d;
     wire  popped_upper_nonzero__q;
@@ -15231,7 +15342,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         end
         fifo__reset = reset | flush;
         fifo__write = write & selected & (offset == off_fifo_write);
-        fifo__write_data = write_data;
+        fifo__write_data = fifo_entry;
         fifo__pop = pop;
         fifo__low_water = low_water;
         fifo__clear_flags = 1'b0;
@@ -15241,22 +15352,22 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
-        upper_ones = (fifo__head & above_count) == above_count;
-        upper_zero = (fifo__head & above_count) == zero32;
+        upper_ones = fifo__head[32'h10] & fifo__head[32'h11];
+        upper_zero = fifo__head[32'h10] & ~fifo__head[32'h11];
         if (pop) begin
             popped__d = fifo__head;
             popped_upper_nonzero__d = ~upper_zero;
             popped_upper_ones__d = upper_ones;
             popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
-            code_wide__d = ((fifo__head & above_code) != zero32) & ((fifo__head & above_code) != above_code);
+            code_wide__d = ~(fifo__head[32'h10] & (fifo__head[32'hf] == fifo__head[32'h11]));
         end
         dac_code = popped__q[(32'h0)+:(16)];
         code_out_of_range = code_wide__q;
-        code_negative = popped__q[32'h1f];
+        code_negative = popped__q[32'h11];
         code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
         analog = analog_active__q;
         low_half = popped__q[(32'h0)+:(16)];
-        if (popped__q[32'h1f]) begin
+        if (popped__q[32'h11]) begin
             too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
             count = zero_count - low_half;
         end
@@ -15293,7 +15404,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             analog_active__d = has_analog & settings__q[32'hd];
         end
         if (popped_valid__q) begin
-            forward__d = ~popped__q[32'h1f];
+            forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
             end
@@ -15301,8 +15412,8 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
                 integrand__d = count;
             end
             if (analog_active__q) begin
-                code_forward__d = ~popped__q[32'h1f] & code_nonzero;
-                code_backward__d = popped__q[32'h1f];
+                code_forward__d = ~popped__q[32'h11] & code_nonzero;
+                code_backward__d = popped__q[32'h11];
             end
         end
         if (underrun_d__q | halt) begin
@@ -15328,7 +15439,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         uniform__div_quotient = div_quotient;
         uniform__div_remainder = div_remainder;
         if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
-            uniform_loaded_forward__d = ~popped__q[32'h1f];
+            uniform_loaded_forward__d = ~popped__q[32'h11];
         end
         uniform_ready_prev__d = uniform_ready;
         uniform_pulse_prev__d = uniform_pulse;
@@ -15480,24 +15591,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             if (offset == off_fifo_status) begin
                 read_data = read_data | fifo_status;
             end
-            if (offset == off_config) begin
-                read_data = read_data | settings__q;
-            end
-            if (offset == off_step_len) begin
-                read_data = read_data | step_len__q;
-            end
-            if (offset == off_step_space) begin
-                read_data = read_data | step_space__q;
-            end
-            if (offset == off_dir_setup) begin
-                read_data = read_data | dir_setup__q;
-            end
-            if (offset == off_dir_hold) begin
-                read_data = read_data | dir_hold__q;
-            end
-            if (offset == off_sample_rate) begin
-                read_data = read_data | sample_rate__q;
-            end
             if (offset == off_cmd_position) begin
                 read_data = read_data | position__count;
             end
@@ -15524,7 +15617,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             dir_setup__d = zero32;
             dir_hold__d = zero32;
             sample_rate__d = zero32;
-            popped__d = zero32;
+            popped__d = zero_entry;
             popped_upper_nonzero__d = 1'b0;
             popped_upper_ones__d = 1'b0;
             popped_low_nonzero__d = 1'b0;
@@ -17380,9 +17473,9 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
     input wire  clock;
     input wire  reset;
     input wire  write;
-    input wire  [31:0] write_data;
+    input wire  [17:0] write_data;
     input wire  pop;
-    output reg  [31:0] head;
+    output reg  [17:0] head;
     output reg  empty;
     output reg  full;
     output reg  [4:0] level;
@@ -17400,13 +17493,13 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
     localparam  capacity = 5'b10000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [3:0] ram__read_address;
-    reg  ram__read_clock;
-    wire  [31:0] ram__read_data;
-    reg  [3:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
+    wire  [17:0] ram__read_data;
     reg  ram__write_enable;
+    reg  [3:0] ram__write_address;
+    reg  [17:0] ram__write_data;
     reg  [3:0] read_pointer__d;
     wire  [3:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -17419,8 +17512,8 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
     reg  bypass__d;
     wire  bypass__q;
     reg  bypass__clock;
-    reg  [31:0] bypass_data__d;
-    wire  [31:0] bypass_data__q;
+    reg  [17:0] bypass_data__d;
+    wire  [17:0] bypass_data__q;
     reg  bypass_data__clock;
     reg  overflow_reg__d;
     wire  overflow_reg__q;
@@ -17444,13 +17537,13 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
 
     // Sub module instances
     motion_controller__axes__2__fifo__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     motion_controller__axes__2__fifo__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -17518,8 +17611,8 @@ module motion_controller__axes__2__fifo(clock,reset,write,write_data,pop,head,em
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -17601,13 +17694,13 @@ endmodule // motion_controller__axes__2__fifo__bypass
 module motion_controller__axes__2__fifo__bypass_data(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [17:0] d;
+    output reg  [17:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 18'h0;
     end
 
     always @(posedge clock) begin
@@ -17693,50 +17786,38 @@ module motion_controller__axes__2__fifo__overflow_reg(d,q,clock);
 endmodule // motion_controller__axes__2__fifo__overflow_reg
 
 
-module motion_controller__axes__2__fifo__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module motion_controller__axes__2__fifo__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [3:0] read_address;
-    input wire  read_clock;
-    output reg  [31:0] read_data;
-    input wire  [3:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
+    output reg  [17:0] read_data;
     input wire  write_enable;
+    input wire  [3:0] write_address;
+    input wire  [17:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[15:0];
+    (* no_rw_check *) reg [17:0] mem [0:15];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[4'h0] = 32'h0;
-    mem[4'h1] = 32'h0;
-    mem[4'h2] = 32'h0;
-    mem[4'h3] = 32'h0;
-    mem[4'h4] = 32'h0;
-    mem[4'h5] = 32'h0;
-    mem[4'h6] = 32'h0;
-    mem[4'h7] = 32'h0;
-    mem[4'h8] = 32'h0;
-    mem[4'h9] = 32'h0;
-    mem[4'ha] = 32'h0;
-    mem[4'hb] = 32'h0;
-    mem[4'hc] = 32'h0;
-    mem[4'hd] = 32'h0;
-    mem[4'he] = 32'h0;
-    mem[4'hf] = 32'h0;
+       for (i = 0; i <= 15; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // motion_controller__axes__2__fifo__ram
 
 
@@ -18354,13 +18435,13 @@ endmodule // motion_controller__axes__2__overrun_prev
 module motion_controller__axes__2__popped(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [17:0] d;
+    output reg  [17:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 18'h0;
     end
 
     always @(posedge clock) begin
@@ -20802,6 +20883,239 @@ module motion_controller__boundary_next(d,q,clock);
     end
 
 endmodule // motion_controller__boundary_next
+
+
+module motion_controller__config_shadow(clock,reset,address,write,write_data,read,read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [15:0] write_data;
+    input wire  read;
+    output reg  [15:0] read_data;
+
+    // Constant declarations
+    localparam  windows__0 = 3'b1;
+    localparam  windows__1 = 3'b10;
+    localparam  windows__2 = 3'b11;
+    localparam  one8 = 8'h1;
+    localparam  zero8 = 8'h0;
+    localparam  zero2 = 2'b0;
+    localparam  config_mask = 16'h1fff;
+    localparam  timing_mask = 16'hffff;
+    localparam  sample_rate_mask = 16'hff;
+    localparam  off_config = 3'b10;
+    localparam  off_sample_rate = 3'b111;
+
+    // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
+    reg  [7:0] ram__read_address;
+    wire  [15:0] ram__read_data;
+    reg  ram__write_enable;
+    reg  [7:0] ram__write_address;
+    reg  [15:0] ram__write_data;
+    reg  [7:0] valid__0__d;
+    wire  [7:0] valid__0__q;
+    reg  valid__0__clock;
+    reg  [7:0] valid__1__d;
+    wire  [7:0] valid__1__q;
+    reg  valid__1__clock;
+    reg  [7:0] valid__2__d;
+    wire  [7:0] valid__2__q;
+    reg  valid__2__clock;
+
+    // Local signals
+    reg  shadowed;
+    reg  [7:0] offset_bit;
+    reg  hit;
+    reg  write_hit;
+    reg  [15:0] write_mask;
+
+    // Sub module instances
+    motion_controller__config_shadow__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
+        .read_address(ram__read_address),
+        .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
+        .write_address(ram__write_address),
+        .write_data(ram__write_data)
+    );
+    motion_controller__config_shadow__valid__0 valid__0(
+        .d(valid__0__d),
+        .q(valid__0__q),
+        .clock(valid__0__clock)
+    );
+    motion_controller__config_shadow__valid__1 valid__1(
+        .d(valid__1__d),
+        .q(valid__1__q),
+        .clock(valid__1__clock)
+    );
+    motion_controller__config_shadow__valid__2 valid__2(
+        .d(valid__2__d),
+        .q(valid__2__q),
+        .clock(valid__2__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        valid__0__clock = clock;
+        valid__0__d = valid__0__q;
+        valid__1__clock = clock;
+        valid__1__d = valid__1__q;
+        valid__2__clock = clock;
+        valid__2__d = valid__2__q;
+        ram__clock = clock;
+        shadowed = ~address[32'h4] & ~address[32'h3] & (address[(32'h1)+:(2)] != zero2);
+        offset_bit = one8 << address[(32'h0)+:(3)];
+        hit = 1'b0;
+        write_hit = 1'b0;
+        if (shadowed & (address[(32'h5)+:(3)] == windows__0)) begin
+            write_hit = write;
+            if ((valid__0__q & offset_bit) != zero8) begin
+                hit = 1'b1;
+            end
+            if (write) begin
+                valid__0__d = valid__0__q | offset_bit;
+            end
+        end
+        if (shadowed & (address[(32'h5)+:(3)] == windows__1)) begin
+            write_hit = write;
+            if ((valid__1__q & offset_bit) != zero8) begin
+                hit = 1'b1;
+            end
+            if (write) begin
+                valid__1__d = valid__1__q | offset_bit;
+            end
+        end
+        if (shadowed & (address[(32'h5)+:(3)] == windows__2)) begin
+            write_hit = write;
+            if ((valid__2__q & offset_bit) != zero8) begin
+                hit = 1'b1;
+            end
+            if (write) begin
+                valid__2__d = valid__2__q | offset_bit;
+            end
+        end
+        write_mask = timing_mask;
+        if (address[(32'h0)+:(3)] == off_config) begin
+            write_mask = config_mask;
+        end
+        if (address[(32'h0)+:(3)] == off_sample_rate) begin
+            write_mask = sample_rate_mask;
+        end
+        ram__write_enable = write_hit;
+        ram__write_address = address;
+        ram__write_data = write_data & write_mask;
+        ram__read_enable = read | reset;
+        ram__read_address = zero8;
+        if (hit & ~reset) begin
+            ram__read_address = address;
+        end
+        read_data = ram__read_data;
+        if (reset) begin
+            valid__0__d = zero8;
+            valid__1__d = zero8;
+            valid__2__d = zero8;
+        end
+    end
+
+endmodule // motion_controller__config_shadow
+
+
+module motion_controller__config_shadow__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  read_enable;
+    input wire  [7:0] read_address;
+    output reg  [15:0] read_data;
+    input wire  write_enable;
+    input wire  [7:0] write_address;
+    input wire  [15:0] write_data;
+
+    // Update code (custom)
+    reg [15:0] mem [0:255];
+    integer i;
+
+    // Block RAM powers up 0, and so do the words and the read register here.
+    initial begin
+       for (i = 0; i <= 255; i = i + 1) mem[i] = 0;
+       read_data = 0;
+    end
+
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
+    end
+
+    always @(posedge clock) begin
+       if (write_enable) begin
+          mem[write_address] <= write_data;
+       end
+    end
+endmodule // motion_controller__config_shadow__ram
+
+
+module motion_controller__config_shadow__valid__0(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__config_shadow__valid__0
+
+
+module motion_controller__config_shadow__valid__1(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__config_shadow__valid__1
+
+
+module motion_controller__config_shadow__valid__2(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__config_shadow__valid__2
 
 
 module motion_controller__dac(clock,reset,bus_address,bus_write_data,bus_write,bus_read,update,force_safe,load,load_code,bus_read_data,dac_data,dac_cs_n,dac_l1_n,dac_ldac,busy,safe);

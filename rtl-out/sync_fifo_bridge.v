@@ -1199,13 +1199,13 @@ module sync_fifo_bridge__channels__0__cmd(clock,reset,write,write_data,pop,head,
     localparam  capacity = 7'b1000000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [5:0] ram__read_address;
-    reg  ram__read_clock;
     wire  [31:0] ram__read_data;
-    reg  [5:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
     reg  ram__write_enable;
+    reg  [5:0] ram__write_address;
+    reg  [31:0] ram__write_data;
     reg  [5:0] read_pointer__d;
     wire  [5:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -1243,13 +1243,13 @@ module sync_fifo_bridge__channels__0__cmd(clock,reset,write,write_data,pop,head,
 
     // Sub module instances
     sync_fifo_bridge__channels__0__cmd__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     sync_fifo_bridge__channels__0__cmd__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -1317,8 +1317,8 @@ module sync_fifo_bridge__channels__0__cmd(clock,reset,write,write_data,pop,head,
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -1492,98 +1492,38 @@ module sync_fifo_bridge__channels__0__cmd__overflow_reg(d,q,clock);
 endmodule // sync_fifo_bridge__channels__0__cmd__overflow_reg
 
 
-module sync_fifo_bridge__channels__0__cmd__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module sync_fifo_bridge__channels__0__cmd__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [5:0] read_address;
-    input wire  read_clock;
     output reg  [31:0] read_data;
-    input wire  [5:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
     input wire  write_enable;
+    input wire  [5:0] write_address;
+    input wire  [31:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[63:0];
+    (* no_rw_check *) reg [31:0] mem [0:63];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[6'b0] = 32'h0;
-    mem[6'b1] = 32'h0;
-    mem[6'b10] = 32'h0;
-    mem[6'b11] = 32'h0;
-    mem[6'b100] = 32'h0;
-    mem[6'b101] = 32'h0;
-    mem[6'b110] = 32'h0;
-    mem[6'b111] = 32'h0;
-    mem[6'b1000] = 32'h0;
-    mem[6'b1001] = 32'h0;
-    mem[6'b1010] = 32'h0;
-    mem[6'b1011] = 32'h0;
-    mem[6'b1100] = 32'h0;
-    mem[6'b1101] = 32'h0;
-    mem[6'b1110] = 32'h0;
-    mem[6'b1111] = 32'h0;
-    mem[6'b10000] = 32'h0;
-    mem[6'b10001] = 32'h0;
-    mem[6'b10010] = 32'h0;
-    mem[6'b10011] = 32'h0;
-    mem[6'b10100] = 32'h0;
-    mem[6'b10101] = 32'h0;
-    mem[6'b10110] = 32'h0;
-    mem[6'b10111] = 32'h0;
-    mem[6'b11000] = 32'h0;
-    mem[6'b11001] = 32'h0;
-    mem[6'b11010] = 32'h0;
-    mem[6'b11011] = 32'h0;
-    mem[6'b11100] = 32'h0;
-    mem[6'b11101] = 32'h0;
-    mem[6'b11110] = 32'h0;
-    mem[6'b11111] = 32'h0;
-    mem[6'b100000] = 32'h0;
-    mem[6'b100001] = 32'h0;
-    mem[6'b100010] = 32'h0;
-    mem[6'b100011] = 32'h0;
-    mem[6'b100100] = 32'h0;
-    mem[6'b100101] = 32'h0;
-    mem[6'b100110] = 32'h0;
-    mem[6'b100111] = 32'h0;
-    mem[6'b101000] = 32'h0;
-    mem[6'b101001] = 32'h0;
-    mem[6'b101010] = 32'h0;
-    mem[6'b101011] = 32'h0;
-    mem[6'b101100] = 32'h0;
-    mem[6'b101101] = 32'h0;
-    mem[6'b101110] = 32'h0;
-    mem[6'b101111] = 32'h0;
-    mem[6'b110000] = 32'h0;
-    mem[6'b110001] = 32'h0;
-    mem[6'b110010] = 32'h0;
-    mem[6'b110011] = 32'h0;
-    mem[6'b110100] = 32'h0;
-    mem[6'b110101] = 32'h0;
-    mem[6'b110110] = 32'h0;
-    mem[6'b110111] = 32'h0;
-    mem[6'b111000] = 32'h0;
-    mem[6'b111001] = 32'h0;
-    mem[6'b111010] = 32'h0;
-    mem[6'b111011] = 32'h0;
-    mem[6'b111100] = 32'h0;
-    mem[6'b111101] = 32'h0;
-    mem[6'b111110] = 32'h0;
-    mem[6'b111111] = 32'h0;
+       for (i = 0; i <= 63; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // sync_fifo_bridge__channels__0__cmd__ram
 
 
@@ -1746,13 +1686,13 @@ module sync_fifo_bridge__channels__0__status(clock,reset,write,write_data,pop,he
     localparam  capacity = 7'b1000000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [5:0] ram__read_address;
-    reg  ram__read_clock;
     wire  [31:0] ram__read_data;
-    reg  [5:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
     reg  ram__write_enable;
+    reg  [5:0] ram__write_address;
+    reg  [31:0] ram__write_data;
     reg  [5:0] read_pointer__d;
     wire  [5:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -1790,13 +1730,13 @@ module sync_fifo_bridge__channels__0__status(clock,reset,write,write_data,pop,he
 
     // Sub module instances
     sync_fifo_bridge__channels__0__status__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     sync_fifo_bridge__channels__0__status__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -1864,8 +1804,8 @@ module sync_fifo_bridge__channels__0__status(clock,reset,write,write_data,pop,he
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -2039,98 +1979,38 @@ module sync_fifo_bridge__channels__0__status__overflow_reg(d,q,clock);
 endmodule // sync_fifo_bridge__channels__0__status__overflow_reg
 
 
-module sync_fifo_bridge__channels__0__status__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module sync_fifo_bridge__channels__0__status__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [5:0] read_address;
-    input wire  read_clock;
     output reg  [31:0] read_data;
-    input wire  [5:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
     input wire  write_enable;
+    input wire  [5:0] write_address;
+    input wire  [31:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[63:0];
+    (* no_rw_check *) reg [31:0] mem [0:63];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[6'b0] = 32'h0;
-    mem[6'b1] = 32'h0;
-    mem[6'b10] = 32'h0;
-    mem[6'b11] = 32'h0;
-    mem[6'b100] = 32'h0;
-    mem[6'b101] = 32'h0;
-    mem[6'b110] = 32'h0;
-    mem[6'b111] = 32'h0;
-    mem[6'b1000] = 32'h0;
-    mem[6'b1001] = 32'h0;
-    mem[6'b1010] = 32'h0;
-    mem[6'b1011] = 32'h0;
-    mem[6'b1100] = 32'h0;
-    mem[6'b1101] = 32'h0;
-    mem[6'b1110] = 32'h0;
-    mem[6'b1111] = 32'h0;
-    mem[6'b10000] = 32'h0;
-    mem[6'b10001] = 32'h0;
-    mem[6'b10010] = 32'h0;
-    mem[6'b10011] = 32'h0;
-    mem[6'b10100] = 32'h0;
-    mem[6'b10101] = 32'h0;
-    mem[6'b10110] = 32'h0;
-    mem[6'b10111] = 32'h0;
-    mem[6'b11000] = 32'h0;
-    mem[6'b11001] = 32'h0;
-    mem[6'b11010] = 32'h0;
-    mem[6'b11011] = 32'h0;
-    mem[6'b11100] = 32'h0;
-    mem[6'b11101] = 32'h0;
-    mem[6'b11110] = 32'h0;
-    mem[6'b11111] = 32'h0;
-    mem[6'b100000] = 32'h0;
-    mem[6'b100001] = 32'h0;
-    mem[6'b100010] = 32'h0;
-    mem[6'b100011] = 32'h0;
-    mem[6'b100100] = 32'h0;
-    mem[6'b100101] = 32'h0;
-    mem[6'b100110] = 32'h0;
-    mem[6'b100111] = 32'h0;
-    mem[6'b101000] = 32'h0;
-    mem[6'b101001] = 32'h0;
-    mem[6'b101010] = 32'h0;
-    mem[6'b101011] = 32'h0;
-    mem[6'b101100] = 32'h0;
-    mem[6'b101101] = 32'h0;
-    mem[6'b101110] = 32'h0;
-    mem[6'b101111] = 32'h0;
-    mem[6'b110000] = 32'h0;
-    mem[6'b110001] = 32'h0;
-    mem[6'b110010] = 32'h0;
-    mem[6'b110011] = 32'h0;
-    mem[6'b110100] = 32'h0;
-    mem[6'b110101] = 32'h0;
-    mem[6'b110110] = 32'h0;
-    mem[6'b110111] = 32'h0;
-    mem[6'b111000] = 32'h0;
-    mem[6'b111001] = 32'h0;
-    mem[6'b111010] = 32'h0;
-    mem[6'b111011] = 32'h0;
-    mem[6'b111100] = 32'h0;
-    mem[6'b111101] = 32'h0;
-    mem[6'b111110] = 32'h0;
-    mem[6'b111111] = 32'h0;
+       for (i = 0; i <= 63; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // sync_fifo_bridge__channels__0__status__ram
 
 
@@ -2666,13 +2546,13 @@ module sync_fifo_bridge__channels__1__cmd(clock,reset,write,write_data,pop,head,
     localparam  capacity = 7'b1000000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [5:0] ram__read_address;
-    reg  ram__read_clock;
     wire  [31:0] ram__read_data;
-    reg  [5:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
     reg  ram__write_enable;
+    reg  [5:0] ram__write_address;
+    reg  [31:0] ram__write_data;
     reg  [5:0] read_pointer__d;
     wire  [5:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -2710,13 +2590,13 @@ module sync_fifo_bridge__channels__1__cmd(clock,reset,write,write_data,pop,head,
 
     // Sub module instances
     sync_fifo_bridge__channels__1__cmd__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     sync_fifo_bridge__channels__1__cmd__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -2784,8 +2664,8 @@ module sync_fifo_bridge__channels__1__cmd(clock,reset,write,write_data,pop,head,
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -2959,98 +2839,38 @@ module sync_fifo_bridge__channels__1__cmd__overflow_reg(d,q,clock);
 endmodule // sync_fifo_bridge__channels__1__cmd__overflow_reg
 
 
-module sync_fifo_bridge__channels__1__cmd__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module sync_fifo_bridge__channels__1__cmd__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [5:0] read_address;
-    input wire  read_clock;
     output reg  [31:0] read_data;
-    input wire  [5:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
     input wire  write_enable;
+    input wire  [5:0] write_address;
+    input wire  [31:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[63:0];
+    (* no_rw_check *) reg [31:0] mem [0:63];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[6'b0] = 32'h0;
-    mem[6'b1] = 32'h0;
-    mem[6'b10] = 32'h0;
-    mem[6'b11] = 32'h0;
-    mem[6'b100] = 32'h0;
-    mem[6'b101] = 32'h0;
-    mem[6'b110] = 32'h0;
-    mem[6'b111] = 32'h0;
-    mem[6'b1000] = 32'h0;
-    mem[6'b1001] = 32'h0;
-    mem[6'b1010] = 32'h0;
-    mem[6'b1011] = 32'h0;
-    mem[6'b1100] = 32'h0;
-    mem[6'b1101] = 32'h0;
-    mem[6'b1110] = 32'h0;
-    mem[6'b1111] = 32'h0;
-    mem[6'b10000] = 32'h0;
-    mem[6'b10001] = 32'h0;
-    mem[6'b10010] = 32'h0;
-    mem[6'b10011] = 32'h0;
-    mem[6'b10100] = 32'h0;
-    mem[6'b10101] = 32'h0;
-    mem[6'b10110] = 32'h0;
-    mem[6'b10111] = 32'h0;
-    mem[6'b11000] = 32'h0;
-    mem[6'b11001] = 32'h0;
-    mem[6'b11010] = 32'h0;
-    mem[6'b11011] = 32'h0;
-    mem[6'b11100] = 32'h0;
-    mem[6'b11101] = 32'h0;
-    mem[6'b11110] = 32'h0;
-    mem[6'b11111] = 32'h0;
-    mem[6'b100000] = 32'h0;
-    mem[6'b100001] = 32'h0;
-    mem[6'b100010] = 32'h0;
-    mem[6'b100011] = 32'h0;
-    mem[6'b100100] = 32'h0;
-    mem[6'b100101] = 32'h0;
-    mem[6'b100110] = 32'h0;
-    mem[6'b100111] = 32'h0;
-    mem[6'b101000] = 32'h0;
-    mem[6'b101001] = 32'h0;
-    mem[6'b101010] = 32'h0;
-    mem[6'b101011] = 32'h0;
-    mem[6'b101100] = 32'h0;
-    mem[6'b101101] = 32'h0;
-    mem[6'b101110] = 32'h0;
-    mem[6'b101111] = 32'h0;
-    mem[6'b110000] = 32'h0;
-    mem[6'b110001] = 32'h0;
-    mem[6'b110010] = 32'h0;
-    mem[6'b110011] = 32'h0;
-    mem[6'b110100] = 32'h0;
-    mem[6'b110101] = 32'h0;
-    mem[6'b110110] = 32'h0;
-    mem[6'b110111] = 32'h0;
-    mem[6'b111000] = 32'h0;
-    mem[6'b111001] = 32'h0;
-    mem[6'b111010] = 32'h0;
-    mem[6'b111011] = 32'h0;
-    mem[6'b111100] = 32'h0;
-    mem[6'b111101] = 32'h0;
-    mem[6'b111110] = 32'h0;
-    mem[6'b111111] = 32'h0;
+       for (i = 0; i <= 63; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // sync_fifo_bridge__channels__1__cmd__ram
 
 
@@ -3213,13 +3033,13 @@ module sync_fifo_bridge__channels__1__status(clock,reset,write,write_data,pop,he
     localparam  capacity = 7'b1000000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [5:0] ram__read_address;
-    reg  ram__read_clock;
     wire  [31:0] ram__read_data;
-    reg  [5:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
     reg  ram__write_enable;
+    reg  [5:0] ram__write_address;
+    reg  [31:0] ram__write_data;
     reg  [5:0] read_pointer__d;
     wire  [5:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -3257,13 +3077,13 @@ module sync_fifo_bridge__channels__1__status(clock,reset,write,write_data,pop,he
 
     // Sub module instances
     sync_fifo_bridge__channels__1__status__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     sync_fifo_bridge__channels__1__status__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -3331,8 +3151,8 @@ module sync_fifo_bridge__channels__1__status(clock,reset,write,write_data,pop,he
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -3506,98 +3326,38 @@ module sync_fifo_bridge__channels__1__status__overflow_reg(d,q,clock);
 endmodule // sync_fifo_bridge__channels__1__status__overflow_reg
 
 
-module sync_fifo_bridge__channels__1__status__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module sync_fifo_bridge__channels__1__status__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [5:0] read_address;
-    input wire  read_clock;
     output reg  [31:0] read_data;
-    input wire  [5:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
     input wire  write_enable;
+    input wire  [5:0] write_address;
+    input wire  [31:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[63:0];
+    (* no_rw_check *) reg [31:0] mem [0:63];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[6'b0] = 32'h0;
-    mem[6'b1] = 32'h0;
-    mem[6'b10] = 32'h0;
-    mem[6'b11] = 32'h0;
-    mem[6'b100] = 32'h0;
-    mem[6'b101] = 32'h0;
-    mem[6'b110] = 32'h0;
-    mem[6'b111] = 32'h0;
-    mem[6'b1000] = 32'h0;
-    mem[6'b1001] = 32'h0;
-    mem[6'b1010] = 32'h0;
-    mem[6'b1011] = 32'h0;
-    mem[6'b1100] = 32'h0;
-    mem[6'b1101] = 32'h0;
-    mem[6'b1110] = 32'h0;
-    mem[6'b1111] = 32'h0;
-    mem[6'b10000] = 32'h0;
-    mem[6'b10001] = 32'h0;
-    mem[6'b10010] = 32'h0;
-    mem[6'b10011] = 32'h0;
-    mem[6'b10100] = 32'h0;
-    mem[6'b10101] = 32'h0;
-    mem[6'b10110] = 32'h0;
-    mem[6'b10111] = 32'h0;
-    mem[6'b11000] = 32'h0;
-    mem[6'b11001] = 32'h0;
-    mem[6'b11010] = 32'h0;
-    mem[6'b11011] = 32'h0;
-    mem[6'b11100] = 32'h0;
-    mem[6'b11101] = 32'h0;
-    mem[6'b11110] = 32'h0;
-    mem[6'b11111] = 32'h0;
-    mem[6'b100000] = 32'h0;
-    mem[6'b100001] = 32'h0;
-    mem[6'b100010] = 32'h0;
-    mem[6'b100011] = 32'h0;
-    mem[6'b100100] = 32'h0;
-    mem[6'b100101] = 32'h0;
-    mem[6'b100110] = 32'h0;
-    mem[6'b100111] = 32'h0;
-    mem[6'b101000] = 32'h0;
-    mem[6'b101001] = 32'h0;
-    mem[6'b101010] = 32'h0;
-    mem[6'b101011] = 32'h0;
-    mem[6'b101100] = 32'h0;
-    mem[6'b101101] = 32'h0;
-    mem[6'b101110] = 32'h0;
-    mem[6'b101111] = 32'h0;
-    mem[6'b110000] = 32'h0;
-    mem[6'b110001] = 32'h0;
-    mem[6'b110010] = 32'h0;
-    mem[6'b110011] = 32'h0;
-    mem[6'b110100] = 32'h0;
-    mem[6'b110101] = 32'h0;
-    mem[6'b110110] = 32'h0;
-    mem[6'b110111] = 32'h0;
-    mem[6'b111000] = 32'h0;
-    mem[6'b111001] = 32'h0;
-    mem[6'b111010] = 32'h0;
-    mem[6'b111011] = 32'h0;
-    mem[6'b111100] = 32'h0;
-    mem[6'b111101] = 32'h0;
-    mem[6'b111110] = 32'h0;
-    mem[6'b111111] = 32'h0;
+       for (i = 0; i <= 63; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // sync_fifo_bridge__channels__1__status__ram
 
 
@@ -4133,13 +3893,13 @@ module sync_fifo_bridge__channels__2__cmd(clock,reset,write,write_data,pop,head,
     localparam  capacity = 7'b1000000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [5:0] ram__read_address;
-    reg  ram__read_clock;
     wire  [31:0] ram__read_data;
-    reg  [5:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
     reg  ram__write_enable;
+    reg  [5:0] ram__write_address;
+    reg  [31:0] ram__write_data;
     reg  [5:0] read_pointer__d;
     wire  [5:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -4177,13 +3937,13 @@ module sync_fifo_bridge__channels__2__cmd(clock,reset,write,write_data,pop,head,
 
     // Sub module instances
     sync_fifo_bridge__channels__2__cmd__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     sync_fifo_bridge__channels__2__cmd__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -4251,8 +4011,8 @@ module sync_fifo_bridge__channels__2__cmd(clock,reset,write,write_data,pop,head,
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -4426,98 +4186,38 @@ module sync_fifo_bridge__channels__2__cmd__overflow_reg(d,q,clock);
 endmodule // sync_fifo_bridge__channels__2__cmd__overflow_reg
 
 
-module sync_fifo_bridge__channels__2__cmd__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module sync_fifo_bridge__channels__2__cmd__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [5:0] read_address;
-    input wire  read_clock;
     output reg  [31:0] read_data;
-    input wire  [5:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
     input wire  write_enable;
+    input wire  [5:0] write_address;
+    input wire  [31:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[63:0];
+    (* no_rw_check *) reg [31:0] mem [0:63];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[6'b0] = 32'h0;
-    mem[6'b1] = 32'h0;
-    mem[6'b10] = 32'h0;
-    mem[6'b11] = 32'h0;
-    mem[6'b100] = 32'h0;
-    mem[6'b101] = 32'h0;
-    mem[6'b110] = 32'h0;
-    mem[6'b111] = 32'h0;
-    mem[6'b1000] = 32'h0;
-    mem[6'b1001] = 32'h0;
-    mem[6'b1010] = 32'h0;
-    mem[6'b1011] = 32'h0;
-    mem[6'b1100] = 32'h0;
-    mem[6'b1101] = 32'h0;
-    mem[6'b1110] = 32'h0;
-    mem[6'b1111] = 32'h0;
-    mem[6'b10000] = 32'h0;
-    mem[6'b10001] = 32'h0;
-    mem[6'b10010] = 32'h0;
-    mem[6'b10011] = 32'h0;
-    mem[6'b10100] = 32'h0;
-    mem[6'b10101] = 32'h0;
-    mem[6'b10110] = 32'h0;
-    mem[6'b10111] = 32'h0;
-    mem[6'b11000] = 32'h0;
-    mem[6'b11001] = 32'h0;
-    mem[6'b11010] = 32'h0;
-    mem[6'b11011] = 32'h0;
-    mem[6'b11100] = 32'h0;
-    mem[6'b11101] = 32'h0;
-    mem[6'b11110] = 32'h0;
-    mem[6'b11111] = 32'h0;
-    mem[6'b100000] = 32'h0;
-    mem[6'b100001] = 32'h0;
-    mem[6'b100010] = 32'h0;
-    mem[6'b100011] = 32'h0;
-    mem[6'b100100] = 32'h0;
-    mem[6'b100101] = 32'h0;
-    mem[6'b100110] = 32'h0;
-    mem[6'b100111] = 32'h0;
-    mem[6'b101000] = 32'h0;
-    mem[6'b101001] = 32'h0;
-    mem[6'b101010] = 32'h0;
-    mem[6'b101011] = 32'h0;
-    mem[6'b101100] = 32'h0;
-    mem[6'b101101] = 32'h0;
-    mem[6'b101110] = 32'h0;
-    mem[6'b101111] = 32'h0;
-    mem[6'b110000] = 32'h0;
-    mem[6'b110001] = 32'h0;
-    mem[6'b110010] = 32'h0;
-    mem[6'b110011] = 32'h0;
-    mem[6'b110100] = 32'h0;
-    mem[6'b110101] = 32'h0;
-    mem[6'b110110] = 32'h0;
-    mem[6'b110111] = 32'h0;
-    mem[6'b111000] = 32'h0;
-    mem[6'b111001] = 32'h0;
-    mem[6'b111010] = 32'h0;
-    mem[6'b111011] = 32'h0;
-    mem[6'b111100] = 32'h0;
-    mem[6'b111101] = 32'h0;
-    mem[6'b111110] = 32'h0;
-    mem[6'b111111] = 32'h0;
+       for (i = 0; i <= 63; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // sync_fifo_bridge__channels__2__cmd__ram
 
 
@@ -4680,13 +4380,13 @@ module sync_fifo_bridge__channels__2__status(clock,reset,write,write_data,pop,he
     localparam  capacity = 7'b1000000;
 
     // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
     reg  [5:0] ram__read_address;
-    reg  ram__read_clock;
     wire  [31:0] ram__read_data;
-    reg  [5:0] ram__write_address;
-    reg  ram__write_clock;
-    reg  [31:0] ram__write_data;
     reg  ram__write_enable;
+    reg  [5:0] ram__write_address;
+    reg  [31:0] ram__write_data;
     reg  [5:0] read_pointer__d;
     wire  [5:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -4724,13 +4424,13 @@ module sync_fifo_bridge__channels__2__status(clock,reset,write,write_data,pop,he
 
     // Sub module instances
     sync_fifo_bridge__channels__2__status__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
         .read_address(ram__read_address),
-        .read_clock(ram__read_clock),
         .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
         .write_address(ram__write_address),
-        .write_clock(ram__write_clock),
-        .write_data(ram__write_data),
-        .write_enable(ram__write_enable)
+        .write_data(ram__write_data)
     );
     sync_fifo_bridge__channels__2__status__read_pointer read_pointer(
         .d(read_pointer__d),
@@ -4798,8 +4498,8 @@ module sync_fifo_bridge__channels__2__status(clock,reset,write,write_data,pop,he
         underflow_reg__d = underflow_reg__q;
         not_empty_reg__d = not_empty_reg__q;
         full_reg__d = full_reg__q;
-        ram__read_clock = clock;
-        ram__write_clock = clock;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
         is_empty = ~not_empty_reg__q;
         is_full = full_reg__q;
         empty = is_empty;
@@ -4973,98 +4673,38 @@ module sync_fifo_bridge__channels__2__status__overflow_reg(d,q,clock);
 endmodule // sync_fifo_bridge__channels__2__status__overflow_reg
 
 
-module sync_fifo_bridge__channels__2__status__ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module sync_fifo_bridge__channels__2__status__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
 
     // Module arguments
+    input wire  clock;
+    input wire  read_enable;
     input wire  [5:0] read_address;
-    input wire  read_clock;
     output reg  [31:0] read_data;
-    input wire  [5:0] write_address;
-    input wire  write_clock;
-    input wire  [31:0] write_data;
     input wire  write_enable;
+    input wire  [5:0] write_address;
+    input wire  [31:0] write_data;
 
     // Update code (custom)
-    reg[31:0] mem[63:0];
+    (* no_rw_check *) reg [31:0] mem [0:63];
+    integer i;
 
+    // Block RAM powers up 0, and so do the words and the read register here.
     initial begin
-    mem[6'b0] = 32'h0;
-    mem[6'b1] = 32'h0;
-    mem[6'b10] = 32'h0;
-    mem[6'b11] = 32'h0;
-    mem[6'b100] = 32'h0;
-    mem[6'b101] = 32'h0;
-    mem[6'b110] = 32'h0;
-    mem[6'b111] = 32'h0;
-    mem[6'b1000] = 32'h0;
-    mem[6'b1001] = 32'h0;
-    mem[6'b1010] = 32'h0;
-    mem[6'b1011] = 32'h0;
-    mem[6'b1100] = 32'h0;
-    mem[6'b1101] = 32'h0;
-    mem[6'b1110] = 32'h0;
-    mem[6'b1111] = 32'h0;
-    mem[6'b10000] = 32'h0;
-    mem[6'b10001] = 32'h0;
-    mem[6'b10010] = 32'h0;
-    mem[6'b10011] = 32'h0;
-    mem[6'b10100] = 32'h0;
-    mem[6'b10101] = 32'h0;
-    mem[6'b10110] = 32'h0;
-    mem[6'b10111] = 32'h0;
-    mem[6'b11000] = 32'h0;
-    mem[6'b11001] = 32'h0;
-    mem[6'b11010] = 32'h0;
-    mem[6'b11011] = 32'h0;
-    mem[6'b11100] = 32'h0;
-    mem[6'b11101] = 32'h0;
-    mem[6'b11110] = 32'h0;
-    mem[6'b11111] = 32'h0;
-    mem[6'b100000] = 32'h0;
-    mem[6'b100001] = 32'h0;
-    mem[6'b100010] = 32'h0;
-    mem[6'b100011] = 32'h0;
-    mem[6'b100100] = 32'h0;
-    mem[6'b100101] = 32'h0;
-    mem[6'b100110] = 32'h0;
-    mem[6'b100111] = 32'h0;
-    mem[6'b101000] = 32'h0;
-    mem[6'b101001] = 32'h0;
-    mem[6'b101010] = 32'h0;
-    mem[6'b101011] = 32'h0;
-    mem[6'b101100] = 32'h0;
-    mem[6'b101101] = 32'h0;
-    mem[6'b101110] = 32'h0;
-    mem[6'b101111] = 32'h0;
-    mem[6'b110000] = 32'h0;
-    mem[6'b110001] = 32'h0;
-    mem[6'b110010] = 32'h0;
-    mem[6'b110011] = 32'h0;
-    mem[6'b110100] = 32'h0;
-    mem[6'b110101] = 32'h0;
-    mem[6'b110110] = 32'h0;
-    mem[6'b110111] = 32'h0;
-    mem[6'b111000] = 32'h0;
-    mem[6'b111001] = 32'h0;
-    mem[6'b111010] = 32'h0;
-    mem[6'b111011] = 32'h0;
-    mem[6'b111100] = 32'h0;
-    mem[6'b111101] = 32'h0;
-    mem[6'b111110] = 32'h0;
-    mem[6'b111111] = 32'h0;
+       for (i = 0; i <= 63; i = i + 1) mem[i] = 0;
+       read_data = 0;
     end
 
-
-    always @(posedge read_clock) begin
-       read_data <= mem[read_address];
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
     end
 
-    always @(posedge write_clock) begin
+    always @(posedge clock) begin
        if (write_enable) begin
           mem[write_address] <= write_data;
        end
     end
-
 endmodule // sync_fifo_bridge__channels__2__status__ram
 
 

@@ -65,6 +65,7 @@ pub mod dpram_mailbox;
 pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;
+pub mod holding_ram;
 pub mod host_links;
 pub mod input_conditioner;
 pub mod interrupt_controller;

@@ -50,8 +50,8 @@ pub fn datasheets() -> Vec<DatasheetSpec> {
         DatasheetSpec {
             block: "command_fifo",
             port_docs: command_fifo::PORT_DOCS,
-            parameters: &[("N", 4)],
-            build: || Box::new(command_fifo::CommandFifo::<4, 5>::default()),
+            parameters: &[("N", 4), ("W", 32)],
+            build: || Box::new(command_fifo::CommandFifo::<4, 5, 32>::default()),
         },
         DatasheetSpec {
             block: "dac_interface",

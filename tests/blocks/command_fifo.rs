@@ -39,13 +39,13 @@ fn random_inputs(seed: u64, cycles: usize, capacity: u64) -> Vec<CommandFifoInpu
 
 /// `cycles` random clocks against the model, on the backend
 /// `MOTION_HDL_BACKEND` names (default: Verilator, for speed).
-fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
+fn run<const N: usize, const NP1: usize, const W: usize>(seed: u64, cycles: usize) {
     let capacity = 1u64 << N;
     let backend = Backend::from_env_or(Backend::Verilator).unwrap();
     let mut pair = Lockstep::on(
         backend,
         "command_fifo",
-        CommandFifo::<N, NP1>::default(),
+        CommandFifo::<N, NP1, W>::default(),
         CommandFifoModel::new(capacity as usize),
     )
     .unwrap_or_else(|e| panic!("{e}"));
@@ -56,7 +56,10 @@ fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
     let (mut into_empty, mut at_one, mut when_full) = (0, 0, 0);
     let mut last = CommandFifoOutputs::default();
     // The model leaves `head` unspecified while empty (`agrees`).
-    let stimulus = random_inputs(seed, cycles, capacity);
+    let mut stimulus = random_inputs(seed, cycles, capacity);
+    for inputs in &mut stimulus {
+        inputs.write_data &= (1u64 << W) - 1;
+    }
     pair.run_all(&stimulus, |_, v, &rtl| {
         if !v.reset && v.write {
             into_empty += (last.level == 0) as u32;
@@ -83,24 +86,30 @@ fn run<const N: usize, const NP1: usize>(seed: u64, cycles: usize) {
 
 #[test]
 fn rtl_matches_the_queue_model_at_depth_4() {
-    run::<2, 3>(0xf1f0, 500_000);
+    run::<2, 3, 32>(0xf1f0, 500_000);
 }
 
 #[test]
 fn rtl_matches_the_queue_model_at_depth_16_and_256() {
-    run::<4, 5>(0xf1f1, 500_000);
-    run::<8, 9>(0xf1f2, 500_000);
+    run::<4, 5, 32>(0xf1f1, 500_000);
+    run::<8, 9, 32>(0xf1f2, 500_000);
+}
+
+/// The motion controller's FIFOs hold 18-bit compressed entries.
+#[test]
+fn rtl_matches_the_queue_model_with_18_bit_entries() {
+    run::<4, 5, 18>(0xf1f5, 500_000);
 }
 
 #[test]
 fn generated_verilog_matches_rust_in_icarus_and_verilator() {
-    check_instance::<CommandFifo<2, 3>>(
+    check_instance::<CommandFifo<2, 3, 32>>(
         Instance::Generated("command_fifo_4"),
         random_inputs(0xf1f3, 20_000, 4)
             .iter()
             .map(CommandFifoInputs::to_vector),
     );
-    check_instance::<CommandFifo<8, 9>>(
+    check_instance::<CommandFifo<8, 9, 32>>(
         Instance::Generated("command_fifo_256"),
         random_inputs(0xf1f4, 20_000, 256)
             .iter()
@@ -114,7 +123,7 @@ fn generated_verilog_matches_rust_in_icarus_and_verilator() {
 fn a_256_entry_fifo_synthesizes_into_two_block_rams() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("command_fifo_256.v");
-    let mut fifo = CommandFifo::<8, 9>::default();
+    let mut fifo = CommandFifo::<8, 9, 32>::default();
     let verilog = motion_hdl::export::module_verilog("command_fifo_256", &mut fifo).unwrap();
     std::fs::write(&path, verilog).unwrap();
     let figures = motion_hdl::tools::synth::synthesize(&path, "command_fifo_256", &[1], 100.0)

@@ -98,11 +98,11 @@ fn command_fifo_proof_catches_a_head_one_pop_late() {
     );
 }
 
-/// The RAM's first slot is not zero-initialized (a RAM built without its
+/// The RAM's words are not zero-initialized (a RAM built without its
 /// INIT): `head` is not 0 before the first write.
 #[test]
 fn command_fifo_proof_catches_a_ram_not_zeroed_at_power_up() {
-    assert_mutation_caught("command_fifo_n1", "mem[1'b0] = 32'h0;", "");
+    assert_mutation_caught("command_fifo_n1", "mem[i] = 0;", ";");
 }
 
 #[test]

@@ -3,11 +3,11 @@
 //! An internal building block for the motion controller's per-axis command
 //! queues. rust-hdl's `SynchronousFIFO` has no reset (a controller must be
 //! able to flush its queues) and no sticky error flags, so this FIFO wraps
-//! rust-hdl's `RAM` (which yosys maps to iCE40 block RAM) with its own
+//! a [`HoldingRam`] (iCE40 block RAM, read at every clock) with its own
 //! pointers. The head entry is always on `head` while `empty` is low
 //! (first-word fall-through); nothing is ever overwritten or invented.
 //!
-//! ## Ports (2^N entries of 32 bits)
+//! ## Ports (2^N entries of W bits)
 //!
 #![doc = include_str!("ports.md")]
 //!
@@ -21,7 +21,12 @@
 //! The RAM reads synchronously at the address the head will have after the
 //! edge. A write to that same address on the same edge (into an empty FIFO,
 //! or into the slot a pop is about to expose) is caught by a bypass
-//! register, because block RAM returns the old word on a read-during-write.
+//! register, which `head` shows instead of the RAM's word in the clock
+//! after: the FIFO never looks at a word read during a write of it. So its
+//! RAM is [`HoldingRam::collisions_unobserved`], and yosys adds no
+//! read-first logic of its own (it did, beside this bypass, with rust-hdl's
+//! `RAM`). The formal proof below checks the
+//! claim: a non-empty FIFO's head never comes from a colliding read.
 //!
 //! ## Formal proof
 //! `formal/command_fifo.sv` states the ports and timing above as
@@ -40,21 +45,22 @@
 //! for the motion controller's N = 4 (figures in the README's "What is
 //! proved").
 //!
-//! Two limits. The RAM's read register has no initial value in the
-//! Verilog, so `head` is 0 from the first clock edge after power-up, not
-//! before it. And the RAM's array is in rust-hdl's `RAM` submodule, which
+//! One limit. The RAM's array is in the [`HoldingRam`] submodule, which
 //! the proof cannot name, while an entry behind the head is held only
 //! there: the induction therefore takes the RAM's own contract as a
 //! premise (a read returns the word last written to its address before the
 //! read's edge, read-first), and `formal/command_fifo_ram.sv` proves that
 //! contract on the same RAM, built as the FIFO builds it, at both depths
-//! (assume-guarantee). The bounded checks from power-up of the mutation
+//! (assume-guarantee). The premise is never needed for a colliding read,
+//! whose word is undefined on iCE40 (see Implementation). The bounded
+//! checks from power-up of the mutation
 //! tests run on the real RAM, without the premise.
 
 pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::holding_ram::HoldingRam;
 use crate::blocks::port_doc::{port, PortDoc};
 
 /// Meaning of every port: the one source of the datasheet's port table.
@@ -62,9 +68,9 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("clock", "1", "rising-edge clock"),
     port("reset", "1", "synchronous, active high: flush (empty), flags 0"),
     port("write", "1", "push `write_data` (refused when full, unless a pop frees a slot on the same clock)"),
-    port("write_data", "32", "the entry to push"),
+    port("write_data", "W", "the entry to push"),
     port("pop", "1", "remove the head entry (refused when empty)"),
-    port("head", "32", "the oldest entry, valid while `empty` is low (while empty: 0 after power-up, else a stale word)"),
+    port("head", "W", "the oldest entry, valid while `empty` is low (while empty: 0 after power-up, else a stale word)"),
     port("empty", "1", "no entry (registered)"),
     port("full", "1", "2^N entries (registered)"),
     port("level", "N+1", "entries held"),
@@ -75,10 +81,10 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("underflow", "1", "sticky: a pop was refused (FIFO empty)"),
 ];
 
-/// Block-RAM FIFO of 2^N 32-bit entries with flush and sticky flags. See the
+/// Block-RAM FIFO of 2^N W-bit entries with flush and sticky flags. See the
 /// [module documentation](self).
 #[derive(LogicBlock)]
-pub struct CommandFifo<const N: usize, const NP1: usize> {
+pub struct CommandFifo<const N: usize, const NP1: usize, const W: usize> {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
     /// Synchronous reset: flush.
@@ -86,11 +92,11 @@ pub struct CommandFifo<const N: usize, const NP1: usize> {
     /// Push.
     pub write: Signal<In, Bit>,
     /// Entry to push.
-    pub write_data: Signal<In, Bits<32>>,
+    pub write_data: Signal<In, Bits<W>>,
     /// Remove the head.
     pub pop: Signal<In, Bit>,
     /// The oldest entry.
-    pub head: Signal<Out, Bits<32>>,
+    pub head: Signal<Out, Bits<W>>,
     /// No entry.
     pub empty: Signal<Out, Bit>,
     /// No free slot.
@@ -107,13 +113,13 @@ pub struct CommandFifo<const N: usize, const NP1: usize> {
     pub overflow: Signal<Out, Bit>,
     /// Sticky: a pop was refused.
     pub underflow: Signal<Out, Bit>,
-    ram: RAM<Bits<32>, N>,
+    ram: HoldingRam<Bits<W>, N>,
     read_pointer: DFF<Bits<N>>,
     write_pointer: DFF<Bits<N>>,
     count: DFF<Bits<NP1>>,
     /// The head comes from `bypass_data`, not from the RAM, this clock.
     bypass: DFF<Bit>,
-    bypass_data: DFF<Bits<32>>,
+    bypass_data: DFF<Bits<W>>,
     overflow_reg: DFF<Bit>,
     underflow_reg: DFF<Bit>,
     /// `count != 0` and `count == 2^N`, registered from the next count, so
@@ -134,10 +140,11 @@ pub struct CommandFifo<const N: usize, const NP1: usize> {
     capacity: Constant<Bits<NP1>>,
 }
 
-impl<const N: usize, const NP1: usize> Default for CommandFifo<N, NP1> {
+impl<const N: usize, const NP1: usize, const W: usize> Default for CommandFifo<N, NP1, W> {
     fn default() -> Self {
         assert_eq!(NP1, N + 1, "NP1 must be N + 1");
         assert!((1..=12).contains(&N), "2 to 4096 entries");
+        assert!((1..=64).contains(&W), "entries of 1 to 64 bits");
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -155,7 +162,7 @@ impl<const N: usize, const NP1: usize> Default for CommandFifo<N, NP1> {
             underflow: Default::default(),
             // Zero-initialized (block RAM INIT), so the Verilog's head
             // is 0, not X, before the first write, as in the simulation.
-            ram: RAM::from((0..1usize << N).map(|_| Bits::<32>::default())),
+            ram: HoldingRam::collisions_unobserved(),
             read_pointer: Default::default(),
             write_pointer: Default::default(),
             count: Default::default(),
@@ -179,7 +186,7 @@ impl<const N: usize, const NP1: usize> Default for CommandFifo<N, NP1> {
     }
 }
 
-impl<const N: usize, const NP1: usize> Logic for CommandFifo<N, NP1> {
+impl<const N: usize, const NP1: usize, const W: usize> Logic for CommandFifo<N, NP1, W> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -195,8 +202,8 @@ impl<const N: usize, const NP1: usize> Logic for CommandFifo<N, NP1> {
             not_empty_reg,
             full_reg
         );
-        self.ram.read_clock.next = self.clock.val();
-        self.ram.write_clock.next = self.clock.val();
+        self.ram.clock.next = self.clock.val();
+        self.ram.read_enable.next = true;
         self.is_empty.next = !self.not_empty_reg.q.val();
         self.is_full.next = self.full_reg.q.val();
         self.empty.next = self.is_empty.val();
@@ -261,7 +268,7 @@ impl<const N: usize, const NP1: usize> Logic for CommandFifo<N, NP1> {
     }
 }
 
-crate::vector_ports!(impl[const N: usize, const NP1: usize] CommandFifo<N, NP1> {
+crate::vector_ports!(impl[const N: usize, const NP1: usize, const W: usize] CommandFifo<N, NP1, W> {
     inputs: [reset, write, write_data, pop, low_water, clear_flags],
     outputs: [head, empty, full, level, low, overflow, underflow],
 });

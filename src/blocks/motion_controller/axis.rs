@@ -21,6 +21,26 @@ use crate::blocks::quadrature_decoder::QuadratureDecoder;
 use crate::blocks::step_output::StepOutput;
 use crate::blocks::uniform_pulse_gen::UniformPulseCore;
 
+/// Width of a FIFO entry as the axes store it. The bus writes a 32-bit
+/// signed entry; the interpolators and the DAC use only its low 16 bits,
+/// its sign and whether it fits them, so the controller compresses it
+/// once, for every axis, before the FIFOs: bits 15..0 are the entry's,
+/// bit [`ENTRY_UPPER_UNIFORM`] says that its bits 31..16 all equal bit
+/// 31, and bit [`ENTRY_SIGN`] is bit 31. Every range test of the entry
+/// follows from these 18 bits.
+pub const ENTRY_BITS: usize = 18;
+/// See [`ENTRY_BITS`].
+pub const ENTRY_UPPER_UNIFORM: usize = 16;
+/// See [`ENTRY_BITS`].
+pub const ENTRY_SIGN: usize = 17;
+
+// The literal bit numbers in `update()` and in the controller's compressor.
+const _: () = {
+    assert!(PERIOD_BITS == 16 && DAC_BITS == 16);
+    assert!(ENTRY_UPPER_UNIFORM == PERIOD_BITS && ENTRY_SIGN == PERIOD_BITS + 1);
+    assert!(ENTRY_BITS == PERIOD_BITS + 2);
+};
+
 /// One controller axis with a FIFO of 2^N entries (`NP1` = N + 1).
 #[derive(LogicBlock)]
 pub struct MotionAxis<const N: usize, const NP1: usize> {
@@ -55,6 +75,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub write: Signal<In, Bit>,
     /// Register bus write data.
     pub write_data: Signal<In, Bits<32>>,
+    /// `write_data` as a FIFO entry (see [`ENTRY_BITS`]).
+    pub fifo_entry: Signal<In, Bits<ENTRY_BITS>>,
     /// The addressed register of this axis's window, 0 outside it.
     pub read_data: Signal<Out, Bits<32>>,
     /// Encoder channel A (asynchronous).
@@ -136,7 +158,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// The popped entry is negative.
     pub code_negative: Signal<Out, Bit>,
 
-    fifo: CommandFifo<N, NP1>,
+    fifo: CommandFifo<N, NP1, ENTRY_BITS>,
     dda: DdaIntegrator<PERIOD_BITS>,
     uniform: UniformPulseCore<PERIOD_BITS>,
     stage: StepOutput<16, STAGE_PENDING_BITS>,
@@ -153,7 +175,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// The entry popped at the last edge, and that a pop (an underrun)
     /// happened then: the interpolators take it one clock after the
     /// boundary, so the block RAM's read path ends in a flip-flop.
-    popped: DFF<Bits<32>>,
+    popped: DFF<Bits<ENTRY_BITS>>,
     /// Range tests of the popped entry, taken from the head at the pop so
     /// that its saturation is one LUT deep: bits 31..16 not all zero, bits
     /// 31..16 all one, bits 15..0 not all zero. (All 0 for an entry of 0,
@@ -255,8 +277,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     has_uniform: Constant<Bit>,
     /// The build has the analog outputs (the controller's `ANALOG`).
     has_analog: Constant<Bit>,
-    /// The bits of an entry above a 16-bit signed code, with its sign.
-    above_code: Constant<Bits<32>>,
     zero_code: Constant<Bits<DAC_BITS>>,
     bit0_32: Constant<Bits<32>>,
     bit16_32: Constant<Bits<32>>,
@@ -272,8 +292,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     zero32: Constant<Bits<32>>,
     zero_count: Constant<Bits<PERIOD_BITS>>,
     max_count: Constant<Bits<PERIOD_BITS>>,
-    /// The bits of a magnitude above the interpolators' width.
-    above_count: Constant<Bits<32>>,
+    zero_entry: Constant<Bits<ENTRY_BITS>>,
     /// `bit_mask[i]` = 1 << i, one per FIFO level bit.
     bit_mask: [Constant<Bits<32>>; NP1],
     /// Register widths: the upper bits of the 32-bit registers are always
@@ -324,6 +343,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             address: Default::default(),
             write: Default::default(),
             write_data: Default::default(),
+            fifo_entry: Default::default(),
             read_data: Default::default(),
             enc_a: Default::default(),
             enc_b: Default::default(),
@@ -433,9 +453,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             window: Constant::new((window as u64).into()),
             has_uniform: Constant::new(uniform),
             has_analog: Constant::new(analog),
-            above_code: Constant::new(
-                (0xffff_ffffu64 & !crate::blocks::width_mask(DAC_BITS as u32 - 1)).into(),
-            ),
             zero_code: Constant::new(0u64.into()),
             bit0_32: bit32(fields::STATUS_STEP_OVERRUN),
             bit16_32: bit32(fields::FIFO_EMPTY),
@@ -451,9 +468,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             zero32: Constant::new(0u64.into()),
             zero_count: Constant::new(0u64.into()),
             max_count: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
-            above_count: Constant::new(
-                (0xffff_ffffu64 & !crate::blocks::width_mask(PERIOD_BITS as u32)).into(),
-            ),
+            zero_entry: Constant::new(0u64.into()),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
             mask16: Constant::new(crate::blocks::width_mask(fields::STEP_TIMING_WIDTH).into()),
             config_mask: Constant::new((config_mask as u64).into()),
@@ -606,7 +621,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.fifo.write.next = self.write.val()
             & self.selected.val()
             & (self.offset.val() == self.off_fifo_write.val());
-        self.fifo.write_data.next = self.write_data.val();
+        self.fifo.write_data.next = self.fifo_entry.val();
         self.fifo.pop.next = self.pop.val();
         self.fifo.low_water.next = self.low_water.val();
         self.fifo.clear_flags.next = false;
@@ -619,31 +634,32 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.tick_d.d.next = self.tick.val();
         // |entry| saturated to the interpolators' width, without a 32-bit
         // negation: too large is decided on the upper half alone (and
-        // -2^16 itself), the count negates only the lower half.
-        self.upper_ones.next =
-            (self.fifo.head.val() & self.above_count.val()) == self.above_count.val();
-        self.upper_zero.next = (self.fifo.head.val() & self.above_count.val()) == self.zero32.val();
+        // -2^16 itself), the count negates only the lower half. Bits 31..16
+        // all 0 / all 1: uniform with sign 0 / 1 (ENTRY_UPPER_UNIFORM = 16,
+        // ENTRY_SIGN = 17).
+        self.upper_ones.next = self.fifo.head.val().get_bit(16) & self.fifo.head.val().get_bit(17);
+        self.upper_zero.next = self.fifo.head.val().get_bit(16) & !self.fifo.head.val().get_bit(17);
         if self.pop.val() {
             self.popped.d.next = self.fifo.head.val();
             self.popped_upper_nonzero.d.next = !self.upper_zero.val();
             self.popped_upper_ones.d.next = self.upper_ones.val();
             self.popped_low_nonzero.d.next =
                 self.fifo.head.val().get_bits::<PERIOD_BITS>(0) != self.zero_count.val();
-            self.code_wide.d.next = ((self.fifo.head.val() & self.above_code.val())
-                != self.zero32.val())
-                & ((self.fifo.head.val() & self.above_code.val()) != self.above_code.val());
+            // Bits 31..15 not all equal.
+            self.code_wide.d.next = !(self.fifo.head.val().get_bit(16)
+                & (self.fifo.head.val().get_bit(15) == self.fifo.head.val().get_bit(17)));
         }
         // The analog code; the controller saturates it (one saturator after
         // its axis multiplexer, not one per axis).
         self.dac_code.next = self.popped.q.val().get_bits::<DAC_BITS>(0);
         self.code_out_of_range.next = self.code_wide.q.val();
-        self.code_negative.next = self.popped.q.val().get_bit(31);
+        self.code_negative.next = self.popped.q.val().get_bit(17);
         self.code_nonzero.next = (self.popped.q.val().get_bits::<DAC_BITS>(0)
             != self.zero_code.val())
             | self.code_wide.q.val();
         self.analog.next = self.analog_active.q.val();
         self.low_half.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
-        if self.popped.q.val().get_bit(31) {
+        if self.popped.q.val().get_bit(17) {
             self.too_large.next =
                 !self.popped_upper_ones.q.val() | !self.popped_low_nonzero.q.val();
             self.count.next = self.zero_count.val() - self.low_half.val();
@@ -702,7 +718,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.analog_active.d.next = self.has_analog.val() & self.settings.q.val().get_bit(13);
         }
         if self.popped_valid.q.val() {
-            self.forward.d.next = !self.popped.q.val().get_bit(31);
+            self.forward.d.next = !self.popped.q.val().get_bit(17);
             if self.uniform_active.q.val() | self.analog_active.q.val() {
                 self.integrand.d.next = self.zero_count.val();
             } else {
@@ -710,8 +726,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             }
             if self.analog_active.q.val() {
                 self.code_forward.d.next =
-                    !self.popped.q.val().get_bit(31) & self.code_nonzero.val();
-                self.code_backward.d.next = self.popped.q.val().get_bit(31);
+                    !self.popped.q.val().get_bit(17) & self.code_nonzero.val();
+                self.code_backward.d.next = self.popped.q.val().get_bit(17);
             }
         }
         // The controller sets the analog channels to 0 when RUN falls.
@@ -752,7 +768,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             & !self.analog_active.q.val()
             & self.uniform_ready.val()
         {
-            self.uniform_loaded_forward.d.next = !self.popped.q.val().get_bit(31);
+            self.uniform_loaded_forward.d.next = !self.popped.q.val().get_bit(17);
         }
         self.uniform_ready_prev.d.next = self.uniform_ready.val();
         self.uniform_pulse_prev.d.next = self.uniform_pulse.val();
@@ -936,24 +952,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             if self.offset.val() == self.off_fifo_status.val() {
                 self.read_data.next = self.read_data.val() | self.fifo_status.val();
             }
-            if self.offset.val() == self.off_config.val() {
-                self.read_data.next = self.read_data.val() | self.settings.q.val();
-            }
-            if self.offset.val() == self.off_step_len.val() {
-                self.read_data.next = self.read_data.val() | self.step_len.q.val();
-            }
-            if self.offset.val() == self.off_step_space.val() {
-                self.read_data.next = self.read_data.val() | self.step_space.q.val();
-            }
-            if self.offset.val() == self.off_dir_setup.val() {
-                self.read_data.next = self.read_data.val() | self.dir_setup.q.val();
-            }
-            if self.offset.val() == self.off_dir_hold.val() {
-                self.read_data.next = self.read_data.val() | self.dir_hold.q.val();
-            }
-            if self.offset.val() == self.off_sample_rate.val() {
-                self.read_data.next = self.read_data.val() | self.sample_rate.q.val();
-            }
             if self.offset.val() == self.off_cmd_position.val() {
                 self.read_data.next = self.read_data.val() | self.position.count.val();
             }
@@ -981,7 +979,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.dir_setup.d.next = self.zero32.val();
             self.dir_hold.d.next = self.zero32.val();
             self.sample_rate.d.next = self.zero32.val();
-            self.popped.d.next = self.zero32.val();
+            self.popped.d.next = self.zero_entry.val();
             self.popped_upper_nonzero.d.next = false;
             self.popped_upper_ones.d.next = false;
             self.popped_low_nonzero.d.next = false;

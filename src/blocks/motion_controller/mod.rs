@@ -376,6 +376,7 @@
 
 pub mod axis;
 pub mod axis_io;
+pub mod config_shadow;
 pub mod io_model;
 pub mod machine_io;
 pub mod model;
@@ -390,7 +391,8 @@ use crate::blocks::freq_divider::FreqDivider;
 use crate::blocks::interrupt_controller::InterruptController;
 use crate::blocks::sequential_divider::SequentialDivider;
 use crate::blocks::watchdog::Watchdog;
-use axis::MotionAxis;
+use axis::{MotionAxis, ENTRY_BITS};
+use config_shadow::{ConfigShadow, SHADOW_BITS};
 use machine_io::MachineIo;
 use registers::{
     fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, DAC_BITS, ID_VALUE, VERSION_VALUE,
@@ -611,6 +613,10 @@ pub struct MotionController<
     pub dac_ldac: Signal<Out, Bit>,
 
     axes: [MotionAxis<N, NP1>; K],
+    /// The axes' configuration registers, read back from block RAM.
+    config_shadow: ConfigShadow<K>,
+    /// `shadow_bit[b]` = 1 << b: the shadow's word, zero-extended.
+    shadow_bit: [Constant<Bits<32>>; SHADOW_BITS],
     tick_divider: FreqDivider<32>,
     watchdog: Watchdog<32>,
     interrupts: InterruptController<IRQ_COUNT>,
@@ -768,6 +774,13 @@ pub struct MotionController<
     bit1_32: Constant<Bits<32>>,
     bit2_32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
+    /// Bits 31..16 of a bus word.
+    upper_half: Constant<Bits<32>>,
+    zero_entry: Constant<Bits<ENTRY_BITS>>,
+    /// `entry_bit[b]` = 1 << b.
+    entry_bit: [Constant<Bits<ENTRY_BITS>>; ENTRY_BITS],
+    /// The bus word as a FIFO entry.
+    fifo_entry: Signal<Local, Bits<ENTRY_BITS>>,
     one32: Constant<Bits<32>>,
     zero_p: Constant<Bits<PERIOD_BITS>>,
     one_p: Constant<Bits<PERIOD_BITS>>,
@@ -890,6 +903,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             dac_l1_n: Default::default(),
             dac_ldac: Default::default(),
             axes: array_init::array_init(|k| MotionAxis::new(k, UNIFORM, ANALOG, axis_config_mask)),
+            config_shadow: ConfigShadow::new(axis_config_mask),
+            shadow_bit: array_init::array_init(|b| Constant::new((1u64 << b).into())),
             dac: Default::default(),
             has_analog: Constant::new(ANALOG),
             pop_d: Default::default(),
@@ -1031,6 +1046,10 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             bit1_32: m32(fields::STATE_WATCHDOG_ARMED),
             bit2_32: m32(fields::STATE_WATCHDOG_EXPIRED),
             zero32: Constant::new(0u64.into()),
+            upper_half: Constant::new(0xffff_0000u64.into()),
+            zero_entry: Constant::new(0u64.into()),
+            entry_bit: array_init::array_init(|b| Constant::new((1u64 << b).into())),
+            fifo_entry: Default::default(),
             one32: Constant::new(1u64.into()),
             zero_p: Constant::new(0u64.into()),
             one_p: Constant::new(1u64.into()),
@@ -1381,6 +1400,25 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.enables.next = self.zero_k.val();
         // Bits of the K-bit ports by mask, not bit select: at K = 1 rust-hdl
         // declares them without a range, where `x[0]` is illegal Verilog.
+        // The FIFO entry every axis stores, compressed once for all (see
+        // axis::ENTRY_BITS): the low 16 bits, bits 31..16 all equal to bit
+        // 31 (bit 16), and bit 31 (bit 17).
+        // (Bit by bit: rust-hdl has no widening that Verilator reads
+        // without a width warning.)
+        self.fifo_entry.next = self.zero_entry.val();
+        for b in 0..16 {
+            if self.bus_write_data.val().get_bit(b) {
+                self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[b].val();
+            }
+        }
+        if ((self.bus_write_data.val() & self.upper_half.val()) == self.zero32.val())
+            | ((self.bus_write_data.val() & self.upper_half.val()) == self.upper_half.val())
+        {
+            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[16].val();
+        }
+        if self.bus_write_data.val().get_bit(31) {
+            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[17].val();
+        }
         for i in 0..K {
             self.axes[i].clock.next = self.clock.val();
             self.axes[i].reset.next = self.reset.val();
@@ -1401,6 +1439,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             self.axes[i].address.next = self.bus_address.val();
             self.axes[i].write.next = self.bus_write.val();
             self.axes[i].write_data.next = self.bus_write_data.val();
+            self.axes[i].fifo_entry.next = self.fifo_entry.val();
             self.axes[i].enc_a.next =
                 (self.enc_a.val() & self.axis_bit[i].val()) != self.zero_k.val();
             self.axes[i].enc_b.next =
@@ -1649,6 +1688,19 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.read_out.next = self.read_data.q.val();
         if self.dac_read_sel.q.val() {
             self.read_out.next = self.dac.bus_read_data.val();
+        }
+        // The axes' configuration registers come from the shadow RAM, whose
+        // word is 0 for every other read (also registered at the read).
+        self.config_shadow.clock.next = self.clock.val();
+        self.config_shadow.reset.next = self.reset.val();
+        self.config_shadow.address.next = self.bus_address.val();
+        self.config_shadow.write.next = self.bus_write.val();
+        self.config_shadow.write_data.next = self.bus_write_data.val().get_bits::<SHADOW_BITS>(0);
+        self.config_shadow.read.next = self.bus_read.val();
+        for b in 0..SHADOW_BITS {
+            if self.config_shadow.read_data.val().get_bit(b) {
+                self.read_out.next = self.read_out.val() | self.shadow_bit[b].val();
+            }
         }
         self.bus_read_data.next = self.read_out.val();
 

@@ -64,8 +64,8 @@ pub struct BridgeChannel<const N: usize, const NP1: usize> {
     /// The status FIFO holds words (registered).
     pub status_pending: Signal<Out, Bit>,
 
-    cmd: CommandFifo<N, NP1>,
-    status: CommandFifo<N, NP1>,
+    cmd: CommandFifo<N, NP1, 32>,
+    status: CommandFifo<N, NP1, 32>,
     /// Commands the slave may read: the head's `released` entries.
     released: DFF<Bits<NP1>>,
     /// Commands written before the last SYNC (counted from the head): what
