@@ -137,25 +137,28 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  bit2_32 = 32'h4;
     localparam  zero32 = 32'h0;
     localparam  upper_half = 32'hffff0000;
-    localparam  zero_entry = 18'b0;
-    localparam  entry_bit__0 = 18'b1;
-    localparam  entry_bit__1 = 18'b10;
-    localparam  entry_bit__2 = 18'b100;
-    localparam  entry_bit__3 = 18'b1000;
-    localparam  entry_bit__4 = 18'b10000;
-    localparam  entry_bit__5 = 18'b100000;
-    localparam  entry_bit__6 = 18'b1000000;
-    localparam  entry_bit__7 = 18'b10000000;
-    localparam  entry_bit__8 = 18'b100000000;
-    localparam  entry_bit__9 = 18'b1000000000;
-    localparam  entry_bit__10 = 18'b10000000000;
-    localparam  entry_bit__11 = 18'b100000000000;
-    localparam  entry_bit__12 = 18'b1000000000000;
-    localparam  entry_bit__13 = 18'b10000000000000;
-    localparam  entry_bit__14 = 18'b100000000000000;
-    localparam  entry_bit__15 = 18'b1000000000000000;
-    localparam  entry_bit__16 = 18'b10000000000000000;
-    localparam  entry_bit__17 = 18'b100000000000000000;
+    localparam  zero_entry = 20'h0;
+    localparam  entry_bit__0 = 20'h1;
+    localparam  entry_bit__1 = 20'h2;
+    localparam  entry_bit__2 = 20'h4;
+    localparam  entry_bit__3 = 20'h8;
+    localparam  entry_bit__4 = 20'h10;
+    localparam  entry_bit__5 = 20'h20;
+    localparam  entry_bit__6 = 20'h40;
+    localparam  entry_bit__7 = 20'h80;
+    localparam  entry_bit__8 = 20'h100;
+    localparam  entry_bit__9 = 20'h200;
+    localparam  entry_bit__10 = 20'h400;
+    localparam  entry_bit__11 = 20'h800;
+    localparam  entry_bit__12 = 20'h1000;
+    localparam  entry_bit__13 = 20'h2000;
+    localparam  entry_bit__14 = 20'h4000;
+    localparam  entry_bit__15 = 20'h8000;
+    localparam  entry_bit__16 = 20'h10000;
+    localparam  entry_bit__17 = 20'h20000;
+    localparam  entry_bit__18 = 20'h40000;
+    localparam  entry_bit__19 = 20'h80000;
+    localparam  max_p = 16'hffff;
     localparam  one32 = 32'h1;
     localparam  zero_p = 16'h0;
     localparam  one_p = 16'h1;
@@ -228,7 +231,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [7:0] axes__0__address;
     reg  axes__0__write;
     reg  [31:0] axes__0__write_data;
-    reg  [17:0] axes__0__fifo_entry;
+    reg  [19:0] axes__0__fifo_entry;
     wire  [31:0] axes__0__read_data;
     reg  axes__0__enc_a;
     reg  axes__0__enc_b;
@@ -280,7 +283,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [7:0] axes__1__address;
     reg  axes__1__write;
     reg  [31:0] axes__1__write_data;
-    reg  [17:0] axes__1__fifo_entry;
+    reg  [19:0] axes__1__fifo_entry;
     wire  [31:0] axes__1__read_data;
     reg  axes__1__enc_a;
     reg  axes__1__enc_b;
@@ -332,7 +335,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [7:0] axes__2__address;
     reg  axes__2__write;
     reg  [31:0] axes__2__write_data;
-    reg  [17:0] axes__2__fifo_entry;
+    reg  [19:0] axes__2__fifo_entry;
     wire  [31:0] axes__2__read_data;
     reg  axes__2__enc_a;
     reg  axes__2__enc_b;
@@ -574,7 +577,13 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [2:0] steps_a;
     reg  [2:0] steps_b;
     reg  [2:0] enables;
-    reg  [17:0] fifo_entry;
+    reg  [19:0] fifo_entry;
+    reg  w_upper_zero;
+    reg  w_upper_ones;
+    reg  [15:0] w_low;
+    reg  w_low_nonzero;
+    reg  w_too_large;
+    reg  [15:0] w_magnitude;
 
     // Sub module instances
     motion_controller_servo__axes__0 axes__0(
@@ -1246,60 +1255,81 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         steps_a = zero_k;
         steps_b = zero_k;
         enables = zero_k;
+        w_upper_zero = (bus_write_data & upper_half) == zero32;
+        w_upper_ones = (bus_write_data & upper_half) == upper_half;
+        w_low = bus_write_data[(32'h0)+:(16)];
+        w_low_nonzero = w_low != zero_p;
+        if (bus_write_data[32'h1f]) begin
+            w_too_large = ~w_upper_ones | ~w_low_nonzero;
+            w_magnitude = zero_p - w_low;
+        end
+        else begin
+            w_too_large = ~w_upper_zero;
+            w_magnitude = w_low;
+        end
+        if (w_too_large) begin
+            w_magnitude = max_p;
+        end
         fifo_entry = zero_entry;
-        if (bus_write_data[0]) begin
+        if (w_magnitude[0]) begin
             fifo_entry = fifo_entry | entry_bit__0;
         end
-        if (bus_write_data[1]) begin
+        if (w_magnitude[1]) begin
             fifo_entry = fifo_entry | entry_bit__1;
         end
-        if (bus_write_data[2]) begin
+        if (w_magnitude[2]) begin
             fifo_entry = fifo_entry | entry_bit__2;
         end
-        if (bus_write_data[3]) begin
+        if (w_magnitude[3]) begin
             fifo_entry = fifo_entry | entry_bit__3;
         end
-        if (bus_write_data[4]) begin
+        if (w_magnitude[4]) begin
             fifo_entry = fifo_entry | entry_bit__4;
         end
-        if (bus_write_data[5]) begin
+        if (w_magnitude[5]) begin
             fifo_entry = fifo_entry | entry_bit__5;
         end
-        if (bus_write_data[6]) begin
+        if (w_magnitude[6]) begin
             fifo_entry = fifo_entry | entry_bit__6;
         end
-        if (bus_write_data[7]) begin
+        if (w_magnitude[7]) begin
             fifo_entry = fifo_entry | entry_bit__7;
         end
-        if (bus_write_data[8]) begin
+        if (w_magnitude[8]) begin
             fifo_entry = fifo_entry | entry_bit__8;
         end
-        if (bus_write_data[9]) begin
+        if (w_magnitude[9]) begin
             fifo_entry = fifo_entry | entry_bit__9;
         end
-        if (bus_write_data[10]) begin
+        if (w_magnitude[10]) begin
             fifo_entry = fifo_entry | entry_bit__10;
         end
-        if (bus_write_data[11]) begin
+        if (w_magnitude[11]) begin
             fifo_entry = fifo_entry | entry_bit__11;
         end
-        if (bus_write_data[12]) begin
+        if (w_magnitude[12]) begin
             fifo_entry = fifo_entry | entry_bit__12;
         end
-        if (bus_write_data[13]) begin
+        if (w_magnitude[13]) begin
             fifo_entry = fifo_entry | entry_bit__13;
         end
-        if (bus_write_data[14]) begin
+        if (w_magnitude[14]) begin
             fifo_entry = fifo_entry | entry_bit__14;
         end
-        if (bus_write_data[15]) begin
+        if (w_magnitude[15]) begin
             fifo_entry = fifo_entry | entry_bit__15;
         end
-        if (((bus_write_data & upper_half) == zero32) | ((bus_write_data & upper_half) == upper_half)) begin
+        if (w_too_large) begin
             fifo_entry = fifo_entry | entry_bit__16;
         end
         if (bus_write_data[32'h1f]) begin
             fifo_entry = fifo_entry | entry_bit__17;
+        end
+        if (~((w_upper_zero & ~w_low[32'hf]) | (w_upper_ones & w_low[32'hf]))) begin
+            fifo_entry = fifo_entry | entry_bit__18;
+        end
+        if (~w_upper_zero | w_low_nonzero) begin
+            fifo_entry = fifo_entry | entry_bit__19;
         end
         axes__0__clock = clock;
         axes__0__reset = reset;
@@ -1445,6 +1475,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
             dac_code = axes__2__dac_code;
             walk_wide = axes__2__code_out_of_range;
             walk_negative = axes__2__code_negative;
+        end
+        if (walk_negative) begin
+            dac_code = zero_code - dac_code;
         end
         if (walk_wide) begin
             if (walk_negative) begin
@@ -1847,7 +1880,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     input wire  [7:0] address;
     input wire  write;
     input wire  [31:0] write_data;
-    input wire  [17:0] fifo_entry;
+    input wire  [19:0] fifo_entry;
     output reg  [31:0] read_data;
     input wire  enc_a;
     input wire  enc_b;
@@ -1890,7 +1923,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -1904,8 +1936,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
-    localparam  max_count = 16'hffff;
-    localparam  zero_entry = 18'b0;
+    localparam  zero_entry = 20'h0;
     localparam  bit_mask__0 = 32'h1;
     localparam  bit_mask__1 = 32'h2;
     localparam  bit_mask__2 = 32'h4;
@@ -1934,9 +1965,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  fifo__clock;
     reg  fifo__reset;
     reg  fifo__write;
-    reg  [17:0] fifo__write_data;
+    reg  [19:0] fifo__write_data;
     reg  fifo__pop;
-    wire  [17:0] fifo__head;
+    wire  [19:0] fifo__head;
     wire  fifo__empty;
     wire  fifo__full;
     wire  [4:0] fifo__level;
@@ -2076,18 +2107,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  [31:0] sample_rate__d;
     wire  [31:0] sample_rate__q;
     reg  sample_rate__clock;
-    reg  [17:0] popped__d;
-    wire  [17:0] popped__q;
+    reg  [19:0] popped__d;
+    wire  [19:0] popped__q;
     reg  popped__clock;
-    reg  popped_upper_nonzero__d;
-    wire  popped_upper_nonzero__q;
-    reg  popped_upper_nonzero__clock;
-    reg  popped_upper_ones__d;
-    wire  popped_upper_ones__q;
-    reg  popped_upper_ones__clock;
-    reg  popped_low_nonzero__d;
-    wire  popped_low_nonzero__q;
-    reg  popped_low_nonzero__clock;
     reg  popped_valid__d;
     wire  popped_valid__q;
     reg  popped_valid__clock;
@@ -2139,9 +2161,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  analog_active__d;
     wire  analog_active__q;
     reg  analog_active__clock;
-    reg  code_wide__d;
-    wire  code_wide__q;
-    reg  code_wide__clock;
     reg  code_forward__d;
     wire  code_forward__q;
     reg  code_forward__clock;
@@ -2186,9 +2205,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  candidate_blocked;
     reg  command;
     reg  clear_faults;
-    reg  upper_ones;
-    reg  upper_zero;
-    reg  [15:0] low_half;
     reg  too_large;
     reg  [15:0] count;
     reg  uniform_started;
@@ -2378,21 +2394,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .q(popped__q),
         .clock(popped__clock)
     );
-    motion_controller_servo__axes__0__popped_upper_nonzero popped_upper_nonzero(
-        .d(popped_upper_nonzero__d),
-        .q(popped_upper_nonzero__q),
-        .clock(popped_upper_nonzero__clock)
-    );
-    motion_controller_servo__axes__0__popped_upper_ones popped_upper_ones(
-        .d(popped_upper_ones__d),
-        .q(popped_upper_ones__q),
-        .clock(popped_upper_ones__clock)
-    );
-    motion_controller_servo__axes__0__popped_low_nonzero popped_low_nonzero(
-        .d(popped_low_nonzero__d),
-        .q(popped_low_nonzero__q),
-        .clock(popped_low_nonzero__clock)
-    );
     motion_controller_servo__axes__0__popped_valid popped_valid(
         .d(popped_valid__d),
         .q(popped_valid__q),
@@ -2478,11 +2479,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .q(analog_active__q),
         .clock(analog_active__clock)
     );
-    motion_controller_servo__axes__0__code_wide code_wide(
-        .d(code_wide__d),
-        .q(code_wide__q),
-        .clock(code_wide__clock)
-    );
     motion_controller_servo__axes__0__code_forward code_forward(
         .d(code_forward__d),
         .q(code_forward__q),
@@ -2548,9 +2544,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         dir_hold__clock = clock;
         sample_rate__clock = clock;
         popped__clock = clock;
-        popped_upper_nonzero__clock = clock;
-        popped_upper_ones__clock = clock;
-        popped_low_nonzero__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
         tick_d__clock = clock;
@@ -2568,7 +2561,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         forward_2__clock = clock;
         uniform_active__clock = clock;
         analog_active__clock = clock;
-        code_wide__clock = clock;
         code_forward__clock = clock;
         code_backward__clock = clock;
         uniform_loaded_forward__clock = clock;
@@ -2587,9 +2579,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         dir_hold__d = dir_hold__q;
         sample_rate__d = sample_rate__q;
         popped__d = popped__q;
-        popped_upper_nonzero__d = popped_upper_nonzero__q;
-        popped_upper_ones__d = popped_upper_ones__q;
-        popped_low_nonzero__d = popped_low_nonzero__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
@@ -2607,7 +2596,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         forward_2__d = forward_2__q;
         uniform_active__d = uniform_active__q;
         analog_active__d = analog_active__q;
-        code_wide__d = code_wide__q;
         code_forward__d = code_forward__q;
         code_backward__d = code_backward__q;
         uniform_loaded_forward__d = uniform_loaded_forward__q;
@@ -2662,32 +2650,16 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
-        upper_ones = fifo__head[32'h10] & fifo__head[32'h11];
-        upper_zero = fifo__head[32'h10] & ~fifo__head[32'h11];
         if (pop) begin
             popped__d = fifo__head;
-            popped_upper_nonzero__d = ~upper_zero;
-            popped_upper_ones__d = upper_ones;
-            popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
-            code_wide__d = ~(fifo__head[32'h10] & (fifo__head[32'hf] == fifo__head[32'h11]));
         end
         dac_code = popped__q[(32'h0)+:(16)];
-        code_out_of_range = code_wide__q;
+        code_out_of_range = popped__q[32'h12];
         code_negative = popped__q[32'h11];
-        code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
+        code_nonzero = popped__q[32'h13];
         analog = analog_active__q;
-        low_half = popped__q[(32'h0)+:(16)];
-        if (popped__q[32'h11]) begin
-            too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
-            count = zero_count - low_half;
-        end
-        else begin
-            too_large = popped_upper_nonzero__q;
-            count = low_half;
-        end
-        if (too_large) begin
-            count = max_count;
-        end
+        too_large = popped__q[32'h10];
+        count = popped__q[(32'h0)+:(16)];
         uniform_pulse = has_uniform & uniform__pulse;
         uniform_ready = has_uniform & uniform__ready;
         uniform_running = has_uniform & uniform__running;
@@ -2700,7 +2672,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        saturated__d = popped_valid__q & ((analog_active__q & code_wide__q) | (~analog_active__q & too_large));
+        saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
         if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
@@ -2928,9 +2900,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             dir_hold__d = zero32;
             sample_rate__d = zero32;
             popped__d = zero_entry;
-            popped_upper_nonzero__d = 1'b0;
-            popped_upper_ones__d = 1'b0;
-            popped_low_nonzero__d = 1'b0;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
@@ -2948,7 +2917,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             forward_2__d = 1'b0;
             uniform_active__d = 1'b0;
             analog_active__d = 1'b0;
-            code_wide__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
             uniform_loaded_forward__d = 1'b0;
@@ -3078,25 +3046,6 @@ module motion_controller_servo__axes__0__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__code_forward
-
-
-module motion_controller_servo__axes__0__code_wide(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__code_wide
 
 
 module motion_controller_servo__axes__0__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
@@ -4783,9 +4732,9 @@ module motion_controller_servo__axes__0__fifo(clock,reset,write,write_data,pop,h
     input wire  clock;
     input wire  reset;
     input wire  write;
-    input wire  [17:0] write_data;
+    input wire  [19:0] write_data;
     input wire  pop;
-    output reg  [17:0] head;
+    output reg  [19:0] head;
     output reg  empty;
     output reg  full;
     output reg  [4:0] level;
@@ -4806,10 +4755,10 @@ module motion_controller_servo__axes__0__fifo(clock,reset,write,write_data,pop,h
     reg  ram__clock;
     reg  ram__read_enable;
     reg  [3:0] ram__read_address;
-    wire  [17:0] ram__read_data;
+    wire  [19:0] ram__read_data;
     reg  ram__write_enable;
     reg  [3:0] ram__write_address;
-    reg  [17:0] ram__write_data;
+    reg  [19:0] ram__write_data;
     reg  [3:0] read_pointer__d;
     wire  [3:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -4822,8 +4771,8 @@ module motion_controller_servo__axes__0__fifo(clock,reset,write,write_data,pop,h
     reg  bypass__d;
     wire  bypass__q;
     reg  bypass__clock;
-    reg  [17:0] bypass_data__d;
-    wire  [17:0] bypass_data__q;
+    reg  [19:0] bypass_data__d;
+    wire  [19:0] bypass_data__q;
     reg  bypass_data__clock;
     reg  overflow_reg__d;
     wire  overflow_reg__q;
@@ -5004,13 +4953,13 @@ endmodule // motion_controller_servo__axes__0__fifo__bypass
 module motion_controller_servo__axes__0__fifo__bypass_data(d,q,clock);
 
     // Module arguments
-    input wire  [17:0] d;
-    output reg  [17:0] q;
+    input wire  [19:0] d;
+    output reg  [19:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 18'h0;
+       q = 20'h0;
     end
 
     always @(posedge clock) begin
@@ -5102,13 +5051,13 @@ module motion_controller_servo__axes__0__fifo__ram(clock,read_enable,read_addres
     input wire  clock;
     input wire  read_enable;
     input wire  [3:0] read_address;
-    output reg  [17:0] read_data;
+    output reg  [19:0] read_data;
     input wire  write_enable;
     input wire  [3:0] write_address;
-    input wire  [17:0] write_data;
+    input wire  [19:0] write_data;
 
     // Update code (custom)
-    (* no_rw_check *) reg [17:0] mem [0:15];
+    (* no_rw_check *) reg [19:0] mem [0:15];
     integer i;
 
     // Block RAM powers up 0, and so do the words and the read register here.
@@ -5745,13 +5694,13 @@ endmodule // motion_controller_servo__axes__0__overrun_prev
 module motion_controller_servo__axes__0__popped(d,q,clock);
 
     // Module arguments
-    input wire  [17:0] d;
-    output reg  [17:0] q;
+    input wire  [19:0] d;
+    output reg  [19:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 18'h0;
+       q = 20'h0;
     end
 
     always @(posedge clock) begin
@@ -5759,63 +5708,6 @@ module motion_controller_servo__axes__0__popped(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__popped
-
-
-module motion_controller_servo__axes__0__popped_low_nonzero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__popped_low_nonzero
-
-
-module motion_controller_servo__axes__0__popped_upper_nonzero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__popped_upper_nonzero
-
-
-module motion_controller_servo__axes__0__popped_upper_ones(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__popped_upper_ones
 
 
 module motion_controller_servo__axes__0__popped_valid(d,q,clock);
@@ -8193,7 +8085,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     input wire  [7:0] address;
     input wire  write;
     input wire  [31:0] write_data;
-    input wire  [17:0] fifo_entry;
+    input wire  [19:0] fifo_entry;
     output reg  [31:0] read_data;
     input wire  enc_a;
     input wire  enc_b;
@@ -8236,7 +8128,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -8250,8 +8141,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
-    localparam  max_count = 16'hffff;
-    localparam  zero_entry = 18'b0;
+    localparam  zero_entry = 20'h0;
     localparam  bit_mask__0 = 32'h1;
     localparam  bit_mask__1 = 32'h2;
     localparam  bit_mask__2 = 32'h4;
@@ -8280,9 +8170,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  fifo__clock;
     reg  fifo__reset;
     reg  fifo__write;
-    reg  [17:0] fifo__write_data;
+    reg  [19:0] fifo__write_data;
     reg  fifo__pop;
-    wire  [17:0] fifo__head;
+    wire  [19:0] fifo__head;
     wire  fifo__empty;
     wire  fifo__full;
     wire  [4:0] fifo__level;
@@ -8422,18 +8312,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  [31:0] sample_rate__d;
     wire  [31:0] sample_rate__q;
     reg  sample_rate__clock;
-    reg  [17:0] popped__d;
-    wire  [17:0] popped__q;
+    reg  [19:0] popped__d;
+    wire  [19:0] popped__q;
     reg  popped__clock;
-    reg  popped_upper_nonzero__d;
-    wire  popped_upper_nonzero__q;
-    reg  popped_upper_nonzero__clock;
-    reg  popped_upper_ones__d;
-    wire  popped_upper_ones__q;
-    reg  popped_upper_ones__clock;
-    reg  popped_low_nonzero__d;
-    wire  popped_low_nonzero__q;
-    reg  popped_low_nonzero__clock;
     reg  popped_valid__d;
     wire  popped_valid__q;
     reg  popped_valid__clock;
@@ -8485,9 +8366,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  analog_active__d;
     wire  analog_active__q;
     reg  analog_active__clock;
-    reg  code_wide__d;
-    wire  code_wide__q;
-    reg  code_wide__clock;
     reg  code_forward__d;
     wire  code_forward__q;
     reg  code_forward__clock;
@@ -8532,9 +8410,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  candidate_blocked;
     reg  command;
     reg  clear_faults;
-    reg  upper_ones;
-    reg  upper_zero;
-    reg  [15:0] low_half;
     reg  too_large;
     reg  [15:0] count;
     reg  uniform_started;
@@ -8724,21 +8599,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .q(popped__q),
         .clock(popped__clock)
     );
-    motion_controller_servo__axes__1__popped_upper_nonzero popped_upper_nonzero(
-        .d(popped_upper_nonzero__d),
-        .q(popped_upper_nonzero__q),
-        .clock(popped_upper_nonzero__clock)
-    );
-    motion_controller_servo__axes__1__popped_upper_ones popped_upper_ones(
-        .d(popped_upper_ones__d),
-        .q(popped_upper_ones__q),
-        .clock(popped_upper_ones__clock)
-    );
-    motion_controller_servo__axes__1__popped_low_nonzero popped_low_nonzero(
-        .d(popped_low_nonzero__d),
-        .q(popped_low_nonzero__q),
-        .clock(popped_low_nonzero__clock)
-    );
     motion_controller_servo__axes__1__popped_valid popped_valid(
         .d(popped_valid__d),
         .q(popped_valid__q),
@@ -8824,11 +8684,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .q(analog_active__q),
         .clock(analog_active__clock)
     );
-    motion_controller_servo__axes__1__code_wide code_wide(
-        .d(code_wide__d),
-        .q(code_wide__q),
-        .clock(code_wide__clock)
-    );
     motion_controller_servo__axes__1__code_forward code_forward(
         .d(code_forward__d),
         .q(code_forward__q),
@@ -8894,9 +8749,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         dir_hold__clock = clock;
         sample_rate__clock = clock;
         popped__clock = clock;
-        popped_upper_nonzero__clock = clock;
-        popped_upper_ones__clock = clock;
-        popped_low_nonzero__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
         tick_d__clock = clock;
@@ -8914,7 +8766,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         forward_2__clock = clock;
         uniform_active__clock = clock;
         analog_active__clock = clock;
-        code_wide__clock = clock;
         code_forward__clock = clock;
         code_backward__clock = clock;
         uniform_loaded_forward__clock = clock;
@@ -8933,9 +8784,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         dir_hold__d = dir_hold__q;
         sample_rate__d = sample_rate__q;
         popped__d = popped__q;
-        popped_upper_nonzero__d = popped_upper_nonzero__q;
-        popped_upper_ones__d = popped_upper_ones__q;
-        popped_low_nonzero__d = popped_low_nonzero__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
@@ -8953,7 +8801,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         forward_2__d = forward_2__q;
         uniform_active__d = uniform_active__q;
         analog_active__d = analog_active__q;
-        code_wide__d = code_wide__q;
         code_forward__d = code_forward__q;
         code_backward__d = code_backward__q;
         uniform_loaded_forward__d = uniform_loaded_forward__q;
@@ -9008,32 +8855,16 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
-        upper_ones = fifo__head[32'h10] & fifo__head[32'h11];
-        upper_zero = fifo__head[32'h10] & ~fifo__head[32'h11];
         if (pop) begin
             popped__d = fifo__head;
-            popped_upper_nonzero__d = ~upper_zero;
-            popped_upper_ones__d = upper_ones;
-            popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
-            code_wide__d = ~(fifo__head[32'h10] & (fifo__head[32'hf] == fifo__head[32'h11]));
         end
         dac_code = popped__q[(32'h0)+:(16)];
-        code_out_of_range = code_wide__q;
+        code_out_of_range = popped__q[32'h12];
         code_negative = popped__q[32'h11];
-        code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
+        code_nonzero = popped__q[32'h13];
         analog = analog_active__q;
-        low_half = popped__q[(32'h0)+:(16)];
-        if (popped__q[32'h11]) begin
-            too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
-            count = zero_count - low_half;
-        end
-        else begin
-            too_large = popped_upper_nonzero__q;
-            count = low_half;
-        end
-        if (too_large) begin
-            count = max_count;
-        end
+        too_large = popped__q[32'h10];
+        count = popped__q[(32'h0)+:(16)];
         uniform_pulse = has_uniform & uniform__pulse;
         uniform_ready = has_uniform & uniform__ready;
         uniform_running = has_uniform & uniform__running;
@@ -9046,7 +8877,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        saturated__d = popped_valid__q & ((analog_active__q & code_wide__q) | (~analog_active__q & too_large));
+        saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
         if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
@@ -9274,9 +9105,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             dir_hold__d = zero32;
             sample_rate__d = zero32;
             popped__d = zero_entry;
-            popped_upper_nonzero__d = 1'b0;
-            popped_upper_ones__d = 1'b0;
-            popped_low_nonzero__d = 1'b0;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
@@ -9294,7 +9122,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             forward_2__d = 1'b0;
             uniform_active__d = 1'b0;
             analog_active__d = 1'b0;
-            code_wide__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
             uniform_loaded_forward__d = 1'b0;
@@ -9424,25 +9251,6 @@ module motion_controller_servo__axes__1__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__code_forward
-
-
-module motion_controller_servo__axes__1__code_wide(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__code_wide
 
 
 module motion_controller_servo__axes__1__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
@@ -11129,9 +10937,9 @@ module motion_controller_servo__axes__1__fifo(clock,reset,write,write_data,pop,h
     input wire  clock;
     input wire  reset;
     input wire  write;
-    input wire  [17:0] write_data;
+    input wire  [19:0] write_data;
     input wire  pop;
-    output reg  [17:0] head;
+    output reg  [19:0] head;
     output reg  empty;
     output reg  full;
     output reg  [4:0] level;
@@ -11152,10 +10960,10 @@ module motion_controller_servo__axes__1__fifo(clock,reset,write,write_data,pop,h
     reg  ram__clock;
     reg  ram__read_enable;
     reg  [3:0] ram__read_address;
-    wire  [17:0] ram__read_data;
+    wire  [19:0] ram__read_data;
     reg  ram__write_enable;
     reg  [3:0] ram__write_address;
-    reg  [17:0] ram__write_data;
+    reg  [19:0] ram__write_data;
     reg  [3:0] read_pointer__d;
     wire  [3:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -11168,8 +10976,8 @@ module motion_controller_servo__axes__1__fifo(clock,reset,write,write_data,pop,h
     reg  bypass__d;
     wire  bypass__q;
     reg  bypass__clock;
-    reg  [17:0] bypass_data__d;
-    wire  [17:0] bypass_data__q;
+    reg  [19:0] bypass_data__d;
+    wire  [19:0] bypass_data__q;
     reg  bypass_data__clock;
     reg  overflow_reg__d;
     wire  overflow_reg__q;
@@ -11350,13 +11158,13 @@ endmodule // motion_controller_servo__axes__1__fifo__bypass
 module motion_controller_servo__axes__1__fifo__bypass_data(d,q,clock);
 
     // Module arguments
-    input wire  [17:0] d;
-    output reg  [17:0] q;
+    input wire  [19:0] d;
+    output reg  [19:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 18'h0;
+       q = 20'h0;
     end
 
     always @(posedge clock) begin
@@ -11448,13 +11256,13 @@ module motion_controller_servo__axes__1__fifo__ram(clock,read_enable,read_addres
     input wire  clock;
     input wire  read_enable;
     input wire  [3:0] read_address;
-    output reg  [17:0] read_data;
+    output reg  [19:0] read_data;
     input wire  write_enable;
     input wire  [3:0] write_address;
-    input wire  [17:0] write_data;
+    input wire  [19:0] write_data;
 
     // Update code (custom)
-    (* no_rw_check *) reg [17:0] mem [0:15];
+    (* no_rw_check *) reg [19:0] mem [0:15];
     integer i;
 
     // Block RAM powers up 0, and so do the words and the read register here.
@@ -12091,13 +11899,13 @@ endmodule // motion_controller_servo__axes__1__overrun_prev
 module motion_controller_servo__axes__1__popped(d,q,clock);
 
     // Module arguments
-    input wire  [17:0] d;
-    output reg  [17:0] q;
+    input wire  [19:0] d;
+    output reg  [19:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 18'h0;
+       q = 20'h0;
     end
 
     always @(posedge clock) begin
@@ -12105,63 +11913,6 @@ module motion_controller_servo__axes__1__popped(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__popped
-
-
-module motion_controller_servo__axes__1__popped_low_nonzero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__popped_low_nonzero
-
-
-module motion_controller_servo__axes__1__popped_upper_nonzero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__popped_upper_nonzero
-
-
-module motion_controller_servo__axes__1__popped_upper_ones(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__popped_upper_ones
 
 
 module motion_controller_servo__axes__1__popped_valid(d,q,clock);
@@ -14539,7 +14290,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     input wire  [7:0] address;
     input wire  write;
     input wire  [31:0] write_data;
-    input wire  [17:0] fifo_entry;
+    input wire  [19:0] fifo_entry;
     output reg  [31:0] read_data;
     input wire  enc_a;
     input wire  enc_b;
@@ -14582,7 +14333,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  zero_code = 16'h0;
     localparam  bit0_32 = 32'h1;
     localparam  bit16_32 = 32'h10000;
     localparam  bit17_32 = 32'h20000;
@@ -14596,8 +14346,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
-    localparam  max_count = 16'hffff;
-    localparam  zero_entry = 18'b0;
+    localparam  zero_entry = 20'h0;
     localparam  bit_mask__0 = 32'h1;
     localparam  bit_mask__1 = 32'h2;
     localparam  bit_mask__2 = 32'h4;
@@ -14626,9 +14375,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  fifo__clock;
     reg  fifo__reset;
     reg  fifo__write;
-    reg  [17:0] fifo__write_data;
+    reg  [19:0] fifo__write_data;
     reg  fifo__pop;
-    wire  [17:0] fifo__head;
+    wire  [19:0] fifo__head;
     wire  fifo__empty;
     wire  fifo__full;
     wire  [4:0] fifo__level;
@@ -14768,18 +14517,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  [31:0] sample_rate__d;
     wire  [31:0] sample_rate__q;
     reg  sample_rate__clock;
-    reg  [17:0] popped__d;
-    wire  [17:0] popped__q;
+    reg  [19:0] popped__d;
+    wire  [19:0] popped__q;
     reg  popped__clock;
-    reg  popped_upper_nonzero__d;
-    wire  popped_upper_nonzero__q;
-    reg  popped_upper_nonzero__clock;
-    reg  popped_upper_ones__d;
-    wire  popped_upper_ones__q;
-    reg  popped_upper_ones__clock;
-    reg  popped_low_nonzero__d;
-    wire  popped_low_nonzero__q;
-    reg  popped_low_nonzero__clock;
     reg  popped_valid__d;
     wire  popped_valid__q;
     reg  popped_valid__clock;
@@ -14831,9 +14571,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  analog_active__d;
     wire  analog_active__q;
     reg  analog_active__clock;
-    reg  code_wide__d;
-    wire  code_wide__q;
-    reg  code_wide__clock;
     reg  code_forward__d;
     wire  code_forward__q;
     reg  code_forward__clock;
@@ -14878,9 +14615,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  candidate_blocked;
     reg  command;
     reg  clear_faults;
-    reg  upper_ones;
-    reg  upper_zero;
-    reg  [15:0] low_half;
     reg  too_large;
     reg  [15:0] count;
     reg  uniform_started;
@@ -15070,21 +14804,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .q(popped__q),
         .clock(popped__clock)
     );
-    motion_controller_servo__axes__2__popped_upper_nonzero popped_upper_nonzero(
-        .d(popped_upper_nonzero__d),
-        .q(popped_upper_nonzero__q),
-        .clock(popped_upper_nonzero__clock)
-    );
-    motion_controller_servo__axes__2__popped_upper_ones popped_upper_ones(
-        .d(popped_upper_ones__d),
-        .q(popped_upper_ones__q),
-        .clock(popped_upper_ones__clock)
-    );
-    motion_controller_servo__axes__2__popped_low_nonzero popped_low_nonzero(
-        .d(popped_low_nonzero__d),
-        .q(popped_low_nonzero__q),
-        .clock(popped_low_nonzero__clock)
-    );
     motion_controller_servo__axes__2__popped_valid popped_valid(
         .d(popped_valid__d),
         .q(popped_valid__q),
@@ -15170,11 +14889,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .q(analog_active__q),
         .clock(analog_active__clock)
     );
-    motion_controller_servo__axes__2__code_wide code_wide(
-        .d(code_wide__d),
-        .q(code_wide__q),
-        .clock(code_wide__clock)
-    );
     motion_controller_servo__axes__2__code_forward code_forward(
         .d(code_forward__d),
         .q(code_forward__q),
@@ -15240,9 +14954,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         dir_hold__clock = clock;
         sample_rate__clock = clock;
         popped__clock = clock;
-        popped_upper_nonzero__clock = clock;
-        popped_upper_ones__clock = clock;
-        popped_low_nonzero__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
         tick_d__clock = clock;
@@ -15260,7 +14971,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         forward_2__clock = clock;
         uniform_active__clock = clock;
         analog_active__clock = clock;
-        code_wide__clock = clock;
         code_forward__clock = clock;
         code_backward__clock = clock;
         uniform_loaded_forward__clock = clock;
@@ -15279,9 +14989,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         dir_hold__d = dir_hold__q;
         sample_rate__d = sample_rate__q;
         popped__d = popped__q;
-        popped_upper_nonzero__d = popped_upper_nonzero__q;
-        popped_upper_ones__d = popped_upper_ones__q;
-        popped_low_nonzero__d = popped_low_nonzero__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
@@ -15299,7 +15006,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         forward_2__d = forward_2__q;
         uniform_active__d = uniform_active__q;
         analog_active__d = analog_active__q;
-        code_wide__d = code_wide__q;
         code_forward__d = code_forward__q;
         code_backward__d = code_backward__q;
         uniform_loaded_forward__d = uniform_loaded_forward__q;
@@ -15354,32 +15060,16 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         popped_valid__d = pop;
         underrun_d__d = underrun;
         tick_d__d = tick;
-        upper_ones = fifo__head[32'h10] & fifo__head[32'h11];
-        upper_zero = fifo__head[32'h10] & ~fifo__head[32'h11];
         if (pop) begin
             popped__d = fifo__head;
-            popped_upper_nonzero__d = ~upper_zero;
-            popped_upper_ones__d = upper_ones;
-            popped_low_nonzero__d = fifo__head[(32'h0)+:(16)] != zero_count;
-            code_wide__d = ~(fifo__head[32'h10] & (fifo__head[32'hf] == fifo__head[32'h11]));
         end
         dac_code = popped__q[(32'h0)+:(16)];
-        code_out_of_range = code_wide__q;
+        code_out_of_range = popped__q[32'h12];
         code_negative = popped__q[32'h11];
-        code_nonzero = (popped__q[(32'h0)+:(16)] != zero_code) | code_wide__q;
+        code_nonzero = popped__q[32'h13];
         analog = analog_active__q;
-        low_half = popped__q[(32'h0)+:(16)];
-        if (popped__q[32'h11]) begin
-            too_large = ~popped_upper_ones__q | ~popped_low_nonzero__q;
-            count = zero_count - low_half;
-        end
-        else begin
-            too_large = popped_upper_nonzero__q;
-            count = low_half;
-        end
-        if (too_large) begin
-            count = max_count;
-        end
+        too_large = popped__q[32'h10];
+        count = popped__q[(32'h0)+:(16)];
         uniform_pulse = has_uniform & uniform__pulse;
         uniform_ready = has_uniform & uniform__ready;
         uniform_running = has_uniform & uniform__running;
@@ -15392,7 +15082,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
         end
-        saturated__d = popped_valid__q & ((analog_active__q & code_wide__q) | (~analog_active__q & too_large));
+        saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
         if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
@@ -15620,9 +15310,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             dir_hold__d = zero32;
             sample_rate__d = zero32;
             popped__d = zero_entry;
-            popped_upper_nonzero__d = 1'b0;
-            popped_upper_ones__d = 1'b0;
-            popped_low_nonzero__d = 1'b0;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
@@ -15640,7 +15327,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             forward_2__d = 1'b0;
             uniform_active__d = 1'b0;
             analog_active__d = 1'b0;
-            code_wide__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
             uniform_loaded_forward__d = 1'b0;
@@ -15770,25 +15456,6 @@ module motion_controller_servo__axes__2__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__code_forward
-
-
-module motion_controller_servo__axes__2__code_wide(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__code_wide
 
 
 module motion_controller_servo__axes__2__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
@@ -17475,9 +17142,9 @@ module motion_controller_servo__axes__2__fifo(clock,reset,write,write_data,pop,h
     input wire  clock;
     input wire  reset;
     input wire  write;
-    input wire  [17:0] write_data;
+    input wire  [19:0] write_data;
     input wire  pop;
-    output reg  [17:0] head;
+    output reg  [19:0] head;
     output reg  empty;
     output reg  full;
     output reg  [4:0] level;
@@ -17498,10 +17165,10 @@ module motion_controller_servo__axes__2__fifo(clock,reset,write,write_data,pop,h
     reg  ram__clock;
     reg  ram__read_enable;
     reg  [3:0] ram__read_address;
-    wire  [17:0] ram__read_data;
+    wire  [19:0] ram__read_data;
     reg  ram__write_enable;
     reg  [3:0] ram__write_address;
-    reg  [17:0] ram__write_data;
+    reg  [19:0] ram__write_data;
     reg  [3:0] read_pointer__d;
     wire  [3:0] read_pointer__q;
     reg  read_pointer__clock;
@@ -17514,8 +17181,8 @@ module motion_controller_servo__axes__2__fifo(clock,reset,write,write_data,pop,h
     reg  bypass__d;
     wire  bypass__q;
     reg  bypass__clock;
-    reg  [17:0] bypass_data__d;
-    wire  [17:0] bypass_data__q;
+    reg  [19:0] bypass_data__d;
+    wire  [19:0] bypass_data__q;
     reg  bypass_data__clock;
     reg  overflow_reg__d;
     wire  overflow_reg__q;
@@ -17696,13 +17363,13 @@ endmodule // motion_controller_servo__axes__2__fifo__bypass
 module motion_controller_servo__axes__2__fifo__bypass_data(d,q,clock);
 
     // Module arguments
-    input wire  [17:0] d;
-    output reg  [17:0] q;
+    input wire  [19:0] d;
+    output reg  [19:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 18'h0;
+       q = 20'h0;
     end
 
     always @(posedge clock) begin
@@ -17794,13 +17461,13 @@ module motion_controller_servo__axes__2__fifo__ram(clock,read_enable,read_addres
     input wire  clock;
     input wire  read_enable;
     input wire  [3:0] read_address;
-    output reg  [17:0] read_data;
+    output reg  [19:0] read_data;
     input wire  write_enable;
     input wire  [3:0] write_address;
-    input wire  [17:0] write_data;
+    input wire  [19:0] write_data;
 
     // Update code (custom)
-    (* no_rw_check *) reg [17:0] mem [0:15];
+    (* no_rw_check *) reg [19:0] mem [0:15];
     integer i;
 
     // Block RAM powers up 0, and so do the words and the read register here.
@@ -18437,13 +18104,13 @@ endmodule // motion_controller_servo__axes__2__overrun_prev
 module motion_controller_servo__axes__2__popped(d,q,clock);
 
     // Module arguments
-    input wire  [17:0] d;
-    output reg  [17:0] q;
+    input wire  [19:0] d;
+    output reg  [19:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 18'h0;
+       q = 20'h0;
     end
 
     always @(posedge clock) begin
@@ -18451,63 +18118,6 @@ module motion_controller_servo__axes__2__popped(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__popped
-
-
-module motion_controller_servo__axes__2__popped_low_nonzero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__popped_low_nonzero
-
-
-module motion_controller_servo__axes__2__popped_upper_nonzero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__popped_upper_nonzero
-
-
-module motion_controller_servo__axes__2__popped_upper_ones(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__popped_upper_ones
 
 
 module motion_controller_servo__axes__2__popped_valid(d,q,clock);

@@ -365,3 +365,47 @@ fn servo_build_matches_its_model_under_random_traffic() {
 fn exported_servo_verilog_matches_rust_in_icarus_and_verilator() {
     crate::motion_controller::cross_simulate_exported::<false, true>("motion_controller_servo");
 }
+
+/// The controller converts each written entry once, before the FIFOs, into
+/// a 16-bit magnitude and flags, and puts the sign back for the DAC: every
+/// edge of 16 bits signed, 16 bits unsigned and 32 bits leaves the pins as
+/// the saturated code (checked at the AD669 pins, and every clock against
+/// the model by the bench).
+#[test]
+fn entries_at_every_width_edge_leave_as_their_saturated_codes() {
+    // Sixteen: the FIFOs take them all before the run.
+    const EDGES: [i64; 16] = [
+        0,
+        -1,
+        32767,
+        32768,
+        -32767,
+        -32768,
+        -32769,
+        65535,
+        65536,
+        -65535,
+        -65536,
+        -65537,
+        i32::MIN as i64,
+        i32::MAX as i64,
+        -0x7fff_0000,
+        0x0001_8000,
+    ];
+    let mut b = Analog3::new().with_loopback();
+    let period = 100;
+    let analog = [true, false, true];
+    configure_analog(&mut b, period, analog);
+    // Axis 0 takes the edges in order, axis 2 in reverse; axis 1 steps.
+    let codes: Vec<[i64; 3]> = (0..EDGES.len())
+        .map(|i| [EDGES[i], 1, EDGES[EDGES.len() - 1 - i]])
+        .collect();
+    let trace = run_codes(
+        &mut b,
+        &codes,
+        (codes.len() as u64 + 1) * period as u64 + 60,
+    );
+    let (s, w, h, _) = TIMING;
+    let first = 1 + latency::analog_ldac(3, s, w, h);
+    check_periods(&trace, period as u64, first, &codes, analog).unwrap_or_else(|e| panic!("{e}"));
+}

@@ -22,23 +22,27 @@ use crate::blocks::step_output::StepOutput;
 use crate::blocks::uniform_pulse_gen::UniformPulseCore;
 
 /// Width of a FIFO entry as the axes store it. The bus writes a 32-bit
-/// signed entry; the interpolators and the DAC use only its low 16 bits,
-/// its sign and whether it fits them, so the controller compresses it
-/// once, for every axis, before the FIFOs: bits 15..0 are the entry's,
-/// bit [`ENTRY_UPPER_UNIFORM`] says that its bits 31..16 all equal bit
-/// 31, and bit [`ENTRY_SIGN`] is bit 31. Every range test of the entry
-/// follows from these 18 bits.
-pub const ENTRY_BITS: usize = 18;
-/// See [`ENTRY_BITS`].
-pub const ENTRY_UPPER_UNIFORM: usize = 16;
-/// See [`ENTRY_BITS`].
+/// signed entry w; the interpolators use only |w| saturated to 16 bits and
+/// its sign, and the DAC w as a 16-bit signed code, so the controller
+/// converts each written word once, for every axis, before the FIFOs
+/// (`MotionController`'s entry converter): bits 15..0 are |w| saturated to
+/// 2^16 - 1, then the flags below. The DAC code is the magnitude with the
+/// sign put back, also once for all axes, after the controller's DAC walk.
+pub const ENTRY_BITS: usize = 20;
+/// Entry flag: |w| > 2^16 - 1 (the magnitude is saturated).
+pub const ENTRY_TOO_LARGE: usize = 16;
+/// Entry flag: w < 0.
 pub const ENTRY_SIGN: usize = 17;
+/// Entry flag: w does not fit 16 bits signed (the DAC code saturates).
+pub const ENTRY_CODE_WIDE: usize = 18;
+/// Entry flag: w != 0.
+pub const ENTRY_NONZERO: usize = 19;
 
-// The literal bit numbers in `update()` and in the controller's compressor.
+// The literal bit numbers in `update()` and in the controller's converter.
 const _: () = {
     assert!(PERIOD_BITS == 16 && DAC_BITS == 16);
-    assert!(ENTRY_UPPER_UNIFORM == PERIOD_BITS && ENTRY_SIGN == PERIOD_BITS + 1);
-    assert!(ENTRY_BITS == PERIOD_BITS + 2);
+    assert!(ENTRY_TOO_LARGE == 16 && ENTRY_SIGN == 17);
+    assert!(ENTRY_CODE_WIDE == 18 && ENTRY_NONZERO == 19 && ENTRY_BITS == 20);
 };
 
 /// One controller axis with a FIFO of 2^N entries (`NP1` = N + 1).
@@ -149,9 +153,10 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// The axis is an analog axis in this run (`AXIS_CONFIG.ANALOG`,
     /// latched at the start; always 0 in a build without the DAC).
     pub analog: Signal<Out, Bit>,
-    /// The analog code of the running period: the popped entry's low 16
-    /// bits (valid from the clock after the pop); the controller saturates
-    /// it with `code_out_of_range` and `code_negative`, once for all axes.
+    /// The magnitude of the running period's entry (valid from the clock
+    /// after the pop): the controller turns it into the analog code with
+    /// `code_negative` and saturates it with `code_out_of_range`, once for
+    /// all axes.
     pub dac_code: Signal<Out, Bits<DAC_BITS>>,
     /// The popped entry does not fit 16 bits signed.
     pub code_out_of_range: Signal<Out, Bit>,
@@ -172,17 +177,10 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     dir_setup: DFF<Bits<32>>,
     dir_hold: DFF<Bits<32>>,
     sample_rate: DFF<Bits<32>>,
-    /// The entry popped at the last edge, and that a pop (an underrun)
-    /// happened then: the interpolators take it one clock after the
+    /// The entry popped at the last edge (0 after reset: every flag
+    /// clear), and that a pop (an underrun) happened then: the interpolators take it one clock after the
     /// boundary, so the block RAM's read path ends in a flip-flop.
     popped: DFF<Bits<ENTRY_BITS>>,
-    /// Range tests of the popped entry, taken from the head at the pop so
-    /// that its saturation is one LUT deep: bits 31..16 not all zero, bits
-    /// 31..16 all one, bits 15..0 not all zero. (All 0 for an entry of 0,
-    /// as after power-up and reset.)
-    popped_upper_nonzero: DFF<Bit>,
-    popped_upper_ones: DFF<Bit>,
-    popped_low_nonzero: DFF<Bit>,
     popped_valid: DFF<Bit>,
     underrun_d: DFF<Bit>,
     /// The base tick one clock late: the interpolators see each tick after
@@ -220,9 +218,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     uniform_active: DFF<Bit>,
     /// The axis is analog: its entries are DAC codes (latched at start).
     analog_active: DFF<Bit>,
-    /// The popped entry does not fit 16 bits signed (taken at the pop,
-    /// like the step count's range tests; 0 after reset).
-    code_wide: DFF<Bit>,
     /// The analog code of the running period is positive / negative: the
     /// axis moves toward its forward / backward limit (for the limit cut).
     code_forward: DFF<Bit>,
@@ -251,9 +246,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     candidate_blocked: Signal<Local, Bit>,
     command: Signal<Local, Bit>,
     clear_faults: Signal<Local, Bit>,
-    upper_ones: Signal<Local, Bit>,
-    upper_zero: Signal<Local, Bit>,
-    low_half: Signal<Local, Bits<PERIOD_BITS>>,
     /// |popped| does not fit the interpolators.
     too_large: Signal<Local, Bit>,
     /// |popped| saturated to the interpolators' width.
@@ -277,7 +269,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     has_uniform: Constant<Bit>,
     /// The build has the analog outputs (the controller's `ANALOG`).
     has_analog: Constant<Bit>,
-    zero_code: Constant<Bits<DAC_BITS>>,
     bit0_32: Constant<Bits<32>>,
     bit16_32: Constant<Bits<32>>,
     bit17_32: Constant<Bits<32>>,
@@ -291,7 +282,6 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     bit7_32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
     zero_count: Constant<Bits<PERIOD_BITS>>,
-    max_count: Constant<Bits<PERIOD_BITS>>,
     zero_entry: Constant<Bits<ENTRY_BITS>>,
     /// `bit_mask[i]` = 1 << i, one per FIFO level bit.
     bit_mask: [Constant<Bits<32>>; NP1],
@@ -395,9 +385,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             dir_hold: Default::default(),
             sample_rate: Default::default(),
             popped: Default::default(),
-            popped_upper_nonzero: Default::default(),
-            popped_upper_ones: Default::default(),
-            popped_low_nonzero: Default::default(),
             popped_valid: Default::default(),
             underrun_d: Default::default(),
             tick_d: Default::default(),
@@ -416,7 +403,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             forward_2: Default::default(),
             uniform_active: Default::default(),
             analog_active: Default::default(),
-            code_wide: Default::default(),
             code_forward: Default::default(),
             code_backward: Default::default(),
             code_nonzero: Default::default(),
@@ -436,9 +422,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             candidate_blocked: Default::default(),
             command: Default::default(),
             clear_faults: Default::default(),
-            upper_ones: Default::default(),
-            upper_zero: Default::default(),
-            low_half: Default::default(),
             too_large: Default::default(),
             count: Default::default(),
             uniform_started: Default::default(),
@@ -453,7 +436,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             window: Constant::new((window as u64).into()),
             has_uniform: Constant::new(uniform),
             has_analog: Constant::new(analog),
-            zero_code: Constant::new(0u64.into()),
             bit0_32: bit32(fields::STATUS_STEP_OVERRUN),
             bit16_32: bit32(fields::FIFO_EMPTY),
             bit17_32: bit32(fields::FIFO_FULL),
@@ -467,7 +449,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             bit7_32: bit32(fields::STATUS_STEP_MODE_INVALID),
             zero32: Constant::new(0u64.into()),
             zero_count: Constant::new(0u64.into()),
-            max_count: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
             zero_entry: Constant::new(0u64.into()),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
             mask16: Constant::new(crate::blocks::width_mask(fields::STEP_TIMING_WIDTH).into()),
@@ -544,9 +525,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             dir_hold,
             sample_rate,
             popped,
-            popped_upper_nonzero,
-            popped_upper_ones,
-            popped_low_nonzero,
             popped_valid,
             underrun_d,
             tick_d,
@@ -564,7 +542,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             forward_2,
             uniform_active,
             analog_active,
-            code_wide,
             code_forward,
             code_backward,
             uniform_loaded_forward,
@@ -632,44 +609,18 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.popped_valid.d.next = self.pop.val();
         self.underrun_d.d.next = self.underrun.val();
         self.tick_d.d.next = self.tick.val();
-        // |entry| saturated to the interpolators' width, without a 32-bit
-        // negation: too large is decided on the upper half alone (and
-        // -2^16 itself), the count negates only the lower half. Bits 31..16
-        // all 0 / all 1: uniform with sign 0 / 1 (ENTRY_UPPER_UNIFORM = 16,
-        // ENTRY_SIGN = 17).
-        self.upper_ones.next = self.fifo.head.val().get_bit(16) & self.fifo.head.val().get_bit(17);
-        self.upper_zero.next = self.fifo.head.val().get_bit(16) & !self.fifo.head.val().get_bit(17);
+        // The entry arrives converted (see ENTRY_BITS): bit 16 too large,
+        // 17 sign, 18 code wide, 19 nonzero.
         if self.pop.val() {
             self.popped.d.next = self.fifo.head.val();
-            self.popped_upper_nonzero.d.next = !self.upper_zero.val();
-            self.popped_upper_ones.d.next = self.upper_ones.val();
-            self.popped_low_nonzero.d.next =
-                self.fifo.head.val().get_bits::<PERIOD_BITS>(0) != self.zero_count.val();
-            // Bits 31..15 not all equal.
-            self.code_wide.d.next = !(self.fifo.head.val().get_bit(16)
-                & (self.fifo.head.val().get_bit(15) == self.fifo.head.val().get_bit(17)));
         }
-        // The analog code; the controller saturates it (one saturator after
-        // its axis multiplexer, not one per axis).
         self.dac_code.next = self.popped.q.val().get_bits::<DAC_BITS>(0);
-        self.code_out_of_range.next = self.code_wide.q.val();
+        self.code_out_of_range.next = self.popped.q.val().get_bit(18);
         self.code_negative.next = self.popped.q.val().get_bit(17);
-        self.code_nonzero.next = (self.popped.q.val().get_bits::<DAC_BITS>(0)
-            != self.zero_code.val())
-            | self.code_wide.q.val();
+        self.code_nonzero.next = self.popped.q.val().get_bit(19);
         self.analog.next = self.analog_active.q.val();
-        self.low_half.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
-        if self.popped.q.val().get_bit(17) {
-            self.too_large.next =
-                !self.popped_upper_ones.q.val() | !self.popped_low_nonzero.q.val();
-            self.count.next = self.zero_count.val() - self.low_half.val();
-        } else {
-            self.too_large.next = self.popped_upper_nonzero.q.val();
-            self.count.next = self.low_half.val();
-        }
-        if self.too_large.val() {
-            self.count.next = self.max_count.val();
-        }
+        self.too_large.next = self.popped.q.val().get_bit(16);
+        self.count.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
         // The uniform generator's outputs, and its division request, are
         // taken only in a build with the generator: without it they are
         // constant 0 and the generator (and the controller's divider) has
@@ -692,7 +643,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // Set by the rises of the sub-blocks' flags (their levels would
         // defeat a CLEAR_FAULTS that clears them on the same clock).
         self.saturated.d.next = self.popped_valid.q.val()
-            & ((self.analog_active.q.val() & self.code_wide.q.val())
+            & ((self.analog_active.q.val() & self.popped.q.val().get_bit(18))
                 | (!self.analog_active.q.val() & self.too_large.val()));
         if self.saturated.q.val()
             | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
@@ -980,9 +931,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.dir_hold.d.next = self.zero32.val();
             self.sample_rate.d.next = self.zero32.val();
             self.popped.d.next = self.zero_entry.val();
-            self.popped_upper_nonzero.d.next = false;
-            self.popped_upper_ones.d.next = false;
-            self.popped_low_nonzero.d.next = false;
             self.popped_valid.d.next = false;
             self.underrun_d.d.next = false;
             self.tick_d.d.next = false;
@@ -1000,7 +948,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.forward_2.d.next = false;
             self.uniform_active.d.next = false;
             self.analog_active.d.next = false;
-            self.code_wide.d.next = false;
             self.code_forward.d.next = false;
             self.code_backward.d.next = false;
             self.uniform_loaded_forward.d.next = false;

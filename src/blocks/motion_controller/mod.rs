@@ -779,8 +779,17 @@ pub struct MotionController<
     zero_entry: Constant<Bits<ENTRY_BITS>>,
     /// `entry_bit[b]` = 1 << b.
     entry_bit: [Constant<Bits<ENTRY_BITS>>; ENTRY_BITS],
-    /// The bus word as a FIFO entry.
+    /// The bus word as a FIFO entry, and the parts it is made of: bits
+    /// 31..16 all 0 / all 1, bits 15..0 and whether they are 0, too large
+    /// for 16 bits unsigned, and the magnitude saturated.
     fifo_entry: Signal<Local, Bits<ENTRY_BITS>>,
+    w_upper_zero: Signal<Local, Bit>,
+    w_upper_ones: Signal<Local, Bit>,
+    w_low: Signal<Local, Bits<PERIOD_BITS>>,
+    w_low_nonzero: Signal<Local, Bit>,
+    w_too_large: Signal<Local, Bit>,
+    w_magnitude: Signal<Local, Bits<PERIOD_BITS>>,
+    max_p: Constant<Bits<PERIOD_BITS>>,
     one32: Constant<Bits<32>>,
     zero_p: Constant<Bits<PERIOD_BITS>>,
     one_p: Constant<Bits<PERIOD_BITS>>,
@@ -1050,6 +1059,13 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             zero_entry: Constant::new(0u64.into()),
             entry_bit: array_init::array_init(|b| Constant::new((1u64 << b).into())),
             fifo_entry: Default::default(),
+            w_upper_zero: Default::default(),
+            w_upper_ones: Default::default(),
+            w_low: Default::default(),
+            w_low_nonzero: Default::default(),
+            w_too_large: Default::default(),
+            w_magnitude: Default::default(),
+            max_p: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
             one32: Constant::new(1u64.into()),
             zero_p: Constant::new(0u64.into()),
             one_p: Constant::new(1u64.into()),
@@ -1400,24 +1416,49 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.enables.next = self.zero_k.val();
         // Bits of the K-bit ports by mask, not bit select: at K = 1 rust-hdl
         // declares them without a range, where `x[0]` is illegal Verilog.
-        // The FIFO entry every axis stores, compressed once for all (see
-        // axis::ENTRY_BITS): the low 16 bits, bits 31..16 all equal to bit
-        // 31 (bit 16), and bit 31 (bit 17).
+        // The FIFO entry every axis stores, converted once for all (see
+        // axis::ENTRY_BITS): |w| saturated to 16 bits, too large (16),
+        // sign (17), code wide (18), nonzero (19). Too large is decided on
+        // the upper half alone (and -2^16 itself), and only the lower half
+        // is negated.
+        self.w_upper_zero.next =
+            (self.bus_write_data.val() & self.upper_half.val()) == self.zero32.val();
+        self.w_upper_ones.next =
+            (self.bus_write_data.val() & self.upper_half.val()) == self.upper_half.val();
+        self.w_low.next = self.bus_write_data.val().get_bits::<PERIOD_BITS>(0);
+        self.w_low_nonzero.next = self.w_low.val() != self.zero_p.val();
+        if self.bus_write_data.val().get_bit(31) {
+            self.w_too_large.next = !self.w_upper_ones.val() | !self.w_low_nonzero.val();
+            self.w_magnitude.next = self.zero_p.val() - self.w_low.val();
+        } else {
+            self.w_too_large.next = !self.w_upper_zero.val();
+            self.w_magnitude.next = self.w_low.val();
+        }
+        if self.w_too_large.val() {
+            self.w_magnitude.next = self.max_p.val();
+        }
         // (Bit by bit: rust-hdl has no widening that Verilator reads
         // without a width warning.)
         self.fifo_entry.next = self.zero_entry.val();
-        for b in 0..16 {
-            if self.bus_write_data.val().get_bit(b) {
+        for b in 0..PERIOD_BITS {
+            if self.w_magnitude.val().get_bit(b) {
                 self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[b].val();
             }
         }
-        if ((self.bus_write_data.val() & self.upper_half.val()) == self.zero32.val())
-            | ((self.bus_write_data.val() & self.upper_half.val()) == self.upper_half.val())
-        {
+        if self.w_too_large.val() {
             self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[16].val();
         }
         if self.bus_write_data.val().get_bit(31) {
             self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[17].val();
+        }
+        // Bits 31..15 not all equal.
+        if !((self.w_upper_zero.val() & !self.w_low.val().get_bit(15))
+            | (self.w_upper_ones.val() & self.w_low.val().get_bit(15)))
+        {
+            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[18].val();
+        }
+        if !self.w_upper_zero.val() | self.w_low_nonzero.val() {
+            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[19].val();
         }
         for i in 0..K {
             self.axes[i].clock.next = self.clock.val();
@@ -1500,7 +1541,12 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
                 self.walk_negative.next = self.axes[i].code_negative.val();
             }
         }
-        // An entry beyond 16 bits signed saturates.
+        // The axes hold |entry|: the code is it with its sign put back
+        // (exact for every entry that fits 16 bits signed, -2^15 included),
+        // and an entry beyond 16 bits signed saturates.
+        if self.walk_negative.val() {
+            self.dac_code.next = self.zero_code.val() - self.dac_code.val();
+        }
         if self.walk_wide.val() {
             if self.walk_negative.val() {
                 self.dac_code.next = self.code_min.val();
