@@ -12,8 +12,9 @@
 //
 // The controller is motion_controller_dda: the seed's own fine
 // interpolation (one DDA per axis), without the dual-period uniform
-// generators. With them (motion_controller) the card needs about 102 % of
-// the HX8K's logic cells; the README gives the figures of both.
+// generators. With them (motion_controller) the card needs 93 % of the
+// HX8K's logic cells (7165 of 7680, #35's second step), over the 85 % it
+// must stay under.
 //
 // Clocking and reset are motion_board.v's: 12 MHz into the PLL, one 48 MHz
 // system clock, a synchronized reset while the PLL is unlocked or
@@ -41,10 +42,10 @@
 // outputs.
 //
 // Analog axes: not on this card yet. motion_controller_servo is this
-// controller with the DAC outputs (three AD669s on one bus); with it and
-// the DACs wired the card needs 6,639 of the 7,680 logic cells (86 %),
-// over the 85 % this card must stay under, until the design saves about
-// 110 logic cells. motion_controller_dda's DAC pins idle.
+// controller with the DAC outputs (three AD669s on one bus); since #35's
+// second step it fits beside the host links (6104 of the 7680 logic
+// cells, 79 %, placed at 48 MHz), and wiring it here is the next step.
+// motion_controller_dda's DAC pins idle.
 
 `default_nettype none
 

@@ -328,7 +328,24 @@
 //! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
 //! a quadrature decoder, a FIFO, its machine I/O (two 32-bit home latches)
 //! and its register window with two 32-bit snapshots; `rtl-out/scaling-report.md`
-//! gives the cost of an axis (K = 1, 3 and 6). The DDA-only build
+//! gives the cost of an axis (K = 1, 3 and 6).
+//!
+//! Three things keep the per-axis cost down without changing a register
+//! or a clock of the behavior above:
+//! * **Entries converted once.** The FIFOs hold 20-bit entries, not the
+//!   written 32-bit words: |n| saturated to 16 bits, its sign, and whether
+//!   it was too large, beyond 16 bits signed, or 0 (`axis::ENTRY_BITS`).
+//!   The controller converts each bus word once, before every axis's FIFO,
+//!   and puts the sign back once for the DAC after its walk.
+//! * **Configuration read back from block RAM.** AXIS_CONFIG, STEP_LEN,
+//!   STEP_SPACE, DIR_SETUP, DIR_HOLD and ENC_SAMPLE_RATE of every axis are
+//!   copied on write into one 256 x 16 block RAM (`config_shadow`), which
+//!   answers their reads; the axes' read multiplexers carry only the live
+//!   and captured values. A read of one of them while it is written on the
+//!   same clock still returns the old value.
+//! * **No read-first logic behind the FIFOs' RAMs**: each FIFO's own
+//!   bypass already hides a read that collides with a write
+//!   (`command_fifo`, proved). The DDA-only build
 //! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
 //! the DAC and its walk) have their own rows in the synthesis report.
 //!
@@ -350,9 +367,9 @@
 //!   and mailbox, with the 15 % of it free the seed card asks for
 //!   (`seed_board.v`, checked by its placement test);
 //! * `motion_controller_servo` ([`MotionController3Servo`]): DDA only,
-//!   with the analog outputs (step and AD669 servo drives). With the host
-//!   links it needs more than 85 % of an HX8K: the seed card does not
-//!   take it yet (#35).
+//!   with the analog outputs (step and AD669 servo drives). Since #35's
+//!   second step it fits an HX8K beside the host links within the seed
+//!   card's 85 %; `seed_board.v` does not wire the DACs yet.
 //!
 //! Without the uniform generators the ports are the same; for software:
 //! * `CONFIG.DDA_ONLY` reads 1 (0 in the full build, and in cores older
