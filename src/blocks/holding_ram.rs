@@ -62,7 +62,7 @@ pub struct HoldingRam<D: Synth, const N: usize> {
     pub write_address: Signal<In, Bits<N>>,
     /// Data written.
     pub write_data: Signal<In, D>,
-    _memory: Box<BTreeMap<Bits<N>, D>>,
+    _memory: BTreeMap<Bits<N>, D>,
     /// The Verilog has no read-during-write guarantee (`no_rw_check`).
     _collisions_unobserved: bool,
 }
