@@ -108,6 +108,12 @@ pub fn datasheets() -> Vec<DatasheetSpec> {
             build: || Box::new(input_conditioner::InputConditioner::<8>::default()),
         },
         DatasheetSpec {
+            block: "holding_ram",
+            port_docs: holding_ram::PORT_DOCS,
+            parameters: &[("D", 16), ("N", 8)],
+            build: || Box::new(holding_ram::HoldingRam::<Bits<16>, 8>::default()),
+        },
+        DatasheetSpec {
             block: "interrupt_controller",
             port_docs: interrupt_controller::PORT_DOCS,
             parameters: &[("N", 12)],

@@ -8,15 +8,8 @@
 //! readback can keep its answer without a holding register after the RAM.
 //!
 //! ## Ports
-//! | port | width | meaning |
-//! |---|---|---|
-//! | `clock` | 1 | rising-edge clock of both ports |
-//! | `read_enable` | 1 | load the read register at this edge |
-//! | `read_address` | N | word read at an edge with `read_enable` |
-//! | `read_data` | D | registered: the word at `read_address` from the edge of the last enabled read, held until the next one; 0 before the first |
-//! | `write_enable` | 1 | write `write_data` at `write_address` at this edge |
-//! | `write_address` | N | word written |
-//! | `write_data` | D | data written |
+//!
+#![doc = include_str!("ports.md")]
 //!
 //! ## Timing and bad input
 //! * Read latency 1: an enabled read at edge t shows its word after edge t.
@@ -43,6 +36,23 @@
 use std::collections::BTreeMap;
 
 use rust_hdl::prelude::*;
+
+use crate::blocks::port_doc::{port, PortDoc};
+
+/// Meaning of every port: the one source of the datasheet's port table.
+pub const PORT_DOCS: &[PortDoc] = &[
+    port("clock", "1", "rising-edge clock of both ports"),
+    port("read_enable", "1", "load the read register at this edge"),
+    port("read_address", "N", "word read at an edge with `read_enable`"),
+    port(
+        "read_data",
+        "D",
+        "registered: the word at `read_address` from the edge of the last enabled read, held until the next one; 0 before the first",
+    ),
+    port("write_enable", "1", "write `write_data` at `write_address` at this edge"),
+    port("write_address", "N", "word written"),
+    port("write_data", "D", "data written"),
+];
 
 /// Block RAM of 2^N words of type D with a read enable. See the
 /// [module documentation](self).
