@@ -373,32 +373,14 @@ fn exported_servo_verilog_matches_rust_in_icarus_and_verilator() {
 /// the model by the bench).
 #[test]
 fn entries_at_every_width_edge_leave_as_their_saturated_codes() {
-    // Sixteen: the FIFOs take them all before the run.
-    const EDGES: [i64; 16] = [
-        0,
-        -1,
-        32767,
-        32768,
-        -32767,
-        -32768,
-        -32769,
-        65535,
-        65536,
-        -65535,
-        -65536,
-        -65537,
-        i32::MIN as i64,
-        i32::MAX as i64,
-        -0x7fff_0000,
-        0x0001_8000,
-    ];
+    let edges = crate::motion_controller::ENTRY_EDGES.map(i64::from);
     let mut b = Analog3::new().with_loopback();
     let period = 100;
     let analog = [true, false, true];
     configure_analog(&mut b, period, analog);
     // Axis 0 takes the edges in order, axis 2 in reverse; axis 1 steps.
-    let codes: Vec<[i64; 3]> = (0..EDGES.len())
-        .map(|i| [EDGES[i], 1, EDGES[EDGES.len() - 1 - i]])
+    let codes: Vec<[i64; 3]> = (0..edges.len())
+        .map(|i| [edges[i], 1, edges[edges.len() - 1 - i]])
         .collect();
     let trace = run_codes(
         &mut b,

@@ -1112,38 +1112,46 @@ fn an_oversized_entry_is_flagged_one_clock_after_it_is_taken() {
 /// bits) on a DDA, a uniform and a DDA axis: the bench compares every
 /// clock with the model, and the steps at the pins are the entries
 /// saturated to 16 bits, then clamped to T (DDA) or T/2 (uniform) ticks.
+/// Every edge of the entry's conversion: 16 bits signed (the DAC code),
+/// 16 bits unsigned (the interpolators' count) and 32 bits. Sixteen, so a
+/// FIFO takes them all before a run; `analog_axes` uses them too.
+pub(crate) const ENTRY_EDGES: [i32; 16] = [
+    0,
+    1,
+    -1,
+    32767,
+    32768,
+    -32768,
+    -32769,
+    65535,
+    65536,
+    -65535,
+    -65536,
+    -65537,
+    i32::MIN,
+    i32::MAX,
+    0x7fff_0000,
+    -0x0001_8000,
+];
+
 #[test]
 fn entries_at_every_width_edge_step_as_the_model_says() {
-    const EDGES: [i32; 16] = [
-        0,
-        1,
-        -1,
-        32767,
-        32768,
-        -32768,
-        -32769,
-        65535,
-        65536,
-        -65535,
-        -65536,
-        -65537,
-        i32::MIN,
-        i32::MAX,
-        0x7fff_0000,
-        -0x0001_8000,
-    ];
     let mut b = Controller3::on(Backend::Verilator).with_loopback();
     let period = 64;
     configure_with_tick(&mut b, 4, period, [false, true, false]);
-    for i in 0..EDGES.len() {
-        b.write("FIFO_WRITE", 0, EDGES[i] as u32);
-        b.write("FIFO_WRITE", 1, EDGES[i] as u32);
-        b.write("FIFO_WRITE", 2, EDGES[EDGES.len() - 1 - i] as u32);
+    for i in 0..ENTRY_EDGES.len() {
+        b.write("FIFO_WRITE", 0, ENTRY_EDGES[i] as u32);
+        b.write("FIFO_WRITE", 1, ENTRY_EDGES[i] as u32);
+        b.write(
+            "FIFO_WRITE",
+            2,
+            ENTRY_EDGES[ENTRY_EDGES.len() - 1 - i] as u32,
+        );
     }
     b.write("CONTROL", 0, 1);
     drain(&mut b);
     let expected = |limit: i64| -> i64 {
-        EDGES
+        ENTRY_EDGES
             .iter()
             .map(|&n| (n as i64).signum() * (n as i64).abs().min(65535).min(limit))
             .sum()

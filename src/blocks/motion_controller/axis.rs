@@ -178,8 +178,9 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     dir_hold: DFF<Bits<32>>,
     sample_rate: DFF<Bits<32>>,
     /// The entry popped at the last edge (0 after reset: every flag
-    /// clear), and that a pop (an underrun) happened then: the interpolators take it one clock after the
-    /// boundary, so the block RAM's read path ends in a flip-flop.
+    /// clear), and that a pop (an underrun) happened then: the
+    /// interpolators take it one clock after the boundary, so the block
+    /// RAM's read path ends in a flip-flop.
     popped: DFF<Bits<ENTRY_BITS>>,
     popped_valid: DFF<Bit>,
     underrun_d: DFF<Bit>,
