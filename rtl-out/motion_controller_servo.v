@@ -92,78 +92,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  shadow_bit__13 = 32'h2000;
     localparam  shadow_bit__14 = 32'h4000;
     localparam  shadow_bit__15 = 32'h8000;
-    localparam  has_analog = 1'b1;
-    localparam  code_max = 16'h7fff;
-    localparam  code_min = 16'h8000;
-    localparam  dac_applied_bits = 5'b11000;
-    localparam  a_dac_global__0 = 8'h16;
-    localparam  a_dac_global__1 = 8'h17;
-    localparam  a_dac_global__2 = 8'h18;
-    localparam  d_dac_global__0 = 5'b10;
-    localparam  d_dac_global__1 = 5'b100;
-    localparam  d_dac_global__2 = 5'b101;
-    localparam  a_dac_applied__0 = 8'h35;
-    localparam  a_dac_applied__1 = 8'h55;
-    localparam  a_dac_applied__2 = 8'h75;
-    localparam  d_dac_applied__0 = 5'b0;
-    localparam  d_dac_applied__1 = 5'b1;
-    localparam  d_dac_applied__2 = 5'b10;
-    localparam  zero5 = 5'b0;
-    localparam  last_axis = 3'b100;
     localparam  zero_code = 16'h0;
-    localparam  dac_data_mask = 16'hffff;
-    localparam  dac_cs_idle = 3'b0;
     localparam  has_uniform = 1'b0;
-    localparam  a_id = 8'h0;
-    localparam  a_version = 8'h1;
-    localparam  a_config = 8'h2;
-    localparam  a_control = 8'h3;
-    localparam  a_status = 8'h4;
-    localparam  a_irq_enable = 8'h5;
-    localparam  a_tick_divisor = 8'h6;
-    localparam  a_period_ticks = 8'h7;
-    localparam  a_low_water = 8'h8;
-    localparam  a_watchdog_timeout = 8'h9;
-    localparam  a_watchdog_kick = 8'ha;
-    localparam  a_snapshot = 8'hb;
-    localparam  a_state = 8'hc;
-    localparam  a_period_count = 8'hd;
-    localparam  a_stop_cause = 8'h10;
-    localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h300;
-    localparam  config_value = 32'h3810403;
-    localparam  bit0_32 = 32'h1;
-    localparam  bit1_32 = 32'h2;
-    localparam  bit2_32 = 32'h4;
     localparam  zero32 = 32'h0;
-    localparam  upper_half = 32'hffff0000;
-    localparam  zero_entry = 20'h0;
-    localparam  entry_bit__0 = 20'h1;
-    localparam  entry_bit__1 = 20'h2;
-    localparam  entry_bit__2 = 20'h4;
-    localparam  entry_bit__3 = 20'h8;
-    localparam  entry_bit__4 = 20'h10;
-    localparam  entry_bit__5 = 20'h20;
-    localparam  entry_bit__6 = 20'h40;
-    localparam  entry_bit__7 = 20'h80;
-    localparam  entry_bit__8 = 20'h100;
-    localparam  entry_bit__9 = 20'h200;
-    localparam  entry_bit__10 = 20'h400;
-    localparam  entry_bit__11 = 20'h800;
-    localparam  entry_bit__12 = 20'h1000;
-    localparam  entry_bit__13 = 20'h2000;
-    localparam  entry_bit__14 = 20'h4000;
-    localparam  entry_bit__15 = 20'h8000;
-    localparam  entry_bit__16 = 20'h10000;
-    localparam  entry_bit__17 = 20'h20000;
-    localparam  entry_bit__18 = 20'h40000;
-    localparam  entry_bit__19 = 20'h80000;
-    localparam  max_p = 16'hffff;
-    localparam  one32 = 32'h1;
-    localparam  zero_p = 16'h0;
-    localparam  one_p = 16'h1;
-    localparam  two_p = 16'h2;
-    localparam  not_one_p = 16'hfffe;
     localparam  ev_period_done = 12'h1;
     localparam  ev_fifo_low = 12'h2;
     localparam  ev_underrun = 12'h4;
@@ -177,44 +108,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  ev_home = 12'h400;
     localparam  ev_gpio = 12'h800;
     localparam  zero_ev = 12'h0;
-    localparam  irq_mask = 32'hfff;
     localparam  m_status_watchdog = 32'h20;
     localparam  m_status_estop = 32'h200;
-    localparam  m_state_estop_input = 32'h8;
-    localparam  m_state_estop_latched = 32'h10;
-    localparam  m_state_aborted = 32'h20;
-    localparam  m_state_inputs_ready = 32'h40;
-    localparam  cause_stop = 32'h1;
-    localparam  cause_underrun = 32'h2;
-    localparam  cause_watchdog = 32'h3;
-    localparam  cause_home = 32'h4;
-    localparam  cause_limit = 32'h5;
-    localparam  cause_alarm = 32'h6;
-    localparam  cause_estop = 32'h7;
-    localparam  cause_axis__0 = 32'h0;
-    localparam  cause_axis__1 = 32'h100;
-    localparam  cause_axis__2 = 32'h200;
     localparam  axis_bit__0 = 3'b1;
     localparam  axis_bit__1 = 3'b10;
     localparam  axis_bit__2 = 3'b100;
     localparam  zero_k = 3'b0;
-    localparam  bit_mask__0 = 32'h1;
-    localparam  bit_mask__1 = 32'h2;
-    localparam  bit_mask__2 = 32'h4;
-    localparam  bit_mask__3 = 32'h8;
-    localparam  bit_mask__4 = 32'h10;
-    localparam  bit_mask__5 = 32'h20;
-    localparam  bit_mask__6 = 32'h40;
-    localparam  bit_mask__7 = 32'h80;
-    localparam  bit_mask__8 = 32'h100;
-    localparam  bit_mask__9 = 32'h200;
-    localparam  bit_mask__10 = 32'h400;
-    localparam  bit_mask__11 = 32'h800;
-    localparam  bit_mask__12 = 32'h1000;
-    localparam  bit_mask__13 = 32'h2000;
-    localparam  bit_mask__14 = 32'h4000;
-    localparam  bit_mask__15 = 32'h8000;
-    localparam  level_mask = 32'h1f;
 
     // Stub signals
     reg  axes__0__clock;
@@ -373,6 +272,65 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [15:0] axes__2__dac_code;
     wire  axes__2__code_out_of_range;
     wire  axes__2__code_negative;
+    reg  registers__clock;
+    reg  registers__reset;
+    reg  [7:0] registers__address;
+    reg  [31:0] registers__write_data;
+    reg  registers__write;
+    reg  registers__running;
+    reg  [11:0] registers__status;
+    reg  registers__watchdog_armed;
+    reg  registers__watchdog_expired;
+    reg  registers__estop_input;
+    reg  registers__estop_latched;
+    reg  registers__aborted;
+    reg  registers__inputs_ready;
+    reg  [31:0] registers__period_count;
+    reg  [31:0] registers__stop_cause;
+    wire  [11:0] registers__irq_enable;
+    wire  [31:0] registers__tick_divisor;
+    wire  [15:0] registers__period_ticks;
+    wire  [4:0] registers__low_water;
+    wire  [31:0] registers__watchdog_timeout;
+    wire  registers__control_write;
+    wire  registers__status_write;
+    wire  registers__kick;
+    wire  registers__snapshot;
+    wire  [31:0] registers__read_data;
+    reg  period__clock;
+    reg  period__reset;
+    reg  period__tick;
+    reg  period__control_write;
+    reg  period__run_bit;
+    reg  period__flush_bit;
+    reg  period__refuse_run;
+    reg  period__abort;
+    reg  period__all_ready;
+    reg  [15:0] period__period_ticks;
+    wire  period__start;
+    wire  period__halt;
+    wire  period__flush;
+    wire  period__pop;
+    wire  period__underrun;
+    wire  period__period_done;
+    wire  period__running;
+    wire  [15:0] period__period_active;
+    wire  [15:0] period__modulus;
+    wire  [31:0] period__period_count;
+    reg  cause_register__clock;
+    reg  cause_register__reset;
+    reg  [2:0] cause_register__limit_held;
+    reg  [2:0] cause_register__alarm_held;
+    reg  [2:0] cause_register__home_held;
+    reg  cause_register__estop_latched;
+    reg  cause_register__abort_hold;
+    reg  cause_register__watchdog_expired;
+    reg  cause_register__running;
+    reg  cause_register__underrun;
+    reg  cause_register__halt;
+    wire  [31:0] cause_register__stop_cause;
+    reg  [31:0] entry_converter__word;
+    wire  [19:0] entry_converter__entry;
     reg  config_shadow__clock;
     reg  config_shadow__reset;
     reg  [7:0] config_shadow__address;
@@ -427,38 +385,26 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [7:0] io__gpio_out;
     wire  io__ready;
     wire  [31:0] io__read_data;
-    reg  dac__clock;
-    reg  dac__reset;
-    reg  [4:0] dac__bus_address;
-    reg  [31:0] dac__bus_write_data;
-    reg  dac__bus_write;
-    reg  dac__bus_read;
-    reg  dac__update;
-    reg  dac__force_safe;
-    reg  [2:0] dac__load;
-    reg  [15:0] dac__load_code;
-    wire  [31:0] dac__bus_read_data;
-    wire  [15:0] dac__dac_data;
-    wire  [2:0] dac__dac_cs_n;
-    wire  dac__dac_l1_n;
-    wire  dac__dac_ldac;
-    wire  dac__busy;
-    wire  dac__safe;
-    reg  pop_d__d;
-    wire  pop_d__q;
-    reg  pop_d__clock;
-    reg  [2:0] dac_walk__d;
-    wire  [2:0] dac_walk__q;
-    reg  dac_walk__clock;
-    reg  dac_update__d;
-    wire  dac_update__q;
-    reg  dac_update__clock;
-    reg  dac_read_sel__d;
-    wire  dac_read_sel__q;
-    reg  dac_read_sel__clock;
-    reg  stop_zero_d__d;
-    wire  stop_zero_d__q;
-    reg  stop_zero_d__clock;
+    reg  analog__clock;
+    reg  analog__reset;
+    reg  [7:0] analog__bus_address;
+    reg  [31:0] analog__bus_write_data;
+    reg  analog__bus_write;
+    reg  analog__bus_read;
+    reg  analog__pop;
+    reg  analog__stop_zero;
+    reg  analog__abort;
+    reg  [2:0] analog__analog_axes;
+    reg  [15:0] analog__code_magnitude;
+    reg  analog__code_negative;
+    reg  analog__code_wide;
+    wire  [2:0] analog__walk;
+    wire  [31:0] analog__read_data;
+    wire  analog__read_selected;
+    wire  [15:0] analog__dac_data;
+    wire  [2:0] analog__dac_cs_n;
+    wire  analog__dac_l1_n;
+    wire  analog__dac_ldac;
     reg  divider__clock;
     reg  divider__reset;
     reg  divider__start;
@@ -475,45 +421,6 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  abort_hold__d;
     wire  abort_hold__q;
     reg  abort_hold__clock;
-    reg  [31:0] stop_cause__d;
-    wire  [31:0] stop_cause__q;
-    reg  stop_cause__clock;
-    reg  run__d;
-    wire  run__q;
-    reg  run__clock;
-    reg  [31:0] irq_enable__d;
-    wire  [31:0] irq_enable__q;
-    reg  irq_enable__clock;
-    reg  [31:0] tick_divisor__d;
-    wire  [31:0] tick_divisor__q;
-    reg  tick_divisor__clock;
-    reg  [15:0] period_ticks__d;
-    wire  [15:0] period_ticks__q;
-    reg  period_ticks__clock;
-    reg  [31:0] low_water__d;
-    wire  [31:0] low_water__q;
-    reg  low_water__clock;
-    reg  [31:0] watchdog_timeout__d;
-    wire  [31:0] watchdog_timeout__q;
-    reg  watchdog_timeout__clock;
-    reg  [15:0] ticks_left__d;
-    wire  [15:0] ticks_left__q;
-    reg  ticks_left__clock;
-    reg  boundary_next__d;
-    wire  boundary_next__q;
-    reg  boundary_next__clock;
-    reg  in_period__d;
-    wire  in_period__q;
-    reg  in_period__clock;
-    reg  [15:0] period_active__d;
-    wire  [15:0] period_active__q;
-    reg  period_active__clock;
-    reg  [15:0] modulus__d;
-    wire  [15:0] modulus__q;
-    reg  modulus__clock;
-    reg  [31:0] period_count__d;
-    wire  [31:0] period_count__q;
-    reg  period_count__clock;
     reg  [31:0] read_data__d;
     wire  [31:0] read_data__q;
     reg  read_data__clock;
@@ -525,65 +432,39 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  expired_prev__clock;
 
     // Local signals
-    reg  [2:0] walk_now;
     reg  [2:0] analog_axes;
-    reg  [2:0] dac_load;
-    reg  [15:0] dac_code;
+    reg  [15:0] walk_magnitude;
     reg  walk_wide;
     reg  walk_negative;
-    reg  [4:0] dac_low;
-    reg  dac_applied_hit;
-    reg  stop_zero;
-    reg  dac_hit;
-    reg  [4:0] dac_address;
     reg  [31:0] read_out;
     reg  div_idle;
     reg  div_granted;
     reg  tick;
-    reg  write_control;
     reg  start;
     reg  halt;
-    reg  boundary;
     reg  all_ready;
     reg  pop;
     reg  underrun;
-    reg  [15:0] period_next;
     reg  any_low;
     reg  any_overflow;
     reg  any_fault;
     reg  any_encoder_error;
     reg  any_busy;
-    reg  flush;
     reg  [31:0] axes_read;
-    reg  [31:0] global_read;
     reg  [11:0] events;
-    reg  [31:0] state_word;
     reg  abort;
     reg  refuse_run;
-    reg  any_limit_held;
-    reg  any_alarm_held;
-    reg  any_home_held;
+    reg  [2:0] limit_held;
+    reg  [2:0] alarm_held;
+    reg  [2:0] home_held;
+    reg  any_held;
     reg  any_limit_event;
     reg  any_alarm_event;
     reg  any_home_event;
     reg  drive_allowed;
-    reg  [31:0] cause_now;
-    reg  [31:0] limit_axis;
-    reg  [31:0] alarm_axis;
-    reg  [31:0] home_axis;
-    reg  limit_found;
-    reg  alarm_found;
-    reg  home_found;
     reg  [2:0] steps_a;
     reg  [2:0] steps_b;
     reg  [2:0] enables;
-    reg  [19:0] fifo_entry;
-    reg  w_upper_zero;
-    reg  w_upper_ones;
-    reg  [15:0] w_low;
-    reg  w_low_nonzero;
-    reg  w_too_large;
-    reg  [15:0] w_magnitude;
 
     // Sub module instances
     motion_controller_servo__axes__0 axes__0(
@@ -748,6 +629,73 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .code_out_of_range(axes__2__code_out_of_range),
         .code_negative(axes__2__code_negative)
     );
+    motion_controller_servo__registers registers(
+        .clock(registers__clock),
+        .reset(registers__reset),
+        .address(registers__address),
+        .write_data(registers__write_data),
+        .write(registers__write),
+        .running(registers__running),
+        .status(registers__status),
+        .watchdog_armed(registers__watchdog_armed),
+        .watchdog_expired(registers__watchdog_expired),
+        .estop_input(registers__estop_input),
+        .estop_latched(registers__estop_latched),
+        .aborted(registers__aborted),
+        .inputs_ready(registers__inputs_ready),
+        .period_count(registers__period_count),
+        .stop_cause(registers__stop_cause),
+        .irq_enable(registers__irq_enable),
+        .tick_divisor(registers__tick_divisor),
+        .period_ticks(registers__period_ticks),
+        .low_water(registers__low_water),
+        .watchdog_timeout(registers__watchdog_timeout),
+        .control_write(registers__control_write),
+        .status_write(registers__status_write),
+        .kick(registers__kick),
+        .snapshot(registers__snapshot),
+        .read_data(registers__read_data)
+    );
+    motion_controller_servo__period period(
+        .clock(period__clock),
+        .reset(period__reset),
+        .tick(period__tick),
+        .control_write(period__control_write),
+        .run_bit(period__run_bit),
+        .flush_bit(period__flush_bit),
+        .refuse_run(period__refuse_run),
+        .abort(period__abort),
+        .all_ready(period__all_ready),
+        .period_ticks(period__period_ticks),
+        .start(period__start),
+        .halt(period__halt),
+        .flush(period__flush),
+        .pop(period__pop),
+        .underrun(period__underrun),
+        .period_done(period__period_done),
+        .running(period__running),
+        .period_active(period__period_active),
+        .modulus(period__modulus),
+        .period_count(period__period_count)
+    );
+    motion_controller_servo__cause_register cause_register(
+        .clock(cause_register__clock),
+        .reset(cause_register__reset),
+        .limit_held(cause_register__limit_held),
+        .alarm_held(cause_register__alarm_held),
+        .home_held(cause_register__home_held),
+        .estop_latched(cause_register__estop_latched),
+        .abort_hold(cause_register__abort_hold),
+        .watchdog_expired(cause_register__watchdog_expired),
+        .running(cause_register__running),
+        .underrun(cause_register__underrun),
+        .halt(cause_register__halt),
+        .stop_cause(cause_register__stop_cause)
+    );
+    motion_controller_servo__entry_converter entry_converter(
+        .word(entry_converter__word),
+        .entry(entry_converter__entry)
+    );
     motion_controller_servo__config_shadow config_shadow(
         .clock(config_shadow__clock),
         .reset(config_shadow__reset),
@@ -812,49 +760,27 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .ready(io__ready),
         .read_data(io__read_data)
     );
-    motion_controller_servo__dac dac(
-        .clock(dac__clock),
-        .reset(dac__reset),
-        .bus_address(dac__bus_address),
-        .bus_write_data(dac__bus_write_data),
-        .bus_write(dac__bus_write),
-        .bus_read(dac__bus_read),
-        .update(dac__update),
-        .force_safe(dac__force_safe),
-        .load(dac__load),
-        .load_code(dac__load_code),
-        .bus_read_data(dac__bus_read_data),
-        .dac_data(dac__dac_data),
-        .dac_cs_n(dac__dac_cs_n),
-        .dac_l1_n(dac__dac_l1_n),
-        .dac_ldac(dac__dac_ldac),
-        .busy(dac__busy),
-        .safe(dac__safe)
-    );
-    motion_controller_servo__pop_d pop_d(
-        .d(pop_d__d),
-        .q(pop_d__q),
-        .clock(pop_d__clock)
-    );
-    motion_controller_servo__dac_walk dac_walk(
-        .d(dac_walk__d),
-        .q(dac_walk__q),
-        .clock(dac_walk__clock)
-    );
-    motion_controller_servo__dac_update dac_update(
-        .d(dac_update__d),
-        .q(dac_update__q),
-        .clock(dac_update__clock)
-    );
-    motion_controller_servo__dac_read_sel dac_read_sel(
-        .d(dac_read_sel__d),
-        .q(dac_read_sel__q),
-        .clock(dac_read_sel__clock)
-    );
-    motion_controller_servo__stop_zero_d stop_zero_d(
-        .d(stop_zero_d__d),
-        .q(stop_zero_d__q),
-        .clock(stop_zero_d__clock)
+    motion_controller_servo__analog analog(
+        .clock(analog__clock),
+        .reset(analog__reset),
+        .bus_address(analog__bus_address),
+        .bus_write_data(analog__bus_write_data),
+        .bus_write(analog__bus_write),
+        .bus_read(analog__bus_read),
+        .pop(analog__pop),
+        .stop_zero(analog__stop_zero),
+        .abort(analog__abort),
+        .analog_axes(analog__analog_axes),
+        .code_magnitude(analog__code_magnitude),
+        .code_negative(analog__code_negative),
+        .code_wide(analog__code_wide),
+        .walk(analog__walk),
+        .read_data(analog__read_data),
+        .read_selected(analog__read_selected),
+        .dac_data(analog__dac_data),
+        .dac_cs_n(analog__dac_cs_n),
+        .dac_l1_n(analog__dac_l1_n),
+        .dac_ldac(analog__dac_ldac)
     );
     motion_controller_servo__divider divider(
         .clock(divider__clock),
@@ -878,71 +804,6 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .q(abort_hold__q),
         .clock(abort_hold__clock)
     );
-    motion_controller_servo__stop_cause stop_cause(
-        .d(stop_cause__d),
-        .q(stop_cause__q),
-        .clock(stop_cause__clock)
-    );
-    motion_controller_servo__run run(
-        .d(run__d),
-        .q(run__q),
-        .clock(run__clock)
-    );
-    motion_controller_servo__irq_enable irq_enable(
-        .d(irq_enable__d),
-        .q(irq_enable__q),
-        .clock(irq_enable__clock)
-    );
-    motion_controller_servo__tick_divisor tick_divisor(
-        .d(tick_divisor__d),
-        .q(tick_divisor__q),
-        .clock(tick_divisor__clock)
-    );
-    motion_controller_servo__period_ticks period_ticks(
-        .d(period_ticks__d),
-        .q(period_ticks__q),
-        .clock(period_ticks__clock)
-    );
-    motion_controller_servo__low_water low_water(
-        .d(low_water__d),
-        .q(low_water__q),
-        .clock(low_water__clock)
-    );
-    motion_controller_servo__watchdog_timeout watchdog_timeout(
-        .d(watchdog_timeout__d),
-        .q(watchdog_timeout__q),
-        .clock(watchdog_timeout__clock)
-    );
-    motion_controller_servo__ticks_left ticks_left(
-        .d(ticks_left__d),
-        .q(ticks_left__q),
-        .clock(ticks_left__clock)
-    );
-    motion_controller_servo__boundary_next boundary_next(
-        .d(boundary_next__d),
-        .q(boundary_next__q),
-        .clock(boundary_next__clock)
-    );
-    motion_controller_servo__in_period in_period(
-        .d(in_period__d),
-        .q(in_period__q),
-        .clock(in_period__clock)
-    );
-    motion_controller_servo__period_active period_active(
-        .d(period_active__d),
-        .q(period_active__q),
-        .clock(period_active__clock)
-    );
-    motion_controller_servo__modulus modulus(
-        .d(modulus__d),
-        .q(modulus__q),
-        .clock(modulus__clock)
-    );
-    motion_controller_servo__period_count period_count(
-        .d(period_count__d),
-        .q(period_count__q),
-        .clock(period_count__clock)
-    );
     motion_controller_servo__read_data read_data(
         .d(read_data__d),
         .q(read_data__q),
@@ -961,84 +822,47 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
 
     // Update code
     always @(*) begin
-        run__clock = clock;
-        irq_enable__clock = clock;
-        tick_divisor__clock = clock;
-        period_ticks__clock = clock;
-        low_water__clock = clock;
-        watchdog_timeout__clock = clock;
-        ticks_left__clock = clock;
-        boundary_next__clock = clock;
-        in_period__clock = clock;
-        period_active__clock = clock;
-        modulus__clock = clock;
-        period_count__clock = clock;
         read_data__clock = clock;
         any_low_prev_n__clock = clock;
         expired_prev__clock = clock;
         abort_hold__clock = clock;
-        stop_cause__clock = clock;
         div_owner__clock = clock;
-        pop_d__clock = clock;
-        dac_walk__clock = clock;
-        dac_update__clock = clock;
-        dac_read_sel__clock = clock;
-        stop_zero_d__clock = clock;
-        run__d = run__q;
-        irq_enable__d = irq_enable__q;
-        tick_divisor__d = tick_divisor__q;
-        period_ticks__d = period_ticks__q;
-        low_water__d = low_water__q;
-        watchdog_timeout__d = watchdog_timeout__q;
-        ticks_left__d = ticks_left__q;
-        boundary_next__d = boundary_next__q;
-        in_period__d = in_period__q;
-        period_active__d = period_active__q;
-        modulus__d = modulus__q;
-        period_count__d = period_count__q;
         read_data__d = read_data__q;
         any_low_prev_n__d = any_low_prev_n__q;
         expired_prev__d = expired_prev__q;
         abort_hold__d = abort_hold__q;
-        stop_cause__d = stop_cause__q;
         div_owner__d = div_owner__q;
-        pop_d__d = pop_d__q;
-        dac_walk__d = dac_walk__q;
-        dac_update__d = dac_update__q;
-        dac_read_sel__d = dac_read_sel__q;
-        stop_zero_d__d = stop_zero_d__q;
+        registers__clock = clock;
+        period__clock = clock;
+        cause_register__clock = clock;
         tick_divider__clock = clock;
         watchdog__clock = clock;
         interrupts__clock = clock;
         io__clock = clock;
         divider__clock = clock;
-        dac__clock = clock;
-        if (bus_write) begin
-            if (bus_address == a_irq_enable) begin
-                irq_enable__d = bus_write_data & irq_mask;
-            end
-            if (bus_address == a_tick_divisor) begin
-                tick_divisor__d = bus_write_data;
-            end
-            if (bus_address == a_period_ticks) begin
-                period_ticks__d = bus_write_data[(32'h0)+:(16)];
-            end
-            if (bus_address == a_low_water) begin
-                low_water__d = bus_write_data & level_mask;
-            end
-            if (bus_address == a_watchdog_timeout) begin
-                watchdog_timeout__d = bus_write_data;
-            end
-        end
+        analog__clock = clock;
+        registers__reset = reset;
+        registers__address = bus_address;
+        registers__write_data = bus_write_data;
+        registers__write = bus_write;
+        registers__running = period__running;
+        registers__status = interrupts__status;
+        registers__watchdog_armed = watchdog__armed;
+        registers__watchdog_expired = watchdog__expired;
+        registers__estop_input = io__estop_active;
+        registers__estop_latched = io__estop_latched;
+        registers__inputs_ready = io__ready;
+        registers__period_count = period__period_count;
+        registers__stop_cause = cause_register__stop_cause;
         tick_divider__reset = reset;
         tick_divider__enable = 1'b1;
-        tick_divider__divisor = tick_divisor__q;
+        tick_divider__divisor = registers__tick_divisor;
         tick = tick_divider__strobe;
         watchdog__reset = reset;
         watchdog__tick = tick;
-        watchdog__timeout = watchdog_timeout__q;
-        watchdog__kick = bus_write & (bus_address == a_watchdog_kick);
-        watchdog__clear = bus_write & (bus_address == a_status) & ((bus_write_data & m_status_watchdog) != zero32);
+        watchdog__timeout = registers__watchdog_timeout;
+        watchdog__kick = registers__kick;
+        watchdog__clear = registers__status_write & ((bus_write_data & m_status_watchdog) != zero32);
         io__reset = reset;
         io__limit_pos = limit_pos;
         io__limit_neg = limit_neg;
@@ -1049,169 +873,109 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         io__address = bus_address;
         io__write = bus_write;
         io__write_data = bus_write_data;
-        io__estop_clear = bus_write & (bus_address == a_status) & ((bus_write_data & m_status_estop) != zero32);
+        io__estop_clear = registers__status_write & ((bus_write_data & m_status_estop) != zero32);
         io__watchdog_expired = watchdog__expired;
         gpio_out = io__gpio_out;
         drive_allowed = ~io__estop_latched_next & ~watchdog__expired;
-        any_limit_held = 1'b0;
-        any_alarm_held = 1'b0;
-        any_home_held = 1'b0;
+        limit_held = zero_k;
+        alarm_held = zero_k;
+        home_held = zero_k;
         any_limit_event = 1'b0;
         any_alarm_event = 1'b0;
         any_home_event = 1'b0;
-        any_limit_held = any_limit_held | axes__0__limit_held;
-        any_alarm_held = any_alarm_held | axes__0__alarm_held;
-        any_home_held = any_home_held | axes__0__home_held;
-        any_limit_event = any_limit_event | axes__0__limit_event;
-        any_alarm_event = any_alarm_event | axes__0__alarm_event;
-        any_home_event = any_home_event | axes__0__home_event;
-        any_limit_held = any_limit_held | axes__1__limit_held;
-        any_alarm_held = any_alarm_held | axes__1__alarm_held;
-        any_home_held = any_home_held | axes__1__home_held;
-        any_limit_event = any_limit_event | axes__1__limit_event;
-        any_alarm_event = any_alarm_event | axes__1__alarm_event;
-        any_home_event = any_home_event | axes__1__home_event;
-        any_limit_held = any_limit_held | axes__2__limit_held;
-        any_alarm_held = any_alarm_held | axes__2__alarm_held;
-        any_home_held = any_home_held | axes__2__home_held;
-        any_limit_event = any_limit_event | axes__2__limit_event;
-        any_alarm_event = any_alarm_event | axes__2__alarm_event;
-        any_home_event = any_home_event | axes__2__home_event;
-        abort_hold__d = io__estop_latched | any_limit_held | any_alarm_held | any_home_held;
-        if (reset) begin
-            abort_hold__d = 1'b0;
-        end
-        abort = abort_hold__q | watchdog__expired;
-        refuse_run = run__q | watchdog__expired | io__estop_active | io__estop_latched | any_limit_held | any_alarm_held | any_home_held | ~io__ready;
-        write_control = bus_write & (bus_address == a_control);
-        start = write_control & bus_write_data[32'h0] & ~refuse_run;
-        halt = (write_control & ~bus_write_data[32'h0]) | abort;
         all_ready = 1'b1;
         any_low = 1'b0;
         any_overflow = 1'b0;
         any_fault = 1'b0;
         any_encoder_error = 1'b0;
         any_busy = 1'b0;
+        if (axes__0__limit_held) begin
+            limit_held = limit_held | axis_bit__0;
+        end
+        if (axes__0__alarm_held) begin
+            alarm_held = alarm_held | axis_bit__0;
+        end
+        if (axes__0__home_held) begin
+            home_held = home_held | axis_bit__0;
+        end
+        any_limit_event = any_limit_event | axes__0__limit_event;
+        any_alarm_event = any_alarm_event | axes__0__alarm_event;
+        any_home_event = any_home_event | axes__0__home_event;
         any_busy = any_busy | axes__0__busy;
         all_ready = all_ready & ~axes__0__empty;
         any_low = any_low | axes__0__low;
         any_overflow = any_overflow | axes__0__overflow_event;
         any_fault = any_fault | axes__0__fault_event;
         any_encoder_error = any_encoder_error | axes__0__encoder_error_event;
+        if (axes__1__limit_held) begin
+            limit_held = limit_held | axis_bit__1;
+        end
+        if (axes__1__alarm_held) begin
+            alarm_held = alarm_held | axis_bit__1;
+        end
+        if (axes__1__home_held) begin
+            home_held = home_held | axis_bit__1;
+        end
+        any_limit_event = any_limit_event | axes__1__limit_event;
+        any_alarm_event = any_alarm_event | axes__1__alarm_event;
+        any_home_event = any_home_event | axes__1__home_event;
         any_busy = any_busy | axes__1__busy;
         all_ready = all_ready & ~axes__1__empty;
         any_low = any_low | axes__1__low;
         any_overflow = any_overflow | axes__1__overflow_event;
         any_fault = any_fault | axes__1__fault_event;
         any_encoder_error = any_encoder_error | axes__1__encoder_error_event;
+        if (axes__2__limit_held) begin
+            limit_held = limit_held | axis_bit__2;
+        end
+        if (axes__2__alarm_held) begin
+            alarm_held = alarm_held | axis_bit__2;
+        end
+        if (axes__2__home_held) begin
+            home_held = home_held | axis_bit__2;
+        end
+        any_limit_event = any_limit_event | axes__2__limit_event;
+        any_alarm_event = any_alarm_event | axes__2__alarm_event;
+        any_home_event = any_home_event | axes__2__home_event;
         any_busy = any_busy | axes__2__busy;
         all_ready = all_ready & ~axes__2__empty;
         any_low = any_low | axes__2__low;
         any_overflow = any_overflow | axes__2__overflow_event;
         any_fault = any_fault | axes__2__fault_event;
         any_encoder_error = any_encoder_error | axes__2__encoder_error_event;
-        boundary = run__q & tick & boundary_next__q;
-        pop = boundary & all_ready & ~halt;
-        underrun = boundary & ~all_ready & ~halt;
-        period_next = period_ticks__q;
-        if (period_ticks__q == zero_p) begin
-            period_next = one_p;
-        end
-        if (start) begin
-            run__d = 1'b1;
-            boundary_next__d = 1'b1;
-            in_period__d = 1'b0;
-        end
-        if (run__q & tick) begin
-            if (boundary_next__q) begin
-                ticks_left__d = period_next;
-                boundary_next__d = (period_ticks__q & not_one_p) == zero_p;
-                period_active__d = period_next;
-            end
-            else begin
-                ticks_left__d = ticks_left__q - one_p;
-                boundary_next__d = ticks_left__q == two_p;
-            end
-        end
-        modulus__d = period_active__q;
-        if (pop) begin
-            in_period__d = 1'b1;
-            period_count__d = period_count__q + one32;
-        end
-        if (underrun | halt) begin
-            run__d = 1'b0;
-            in_period__d = 1'b0;
-        end
-        running = run__q;
-        active = run__q | any_busy;
-        flush = write_control & bus_write_data[32'h1];
-        limit_axis = zero32;
-        alarm_axis = zero32;
-        home_axis = zero32;
-        limit_found = 1'b0;
-        alarm_found = 1'b0;
-        home_found = 1'b0;
-        if (axes__0__limit_held & ~limit_found) begin
-            limit_axis = cause_axis__0;
-            limit_found = 1'b1;
-        end
-        if (axes__0__alarm_held & ~alarm_found) begin
-            alarm_axis = cause_axis__0;
-            alarm_found = 1'b1;
-        end
-        if (axes__0__home_held & ~home_found) begin
-            home_axis = cause_axis__0;
-            home_found = 1'b1;
-        end
-        if (axes__1__limit_held & ~limit_found) begin
-            limit_axis = cause_axis__1;
-            limit_found = 1'b1;
-        end
-        if (axes__1__alarm_held & ~alarm_found) begin
-            alarm_axis = cause_axis__1;
-            alarm_found = 1'b1;
-        end
-        if (axes__1__home_held & ~home_found) begin
-            home_axis = cause_axis__1;
-            home_found = 1'b1;
-        end
-        if (axes__2__limit_held & ~limit_found) begin
-            limit_axis = cause_axis__2;
-            limit_found = 1'b1;
-        end
-        if (axes__2__alarm_held & ~alarm_found) begin
-            alarm_axis = cause_axis__2;
-            alarm_found = 1'b1;
-        end
-        if (axes__2__home_held & ~home_found) begin
-            home_axis = cause_axis__2;
-            home_found = 1'b1;
-        end
-        cause_now = cause_stop;
-        if (underrun) begin
-            cause_now = cause_underrun;
-        end
-        if (watchdog__expired) begin
-            cause_now = cause_watchdog;
-        end
-        if (abort_hold__q & any_home_held) begin
-            cause_now = cause_home | home_axis;
-        end
-        if (abort_hold__q & any_limit_held) begin
-            cause_now = cause_limit | limit_axis;
-        end
-        if (abort_hold__q & any_alarm_held) begin
-            cause_now = cause_alarm | alarm_axis;
-        end
-        if (abort_hold__q & io__estop_latched) begin
-            cause_now = cause_estop;
-        end
-        if (run__q & (underrun | halt)) begin
-            stop_cause__d = cause_now;
-        end
+        any_held = (limit_held != zero_k) | (alarm_held != zero_k) | (home_held != zero_k);
+        abort_hold__d = io__estop_latched | any_held;
         if (reset) begin
-            stop_cause__d = zero32;
+            abort_hold__d = 1'b0;
         end
+        abort = abort_hold__q | watchdog__expired;
+        registers__aborted = abort;
+        refuse_run = period__running | watchdog__expired | io__estop_active | io__estop_latched | any_held | ~io__ready;
+        period__reset = reset;
+        period__tick = tick;
+        period__control_write = registers__control_write;
+        period__run_bit = bus_write_data[32'h0];
+        period__flush_bit = bus_write_data[32'h1];
+        period__refuse_run = refuse_run;
+        period__abort = abort;
+        period__all_ready = all_ready;
+        period__period_ticks = registers__period_ticks;
+        start = period__start;
+        halt = period__halt;
+        pop = period__pop;
+        underrun = period__underrun;
+        running = period__running;
+        active = period__running | any_busy;
+        cause_register__reset = reset;
+        cause_register__limit_held = limit_held;
+        cause_register__alarm_held = alarm_held;
+        cause_register__home_held = home_held;
+        cause_register__estop_latched = io__estop_latched;
+        cause_register__abort_hold = abort_hold__q;
+        cause_register__watchdog_expired = watchdog__expired;
+        cause_register__running = period__running;
+        cause_register__underrun = underrun;
+        cause_register__halt = halt;
         divider__reset = reset | halt;
         div_idle = ~divider__busy & ~divider__done & has_uniform;
         div_granted = 1'b0;
@@ -1255,99 +1019,24 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         steps_a = zero_k;
         steps_b = zero_k;
         enables = zero_k;
-        w_upper_zero = (bus_write_data & upper_half) == zero32;
-        w_upper_ones = (bus_write_data & upper_half) == upper_half;
-        w_low = bus_write_data[(32'h0)+:(16)];
-        w_low_nonzero = w_low != zero_p;
-        if (bus_write_data[32'h1f]) begin
-            w_too_large = ~w_upper_ones | ~w_low_nonzero;
-            w_magnitude = zero_p - w_low;
-        end
-        else begin
-            w_too_large = ~w_upper_zero;
-            w_magnitude = w_low;
-        end
-        if (w_too_large) begin
-            w_magnitude = max_p;
-        end
-        fifo_entry = zero_entry;
-        if (w_magnitude[0]) begin
-            fifo_entry = fifo_entry | entry_bit__0;
-        end
-        if (w_magnitude[1]) begin
-            fifo_entry = fifo_entry | entry_bit__1;
-        end
-        if (w_magnitude[2]) begin
-            fifo_entry = fifo_entry | entry_bit__2;
-        end
-        if (w_magnitude[3]) begin
-            fifo_entry = fifo_entry | entry_bit__3;
-        end
-        if (w_magnitude[4]) begin
-            fifo_entry = fifo_entry | entry_bit__4;
-        end
-        if (w_magnitude[5]) begin
-            fifo_entry = fifo_entry | entry_bit__5;
-        end
-        if (w_magnitude[6]) begin
-            fifo_entry = fifo_entry | entry_bit__6;
-        end
-        if (w_magnitude[7]) begin
-            fifo_entry = fifo_entry | entry_bit__7;
-        end
-        if (w_magnitude[8]) begin
-            fifo_entry = fifo_entry | entry_bit__8;
-        end
-        if (w_magnitude[9]) begin
-            fifo_entry = fifo_entry | entry_bit__9;
-        end
-        if (w_magnitude[10]) begin
-            fifo_entry = fifo_entry | entry_bit__10;
-        end
-        if (w_magnitude[11]) begin
-            fifo_entry = fifo_entry | entry_bit__11;
-        end
-        if (w_magnitude[12]) begin
-            fifo_entry = fifo_entry | entry_bit__12;
-        end
-        if (w_magnitude[13]) begin
-            fifo_entry = fifo_entry | entry_bit__13;
-        end
-        if (w_magnitude[14]) begin
-            fifo_entry = fifo_entry | entry_bit__14;
-        end
-        if (w_magnitude[15]) begin
-            fifo_entry = fifo_entry | entry_bit__15;
-        end
-        if (w_too_large) begin
-            fifo_entry = fifo_entry | entry_bit__16;
-        end
-        if (bus_write_data[32'h1f]) begin
-            fifo_entry = fifo_entry | entry_bit__17;
-        end
-        if (~((w_upper_zero & ~w_low[32'hf]) | (w_upper_ones & w_low[32'hf]))) begin
-            fifo_entry = fifo_entry | entry_bit__18;
-        end
-        if (~w_upper_zero | w_low_nonzero) begin
-            fifo_entry = fifo_entry | entry_bit__19;
-        end
+        entry_converter__word = bus_write_data;
         axes__0__clock = clock;
         axes__0__reset = reset;
         axes__0__tick = tick;
         axes__0__start = start;
-        axes__0__flush = flush;
+        axes__0__flush = period__flush;
         axes__0__halt = halt;
         axes__0__abort = abort;
         axes__0__pop = pop;
         axes__0__underrun = underrun;
-        axes__0__period_active = period_active__q;
-        axes__0__modulus = modulus__q;
-        axes__0__snapshot = bus_write & (bus_address == a_snapshot);
-        axes__0__low_water = low_water__q[(32'h0)+:(5)];
+        axes__0__period_active = period__period_active;
+        axes__0__modulus = period__modulus;
+        axes__0__snapshot = registers__snapshot;
+        axes__0__low_water = registers__low_water;
         axes__0__address = bus_address;
         axes__0__write = bus_write;
         axes__0__write_data = bus_write_data;
-        axes__0__fifo_entry = fifo_entry;
+        axes__0__fifo_entry = entry_converter__entry;
         axes__0__enc_a = (enc_a & axis_bit__0) != zero_k;
         axes__0__enc_b = (enc_b & axis_bit__0) != zero_k;
         axes__0__enc_index = (enc_index & axis_bit__0) != zero_k;
@@ -1371,19 +1060,19 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__1__reset = reset;
         axes__1__tick = tick;
         axes__1__start = start;
-        axes__1__flush = flush;
+        axes__1__flush = period__flush;
         axes__1__halt = halt;
         axes__1__abort = abort;
         axes__1__pop = pop;
         axes__1__underrun = underrun;
-        axes__1__period_active = period_active__q;
-        axes__1__modulus = modulus__q;
-        axes__1__snapshot = bus_write & (bus_address == a_snapshot);
-        axes__1__low_water = low_water__q[(32'h0)+:(5)];
+        axes__1__period_active = period__period_active;
+        axes__1__modulus = period__modulus;
+        axes__1__snapshot = registers__snapshot;
+        axes__1__low_water = registers__low_water;
         axes__1__address = bus_address;
         axes__1__write = bus_write;
         axes__1__write_data = bus_write_data;
-        axes__1__fifo_entry = fifo_entry;
+        axes__1__fifo_entry = entry_converter__entry;
         axes__1__enc_a = (enc_a & axis_bit__1) != zero_k;
         axes__1__enc_b = (enc_b & axis_bit__1) != zero_k;
         axes__1__enc_index = (enc_index & axis_bit__1) != zero_k;
@@ -1407,19 +1096,19 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__2__reset = reset;
         axes__2__tick = tick;
         axes__2__start = start;
-        axes__2__flush = flush;
+        axes__2__flush = period__flush;
         axes__2__halt = halt;
         axes__2__abort = abort;
         axes__2__pop = pop;
         axes__2__underrun = underrun;
-        axes__2__period_active = period_active__q;
-        axes__2__modulus = modulus__q;
-        axes__2__snapshot = bus_write & (bus_address == a_snapshot);
-        axes__2__low_water = low_water__q[(32'h0)+:(5)];
+        axes__2__period_active = period__period_active;
+        axes__2__modulus = period__modulus;
+        axes__2__snapshot = registers__snapshot;
+        axes__2__low_water = registers__low_water;
         axes__2__address = bus_address;
         axes__2__write = bus_write;
         axes__2__write_data = bus_write_data;
-        axes__2__fifo_entry = fifo_entry;
+        axes__2__fifo_entry = entry_converter__entry;
         axes__2__enc_a = (enc_a & axis_bit__2) != zero_k;
         axes__2__enc_b = (enc_b & axis_bit__2) != zero_k;
         axes__2__enc_index = (enc_index & axis_bit__2) != zero_k;
@@ -1443,111 +1132,53 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         step_b = steps_b;
         drive_enable = enables;
         analog_axes = zero_k;
+        walk_magnitude = zero_code;
+        walk_wide = 1'b0;
+        walk_negative = 1'b0;
         if (axes__0__analog) begin
             analog_axes = analog_axes | axis_bit__0;
+        end
+        if ((analog__walk & axis_bit__0) != zero_k) begin
+            walk_magnitude = axes__0__dac_code;
+            walk_wide = axes__0__code_out_of_range;
+            walk_negative = axes__0__code_negative;
         end
         if (axes__1__analog) begin
             analog_axes = analog_axes | axis_bit__1;
         end
-        if (axes__2__analog) begin
-            analog_axes = analog_axes | axis_bit__2;
-        end
-        pop_d__d = pop;
-        walk_now = dac_walk__q;
-        if (pop_d__q) begin
-            walk_now = axis_bit__0;
-        end
-        dac_load = walk_now & analog_axes;
-        dac_code = zero_code;
-        walk_wide = 1'b0;
-        walk_negative = 1'b0;
-        if ((walk_now & axis_bit__0) != zero_k) begin
-            dac_code = axes__0__dac_code;
-            walk_wide = axes__0__code_out_of_range;
-            walk_negative = axes__0__code_negative;
-        end
-        if ((walk_now & axis_bit__1) != zero_k) begin
-            dac_code = axes__1__dac_code;
+        if ((analog__walk & axis_bit__1) != zero_k) begin
+            walk_magnitude = axes__1__dac_code;
             walk_wide = axes__1__code_out_of_range;
             walk_negative = axes__1__code_negative;
         end
-        if ((walk_now & axis_bit__2) != zero_k) begin
-            dac_code = axes__2__dac_code;
+        if (axes__2__analog) begin
+            analog_axes = analog_axes | axis_bit__2;
+        end
+        if ((analog__walk & axis_bit__2) != zero_k) begin
+            walk_magnitude = axes__2__dac_code;
             walk_wide = axes__2__code_out_of_range;
             walk_negative = axes__2__code_negative;
         end
-        if (walk_negative) begin
-            dac_code = zero_code - dac_code;
-        end
-        if (walk_wide) begin
-            if (walk_negative) begin
-                dac_code = code_min;
-            end
-            else begin
-                dac_code = code_max;
-            end
-        end
-        dac_walk__d = walk_now << 32'h1;
-        dac_update__d = ((walk_now & last_axis) != zero_k) & (analog_axes != zero_k);
-        stop_zero = has_analog & run__q & (underrun | halt) & ~abort;
-        stop_zero_d__d = stop_zero;
-        if (stop_zero_d__q) begin
-            dac_load = analog_axes;
-            dac_code = zero_code;
-            dac_walk__d = zero_k;
-            dac_update__d = analog_axes != zero_k;
-        end
-        dac_hit = 1'b0;
-        dac_applied_hit = 1'b0;
-        dac_low = zero5;
-        if (bus_address == a_dac_global__0) begin
-            dac_hit = has_analog;
-            dac_low = d_dac_global__0;
-        end
-        if (bus_address == a_dac_global__1) begin
-            dac_hit = has_analog;
-            dac_low = d_dac_global__1;
-        end
-        if (bus_address == a_dac_global__2) begin
-            dac_hit = has_analog;
-            dac_low = d_dac_global__2;
-        end
-        if (bus_address == a_dac_applied__0) begin
-            dac_hit = has_analog;
-            dac_applied_hit = 1'b1;
-            dac_low = d_dac_applied__0;
-        end
-        if (bus_address == a_dac_applied__1) begin
-            dac_hit = has_analog;
-            dac_applied_hit = 1'b1;
-            dac_low = d_dac_applied__1;
-        end
-        if (bus_address == a_dac_applied__2) begin
-            dac_hit = has_analog;
-            dac_applied_hit = 1'b1;
-            dac_low = d_dac_applied__2;
-        end
-        dac_address = dac_low;
-        if (dac_applied_hit) begin
-            dac_address = dac_low | dac_applied_bits;
-        end
-        dac__reset = reset;
-        dac__bus_address = dac_address;
-        dac__bus_write_data = bus_write_data;
-        dac__bus_write = bus_write & dac_hit;
-        dac__bus_read = bus_read & dac_hit;
-        dac__update = dac_update__q;
-        dac__force_safe = abort;
-        dac__load = dac_load;
-        dac__load_code = dac_code;
-        dac_data = dac__dac_data & dac_data_mask;
-        dac_cs_n = dac__dac_cs_n | dac_cs_idle;
-        dac_l1_n = dac__dac_l1_n | ~has_analog;
-        dac_ldac = dac__dac_ldac & has_analog;
+        analog__reset = reset;
+        analog__bus_address = bus_address;
+        analog__bus_write_data = bus_write_data;
+        analog__bus_write = bus_write;
+        analog__bus_read = bus_read;
+        analog__pop = pop;
+        analog__stop_zero = period__running & (underrun | halt) & ~abort;
+        analog__abort = abort;
+        analog__analog_axes = analog_axes;
+        analog__code_magnitude = walk_magnitude;
+        analog__code_negative = walk_negative;
+        analog__code_wide = walk_wide;
+        dac_data = analog__dac_data;
+        dac_cs_n = analog__dac_cs_n;
+        dac_l1_n = analog__dac_l1_n;
+        dac_ldac = analog__dac_ldac;
         any_low_prev_n__d = ~any_low;
         expired_prev__d = watchdog__expired;
         events = zero_ev;
-        if (pop & in_period__q) begin
+        if (period__period_done) begin
             events = events | ev_period_done;
         end
         if (any_low & any_low_prev_n__q) begin
@@ -1585,163 +1216,16 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         end
         interrupts__reset = reset;
         interrupts__events = events;
-        interrupts__clear = bus_write & (bus_address == a_status);
+        interrupts__clear = registers__status_write;
         interrupts__clear_bits = bus_write_data[(32'h0)+:(12)];
-        interrupts__enable = irq_enable__q[(32'h0)+:(12)];
+        interrupts__enable = registers__irq_enable;
         irq = interrupts__irq;
-        state_word = zero32;
-        if (run__q) begin
-            state_word = state_word | bit0_32;
-        end
-        if (watchdog__armed) begin
-            state_word = state_word | bit1_32;
-        end
-        if (watchdog__expired) begin
-            state_word = state_word | bit2_32;
-        end
-        if (io__estop_active) begin
-            state_word = state_word | m_state_estop_input;
-        end
-        if (io__estop_latched) begin
-            state_word = state_word | m_state_estop_latched;
-        end
-        if (abort) begin
-            state_word = state_word | m_state_aborted;
-        end
-        if (io__ready) begin
-            state_word = state_word | m_state_inputs_ready;
-        end
-        global_read = io__read_data;
-        if (bus_address == a_id) begin
-            global_read = global_read | id_value;
-        end
-        if (bus_address == a_version) begin
-            global_read = global_read | version_value;
-        end
-        if (bus_address == a_config) begin
-            global_read = global_read | config_value;
-        end
-        if (bus_address == a_control) begin
-            if (run__q) begin
-                global_read = global_read | one32;
-            end
-        end
-        if (bus_address == a_status) begin
-            if (interrupts__status[0]) begin
-                global_read = global_read | bit_mask__0;
-            end
-            if (interrupts__status[1]) begin
-                global_read = global_read | bit_mask__1;
-            end
-            if (interrupts__status[2]) begin
-                global_read = global_read | bit_mask__2;
-            end
-            if (interrupts__status[3]) begin
-                global_read = global_read | bit_mask__3;
-            end
-            if (interrupts__status[4]) begin
-                global_read = global_read | bit_mask__4;
-            end
-            if (interrupts__status[5]) begin
-                global_read = global_read | bit_mask__5;
-            end
-            if (interrupts__status[6]) begin
-                global_read = global_read | bit_mask__6;
-            end
-            if (interrupts__status[7]) begin
-                global_read = global_read | bit_mask__7;
-            end
-            if (interrupts__status[8]) begin
-                global_read = global_read | bit_mask__8;
-            end
-            if (interrupts__status[9]) begin
-                global_read = global_read | bit_mask__9;
-            end
-            if (interrupts__status[10]) begin
-                global_read = global_read | bit_mask__10;
-            end
-            if (interrupts__status[11]) begin
-                global_read = global_read | bit_mask__11;
-            end
-        end
-        if (bus_address == a_irq_enable) begin
-            global_read = global_read | irq_enable__q;
-        end
-        if (bus_address == a_tick_divisor) begin
-            global_read = global_read | tick_divisor__q;
-        end
-        if (bus_address == a_period_ticks) begin
-            if (period_ticks__q[0]) begin
-                global_read = global_read | bit_mask__0;
-            end
-            if (period_ticks__q[1]) begin
-                global_read = global_read | bit_mask__1;
-            end
-            if (period_ticks__q[2]) begin
-                global_read = global_read | bit_mask__2;
-            end
-            if (period_ticks__q[3]) begin
-                global_read = global_read | bit_mask__3;
-            end
-            if (period_ticks__q[4]) begin
-                global_read = global_read | bit_mask__4;
-            end
-            if (period_ticks__q[5]) begin
-                global_read = global_read | bit_mask__5;
-            end
-            if (period_ticks__q[6]) begin
-                global_read = global_read | bit_mask__6;
-            end
-            if (period_ticks__q[7]) begin
-                global_read = global_read | bit_mask__7;
-            end
-            if (period_ticks__q[8]) begin
-                global_read = global_read | bit_mask__8;
-            end
-            if (period_ticks__q[9]) begin
-                global_read = global_read | bit_mask__9;
-            end
-            if (period_ticks__q[10]) begin
-                global_read = global_read | bit_mask__10;
-            end
-            if (period_ticks__q[11]) begin
-                global_read = global_read | bit_mask__11;
-            end
-            if (period_ticks__q[12]) begin
-                global_read = global_read | bit_mask__12;
-            end
-            if (period_ticks__q[13]) begin
-                global_read = global_read | bit_mask__13;
-            end
-            if (period_ticks__q[14]) begin
-                global_read = global_read | bit_mask__14;
-            end
-            if (period_ticks__q[15]) begin
-                global_read = global_read | bit_mask__15;
-            end
-        end
-        if (bus_address == a_low_water) begin
-            global_read = global_read | low_water__q;
-        end
-        if (bus_address == a_watchdog_timeout) begin
-            global_read = global_read | watchdog_timeout__q;
-        end
-        if (bus_address == a_state) begin
-            global_read = global_read | state_word;
-        end
-        if (bus_address == a_period_count) begin
-            global_read = global_read | period_count__q;
-        end
-        if (bus_address == a_stop_cause) begin
-            global_read = global_read | stop_cause__q;
-        end
         if (bus_read) begin
-            read_data__d = global_read | axes_read;
-            dac_read_sel__d = dac_hit;
+            read_data__d = registers__read_data | io__read_data | axes_read;
         end
         read_out = read_data__q;
-        if (dac_read_sel__q) begin
-            read_out = dac__bus_read_data;
+        if (analog__read_selected) begin
+            read_out = analog__read_data;
         end
         config_shadow__clock = clock;
         config_shadow__reset = reset;
@@ -1799,26 +1283,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         end
         bus_read_data = read_out;
         if (reset) begin
-            run__d = 1'b0;
-            irq_enable__d = zero32;
-            tick_divisor__d = zero32;
-            period_ticks__d = zero_p;
-            low_water__d = zero32;
-            watchdog_timeout__d = zero32;
-            ticks_left__d = zero_p;
-            boundary_next__d = 1'b0;
-            in_period__d = 1'b0;
-            period_active__d = zero_p;
-            modulus__d = zero_p;
-            period_count__d = zero32;
             read_data__d = zero32;
             any_low_prev_n__d = 1'b0;
             expired_prev__d = 1'b0;
-            pop_d__d = 1'b0;
-            dac_walk__d = zero_k;
-            dac_update__d = 1'b0;
-            dac_read_sel__d = 1'b0;
-            stop_zero_d__d = 1'b0;
         end
     end
 
@@ -1842,6 +1309,1950 @@ module motion_controller_servo__abort_hold(d,q,clock);
     end
 
 endmodule // motion_controller_servo__abort_hold
+
+
+module motion_controller_servo__analog(clock,reset,bus_address,bus_write_data,bus_write,bus_read,pop,stop_zero,abort,analog_axes,code_magnitude,code_negative,code_wide,walk,read_data,read_selected,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] bus_address;
+    input wire  [31:0] bus_write_data;
+    input wire  bus_write;
+    input wire  bus_read;
+    input wire  pop;
+    input wire  stop_zero;
+    input wire  abort;
+    input wire  [2:0] analog_axes;
+    input wire  [15:0] code_magnitude;
+    input wire  code_negative;
+    input wire  code_wide;
+    output reg  [2:0] walk;
+    output reg  [31:0] read_data;
+    output reg  read_selected;
+    output reg  [15:0] dac_data;
+    output reg  [2:0] dac_cs_n;
+    output reg  dac_l1_n;
+    output reg  dac_ldac;
+
+    // Constant declarations
+    localparam  has_analog = 1'b1;
+    localparam  code_max = 16'h7fff;
+    localparam  code_min = 16'h8000;
+    localparam  applied_bits = 5'b11000;
+    localparam  a_dac_global__0 = 8'h16;
+    localparam  a_dac_global__1 = 8'h17;
+    localparam  a_dac_global__2 = 8'h18;
+    localparam  d_dac_global__0 = 5'b10;
+    localparam  d_dac_global__1 = 5'b100;
+    localparam  d_dac_global__2 = 5'b101;
+    localparam  a_dac_applied__0 = 8'h35;
+    localparam  a_dac_applied__1 = 8'h55;
+    localparam  a_dac_applied__2 = 8'h75;
+    localparam  d_dac_applied__0 = 5'b0;
+    localparam  d_dac_applied__1 = 5'b1;
+    localparam  d_dac_applied__2 = 5'b10;
+    localparam  zero5 = 5'b0;
+    localparam  first_axis = 3'b1;
+    localparam  last_axis = 3'b100;
+    localparam  zero_k = 3'b0;
+    localparam  zero_code = 16'h0;
+    localparam  data_mask = 16'hffff;
+    localparam  cs_idle = 3'b0;
+
+    // Stub signals
+    reg  dac__clock;
+    reg  dac__reset;
+    reg  [4:0] dac__bus_address;
+    reg  [31:0] dac__bus_write_data;
+    reg  dac__bus_write;
+    reg  dac__bus_read;
+    reg  dac__update;
+    reg  dac__force_safe;
+    reg  [2:0] dac__load;
+    reg  [15:0] dac__load_code;
+    wire  [31:0] dac__bus_read_data;
+    wire  [15:0] dac__dac_data;
+    wire  [2:0] dac__dac_cs_n;
+    wire  dac__dac_l1_n;
+    wire  dac__dac_ldac;
+    wire  dac__busy;
+    wire  dac__safe;
+    reg  pop_d__d;
+    wire  pop_d__q;
+    reg  pop_d__clock;
+    reg  [2:0] walk_next__d;
+    wire  [2:0] walk_next__q;
+    reg  walk_next__clock;
+    reg  update_request__d;
+    wire  update_request__q;
+    reg  update_request__clock;
+    reg  read_sel__d;
+    wire  read_sel__q;
+    reg  read_sel__clock;
+    reg  stop_zero_d__d;
+    wire  stop_zero_d__q;
+    reg  stop_zero_d__clock;
+
+    // Local signals
+    reg  [2:0] walk_now;
+    reg  [2:0] load;
+    reg  [15:0] code;
+    reg  [4:0] dac_low;
+    reg  applied_hit;
+    reg  hit;
+    reg  [4:0] dac_address;
+
+    // Sub module instances
+    motion_controller_servo__analog__dac dac(
+        .clock(dac__clock),
+        .reset(dac__reset),
+        .bus_address(dac__bus_address),
+        .bus_write_data(dac__bus_write_data),
+        .bus_write(dac__bus_write),
+        .bus_read(dac__bus_read),
+        .update(dac__update),
+        .force_safe(dac__force_safe),
+        .load(dac__load),
+        .load_code(dac__load_code),
+        .bus_read_data(dac__bus_read_data),
+        .dac_data(dac__dac_data),
+        .dac_cs_n(dac__dac_cs_n),
+        .dac_l1_n(dac__dac_l1_n),
+        .dac_ldac(dac__dac_ldac),
+        .busy(dac__busy),
+        .safe(dac__safe)
+    );
+    motion_controller_servo__analog__pop_d pop_d(
+        .d(pop_d__d),
+        .q(pop_d__q),
+        .clock(pop_d__clock)
+    );
+    motion_controller_servo__analog__walk_next walk_next(
+        .d(walk_next__d),
+        .q(walk_next__q),
+        .clock(walk_next__clock)
+    );
+    motion_controller_servo__analog__update_request update_request(
+        .d(update_request__d),
+        .q(update_request__q),
+        .clock(update_request__clock)
+    );
+    motion_controller_servo__analog__read_sel read_sel(
+        .d(read_sel__d),
+        .q(read_sel__q),
+        .clock(read_sel__clock)
+    );
+    motion_controller_servo__analog__stop_zero_d stop_zero_d(
+        .d(stop_zero_d__d),
+        .q(stop_zero_d__q),
+        .clock(stop_zero_d__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        pop_d__clock = clock;
+        walk_next__clock = clock;
+        update_request__clock = clock;
+        read_sel__clock = clock;
+        stop_zero_d__clock = clock;
+        pop_d__d = pop_d__q;
+        walk_next__d = walk_next__q;
+        update_request__d = update_request__q;
+        read_sel__d = read_sel__q;
+        stop_zero_d__d = stop_zero_d__q;
+        dac__clock = clock;
+        pop_d__d = pop;
+        walk_now = walk_next__q;
+        if (pop_d__q) begin
+            walk_now = first_axis;
+        end
+        walk = walk_now;
+        load = walk_now & analog_axes;
+        code = code_magnitude;
+        if (code_negative) begin
+            code = zero_code - code_magnitude;
+        end
+        if (code_wide) begin
+            if (code_negative) begin
+                code = code_min;
+            end
+            else begin
+                code = code_max;
+            end
+        end
+        walk_next__d = walk_now << 32'h1;
+        update_request__d = ((walk_now & last_axis) != zero_k) & (analog_axes != zero_k);
+        stop_zero_d__d = stop_zero & has_analog;
+        if (stop_zero_d__q) begin
+            load = analog_axes;
+            code = zero_code;
+            walk_next__d = zero_k;
+            update_request__d = analog_axes != zero_k;
+        end
+        hit = 1'b0;
+        applied_hit = 1'b0;
+        dac_low = zero5;
+        if (bus_address == a_dac_global__0) begin
+            hit = has_analog;
+            dac_low = d_dac_global__0;
+        end
+        if (bus_address == a_dac_global__1) begin
+            hit = has_analog;
+            dac_low = d_dac_global__1;
+        end
+        if (bus_address == a_dac_global__2) begin
+            hit = has_analog;
+            dac_low = d_dac_global__2;
+        end
+        if (bus_address == a_dac_applied__0) begin
+            hit = has_analog;
+            applied_hit = 1'b1;
+            dac_low = d_dac_applied__0;
+        end
+        if (bus_address == a_dac_applied__1) begin
+            hit = has_analog;
+            applied_hit = 1'b1;
+            dac_low = d_dac_applied__1;
+        end
+        if (bus_address == a_dac_applied__2) begin
+            hit = has_analog;
+            applied_hit = 1'b1;
+            dac_low = d_dac_applied__2;
+        end
+        dac_address = dac_low;
+        if (applied_hit) begin
+            dac_address = dac_low | applied_bits;
+        end
+        if (bus_read) begin
+            read_sel__d = hit;
+        end
+        read_selected = read_sel__q;
+        read_data = dac__bus_read_data;
+        dac__reset = reset;
+        dac__bus_address = dac_address;
+        dac__bus_write_data = bus_write_data;
+        dac__bus_write = bus_write & hit;
+        dac__bus_read = bus_read & hit;
+        dac__update = update_request__q;
+        dac__force_safe = abort;
+        dac__load = load;
+        dac__load_code = code;
+        dac_data = dac__dac_data & data_mask;
+        dac_cs_n = dac__dac_cs_n | cs_idle;
+        dac_l1_n = dac__dac_l1_n | ~has_analog;
+        dac_ldac = dac__dac_ldac & has_analog;
+        if (reset) begin
+            pop_d__d = 1'b0;
+            walk_next__d = zero_k;
+            update_request__d = 1'b0;
+            read_sel__d = 1'b0;
+            stop_zero_d__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__analog
+
+
+module motion_controller_servo__analog__dac(clock,reset,bus_address,bus_write_data,bus_write,bus_read,update,force_safe,load,load_code,bus_read_data,dac_data,dac_cs_n,dac_l1_n,dac_ldac,busy,safe);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [4:0] bus_address;
+    input wire  [31:0] bus_write_data;
+    input wire  bus_write;
+    input wire  bus_read;
+    input wire  update;
+    input wire  force_safe;
+    input wire  [2:0] load;
+    input wire  [15:0] load_code;
+    output reg  [31:0] bus_read_data;
+    output reg  [15:0] dac_data;
+    output reg  [2:0] dac_cs_n;
+    output reg  dac_l1_n;
+    output reg  dac_ldac;
+    output reg  busy;
+    output reg  safe;
+
+    // Constant declarations
+    localparam  p_idle = 3'b0;
+    localparam  p_setup = 3'b1;
+    localparam  p_width = 3'b10;
+    localparam  p_hold = 3'b11;
+    localparam  p_ldac = 3'b100;
+    localparam  a_id = 5'b0;
+    localparam  a_config = 5'b1;
+    localparam  a_control = 5'b10;
+    localparam  a_update = 5'b11;
+    localparam  a_status = 5'b100;
+    localparam  a_timing = 5'b101;
+    localparam  a_code__0 = 5'b10000;
+    localparam  a_code__1 = 5'b10001;
+    localparam  a_code__2 = 5'b10010;
+    localparam  a_applied__0 = 5'b11000;
+    localparam  a_applied__1 = 5'b11001;
+    localparam  a_applied__2 = 5'b11010;
+    localparam  id_value = 32'h44414331;
+    localparam  config_value = 32'h1003;
+    localparam  timing_reset = 32'h5020501;
+    localparam  f_offset_binary = 32'h1;
+    localparam  f_start = 32'h1;
+    localparam  f_busy = 32'h1;
+    localparam  f_safe = 32'h2;
+    localparam  f_force_safe = 32'h4;
+    localparam  f_pending = 32'h8;
+    localparam  f_deferred = 32'h100;
+    localparam  f_refused = 32'h200;
+    localparam  msb_w = 16'h8000;
+    localparam  chan_bit__0 = 3'b1;
+    localparam  chan_bit__1 = 3'b10;
+    localparam  chan_bit__2 = 3'b100;
+    localparam  word_bit__0 = 32'h1;
+    localparam  word_bit__1 = 32'h2;
+    localparam  word_bit__2 = 32'h4;
+    localparam  word_bit__3 = 32'h8;
+    localparam  word_bit__4 = 32'h10;
+    localparam  word_bit__5 = 32'h20;
+    localparam  word_bit__6 = 32'h40;
+    localparam  word_bit__7 = 32'h80;
+    localparam  word_bit__8 = 32'h100;
+    localparam  word_bit__9 = 32'h200;
+    localparam  word_bit__10 = 32'h400;
+    localparam  word_bit__11 = 32'h800;
+    localparam  word_bit__12 = 32'h1000;
+    localparam  word_bit__13 = 32'h2000;
+    localparam  word_bit__14 = 32'h4000;
+    localparam  word_bit__15 = 32'h8000;
+    localparam  first_channel = 3'b1;
+    localparam  last_channel = 3'b100;
+    localparam  zero_k = 3'b0;
+    localparam  zero_w = 16'h0;
+    localparam  zero32 = 32'h0;
+    localparam  zero8 = 8'h0;
+    localparam  one8 = 8'h1;
+
+    // Stub signals
+    reg  [15:0] staged__0__d;
+    wire  [15:0] staged__0__q;
+    reg  staged__0__clock;
+    reg  [15:0] staged__1__d;
+    wire  [15:0] staged__1__q;
+    reg  staged__1__clock;
+    reg  [15:0] staged__2__d;
+    wire  [15:0] staged__2__q;
+    reg  staged__2__clock;
+    reg  offset_binary__d;
+    wire  offset_binary__q;
+    reg  offset_binary__clock;
+    reg  [31:0] timing_word__d;
+    wire  [31:0] timing_word__q;
+    reg  timing_word__clock;
+    reg  deferred__d;
+    wire  deferred__q;
+    reg  deferred__clock;
+    reg  refused__d;
+    wire  refused__q;
+    reg  refused__clock;
+    reg  [31:0] read_data__d;
+    wire  [31:0] read_data__q;
+    reg  read_data__clock;
+    reg  abort_prev__d;
+    wire  abort_prev__q;
+    reg  abort_prev__clock;
+    reg  [2:0] phase__d;
+    wire  [2:0] phase__q;
+    reg  phase__clock;
+    reg  [2:0] channel__d;
+    wire  [2:0] channel__q;
+    reg  channel__clock;
+    reg  [7:0] left__d;
+    wire  [7:0] left__q;
+    reg  left__clock;
+    reg  [15:0] shadow__0__d;
+    wire  [15:0] shadow__0__q;
+    reg  shadow__0__clock;
+    reg  [15:0] shadow__1__d;
+    wire  [15:0] shadow__1__q;
+    reg  shadow__1__clock;
+    reg  [15:0] shadow__2__d;
+    wire  [15:0] shadow__2__q;
+    reg  shadow__2__clock;
+    reg  shadow_offset__d;
+    wire  shadow_offset__q;
+    reg  shadow_offset__clock;
+    reg  [7:0] t_width__d;
+    wire  [7:0] t_width__q;
+    reg  t_width__clock;
+    reg  [7:0] t_hold__d;
+    wire  [7:0] t_hold__q;
+    reg  t_hold__clock;
+    reg  [7:0] t_setup__d;
+    wire  [7:0] t_setup__q;
+    reg  t_setup__clock;
+    reg  [7:0] t_ldac__d;
+    wire  [7:0] t_ldac__q;
+    reg  t_ldac__clock;
+    reg  safe_run__d;
+    wire  safe_run__q;
+    reg  safe_run__clock;
+    reg  cut__d;
+    wire  cut__q;
+    reg  cut__clock;
+    reg  pending__d;
+    wire  pending__q;
+    reg  pending__clock;
+    reg  pending_safe__d;
+    wire  pending_safe__q;
+    reg  pending_safe__clock;
+    reg  [15:0] applied__0__d;
+    wire  [15:0] applied__0__q;
+    reg  applied__0__clock;
+    reg  [15:0] applied__1__d;
+    wire  [15:0] applied__1__q;
+    reg  applied__1__clock;
+    reg  [15:0] applied__2__d;
+    wire  [15:0] applied__2__q;
+    reg  applied__2__clock;
+    reg  safe_reg__d;
+    wire  safe_reg__q;
+    reg  safe_reg__clock;
+    reg  [15:0] data_pin__d;
+    wire  [15:0] data_pin__q;
+    reg  data_pin__clock;
+    reg  [2:0] cs_active__d;
+    wire  [2:0] cs_active__q;
+    reg  cs_active__clock;
+    reg  l1_active__d;
+    wire  l1_active__q;
+    reg  l1_active__clock;
+    reg  ldac_pin__d;
+    wire  ldac_pin__q;
+    reg  ldac_pin__clock;
+
+    // Local signals
+    reg  running;
+    reg  in_channel;
+    reg  phase_done;
+    reg  [15:0] flip;
+    reg  request;
+    reg  go;
+    reg  abort_rise;
+    reg  cut_now;
+    reg  start;
+    reg  start_safe;
+    reg  [31:0] status_word;
+    reg  [31:0] read_word;
+
+    // Sub module instances
+    motion_controller_servo__analog__dac__staged__0 staged__0(
+        .d(staged__0__d),
+        .q(staged__0__q),
+        .clock(staged__0__clock)
+    );
+    motion_controller_servo__analog__dac__staged__1 staged__1(
+        .d(staged__1__d),
+        .q(staged__1__q),
+        .clock(staged__1__clock)
+    );
+    motion_controller_servo__analog__dac__staged__2 staged__2(
+        .d(staged__2__d),
+        .q(staged__2__q),
+        .clock(staged__2__clock)
+    );
+    motion_controller_servo__analog__dac__offset_binary offset_binary(
+        .d(offset_binary__d),
+        .q(offset_binary__q),
+        .clock(offset_binary__clock)
+    );
+    motion_controller_servo__analog__dac__timing_word timing_word(
+        .d(timing_word__d),
+        .q(timing_word__q),
+        .clock(timing_word__clock)
+    );
+    motion_controller_servo__analog__dac__deferred deferred(
+        .d(deferred__d),
+        .q(deferred__q),
+        .clock(deferred__clock)
+    );
+    motion_controller_servo__analog__dac__refused refused(
+        .d(refused__d),
+        .q(refused__q),
+        .clock(refused__clock)
+    );
+    motion_controller_servo__analog__dac__read_data read_data(
+        .d(read_data__d),
+        .q(read_data__q),
+        .clock(read_data__clock)
+    );
+    motion_controller_servo__analog__dac__abort_prev abort_prev(
+        .d(abort_prev__d),
+        .q(abort_prev__q),
+        .clock(abort_prev__clock)
+    );
+    motion_controller_servo__analog__dac__phase phase(
+        .d(phase__d),
+        .q(phase__q),
+        .clock(phase__clock)
+    );
+    motion_controller_servo__analog__dac__channel channel(
+        .d(channel__d),
+        .q(channel__q),
+        .clock(channel__clock)
+    );
+    motion_controller_servo__analog__dac__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+    motion_controller_servo__analog__dac__shadow__0 shadow__0(
+        .d(shadow__0__d),
+        .q(shadow__0__q),
+        .clock(shadow__0__clock)
+    );
+    motion_controller_servo__analog__dac__shadow__1 shadow__1(
+        .d(shadow__1__d),
+        .q(shadow__1__q),
+        .clock(shadow__1__clock)
+    );
+    motion_controller_servo__analog__dac__shadow__2 shadow__2(
+        .d(shadow__2__d),
+        .q(shadow__2__q),
+        .clock(shadow__2__clock)
+    );
+    motion_controller_servo__analog__dac__shadow_offset shadow_offset(
+        .d(shadow_offset__d),
+        .q(shadow_offset__q),
+        .clock(shadow_offset__clock)
+    );
+    motion_controller_servo__analog__dac__t_width t_width(
+        .d(t_width__d),
+        .q(t_width__q),
+        .clock(t_width__clock)
+    );
+    motion_controller_servo__analog__dac__t_hold t_hold(
+        .d(t_hold__d),
+        .q(t_hold__q),
+        .clock(t_hold__clock)
+    );
+    motion_controller_servo__analog__dac__t_setup t_setup(
+        .d(t_setup__d),
+        .q(t_setup__q),
+        .clock(t_setup__clock)
+    );
+    motion_controller_servo__analog__dac__t_ldac t_ldac(
+        .d(t_ldac__d),
+        .q(t_ldac__q),
+        .clock(t_ldac__clock)
+    );
+    motion_controller_servo__analog__dac__safe_run safe_run(
+        .d(safe_run__d),
+        .q(safe_run__q),
+        .clock(safe_run__clock)
+    );
+    motion_controller_servo__analog__dac__cut cut(
+        .d(cut__d),
+        .q(cut__q),
+        .clock(cut__clock)
+    );
+    motion_controller_servo__analog__dac__pending pending(
+        .d(pending__d),
+        .q(pending__q),
+        .clock(pending__clock)
+    );
+    motion_controller_servo__analog__dac__pending_safe pending_safe(
+        .d(pending_safe__d),
+        .q(pending_safe__q),
+        .clock(pending_safe__clock)
+    );
+    motion_controller_servo__analog__dac__applied__0 applied__0(
+        .d(applied__0__d),
+        .q(applied__0__q),
+        .clock(applied__0__clock)
+    );
+    motion_controller_servo__analog__dac__applied__1 applied__1(
+        .d(applied__1__d),
+        .q(applied__1__q),
+        .clock(applied__1__clock)
+    );
+    motion_controller_servo__analog__dac__applied__2 applied__2(
+        .d(applied__2__d),
+        .q(applied__2__q),
+        .clock(applied__2__clock)
+    );
+    motion_controller_servo__analog__dac__safe_reg safe_reg(
+        .d(safe_reg__d),
+        .q(safe_reg__q),
+        .clock(safe_reg__clock)
+    );
+    motion_controller_servo__analog__dac__data_pin data_pin(
+        .d(data_pin__d),
+        .q(data_pin__q),
+        .clock(data_pin__clock)
+    );
+    motion_controller_servo__analog__dac__cs_active cs_active(
+        .d(cs_active__d),
+        .q(cs_active__q),
+        .clock(cs_active__clock)
+    );
+    motion_controller_servo__analog__dac__l1_active l1_active(
+        .d(l1_active__d),
+        .q(l1_active__q),
+        .clock(l1_active__clock)
+    );
+    motion_controller_servo__analog__dac__ldac_pin ldac_pin(
+        .d(ldac_pin__d),
+        .q(ldac_pin__q),
+        .clock(ldac_pin__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        offset_binary__clock = clock;
+        timing_word__clock = clock;
+        deferred__clock = clock;
+        refused__clock = clock;
+        read_data__clock = clock;
+        abort_prev__clock = clock;
+        phase__clock = clock;
+        channel__clock = clock;
+        left__clock = clock;
+        shadow_offset__clock = clock;
+        t_width__clock = clock;
+        t_hold__clock = clock;
+        t_setup__clock = clock;
+        t_ldac__clock = clock;
+        safe_run__clock = clock;
+        cut__clock = clock;
+        pending__clock = clock;
+        pending_safe__clock = clock;
+        safe_reg__clock = clock;
+        data_pin__clock = clock;
+        cs_active__clock = clock;
+        l1_active__clock = clock;
+        ldac_pin__clock = clock;
+        offset_binary__d = offset_binary__q;
+        timing_word__d = timing_word__q;
+        deferred__d = deferred__q;
+        refused__d = refused__q;
+        read_data__d = read_data__q;
+        abort_prev__d = abort_prev__q;
+        phase__d = phase__q;
+        channel__d = channel__q;
+        left__d = left__q;
+        shadow_offset__d = shadow_offset__q;
+        t_width__d = t_width__q;
+        t_hold__d = t_hold__q;
+        t_setup__d = t_setup__q;
+        t_ldac__d = t_ldac__q;
+        safe_run__d = safe_run__q;
+        cut__d = cut__q;
+        pending__d = pending__q;
+        pending_safe__d = pending_safe__q;
+        safe_reg__d = safe_reg__q;
+        data_pin__d = data_pin__q;
+        cs_active__d = cs_active__q;
+        l1_active__d = l1_active__q;
+        ldac_pin__d = ldac_pin__q;
+        staged__0__clock = clock;
+        staged__0__d = staged__0__q;
+        shadow__0__clock = clock;
+        shadow__0__d = shadow__0__q;
+        applied__0__clock = clock;
+        applied__0__d = applied__0__q;
+        staged__1__clock = clock;
+        staged__1__d = staged__1__q;
+        shadow__1__clock = clock;
+        shadow__1__d = shadow__1__q;
+        applied__1__clock = clock;
+        applied__1__d = applied__1__q;
+        staged__2__clock = clock;
+        staged__2__d = staged__2__q;
+        shadow__2__clock = clock;
+        shadow__2__d = shadow__2__q;
+        applied__2__clock = clock;
+        applied__2__d = applied__2__q;
+        bus_read_data = read_data__q;
+        dac_data = data_pin__q;
+        dac_cs_n = ~cs_active__q;
+        dac_l1_n = ~l1_active__q;
+        dac_ldac = ldac_pin__q;
+        busy = (phase__q != p_idle) | ldac_pin__q;
+        safe = safe_reg__q;
+        running = phase__q != p_idle;
+        in_channel = (phase__q == p_setup) | (phase__q == p_width) | (phase__q == p_hold);
+        flip = zero_w;
+        if (shadow_offset__q) begin
+            flip = msb_w;
+        end
+        cs_active__d = zero_k;
+        l1_active__d = 1'b0;
+        ldac_pin__d = phase__q == p_ldac;
+        if (in_channel) begin
+            cs_active__d = channel__q;
+            l1_active__d = phase__q == p_width;
+            if ((channel__q & chan_bit__0) != zero_k) begin
+                data_pin__d = shadow__0__q ^ flip;
+            end
+            if ((channel__q & chan_bit__1) != zero_k) begin
+                data_pin__d = shadow__1__q ^ flip;
+            end
+            if ((channel__q & chan_bit__2) != zero_k) begin
+                data_pin__d = shadow__2__q ^ flip;
+            end
+        end
+        status_word = zero32;
+        if (running | ldac_pin__q) begin
+            status_word = status_word | f_busy;
+        end
+        if (safe_reg__q) begin
+            status_word = status_word | f_safe;
+        end
+        if (force_safe) begin
+            status_word = status_word | f_force_safe;
+        end
+        if (pending__q) begin
+            status_word = status_word | f_pending;
+        end
+        if (deferred__q) begin
+            status_word = status_word | f_deferred;
+        end
+        if (refused__q) begin
+            status_word = status_word | f_refused;
+        end
+        read_word = zero32;
+        if (bus_address == a_id) begin
+            read_word = id_value;
+        end
+        if (bus_address == a_config) begin
+            read_word = config_value;
+        end
+        if ((bus_address == a_control) & offset_binary__q) begin
+            read_word = f_offset_binary;
+        end
+        if (bus_address == a_status) begin
+            read_word = status_word;
+        end
+        if (bus_address == a_timing) begin
+            read_word = timing_word__q;
+        end
+        if (bus_address == a_code__0) begin
+            read_word = zero32;
+            if (staged__0__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (staged__0__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (staged__0__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (staged__0__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (staged__0__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (staged__0__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (staged__0__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (staged__0__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (staged__0__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (staged__0__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (staged__0__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (staged__0__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (staged__0__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (staged__0__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (staged__0__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (staged__0__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
+        end
+        if (bus_address == a_applied__0) begin
+            read_word = zero32;
+            if (applied__0__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (applied__0__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (applied__0__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (applied__0__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (applied__0__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (applied__0__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (applied__0__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (applied__0__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (applied__0__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (applied__0__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (applied__0__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (applied__0__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (applied__0__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (applied__0__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (applied__0__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (applied__0__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
+        end
+        if (bus_address == a_code__1) begin
+            read_word = zero32;
+            if (staged__1__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (staged__1__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (staged__1__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (staged__1__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (staged__1__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (staged__1__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (staged__1__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (staged__1__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (staged__1__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (staged__1__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (staged__1__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (staged__1__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (staged__1__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (staged__1__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (staged__1__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (staged__1__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
+        end
+        if (bus_address == a_applied__1) begin
+            read_word = zero32;
+            if (applied__1__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (applied__1__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (applied__1__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (applied__1__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (applied__1__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (applied__1__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (applied__1__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (applied__1__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (applied__1__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (applied__1__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (applied__1__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (applied__1__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (applied__1__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (applied__1__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (applied__1__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (applied__1__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
+        end
+        if (bus_address == a_code__2) begin
+            read_word = zero32;
+            if (staged__2__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (staged__2__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (staged__2__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (staged__2__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (staged__2__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (staged__2__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (staged__2__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (staged__2__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (staged__2__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (staged__2__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (staged__2__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (staged__2__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (staged__2__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (staged__2__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (staged__2__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (staged__2__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
+        end
+        if (bus_address == a_applied__2) begin
+            read_word = zero32;
+            if (applied__2__q[0]) begin
+                read_word = read_word | word_bit__0;
+            end
+            if (applied__2__q[1]) begin
+                read_word = read_word | word_bit__1;
+            end
+            if (applied__2__q[2]) begin
+                read_word = read_word | word_bit__2;
+            end
+            if (applied__2__q[3]) begin
+                read_word = read_word | word_bit__3;
+            end
+            if (applied__2__q[4]) begin
+                read_word = read_word | word_bit__4;
+            end
+            if (applied__2__q[5]) begin
+                read_word = read_word | word_bit__5;
+            end
+            if (applied__2__q[6]) begin
+                read_word = read_word | word_bit__6;
+            end
+            if (applied__2__q[7]) begin
+                read_word = read_word | word_bit__7;
+            end
+            if (applied__2__q[8]) begin
+                read_word = read_word | word_bit__8;
+            end
+            if (applied__2__q[9]) begin
+                read_word = read_word | word_bit__9;
+            end
+            if (applied__2__q[10]) begin
+                read_word = read_word | word_bit__10;
+            end
+            if (applied__2__q[11]) begin
+                read_word = read_word | word_bit__11;
+            end
+            if (applied__2__q[12]) begin
+                read_word = read_word | word_bit__12;
+            end
+            if (applied__2__q[13]) begin
+                read_word = read_word | word_bit__13;
+            end
+            if (applied__2__q[14]) begin
+                read_word = read_word | word_bit__14;
+            end
+            if (applied__2__q[15]) begin
+                read_word = read_word | word_bit__15;
+            end
+        end
+        if (bus_read) begin
+            read_data__d = read_word;
+        end
+        request = update;
+        if (bus_write) begin
+            if (bus_address == a_control) begin
+                offset_binary__d = (bus_write_data & f_offset_binary) != zero32;
+            end
+            if ((bus_address == a_update) & ((bus_write_data & f_start) != zero32)) begin
+                request = 1'b1;
+            end
+            if (bus_address == a_status) begin
+                if ((bus_write_data & f_deferred) != zero32) begin
+                    deferred__d = 1'b0;
+                end
+                if ((bus_write_data & f_refused) != zero32) begin
+                    refused__d = 1'b0;
+                end
+            end
+            if (bus_address == a_timing) begin
+                timing_word__d = bus_write_data;
+            end
+            if (bus_address == a_code__0) begin
+                if (force_safe) begin
+                    refused__d = 1'b1;
+                end
+                else begin
+                    staged__0__d = bus_write_data[(32'h0)+:(16)];
+                end
+            end
+            if (bus_address == a_code__1) begin
+                if (force_safe) begin
+                    refused__d = 1'b1;
+                end
+                else begin
+                    staged__1__d = bus_write_data[(32'h0)+:(16)];
+                end
+            end
+            if (bus_address == a_code__2) begin
+                if (force_safe) begin
+                    refused__d = 1'b1;
+                end
+                else begin
+                    staged__2__d = bus_write_data[(32'h0)+:(16)];
+                end
+            end
+        end
+        if ((load & chan_bit__0) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__0__d = load_code;
+            end
+        end
+        if ((load & chan_bit__1) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__1__d = load_code;
+            end
+        end
+        if ((load & chan_bit__2) != zero_k) begin
+            if (force_safe) begin
+                refused__d = 1'b1;
+            end
+            else begin
+                staged__2__d = load_code;
+            end
+        end
+        if (request & force_safe) begin
+            refused__d = 1'b1;
+        end
+        go = request & ~force_safe;
+        abort_rise = force_safe & ~abort_prev__q;
+        abort_prev__d = force_safe;
+        cut_now = cut__q | (abort_rise & running & ~safe_run__q);
+        phase_done = (left__q == zero8) | (left__q == one8);
+        start = 1'b0;
+        start_safe = 1'b0;
+        if (~running) begin
+            if (pending_safe__q) begin
+                if (go) begin
+                    pending__d = 1'b1;
+                    deferred__d = 1'b1;
+                end
+                pending_safe__d = 1'b0;
+                start = 1'b1;
+                start_safe = 1'b1;
+            end
+            else if ((pending__q | go) & ~force_safe) begin
+                pending__d = 1'b0;
+                start = 1'b1;
+            end
+        end
+        else begin
+            if (go) begin
+                pending__d = 1'b1;
+                deferred__d = 1'b1;
+            end
+            cut__d = cut_now;
+            if (~phase_done) begin
+                left__d = left__q - one8;
+            end
+            else begin
+                if (phase__q == p_setup) begin
+                    phase__d = p_width;
+                    left__d = t_width__q;
+                end
+                if (phase__q == p_width) begin
+                    phase__d = p_hold;
+                    left__d = t_hold__q;
+                end
+                if (phase__q == p_hold) begin
+                    if (cut_now) begin
+                        phase__d = p_idle;
+                        cut__d = 1'b0;
+                    end
+                    else if ((channel__q & last_channel) == zero_k) begin
+                        phase__d = p_setup;
+                        channel__d = channel__q << 32'h1;
+                        left__d = t_setup__q;
+                    end
+                    else begin
+                        phase__d = p_ldac;
+                        left__d = t_ldac__q;
+                    end
+                end
+                if (phase__q == p_ldac) begin
+                    phase__d = p_idle;
+                    applied__0__d = shadow__0__q;
+                    applied__1__d = shadow__1__q;
+                    applied__2__d = shadow__2__q;
+                    safe_reg__d = safe_run__q | pending_safe__q;
+                    cut__d = 1'b0;
+                end
+            end
+        end
+        if (start) begin
+            shadow__0__d = staged__0__q;
+            if (start_safe) begin
+                shadow__0__d = zero_w;
+            end
+            shadow__1__d = staged__1__q;
+            if (start_safe) begin
+                shadow__1__d = zero_w;
+            end
+            shadow__2__d = staged__2__q;
+            if (start_safe) begin
+                shadow__2__d = zero_w;
+            end
+            shadow_offset__d = offset_binary__q;
+            t_setup__d = timing_word__q[(32'h0)+:(8)];
+            t_width__d = timing_word__q[(32'h8)+:(8)];
+            t_hold__d = timing_word__q[(32'h10)+:(8)];
+            t_ldac__d = timing_word__q[(32'h18)+:(8)];
+            left__d = timing_word__q[(32'h0)+:(8)];
+            safe_run__d = start_safe;
+            cut__d = 1'b0;
+            phase__d = p_setup;
+            channel__d = first_channel;
+        end
+        if (abort_rise) begin
+            staged__0__d = zero_w;
+            staged__1__d = zero_w;
+            staged__2__d = zero_w;
+            pending__d = 1'b0;
+            pending_safe__d = ~(running & safe_run__q);
+            safe_reg__d = 1'b1;
+        end
+        if (reset) begin
+            staged__0__d = zero_w;
+            shadow__0__d = zero_w;
+            applied__0__d = zero_w;
+            staged__1__d = zero_w;
+            shadow__1__d = zero_w;
+            applied__1__d = zero_w;
+            staged__2__d = zero_w;
+            shadow__2__d = zero_w;
+            applied__2__d = zero_w;
+            offset_binary__d = 1'b0;
+            timing_word__d = timing_reset;
+            deferred__d = 1'b0;
+            refused__d = 1'b0;
+            read_data__d = zero32;
+            abort_prev__d = 1'b0;
+            phase__d = p_idle;
+            channel__d = zero_k;
+            left__d = zero8;
+            shadow_offset__d = 1'b0;
+            t_setup__d = zero8;
+            t_width__d = zero8;
+            t_hold__d = zero8;
+            t_ldac__d = zero8;
+            safe_run__d = 1'b0;
+            cut__d = 1'b0;
+            pending__d = 1'b0;
+            pending_safe__d = 1'b1;
+            safe_reg__d = 1'b1;
+            data_pin__d = zero_w;
+            cs_active__d = zero_k;
+            l1_active__d = 1'b0;
+            ldac_pin__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__analog__dac
+
+
+module motion_controller_servo__analog__dac__abort_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__abort_prev
+
+
+module motion_controller_servo__analog__dac__applied__0(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__applied__0
+
+
+module motion_controller_servo__analog__dac__applied__1(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__applied__1
+
+
+module motion_controller_servo__analog__dac__applied__2(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__applied__2
+
+
+module motion_controller_servo__analog__dac__channel(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__channel
+
+
+module motion_controller_servo__analog__dac__cs_active(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__cs_active
+
+
+module motion_controller_servo__analog__dac__cut(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__cut
+
+
+module motion_controller_servo__analog__dac__data_pin(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__data_pin
+
+
+module motion_controller_servo__analog__dac__deferred(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__deferred
+
+
+module motion_controller_servo__analog__dac__l1_active(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__l1_active
+
+
+module motion_controller_servo__analog__dac__ldac_pin(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__ldac_pin
+
+
+module motion_controller_servo__analog__dac__left(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__left
+
+
+module motion_controller_servo__analog__dac__offset_binary(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__offset_binary
+
+
+module motion_controller_servo__analog__dac__pending(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__pending
+
+
+module motion_controller_servo__analog__dac__pending_safe(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__pending_safe
+
+
+module motion_controller_servo__analog__dac__phase(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__phase
+
+
+module motion_controller_servo__analog__dac__read_data(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__read_data
+
+
+module motion_controller_servo__analog__dac__refused(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__refused
+
+
+module motion_controller_servo__analog__dac__safe_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__safe_reg
+
+
+module motion_controller_servo__analog__dac__safe_run(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__safe_run
+
+
+module motion_controller_servo__analog__dac__shadow__0(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__shadow__0
+
+
+module motion_controller_servo__analog__dac__shadow__1(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__shadow__1
+
+
+module motion_controller_servo__analog__dac__shadow__2(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__shadow__2
+
+
+module motion_controller_servo__analog__dac__shadow_offset(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__shadow_offset
+
+
+module motion_controller_servo__analog__dac__staged__0(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__staged__0
+
+
+module motion_controller_servo__analog__dac__staged__1(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__staged__1
+
+
+module motion_controller_servo__analog__dac__staged__2(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__staged__2
+
+
+module motion_controller_servo__analog__dac__t_hold(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__t_hold
+
+
+module motion_controller_servo__analog__dac__t_ldac(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__t_ldac
+
+
+module motion_controller_servo__analog__dac__t_setup(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__t_setup
+
+
+module motion_controller_servo__analog__dac__t_width(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__t_width
+
+
+module motion_controller_servo__analog__dac__timing_word(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__dac__timing_word
+
+
+module motion_controller_servo__analog__pop_d(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__pop_d
+
+
+module motion_controller_servo__analog__read_sel(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__read_sel
+
+
+module motion_controller_servo__analog__stop_zero_d(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__stop_zero_d
+
+
+module motion_controller_servo__analog__update_request(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__update_request
+
+
+module motion_controller_servo__analog__walk_next(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__analog__walk_next
 
 
 module motion_controller_servo__any_low_prev_n(d,q,clock);
@@ -20478,23 +21889,154 @@ module motion_controller_servo__axes__2__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__2__uniform_running_forward
 
 
-module motion_controller_servo__boundary_next(d,q,clock);
+module motion_controller_servo__cause_register(clock,reset,limit_held,alarm_held,home_held,estop_latched,abort_hold,watchdog_expired,running,underrun,halt,stop_cause);
 
     // Module arguments
-    input wire  d;
-    output reg  q;
+    input wire  clock;
+    input wire  reset;
+    input wire  [2:0] limit_held;
+    input wire  [2:0] alarm_held;
+    input wire  [2:0] home_held;
+    input wire  estop_latched;
+    input wire  abort_hold;
+    input wire  watchdog_expired;
+    input wire  running;
+    input wire  underrun;
+    input wire  halt;
+    output reg  [31:0] stop_cause;
+
+    // Constant declarations
+    localparam  cause_stop = 32'h1;
+    localparam  cause_underrun = 32'h2;
+    localparam  cause_watchdog = 32'h3;
+    localparam  cause_home = 32'h4;
+    localparam  cause_limit = 32'h5;
+    localparam  cause_alarm = 32'h6;
+    localparam  cause_estop = 32'h7;
+    localparam  cause_axis__0 = 32'h0;
+    localparam  cause_axis__1 = 32'h100;
+    localparam  cause_axis__2 = 32'h200;
+    localparam  zero32 = 32'h0;
+    localparam  zero_k = 3'b0;
+    localparam  axis_bit__0 = 3'b1;
+    localparam  axis_bit__1 = 3'b10;
+    localparam  axis_bit__2 = 3'b100;
+
+    // Stub signals
+    reg  [31:0] cause__d;
+    wire  [31:0] cause__q;
+    reg  cause__clock;
+
+    // Local signals
+    reg  [31:0] cause_now;
+    reg  [31:0] limit_axis;
+    reg  [31:0] alarm_axis;
+    reg  [31:0] home_axis;
+    reg  limit_found;
+    reg  alarm_found;
+    reg  home_found;
+
+    // Sub module instances
+    motion_controller_servo__cause_register__cause cause(
+        .d(cause__d),
+        .q(cause__q),
+        .clock(cause__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        cause__clock = clock;
+        cause__d = cause__q;
+        stop_cause = cause__q;
+        limit_axis = zero32;
+        alarm_axis = zero32;
+        home_axis = zero32;
+        limit_found = 1'b0;
+        alarm_found = 1'b0;
+        home_found = 1'b0;
+        if (((limit_held & axis_bit__0) != zero_k) & ~limit_found) begin
+            limit_axis = cause_axis__0;
+            limit_found = 1'b1;
+        end
+        if (((alarm_held & axis_bit__0) != zero_k) & ~alarm_found) begin
+            alarm_axis = cause_axis__0;
+            alarm_found = 1'b1;
+        end
+        if (((home_held & axis_bit__0) != zero_k) & ~home_found) begin
+            home_axis = cause_axis__0;
+            home_found = 1'b1;
+        end
+        if (((limit_held & axis_bit__1) != zero_k) & ~limit_found) begin
+            limit_axis = cause_axis__1;
+            limit_found = 1'b1;
+        end
+        if (((alarm_held & axis_bit__1) != zero_k) & ~alarm_found) begin
+            alarm_axis = cause_axis__1;
+            alarm_found = 1'b1;
+        end
+        if (((home_held & axis_bit__1) != zero_k) & ~home_found) begin
+            home_axis = cause_axis__1;
+            home_found = 1'b1;
+        end
+        if (((limit_held & axis_bit__2) != zero_k) & ~limit_found) begin
+            limit_axis = cause_axis__2;
+            limit_found = 1'b1;
+        end
+        if (((alarm_held & axis_bit__2) != zero_k) & ~alarm_found) begin
+            alarm_axis = cause_axis__2;
+            alarm_found = 1'b1;
+        end
+        if (((home_held & axis_bit__2) != zero_k) & ~home_found) begin
+            home_axis = cause_axis__2;
+            home_found = 1'b1;
+        end
+        cause_now = cause_stop;
+        if (underrun) begin
+            cause_now = cause_underrun;
+        end
+        if (watchdog_expired) begin
+            cause_now = cause_watchdog;
+        end
+        if (abort_hold & home_found) begin
+            cause_now = cause_home | home_axis;
+        end
+        if (abort_hold & limit_found) begin
+            cause_now = cause_limit | limit_axis;
+        end
+        if (abort_hold & alarm_found) begin
+            cause_now = cause_alarm | alarm_axis;
+        end
+        if (abort_hold & estop_latched) begin
+            cause_now = cause_estop;
+        end
+        if (running & (underrun | halt)) begin
+            cause__d = cause_now;
+        end
+        if (reset) begin
+            cause__d = zero32;
+        end
+    end
+
+endmodule // motion_controller_servo__cause_register
+
+
+module motion_controller_servo__cause_register__cause(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 1'h0;
+       q = 32'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__boundary_next
+endmodule // motion_controller_servo__cause_register__cause
 
 
 module motion_controller_servo__config_shadow(clock,reset,address,write,write_data,read,read_data);
@@ -20728,1669 +22270,6 @@ module motion_controller_servo__config_shadow__valid__2(d,q,clock);
     end
 
 endmodule // motion_controller_servo__config_shadow__valid__2
-
-
-module motion_controller_servo__dac(clock,reset,bus_address,bus_write_data,bus_write,bus_read,update,force_safe,load,load_code,bus_read_data,dac_data,dac_cs_n,dac_l1_n,dac_ldac,busy,safe);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  [4:0] bus_address;
-    input wire  [31:0] bus_write_data;
-    input wire  bus_write;
-    input wire  bus_read;
-    input wire  update;
-    input wire  force_safe;
-    input wire  [2:0] load;
-    input wire  [15:0] load_code;
-    output reg  [31:0] bus_read_data;
-    output reg  [15:0] dac_data;
-    output reg  [2:0] dac_cs_n;
-    output reg  dac_l1_n;
-    output reg  dac_ldac;
-    output reg  busy;
-    output reg  safe;
-
-    // Constant declarations
-    localparam  p_idle = 3'b0;
-    localparam  p_setup = 3'b1;
-    localparam  p_width = 3'b10;
-    localparam  p_hold = 3'b11;
-    localparam  p_ldac = 3'b100;
-    localparam  a_id = 5'b0;
-    localparam  a_config = 5'b1;
-    localparam  a_control = 5'b10;
-    localparam  a_update = 5'b11;
-    localparam  a_status = 5'b100;
-    localparam  a_timing = 5'b101;
-    localparam  a_code__0 = 5'b10000;
-    localparam  a_code__1 = 5'b10001;
-    localparam  a_code__2 = 5'b10010;
-    localparam  a_applied__0 = 5'b11000;
-    localparam  a_applied__1 = 5'b11001;
-    localparam  a_applied__2 = 5'b11010;
-    localparam  id_value = 32'h44414331;
-    localparam  config_value = 32'h1003;
-    localparam  timing_reset = 32'h5020501;
-    localparam  f_offset_binary = 32'h1;
-    localparam  f_start = 32'h1;
-    localparam  f_busy = 32'h1;
-    localparam  f_safe = 32'h2;
-    localparam  f_force_safe = 32'h4;
-    localparam  f_pending = 32'h8;
-    localparam  f_deferred = 32'h100;
-    localparam  f_refused = 32'h200;
-    localparam  msb_w = 16'h8000;
-    localparam  chan_bit__0 = 3'b1;
-    localparam  chan_bit__1 = 3'b10;
-    localparam  chan_bit__2 = 3'b100;
-    localparam  word_bit__0 = 32'h1;
-    localparam  word_bit__1 = 32'h2;
-    localparam  word_bit__2 = 32'h4;
-    localparam  word_bit__3 = 32'h8;
-    localparam  word_bit__4 = 32'h10;
-    localparam  word_bit__5 = 32'h20;
-    localparam  word_bit__6 = 32'h40;
-    localparam  word_bit__7 = 32'h80;
-    localparam  word_bit__8 = 32'h100;
-    localparam  word_bit__9 = 32'h200;
-    localparam  word_bit__10 = 32'h400;
-    localparam  word_bit__11 = 32'h800;
-    localparam  word_bit__12 = 32'h1000;
-    localparam  word_bit__13 = 32'h2000;
-    localparam  word_bit__14 = 32'h4000;
-    localparam  word_bit__15 = 32'h8000;
-    localparam  first_channel = 3'b1;
-    localparam  last_channel = 3'b100;
-    localparam  zero_k = 3'b0;
-    localparam  zero_w = 16'h0;
-    localparam  zero32 = 32'h0;
-    localparam  zero8 = 8'h0;
-    localparam  one8 = 8'h1;
-
-    // Stub signals
-    reg  [15:0] staged__0__d;
-    wire  [15:0] staged__0__q;
-    reg  staged__0__clock;
-    reg  [15:0] staged__1__d;
-    wire  [15:0] staged__1__q;
-    reg  staged__1__clock;
-    reg  [15:0] staged__2__d;
-    wire  [15:0] staged__2__q;
-    reg  staged__2__clock;
-    reg  offset_binary__d;
-    wire  offset_binary__q;
-    reg  offset_binary__clock;
-    reg  [31:0] timing_word__d;
-    wire  [31:0] timing_word__q;
-    reg  timing_word__clock;
-    reg  deferred__d;
-    wire  deferred__q;
-    reg  deferred__clock;
-    reg  refused__d;
-    wire  refused__q;
-    reg  refused__clock;
-    reg  [31:0] read_data__d;
-    wire  [31:0] read_data__q;
-    reg  read_data__clock;
-    reg  abort_prev__d;
-    wire  abort_prev__q;
-    reg  abort_prev__clock;
-    reg  [2:0] phase__d;
-    wire  [2:0] phase__q;
-    reg  phase__clock;
-    reg  [2:0] channel__d;
-    wire  [2:0] channel__q;
-    reg  channel__clock;
-    reg  [7:0] left__d;
-    wire  [7:0] left__q;
-    reg  left__clock;
-    reg  [15:0] shadow__0__d;
-    wire  [15:0] shadow__0__q;
-    reg  shadow__0__clock;
-    reg  [15:0] shadow__1__d;
-    wire  [15:0] shadow__1__q;
-    reg  shadow__1__clock;
-    reg  [15:0] shadow__2__d;
-    wire  [15:0] shadow__2__q;
-    reg  shadow__2__clock;
-    reg  shadow_offset__d;
-    wire  shadow_offset__q;
-    reg  shadow_offset__clock;
-    reg  [7:0] t_width__d;
-    wire  [7:0] t_width__q;
-    reg  t_width__clock;
-    reg  [7:0] t_hold__d;
-    wire  [7:0] t_hold__q;
-    reg  t_hold__clock;
-    reg  [7:0] t_setup__d;
-    wire  [7:0] t_setup__q;
-    reg  t_setup__clock;
-    reg  [7:0] t_ldac__d;
-    wire  [7:0] t_ldac__q;
-    reg  t_ldac__clock;
-    reg  safe_run__d;
-    wire  safe_run__q;
-    reg  safe_run__clock;
-    reg  cut__d;
-    wire  cut__q;
-    reg  cut__clock;
-    reg  pending__d;
-    wire  pending__q;
-    reg  pending__clock;
-    reg  pending_safe__d;
-    wire  pending_safe__q;
-    reg  pending_safe__clock;
-    reg  [15:0] applied__0__d;
-    wire  [15:0] applied__0__q;
-    reg  applied__0__clock;
-    reg  [15:0] applied__1__d;
-    wire  [15:0] applied__1__q;
-    reg  applied__1__clock;
-    reg  [15:0] applied__2__d;
-    wire  [15:0] applied__2__q;
-    reg  applied__2__clock;
-    reg  safe_reg__d;
-    wire  safe_reg__q;
-    reg  safe_reg__clock;
-    reg  [15:0] data_pin__d;
-    wire  [15:0] data_pin__q;
-    reg  data_pin__clock;
-    reg  [2:0] cs_active__d;
-    wire  [2:0] cs_active__q;
-    reg  cs_active__clock;
-    reg  l1_active__d;
-    wire  l1_active__q;
-    reg  l1_active__clock;
-    reg  ldac_pin__d;
-    wire  ldac_pin__q;
-    reg  ldac_pin__clock;
-
-    // Local signals
-    reg  running;
-    reg  in_channel;
-    reg  phase_done;
-    reg  [15:0] flip;
-    reg  request;
-    reg  go;
-    reg  abort_rise;
-    reg  cut_now;
-    reg  start;
-    reg  start_safe;
-    reg  [31:0] status_word;
-    reg  [31:0] read_word;
-
-    // Sub module instances
-    motion_controller_servo__dac__staged__0 staged__0(
-        .d(staged__0__d),
-        .q(staged__0__q),
-        .clock(staged__0__clock)
-    );
-    motion_controller_servo__dac__staged__1 staged__1(
-        .d(staged__1__d),
-        .q(staged__1__q),
-        .clock(staged__1__clock)
-    );
-    motion_controller_servo__dac__staged__2 staged__2(
-        .d(staged__2__d),
-        .q(staged__2__q),
-        .clock(staged__2__clock)
-    );
-    motion_controller_servo__dac__offset_binary offset_binary(
-        .d(offset_binary__d),
-        .q(offset_binary__q),
-        .clock(offset_binary__clock)
-    );
-    motion_controller_servo__dac__timing_word timing_word(
-        .d(timing_word__d),
-        .q(timing_word__q),
-        .clock(timing_word__clock)
-    );
-    motion_controller_servo__dac__deferred deferred(
-        .d(deferred__d),
-        .q(deferred__q),
-        .clock(deferred__clock)
-    );
-    motion_controller_servo__dac__refused refused(
-        .d(refused__d),
-        .q(refused__q),
-        .clock(refused__clock)
-    );
-    motion_controller_servo__dac__read_data read_data(
-        .d(read_data__d),
-        .q(read_data__q),
-        .clock(read_data__clock)
-    );
-    motion_controller_servo__dac__abort_prev abort_prev(
-        .d(abort_prev__d),
-        .q(abort_prev__q),
-        .clock(abort_prev__clock)
-    );
-    motion_controller_servo__dac__phase phase(
-        .d(phase__d),
-        .q(phase__q),
-        .clock(phase__clock)
-    );
-    motion_controller_servo__dac__channel channel(
-        .d(channel__d),
-        .q(channel__q),
-        .clock(channel__clock)
-    );
-    motion_controller_servo__dac__left left(
-        .d(left__d),
-        .q(left__q),
-        .clock(left__clock)
-    );
-    motion_controller_servo__dac__shadow__0 shadow__0(
-        .d(shadow__0__d),
-        .q(shadow__0__q),
-        .clock(shadow__0__clock)
-    );
-    motion_controller_servo__dac__shadow__1 shadow__1(
-        .d(shadow__1__d),
-        .q(shadow__1__q),
-        .clock(shadow__1__clock)
-    );
-    motion_controller_servo__dac__shadow__2 shadow__2(
-        .d(shadow__2__d),
-        .q(shadow__2__q),
-        .clock(shadow__2__clock)
-    );
-    motion_controller_servo__dac__shadow_offset shadow_offset(
-        .d(shadow_offset__d),
-        .q(shadow_offset__q),
-        .clock(shadow_offset__clock)
-    );
-    motion_controller_servo__dac__t_width t_width(
-        .d(t_width__d),
-        .q(t_width__q),
-        .clock(t_width__clock)
-    );
-    motion_controller_servo__dac__t_hold t_hold(
-        .d(t_hold__d),
-        .q(t_hold__q),
-        .clock(t_hold__clock)
-    );
-    motion_controller_servo__dac__t_setup t_setup(
-        .d(t_setup__d),
-        .q(t_setup__q),
-        .clock(t_setup__clock)
-    );
-    motion_controller_servo__dac__t_ldac t_ldac(
-        .d(t_ldac__d),
-        .q(t_ldac__q),
-        .clock(t_ldac__clock)
-    );
-    motion_controller_servo__dac__safe_run safe_run(
-        .d(safe_run__d),
-        .q(safe_run__q),
-        .clock(safe_run__clock)
-    );
-    motion_controller_servo__dac__cut cut(
-        .d(cut__d),
-        .q(cut__q),
-        .clock(cut__clock)
-    );
-    motion_controller_servo__dac__pending pending(
-        .d(pending__d),
-        .q(pending__q),
-        .clock(pending__clock)
-    );
-    motion_controller_servo__dac__pending_safe pending_safe(
-        .d(pending_safe__d),
-        .q(pending_safe__q),
-        .clock(pending_safe__clock)
-    );
-    motion_controller_servo__dac__applied__0 applied__0(
-        .d(applied__0__d),
-        .q(applied__0__q),
-        .clock(applied__0__clock)
-    );
-    motion_controller_servo__dac__applied__1 applied__1(
-        .d(applied__1__d),
-        .q(applied__1__q),
-        .clock(applied__1__clock)
-    );
-    motion_controller_servo__dac__applied__2 applied__2(
-        .d(applied__2__d),
-        .q(applied__2__q),
-        .clock(applied__2__clock)
-    );
-    motion_controller_servo__dac__safe_reg safe_reg(
-        .d(safe_reg__d),
-        .q(safe_reg__q),
-        .clock(safe_reg__clock)
-    );
-    motion_controller_servo__dac__data_pin data_pin(
-        .d(data_pin__d),
-        .q(data_pin__q),
-        .clock(data_pin__clock)
-    );
-    motion_controller_servo__dac__cs_active cs_active(
-        .d(cs_active__d),
-        .q(cs_active__q),
-        .clock(cs_active__clock)
-    );
-    motion_controller_servo__dac__l1_active l1_active(
-        .d(l1_active__d),
-        .q(l1_active__q),
-        .clock(l1_active__clock)
-    );
-    motion_controller_servo__dac__ldac_pin ldac_pin(
-        .d(ldac_pin__d),
-        .q(ldac_pin__q),
-        .clock(ldac_pin__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        offset_binary__clock = clock;
-        timing_word__clock = clock;
-        deferred__clock = clock;
-        refused__clock = clock;
-        read_data__clock = clock;
-        abort_prev__clock = clock;
-        phase__clock = clock;
-        channel__clock = clock;
-        left__clock = clock;
-        shadow_offset__clock = clock;
-        t_width__clock = clock;
-        t_hold__clock = clock;
-        t_setup__clock = clock;
-        t_ldac__clock = clock;
-        safe_run__clock = clock;
-        cut__clock = clock;
-        pending__clock = clock;
-        pending_safe__clock = clock;
-        safe_reg__clock = clock;
-        data_pin__clock = clock;
-        cs_active__clock = clock;
-        l1_active__clock = clock;
-        ldac_pin__clock = clock;
-        offset_binary__d = offset_binary__q;
-        timing_word__d = timing_word__q;
-        deferred__d = deferred__q;
-        refused__d = refused__q;
-        read_data__d = read_data__q;
-        abort_prev__d = abort_prev__q;
-        phase__d = phase__q;
-        channel__d = channel__q;
-        left__d = left__q;
-        shadow_offset__d = shadow_offset__q;
-        t_width__d = t_width__q;
-        t_hold__d = t_hold__q;
-        t_setup__d = t_setup__q;
-        t_ldac__d = t_ldac__q;
-        safe_run__d = safe_run__q;
-        cut__d = cut__q;
-        pending__d = pending__q;
-        pending_safe__d = pending_safe__q;
-        safe_reg__d = safe_reg__q;
-        data_pin__d = data_pin__q;
-        cs_active__d = cs_active__q;
-        l1_active__d = l1_active__q;
-        ldac_pin__d = ldac_pin__q;
-        staged__0__clock = clock;
-        staged__0__d = staged__0__q;
-        shadow__0__clock = clock;
-        shadow__0__d = shadow__0__q;
-        applied__0__clock = clock;
-        applied__0__d = applied__0__q;
-        staged__1__clock = clock;
-        staged__1__d = staged__1__q;
-        shadow__1__clock = clock;
-        shadow__1__d = shadow__1__q;
-        applied__1__clock = clock;
-        applied__1__d = applied__1__q;
-        staged__2__clock = clock;
-        staged__2__d = staged__2__q;
-        shadow__2__clock = clock;
-        shadow__2__d = shadow__2__q;
-        applied__2__clock = clock;
-        applied__2__d = applied__2__q;
-        bus_read_data = read_data__q;
-        dac_data = data_pin__q;
-        dac_cs_n = ~cs_active__q;
-        dac_l1_n = ~l1_active__q;
-        dac_ldac = ldac_pin__q;
-        busy = (phase__q != p_idle) | ldac_pin__q;
-        safe = safe_reg__q;
-        running = phase__q != p_idle;
-        in_channel = (phase__q == p_setup) | (phase__q == p_width) | (phase__q == p_hold);
-        flip = zero_w;
-        if (shadow_offset__q) begin
-            flip = msb_w;
-        end
-        cs_active__d = zero_k;
-        l1_active__d = 1'b0;
-        ldac_pin__d = phase__q == p_ldac;
-        if (in_channel) begin
-            cs_active__d = channel__q;
-            l1_active__d = phase__q == p_width;
-            if ((channel__q & chan_bit__0) != zero_k) begin
-                data_pin__d = shadow__0__q ^ flip;
-            end
-            if ((channel__q & chan_bit__1) != zero_k) begin
-                data_pin__d = shadow__1__q ^ flip;
-            end
-            if ((channel__q & chan_bit__2) != zero_k) begin
-                data_pin__d = shadow__2__q ^ flip;
-            end
-        end
-        status_word = zero32;
-        if (running | ldac_pin__q) begin
-            status_word = status_word | f_busy;
-        end
-        if (safe_reg__q) begin
-            status_word = status_word | f_safe;
-        end
-        if (force_safe) begin
-            status_word = status_word | f_force_safe;
-        end
-        if (pending__q) begin
-            status_word = status_word | f_pending;
-        end
-        if (deferred__q) begin
-            status_word = status_word | f_deferred;
-        end
-        if (refused__q) begin
-            status_word = status_word | f_refused;
-        end
-        read_word = zero32;
-        if (bus_address == a_id) begin
-            read_word = id_value;
-        end
-        if (bus_address == a_config) begin
-            read_word = config_value;
-        end
-        if ((bus_address == a_control) & offset_binary__q) begin
-            read_word = f_offset_binary;
-        end
-        if (bus_address == a_status) begin
-            read_word = status_word;
-        end
-        if (bus_address == a_timing) begin
-            read_word = timing_word__q;
-        end
-        if (bus_address == a_code__0) begin
-            read_word = zero32;
-            if (staged__0__q[0]) begin
-                read_word = read_word | word_bit__0;
-            end
-            if (staged__0__q[1]) begin
-                read_word = read_word | word_bit__1;
-            end
-            if (staged__0__q[2]) begin
-                read_word = read_word | word_bit__2;
-            end
-            if (staged__0__q[3]) begin
-                read_word = read_word | word_bit__3;
-            end
-            if (staged__0__q[4]) begin
-                read_word = read_word | word_bit__4;
-            end
-            if (staged__0__q[5]) begin
-                read_word = read_word | word_bit__5;
-            end
-            if (staged__0__q[6]) begin
-                read_word = read_word | word_bit__6;
-            end
-            if (staged__0__q[7]) begin
-                read_word = read_word | word_bit__7;
-            end
-            if (staged__0__q[8]) begin
-                read_word = read_word | word_bit__8;
-            end
-            if (staged__0__q[9]) begin
-                read_word = read_word | word_bit__9;
-            end
-            if (staged__0__q[10]) begin
-                read_word = read_word | word_bit__10;
-            end
-            if (staged__0__q[11]) begin
-                read_word = read_word | word_bit__11;
-            end
-            if (staged__0__q[12]) begin
-                read_word = read_word | word_bit__12;
-            end
-            if (staged__0__q[13]) begin
-                read_word = read_word | word_bit__13;
-            end
-            if (staged__0__q[14]) begin
-                read_word = read_word | word_bit__14;
-            end
-            if (staged__0__q[15]) begin
-                read_word = read_word | word_bit__15;
-            end
-        end
-        if (bus_address == a_applied__0) begin
-            read_word = zero32;
-            if (applied__0__q[0]) begin
-                read_word = read_word | word_bit__0;
-            end
-            if (applied__0__q[1]) begin
-                read_word = read_word | word_bit__1;
-            end
-            if (applied__0__q[2]) begin
-                read_word = read_word | word_bit__2;
-            end
-            if (applied__0__q[3]) begin
-                read_word = read_word | word_bit__3;
-            end
-            if (applied__0__q[4]) begin
-                read_word = read_word | word_bit__4;
-            end
-            if (applied__0__q[5]) begin
-                read_word = read_word | word_bit__5;
-            end
-            if (applied__0__q[6]) begin
-                read_word = read_word | word_bit__6;
-            end
-            if (applied__0__q[7]) begin
-                read_word = read_word | word_bit__7;
-            end
-            if (applied__0__q[8]) begin
-                read_word = read_word | word_bit__8;
-            end
-            if (applied__0__q[9]) begin
-                read_word = read_word | word_bit__9;
-            end
-            if (applied__0__q[10]) begin
-                read_word = read_word | word_bit__10;
-            end
-            if (applied__0__q[11]) begin
-                read_word = read_word | word_bit__11;
-            end
-            if (applied__0__q[12]) begin
-                read_word = read_word | word_bit__12;
-            end
-            if (applied__0__q[13]) begin
-                read_word = read_word | word_bit__13;
-            end
-            if (applied__0__q[14]) begin
-                read_word = read_word | word_bit__14;
-            end
-            if (applied__0__q[15]) begin
-                read_word = read_word | word_bit__15;
-            end
-        end
-        if (bus_address == a_code__1) begin
-            read_word = zero32;
-            if (staged__1__q[0]) begin
-                read_word = read_word | word_bit__0;
-            end
-            if (staged__1__q[1]) begin
-                read_word = read_word | word_bit__1;
-            end
-            if (staged__1__q[2]) begin
-                read_word = read_word | word_bit__2;
-            end
-            if (staged__1__q[3]) begin
-                read_word = read_word | word_bit__3;
-            end
-            if (staged__1__q[4]) begin
-                read_word = read_word | word_bit__4;
-            end
-            if (staged__1__q[5]) begin
-                read_word = read_word | word_bit__5;
-            end
-            if (staged__1__q[6]) begin
-                read_word = read_word | word_bit__6;
-            end
-            if (staged__1__q[7]) begin
-                read_word = read_word | word_bit__7;
-            end
-            if (staged__1__q[8]) begin
-                read_word = read_word | word_bit__8;
-            end
-            if (staged__1__q[9]) begin
-                read_word = read_word | word_bit__9;
-            end
-            if (staged__1__q[10]) begin
-                read_word = read_word | word_bit__10;
-            end
-            if (staged__1__q[11]) begin
-                read_word = read_word | word_bit__11;
-            end
-            if (staged__1__q[12]) begin
-                read_word = read_word | word_bit__12;
-            end
-            if (staged__1__q[13]) begin
-                read_word = read_word | word_bit__13;
-            end
-            if (staged__1__q[14]) begin
-                read_word = read_word | word_bit__14;
-            end
-            if (staged__1__q[15]) begin
-                read_word = read_word | word_bit__15;
-            end
-        end
-        if (bus_address == a_applied__1) begin
-            read_word = zero32;
-            if (applied__1__q[0]) begin
-                read_word = read_word | word_bit__0;
-            end
-            if (applied__1__q[1]) begin
-                read_word = read_word | word_bit__1;
-            end
-            if (applied__1__q[2]) begin
-                read_word = read_word | word_bit__2;
-            end
-            if (applied__1__q[3]) begin
-                read_word = read_word | word_bit__3;
-            end
-            if (applied__1__q[4]) begin
-                read_word = read_word | word_bit__4;
-            end
-            if (applied__1__q[5]) begin
-                read_word = read_word | word_bit__5;
-            end
-            if (applied__1__q[6]) begin
-                read_word = read_word | word_bit__6;
-            end
-            if (applied__1__q[7]) begin
-                read_word = read_word | word_bit__7;
-            end
-            if (applied__1__q[8]) begin
-                read_word = read_word | word_bit__8;
-            end
-            if (applied__1__q[9]) begin
-                read_word = read_word | word_bit__9;
-            end
-            if (applied__1__q[10]) begin
-                read_word = read_word | word_bit__10;
-            end
-            if (applied__1__q[11]) begin
-                read_word = read_word | word_bit__11;
-            end
-            if (applied__1__q[12]) begin
-                read_word = read_word | word_bit__12;
-            end
-            if (applied__1__q[13]) begin
-                read_word = read_word | word_bit__13;
-            end
-            if (applied__1__q[14]) begin
-                read_word = read_word | word_bit__14;
-            end
-            if (applied__1__q[15]) begin
-                read_word = read_word | word_bit__15;
-            end
-        end
-        if (bus_address == a_code__2) begin
-            read_word = zero32;
-            if (staged__2__q[0]) begin
-                read_word = read_word | word_bit__0;
-            end
-            if (staged__2__q[1]) begin
-                read_word = read_word | word_bit__1;
-            end
-            if (staged__2__q[2]) begin
-                read_word = read_word | word_bit__2;
-            end
-            if (staged__2__q[3]) begin
-                read_word = read_word | word_bit__3;
-            end
-            if (staged__2__q[4]) begin
-                read_word = read_word | word_bit__4;
-            end
-            if (staged__2__q[5]) begin
-                read_word = read_word | word_bit__5;
-            end
-            if (staged__2__q[6]) begin
-                read_word = read_word | word_bit__6;
-            end
-            if (staged__2__q[7]) begin
-                read_word = read_word | word_bit__7;
-            end
-            if (staged__2__q[8]) begin
-                read_word = read_word | word_bit__8;
-            end
-            if (staged__2__q[9]) begin
-                read_word = read_word | word_bit__9;
-            end
-            if (staged__2__q[10]) begin
-                read_word = read_word | word_bit__10;
-            end
-            if (staged__2__q[11]) begin
-                read_word = read_word | word_bit__11;
-            end
-            if (staged__2__q[12]) begin
-                read_word = read_word | word_bit__12;
-            end
-            if (staged__2__q[13]) begin
-                read_word = read_word | word_bit__13;
-            end
-            if (staged__2__q[14]) begin
-                read_word = read_word | word_bit__14;
-            end
-            if (staged__2__q[15]) begin
-                read_word = read_word | word_bit__15;
-            end
-        end
-        if (bus_address == a_applied__2) begin
-            read_word = zero32;
-            if (applied__2__q[0]) begin
-                read_word = read_word | word_bit__0;
-            end
-            if (applied__2__q[1]) begin
-                read_word = read_word | word_bit__1;
-            end
-            if (applied__2__q[2]) begin
-                read_word = read_word | word_bit__2;
-            end
-            if (applied__2__q[3]) begin
-                read_word = read_word | word_bit__3;
-            end
-            if (applied__2__q[4]) begin
-                read_word = read_word | word_bit__4;
-            end
-            if (applied__2__q[5]) begin
-                read_word = read_word | word_bit__5;
-            end
-            if (applied__2__q[6]) begin
-                read_word = read_word | word_bit__6;
-            end
-            if (applied__2__q[7]) begin
-                read_word = read_word | word_bit__7;
-            end
-            if (applied__2__q[8]) begin
-                read_word = read_word | word_bit__8;
-            end
-            if (applied__2__q[9]) begin
-                read_word = read_word | word_bit__9;
-            end
-            if (applied__2__q[10]) begin
-                read_word = read_word | word_bit__10;
-            end
-            if (applied__2__q[11]) begin
-                read_word = read_word | word_bit__11;
-            end
-            if (applied__2__q[12]) begin
-                read_word = read_word | word_bit__12;
-            end
-            if (applied__2__q[13]) begin
-                read_word = read_word | word_bit__13;
-            end
-            if (applied__2__q[14]) begin
-                read_word = read_word | word_bit__14;
-            end
-            if (applied__2__q[15]) begin
-                read_word = read_word | word_bit__15;
-            end
-        end
-        if (bus_read) begin
-            read_data__d = read_word;
-        end
-        request = update;
-        if (bus_write) begin
-            if (bus_address == a_control) begin
-                offset_binary__d = (bus_write_data & f_offset_binary) != zero32;
-            end
-            if ((bus_address == a_update) & ((bus_write_data & f_start) != zero32)) begin
-                request = 1'b1;
-            end
-            if (bus_address == a_status) begin
-                if ((bus_write_data & f_deferred) != zero32) begin
-                    deferred__d = 1'b0;
-                end
-                if ((bus_write_data & f_refused) != zero32) begin
-                    refused__d = 1'b0;
-                end
-            end
-            if (bus_address == a_timing) begin
-                timing_word__d = bus_write_data;
-            end
-            if (bus_address == a_code__0) begin
-                if (force_safe) begin
-                    refused__d = 1'b1;
-                end
-                else begin
-                    staged__0__d = bus_write_data[(32'h0)+:(16)];
-                end
-            end
-            if (bus_address == a_code__1) begin
-                if (force_safe) begin
-                    refused__d = 1'b1;
-                end
-                else begin
-                    staged__1__d = bus_write_data[(32'h0)+:(16)];
-                end
-            end
-            if (bus_address == a_code__2) begin
-                if (force_safe) begin
-                    refused__d = 1'b1;
-                end
-                else begin
-                    staged__2__d = bus_write_data[(32'h0)+:(16)];
-                end
-            end
-        end
-        if ((load & chan_bit__0) != zero_k) begin
-            if (force_safe) begin
-                refused__d = 1'b1;
-            end
-            else begin
-                staged__0__d = load_code;
-            end
-        end
-        if ((load & chan_bit__1) != zero_k) begin
-            if (force_safe) begin
-                refused__d = 1'b1;
-            end
-            else begin
-                staged__1__d = load_code;
-            end
-        end
-        if ((load & chan_bit__2) != zero_k) begin
-            if (force_safe) begin
-                refused__d = 1'b1;
-            end
-            else begin
-                staged__2__d = load_code;
-            end
-        end
-        if (request & force_safe) begin
-            refused__d = 1'b1;
-        end
-        go = request & ~force_safe;
-        abort_rise = force_safe & ~abort_prev__q;
-        abort_prev__d = force_safe;
-        cut_now = cut__q | (abort_rise & running & ~safe_run__q);
-        phase_done = (left__q == zero8) | (left__q == one8);
-        start = 1'b0;
-        start_safe = 1'b0;
-        if (~running) begin
-            if (pending_safe__q) begin
-                if (go) begin
-                    pending__d = 1'b1;
-                    deferred__d = 1'b1;
-                end
-                pending_safe__d = 1'b0;
-                start = 1'b1;
-                start_safe = 1'b1;
-            end
-            else if ((pending__q | go) & ~force_safe) begin
-                pending__d = 1'b0;
-                start = 1'b1;
-            end
-        end
-        else begin
-            if (go) begin
-                pending__d = 1'b1;
-                deferred__d = 1'b1;
-            end
-            cut__d = cut_now;
-            if (~phase_done) begin
-                left__d = left__q - one8;
-            end
-            else begin
-                if (phase__q == p_setup) begin
-                    phase__d = p_width;
-                    left__d = t_width__q;
-                end
-                if (phase__q == p_width) begin
-                    phase__d = p_hold;
-                    left__d = t_hold__q;
-                end
-                if (phase__q == p_hold) begin
-                    if (cut_now) begin
-                        phase__d = p_idle;
-                        cut__d = 1'b0;
-                    end
-                    else if ((channel__q & last_channel) == zero_k) begin
-                        phase__d = p_setup;
-                        channel__d = channel__q << 32'h1;
-                        left__d = t_setup__q;
-                    end
-                    else begin
-                        phase__d = p_ldac;
-                        left__d = t_ldac__q;
-                    end
-                end
-                if (phase__q == p_ldac) begin
-                    phase__d = p_idle;
-                    applied__0__d = shadow__0__q;
-                    applied__1__d = shadow__1__q;
-                    applied__2__d = shadow__2__q;
-                    safe_reg__d = safe_run__q | pending_safe__q;
-                    cut__d = 1'b0;
-                end
-            end
-        end
-        if (start) begin
-            shadow__0__d = staged__0__q;
-            if (start_safe) begin
-                shadow__0__d = zero_w;
-            end
-            shadow__1__d = staged__1__q;
-            if (start_safe) begin
-                shadow__1__d = zero_w;
-            end
-            shadow__2__d = staged__2__q;
-            if (start_safe) begin
-                shadow__2__d = zero_w;
-            end
-            shadow_offset__d = offset_binary__q;
-            t_setup__d = timing_word__q[(32'h0)+:(8)];
-            t_width__d = timing_word__q[(32'h8)+:(8)];
-            t_hold__d = timing_word__q[(32'h10)+:(8)];
-            t_ldac__d = timing_word__q[(32'h18)+:(8)];
-            left__d = timing_word__q[(32'h0)+:(8)];
-            safe_run__d = start_safe;
-            cut__d = 1'b0;
-            phase__d = p_setup;
-            channel__d = first_channel;
-        end
-        if (abort_rise) begin
-            staged__0__d = zero_w;
-            staged__1__d = zero_w;
-            staged__2__d = zero_w;
-            pending__d = 1'b0;
-            pending_safe__d = ~(running & safe_run__q);
-            safe_reg__d = 1'b1;
-        end
-        if (reset) begin
-            staged__0__d = zero_w;
-            shadow__0__d = zero_w;
-            applied__0__d = zero_w;
-            staged__1__d = zero_w;
-            shadow__1__d = zero_w;
-            applied__1__d = zero_w;
-            staged__2__d = zero_w;
-            shadow__2__d = zero_w;
-            applied__2__d = zero_w;
-            offset_binary__d = 1'b0;
-            timing_word__d = timing_reset;
-            deferred__d = 1'b0;
-            refused__d = 1'b0;
-            read_data__d = zero32;
-            abort_prev__d = 1'b0;
-            phase__d = p_idle;
-            channel__d = zero_k;
-            left__d = zero8;
-            shadow_offset__d = 1'b0;
-            t_setup__d = zero8;
-            t_width__d = zero8;
-            t_hold__d = zero8;
-            t_ldac__d = zero8;
-            safe_run__d = 1'b0;
-            cut__d = 1'b0;
-            pending__d = 1'b0;
-            pending_safe__d = 1'b1;
-            safe_reg__d = 1'b1;
-            data_pin__d = zero_w;
-            cs_active__d = zero_k;
-            l1_active__d = 1'b0;
-            ldac_pin__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_servo__dac
-
-
-module motion_controller_servo__dac__abort_prev(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__abort_prev
-
-
-module motion_controller_servo__dac__applied__0(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__applied__0
-
-
-module motion_controller_servo__dac__applied__1(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__applied__1
-
-
-module motion_controller_servo__dac__applied__2(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__applied__2
-
-
-module motion_controller_servo__dac__channel(d,q,clock);
-
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__channel
-
-
-module motion_controller_servo__dac__cs_active(d,q,clock);
-
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__cs_active
-
-
-module motion_controller_servo__dac__cut(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__cut
-
-
-module motion_controller_servo__dac__data_pin(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__data_pin
-
-
-module motion_controller_servo__dac__deferred(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__deferred
-
-
-module motion_controller_servo__dac__l1_active(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__l1_active
-
-
-module motion_controller_servo__dac__ldac_pin(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__ldac_pin
-
-
-module motion_controller_servo__dac__left(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__left
-
-
-module motion_controller_servo__dac__offset_binary(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__offset_binary
-
-
-module motion_controller_servo__dac__pending(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__pending
-
-
-module motion_controller_servo__dac__pending_safe(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__pending_safe
-
-
-module motion_controller_servo__dac__phase(d,q,clock);
-
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__phase
-
-
-module motion_controller_servo__dac__read_data(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__read_data
-
-
-module motion_controller_servo__dac__refused(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__refused
-
-
-module motion_controller_servo__dac__safe_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__safe_reg
-
-
-module motion_controller_servo__dac__safe_run(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__safe_run
-
-
-module motion_controller_servo__dac__shadow__0(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__shadow__0
-
-
-module motion_controller_servo__dac__shadow__1(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__shadow__1
-
-
-module motion_controller_servo__dac__shadow__2(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__shadow__2
-
-
-module motion_controller_servo__dac__shadow_offset(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__shadow_offset
-
-
-module motion_controller_servo__dac__staged__0(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__staged__0
-
-
-module motion_controller_servo__dac__staged__1(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__staged__1
-
-
-module motion_controller_servo__dac__staged__2(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__staged__2
-
-
-module motion_controller_servo__dac__t_hold(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__t_hold
-
-
-module motion_controller_servo__dac__t_ldac(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__t_ldac
-
-
-module motion_controller_servo__dac__t_setup(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__t_setup
-
-
-module motion_controller_servo__dac__t_width(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__t_width
-
-
-module motion_controller_servo__dac__timing_word(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac__timing_word
-
-
-module motion_controller_servo__dac_read_sel(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac_read_sel
-
-
-module motion_controller_servo__dac_update(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac_update
-
-
-module motion_controller_servo__dac_walk(d,q,clock);
-
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__dac_walk
 
 
 module motion_controller_servo__div_owner(d,q,clock);
@@ -22755,6 +22634,130 @@ module motion_controller_servo__divider__subtractor(a,b,sum,carry_out);
 endmodule // motion_controller_servo__divider__subtractor
 
 
+module motion_controller_servo__entry_converter(word,entry);
+
+    // Module arguments
+    input wire  [31:0] word;
+    output reg  [19:0] entry;
+
+    // Constant declarations
+    localparam  upper_half = 32'hffff0000;
+    localparam  zero32 = 32'h0;
+    localparam  zero_p = 16'h0;
+    localparam  max_p = 16'hffff;
+    localparam  zero_entry = 20'h0;
+    localparam  entry_bit__0 = 20'h1;
+    localparam  entry_bit__1 = 20'h2;
+    localparam  entry_bit__2 = 20'h4;
+    localparam  entry_bit__3 = 20'h8;
+    localparam  entry_bit__4 = 20'h10;
+    localparam  entry_bit__5 = 20'h20;
+    localparam  entry_bit__6 = 20'h40;
+    localparam  entry_bit__7 = 20'h80;
+    localparam  entry_bit__8 = 20'h100;
+    localparam  entry_bit__9 = 20'h200;
+    localparam  entry_bit__10 = 20'h400;
+    localparam  entry_bit__11 = 20'h800;
+    localparam  entry_bit__12 = 20'h1000;
+    localparam  entry_bit__13 = 20'h2000;
+    localparam  entry_bit__14 = 20'h4000;
+    localparam  entry_bit__15 = 20'h8000;
+    localparam  entry_bit__16 = 20'h10000;
+    localparam  entry_bit__17 = 20'h20000;
+    localparam  entry_bit__18 = 20'h40000;
+    localparam  entry_bit__19 = 20'h80000;
+
+    // Local signals
+    reg  upper_zero;
+    reg  upper_ones;
+    reg  [15:0] low;
+    reg  low_nonzero;
+    reg  too_large;
+    reg  [15:0] magnitude;
+
+    // Update code
+    always @(*) begin
+        upper_zero = (word & upper_half) == zero32;
+        upper_ones = (word & upper_half) == upper_half;
+        low = word[(32'h0)+:(16)];
+        low_nonzero = low != zero_p;
+        if (word[32'h1f]) begin
+            too_large = ~upper_ones | ~low_nonzero;
+            magnitude = zero_p - low;
+        end
+        else begin
+            too_large = ~upper_zero;
+            magnitude = low;
+        end
+        if (too_large) begin
+            magnitude = max_p;
+        end
+        entry = zero_entry;
+        if (magnitude[0]) begin
+            entry = entry | entry_bit__0;
+        end
+        if (magnitude[1]) begin
+            entry = entry | entry_bit__1;
+        end
+        if (magnitude[2]) begin
+            entry = entry | entry_bit__2;
+        end
+        if (magnitude[3]) begin
+            entry = entry | entry_bit__3;
+        end
+        if (magnitude[4]) begin
+            entry = entry | entry_bit__4;
+        end
+        if (magnitude[5]) begin
+            entry = entry | entry_bit__5;
+        end
+        if (magnitude[6]) begin
+            entry = entry | entry_bit__6;
+        end
+        if (magnitude[7]) begin
+            entry = entry | entry_bit__7;
+        end
+        if (magnitude[8]) begin
+            entry = entry | entry_bit__8;
+        end
+        if (magnitude[9]) begin
+            entry = entry | entry_bit__9;
+        end
+        if (magnitude[10]) begin
+            entry = entry | entry_bit__10;
+        end
+        if (magnitude[11]) begin
+            entry = entry | entry_bit__11;
+        end
+        if (magnitude[12]) begin
+            entry = entry | entry_bit__12;
+        end
+        if (magnitude[13]) begin
+            entry = entry | entry_bit__13;
+        end
+        if (magnitude[14]) begin
+            entry = entry | entry_bit__14;
+        end
+        if (magnitude[15]) begin
+            entry = entry | entry_bit__15;
+        end
+        if (too_large) begin
+            entry = entry | entry_bit__16;
+        end
+        if (word[32'h1f]) begin
+            entry = entry | entry_bit__17;
+        end
+        if (~((upper_zero & ~low[32'hf]) | (upper_ones & low[32'hf]))) begin
+            entry = entry | entry_bit__18;
+        end
+        if (~upper_zero | low_nonzero) begin
+            entry = entry | entry_bit__19;
+        end
+    end
+
+endmodule // motion_controller_servo__entry_converter
+
+
 module motion_controller_servo__expired_prev(d,q,clock);
 
     // Module arguments
@@ -22772,25 +22775,6 @@ module motion_controller_servo__expired_prev(d,q,clock);
     end
 
 endmodule // motion_controller_servo__expired_prev
-
-
-module motion_controller_servo__in_period(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__in_period
 
 
 module motion_controller_servo__interrupts(clock,reset,events,clear,clear_bits,enable,status,irq);
@@ -28259,121 +28243,173 @@ module motion_controller_servo__io__sample_count(d,q,clock);
 endmodule // motion_controller_servo__io__sample_count
 
 
-module motion_controller_servo__irq_enable(d,q,clock);
+module motion_controller_servo__period(clock,reset,tick,control_write,run_bit,flush_bit,refuse_run,abort,all_ready,period_ticks,start,halt,flush,pop,underrun,period_done,running,period_active,modulus,period_count);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
     input wire  clock;
+    input wire  reset;
+    input wire  tick;
+    input wire  control_write;
+    input wire  run_bit;
+    input wire  flush_bit;
+    input wire  refuse_run;
+    input wire  abort;
+    input wire  all_ready;
+    input wire  [15:0] period_ticks;
+    output reg  start;
+    output reg  halt;
+    output reg  flush;
+    output reg  pop;
+    output reg  underrun;
+    output reg  period_done;
+    output reg  running;
+    output reg  [15:0] period_active;
+    output reg  [15:0] modulus;
+    output reg  [31:0] period_count;
 
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
+    // Constant declarations
+    localparam  zero_p = 16'h0;
+    localparam  one_p = 16'h1;
+    localparam  two_p = 16'h2;
+    localparam  not_one_p = 16'hfffe;
+    localparam  zero32 = 32'h0;
+    localparam  one32 = 32'h1;
+
+    // Stub signals
+    reg  run__d;
+    wire  run__q;
+    reg  run__clock;
+    reg  [15:0] ticks_left__d;
+    wire  [15:0] ticks_left__q;
+    reg  ticks_left__clock;
+    reg  boundary_next__d;
+    wire  boundary_next__q;
+    reg  boundary_next__clock;
+    reg  in_period__d;
+    wire  in_period__q;
+    reg  in_period__clock;
+    reg  [15:0] period_active_reg__d;
+    wire  [15:0] period_active_reg__q;
+    reg  period_active_reg__clock;
+    reg  [15:0] modulus_reg__d;
+    wire  [15:0] modulus_reg__q;
+    reg  modulus_reg__clock;
+    reg  [31:0] period_count_reg__d;
+    wire  [31:0] period_count_reg__q;
+    reg  period_count_reg__clock;
+
+    // Local signals
+    reg  boundary;
+    reg  [15:0] period_next;
+
+    // Sub module instances
+    motion_controller_servo__period__run run(
+        .d(run__d),
+        .q(run__q),
+        .clock(run__clock)
+    );
+    motion_controller_servo__period__ticks_left ticks_left(
+        .d(ticks_left__d),
+        .q(ticks_left__q),
+        .clock(ticks_left__clock)
+    );
+    motion_controller_servo__period__boundary_next boundary_next(
+        .d(boundary_next__d),
+        .q(boundary_next__q),
+        .clock(boundary_next__clock)
+    );
+    motion_controller_servo__period__in_period in_period(
+        .d(in_period__d),
+        .q(in_period__q),
+        .clock(in_period__clock)
+    );
+    motion_controller_servo__period__period_active_reg period_active_reg(
+        .d(period_active_reg__d),
+        .q(period_active_reg__q),
+        .clock(period_active_reg__clock)
+    );
+    motion_controller_servo__period__modulus_reg modulus_reg(
+        .d(modulus_reg__d),
+        .q(modulus_reg__q),
+        .clock(modulus_reg__clock)
+    );
+    motion_controller_servo__period__period_count_reg period_count_reg(
+        .d(period_count_reg__d),
+        .q(period_count_reg__q),
+        .clock(period_count_reg__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        run__clock = clock;
+        ticks_left__clock = clock;
+        boundary_next__clock = clock;
+        in_period__clock = clock;
+        period_active_reg__clock = clock;
+        modulus_reg__clock = clock;
+        period_count_reg__clock = clock;
+        run__d = run__q;
+        ticks_left__d = ticks_left__q;
+        boundary_next__d = boundary_next__q;
+        in_period__d = in_period__q;
+        period_active_reg__d = period_active_reg__q;
+        modulus_reg__d = modulus_reg__q;
+        period_count_reg__d = period_count_reg__q;
+        running = run__q;
+        period_active = period_active_reg__q;
+        modulus = modulus_reg__q;
+        period_count = period_count_reg__q;
+        start = control_write & run_bit & ~refuse_run;
+        halt = (control_write & ~run_bit) | abort;
+        flush = control_write & flush_bit;
+        boundary = run__q & tick & boundary_next__q;
+        pop = boundary & all_ready & ~halt;
+        underrun = boundary & ~all_ready & ~halt;
+        period_done = pop & in_period__q;
+        period_next = period_ticks;
+        if (period_ticks == zero_p) begin
+            period_next = one_p;
+        end
+        if (start) begin
+            run__d = 1'b1;
+            boundary_next__d = 1'b1;
+            in_period__d = 1'b0;
+        end
+        if (run__q & tick) begin
+            if (boundary_next__q) begin
+                ticks_left__d = period_next;
+                boundary_next__d = (period_ticks & not_one_p) == zero_p;
+                period_active_reg__d = period_next;
+            end
+            else begin
+                ticks_left__d = ticks_left__q - one_p;
+                boundary_next__d = ticks_left__q == two_p;
+            end
+        end
+        modulus_reg__d = period_active_reg__q;
+        if (pop) begin
+            in_period__d = 1'b1;
+            period_count_reg__d = period_count_reg__q + one32;
+        end
+        if (underrun | halt) begin
+            run__d = 1'b0;
+            in_period__d = 1'b0;
+        end
+        if (reset) begin
+            run__d = 1'b0;
+            ticks_left__d = zero_p;
+            boundary_next__d = 1'b0;
+            in_period__d = 1'b0;
+            period_active_reg__d = zero_p;
+            modulus_reg__d = zero_p;
+            period_count_reg__d = zero32;
+        end
     end
 
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__irq_enable
+endmodule // motion_controller_servo__period
 
 
-module motion_controller_servo__low_water(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__low_water
-
-
-module motion_controller_servo__modulus(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__modulus
-
-
-module motion_controller_servo__period_active(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__period_active
-
-
-module motion_controller_servo__period_count(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__period_count
-
-
-module motion_controller_servo__period_ticks(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__period_ticks
-
-
-module motion_controller_servo__pop_d(d,q,clock);
+module motion_controller_servo__period__boundary_next(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -28389,7 +28425,121 @@ module motion_controller_servo__pop_d(d,q,clock);
        q <= d;
     end
 
-endmodule // motion_controller_servo__pop_d
+endmodule // motion_controller_servo__period__boundary_next
+
+
+module motion_controller_servo__period__in_period(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__period__in_period
+
+
+module motion_controller_servo__period__modulus_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__period__modulus_reg
+
+
+module motion_controller_servo__period__period_active_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__period__period_active_reg
+
+
+module motion_controller_servo__period__period_count_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__period__period_count_reg
+
+
+module motion_controller_servo__period__run(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__period__run
+
+
+module motion_controller_servo__period__ticks_left(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__period__ticks_left
 
 
 module motion_controller_servo__read_data(d,q,clock);
@@ -28411,26 +28561,423 @@ module motion_controller_servo__read_data(d,q,clock);
 endmodule // motion_controller_servo__read_data
 
 
-module motion_controller_servo__run(d,q,clock);
+module motion_controller_servo__registers(clock,reset,address,write_data,write,running,status,watchdog_armed,watchdog_expired,estop_input,estop_latched,aborted,inputs_ready,period_count,stop_cause,irq_enable,tick_divisor,period_ticks,low_water,watchdog_timeout,control_write,status_write,kick,snapshot,read_data);
 
     // Module arguments
-    input wire  d;
-    output reg  q;
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] address;
+    input wire  [31:0] write_data;
+    input wire  write;
+    input wire  running;
+    input wire  [11:0] status;
+    input wire  watchdog_armed;
+    input wire  watchdog_expired;
+    input wire  estop_input;
+    input wire  estop_latched;
+    input wire  aborted;
+    input wire  inputs_ready;
+    input wire  [31:0] period_count;
+    input wire  [31:0] stop_cause;
+    output reg  [11:0] irq_enable;
+    output reg  [31:0] tick_divisor;
+    output reg  [15:0] period_ticks;
+    output reg  [4:0] low_water;
+    output reg  [31:0] watchdog_timeout;
+    output reg  control_write;
+    output reg  status_write;
+    output reg  kick;
+    output reg  snapshot;
+    output reg  [31:0] read_data;
+
+    // Constant declarations
+    localparam  a_id = 8'h0;
+    localparam  a_version = 8'h1;
+    localparam  a_config = 8'h2;
+    localparam  a_control = 8'h3;
+    localparam  a_status = 8'h4;
+    localparam  a_irq_enable = 8'h5;
+    localparam  a_tick_divisor = 8'h6;
+    localparam  a_period_ticks = 8'h7;
+    localparam  a_low_water = 8'h8;
+    localparam  a_watchdog_timeout = 8'h9;
+    localparam  a_watchdog_kick = 8'ha;
+    localparam  a_snapshot = 8'hb;
+    localparam  a_state = 8'hc;
+    localparam  a_period_count = 8'hd;
+    localparam  a_stop_cause = 8'h10;
+    localparam  id_value = 32'h4d484443;
+    localparam  version_value = 32'h300;
+    localparam  config_value = 32'h3810403;
+    localparam  m_state_running = 32'h1;
+    localparam  m_state_watchdog_armed = 32'h2;
+    localparam  m_state_watchdog_expired = 32'h4;
+    localparam  m_state_estop_input = 32'h8;
+    localparam  m_state_estop_latched = 32'h10;
+    localparam  m_state_aborted = 32'h20;
+    localparam  m_state_inputs_ready = 32'h40;
+    localparam  m_control_run = 32'h1;
+    localparam  bit_mask__0 = 32'h1;
+    localparam  bit_mask__1 = 32'h2;
+    localparam  bit_mask__2 = 32'h4;
+    localparam  bit_mask__3 = 32'h8;
+    localparam  bit_mask__4 = 32'h10;
+    localparam  bit_mask__5 = 32'h20;
+    localparam  bit_mask__6 = 32'h40;
+    localparam  bit_mask__7 = 32'h80;
+    localparam  bit_mask__8 = 32'h100;
+    localparam  bit_mask__9 = 32'h200;
+    localparam  bit_mask__10 = 32'h400;
+    localparam  bit_mask__11 = 32'h800;
+    localparam  bit_mask__12 = 32'h1000;
+    localparam  bit_mask__13 = 32'h2000;
+    localparam  bit_mask__14 = 32'h4000;
+    localparam  bit_mask__15 = 32'h8000;
+    localparam  zero32 = 32'h0;
+    localparam  zero_irq = 12'h0;
+    localparam  zero_p = 16'h0;
+    localparam  zero_level = 5'b0;
+
+    // Stub signals
+    reg  [11:0] irq_enable_reg__d;
+    wire  [11:0] irq_enable_reg__q;
+    reg  irq_enable_reg__clock;
+    reg  [31:0] tick_divisor_reg__d;
+    wire  [31:0] tick_divisor_reg__q;
+    reg  tick_divisor_reg__clock;
+    reg  [15:0] period_ticks_reg__d;
+    wire  [15:0] period_ticks_reg__q;
+    reg  period_ticks_reg__clock;
+    reg  [4:0] low_water_reg__d;
+    wire  [4:0] low_water_reg__q;
+    reg  low_water_reg__clock;
+    reg  [31:0] watchdog_timeout_reg__d;
+    wire  [31:0] watchdog_timeout_reg__q;
+    reg  watchdog_timeout_reg__clock;
+
+    // Local signals
+    reg  [31:0] state_word;
+
+    // Sub module instances
+    motion_controller_servo__registers__irq_enable_reg irq_enable_reg(
+        .d(irq_enable_reg__d),
+        .q(irq_enable_reg__q),
+        .clock(irq_enable_reg__clock)
+    );
+    motion_controller_servo__registers__tick_divisor_reg tick_divisor_reg(
+        .d(tick_divisor_reg__d),
+        .q(tick_divisor_reg__q),
+        .clock(tick_divisor_reg__clock)
+    );
+    motion_controller_servo__registers__period_ticks_reg period_ticks_reg(
+        .d(period_ticks_reg__d),
+        .q(period_ticks_reg__q),
+        .clock(period_ticks_reg__clock)
+    );
+    motion_controller_servo__registers__low_water_reg low_water_reg(
+        .d(low_water_reg__d),
+        .q(low_water_reg__q),
+        .clock(low_water_reg__clock)
+    );
+    motion_controller_servo__registers__watchdog_timeout_reg watchdog_timeout_reg(
+        .d(watchdog_timeout_reg__d),
+        .q(watchdog_timeout_reg__q),
+        .clock(watchdog_timeout_reg__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        irq_enable_reg__clock = clock;
+        tick_divisor_reg__clock = clock;
+        period_ticks_reg__clock = clock;
+        low_water_reg__clock = clock;
+        watchdog_timeout_reg__clock = clock;
+        irq_enable_reg__d = irq_enable_reg__q;
+        tick_divisor_reg__d = tick_divisor_reg__q;
+        period_ticks_reg__d = period_ticks_reg__q;
+        low_water_reg__d = low_water_reg__q;
+        watchdog_timeout_reg__d = watchdog_timeout_reg__q;
+        irq_enable = irq_enable_reg__q;
+        tick_divisor = tick_divisor_reg__q;
+        period_ticks = period_ticks_reg__q;
+        low_water = low_water_reg__q;
+        watchdog_timeout = watchdog_timeout_reg__q;
+        if (write) begin
+            if (address == a_irq_enable) begin
+                irq_enable_reg__d = write_data[(32'h0)+:(12)];
+            end
+            if (address == a_tick_divisor) begin
+                tick_divisor_reg__d = write_data;
+            end
+            if (address == a_period_ticks) begin
+                period_ticks_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (address == a_low_water) begin
+                low_water_reg__d = write_data[(32'h0)+:(5)];
+            end
+            if (address == a_watchdog_timeout) begin
+                watchdog_timeout_reg__d = write_data;
+            end
+        end
+        control_write = write & (address == a_control);
+        status_write = write & (address == a_status);
+        kick = write & (address == a_watchdog_kick);
+        snapshot = write & (address == a_snapshot);
+        state_word = zero32;
+        if (running) begin
+            state_word = state_word | m_state_running;
+        end
+        if (watchdog_armed) begin
+            state_word = state_word | m_state_watchdog_armed;
+        end
+        if (watchdog_expired) begin
+            state_word = state_word | m_state_watchdog_expired;
+        end
+        if (estop_input) begin
+            state_word = state_word | m_state_estop_input;
+        end
+        if (estop_latched) begin
+            state_word = state_word | m_state_estop_latched;
+        end
+        if (aborted) begin
+            state_word = state_word | m_state_aborted;
+        end
+        if (inputs_ready) begin
+            state_word = state_word | m_state_inputs_ready;
+        end
+        read_data = zero32;
+        if (address == a_id) begin
+            read_data = read_data | id_value;
+        end
+        if (address == a_version) begin
+            read_data = read_data | version_value;
+        end
+        if (address == a_config) begin
+            read_data = read_data | config_value;
+        end
+        if ((address == a_control) & running) begin
+            read_data = read_data | m_control_run;
+        end
+        if ((address == a_status) & status[0]) begin
+            read_data = read_data | bit_mask__0;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[0]) begin
+            read_data = read_data | bit_mask__0;
+        end
+        if ((address == a_status) & status[1]) begin
+            read_data = read_data | bit_mask__1;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[1]) begin
+            read_data = read_data | bit_mask__1;
+        end
+        if ((address == a_status) & status[2]) begin
+            read_data = read_data | bit_mask__2;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[2]) begin
+            read_data = read_data | bit_mask__2;
+        end
+        if ((address == a_status) & status[3]) begin
+            read_data = read_data | bit_mask__3;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[3]) begin
+            read_data = read_data | bit_mask__3;
+        end
+        if ((address == a_status) & status[4]) begin
+            read_data = read_data | bit_mask__4;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[4]) begin
+            read_data = read_data | bit_mask__4;
+        end
+        if ((address == a_status) & status[5]) begin
+            read_data = read_data | bit_mask__5;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[5]) begin
+            read_data = read_data | bit_mask__5;
+        end
+        if ((address == a_status) & status[6]) begin
+            read_data = read_data | bit_mask__6;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[6]) begin
+            read_data = read_data | bit_mask__6;
+        end
+        if ((address == a_status) & status[7]) begin
+            read_data = read_data | bit_mask__7;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[7]) begin
+            read_data = read_data | bit_mask__7;
+        end
+        if ((address == a_status) & status[8]) begin
+            read_data = read_data | bit_mask__8;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[8]) begin
+            read_data = read_data | bit_mask__8;
+        end
+        if ((address == a_status) & status[9]) begin
+            read_data = read_data | bit_mask__9;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[9]) begin
+            read_data = read_data | bit_mask__9;
+        end
+        if ((address == a_status) & status[10]) begin
+            read_data = read_data | bit_mask__10;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[10]) begin
+            read_data = read_data | bit_mask__10;
+        end
+        if ((address == a_status) & status[11]) begin
+            read_data = read_data | bit_mask__11;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[11]) begin
+            read_data = read_data | bit_mask__11;
+        end
+        if (address == a_tick_divisor) begin
+            read_data = read_data | tick_divisor_reg__q;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[0]) begin
+            read_data = read_data | bit_mask__0;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[1]) begin
+            read_data = read_data | bit_mask__1;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[2]) begin
+            read_data = read_data | bit_mask__2;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[3]) begin
+            read_data = read_data | bit_mask__3;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[4]) begin
+            read_data = read_data | bit_mask__4;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[5]) begin
+            read_data = read_data | bit_mask__5;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[6]) begin
+            read_data = read_data | bit_mask__6;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[7]) begin
+            read_data = read_data | bit_mask__7;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[8]) begin
+            read_data = read_data | bit_mask__8;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[9]) begin
+            read_data = read_data | bit_mask__9;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[10]) begin
+            read_data = read_data | bit_mask__10;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[11]) begin
+            read_data = read_data | bit_mask__11;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[12]) begin
+            read_data = read_data | bit_mask__12;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[13]) begin
+            read_data = read_data | bit_mask__13;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[14]) begin
+            read_data = read_data | bit_mask__14;
+        end
+        if ((address == a_period_ticks) & period_ticks_reg__q[15]) begin
+            read_data = read_data | bit_mask__15;
+        end
+        if ((address == a_low_water) & low_water_reg__q[0]) begin
+            read_data = read_data | bit_mask__0;
+        end
+        if ((address == a_low_water) & low_water_reg__q[1]) begin
+            read_data = read_data | bit_mask__1;
+        end
+        if ((address == a_low_water) & low_water_reg__q[2]) begin
+            read_data = read_data | bit_mask__2;
+        end
+        if ((address == a_low_water) & low_water_reg__q[3]) begin
+            read_data = read_data | bit_mask__3;
+        end
+        if ((address == a_low_water) & low_water_reg__q[4]) begin
+            read_data = read_data | bit_mask__4;
+        end
+        if (address == a_watchdog_timeout) begin
+            read_data = read_data | watchdog_timeout_reg__q;
+        end
+        if (address == a_state) begin
+            read_data = read_data | state_word;
+        end
+        if (address == a_period_count) begin
+            read_data = read_data | period_count;
+        end
+        if (address == a_stop_cause) begin
+            read_data = read_data | stop_cause;
+        end
+        if (reset) begin
+            irq_enable_reg__d = zero_irq;
+            tick_divisor_reg__d = zero32;
+            period_ticks_reg__d = zero_p;
+            low_water_reg__d = zero_level;
+            watchdog_timeout_reg__d = zero32;
+        end
+    end
+
+endmodule // motion_controller_servo__registers
+
+
+module motion_controller_servo__registers__irq_enable_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [11:0] d;
+    output reg  [11:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 1'h0;
+       q = 12'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__run
+endmodule // motion_controller_servo__registers__irq_enable_reg
 
 
-module motion_controller_servo__stop_cause(d,q,clock);
+module motion_controller_servo__registers__low_water_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__registers__low_water_reg
+
+
+module motion_controller_servo__registers__period_ticks_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__registers__period_ticks_reg
+
+
+module motion_controller_servo__registers__tick_divisor_reg(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -28446,26 +28993,26 @@ module motion_controller_servo__stop_cause(d,q,clock);
        q <= d;
     end
 
-endmodule // motion_controller_servo__stop_cause
+endmodule // motion_controller_servo__registers__tick_divisor_reg
 
 
-module motion_controller_servo__stop_zero_d(d,q,clock);
+module motion_controller_servo__registers__watchdog_timeout_reg(d,q,clock);
 
     // Module arguments
-    input wire  d;
-    output reg  q;
+    input wire  [31:0] d;
+    output reg  [31:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 1'h0;
+       q = 32'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__stop_zero_d
+endmodule // motion_controller_servo__registers__watchdog_timeout_reg
 
 
 module motion_controller_servo__tick_divider(clock,reset,enable,divisor,strobe);
@@ -28630,44 +29177,6 @@ module motion_controller_servo__tick_divider__strobe_reg(d,q,clock);
     end
 
 endmodule // motion_controller_servo__tick_divider__strobe_reg
-
-
-module motion_controller_servo__tick_divisor(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__tick_divisor
-
-
-module motion_controller_servo__ticks_left(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__ticks_left
 
 
 module motion_controller_servo__watchdog(clock,reset,tick,timeout,kick,clear,expired,armed);
@@ -28838,23 +29347,4 @@ module motion_controller_servo__watchdog__left(d,q,clock);
     end
 
 endmodule // motion_controller_servo__watchdog__left
-
-
-module motion_controller_servo__watchdog_timeout(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__watchdog_timeout
 `default_nettype wire

@@ -12,6 +12,7 @@ mod bench;
 mod compiled_backend;
 mod controller_behind_bus_adapter;
 mod dda_only;
+mod entry_converter;
 mod gcode;
 mod host;
 mod machine_io;

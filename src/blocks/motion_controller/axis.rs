@@ -21,28 +21,14 @@ use crate::blocks::quadrature_decoder::QuadratureDecoder;
 use crate::blocks::step_output::StepOutput;
 use crate::blocks::uniform_pulse_gen::UniformPulseCore;
 
-/// Width of a FIFO entry as the axes store it. The bus writes a 32-bit
-/// signed entry w; the interpolators use only |w| saturated to 16 bits and
-/// its sign, and the DAC w as a 16-bit signed code, so the controller
-/// converts each written word once, for every axis, before the FIFOs
-/// (`MotionController`'s entry converter): bits 15..0 are |w| saturated to
-/// 2^16 - 1, then the flags below. The DAC code is the magnitude with the
-/// sign put back, also once for all axes, after the controller's DAC walk.
-pub const ENTRY_BITS: usize = 20;
-/// Entry flag: |w| > 2^16 - 1 (the magnitude is saturated).
-pub const ENTRY_TOO_LARGE: usize = 16;
-/// Entry flag: w < 0.
-pub const ENTRY_SIGN: usize = 17;
-/// Entry flag: w does not fit 16 bits signed (the DAC code saturates).
-pub const ENTRY_CODE_WIDE: usize = 18;
-/// Entry flag: w != 0.
-pub const ENTRY_NONZERO: usize = 19;
+use super::entry::{ENTRY_BITS, ENTRY_CODE_WIDE, ENTRY_NONZERO, ENTRY_SIGN, ENTRY_TOO_LARGE};
 
-// The literal bit numbers in `update()` and in the controller's converter.
+// `update()` reads the entry's flags at literal bits, and its bits 15..0
+// as both the count and the DAC magnitude.
 const _: () = {
-    assert!(PERIOD_BITS == 16 && DAC_BITS == 16);
     assert!(ENTRY_TOO_LARGE == 16 && ENTRY_SIGN == 17);
-    assert!(ENTRY_CODE_WIDE == 18 && ENTRY_NONZERO == 19 && ENTRY_BITS == 20);
+    assert!(ENTRY_CODE_WIDE == 18 && ENTRY_NONZERO == 19);
+    assert!(PERIOD_BITS == 16 && DAC_BITS == 16);
 };
 
 /// One controller axis with a FIFO of 2^N entries (`NP1` = N + 1).

@@ -334,7 +334,7 @@
 //! or a clock of the behavior above:
 //! * **Entries converted once.** The FIFOs hold 20-bit entries, not the
 //!   written 32-bit words: |n| saturated to 16 bits, its sign, and whether
-//!   it was too large, beyond 16 bits signed, or 0 (`axis::ENTRY_BITS`).
+//!   it was too large, beyond 16 bits signed, or 0 (`entry::ENTRY_BITS`).
 //!   The controller converts each bus word once, before every axis's FIFO,
 //!   and puts the sign back once for the DAC after its walk.
 //! * **Configuration read back from block RAM.** AXIS_CONFIG, STEP_LEN,
@@ -391,29 +391,36 @@
 //! and the divider's, is gated by a constant: in the DDA-only build they
 //! drive nothing, and synthesis removes them.
 
+pub mod analog_outputs;
 pub mod axis;
 pub mod axis_io;
 pub mod config_shadow;
+pub mod entry;
+pub mod global_registers;
 pub mod io_model;
 pub mod machine_io;
 pub mod model;
+pub mod period_sequencer;
 pub mod registers;
+pub mod stop_cause;
 
 use rust_hdl::prelude::*;
 
 use crate::blocks::port_doc::{port, PortDoc};
 
-use crate::blocks::dac_interface::DacInterface;
 use crate::blocks::freq_divider::FreqDivider;
 use crate::blocks::interrupt_controller::InterruptController;
 use crate::blocks::sequential_divider::SequentialDivider;
 use crate::blocks::watchdog::Watchdog;
-use axis::{MotionAxis, ENTRY_BITS};
+use analog_outputs::AnalogOutputs;
+use axis::MotionAxis;
 use config_shadow::{ConfigShadow, SHADOW_BITS};
+use entry::EntryConverter;
+use global_registers::{ControllerFields, GlobalRegisters};
 use machine_io::MachineIo;
-use registers::{
-    fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, DAC_BITS, ID_VALUE, VERSION_VALUE,
-};
+use period_sequencer::PeriodSequencer;
+use registers::{fields, irq, DAC_BITS};
+use stop_cause::StopCauseRegister;
 
 /// The machine-I/O latencies in clocks, as the tests measure them. Clock
 /// c is the first clock whose inputs carry a pin's new level; "at c + n"
@@ -630,6 +637,14 @@ pub struct MotionController<
     pub dac_ldac: Signal<Out, Bit>,
 
     axes: [MotionAxis<N, NP1>; K],
+    /// The global registers: the register layer apart from the core.
+    registers: GlobalRegisters<NP1>,
+    /// Run control and the period boundaries.
+    period: PeriodSequencer,
+    /// STOP_CAUSE.
+    cause_register: StopCauseRegister<K>,
+    /// The bus word as a FIFO entry (see [`entry`]).
+    entry_converter: EntryConverter,
     /// The axes' configuration registers, read back from block RAM.
     config_shadow: ConfigShadow<K>,
     /// `shadow_bit[b]` = 1 << b: the shadow's word, zero-extended.
@@ -638,56 +653,15 @@ pub struct MotionController<
     watchdog: Watchdog<32>,
     interrupts: InterruptController<IRQ_COUNT>,
     io: MachineIo<K>,
-    /// The analog outputs: one channel per axis, used by the analog axes.
-    dac: DacInterface<K, DAC_BITS>,
-    /// `ANALOG`: the analog outputs are built (else the DAC drives nothing
-    /// and synthesis removes it).
-    has_analog: Constant<Bit>,
-    /// The pop one clock late: the axes' codes are valid.
-    pop_d: DFF<Bit>,
-    /// One-hot: the axis whose code is loaded into the DAC in this clock
-    /// (a walk over every axis after each pop).
-    dac_walk: DFF<Bits<K>>,
-    /// The DAC's update request, the clock after the walk's last load.
-    dac_update: DFF<Bit>,
-    /// The last read addressed a DAC register (its read data is the DAC's).
-    dac_read_sel: DFF<Bit>,
-    walk_now: Signal<Local, Bits<K>>,
+    /// The analog outputs: the DAC, its walk and its registers.
+    analog: AnalogOutputs<K>,
     analog_axes: Signal<Local, Bits<K>>,
-    dac_load: Signal<Local, Bits<K>>,
-    dac_code: Signal<Local, Bits<DAC_BITS>>,
-    /// The walked axis's entry does not fit 16 bits / is negative.
+    /// The walked axis's entry: |entry|, beyond 16 bits signed, negative.
+    walk_magnitude: Signal<Local, Bits<DAC_BITS>>,
     walk_wide: Signal<Local, Bit>,
     walk_negative: Signal<Local, Bit>,
-    code_max: Constant<Bits<DAC_BITS>>,
-    code_min: Constant<Bits<DAC_BITS>>,
-    /// The forwarded register's DAC address: its low 3 bits, and bits 4 and
-    /// 3 both from `dac_applied_hit` (the DAC's globals are below 8, its
-    /// APPLIED at 0x18 + k): its CODE addresses (0x10 + k, bit 4 without
-    /// bit 3) cannot occur, and synthesis removes their logic.
-    dac_low: Signal<Local, Bits<5>>,
-    dac_applied_hit: Signal<Local, Bit>,
-    dac_applied_bits: Constant<Bits<5>>,
-    /// RUN falls (not by an abort): the analog channels go to 0, in the
-    /// next clock (registered: the underrun decode is long).
-    stop_zero: Signal<Local, Bit>,
-    stop_zero_d: DFF<Bit>,
-    dac_hit: Signal<Local, Bit>,
-    dac_address: Signal<Local, Bits<5>>,
-    read_out: Signal<Local, Bits<32>>,
-    /// The controller's and the DAC's addresses of the forwarded registers.
-    a_dac_global: [Constant<Bits<8>>; 3],
-    d_dac_global: [Constant<Bits<5>>; 3],
-    a_dac_applied: [Constant<Bits<8>>; K],
-    d_dac_applied: [Constant<Bits<5>>; K],
-    zero5: Constant<Bits<5>>,
-    /// Bit K - 1: the walk's last axis.
-    last_axis: Constant<Bits<K>>,
     zero_code: Constant<Bits<DAC_BITS>>,
-    /// All ones with the analog outputs, else 0 (pins held idle).
-    dac_data_mask: Constant<Bits<DAC_BITS>>,
-    /// 0 with the analog outputs, else all ones (chip selects held high).
-    dac_cs_idle: Constant<Bits<K>>,
+    read_out: Signal<Local, Bits<32>>,
     /// One divider for every axis's uniform generator: each asks for one
     /// division per period, so they take turns (see "Time base and
     /// periods").
@@ -704,25 +678,7 @@ pub struct MotionController<
     /// A stop cause is held (registered OR of every latch): every axis
     /// flushed, interpolators halted.
     abort_hold: DFF<Bit>,
-    /// STOP_CAUSE.
-    stop_cause: DFF<Bits<32>>,
 
-    run: DFF<Bit>,
-    irq_enable: DFF<Bits<32>>,
-    tick_divisor: DFF<Bits<32>>,
-    period_ticks: DFF<Bits<PERIOD_BITS>>,
-    low_water: DFF<Bits<32>>,
-    watchdog_timeout: DFF<Bits<32>>,
-    /// Base ticks left in the running period after the next one.
-    ticks_left: DFF<Bits<PERIOD_BITS>>,
-    /// The next base tick is a boundary.
-    boundary_next: DFF<Bit>,
-    /// A period has been popped since the start (so a boundary ends one).
-    in_period: DFF<Bit>,
-    period_active: DFF<Bits<PERIOD_BITS>>,
-    /// `period_active` one clock late, for the DDAs (see the axis).
-    modulus: DFF<Bits<PERIOD_BITS>>,
-    period_count: DFF<Bits<32>>,
     read_data: DFF<Bits<32>>,
     /// Inverted, so that reset (all flip-flops 0) counts as "already low":
     /// FIFO_LOW is raised when a level falls to the low-water mark, not for
@@ -731,87 +687,35 @@ pub struct MotionController<
     expired_prev: DFF<Bit>,
 
     tick: Signal<Local, Bit>,
-    write_control: Signal<Local, Bit>,
     start: Signal<Local, Bit>,
     halt: Signal<Local, Bit>,
-    boundary: Signal<Local, Bit>,
     all_ready: Signal<Local, Bit>,
     pop: Signal<Local, Bit>,
     underrun: Signal<Local, Bit>,
-    period_next: Signal<Local, Bits<PERIOD_BITS>>,
     any_low: Signal<Local, Bit>,
     any_overflow: Signal<Local, Bit>,
     any_fault: Signal<Local, Bit>,
     any_encoder_error: Signal<Local, Bit>,
     any_busy: Signal<Local, Bit>,
-    flush: Signal<Local, Bit>,
     axes_read: Signal<Local, Bits<32>>,
-    global_read: Signal<Local, Bits<32>>,
     events: Signal<Local, Bits<IRQ_COUNT>>,
-    state_word: Signal<Local, Bits<32>>,
     abort: Signal<Local, Bit>,
     refuse_run: Signal<Local, Bit>,
-    any_limit_held: Signal<Local, Bit>,
-    any_alarm_held: Signal<Local, Bit>,
-    any_home_held: Signal<Local, Bit>,
+    /// Per axis: a limit / drive alarm / home stop is held.
+    limit_held: Signal<Local, Bits<K>>,
+    alarm_held: Signal<Local, Bits<K>>,
+    home_held: Signal<Local, Bits<K>>,
+    /// Some axis holds a stop cause.
+    any_held: Signal<Local, Bit>,
     any_limit_event: Signal<Local, Bit>,
     any_alarm_event: Signal<Local, Bit>,
     any_home_event: Signal<Local, Bit>,
     drive_allowed: Signal<Local, Bit>,
-    cause_now: Signal<Local, Bits<32>>,
-    limit_axis: Signal<Local, Bits<32>>,
-    alarm_axis: Signal<Local, Bits<32>>,
-    home_axis: Signal<Local, Bits<32>>,
-    limit_found: Signal<Local, Bit>,
-    alarm_found: Signal<Local, Bit>,
-    home_found: Signal<Local, Bit>,
     steps_a: Signal<Local, Bits<K>>,
     steps_b: Signal<Local, Bits<K>>,
     enables: Signal<Local, Bits<K>>,
 
-    a_id: Constant<Bits<8>>,
-    a_version: Constant<Bits<8>>,
-    a_config: Constant<Bits<8>>,
-    a_control: Constant<Bits<8>>,
-    a_status: Constant<Bits<8>>,
-    a_irq_enable: Constant<Bits<8>>,
-    a_tick_divisor: Constant<Bits<8>>,
-    a_period_ticks: Constant<Bits<8>>,
-    a_low_water: Constant<Bits<8>>,
-    a_watchdog_timeout: Constant<Bits<8>>,
-    a_watchdog_kick: Constant<Bits<8>>,
-    a_snapshot: Constant<Bits<8>>,
-    a_state: Constant<Bits<8>>,
-    a_period_count: Constant<Bits<8>>,
-    a_stop_cause: Constant<Bits<8>>,
-    id_value: Constant<Bits<32>>,
-    version_value: Constant<Bits<32>>,
-    config_value: Constant<Bits<32>>,
-    bit0_32: Constant<Bits<32>>,
-    bit1_32: Constant<Bits<32>>,
-    bit2_32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
-    /// Bits 31..16 of a bus word.
-    upper_half: Constant<Bits<32>>,
-    zero_entry: Constant<Bits<ENTRY_BITS>>,
-    /// `entry_bit[b]` = 1 << b.
-    entry_bit: [Constant<Bits<ENTRY_BITS>>; ENTRY_BITS],
-    /// The bus word as a FIFO entry, and the parts it is made of: bits
-    /// 31..16 all 0 / all 1, bits 15..0 and whether they are 0, too large
-    /// for 16 bits unsigned, and the magnitude saturated.
-    fifo_entry: Signal<Local, Bits<ENTRY_BITS>>,
-    w_upper_zero: Signal<Local, Bit>,
-    w_upper_ones: Signal<Local, Bit>,
-    w_low: Signal<Local, Bits<PERIOD_BITS>>,
-    w_low_nonzero: Signal<Local, Bit>,
-    w_too_large: Signal<Local, Bit>,
-    w_magnitude: Signal<Local, Bits<PERIOD_BITS>>,
-    max_p: Constant<Bits<PERIOD_BITS>>,
-    one32: Constant<Bits<32>>,
-    zero_p: Constant<Bits<PERIOD_BITS>>,
-    one_p: Constant<Bits<PERIOD_BITS>>,
-    two_p: Constant<Bits<PERIOD_BITS>>,
-    not_one_p: Constant<Bits<PERIOD_BITS>>,
     /// The event bit of each interrupt source, by name.
     ev_period_done: Constant<Bits<IRQ_COUNT>>,
     ev_fifo_low: Constant<Bits<IRQ_COUNT>>,
@@ -826,33 +730,12 @@ pub struct MotionController<
     ev_home: Constant<Bits<IRQ_COUNT>>,
     ev_gpio: Constant<Bits<IRQ_COUNT>>,
     zero_ev: Constant<Bits<IRQ_COUNT>>,
-    /// IRQ_ENABLE's implemented bits.
-    irq_mask: Constant<Bits<32>>,
     /// STATUS.WATCHDOG and STATUS.ESTOP, for their clears.
     m_status_watchdog: Constant<Bits<32>>,
     m_status_estop: Constant<Bits<32>>,
-    /// STATE fields.
-    m_state_estop_input: Constant<Bits<32>>,
-    m_state_estop_latched: Constant<Bits<32>>,
-    m_state_aborted: Constant<Bits<32>>,
-    m_state_inputs_ready: Constant<Bits<32>>,
-    /// STOP_CAUSE.CAUSE values, in place.
-    cause_stop: Constant<Bits<32>>,
-    cause_underrun: Constant<Bits<32>>,
-    cause_watchdog: Constant<Bits<32>>,
-    cause_home: Constant<Bits<32>>,
-    cause_limit: Constant<Bits<32>>,
-    cause_alarm: Constant<Bits<32>>,
-    cause_estop: Constant<Bits<32>>,
-    /// STOP_CAUSE.AXIS = k, in place.
-    cause_axis: [Constant<Bits<32>>; K],
     /// Bit k of a K-bit vector.
     axis_bit: [Constant<Bits<K>>; K],
     zero_k: Constant<Bits<K>>,
-    /// `bit_mask[i]` = 1 << i, to zero-extend STATUS and PERIOD_TICKS.
-    bit_mask: [Constant<Bits<32>>; PERIOD_BITS],
-    /// FIFO_LOW_WATER.LEVEL: N + 1 bits.
-    level_mask: Constant<Bits<32>>,
 }
 
 impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
@@ -868,35 +751,10 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             NP1 == N + 1 && (2..=8).contains(&N),
             "MotionController: N in 2..=8, NP1 = N + 1"
         );
-        let a8 = |v: u32| Constant::new((v as u64).into());
         let ev = |bit: u32| Constant::new((1u64 << bit).into());
         let m32 = |bit: u32| Constant::new((1u64 << bit).into());
-        let cause = |c: StopCause| Constant::new(((c as u64) << fields::STOP_CAUSE_CAUSE).into());
         let map = registers::register_map(K, N as u32, UNIFORM, ANALOG)
             .expect("the controller's own register map validates");
-        let dac_map = crate::blocks::dac_interface::registers::register_map(K, DAC_BITS)
-            .expect("a dac_interface of K channels");
-        let dac_applied = dac_map
-            .register("APPLIED")
-            .expect("the DAC's APPLIED")
-            .address as u64;
-        // The forwarded addresses are built so that CODE's cannot occur
-        // (see `dac_low`): the DAC's map must keep this layout.
-        assert_eq!(
-            dac_applied, 0b11000,
-            "the DAC's APPLIED moved: dac_address builds 0x18 + k"
-        );
-        assert_eq!(
-            crate::blocks::dac_interface::registers::CODE_BASE,
-            0b10000,
-            "the DAC's CODE moved"
-        );
-        for (_, _, name) in registers::DAC_GLOBAL {
-            assert!(
-                dac_map.register(name).expect("a DAC register").address < 8,
-                "DAC {name} moved above 7"
-            );
-        }
         let reg = |name: &str| map.register(name).expect("the controller's own register");
         let config = reg("CONFIG").reset_value();
         let axis_config_mask = reg("AXIS_CONFIG").rw_mask();
@@ -929,63 +787,19 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             dac_l1_n: Default::default(),
             dac_ldac: Default::default(),
             axes: array_init::array_init(|k| MotionAxis::new(k, UNIFORM, ANALOG, axis_config_mask)),
+            entry_converter: Default::default(),
+            registers: GlobalRegisters::new(config),
+            period: Default::default(),
+            cause_register: Default::default(),
             config_shadow: ConfigShadow::new(axis_config_mask),
             shadow_bit: array_init::array_init(|b| Constant::new((1u64 << b).into())),
-            dac: Default::default(),
-            has_analog: Constant::new(ANALOG),
-            pop_d: Default::default(),
-            dac_walk: Default::default(),
-            dac_update: Default::default(),
-            dac_read_sel: Default::default(),
-            walk_now: Default::default(),
+            analog: AnalogOutputs::new(ANALOG),
             analog_axes: Default::default(),
-            dac_load: Default::default(),
-            dac_code: Default::default(),
+            walk_magnitude: Default::default(),
             walk_wide: Default::default(),
             walk_negative: Default::default(),
-            code_max: Constant::new(crate::blocks::width_mask(DAC_BITS as u32 - 1).into()),
-            code_min: Constant::new((1u64 << (DAC_BITS - 1)).into()),
-            dac_low: Default::default(),
-            dac_applied_hit: Default::default(),
-            dac_applied_bits: Constant::new(0b11000u64.into()),
-            stop_zero: Default::default(),
-            stop_zero_d: Default::default(),
-            dac_hit: Default::default(),
-            dac_address: Default::default(),
-            read_out: Default::default(),
-            a_dac_global: array_init::array_init(|i| a8(registers::DAC_GLOBAL[i].1)),
-            d_dac_global: array_init::array_init(|i| {
-                Constant::new(
-                    (dac_map
-                        .register(registers::DAC_GLOBAL[i].2)
-                        .expect("a dac_interface register")
-                        .address as u64)
-                        .into(),
-                )
-            }),
-            a_dac_applied: array_init::array_init(|k| {
-                a8(AXIS_BASE + k as u32 * AXIS_STRIDE + registers::axis::DAC_APPLIED)
-            }),
-            d_dac_applied: array_init::array_init(|k| Constant::new((k as u64).into())),
-            zero5: Constant::new(0u64.into()),
-            last_axis: Constant::new((1u64 << (K - 1)).into()),
             zero_code: Constant::new(0u64.into()),
-            dac_data_mask: Constant::new(
-                (if ANALOG {
-                    crate::blocks::width_mask(DAC_BITS as u32)
-                } else {
-                    0
-                })
-                .into(),
-            ),
-            dac_cs_idle: Constant::new(
-                (if ANALOG {
-                    0
-                } else {
-                    crate::blocks::width_mask(K as u32)
-                })
-                .into(),
-            ),
+            read_out: Default::default(),
             tick_divider: Default::default(),
             watchdog: Default::default(),
             interrupts: Default::default(),
@@ -996,98 +810,32 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             div_idle: Default::default(),
             div_granted: Default::default(),
             abort_hold: Default::default(),
-            stop_cause: Default::default(),
-            run: Default::default(),
-            irq_enable: Default::default(),
-            tick_divisor: Default::default(),
-            period_ticks: Default::default(),
-            low_water: Default::default(),
-            watchdog_timeout: Default::default(),
-            ticks_left: Default::default(),
-            boundary_next: Default::default(),
-            in_period: Default::default(),
-            period_active: Default::default(),
-            modulus: Default::default(),
-            period_count: Default::default(),
             read_data: Default::default(),
             any_low_prev_n: Default::default(),
             expired_prev: Default::default(),
             tick: Default::default(),
-            write_control: Default::default(),
             start: Default::default(),
             halt: Default::default(),
-            boundary: Default::default(),
             all_ready: Default::default(),
             pop: Default::default(),
             underrun: Default::default(),
-            period_next: Default::default(),
             any_low: Default::default(),
             any_overflow: Default::default(),
             any_fault: Default::default(),
             any_encoder_error: Default::default(),
             any_busy: Default::default(),
-            flush: Default::default(),
             axes_read: Default::default(),
-            global_read: Default::default(),
             events: Default::default(),
-            state_word: Default::default(),
             abort: Default::default(),
             refuse_run: Default::default(),
-            any_limit_held: Default::default(),
-            any_alarm_held: Default::default(),
-            any_home_held: Default::default(),
             any_limit_event: Default::default(),
             any_alarm_event: Default::default(),
             any_home_event: Default::default(),
             drive_allowed: Default::default(),
-            cause_now: Default::default(),
-            limit_axis: Default::default(),
-            alarm_axis: Default::default(),
-            home_axis: Default::default(),
-            limit_found: Default::default(),
-            alarm_found: Default::default(),
-            home_found: Default::default(),
             steps_a: Default::default(),
             steps_b: Default::default(),
             enables: Default::default(),
-            a_id: a8(global::ID),
-            a_version: a8(global::VERSION),
-            a_config: a8(global::CONFIG),
-            a_control: a8(global::CONTROL),
-            a_status: a8(global::STATUS),
-            a_irq_enable: a8(global::IRQ_ENABLE),
-            a_tick_divisor: a8(global::TICK_DIVISOR),
-            a_period_ticks: a8(global::PERIOD_TICKS),
-            a_low_water: a8(global::FIFO_LOW_WATER),
-            a_watchdog_timeout: a8(global::WATCHDOG_TIMEOUT),
-            a_watchdog_kick: a8(global::WATCHDOG_KICK),
-            a_snapshot: a8(global::SNAPSHOT),
-            a_state: a8(global::STATE),
-            a_period_count: a8(global::PERIOD_COUNT),
-            a_stop_cause: a8(global::STOP_CAUSE),
-            id_value: Constant::new((ID_VALUE as u64).into()),
-            version_value: Constant::new((VERSION_VALUE as u64).into()),
-            config_value: Constant::new((config as u64).into()),
-            bit0_32: m32(fields::STATE_RUNNING),
-            bit1_32: m32(fields::STATE_WATCHDOG_ARMED),
-            bit2_32: m32(fields::STATE_WATCHDOG_EXPIRED),
             zero32: Constant::new(0u64.into()),
-            upper_half: Constant::new(0xffff_0000u64.into()),
-            zero_entry: Constant::new(0u64.into()),
-            entry_bit: array_init::array_init(|b| Constant::new((1u64 << b).into())),
-            fifo_entry: Default::default(),
-            w_upper_zero: Default::default(),
-            w_upper_ones: Default::default(),
-            w_low: Default::default(),
-            w_low_nonzero: Default::default(),
-            w_too_large: Default::default(),
-            w_magnitude: Default::default(),
-            max_p: Constant::new(crate::blocks::width_mask(PERIOD_BITS as u32).into()),
-            one32: Constant::new(1u64.into()),
-            zero_p: Constant::new(0u64.into()),
-            one_p: Constant::new(1u64.into()),
-            two_p: Constant::new(2u64.into()),
-            not_one_p: Constant::new((crate::blocks::width_mask(PERIOD_BITS as u32) & !1).into()),
             ev_period_done: ev(irq::PERIOD_DONE),
             ev_fifo_low: ev(irq::FIFO_LOW),
             ev_underrun: ev(irq::UNDERRUN),
@@ -1101,53 +849,23 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             ev_home: ev(irq::HOME),
             ev_gpio: ev(irq::GPIO),
             zero_ev: Constant::new(0u64.into()),
-            irq_mask: Constant::new(((1u64 << irq::COUNT) - 1).into()),
             m_status_watchdog: m32(irq::WATCHDOG),
             m_status_estop: m32(irq::ESTOP),
-            m_state_estop_input: m32(fields::STATE_ESTOP_INPUT),
-            m_state_estop_latched: m32(fields::STATE_ESTOP_LATCHED),
-            m_state_aborted: m32(fields::STATE_ABORTED),
-            m_state_inputs_ready: m32(fields::STATE_INPUTS_READY),
-            cause_stop: cause(StopCause::Stop),
-            cause_underrun: cause(StopCause::Underrun),
-            cause_watchdog: cause(StopCause::Watchdog),
-            cause_home: cause(StopCause::Home),
-            cause_limit: cause(StopCause::Limit),
-            cause_alarm: cause(StopCause::DriveAlarm),
-            cause_estop: cause(StopCause::Estop),
-            cause_axis: array_init::array_init(|k| {
-                Constant::new(((k as u64) << fields::STOP_CAUSE_AXIS).into())
-            }),
+            limit_held: Default::default(),
+            alarm_held: Default::default(),
+            home_held: Default::default(),
+            any_held: Default::default(),
             axis_bit: array_init::array_init(|k| Constant::new((1u64 << k).into())),
             zero_k: Constant::new(0u64.into()),
-            bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
-            level_mask: Constant::new(((1u64 << NP1) - 1).into()),
         }
     }
 }
 
-field_slices! {
-    /// The multi-bit fields `update()` takes from the bus's write data and
-    /// the registers, placed by the map.
-    trait ControllerFields {
-        /// `PERIOD_TICKS.VALUE`.
-        get_value_period_ticks / get_my_offset_period_ticks / get_my_width_period_ticks =
-            (fields::VALUE, PERIOD_BITS);
-        /// `STATUS` and `IRQ_ENABLE`: every interrupt bit, in event order.
-        get_value_irq_bits / get_my_offset_irq_bits / get_my_width_irq_bits =
-            (irq::PERIOD_DONE, IRQ_COUNT);
-    }
-}
-
-// `update()` reads these fields at literal bits (rust-hdl prints a named
-// constant by name; `field_slices!` has no one-bit form and no generic
-// width): each literal is tied to the map's constant here.
+// `update()` reads CONTROL's bits at literals (rust-hdl prints a named
+// constant by name): each is tied to the map's constant here.
 const _: () = {
     assert!(fields::CONTROL_RUN == 0);
     assert!(fields::CONTROL_FLUSH == 1);
-    assert!(fields::FIFO_LEVEL == 0);
-    // The interrupt bits are 0..IRQ_COUNT, in event order.
-    assert!(irq::PERIOD_DONE == 0 && irq::GPIO as usize == IRQ_COUNT - 1);
 };
 
 impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
@@ -1158,74 +876,54 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         dff_setup!(
             self,
             clock,
-            run,
-            irq_enable,
-            tick_divisor,
-            period_ticks,
-            low_water,
-            watchdog_timeout,
-            ticks_left,
-            boundary_next,
-            in_period,
-            period_active,
-            modulus,
-            period_count,
             read_data,
             any_low_prev_n,
             expired_prev,
             abort_hold,
-            stop_cause,
-            div_owner,
-            pop_d,
-            dac_walk,
-            dac_update,
-            dac_read_sel,
-            stop_zero_d
+            div_owner
         );
         clock!(
             self,
             clock,
+            registers,
+            period,
+            cause_register,
             tick_divider,
             watchdog,
             interrupts,
             io,
             divider,
-            dac
+            analog
         );
 
-        // Global register writes.
-        if self.bus_write.val() {
-            if self.bus_address.val() == self.a_irq_enable.val() {
-                self.irq_enable.d.next = self.bus_write_data.val() & self.irq_mask.val();
-            }
-            if self.bus_address.val() == self.a_tick_divisor.val() {
-                self.tick_divisor.d.next = self.bus_write_data.val();
-            }
-            if self.bus_address.val() == self.a_period_ticks.val() {
-                self.period_ticks.d.next = self.bus_write_data.val().get_value_period_ticks();
-            }
-            if self.bus_address.val() == self.a_low_water.val() {
-                self.low_water.d.next = self.bus_write_data.val() & self.level_mask.val();
-            }
-            if self.bus_address.val() == self.a_watchdog_timeout.val() {
-                self.watchdog_timeout.d.next = self.bus_write_data.val();
-            }
-        }
+        // The register layer: the global registers' flip-flops, strobes and
+        // read word.
+        self.registers.reset.next = self.reset.val();
+        self.registers.address.next = self.bus_address.val();
+        self.registers.write_data.next = self.bus_write_data.val();
+        self.registers.write.next = self.bus_write.val();
+        self.registers.running.next = self.period.running.val();
+        self.registers.status.next = self.interrupts.status.val();
+        self.registers.watchdog_armed.next = self.watchdog.armed.val();
+        self.registers.watchdog_expired.next = self.watchdog.expired.val();
+        self.registers.estop_input.next = self.io.estop_active.val();
+        self.registers.estop_latched.next = self.io.estop_latched.val();
+        self.registers.inputs_ready.next = self.io.ready.val();
+        self.registers.period_count.next = self.period.period_count.val();
+        self.registers.stop_cause.next = self.cause_register.stop_cause.val();
 
         // Base tick.
         self.tick_divider.reset.next = self.reset.val();
         self.tick_divider.enable.next = true;
-        self.tick_divider.divisor.next = self.tick_divisor.q.val();
+        self.tick_divider.divisor.next = self.registers.tick_divisor.val();
         self.tick.next = self.tick_divider.strobe.val();
 
         // Watchdog: kicked by a KICK write, cleared with STATUS.WATCHDOG.
         self.watchdog.reset.next = self.reset.val();
         self.watchdog.tick.next = self.tick.val();
-        self.watchdog.timeout.next = self.watchdog_timeout.q.val();
-        self.watchdog.kick.next =
-            self.bus_write.val() & (self.bus_address.val() == self.a_watchdog_kick.val());
-        self.watchdog.clear.next = self.bus_write.val()
-            & (self.bus_address.val() == self.a_status.val())
+        self.watchdog.timeout.next = self.registers.watchdog_timeout.val();
+        self.watchdog.kick.next = self.registers.kick.val();
+        self.watchdog.clear.next = self.registers.status_write.val()
             & ((self.bus_write_data.val() & self.m_status_watchdog.val()) != self.zero32.val());
 
         // Machine I/O: switch conditioning, E-stop latch, general I/O.
@@ -1239,58 +937,21 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.io.address.next = self.bus_address.val();
         self.io.write.next = self.bus_write.val();
         self.io.write_data.next = self.bus_write_data.val();
-        self.io.estop_clear.next = self.bus_write.val()
-            & (self.bus_address.val() == self.a_status.val())
+        self.io.estop_clear.next = self.registers.status_write.val()
             & ((self.bus_write_data.val() & self.m_status_estop.val()) != self.zero32.val());
         self.io.watchdog_expired.next = self.watchdog.expired.val();
         self.gpio_out.next = self.io.gpio_out.val();
         self.drive_allowed.next = !self.io.estop_latched_next.val() & !self.watchdog.expired.val();
 
-        // Stop causes held by the axes.
-        self.any_limit_held.next = false;
-        self.any_alarm_held.next = false;
-        self.any_home_held.next = false;
+        // Stop causes held by the axes, and the axes' summaries. Bits of
+        // the K-bit vectors by mask, not bit select: at K = 1 rust-hdl
+        // declares them without a range, where `x[0]` is illegal Verilog.
+        self.limit_held.next = self.zero_k.val();
+        self.alarm_held.next = self.zero_k.val();
+        self.home_held.next = self.zero_k.val();
         self.any_limit_event.next = false;
         self.any_alarm_event.next = false;
         self.any_home_event.next = false;
-        for i in 0..K {
-            self.any_limit_held.next = self.any_limit_held.val() | self.axes[i].limit_held.val();
-            self.any_alarm_held.next = self.any_alarm_held.val() | self.axes[i].alarm_held.val();
-            self.any_home_held.next = self.any_home_held.val() | self.axes[i].home_held.val();
-            self.any_limit_event.next = self.any_limit_event.val() | self.axes[i].limit_event.val();
-            self.any_alarm_event.next = self.any_alarm_event.val() | self.axes[i].alarm_event.val();
-            self.any_home_event.next = self.any_home_event.val() | self.axes[i].home_event.val();
-        }
-        // Registered, so that the OR of every latch is not in front of the
-        // halt and flush logic of every axis: one clock of latency.
-        self.abort_hold.d.next = self.io.estop_latched.val()
-            | self.any_limit_held.val()
-            | self.any_alarm_held.val()
-            | self.any_home_held.val();
-        if self.reset.val() {
-            self.abort_hold.d.next = false;
-        }
-        self.abort.next = self.abort_hold.q.val() | self.watchdog.expired.val();
-        // RUN is refused on the latches themselves, not on the registered
-        // hold, so no clock slips between a latch and the refusal.
-        self.refuse_run.next = self.run.q.val()
-            | self.watchdog.expired.val()
-            | self.io.estop_active.val()
-            | self.io.estop_latched.val()
-            | self.any_limit_held.val()
-            | self.any_alarm_held.val()
-            | self.any_home_held.val()
-            | !self.io.ready.val();
-
-        // Run control and the period boundary.
-        self.write_control.next =
-            self.bus_write.val() & (self.bus_address.val() == self.a_control.val());
-        // CONTROL.RUN, CONTROL.FLUSH: literal bits, asserted above.
-        self.start.next = self.write_control.val()
-            & self.bus_write_data.val().get_bit(0)
-            & !self.refuse_run.val();
-        self.halt.next =
-            (self.write_control.val() & !self.bus_write_data.val().get_bit(0)) | self.abort.val();
         self.all_ready.next = true;
         self.any_low.next = false;
         self.any_overflow.next = false;
@@ -1298,6 +959,18 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.any_encoder_error.next = false;
         self.any_busy.next = false;
         for i in 0..K {
+            if self.axes[i].limit_held.val() {
+                self.limit_held.next = self.limit_held.val() | self.axis_bit[i].val();
+            }
+            if self.axes[i].alarm_held.val() {
+                self.alarm_held.next = self.alarm_held.val() | self.axis_bit[i].val();
+            }
+            if self.axes[i].home_held.val() {
+                self.home_held.next = self.home_held.val() | self.axis_bit[i].val();
+            }
+            self.any_limit_event.next = self.any_limit_event.val() | self.axes[i].limit_event.val();
+            self.any_alarm_event.next = self.any_alarm_event.val() | self.axes[i].alarm_event.val();
+            self.any_home_event.next = self.any_home_event.val() | self.axes[i].home_event.val();
             self.any_busy.next = self.any_busy.val() | self.axes[i].busy.val();
             self.all_ready.next = self.all_ready.val() & !self.axes[i].empty.val();
             self.any_low.next = self.any_low.val() | self.axes[i].low.val();
@@ -1306,91 +979,55 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             self.any_encoder_error.next =
                 self.any_encoder_error.val() | self.axes[i].encoder_error_event.val();
         }
-        self.boundary.next = self.run.q.val() & self.tick.val() & self.boundary_next.q.val();
-        // A stop on the boundary clock wins: nothing is popped.
-        self.pop.next = self.boundary.val() & self.all_ready.val() & !self.halt.val();
-        self.underrun.next = self.boundary.val() & !self.all_ready.val() & !self.halt.val();
-        // PERIOD_TICKS = 0 acts as 1.
-        self.period_next.next = self.period_ticks.q.val();
-        if self.period_ticks.q.val() == self.zero_p.val() {
-            self.period_next.next = self.one_p.val();
-        }
-        if self.start.val() {
-            self.run.d.next = true;
-            self.boundary_next.d.next = true;
-            self.in_period.d.next = false;
-        }
-        if self.run.q.val() & self.tick.val() {
-            if self.boundary_next.q.val() {
-                self.ticks_left.d.next = self.period_next.val();
-                self.boundary_next.d.next =
-                    (self.period_ticks.q.val() & self.not_one_p.val()) == self.zero_p.val();
-                self.period_active.d.next = self.period_next.val();
-            } else {
-                self.ticks_left.d.next = self.ticks_left.q.val() - self.one_p.val();
-                self.boundary_next.d.next = self.ticks_left.q.val() == self.two_p.val();
-            }
-        }
-        self.modulus.d.next = self.period_active.q.val();
-        if self.pop.val() {
-            self.in_period.d.next = true;
-            self.period_count.d.next = self.period_count.q.val() + self.one32.val();
-        }
-        if self.underrun.val() | self.halt.val() {
-            self.run.d.next = false;
-            self.in_period.d.next = false;
-        }
-        self.running.next = self.run.q.val();
-        self.active.next = self.run.q.val() | self.any_busy.val();
-        self.flush.next = self.write_control.val() & self.bus_write_data.val().get_bit(1);
-
-        // STOP_CAUSE: taken when RUN falls; of simultaneous causes the
-        // highest code wins, with the lowest axis that holds it.
-        self.limit_axis.next = self.zero32.val();
-        self.alarm_axis.next = self.zero32.val();
-        self.home_axis.next = self.zero32.val();
-        self.limit_found.next = false;
-        self.alarm_found.next = false;
-        self.home_found.next = false;
-        for i in 0..K {
-            if self.axes[i].limit_held.val() & !self.limit_found.val() {
-                self.limit_axis.next = self.cause_axis[i].val();
-                self.limit_found.next = true;
-            }
-            if self.axes[i].alarm_held.val() & !self.alarm_found.val() {
-                self.alarm_axis.next = self.cause_axis[i].val();
-                self.alarm_found.next = true;
-            }
-            if self.axes[i].home_held.val() & !self.home_found.val() {
-                self.home_axis.next = self.cause_axis[i].val();
-                self.home_found.next = true;
-            }
-        }
-        self.cause_now.next = self.cause_stop.val();
-        if self.underrun.val() {
-            self.cause_now.next = self.cause_underrun.val();
-        }
-        if self.watchdog.expired.val() {
-            self.cause_now.next = self.cause_watchdog.val();
-        }
-        if self.abort_hold.q.val() & self.any_home_held.val() {
-            self.cause_now.next = self.cause_home.val() | self.home_axis.val();
-        }
-        if self.abort_hold.q.val() & self.any_limit_held.val() {
-            self.cause_now.next = self.cause_limit.val() | self.limit_axis.val();
-        }
-        if self.abort_hold.q.val() & self.any_alarm_held.val() {
-            self.cause_now.next = self.cause_alarm.val() | self.alarm_axis.val();
-        }
-        if self.abort_hold.q.val() & self.io.estop_latched.val() {
-            self.cause_now.next = self.cause_estop.val();
-        }
-        if self.run.q.val() & (self.underrun.val() | self.halt.val()) {
-            self.stop_cause.d.next = self.cause_now.val();
-        }
+        self.any_held.next = (self.limit_held.val() != self.zero_k.val())
+            | (self.alarm_held.val() != self.zero_k.val())
+            | (self.home_held.val() != self.zero_k.val());
+        // Registered, so that the OR of every latch is not in front of the
+        // halt and flush logic of every axis: one clock of latency.
+        self.abort_hold.d.next = self.io.estop_latched.val() | self.any_held.val();
         if self.reset.val() {
-            self.stop_cause.d.next = self.zero32.val();
+            self.abort_hold.d.next = false;
         }
+        self.abort.next = self.abort_hold.q.val() | self.watchdog.expired.val();
+        self.registers.aborted.next = self.abort.val();
+        // RUN is refused on the latches themselves, not on the registered
+        // hold, so no clock slips between a latch and the refusal.
+        self.refuse_run.next = self.period.running.val()
+            | self.watchdog.expired.val()
+            | self.io.estop_active.val()
+            | self.io.estop_latched.val()
+            | self.any_held.val()
+            | !self.io.ready.val();
+
+        // Run control and the period boundary. CONTROL.RUN, CONTROL.FLUSH:
+        // literal bits, asserted above.
+        self.period.reset.next = self.reset.val();
+        self.period.tick.next = self.tick.val();
+        self.period.control_write.next = self.registers.control_write.val();
+        self.period.run_bit.next = self.bus_write_data.val().get_bit(0);
+        self.period.flush_bit.next = self.bus_write_data.val().get_bit(1);
+        self.period.refuse_run.next = self.refuse_run.val();
+        self.period.abort.next = self.abort.val();
+        self.period.all_ready.next = self.all_ready.val();
+        self.period.period_ticks.next = self.registers.period_ticks.val();
+        self.start.next = self.period.start.val();
+        self.halt.next = self.period.halt.val();
+        self.pop.next = self.period.pop.val();
+        self.underrun.next = self.period.underrun.val();
+        self.running.next = self.period.running.val();
+        self.active.next = self.period.running.val() | self.any_busy.val();
+
+        // STOP_CAUSE: taken when RUN falls.
+        self.cause_register.reset.next = self.reset.val();
+        self.cause_register.limit_held.next = self.limit_held.val();
+        self.cause_register.alarm_held.next = self.alarm_held.val();
+        self.cause_register.home_held.next = self.home_held.val();
+        self.cause_register.estop_latched.next = self.io.estop_latched.val();
+        self.cause_register.abort_hold.next = self.abort_hold.q.val();
+        self.cause_register.watchdog_expired.next = self.watchdog.expired.val();
+        self.cause_register.running.next = self.period.running.val();
+        self.cause_register.underrun.next = self.underrun.val();
+        self.cause_register.halt.next = self.halt.val();
 
         // The shared divider: the lowest-numbered axis that asks gets it
         // when it is idle (a start in its `done` clock would hand the
@@ -1431,73 +1068,28 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.steps_a.next = self.zero_k.val();
         self.steps_b.next = self.zero_k.val();
         self.enables.next = self.zero_k.val();
+        // The FIFO entry every axis stores, converted once for all.
+        self.entry_converter.word.next = self.bus_write_data.val();
         // Bits of the K-bit ports by mask, not bit select: at K = 1 rust-hdl
         // declares them without a range, where `x[0]` is illegal Verilog.
-        // The FIFO entry every axis stores, converted once for all (see
-        // axis::ENTRY_BITS): |w| saturated to 16 bits, too large (16),
-        // sign (17), code wide (18), nonzero (19). Too large is decided on
-        // the upper half alone (and -2^16 itself), and only the lower half
-        // is negated.
-        self.w_upper_zero.next =
-            (self.bus_write_data.val() & self.upper_half.val()) == self.zero32.val();
-        self.w_upper_ones.next =
-            (self.bus_write_data.val() & self.upper_half.val()) == self.upper_half.val();
-        self.w_low.next = self.bus_write_data.val().get_bits::<PERIOD_BITS>(0);
-        self.w_low_nonzero.next = self.w_low.val() != self.zero_p.val();
-        if self.bus_write_data.val().get_bit(31) {
-            self.w_too_large.next = !self.w_upper_ones.val() | !self.w_low_nonzero.val();
-            self.w_magnitude.next = self.zero_p.val() - self.w_low.val();
-        } else {
-            self.w_too_large.next = !self.w_upper_zero.val();
-            self.w_magnitude.next = self.w_low.val();
-        }
-        if self.w_too_large.val() {
-            self.w_magnitude.next = self.max_p.val();
-        }
-        // (Bit by bit: rust-hdl has no widening that Verilator reads
-        // without a width warning.)
-        self.fifo_entry.next = self.zero_entry.val();
-        for b in 0..PERIOD_BITS {
-            if self.w_magnitude.val().get_bit(b) {
-                self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[b].val();
-            }
-        }
-        if self.w_too_large.val() {
-            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[16].val();
-        }
-        if self.bus_write_data.val().get_bit(31) {
-            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[17].val();
-        }
-        // Bits 31..15 not all equal.
-        if !((self.w_upper_zero.val() & !self.w_low.val().get_bit(15))
-            | (self.w_upper_ones.val() & self.w_low.val().get_bit(15)))
-        {
-            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[18].val();
-        }
-        if !self.w_upper_zero.val() | self.w_low_nonzero.val() {
-            self.fifo_entry.next = self.fifo_entry.val() | self.entry_bit[19].val();
-        }
         for i in 0..K {
             self.axes[i].clock.next = self.clock.val();
             self.axes[i].reset.next = self.reset.val();
             self.axes[i].tick.next = self.tick.val();
             self.axes[i].start.next = self.start.val();
-            self.axes[i].flush.next = self.flush.val();
+            self.axes[i].flush.next = self.period.flush.val();
             self.axes[i].halt.next = self.halt.val();
             self.axes[i].abort.next = self.abort.val();
             self.axes[i].pop.next = self.pop.val();
             self.axes[i].underrun.next = self.underrun.val();
-            self.axes[i].period_active.next = self.period_active.q.val();
-            self.axes[i].modulus.next = self.modulus.q.val();
-            self.axes[i].snapshot.next =
-                self.bus_write.val() & (self.bus_address.val() == self.a_snapshot.val());
-            // FIFO_LOW_WATER.LEVEL: its width is NP1, a generic, so not a
-            // field_slices! field; the literal is asserted above.
-            self.axes[i].low_water.next = self.low_water.q.val().get_bits::<NP1>(0);
+            self.axes[i].period_active.next = self.period.period_active.val();
+            self.axes[i].modulus.next = self.period.modulus.val();
+            self.axes[i].snapshot.next = self.registers.snapshot.val();
+            self.axes[i].low_water.next = self.registers.low_water.val();
             self.axes[i].address.next = self.bus_address.val();
             self.axes[i].write.next = self.bus_write.val();
             self.axes[i].write_data.next = self.bus_write_data.val();
-            self.axes[i].fifo_entry.next = self.fifo_entry.val();
+            self.axes[i].fifo_entry.next = self.entry_converter.entry.val();
             self.axes[i].enc_a.next =
                 (self.enc_a.val() & self.axis_bit[i].val()) != self.zero_k.val();
             self.axes[i].enc_b.next =
@@ -1530,102 +1122,49 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.step_b.next = self.steps_b.val();
         self.drive_enable.next = self.enables.val();
 
-        // Analog outputs. After each pop the axes' codes are loaded into
-        // the DAC one axis a clock (the analog ones), then one update
-        // writes every channel and pulses LDAC once. When RUN falls, not by
-        // an abort, every analog channel gets 0 (an underrun or a stop must
-        // not leave a velocity command on); an abort forces the DAC's safe
-        // code itself.
+        // Analog outputs. After each pop the analog axes' codes are loaded
+        // into the DAC one axis a clock, then one update writes every
+        // channel and pulses LDAC once. When RUN falls, not by an abort,
+        // every analog channel gets 0 (an underrun or a stop must not leave
+        // a velocity command on); an abort forces the DAC's safe code.
         self.analog_axes.next = self.zero_k.val();
+        self.walk_magnitude.next = self.zero_code.val();
+        self.walk_wide.next = false;
+        self.walk_negative.next = false;
         for i in 0..K {
             if self.axes[i].analog.val() {
                 self.analog_axes.next = self.analog_axes.val() | self.axis_bit[i].val();
             }
-        }
-        self.pop_d.d.next = self.pop.val();
-        self.walk_now.next = self.dac_walk.q.val();
-        if self.pop_d.q.val() {
-            self.walk_now.next = self.axis_bit[0].val();
-        }
-        self.dac_load.next = self.walk_now.val() & self.analog_axes.val();
-        self.dac_code.next = self.zero_code.val();
-        self.walk_wide.next = false;
-        self.walk_negative.next = false;
-        for i in 0..K {
-            if (self.walk_now.val() & self.axis_bit[i].val()) != self.zero_k.val() {
-                self.dac_code.next = self.axes[i].dac_code.val();
+            if (self.analog.walk.val() & self.axis_bit[i].val()) != self.zero_k.val() {
+                self.walk_magnitude.next = self.axes[i].dac_code.val();
                 self.walk_wide.next = self.axes[i].code_out_of_range.val();
                 self.walk_negative.next = self.axes[i].code_negative.val();
             }
         }
-        // The axes hold |entry|: the code is it with its sign put back
-        // (exact for every entry that fits 16 bits signed, -2^15 included),
-        // and an entry beyond 16 bits signed saturates.
-        if self.walk_negative.val() {
-            self.dac_code.next = self.zero_code.val() - self.dac_code.val();
-        }
-        if self.walk_wide.val() {
-            if self.walk_negative.val() {
-                self.dac_code.next = self.code_min.val();
-            } else {
-                self.dac_code.next = self.code_max.val();
-            }
-        }
-        self.dac_walk.d.next = self.walk_now.val() << 1;
-        self.dac_update.d.next = ((self.walk_now.val() & self.last_axis.val())
-            != self.zero_k.val())
-            & (self.analog_axes.val() != self.zero_k.val());
-        self.stop_zero.next = self.has_analog.val()
-            & self.run.q.val()
+        self.analog.reset.next = self.reset.val();
+        self.analog.bus_address.next = self.bus_address.val();
+        self.analog.bus_write_data.next = self.bus_write_data.val();
+        self.analog.bus_write.next = self.bus_write.val();
+        self.analog.bus_read.next = self.bus_read.val();
+        self.analog.pop.next = self.pop.val();
+        self.analog.stop_zero.next = self.period.running.val()
             & (self.underrun.val() | self.halt.val())
             & !self.abort.val();
-        self.stop_zero_d.d.next = self.stop_zero.val();
-        if self.stop_zero_d.q.val() {
-            self.dac_load.next = self.analog_axes.val();
-            self.dac_code.next = self.zero_code.val();
-            self.dac_walk.d.next = self.zero_k.val();
-            self.dac_update.d.next = self.analog_axes.val() != self.zero_k.val();
-        }
-        // The DAC's registers on our bus.
-        self.dac_hit.next = false;
-        self.dac_applied_hit.next = false;
-        self.dac_low.next = self.zero5.val();
-        for i in 0..3 {
-            if self.bus_address.val() == self.a_dac_global[i].val() {
-                self.dac_hit.next = self.has_analog.val();
-                self.dac_low.next = self.d_dac_global[i].val();
-            }
-        }
-        for i in 0..K {
-            if self.bus_address.val() == self.a_dac_applied[i].val() {
-                self.dac_hit.next = self.has_analog.val();
-                self.dac_applied_hit.next = true;
-                self.dac_low.next = self.d_dac_applied[i].val();
-            }
-        }
-        self.dac_address.next = self.dac_low.val();
-        if self.dac_applied_hit.val() {
-            self.dac_address.next = self.dac_low.val() | self.dac_applied_bits.val();
-        }
-        self.dac.reset.next = self.reset.val();
-        self.dac.bus_address.next = self.dac_address.val();
-        self.dac.bus_write_data.next = self.bus_write_data.val();
-        self.dac.bus_write.next = self.bus_write.val() & self.dac_hit.val();
-        self.dac.bus_read.next = self.bus_read.val() & self.dac_hit.val();
-        self.dac.update.next = self.dac_update.q.val();
-        self.dac.force_safe.next = self.abort.val();
-        self.dac.load.next = self.dac_load.val();
-        self.dac.load_code.next = self.dac_code.val();
-        self.dac_data.next = self.dac.dac_data.val() & self.dac_data_mask.val();
-        self.dac_cs_n.next = self.dac.dac_cs_n.val() | self.dac_cs_idle.val();
-        self.dac_l1_n.next = self.dac.dac_l1_n.val() | !self.has_analog.val();
-        self.dac_ldac.next = self.dac.dac_ldac.val() & self.has_analog.val();
+        self.analog.abort.next = self.abort.val();
+        self.analog.analog_axes.next = self.analog_axes.val();
+        self.analog.code_magnitude.next = self.walk_magnitude.val();
+        self.analog.code_negative.next = self.walk_negative.val();
+        self.analog.code_wide.next = self.walk_wide.val();
+        self.dac_data.next = self.analog.dac_data.val();
+        self.dac_cs_n.next = self.analog.dac_cs_n.val();
+        self.dac_l1_n.next = self.analog.dac_l1_n.val();
+        self.dac_ldac.next = self.analog.dac_ldac.val();
 
         // Interrupts: pulses, so that a write-1-to-clear always clears.
         self.any_low_prev_n.d.next = !self.any_low.val();
         self.expired_prev.d.next = self.watchdog.expired.val();
         self.events.next = self.zero_ev.val();
-        if self.pop.val() & self.in_period.q.val() {
+        if self.period.period_done.val() {
             self.events.next = self.events.val() | self.ev_period_done.val();
         }
         if self.any_low.val() & self.any_low_prev_n.q.val() {
@@ -1663,94 +1202,20 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         }
         self.interrupts.reset.next = self.reset.val();
         self.interrupts.events.next = self.events.val();
-        self.interrupts.clear.next =
-            self.bus_write.val() & (self.bus_address.val() == self.a_status.val());
+        self.interrupts.clear.next = self.registers.status_write.val();
         self.interrupts.clear_bits.next = self.bus_write_data.val().get_value_irq_bits();
-        self.interrupts.enable.next = self.irq_enable.q.val().get_value_irq_bits();
+        self.interrupts.enable.next = self.registers.irq_enable.val();
         self.irq.next = self.interrupts.irq.val();
 
-        // Reads.
-        self.state_word.next = self.zero32.val();
-        if self.run.q.val() {
-            self.state_word.next = self.state_word.val() | self.bit0_32.val();
-        }
-        if self.watchdog.armed.val() {
-            self.state_word.next = self.state_word.val() | self.bit1_32.val();
-        }
-        if self.watchdog.expired.val() {
-            self.state_word.next = self.state_word.val() | self.bit2_32.val();
-        }
-        if self.io.estop_active.val() {
-            self.state_word.next = self.state_word.val() | self.m_state_estop_input.val();
-        }
-        if self.io.estop_latched.val() {
-            self.state_word.next = self.state_word.val() | self.m_state_estop_latched.val();
-        }
-        if self.abort.val() {
-            self.state_word.next = self.state_word.val() | self.m_state_aborted.val();
-        }
-        if self.io.ready.val() {
-            self.state_word.next = self.state_word.val() | self.m_state_inputs_ready.val();
-        }
-        // One-hot AND-OR over exclusive addresses (see the axis read mux).
-        self.global_read.next = self.io.read_data.val();
-        if self.bus_address.val() == self.a_id.val() {
-            self.global_read.next = self.global_read.val() | self.id_value.val();
-        }
-        if self.bus_address.val() == self.a_version.val() {
-            self.global_read.next = self.global_read.val() | self.version_value.val();
-        }
-        if self.bus_address.val() == self.a_config.val() {
-            self.global_read.next = self.global_read.val() | self.config_value.val();
-        }
-        if self.bus_address.val() == self.a_control.val() {
-            if self.run.q.val() {
-                self.global_read.next = self.global_read.val() | self.one32.val();
-            }
-        }
-        if self.bus_address.val() == self.a_status.val() {
-            for i in 0..irq::COUNT {
-                if self.interrupts.status.val().get_bit(i) {
-                    self.global_read.next = self.global_read.val() | self.bit_mask[i].val();
-                }
-            }
-        }
-        if self.bus_address.val() == self.a_irq_enable.val() {
-            self.global_read.next = self.global_read.val() | self.irq_enable.q.val();
-        }
-        if self.bus_address.val() == self.a_tick_divisor.val() {
-            self.global_read.next = self.global_read.val() | self.tick_divisor.q.val();
-        }
-        if self.bus_address.val() == self.a_period_ticks.val() {
-            for i in 0..PERIOD_BITS {
-                if self.period_ticks.q.val().get_bit(i) {
-                    self.global_read.next = self.global_read.val() | self.bit_mask[i].val();
-                }
-            }
-        }
-        if self.bus_address.val() == self.a_low_water.val() {
-            self.global_read.next = self.global_read.val() | self.low_water.q.val();
-        }
-        if self.bus_address.val() == self.a_watchdog_timeout.val() {
-            self.global_read.next = self.global_read.val() | self.watchdog_timeout.q.val();
-        }
-        if self.bus_address.val() == self.a_state.val() {
-            self.global_read.next = self.global_read.val() | self.state_word.val();
-        }
-        if self.bus_address.val() == self.a_period_count.val() {
-            self.global_read.next = self.global_read.val() | self.period_count.q.val();
-        }
-        if self.bus_address.val() == self.a_stop_cause.val() {
-            self.global_read.next = self.global_read.val() | self.stop_cause.q.val();
-        }
+        // Reads: the global registers, the machine I/O's and the axes'.
         if self.bus_read.val() {
-            self.read_data.d.next = self.global_read.val() | self.axes_read.val();
-            self.dac_read_sel.d.next = self.dac_hit.val();
+            self.read_data.d.next =
+                self.registers.read_data.val() | self.io.read_data.val() | self.axes_read.val();
         }
         // The DAC's read data is registered like ours: the same clock.
         self.read_out.next = self.read_data.q.val();
-        if self.dac_read_sel.q.val() {
-            self.read_out.next = self.dac.bus_read_data.val();
+        if self.analog.read_selected.val() {
+            self.read_out.next = self.analog.read_data.val();
         }
         // The axes' configuration registers come from the shadow RAM, whose
         // word is 0 for every other read (also registered at the read).
@@ -1768,26 +1233,9 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.bus_read_data.next = self.read_out.val();
 
         if self.reset.val() {
-            self.run.d.next = false;
-            self.irq_enable.d.next = self.zero32.val();
-            self.tick_divisor.d.next = self.zero32.val();
-            self.period_ticks.d.next = self.zero_p.val();
-            self.low_water.d.next = self.zero32.val();
-            self.watchdog_timeout.d.next = self.zero32.val();
-            self.ticks_left.d.next = self.zero_p.val();
-            self.boundary_next.d.next = false;
-            self.in_period.d.next = false;
-            self.period_active.d.next = self.zero_p.val();
-            self.modulus.d.next = self.zero_p.val();
-            self.period_count.d.next = self.zero32.val();
             self.read_data.d.next = self.zero32.val();
             self.any_low_prev_n.d.next = false;
             self.expired_prev.d.next = false;
-            self.pop_d.d.next = false;
-            self.dac_walk.d.next = self.zero_k.val();
-            self.dac_update.d.next = false;
-            self.dac_read_sel.d.next = false;
-            self.stop_zero_d.d.next = false;
         }
     }
 }
