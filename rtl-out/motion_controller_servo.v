@@ -3334,43 +3334,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  bit0_32 = 32'h1;
-    localparam  bit16_32 = 32'h10000;
-    localparam  bit17_32 = 32'h20000;
-    localparam  bit18_32 = 32'h40000;
-    localparam  bit1_32 = 32'h2;
-    localparam  bit2_32 = 32'h4;
-    localparam  bit3_32 = 32'h8;
-    localparam  bit4_32 = 32'h10;
-    localparam  bit5_32 = 32'h20;
-    localparam  bit6_32 = 32'h40;
-    localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
-    localparam  bit_mask__0 = 32'h1;
-    localparam  bit_mask__1 = 32'h2;
-    localparam  bit_mask__2 = 32'h4;
-    localparam  bit_mask__3 = 32'h8;
-    localparam  bit_mask__4 = 32'h10;
-    localparam  mask16 = 32'hffff;
-    localparam  config_mask = 32'h3ffc;
-    localparam  mask8 = 32'hff;
-    localparam  off_fifo_write = 4'h0;
-    localparam  off_fifo_status = 4'h1;
-    localparam  off_config = 4'h2;
-    localparam  off_step_len = 4'h3;
-    localparam  off_step_space = 4'h4;
-    localparam  off_dir_setup = 4'h5;
-    localparam  off_dir_hold = 4'h6;
-    localparam  off_sample_rate = 4'h7;
-    localparam  off_cmd_position = 4'h8;
-    localparam  off_act_position = 4'h9;
-    localparam  off_cmd_snapshot = 4'ha;
-    localparam  off_act_snapshot = 4'hb;
-    localparam  off_axis_status = 4'hc;
-    localparam  off_index_position = 4'hd;
-    localparam  off_command = 4'he;
 
     // Stub signals
     reg  fifo__clock;
@@ -3500,24 +3466,37 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     wire  io__alarm_event;
     wire  io__home_event;
     wire  io__drive_enable;
-    reg  [31:0] settings__d;
-    wire  [31:0] settings__q;
-    reg  settings__clock;
-    reg  [31:0] step_len__d;
-    wire  [31:0] step_len__q;
-    reg  step_len__clock;
-    reg  [31:0] step_space__d;
-    wire  [31:0] step_space__q;
-    reg  step_space__clock;
-    reg  [31:0] dir_setup__d;
-    wire  [31:0] dir_setup__q;
-    reg  dir_setup__clock;
-    reg  [31:0] dir_hold__d;
-    wire  [31:0] dir_hold__q;
-    reg  dir_hold__clock;
-    reg  [31:0] sample_rate__d;
-    wire  [31:0] sample_rate__q;
-    reg  sample_rate__clock;
+    reg  registers__clock;
+    reg  registers__reset;
+    reg  [7:0] registers__address;
+    reg  registers__write;
+    reg  [15:0] registers__write_data;
+    reg  registers__snapshot;
+    reg  [4:0] registers__fifo_level;
+    reg  registers__fifo_empty;
+    reg  registers__fifo_full;
+    reg  registers__fifo_low;
+    reg  registers__step_overrun;
+    reg  registers__interp_overrange;
+    reg  registers__interp_overflow;
+    reg  registers__encoder_error;
+    reg  registers__index_seen;
+    reg  registers__step_busy;
+    reg  registers__uniform_running;
+    reg  registers__step_mode_invalid;
+    reg  [31:0] registers__cmd_position;
+    reg  [31:0] registers__act_position;
+    reg  [31:0] registers__index_position;
+    reg  [31:0] registers__io_read_data;
+    wire  [13:0] registers__axis_config;
+    wire  [15:0] registers__step_len;
+    wire  [15:0] registers__step_space;
+    wire  [15:0] registers__dir_setup;
+    wire  [15:0] registers__dir_hold;
+    wire  [7:0] registers__sample_rate;
+    wire  registers__command;
+    wire  registers__fifo_write;
+    wire  [31:0] registers__read_data;
     reg  [19:0] popped__d;
     wire  [19:0] popped__q;
     reg  popped__clock;
@@ -3596,12 +3575,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  request_forward__d;
     wire  request_forward__q;
     reg  request_forward__clock;
-    reg  [31:0] cmd_snapshot__d;
-    wire  [31:0] cmd_snapshot__q;
-    reg  cmd_snapshot__clock;
-    reg  [31:0] act_snapshot__d;
-    wire  [31:0] act_snapshot__q;
-    reg  act_snapshot__clock;
     reg  encoder_error_prev__d;
     wire  encoder_error_prev__q;
     reg  encoder_error_prev__clock;
@@ -3609,12 +3582,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     // Local signals
     reg  clear_position;
     reg  code_nonzero;
-    reg  selected;
-    reg  [3:0] offset;
     reg  candidate;
     reg  candidate_forward;
     reg  candidate_blocked;
-    reg  command;
     reg  clear_faults;
     reg  too_large;
     reg  [15:0] count;
@@ -3625,8 +3595,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
-    reg  [31:0] fifo_status;
-    reg  [31:0] axis_status;
 
     // Sub module instances
     motion_controller_servo__axes__0__fifo fifo(
@@ -3770,35 +3738,38 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .home_event(io__home_event),
         .drive_enable(io__drive_enable)
     );
-    motion_controller_servo__axes__0__settings settings(
-        .d(settings__d),
-        .q(settings__q),
-        .clock(settings__clock)
-    );
-    motion_controller_servo__axes__0__step_len step_len(
-        .d(step_len__d),
-        .q(step_len__q),
-        .clock(step_len__clock)
-    );
-    motion_controller_servo__axes__0__step_space step_space(
-        .d(step_space__d),
-        .q(step_space__q),
-        .clock(step_space__clock)
-    );
-    motion_controller_servo__axes__0__dir_setup dir_setup(
-        .d(dir_setup__d),
-        .q(dir_setup__q),
-        .clock(dir_setup__clock)
-    );
-    motion_controller_servo__axes__0__dir_hold dir_hold(
-        .d(dir_hold__d),
-        .q(dir_hold__q),
-        .clock(dir_hold__clock)
-    );
-    motion_controller_servo__axes__0__sample_rate sample_rate(
-        .d(sample_rate__d),
-        .q(sample_rate__q),
-        .clock(sample_rate__clock)
+    motion_controller_servo__axes__0__registers registers(
+        .clock(registers__clock),
+        .reset(registers__reset),
+        .address(registers__address),
+        .write(registers__write),
+        .write_data(registers__write_data),
+        .snapshot(registers__snapshot),
+        .fifo_level(registers__fifo_level),
+        .fifo_empty(registers__fifo_empty),
+        .fifo_full(registers__fifo_full),
+        .fifo_low(registers__fifo_low),
+        .step_overrun(registers__step_overrun),
+        .interp_overrange(registers__interp_overrange),
+        .interp_overflow(registers__interp_overflow),
+        .encoder_error(registers__encoder_error),
+        .index_seen(registers__index_seen),
+        .step_busy(registers__step_busy),
+        .uniform_running(registers__uniform_running),
+        .step_mode_invalid(registers__step_mode_invalid),
+        .cmd_position(registers__cmd_position),
+        .act_position(registers__act_position),
+        .index_position(registers__index_position),
+        .io_read_data(registers__io_read_data),
+        .axis_config(registers__axis_config),
+        .step_len(registers__step_len),
+        .step_space(registers__step_space),
+        .dir_setup(registers__dir_setup),
+        .dir_hold(registers__dir_hold),
+        .sample_rate(registers__sample_rate),
+        .command(registers__command),
+        .fifo_write(registers__fifo_write),
+        .read_data(registers__read_data)
     );
     motion_controller_servo__axes__0__popped popped(
         .d(popped__d),
@@ -3930,16 +3901,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .q(request_forward__q),
         .clock(request_forward__clock)
     );
-    motion_controller_servo__axes__0__cmd_snapshot cmd_snapshot(
-        .d(cmd_snapshot__d),
-        .q(cmd_snapshot__q),
-        .clock(cmd_snapshot__clock)
-    );
-    motion_controller_servo__axes__0__act_snapshot act_snapshot(
-        .d(act_snapshot__d),
-        .q(act_snapshot__q),
-        .clock(act_snapshot__clock)
-    );
     motion_controller_servo__axes__0__encoder_error_prev encoder_error_prev(
         .d(encoder_error_prev__d),
         .q(encoder_error_prev__q),
@@ -3948,12 +3909,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
 
     // Update code
     always @(*) begin
-        settings__clock = clock;
-        step_len__clock = clock;
-        step_space__clock = clock;
-        dir_setup__clock = clock;
-        dir_hold__clock = clock;
-        sample_rate__clock = clock;
         popped__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
@@ -3980,15 +3935,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         uniform_pulse_prev__clock = clock;
         request__clock = clock;
         request_forward__clock = clock;
-        cmd_snapshot__clock = clock;
-        act_snapshot__clock = clock;
         encoder_error_prev__clock = clock;
-        settings__d = settings__q;
-        step_len__d = step_len__q;
-        step_space__d = step_space__q;
-        dir_setup__d = dir_setup__q;
-        dir_hold__d = dir_hold__q;
-        sample_rate__d = sample_rate__q;
         popped__d = popped__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
@@ -4015,8 +3962,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         uniform_pulse_prev__d = uniform_pulse_prev__q;
         request__d = request__q;
         request_forward__d = request_forward__q;
-        cmd_snapshot__d = cmd_snapshot__q;
-        act_snapshot__d = act_snapshot__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
         dda__clock = clock;
@@ -4025,32 +3970,15 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         position__clock = clock;
         encoder__clock = clock;
         io__clock = clock;
-        selected = (address[(32'h5)+:(3)] == window) & ~address[32'h4];
-        offset = address[(32'h0)+:(4)];
-        command = write & selected & (offset == off_command);
-        clear_faults = command & write_data[32'h0];
-        if (write & selected) begin
-            if (offset == off_config) begin
-                settings__d = write_data & config_mask;
-            end
-            if (offset == off_step_len) begin
-                step_len__d = write_data & mask16;
-            end
-            if (offset == off_step_space) begin
-                step_space__d = write_data & mask16;
-            end
-            if (offset == off_dir_setup) begin
-                dir_setup__d = write_data & mask16;
-            end
-            if (offset == off_dir_hold) begin
-                dir_hold__d = write_data & mask16;
-            end
-            if (offset == off_sample_rate) begin
-                sample_rate__d = write_data & mask8;
-            end
-        end
+        registers__clock = clock;
+        registers__reset = reset;
+        registers__address = address;
+        registers__write = write;
+        registers__write_data = write_data[(32'h0)+:(16)];
+        registers__snapshot = snapshot;
+        clear_faults = registers__command & write_data[32'h0];
         fifo__reset = reset | flush;
-        fifo__write = write & selected & (offset == off_fifo_write);
+        fifo__write = registers__fifo_write;
         fifo__write_data = fifo_entry;
         fifo__pop = pop;
         fifo__low_water = low_water;
@@ -4091,10 +4019,10 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             overflow_flag__d = 1'b1;
         end
         if (start & ~uniform_running) begin
-            uniform_active__d = settings__q[32'h0];
+            uniform_active__d = registers__axis_config[32'h0];
         end
         if (start) begin
-            analog_active__d = has_analog & settings__q[32'hd];
+            analog_active__d = has_analog & registers__axis_config[32'hd];
         end
         if (popped_valid__q) begin
             forward__d = ~popped__q[32'h11];
@@ -4125,7 +4053,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         uniform__tick = tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
-        uniform__mode = settings__q[32'h1];
+        uniform__mode = registers__axis_config[32'h1];
         uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
@@ -4160,18 +4088,18 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         stage__step = request__q;
         stage__dir = request_forward__q;
         stage__flush = abort | io__cut;
-        stage__mode = settings__q[(32'h2)+:(2)];
-        stage__step_len = step_len__q[(32'h0)+:(16)];
-        stage__step_space = step_space__q[(32'h0)+:(16)];
-        stage__dir_setup = dir_setup__q[(32'h0)+:(16)];
-        stage__dir_hold = dir_hold__q[(32'h0)+:(16)];
+        stage__mode = registers__axis_config[(32'h2)+:(2)];
+        stage__step_len = registers__step_len[(32'h0)+:(16)];
+        stage__step_space = registers__step_space[(32'h0)+:(16)];
+        stage__dir_setup = registers__dir_setup[(32'h0)+:(16)];
+        stage__dir_hold = registers__dir_hold[(32'h0)+:(16)];
         stage__clear_overrun = clear_faults;
         out_a = stage__out_a;
         out_b = stage__out_b;
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        clear_position = (command & write_data[32'h3]) | clear_position_pending__q;
+        clear_position = (registers__command & write_data[32'h3]) | clear_position_pending__q;
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
@@ -4181,16 +4109,16 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         encoder__a = enc_a;
         encoder__b = enc_b;
         encoder__index = enc_index;
-        encoder__filter = settings__q[(32'h4)+:(4)];
-        encoder__sample_rate = sample_rate__q[(32'h0)+:(8)];
-        encoder__counter_mode = settings__q[32'h8];
-        encoder__index_invert = settings__q[32'h9];
-        encoder__index_clear = settings__q[32'ha];
-        encoder__index_latch = settings__q[32'hb];
-        encoder__index_once = settings__q[32'hc];
-        encoder__clear = command & write_data[32'h1];
-        encoder__index_rearm = command & write_data[32'h2];
-        encoder__clear_error = command & write_data[32'h4];
+        encoder__filter = registers__axis_config[(32'h4)+:(4)];
+        encoder__sample_rate = registers__sample_rate[(32'h0)+:(8)];
+        encoder__counter_mode = registers__axis_config[32'h8];
+        encoder__index_invert = registers__axis_config[32'h9];
+        encoder__index_clear = registers__axis_config[32'ha];
+        encoder__index_latch = registers__axis_config[32'hb];
+        encoder__index_once = registers__axis_config[32'hc];
+        encoder__clear = registers__command & write_data[32'h1];
+        encoder__index_rearm = registers__command & write_data[32'h2];
+        encoder__clear_error = registers__command & write_data[32'h4];
         io__reset = reset;
         io__selected = (address[(32'h5)+:(3)] == window) & address[32'h4];
         io__offset = address[(32'h0)+:(4)];
@@ -4217,10 +4145,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         limit_event = io__limit_event;
         alarm_event = io__alarm_event;
         home_event = io__home_event;
-        if (snapshot) begin
-            cmd_snapshot__d = position__count;
-            act_snapshot__d = encoder__count;
-        end
         overrun_prev__d = stage__overrun;
         dda_overrange_prev__d = dda__overrange;
         uniform_overrange_prev__d = uniform_overrange;
@@ -4229,87 +4153,24 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
-        fifo_status = zero32;
-        if (fifo__level[0]) begin
-            fifo_status = fifo_status | bit_mask__0;
-        end
-        if (fifo__level[1]) begin
-            fifo_status = fifo_status | bit_mask__1;
-        end
-        if (fifo__level[2]) begin
-            fifo_status = fifo_status | bit_mask__2;
-        end
-        if (fifo__level[3]) begin
-            fifo_status = fifo_status | bit_mask__3;
-        end
-        if (fifo__level[4]) begin
-            fifo_status = fifo_status | bit_mask__4;
-        end
-        if (fifo__empty) begin
-            fifo_status = fifo_status | bit16_32;
-        end
-        if (fifo__full) begin
-            fifo_status = fifo_status | bit17_32;
-        end
-        if (fifo__low) begin
-            fifo_status = fifo_status | bit18_32;
-        end
-        axis_status = zero32;
-        if (stage__overrun) begin
-            axis_status = axis_status | bit0_32;
-        end
-        if (overrange_flag__q) begin
-            axis_status = axis_status | bit1_32;
-        end
-        if (overflow_flag__q) begin
-            axis_status = axis_status | bit2_32;
-        end
-        if (encoder__error) begin
-            axis_status = axis_status | bit3_32;
-        end
-        if (encoder__index_seen) begin
-            axis_status = axis_status | bit4_32;
-        end
-        if (stage__busy) begin
-            axis_status = axis_status | bit5_32;
-        end
-        if (uniform_running) begin
-            axis_status = axis_status | bit6_32;
-        end
-        if (stage__mode_invalid) begin
-            axis_status = axis_status | bit7_32;
-        end
-        read_data = io__read_data;
-        if (selected) begin
-            if (offset == off_fifo_status) begin
-                read_data = read_data | fifo_status;
-            end
-            if (offset == off_cmd_position) begin
-                read_data = read_data | position__count;
-            end
-            if (offset == off_act_position) begin
-                read_data = read_data | encoder__count;
-            end
-            if (offset == off_cmd_snapshot) begin
-                read_data = read_data | cmd_snapshot__q;
-            end
-            if (offset == off_act_snapshot) begin
-                read_data = read_data | act_snapshot__q;
-            end
-            if (offset == off_axis_status) begin
-                read_data = read_data | axis_status;
-            end
-            if (offset == off_index_position) begin
-                read_data = read_data | encoder__index_count;
-            end
-        end
+        registers__fifo_level = fifo__level;
+        registers__fifo_empty = fifo__empty;
+        registers__fifo_full = fifo__full;
+        registers__fifo_low = fifo__low;
+        registers__step_overrun = stage__overrun;
+        registers__interp_overrange = overrange_flag__q;
+        registers__interp_overflow = overflow_flag__q;
+        registers__encoder_error = encoder__error;
+        registers__index_seen = encoder__index_seen;
+        registers__step_busy = stage__busy;
+        registers__uniform_running = uniform_running;
+        registers__step_mode_invalid = stage__mode_invalid;
+        registers__cmd_position = position__count;
+        registers__act_position = encoder__count;
+        registers__index_position = encoder__index_count;
+        registers__io_read_data = io__read_data;
+        read_data = registers__read_data;
         if (reset) begin
-            settings__d = zero32;
-            step_len__d = zero32;
-            step_space__d = zero32;
-            dir_setup__d = zero32;
-            dir_hold__d = zero32;
-            sample_rate__d = zero32;
             popped__d = zero_entry;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
@@ -4336,32 +4197,11 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             uniform_pulse_prev__d = 1'b0;
             request__d = 1'b0;
             request_forward__d = 1'b0;
-            cmd_snapshot__d = zero32;
-            act_snapshot__d = zero32;
             encoder_error_prev__d = 1'b0;
         end
     end
 
 endmodule // motion_controller_servo__axes__0
-
-
-module motion_controller_servo__axes__0__act_snapshot(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__act_snapshot
 
 
 module motion_controller_servo__axes__0__analog_active(d,q,clock);
@@ -4400,25 +4240,6 @@ module motion_controller_servo__axes__0__clear_position_pending(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__clear_position_pending
-
-
-module motion_controller_servo__axes__0__cmd_snapshot(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__cmd_snapshot
 
 
 module motion_controller_servo__axes__0__code_backward(d,q,clock);
@@ -4802,44 +4623,6 @@ module motion_controller_servo__axes__0__dda_overrange_prev(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__dda_overrange_prev
-
-
-module motion_controller_servo__axes__0__dir_hold(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dir_hold
-
-
-module motion_controller_servo__axes__0__dir_setup(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dir_setup
 
 
 module motion_controller_servo__axes__0__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
@@ -7251,6 +7034,447 @@ module motion_controller_servo__axes__0__position__value(d,q,clock);
 endmodule // motion_controller_servo__axes__0__position__value
 
 
+module motion_controller_servo__axes__0__registers(clock,reset,address,write,write_data,snapshot,fifo_level,fifo_empty,fifo_full,fifo_low,step_overrun,interp_overrange,interp_overflow,encoder_error,index_seen,step_busy,uniform_running,step_mode_invalid,cmd_position,act_position,index_position,io_read_data,axis_config,step_len,step_space,dir_setup,dir_hold,sample_rate,command,fifo_write,read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [15:0] write_data;
+    input wire  snapshot;
+    input wire  [4:0] fifo_level;
+    input wire  fifo_empty;
+    input wire  fifo_full;
+    input wire  fifo_low;
+    input wire  step_overrun;
+    input wire  interp_overrange;
+    input wire  interp_overflow;
+    input wire  encoder_error;
+    input wire  index_seen;
+    input wire  step_busy;
+    input wire  uniform_running;
+    input wire  step_mode_invalid;
+    input wire  [31:0] cmd_position;
+    input wire  [31:0] act_position;
+    input wire  [31:0] index_position;
+    input wire  [31:0] io_read_data;
+    output reg  [13:0] axis_config;
+    output reg  [15:0] step_len;
+    output reg  [15:0] step_space;
+    output reg  [15:0] dir_setup;
+    output reg  [15:0] dir_hold;
+    output reg  [7:0] sample_rate;
+    output reg  command;
+    output reg  fifo_write;
+    output reg  [31:0] read_data;
+
+    // Constant declarations
+    localparam  window = 3'b1;
+    localparam  m_fifo_empty = 32'h10000;
+    localparam  m_fifo_full = 32'h20000;
+    localparam  m_fifo_low = 32'h40000;
+    localparam  m_step_overrun = 32'h1;
+    localparam  m_interp_overrange = 32'h2;
+    localparam  m_interp_overflow = 32'h4;
+    localparam  m_encoder_error = 32'h8;
+    localparam  m_index_seen = 32'h10;
+    localparam  m_step_busy = 32'h20;
+    localparam  m_uniform_running = 32'h40;
+    localparam  m_step_mode_invalid = 32'h80;
+    localparam  zero32 = 32'h0;
+    localparam  bit_mask__0 = 32'h1;
+    localparam  bit_mask__1 = 32'h2;
+    localparam  bit_mask__2 = 32'h4;
+    localparam  bit_mask__3 = 32'h8;
+    localparam  bit_mask__4 = 32'h10;
+    localparam  config_mask = 14'b11111111111100;
+    localparam  zero_config = 14'b0;
+    localparam  zero_timing = 16'h0;
+    localparam  zero_sample_rate = 8'h0;
+    localparam  off_fifo_write = 4'h0;
+    localparam  off_fifo_status = 4'h1;
+    localparam  off_config = 4'h2;
+    localparam  off_step_len = 4'h3;
+    localparam  off_step_space = 4'h4;
+    localparam  off_dir_setup = 4'h5;
+    localparam  off_dir_hold = 4'h6;
+    localparam  off_sample_rate = 4'h7;
+    localparam  off_cmd_position = 4'h8;
+    localparam  off_act_position = 4'h9;
+    localparam  off_cmd_snapshot = 4'ha;
+    localparam  off_act_snapshot = 4'hb;
+    localparam  off_axis_status = 4'hc;
+    localparam  off_index_position = 4'hd;
+    localparam  off_command = 4'he;
+
+    // Stub signals
+    reg  [13:0] config_reg__d;
+    wire  [13:0] config_reg__q;
+    reg  config_reg__clock;
+    reg  [15:0] step_len_reg__d;
+    wire  [15:0] step_len_reg__q;
+    reg  step_len_reg__clock;
+    reg  [15:0] step_space_reg__d;
+    wire  [15:0] step_space_reg__q;
+    reg  step_space_reg__clock;
+    reg  [15:0] dir_setup_reg__d;
+    wire  [15:0] dir_setup_reg__q;
+    reg  dir_setup_reg__clock;
+    reg  [15:0] dir_hold_reg__d;
+    wire  [15:0] dir_hold_reg__q;
+    reg  dir_hold_reg__clock;
+    reg  [7:0] sample_rate_reg__d;
+    wire  [7:0] sample_rate_reg__q;
+    reg  sample_rate_reg__clock;
+    reg  [31:0] cmd_snapshot__d;
+    wire  [31:0] cmd_snapshot__q;
+    reg  cmd_snapshot__clock;
+    reg  [31:0] act_snapshot__d;
+    wire  [31:0] act_snapshot__q;
+    reg  act_snapshot__clock;
+
+    // Local signals
+    reg  selected;
+    reg  [3:0] offset;
+    reg  [31:0] fifo_status;
+    reg  [31:0] axis_status;
+
+    // Sub module instances
+    motion_controller_servo__axes__0__registers__config_reg config_reg(
+        .d(config_reg__d),
+        .q(config_reg__q),
+        .clock(config_reg__clock)
+    );
+    motion_controller_servo__axes__0__registers__step_len_reg step_len_reg(
+        .d(step_len_reg__d),
+        .q(step_len_reg__q),
+        .clock(step_len_reg__clock)
+    );
+    motion_controller_servo__axes__0__registers__step_space_reg step_space_reg(
+        .d(step_space_reg__d),
+        .q(step_space_reg__q),
+        .clock(step_space_reg__clock)
+    );
+    motion_controller_servo__axes__0__registers__dir_setup_reg dir_setup_reg(
+        .d(dir_setup_reg__d),
+        .q(dir_setup_reg__q),
+        .clock(dir_setup_reg__clock)
+    );
+    motion_controller_servo__axes__0__registers__dir_hold_reg dir_hold_reg(
+        .d(dir_hold_reg__d),
+        .q(dir_hold_reg__q),
+        .clock(dir_hold_reg__clock)
+    );
+    motion_controller_servo__axes__0__registers__sample_rate_reg sample_rate_reg(
+        .d(sample_rate_reg__d),
+        .q(sample_rate_reg__q),
+        .clock(sample_rate_reg__clock)
+    );
+    motion_controller_servo__axes__0__registers__cmd_snapshot cmd_snapshot(
+        .d(cmd_snapshot__d),
+        .q(cmd_snapshot__q),
+        .clock(cmd_snapshot__clock)
+    );
+    motion_controller_servo__axes__0__registers__act_snapshot act_snapshot(
+        .d(act_snapshot__d),
+        .q(act_snapshot__q),
+        .clock(act_snapshot__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        config_reg__clock = clock;
+        step_len_reg__clock = clock;
+        step_space_reg__clock = clock;
+        dir_setup_reg__clock = clock;
+        dir_hold_reg__clock = clock;
+        sample_rate_reg__clock = clock;
+        cmd_snapshot__clock = clock;
+        act_snapshot__clock = clock;
+        config_reg__d = config_reg__q;
+        step_len_reg__d = step_len_reg__q;
+        step_space_reg__d = step_space_reg__q;
+        dir_setup_reg__d = dir_setup_reg__q;
+        dir_hold_reg__d = dir_hold_reg__q;
+        sample_rate_reg__d = sample_rate_reg__q;
+        cmd_snapshot__d = cmd_snapshot__q;
+        act_snapshot__d = act_snapshot__q;
+        axis_config = config_reg__q;
+        step_len = step_len_reg__q;
+        step_space = step_space_reg__q;
+        dir_setup = dir_setup_reg__q;
+        dir_hold = dir_hold_reg__q;
+        sample_rate = sample_rate_reg__q;
+        selected = (address[(32'h5)+:(3)] == window) & ~address[32'h4];
+        offset = address[(32'h0)+:(4)];
+        command = write & selected & (offset == off_command);
+        fifo_write = write & selected & (offset == off_fifo_write);
+        if (write & selected) begin
+            if (offset == off_config) begin
+                config_reg__d = write_data[(32'h0)+:(14)] & config_mask;
+            end
+            if (offset == off_step_len) begin
+                step_len_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_step_space) begin
+                step_space_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_dir_setup) begin
+                dir_setup_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_dir_hold) begin
+                dir_hold_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_sample_rate) begin
+                sample_rate_reg__d = write_data[(32'h0)+:(8)];
+            end
+        end
+        if (snapshot) begin
+            cmd_snapshot__d = cmd_position;
+            act_snapshot__d = act_position;
+        end
+        fifo_status = zero32;
+        if (fifo_level[0]) begin
+            fifo_status = fifo_status | bit_mask__0;
+        end
+        if (fifo_level[1]) begin
+            fifo_status = fifo_status | bit_mask__1;
+        end
+        if (fifo_level[2]) begin
+            fifo_status = fifo_status | bit_mask__2;
+        end
+        if (fifo_level[3]) begin
+            fifo_status = fifo_status | bit_mask__3;
+        end
+        if (fifo_level[4]) begin
+            fifo_status = fifo_status | bit_mask__4;
+        end
+        if (fifo_empty) begin
+            fifo_status = fifo_status | m_fifo_empty;
+        end
+        if (fifo_full) begin
+            fifo_status = fifo_status | m_fifo_full;
+        end
+        if (fifo_low) begin
+            fifo_status = fifo_status | m_fifo_low;
+        end
+        axis_status = zero32;
+        if (step_overrun) begin
+            axis_status = axis_status | m_step_overrun;
+        end
+        if (interp_overrange) begin
+            axis_status = axis_status | m_interp_overrange;
+        end
+        if (interp_overflow) begin
+            axis_status = axis_status | m_interp_overflow;
+        end
+        if (encoder_error) begin
+            axis_status = axis_status | m_encoder_error;
+        end
+        if (index_seen) begin
+            axis_status = axis_status | m_index_seen;
+        end
+        if (step_busy) begin
+            axis_status = axis_status | m_step_busy;
+        end
+        if (uniform_running) begin
+            axis_status = axis_status | m_uniform_running;
+        end
+        if (step_mode_invalid) begin
+            axis_status = axis_status | m_step_mode_invalid;
+        end
+        read_data = io_read_data;
+        if (selected) begin
+            if (offset == off_fifo_status) begin
+                read_data = read_data | fifo_status;
+            end
+            if (offset == off_cmd_position) begin
+                read_data = read_data | cmd_position;
+            end
+            if (offset == off_act_position) begin
+                read_data = read_data | act_position;
+            end
+            if (offset == off_cmd_snapshot) begin
+                read_data = read_data | cmd_snapshot__q;
+            end
+            if (offset == off_act_snapshot) begin
+                read_data = read_data | act_snapshot__q;
+            end
+            if (offset == off_axis_status) begin
+                read_data = read_data | axis_status;
+            end
+            if (offset == off_index_position) begin
+                read_data = read_data | index_position;
+            end
+        end
+        if (reset) begin
+            config_reg__d = zero_config;
+            step_len_reg__d = zero_timing;
+            step_space_reg__d = zero_timing;
+            dir_setup_reg__d = zero_timing;
+            dir_hold_reg__d = zero_timing;
+            sample_rate_reg__d = zero_sample_rate;
+            cmd_snapshot__d = zero32;
+            act_snapshot__d = zero32;
+        end
+    end
+
+endmodule // motion_controller_servo__axes__0__registers
+
+
+module motion_controller_servo__axes__0__registers__act_snapshot(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__act_snapshot
+
+
+module motion_controller_servo__axes__0__registers__cmd_snapshot(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__cmd_snapshot
+
+
+module motion_controller_servo__axes__0__registers__config_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [13:0] d;
+    output reg  [13:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 14'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__config_reg
+
+
+module motion_controller_servo__axes__0__registers__dir_hold_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__dir_hold_reg
+
+
+module motion_controller_servo__axes__0__registers__dir_setup_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__dir_setup_reg
+
+
+module motion_controller_servo__axes__0__registers__sample_rate_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__sample_rate_reg
+
+
+module motion_controller_servo__axes__0__registers__step_len_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__step_len_reg
+
+
+module motion_controller_servo__axes__0__registers__step_space_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__registers__step_space_reg
+
+
 module motion_controller_servo__axes__0__request(d,q,clock);
 
     // Module arguments
@@ -7289,25 +7513,6 @@ module motion_controller_servo__axes__0__request_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__0__request_forward
 
 
-module motion_controller_servo__axes__0__sample_rate(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__sample_rate
-
-
 module motion_controller_servo__axes__0__saturated(d,q,clock);
 
     // Module arguments
@@ -7325,25 +7530,6 @@ module motion_controller_servo__axes__0__saturated(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__saturated
-
-
-module motion_controller_servo__axes__0__settings(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__settings
 
 
 module motion_controller_servo__axes__0__stage(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward,flush,pending_forward,pending_backward);
@@ -8157,44 +8343,6 @@ module motion_controller_servo__axes__0__stage__timing_setup(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__stage__timing_setup
-
-
-module motion_controller_servo__axes__0__step_len(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__step_len
-
-
-module motion_controller_servo__axes__0__step_space(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__step_space
 
 
 module motion_controller_servo__axes__0__tick_d(d,q,clock);
@@ -9539,43 +9687,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  bit0_32 = 32'h1;
-    localparam  bit16_32 = 32'h10000;
-    localparam  bit17_32 = 32'h20000;
-    localparam  bit18_32 = 32'h40000;
-    localparam  bit1_32 = 32'h2;
-    localparam  bit2_32 = 32'h4;
-    localparam  bit3_32 = 32'h8;
-    localparam  bit4_32 = 32'h10;
-    localparam  bit5_32 = 32'h20;
-    localparam  bit6_32 = 32'h40;
-    localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
-    localparam  bit_mask__0 = 32'h1;
-    localparam  bit_mask__1 = 32'h2;
-    localparam  bit_mask__2 = 32'h4;
-    localparam  bit_mask__3 = 32'h8;
-    localparam  bit_mask__4 = 32'h10;
-    localparam  mask16 = 32'hffff;
-    localparam  config_mask = 32'h3ffc;
-    localparam  mask8 = 32'hff;
-    localparam  off_fifo_write = 4'h0;
-    localparam  off_fifo_status = 4'h1;
-    localparam  off_config = 4'h2;
-    localparam  off_step_len = 4'h3;
-    localparam  off_step_space = 4'h4;
-    localparam  off_dir_setup = 4'h5;
-    localparam  off_dir_hold = 4'h6;
-    localparam  off_sample_rate = 4'h7;
-    localparam  off_cmd_position = 4'h8;
-    localparam  off_act_position = 4'h9;
-    localparam  off_cmd_snapshot = 4'ha;
-    localparam  off_act_snapshot = 4'hb;
-    localparam  off_axis_status = 4'hc;
-    localparam  off_index_position = 4'hd;
-    localparam  off_command = 4'he;
 
     // Stub signals
     reg  fifo__clock;
@@ -9705,24 +9819,37 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     wire  io__alarm_event;
     wire  io__home_event;
     wire  io__drive_enable;
-    reg  [31:0] settings__d;
-    wire  [31:0] settings__q;
-    reg  settings__clock;
-    reg  [31:0] step_len__d;
-    wire  [31:0] step_len__q;
-    reg  step_len__clock;
-    reg  [31:0] step_space__d;
-    wire  [31:0] step_space__q;
-    reg  step_space__clock;
-    reg  [31:0] dir_setup__d;
-    wire  [31:0] dir_setup__q;
-    reg  dir_setup__clock;
-    reg  [31:0] dir_hold__d;
-    wire  [31:0] dir_hold__q;
-    reg  dir_hold__clock;
-    reg  [31:0] sample_rate__d;
-    wire  [31:0] sample_rate__q;
-    reg  sample_rate__clock;
+    reg  registers__clock;
+    reg  registers__reset;
+    reg  [7:0] registers__address;
+    reg  registers__write;
+    reg  [15:0] registers__write_data;
+    reg  registers__snapshot;
+    reg  [4:0] registers__fifo_level;
+    reg  registers__fifo_empty;
+    reg  registers__fifo_full;
+    reg  registers__fifo_low;
+    reg  registers__step_overrun;
+    reg  registers__interp_overrange;
+    reg  registers__interp_overflow;
+    reg  registers__encoder_error;
+    reg  registers__index_seen;
+    reg  registers__step_busy;
+    reg  registers__uniform_running;
+    reg  registers__step_mode_invalid;
+    reg  [31:0] registers__cmd_position;
+    reg  [31:0] registers__act_position;
+    reg  [31:0] registers__index_position;
+    reg  [31:0] registers__io_read_data;
+    wire  [13:0] registers__axis_config;
+    wire  [15:0] registers__step_len;
+    wire  [15:0] registers__step_space;
+    wire  [15:0] registers__dir_setup;
+    wire  [15:0] registers__dir_hold;
+    wire  [7:0] registers__sample_rate;
+    wire  registers__command;
+    wire  registers__fifo_write;
+    wire  [31:0] registers__read_data;
     reg  [19:0] popped__d;
     wire  [19:0] popped__q;
     reg  popped__clock;
@@ -9801,12 +9928,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  request_forward__d;
     wire  request_forward__q;
     reg  request_forward__clock;
-    reg  [31:0] cmd_snapshot__d;
-    wire  [31:0] cmd_snapshot__q;
-    reg  cmd_snapshot__clock;
-    reg  [31:0] act_snapshot__d;
-    wire  [31:0] act_snapshot__q;
-    reg  act_snapshot__clock;
     reg  encoder_error_prev__d;
     wire  encoder_error_prev__q;
     reg  encoder_error_prev__clock;
@@ -9814,12 +9935,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     // Local signals
     reg  clear_position;
     reg  code_nonzero;
-    reg  selected;
-    reg  [3:0] offset;
     reg  candidate;
     reg  candidate_forward;
     reg  candidate_blocked;
-    reg  command;
     reg  clear_faults;
     reg  too_large;
     reg  [15:0] count;
@@ -9830,8 +9948,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
-    reg  [31:0] fifo_status;
-    reg  [31:0] axis_status;
 
     // Sub module instances
     motion_controller_servo__axes__1__fifo fifo(
@@ -9975,35 +10091,38 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .home_event(io__home_event),
         .drive_enable(io__drive_enable)
     );
-    motion_controller_servo__axes__1__settings settings(
-        .d(settings__d),
-        .q(settings__q),
-        .clock(settings__clock)
-    );
-    motion_controller_servo__axes__1__step_len step_len(
-        .d(step_len__d),
-        .q(step_len__q),
-        .clock(step_len__clock)
-    );
-    motion_controller_servo__axes__1__step_space step_space(
-        .d(step_space__d),
-        .q(step_space__q),
-        .clock(step_space__clock)
-    );
-    motion_controller_servo__axes__1__dir_setup dir_setup(
-        .d(dir_setup__d),
-        .q(dir_setup__q),
-        .clock(dir_setup__clock)
-    );
-    motion_controller_servo__axes__1__dir_hold dir_hold(
-        .d(dir_hold__d),
-        .q(dir_hold__q),
-        .clock(dir_hold__clock)
-    );
-    motion_controller_servo__axes__1__sample_rate sample_rate(
-        .d(sample_rate__d),
-        .q(sample_rate__q),
-        .clock(sample_rate__clock)
+    motion_controller_servo__axes__1__registers registers(
+        .clock(registers__clock),
+        .reset(registers__reset),
+        .address(registers__address),
+        .write(registers__write),
+        .write_data(registers__write_data),
+        .snapshot(registers__snapshot),
+        .fifo_level(registers__fifo_level),
+        .fifo_empty(registers__fifo_empty),
+        .fifo_full(registers__fifo_full),
+        .fifo_low(registers__fifo_low),
+        .step_overrun(registers__step_overrun),
+        .interp_overrange(registers__interp_overrange),
+        .interp_overflow(registers__interp_overflow),
+        .encoder_error(registers__encoder_error),
+        .index_seen(registers__index_seen),
+        .step_busy(registers__step_busy),
+        .uniform_running(registers__uniform_running),
+        .step_mode_invalid(registers__step_mode_invalid),
+        .cmd_position(registers__cmd_position),
+        .act_position(registers__act_position),
+        .index_position(registers__index_position),
+        .io_read_data(registers__io_read_data),
+        .axis_config(registers__axis_config),
+        .step_len(registers__step_len),
+        .step_space(registers__step_space),
+        .dir_setup(registers__dir_setup),
+        .dir_hold(registers__dir_hold),
+        .sample_rate(registers__sample_rate),
+        .command(registers__command),
+        .fifo_write(registers__fifo_write),
+        .read_data(registers__read_data)
     );
     motion_controller_servo__axes__1__popped popped(
         .d(popped__d),
@@ -10135,16 +10254,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .q(request_forward__q),
         .clock(request_forward__clock)
     );
-    motion_controller_servo__axes__1__cmd_snapshot cmd_snapshot(
-        .d(cmd_snapshot__d),
-        .q(cmd_snapshot__q),
-        .clock(cmd_snapshot__clock)
-    );
-    motion_controller_servo__axes__1__act_snapshot act_snapshot(
-        .d(act_snapshot__d),
-        .q(act_snapshot__q),
-        .clock(act_snapshot__clock)
-    );
     motion_controller_servo__axes__1__encoder_error_prev encoder_error_prev(
         .d(encoder_error_prev__d),
         .q(encoder_error_prev__q),
@@ -10153,12 +10262,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
 
     // Update code
     always @(*) begin
-        settings__clock = clock;
-        step_len__clock = clock;
-        step_space__clock = clock;
-        dir_setup__clock = clock;
-        dir_hold__clock = clock;
-        sample_rate__clock = clock;
         popped__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
@@ -10185,15 +10288,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         uniform_pulse_prev__clock = clock;
         request__clock = clock;
         request_forward__clock = clock;
-        cmd_snapshot__clock = clock;
-        act_snapshot__clock = clock;
         encoder_error_prev__clock = clock;
-        settings__d = settings__q;
-        step_len__d = step_len__q;
-        step_space__d = step_space__q;
-        dir_setup__d = dir_setup__q;
-        dir_hold__d = dir_hold__q;
-        sample_rate__d = sample_rate__q;
         popped__d = popped__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
@@ -10220,8 +10315,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         uniform_pulse_prev__d = uniform_pulse_prev__q;
         request__d = request__q;
         request_forward__d = request_forward__q;
-        cmd_snapshot__d = cmd_snapshot__q;
-        act_snapshot__d = act_snapshot__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
         dda__clock = clock;
@@ -10230,32 +10323,15 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         position__clock = clock;
         encoder__clock = clock;
         io__clock = clock;
-        selected = (address[(32'h5)+:(3)] == window) & ~address[32'h4];
-        offset = address[(32'h0)+:(4)];
-        command = write & selected & (offset == off_command);
-        clear_faults = command & write_data[32'h0];
-        if (write & selected) begin
-            if (offset == off_config) begin
-                settings__d = write_data & config_mask;
-            end
-            if (offset == off_step_len) begin
-                step_len__d = write_data & mask16;
-            end
-            if (offset == off_step_space) begin
-                step_space__d = write_data & mask16;
-            end
-            if (offset == off_dir_setup) begin
-                dir_setup__d = write_data & mask16;
-            end
-            if (offset == off_dir_hold) begin
-                dir_hold__d = write_data & mask16;
-            end
-            if (offset == off_sample_rate) begin
-                sample_rate__d = write_data & mask8;
-            end
-        end
+        registers__clock = clock;
+        registers__reset = reset;
+        registers__address = address;
+        registers__write = write;
+        registers__write_data = write_data[(32'h0)+:(16)];
+        registers__snapshot = snapshot;
+        clear_faults = registers__command & write_data[32'h0];
         fifo__reset = reset | flush;
-        fifo__write = write & selected & (offset == off_fifo_write);
+        fifo__write = registers__fifo_write;
         fifo__write_data = fifo_entry;
         fifo__pop = pop;
         fifo__low_water = low_water;
@@ -10296,10 +10372,10 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             overflow_flag__d = 1'b1;
         end
         if (start & ~uniform_running) begin
-            uniform_active__d = settings__q[32'h0];
+            uniform_active__d = registers__axis_config[32'h0];
         end
         if (start) begin
-            analog_active__d = has_analog & settings__q[32'hd];
+            analog_active__d = has_analog & registers__axis_config[32'hd];
         end
         if (popped_valid__q) begin
             forward__d = ~popped__q[32'h11];
@@ -10330,7 +10406,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         uniform__tick = tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
-        uniform__mode = settings__q[32'h1];
+        uniform__mode = registers__axis_config[32'h1];
         uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
@@ -10365,18 +10441,18 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         stage__step = request__q;
         stage__dir = request_forward__q;
         stage__flush = abort | io__cut;
-        stage__mode = settings__q[(32'h2)+:(2)];
-        stage__step_len = step_len__q[(32'h0)+:(16)];
-        stage__step_space = step_space__q[(32'h0)+:(16)];
-        stage__dir_setup = dir_setup__q[(32'h0)+:(16)];
-        stage__dir_hold = dir_hold__q[(32'h0)+:(16)];
+        stage__mode = registers__axis_config[(32'h2)+:(2)];
+        stage__step_len = registers__step_len[(32'h0)+:(16)];
+        stage__step_space = registers__step_space[(32'h0)+:(16)];
+        stage__dir_setup = registers__dir_setup[(32'h0)+:(16)];
+        stage__dir_hold = registers__dir_hold[(32'h0)+:(16)];
         stage__clear_overrun = clear_faults;
         out_a = stage__out_a;
         out_b = stage__out_b;
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        clear_position = (command & write_data[32'h3]) | clear_position_pending__q;
+        clear_position = (registers__command & write_data[32'h3]) | clear_position_pending__q;
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
@@ -10386,16 +10462,16 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         encoder__a = enc_a;
         encoder__b = enc_b;
         encoder__index = enc_index;
-        encoder__filter = settings__q[(32'h4)+:(4)];
-        encoder__sample_rate = sample_rate__q[(32'h0)+:(8)];
-        encoder__counter_mode = settings__q[32'h8];
-        encoder__index_invert = settings__q[32'h9];
-        encoder__index_clear = settings__q[32'ha];
-        encoder__index_latch = settings__q[32'hb];
-        encoder__index_once = settings__q[32'hc];
-        encoder__clear = command & write_data[32'h1];
-        encoder__index_rearm = command & write_data[32'h2];
-        encoder__clear_error = command & write_data[32'h4];
+        encoder__filter = registers__axis_config[(32'h4)+:(4)];
+        encoder__sample_rate = registers__sample_rate[(32'h0)+:(8)];
+        encoder__counter_mode = registers__axis_config[32'h8];
+        encoder__index_invert = registers__axis_config[32'h9];
+        encoder__index_clear = registers__axis_config[32'ha];
+        encoder__index_latch = registers__axis_config[32'hb];
+        encoder__index_once = registers__axis_config[32'hc];
+        encoder__clear = registers__command & write_data[32'h1];
+        encoder__index_rearm = registers__command & write_data[32'h2];
+        encoder__clear_error = registers__command & write_data[32'h4];
         io__reset = reset;
         io__selected = (address[(32'h5)+:(3)] == window) & address[32'h4];
         io__offset = address[(32'h0)+:(4)];
@@ -10422,10 +10498,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         limit_event = io__limit_event;
         alarm_event = io__alarm_event;
         home_event = io__home_event;
-        if (snapshot) begin
-            cmd_snapshot__d = position__count;
-            act_snapshot__d = encoder__count;
-        end
         overrun_prev__d = stage__overrun;
         dda_overrange_prev__d = dda__overrange;
         uniform_overrange_prev__d = uniform_overrange;
@@ -10434,87 +10506,24 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
-        fifo_status = zero32;
-        if (fifo__level[0]) begin
-            fifo_status = fifo_status | bit_mask__0;
-        end
-        if (fifo__level[1]) begin
-            fifo_status = fifo_status | bit_mask__1;
-        end
-        if (fifo__level[2]) begin
-            fifo_status = fifo_status | bit_mask__2;
-        end
-        if (fifo__level[3]) begin
-            fifo_status = fifo_status | bit_mask__3;
-        end
-        if (fifo__level[4]) begin
-            fifo_status = fifo_status | bit_mask__4;
-        end
-        if (fifo__empty) begin
-            fifo_status = fifo_status | bit16_32;
-        end
-        if (fifo__full) begin
-            fifo_status = fifo_status | bit17_32;
-        end
-        if (fifo__low) begin
-            fifo_status = fifo_status | bit18_32;
-        end
-        axis_status = zero32;
-        if (stage__overrun) begin
-            axis_status = axis_status | bit0_32;
-        end
-        if (overrange_flag__q) begin
-            axis_status = axis_status | bit1_32;
-        end
-        if (overflow_flag__q) begin
-            axis_status = axis_status | bit2_32;
-        end
-        if (encoder__error) begin
-            axis_status = axis_status | bit3_32;
-        end
-        if (encoder__index_seen) begin
-            axis_status = axis_status | bit4_32;
-        end
-        if (stage__busy) begin
-            axis_status = axis_status | bit5_32;
-        end
-        if (uniform_running) begin
-            axis_status = axis_status | bit6_32;
-        end
-        if (stage__mode_invalid) begin
-            axis_status = axis_status | bit7_32;
-        end
-        read_data = io__read_data;
-        if (selected) begin
-            if (offset == off_fifo_status) begin
-                read_data = read_data | fifo_status;
-            end
-            if (offset == off_cmd_position) begin
-                read_data = read_data | position__count;
-            end
-            if (offset == off_act_position) begin
-                read_data = read_data | encoder__count;
-            end
-            if (offset == off_cmd_snapshot) begin
-                read_data = read_data | cmd_snapshot__q;
-            end
-            if (offset == off_act_snapshot) begin
-                read_data = read_data | act_snapshot__q;
-            end
-            if (offset == off_axis_status) begin
-                read_data = read_data | axis_status;
-            end
-            if (offset == off_index_position) begin
-                read_data = read_data | encoder__index_count;
-            end
-        end
+        registers__fifo_level = fifo__level;
+        registers__fifo_empty = fifo__empty;
+        registers__fifo_full = fifo__full;
+        registers__fifo_low = fifo__low;
+        registers__step_overrun = stage__overrun;
+        registers__interp_overrange = overrange_flag__q;
+        registers__interp_overflow = overflow_flag__q;
+        registers__encoder_error = encoder__error;
+        registers__index_seen = encoder__index_seen;
+        registers__step_busy = stage__busy;
+        registers__uniform_running = uniform_running;
+        registers__step_mode_invalid = stage__mode_invalid;
+        registers__cmd_position = position__count;
+        registers__act_position = encoder__count;
+        registers__index_position = encoder__index_count;
+        registers__io_read_data = io__read_data;
+        read_data = registers__read_data;
         if (reset) begin
-            settings__d = zero32;
-            step_len__d = zero32;
-            step_space__d = zero32;
-            dir_setup__d = zero32;
-            dir_hold__d = zero32;
-            sample_rate__d = zero32;
             popped__d = zero_entry;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
@@ -10541,32 +10550,11 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             uniform_pulse_prev__d = 1'b0;
             request__d = 1'b0;
             request_forward__d = 1'b0;
-            cmd_snapshot__d = zero32;
-            act_snapshot__d = zero32;
             encoder_error_prev__d = 1'b0;
         end
     end
 
 endmodule // motion_controller_servo__axes__1
-
-
-module motion_controller_servo__axes__1__act_snapshot(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__act_snapshot
 
 
 module motion_controller_servo__axes__1__analog_active(d,q,clock);
@@ -10605,25 +10593,6 @@ module motion_controller_servo__axes__1__clear_position_pending(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__clear_position_pending
-
-
-module motion_controller_servo__axes__1__cmd_snapshot(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__cmd_snapshot
 
 
 module motion_controller_servo__axes__1__code_backward(d,q,clock);
@@ -11007,44 +10976,6 @@ module motion_controller_servo__axes__1__dda_overrange_prev(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__dda_overrange_prev
-
-
-module motion_controller_servo__axes__1__dir_hold(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dir_hold
-
-
-module motion_controller_servo__axes__1__dir_setup(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dir_setup
 
 
 module motion_controller_servo__axes__1__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
@@ -13456,6 +13387,447 @@ module motion_controller_servo__axes__1__position__value(d,q,clock);
 endmodule // motion_controller_servo__axes__1__position__value
 
 
+module motion_controller_servo__axes__1__registers(clock,reset,address,write,write_data,snapshot,fifo_level,fifo_empty,fifo_full,fifo_low,step_overrun,interp_overrange,interp_overflow,encoder_error,index_seen,step_busy,uniform_running,step_mode_invalid,cmd_position,act_position,index_position,io_read_data,axis_config,step_len,step_space,dir_setup,dir_hold,sample_rate,command,fifo_write,read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [15:0] write_data;
+    input wire  snapshot;
+    input wire  [4:0] fifo_level;
+    input wire  fifo_empty;
+    input wire  fifo_full;
+    input wire  fifo_low;
+    input wire  step_overrun;
+    input wire  interp_overrange;
+    input wire  interp_overflow;
+    input wire  encoder_error;
+    input wire  index_seen;
+    input wire  step_busy;
+    input wire  uniform_running;
+    input wire  step_mode_invalid;
+    input wire  [31:0] cmd_position;
+    input wire  [31:0] act_position;
+    input wire  [31:0] index_position;
+    input wire  [31:0] io_read_data;
+    output reg  [13:0] axis_config;
+    output reg  [15:0] step_len;
+    output reg  [15:0] step_space;
+    output reg  [15:0] dir_setup;
+    output reg  [15:0] dir_hold;
+    output reg  [7:0] sample_rate;
+    output reg  command;
+    output reg  fifo_write;
+    output reg  [31:0] read_data;
+
+    // Constant declarations
+    localparam  window = 3'b10;
+    localparam  m_fifo_empty = 32'h10000;
+    localparam  m_fifo_full = 32'h20000;
+    localparam  m_fifo_low = 32'h40000;
+    localparam  m_step_overrun = 32'h1;
+    localparam  m_interp_overrange = 32'h2;
+    localparam  m_interp_overflow = 32'h4;
+    localparam  m_encoder_error = 32'h8;
+    localparam  m_index_seen = 32'h10;
+    localparam  m_step_busy = 32'h20;
+    localparam  m_uniform_running = 32'h40;
+    localparam  m_step_mode_invalid = 32'h80;
+    localparam  zero32 = 32'h0;
+    localparam  bit_mask__0 = 32'h1;
+    localparam  bit_mask__1 = 32'h2;
+    localparam  bit_mask__2 = 32'h4;
+    localparam  bit_mask__3 = 32'h8;
+    localparam  bit_mask__4 = 32'h10;
+    localparam  config_mask = 14'b11111111111100;
+    localparam  zero_config = 14'b0;
+    localparam  zero_timing = 16'h0;
+    localparam  zero_sample_rate = 8'h0;
+    localparam  off_fifo_write = 4'h0;
+    localparam  off_fifo_status = 4'h1;
+    localparam  off_config = 4'h2;
+    localparam  off_step_len = 4'h3;
+    localparam  off_step_space = 4'h4;
+    localparam  off_dir_setup = 4'h5;
+    localparam  off_dir_hold = 4'h6;
+    localparam  off_sample_rate = 4'h7;
+    localparam  off_cmd_position = 4'h8;
+    localparam  off_act_position = 4'h9;
+    localparam  off_cmd_snapshot = 4'ha;
+    localparam  off_act_snapshot = 4'hb;
+    localparam  off_axis_status = 4'hc;
+    localparam  off_index_position = 4'hd;
+    localparam  off_command = 4'he;
+
+    // Stub signals
+    reg  [13:0] config_reg__d;
+    wire  [13:0] config_reg__q;
+    reg  config_reg__clock;
+    reg  [15:0] step_len_reg__d;
+    wire  [15:0] step_len_reg__q;
+    reg  step_len_reg__clock;
+    reg  [15:0] step_space_reg__d;
+    wire  [15:0] step_space_reg__q;
+    reg  step_space_reg__clock;
+    reg  [15:0] dir_setup_reg__d;
+    wire  [15:0] dir_setup_reg__q;
+    reg  dir_setup_reg__clock;
+    reg  [15:0] dir_hold_reg__d;
+    wire  [15:0] dir_hold_reg__q;
+    reg  dir_hold_reg__clock;
+    reg  [7:0] sample_rate_reg__d;
+    wire  [7:0] sample_rate_reg__q;
+    reg  sample_rate_reg__clock;
+    reg  [31:0] cmd_snapshot__d;
+    wire  [31:0] cmd_snapshot__q;
+    reg  cmd_snapshot__clock;
+    reg  [31:0] act_snapshot__d;
+    wire  [31:0] act_snapshot__q;
+    reg  act_snapshot__clock;
+
+    // Local signals
+    reg  selected;
+    reg  [3:0] offset;
+    reg  [31:0] fifo_status;
+    reg  [31:0] axis_status;
+
+    // Sub module instances
+    motion_controller_servo__axes__1__registers__config_reg config_reg(
+        .d(config_reg__d),
+        .q(config_reg__q),
+        .clock(config_reg__clock)
+    );
+    motion_controller_servo__axes__1__registers__step_len_reg step_len_reg(
+        .d(step_len_reg__d),
+        .q(step_len_reg__q),
+        .clock(step_len_reg__clock)
+    );
+    motion_controller_servo__axes__1__registers__step_space_reg step_space_reg(
+        .d(step_space_reg__d),
+        .q(step_space_reg__q),
+        .clock(step_space_reg__clock)
+    );
+    motion_controller_servo__axes__1__registers__dir_setup_reg dir_setup_reg(
+        .d(dir_setup_reg__d),
+        .q(dir_setup_reg__q),
+        .clock(dir_setup_reg__clock)
+    );
+    motion_controller_servo__axes__1__registers__dir_hold_reg dir_hold_reg(
+        .d(dir_hold_reg__d),
+        .q(dir_hold_reg__q),
+        .clock(dir_hold_reg__clock)
+    );
+    motion_controller_servo__axes__1__registers__sample_rate_reg sample_rate_reg(
+        .d(sample_rate_reg__d),
+        .q(sample_rate_reg__q),
+        .clock(sample_rate_reg__clock)
+    );
+    motion_controller_servo__axes__1__registers__cmd_snapshot cmd_snapshot(
+        .d(cmd_snapshot__d),
+        .q(cmd_snapshot__q),
+        .clock(cmd_snapshot__clock)
+    );
+    motion_controller_servo__axes__1__registers__act_snapshot act_snapshot(
+        .d(act_snapshot__d),
+        .q(act_snapshot__q),
+        .clock(act_snapshot__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        config_reg__clock = clock;
+        step_len_reg__clock = clock;
+        step_space_reg__clock = clock;
+        dir_setup_reg__clock = clock;
+        dir_hold_reg__clock = clock;
+        sample_rate_reg__clock = clock;
+        cmd_snapshot__clock = clock;
+        act_snapshot__clock = clock;
+        config_reg__d = config_reg__q;
+        step_len_reg__d = step_len_reg__q;
+        step_space_reg__d = step_space_reg__q;
+        dir_setup_reg__d = dir_setup_reg__q;
+        dir_hold_reg__d = dir_hold_reg__q;
+        sample_rate_reg__d = sample_rate_reg__q;
+        cmd_snapshot__d = cmd_snapshot__q;
+        act_snapshot__d = act_snapshot__q;
+        axis_config = config_reg__q;
+        step_len = step_len_reg__q;
+        step_space = step_space_reg__q;
+        dir_setup = dir_setup_reg__q;
+        dir_hold = dir_hold_reg__q;
+        sample_rate = sample_rate_reg__q;
+        selected = (address[(32'h5)+:(3)] == window) & ~address[32'h4];
+        offset = address[(32'h0)+:(4)];
+        command = write & selected & (offset == off_command);
+        fifo_write = write & selected & (offset == off_fifo_write);
+        if (write & selected) begin
+            if (offset == off_config) begin
+                config_reg__d = write_data[(32'h0)+:(14)] & config_mask;
+            end
+            if (offset == off_step_len) begin
+                step_len_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_step_space) begin
+                step_space_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_dir_setup) begin
+                dir_setup_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_dir_hold) begin
+                dir_hold_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_sample_rate) begin
+                sample_rate_reg__d = write_data[(32'h0)+:(8)];
+            end
+        end
+        if (snapshot) begin
+            cmd_snapshot__d = cmd_position;
+            act_snapshot__d = act_position;
+        end
+        fifo_status = zero32;
+        if (fifo_level[0]) begin
+            fifo_status = fifo_status | bit_mask__0;
+        end
+        if (fifo_level[1]) begin
+            fifo_status = fifo_status | bit_mask__1;
+        end
+        if (fifo_level[2]) begin
+            fifo_status = fifo_status | bit_mask__2;
+        end
+        if (fifo_level[3]) begin
+            fifo_status = fifo_status | bit_mask__3;
+        end
+        if (fifo_level[4]) begin
+            fifo_status = fifo_status | bit_mask__4;
+        end
+        if (fifo_empty) begin
+            fifo_status = fifo_status | m_fifo_empty;
+        end
+        if (fifo_full) begin
+            fifo_status = fifo_status | m_fifo_full;
+        end
+        if (fifo_low) begin
+            fifo_status = fifo_status | m_fifo_low;
+        end
+        axis_status = zero32;
+        if (step_overrun) begin
+            axis_status = axis_status | m_step_overrun;
+        end
+        if (interp_overrange) begin
+            axis_status = axis_status | m_interp_overrange;
+        end
+        if (interp_overflow) begin
+            axis_status = axis_status | m_interp_overflow;
+        end
+        if (encoder_error) begin
+            axis_status = axis_status | m_encoder_error;
+        end
+        if (index_seen) begin
+            axis_status = axis_status | m_index_seen;
+        end
+        if (step_busy) begin
+            axis_status = axis_status | m_step_busy;
+        end
+        if (uniform_running) begin
+            axis_status = axis_status | m_uniform_running;
+        end
+        if (step_mode_invalid) begin
+            axis_status = axis_status | m_step_mode_invalid;
+        end
+        read_data = io_read_data;
+        if (selected) begin
+            if (offset == off_fifo_status) begin
+                read_data = read_data | fifo_status;
+            end
+            if (offset == off_cmd_position) begin
+                read_data = read_data | cmd_position;
+            end
+            if (offset == off_act_position) begin
+                read_data = read_data | act_position;
+            end
+            if (offset == off_cmd_snapshot) begin
+                read_data = read_data | cmd_snapshot__q;
+            end
+            if (offset == off_act_snapshot) begin
+                read_data = read_data | act_snapshot__q;
+            end
+            if (offset == off_axis_status) begin
+                read_data = read_data | axis_status;
+            end
+            if (offset == off_index_position) begin
+                read_data = read_data | index_position;
+            end
+        end
+        if (reset) begin
+            config_reg__d = zero_config;
+            step_len_reg__d = zero_timing;
+            step_space_reg__d = zero_timing;
+            dir_setup_reg__d = zero_timing;
+            dir_hold_reg__d = zero_timing;
+            sample_rate_reg__d = zero_sample_rate;
+            cmd_snapshot__d = zero32;
+            act_snapshot__d = zero32;
+        end
+    end
+
+endmodule // motion_controller_servo__axes__1__registers
+
+
+module motion_controller_servo__axes__1__registers__act_snapshot(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__act_snapshot
+
+
+module motion_controller_servo__axes__1__registers__cmd_snapshot(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__cmd_snapshot
+
+
+module motion_controller_servo__axes__1__registers__config_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [13:0] d;
+    output reg  [13:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 14'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__config_reg
+
+
+module motion_controller_servo__axes__1__registers__dir_hold_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__dir_hold_reg
+
+
+module motion_controller_servo__axes__1__registers__dir_setup_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__dir_setup_reg
+
+
+module motion_controller_servo__axes__1__registers__sample_rate_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__sample_rate_reg
+
+
+module motion_controller_servo__axes__1__registers__step_len_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__step_len_reg
+
+
+module motion_controller_servo__axes__1__registers__step_space_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__registers__step_space_reg
+
+
 module motion_controller_servo__axes__1__request(d,q,clock);
 
     // Module arguments
@@ -13494,25 +13866,6 @@ module motion_controller_servo__axes__1__request_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__1__request_forward
 
 
-module motion_controller_servo__axes__1__sample_rate(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__sample_rate
-
-
 module motion_controller_servo__axes__1__saturated(d,q,clock);
 
     // Module arguments
@@ -13530,25 +13883,6 @@ module motion_controller_servo__axes__1__saturated(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__saturated
-
-
-module motion_controller_servo__axes__1__settings(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__settings
 
 
 module motion_controller_servo__axes__1__stage(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward,flush,pending_forward,pending_backward);
@@ -14362,44 +14696,6 @@ module motion_controller_servo__axes__1__stage__timing_setup(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__stage__timing_setup
-
-
-module motion_controller_servo__axes__1__step_len(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__step_len
-
-
-module motion_controller_servo__axes__1__step_space(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__step_space
 
 
 module motion_controller_servo__axes__1__tick_d(d,q,clock);
@@ -15744,43 +16040,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  bit0_32 = 32'h1;
-    localparam  bit16_32 = 32'h10000;
-    localparam  bit17_32 = 32'h20000;
-    localparam  bit18_32 = 32'h40000;
-    localparam  bit1_32 = 32'h2;
-    localparam  bit2_32 = 32'h4;
-    localparam  bit3_32 = 32'h8;
-    localparam  bit4_32 = 32'h10;
-    localparam  bit5_32 = 32'h20;
-    localparam  bit6_32 = 32'h40;
-    localparam  bit7_32 = 32'h80;
     localparam  zero32 = 32'h0;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
-    localparam  bit_mask__0 = 32'h1;
-    localparam  bit_mask__1 = 32'h2;
-    localparam  bit_mask__2 = 32'h4;
-    localparam  bit_mask__3 = 32'h8;
-    localparam  bit_mask__4 = 32'h10;
-    localparam  mask16 = 32'hffff;
-    localparam  config_mask = 32'h3ffc;
-    localparam  mask8 = 32'hff;
-    localparam  off_fifo_write = 4'h0;
-    localparam  off_fifo_status = 4'h1;
-    localparam  off_config = 4'h2;
-    localparam  off_step_len = 4'h3;
-    localparam  off_step_space = 4'h4;
-    localparam  off_dir_setup = 4'h5;
-    localparam  off_dir_hold = 4'h6;
-    localparam  off_sample_rate = 4'h7;
-    localparam  off_cmd_position = 4'h8;
-    localparam  off_act_position = 4'h9;
-    localparam  off_cmd_snapshot = 4'ha;
-    localparam  off_act_snapshot = 4'hb;
-    localparam  off_axis_status = 4'hc;
-    localparam  off_index_position = 4'hd;
-    localparam  off_command = 4'he;
 
     // Stub signals
     reg  fifo__clock;
@@ -15910,24 +16172,37 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     wire  io__alarm_event;
     wire  io__home_event;
     wire  io__drive_enable;
-    reg  [31:0] settings__d;
-    wire  [31:0] settings__q;
-    reg  settings__clock;
-    reg  [31:0] step_len__d;
-    wire  [31:0] step_len__q;
-    reg  step_len__clock;
-    reg  [31:0] step_space__d;
-    wire  [31:0] step_space__q;
-    reg  step_space__clock;
-    reg  [31:0] dir_setup__d;
-    wire  [31:0] dir_setup__q;
-    reg  dir_setup__clock;
-    reg  [31:0] dir_hold__d;
-    wire  [31:0] dir_hold__q;
-    reg  dir_hold__clock;
-    reg  [31:0] sample_rate__d;
-    wire  [31:0] sample_rate__q;
-    reg  sample_rate__clock;
+    reg  registers__clock;
+    reg  registers__reset;
+    reg  [7:0] registers__address;
+    reg  registers__write;
+    reg  [15:0] registers__write_data;
+    reg  registers__snapshot;
+    reg  [4:0] registers__fifo_level;
+    reg  registers__fifo_empty;
+    reg  registers__fifo_full;
+    reg  registers__fifo_low;
+    reg  registers__step_overrun;
+    reg  registers__interp_overrange;
+    reg  registers__interp_overflow;
+    reg  registers__encoder_error;
+    reg  registers__index_seen;
+    reg  registers__step_busy;
+    reg  registers__uniform_running;
+    reg  registers__step_mode_invalid;
+    reg  [31:0] registers__cmd_position;
+    reg  [31:0] registers__act_position;
+    reg  [31:0] registers__index_position;
+    reg  [31:0] registers__io_read_data;
+    wire  [13:0] registers__axis_config;
+    wire  [15:0] registers__step_len;
+    wire  [15:0] registers__step_space;
+    wire  [15:0] registers__dir_setup;
+    wire  [15:0] registers__dir_hold;
+    wire  [7:0] registers__sample_rate;
+    wire  registers__command;
+    wire  registers__fifo_write;
+    wire  [31:0] registers__read_data;
     reg  [19:0] popped__d;
     wire  [19:0] popped__q;
     reg  popped__clock;
@@ -16006,12 +16281,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  request_forward__d;
     wire  request_forward__q;
     reg  request_forward__clock;
-    reg  [31:0] cmd_snapshot__d;
-    wire  [31:0] cmd_snapshot__q;
-    reg  cmd_snapshot__clock;
-    reg  [31:0] act_snapshot__d;
-    wire  [31:0] act_snapshot__q;
-    reg  act_snapshot__clock;
     reg  encoder_error_prev__d;
     wire  encoder_error_prev__q;
     reg  encoder_error_prev__clock;
@@ -16019,12 +16288,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     // Local signals
     reg  clear_position;
     reg  code_nonzero;
-    reg  selected;
-    reg  [3:0] offset;
     reg  candidate;
     reg  candidate_forward;
     reg  candidate_blocked;
-    reg  command;
     reg  clear_faults;
     reg  too_large;
     reg  [15:0] count;
@@ -16035,8 +16301,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
-    reg  [31:0] fifo_status;
-    reg  [31:0] axis_status;
 
     // Sub module instances
     motion_controller_servo__axes__2__fifo fifo(
@@ -16180,35 +16444,38 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .home_event(io__home_event),
         .drive_enable(io__drive_enable)
     );
-    motion_controller_servo__axes__2__settings settings(
-        .d(settings__d),
-        .q(settings__q),
-        .clock(settings__clock)
-    );
-    motion_controller_servo__axes__2__step_len step_len(
-        .d(step_len__d),
-        .q(step_len__q),
-        .clock(step_len__clock)
-    );
-    motion_controller_servo__axes__2__step_space step_space(
-        .d(step_space__d),
-        .q(step_space__q),
-        .clock(step_space__clock)
-    );
-    motion_controller_servo__axes__2__dir_setup dir_setup(
-        .d(dir_setup__d),
-        .q(dir_setup__q),
-        .clock(dir_setup__clock)
-    );
-    motion_controller_servo__axes__2__dir_hold dir_hold(
-        .d(dir_hold__d),
-        .q(dir_hold__q),
-        .clock(dir_hold__clock)
-    );
-    motion_controller_servo__axes__2__sample_rate sample_rate(
-        .d(sample_rate__d),
-        .q(sample_rate__q),
-        .clock(sample_rate__clock)
+    motion_controller_servo__axes__2__registers registers(
+        .clock(registers__clock),
+        .reset(registers__reset),
+        .address(registers__address),
+        .write(registers__write),
+        .write_data(registers__write_data),
+        .snapshot(registers__snapshot),
+        .fifo_level(registers__fifo_level),
+        .fifo_empty(registers__fifo_empty),
+        .fifo_full(registers__fifo_full),
+        .fifo_low(registers__fifo_low),
+        .step_overrun(registers__step_overrun),
+        .interp_overrange(registers__interp_overrange),
+        .interp_overflow(registers__interp_overflow),
+        .encoder_error(registers__encoder_error),
+        .index_seen(registers__index_seen),
+        .step_busy(registers__step_busy),
+        .uniform_running(registers__uniform_running),
+        .step_mode_invalid(registers__step_mode_invalid),
+        .cmd_position(registers__cmd_position),
+        .act_position(registers__act_position),
+        .index_position(registers__index_position),
+        .io_read_data(registers__io_read_data),
+        .axis_config(registers__axis_config),
+        .step_len(registers__step_len),
+        .step_space(registers__step_space),
+        .dir_setup(registers__dir_setup),
+        .dir_hold(registers__dir_hold),
+        .sample_rate(registers__sample_rate),
+        .command(registers__command),
+        .fifo_write(registers__fifo_write),
+        .read_data(registers__read_data)
     );
     motion_controller_servo__axes__2__popped popped(
         .d(popped__d),
@@ -16340,16 +16607,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .q(request_forward__q),
         .clock(request_forward__clock)
     );
-    motion_controller_servo__axes__2__cmd_snapshot cmd_snapshot(
-        .d(cmd_snapshot__d),
-        .q(cmd_snapshot__q),
-        .clock(cmd_snapshot__clock)
-    );
-    motion_controller_servo__axes__2__act_snapshot act_snapshot(
-        .d(act_snapshot__d),
-        .q(act_snapshot__q),
-        .clock(act_snapshot__clock)
-    );
     motion_controller_servo__axes__2__encoder_error_prev encoder_error_prev(
         .d(encoder_error_prev__d),
         .q(encoder_error_prev__q),
@@ -16358,12 +16615,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
 
     // Update code
     always @(*) begin
-        settings__clock = clock;
-        step_len__clock = clock;
-        step_space__clock = clock;
-        dir_setup__clock = clock;
-        dir_hold__clock = clock;
-        sample_rate__clock = clock;
         popped__clock = clock;
         popped_valid__clock = clock;
         underrun_d__clock = clock;
@@ -16390,15 +16641,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         uniform_pulse_prev__clock = clock;
         request__clock = clock;
         request_forward__clock = clock;
-        cmd_snapshot__clock = clock;
-        act_snapshot__clock = clock;
         encoder_error_prev__clock = clock;
-        settings__d = settings__q;
-        step_len__d = step_len__q;
-        step_space__d = step_space__q;
-        dir_setup__d = dir_setup__q;
-        dir_hold__d = dir_hold__q;
-        sample_rate__d = sample_rate__q;
         popped__d = popped__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
@@ -16425,8 +16668,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         uniform_pulse_prev__d = uniform_pulse_prev__q;
         request__d = request__q;
         request_forward__d = request_forward__q;
-        cmd_snapshot__d = cmd_snapshot__q;
-        act_snapshot__d = act_snapshot__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
         dda__clock = clock;
@@ -16435,32 +16676,15 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         position__clock = clock;
         encoder__clock = clock;
         io__clock = clock;
-        selected = (address[(32'h5)+:(3)] == window) & ~address[32'h4];
-        offset = address[(32'h0)+:(4)];
-        command = write & selected & (offset == off_command);
-        clear_faults = command & write_data[32'h0];
-        if (write & selected) begin
-            if (offset == off_config) begin
-                settings__d = write_data & config_mask;
-            end
-            if (offset == off_step_len) begin
-                step_len__d = write_data & mask16;
-            end
-            if (offset == off_step_space) begin
-                step_space__d = write_data & mask16;
-            end
-            if (offset == off_dir_setup) begin
-                dir_setup__d = write_data & mask16;
-            end
-            if (offset == off_dir_hold) begin
-                dir_hold__d = write_data & mask16;
-            end
-            if (offset == off_sample_rate) begin
-                sample_rate__d = write_data & mask8;
-            end
-        end
+        registers__clock = clock;
+        registers__reset = reset;
+        registers__address = address;
+        registers__write = write;
+        registers__write_data = write_data[(32'h0)+:(16)];
+        registers__snapshot = snapshot;
+        clear_faults = registers__command & write_data[32'h0];
         fifo__reset = reset | flush;
-        fifo__write = write & selected & (offset == off_fifo_write);
+        fifo__write = registers__fifo_write;
         fifo__write_data = fifo_entry;
         fifo__pop = pop;
         fifo__low_water = low_water;
@@ -16501,10 +16725,10 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             overflow_flag__d = 1'b1;
         end
         if (start & ~uniform_running) begin
-            uniform_active__d = settings__q[32'h0];
+            uniform_active__d = registers__axis_config[32'h0];
         end
         if (start) begin
-            analog_active__d = has_analog & settings__q[32'hd];
+            analog_active__d = has_analog & registers__axis_config[32'hd];
         end
         if (popped_valid__q) begin
             forward__d = ~popped__q[32'h11];
@@ -16535,7 +16759,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         uniform__tick = tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
-        uniform__mode = settings__q[32'h1];
+        uniform__mode = registers__axis_config[32'h1];
         uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
@@ -16570,18 +16794,18 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         stage__step = request__q;
         stage__dir = request_forward__q;
         stage__flush = abort | io__cut;
-        stage__mode = settings__q[(32'h2)+:(2)];
-        stage__step_len = step_len__q[(32'h0)+:(16)];
-        stage__step_space = step_space__q[(32'h0)+:(16)];
-        stage__dir_setup = dir_setup__q[(32'h0)+:(16)];
-        stage__dir_hold = dir_hold__q[(32'h0)+:(16)];
+        stage__mode = registers__axis_config[(32'h2)+:(2)];
+        stage__step_len = registers__step_len[(32'h0)+:(16)];
+        stage__step_space = registers__step_space[(32'h0)+:(16)];
+        stage__dir_setup = registers__dir_setup[(32'h0)+:(16)];
+        stage__dir_hold = registers__dir_hold[(32'h0)+:(16)];
         stage__clear_overrun = clear_faults;
         out_a = stage__out_a;
         out_b = stage__out_b;
         position__reset = reset;
         position__up = stage__emitted & stage__emitted_forward;
         position__down = stage__emitted & ~stage__emitted_forward;
-        clear_position = (command & write_data[32'h3]) | clear_position_pending__q;
+        clear_position = (registers__command & write_data[32'h3]) | clear_position_pending__q;
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
@@ -16591,16 +16815,16 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         encoder__a = enc_a;
         encoder__b = enc_b;
         encoder__index = enc_index;
-        encoder__filter = settings__q[(32'h4)+:(4)];
-        encoder__sample_rate = sample_rate__q[(32'h0)+:(8)];
-        encoder__counter_mode = settings__q[32'h8];
-        encoder__index_invert = settings__q[32'h9];
-        encoder__index_clear = settings__q[32'ha];
-        encoder__index_latch = settings__q[32'hb];
-        encoder__index_once = settings__q[32'hc];
-        encoder__clear = command & write_data[32'h1];
-        encoder__index_rearm = command & write_data[32'h2];
-        encoder__clear_error = command & write_data[32'h4];
+        encoder__filter = registers__axis_config[(32'h4)+:(4)];
+        encoder__sample_rate = registers__sample_rate[(32'h0)+:(8)];
+        encoder__counter_mode = registers__axis_config[32'h8];
+        encoder__index_invert = registers__axis_config[32'h9];
+        encoder__index_clear = registers__axis_config[32'ha];
+        encoder__index_latch = registers__axis_config[32'hb];
+        encoder__index_once = registers__axis_config[32'hc];
+        encoder__clear = registers__command & write_data[32'h1];
+        encoder__index_rearm = registers__command & write_data[32'h2];
+        encoder__clear_error = registers__command & write_data[32'h4];
         io__reset = reset;
         io__selected = (address[(32'h5)+:(3)] == window) & address[32'h4];
         io__offset = address[(32'h0)+:(4)];
@@ -16627,10 +16851,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         limit_event = io__limit_event;
         alarm_event = io__alarm_event;
         home_event = io__home_event;
-        if (snapshot) begin
-            cmd_snapshot__d = position__count;
-            act_snapshot__d = encoder__count;
-        end
         overrun_prev__d = stage__overrun;
         dda_overrange_prev__d = dda__overrange;
         uniform_overrange_prev__d = uniform_overrange;
@@ -16639,87 +16859,24 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
-        fifo_status = zero32;
-        if (fifo__level[0]) begin
-            fifo_status = fifo_status | bit_mask__0;
-        end
-        if (fifo__level[1]) begin
-            fifo_status = fifo_status | bit_mask__1;
-        end
-        if (fifo__level[2]) begin
-            fifo_status = fifo_status | bit_mask__2;
-        end
-        if (fifo__level[3]) begin
-            fifo_status = fifo_status | bit_mask__3;
-        end
-        if (fifo__level[4]) begin
-            fifo_status = fifo_status | bit_mask__4;
-        end
-        if (fifo__empty) begin
-            fifo_status = fifo_status | bit16_32;
-        end
-        if (fifo__full) begin
-            fifo_status = fifo_status | bit17_32;
-        end
-        if (fifo__low) begin
-            fifo_status = fifo_status | bit18_32;
-        end
-        axis_status = zero32;
-        if (stage__overrun) begin
-            axis_status = axis_status | bit0_32;
-        end
-        if (overrange_flag__q) begin
-            axis_status = axis_status | bit1_32;
-        end
-        if (overflow_flag__q) begin
-            axis_status = axis_status | bit2_32;
-        end
-        if (encoder__error) begin
-            axis_status = axis_status | bit3_32;
-        end
-        if (encoder__index_seen) begin
-            axis_status = axis_status | bit4_32;
-        end
-        if (stage__busy) begin
-            axis_status = axis_status | bit5_32;
-        end
-        if (uniform_running) begin
-            axis_status = axis_status | bit6_32;
-        end
-        if (stage__mode_invalid) begin
-            axis_status = axis_status | bit7_32;
-        end
-        read_data = io__read_data;
-        if (selected) begin
-            if (offset == off_fifo_status) begin
-                read_data = read_data | fifo_status;
-            end
-            if (offset == off_cmd_position) begin
-                read_data = read_data | position__count;
-            end
-            if (offset == off_act_position) begin
-                read_data = read_data | encoder__count;
-            end
-            if (offset == off_cmd_snapshot) begin
-                read_data = read_data | cmd_snapshot__q;
-            end
-            if (offset == off_act_snapshot) begin
-                read_data = read_data | act_snapshot__q;
-            end
-            if (offset == off_axis_status) begin
-                read_data = read_data | axis_status;
-            end
-            if (offset == off_index_position) begin
-                read_data = read_data | encoder__index_count;
-            end
-        end
+        registers__fifo_level = fifo__level;
+        registers__fifo_empty = fifo__empty;
+        registers__fifo_full = fifo__full;
+        registers__fifo_low = fifo__low;
+        registers__step_overrun = stage__overrun;
+        registers__interp_overrange = overrange_flag__q;
+        registers__interp_overflow = overflow_flag__q;
+        registers__encoder_error = encoder__error;
+        registers__index_seen = encoder__index_seen;
+        registers__step_busy = stage__busy;
+        registers__uniform_running = uniform_running;
+        registers__step_mode_invalid = stage__mode_invalid;
+        registers__cmd_position = position__count;
+        registers__act_position = encoder__count;
+        registers__index_position = encoder__index_count;
+        registers__io_read_data = io__read_data;
+        read_data = registers__read_data;
         if (reset) begin
-            settings__d = zero32;
-            step_len__d = zero32;
-            step_space__d = zero32;
-            dir_setup__d = zero32;
-            dir_hold__d = zero32;
-            sample_rate__d = zero32;
             popped__d = zero_entry;
             popped_valid__d = 1'b0;
             underrun_d__d = 1'b0;
@@ -16746,32 +16903,11 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             uniform_pulse_prev__d = 1'b0;
             request__d = 1'b0;
             request_forward__d = 1'b0;
-            cmd_snapshot__d = zero32;
-            act_snapshot__d = zero32;
             encoder_error_prev__d = 1'b0;
         end
     end
 
 endmodule // motion_controller_servo__axes__2
-
-
-module motion_controller_servo__axes__2__act_snapshot(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__act_snapshot
 
 
 module motion_controller_servo__axes__2__analog_active(d,q,clock);
@@ -16810,25 +16946,6 @@ module motion_controller_servo__axes__2__clear_position_pending(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__clear_position_pending
-
-
-module motion_controller_servo__axes__2__cmd_snapshot(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__cmd_snapshot
 
 
 module motion_controller_servo__axes__2__code_backward(d,q,clock);
@@ -17212,44 +17329,6 @@ module motion_controller_servo__axes__2__dda_overrange_prev(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__dda_overrange_prev
-
-
-module motion_controller_servo__axes__2__dir_hold(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dir_hold
-
-
-module motion_controller_servo__axes__2__dir_setup(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dir_setup
 
 
 module motion_controller_servo__axes__2__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
@@ -19661,6 +19740,447 @@ module motion_controller_servo__axes__2__position__value(d,q,clock);
 endmodule // motion_controller_servo__axes__2__position__value
 
 
+module motion_controller_servo__axes__2__registers(clock,reset,address,write,write_data,snapshot,fifo_level,fifo_empty,fifo_full,fifo_low,step_overrun,interp_overrange,interp_overflow,encoder_error,index_seen,step_busy,uniform_running,step_mode_invalid,cmd_position,act_position,index_position,io_read_data,axis_config,step_len,step_space,dir_setup,dir_hold,sample_rate,command,fifo_write,read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [15:0] write_data;
+    input wire  snapshot;
+    input wire  [4:0] fifo_level;
+    input wire  fifo_empty;
+    input wire  fifo_full;
+    input wire  fifo_low;
+    input wire  step_overrun;
+    input wire  interp_overrange;
+    input wire  interp_overflow;
+    input wire  encoder_error;
+    input wire  index_seen;
+    input wire  step_busy;
+    input wire  uniform_running;
+    input wire  step_mode_invalid;
+    input wire  [31:0] cmd_position;
+    input wire  [31:0] act_position;
+    input wire  [31:0] index_position;
+    input wire  [31:0] io_read_data;
+    output reg  [13:0] axis_config;
+    output reg  [15:0] step_len;
+    output reg  [15:0] step_space;
+    output reg  [15:0] dir_setup;
+    output reg  [15:0] dir_hold;
+    output reg  [7:0] sample_rate;
+    output reg  command;
+    output reg  fifo_write;
+    output reg  [31:0] read_data;
+
+    // Constant declarations
+    localparam  window = 3'b11;
+    localparam  m_fifo_empty = 32'h10000;
+    localparam  m_fifo_full = 32'h20000;
+    localparam  m_fifo_low = 32'h40000;
+    localparam  m_step_overrun = 32'h1;
+    localparam  m_interp_overrange = 32'h2;
+    localparam  m_interp_overflow = 32'h4;
+    localparam  m_encoder_error = 32'h8;
+    localparam  m_index_seen = 32'h10;
+    localparam  m_step_busy = 32'h20;
+    localparam  m_uniform_running = 32'h40;
+    localparam  m_step_mode_invalid = 32'h80;
+    localparam  zero32 = 32'h0;
+    localparam  bit_mask__0 = 32'h1;
+    localparam  bit_mask__1 = 32'h2;
+    localparam  bit_mask__2 = 32'h4;
+    localparam  bit_mask__3 = 32'h8;
+    localparam  bit_mask__4 = 32'h10;
+    localparam  config_mask = 14'b11111111111100;
+    localparam  zero_config = 14'b0;
+    localparam  zero_timing = 16'h0;
+    localparam  zero_sample_rate = 8'h0;
+    localparam  off_fifo_write = 4'h0;
+    localparam  off_fifo_status = 4'h1;
+    localparam  off_config = 4'h2;
+    localparam  off_step_len = 4'h3;
+    localparam  off_step_space = 4'h4;
+    localparam  off_dir_setup = 4'h5;
+    localparam  off_dir_hold = 4'h6;
+    localparam  off_sample_rate = 4'h7;
+    localparam  off_cmd_position = 4'h8;
+    localparam  off_act_position = 4'h9;
+    localparam  off_cmd_snapshot = 4'ha;
+    localparam  off_act_snapshot = 4'hb;
+    localparam  off_axis_status = 4'hc;
+    localparam  off_index_position = 4'hd;
+    localparam  off_command = 4'he;
+
+    // Stub signals
+    reg  [13:0] config_reg__d;
+    wire  [13:0] config_reg__q;
+    reg  config_reg__clock;
+    reg  [15:0] step_len_reg__d;
+    wire  [15:0] step_len_reg__q;
+    reg  step_len_reg__clock;
+    reg  [15:0] step_space_reg__d;
+    wire  [15:0] step_space_reg__q;
+    reg  step_space_reg__clock;
+    reg  [15:0] dir_setup_reg__d;
+    wire  [15:0] dir_setup_reg__q;
+    reg  dir_setup_reg__clock;
+    reg  [15:0] dir_hold_reg__d;
+    wire  [15:0] dir_hold_reg__q;
+    reg  dir_hold_reg__clock;
+    reg  [7:0] sample_rate_reg__d;
+    wire  [7:0] sample_rate_reg__q;
+    reg  sample_rate_reg__clock;
+    reg  [31:0] cmd_snapshot__d;
+    wire  [31:0] cmd_snapshot__q;
+    reg  cmd_snapshot__clock;
+    reg  [31:0] act_snapshot__d;
+    wire  [31:0] act_snapshot__q;
+    reg  act_snapshot__clock;
+
+    // Local signals
+    reg  selected;
+    reg  [3:0] offset;
+    reg  [31:0] fifo_status;
+    reg  [31:0] axis_status;
+
+    // Sub module instances
+    motion_controller_servo__axes__2__registers__config_reg config_reg(
+        .d(config_reg__d),
+        .q(config_reg__q),
+        .clock(config_reg__clock)
+    );
+    motion_controller_servo__axes__2__registers__step_len_reg step_len_reg(
+        .d(step_len_reg__d),
+        .q(step_len_reg__q),
+        .clock(step_len_reg__clock)
+    );
+    motion_controller_servo__axes__2__registers__step_space_reg step_space_reg(
+        .d(step_space_reg__d),
+        .q(step_space_reg__q),
+        .clock(step_space_reg__clock)
+    );
+    motion_controller_servo__axes__2__registers__dir_setup_reg dir_setup_reg(
+        .d(dir_setup_reg__d),
+        .q(dir_setup_reg__q),
+        .clock(dir_setup_reg__clock)
+    );
+    motion_controller_servo__axes__2__registers__dir_hold_reg dir_hold_reg(
+        .d(dir_hold_reg__d),
+        .q(dir_hold_reg__q),
+        .clock(dir_hold_reg__clock)
+    );
+    motion_controller_servo__axes__2__registers__sample_rate_reg sample_rate_reg(
+        .d(sample_rate_reg__d),
+        .q(sample_rate_reg__q),
+        .clock(sample_rate_reg__clock)
+    );
+    motion_controller_servo__axes__2__registers__cmd_snapshot cmd_snapshot(
+        .d(cmd_snapshot__d),
+        .q(cmd_snapshot__q),
+        .clock(cmd_snapshot__clock)
+    );
+    motion_controller_servo__axes__2__registers__act_snapshot act_snapshot(
+        .d(act_snapshot__d),
+        .q(act_snapshot__q),
+        .clock(act_snapshot__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        config_reg__clock = clock;
+        step_len_reg__clock = clock;
+        step_space_reg__clock = clock;
+        dir_setup_reg__clock = clock;
+        dir_hold_reg__clock = clock;
+        sample_rate_reg__clock = clock;
+        cmd_snapshot__clock = clock;
+        act_snapshot__clock = clock;
+        config_reg__d = config_reg__q;
+        step_len_reg__d = step_len_reg__q;
+        step_space_reg__d = step_space_reg__q;
+        dir_setup_reg__d = dir_setup_reg__q;
+        dir_hold_reg__d = dir_hold_reg__q;
+        sample_rate_reg__d = sample_rate_reg__q;
+        cmd_snapshot__d = cmd_snapshot__q;
+        act_snapshot__d = act_snapshot__q;
+        axis_config = config_reg__q;
+        step_len = step_len_reg__q;
+        step_space = step_space_reg__q;
+        dir_setup = dir_setup_reg__q;
+        dir_hold = dir_hold_reg__q;
+        sample_rate = sample_rate_reg__q;
+        selected = (address[(32'h5)+:(3)] == window) & ~address[32'h4];
+        offset = address[(32'h0)+:(4)];
+        command = write & selected & (offset == off_command);
+        fifo_write = write & selected & (offset == off_fifo_write);
+        if (write & selected) begin
+            if (offset == off_config) begin
+                config_reg__d = write_data[(32'h0)+:(14)] & config_mask;
+            end
+            if (offset == off_step_len) begin
+                step_len_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_step_space) begin
+                step_space_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_dir_setup) begin
+                dir_setup_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_dir_hold) begin
+                dir_hold_reg__d = write_data[(32'h0)+:(16)];
+            end
+            if (offset == off_sample_rate) begin
+                sample_rate_reg__d = write_data[(32'h0)+:(8)];
+            end
+        end
+        if (snapshot) begin
+            cmd_snapshot__d = cmd_position;
+            act_snapshot__d = act_position;
+        end
+        fifo_status = zero32;
+        if (fifo_level[0]) begin
+            fifo_status = fifo_status | bit_mask__0;
+        end
+        if (fifo_level[1]) begin
+            fifo_status = fifo_status | bit_mask__1;
+        end
+        if (fifo_level[2]) begin
+            fifo_status = fifo_status | bit_mask__2;
+        end
+        if (fifo_level[3]) begin
+            fifo_status = fifo_status | bit_mask__3;
+        end
+        if (fifo_level[4]) begin
+            fifo_status = fifo_status | bit_mask__4;
+        end
+        if (fifo_empty) begin
+            fifo_status = fifo_status | m_fifo_empty;
+        end
+        if (fifo_full) begin
+            fifo_status = fifo_status | m_fifo_full;
+        end
+        if (fifo_low) begin
+            fifo_status = fifo_status | m_fifo_low;
+        end
+        axis_status = zero32;
+        if (step_overrun) begin
+            axis_status = axis_status | m_step_overrun;
+        end
+        if (interp_overrange) begin
+            axis_status = axis_status | m_interp_overrange;
+        end
+        if (interp_overflow) begin
+            axis_status = axis_status | m_interp_overflow;
+        end
+        if (encoder_error) begin
+            axis_status = axis_status | m_encoder_error;
+        end
+        if (index_seen) begin
+            axis_status = axis_status | m_index_seen;
+        end
+        if (step_busy) begin
+            axis_status = axis_status | m_step_busy;
+        end
+        if (uniform_running) begin
+            axis_status = axis_status | m_uniform_running;
+        end
+        if (step_mode_invalid) begin
+            axis_status = axis_status | m_step_mode_invalid;
+        end
+        read_data = io_read_data;
+        if (selected) begin
+            if (offset == off_fifo_status) begin
+                read_data = read_data | fifo_status;
+            end
+            if (offset == off_cmd_position) begin
+                read_data = read_data | cmd_position;
+            end
+            if (offset == off_act_position) begin
+                read_data = read_data | act_position;
+            end
+            if (offset == off_cmd_snapshot) begin
+                read_data = read_data | cmd_snapshot__q;
+            end
+            if (offset == off_act_snapshot) begin
+                read_data = read_data | act_snapshot__q;
+            end
+            if (offset == off_axis_status) begin
+                read_data = read_data | axis_status;
+            end
+            if (offset == off_index_position) begin
+                read_data = read_data | index_position;
+            end
+        end
+        if (reset) begin
+            config_reg__d = zero_config;
+            step_len_reg__d = zero_timing;
+            step_space_reg__d = zero_timing;
+            dir_setup_reg__d = zero_timing;
+            dir_hold_reg__d = zero_timing;
+            sample_rate_reg__d = zero_sample_rate;
+            cmd_snapshot__d = zero32;
+            act_snapshot__d = zero32;
+        end
+    end
+
+endmodule // motion_controller_servo__axes__2__registers
+
+
+module motion_controller_servo__axes__2__registers__act_snapshot(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__act_snapshot
+
+
+module motion_controller_servo__axes__2__registers__cmd_snapshot(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__cmd_snapshot
+
+
+module motion_controller_servo__axes__2__registers__config_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [13:0] d;
+    output reg  [13:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 14'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__config_reg
+
+
+module motion_controller_servo__axes__2__registers__dir_hold_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__dir_hold_reg
+
+
+module motion_controller_servo__axes__2__registers__dir_setup_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__dir_setup_reg
+
+
+module motion_controller_servo__axes__2__registers__sample_rate_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__sample_rate_reg
+
+
+module motion_controller_servo__axes__2__registers__step_len_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__step_len_reg
+
+
+module motion_controller_servo__axes__2__registers__step_space_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__registers__step_space_reg
+
+
 module motion_controller_servo__axes__2__request(d,q,clock);
 
     // Module arguments
@@ -19699,25 +20219,6 @@ module motion_controller_servo__axes__2__request_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__2__request_forward
 
 
-module motion_controller_servo__axes__2__sample_rate(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__sample_rate
-
-
 module motion_controller_servo__axes__2__saturated(d,q,clock);
 
     // Module arguments
@@ -19735,25 +20236,6 @@ module motion_controller_servo__axes__2__saturated(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__saturated
-
-
-module motion_controller_servo__axes__2__settings(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__settings
 
 
 module motion_controller_servo__axes__2__stage(clock,reset,step,dir,mode,step_len,step_space,dir_setup,dir_hold,out_a,out_b,overrun,mode_invalid,busy,clear_overrun,emitted,emitted_forward,flush,pending_forward,pending_backward);
@@ -20567,44 +21049,6 @@ module motion_controller_servo__axes__2__stage__timing_setup(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__stage__timing_setup
-
-
-module motion_controller_servo__axes__2__step_len(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__step_len
-
-
-module motion_controller_servo__axes__2__step_space(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__step_space
 
 
 module motion_controller_servo__axes__2__tick_d(d,q,clock);

@@ -394,7 +394,8 @@ fn run(cli: Cli) -> Result<(), String> {
                 let target =
                     catalog::find("motion_controller").map_or(100.0, |spec| spec.fmax_target_mhz);
                 let rows = scaling::measure(&seeds, target).map_err(|e| e.to_string())?;
-                std::fs::write(&out, scaling::render(&rows, &seeds, target))
+                let card = scaling::measure_seed_card().map_err(|e| e.to_string())?;
+                std::fs::write(&out, scaling::render(&rows, &card, &seeds, target))
                     .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
                 println!("wrote {}", out.display());
                 return Ok(());

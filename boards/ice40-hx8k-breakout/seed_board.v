@@ -5,16 +5,18 @@
 // the DSP. Build (pins in seed_board.pcf):
 //
 //   yosys -p 'read_verilog seed_board.v ../../rtl-out/host_links.v \
-//             ../../rtl-out/motion_controller_dda.v; \
+//             ../../rtl-out/motion_controller_servo.v; \
 //             synth_ice40 -dffe_min_ce_use 4 -top seed_board -json seed.json'
 //   nextpnr-ice40 --hx8k --package ct256 --pcf seed_board.pcf --json seed.json --asc seed.asc --freq 48
 //   icepack seed.asc seed.bin
 //
-// The controller is motion_controller_dda: the seed's own fine
-// interpolation (one DDA per axis), without the dual-period uniform
-// generators. With them (motion_controller) the card needs 93 % of the
-// HX8K's logic cells (7165 of 7680, #35's second step), over the 85 % it
-// must stay under.
+// The controller is motion_controller_servo: the seed's own fine
+// interpolation (one DDA per axis) and its analog axes (three AD669s on
+// one bus, below). The dual-period uniform generators are the build option
+// this card drops: with them and the DACs the controller does not fit the
+// HX8K within the 85 % the card must stay under. rtl-out/scaling-report.md
+// ("The seed card") places this file with each controller build and gives
+// each one's logic cells, share of the device and Fmax.
 //
 // Clocking and reset are motion_board.v's: 12 MHz into the PLL, one 48 MHz
 // system clock, a synchronized reset while the PLL is unlocked or
@@ -23,7 +25,7 @@
 //
 // DSP (XINTF zone 6, 16-bit, XA[10:0]):
 //   XA 0x000-0x1FF  controller registers: MC_<REG>_ADDR16 of
-//                   motion_controller_dda_regs.h, low half first
+//                   motion_controller_servo_regs.h, low half first
 //   XA 0x400-0x7FF  mailbox words 0-1023; word 1023 (XA 0x7FF) is the
 //                   PC's ring to the DSP (DSP_MBOX_IRQ_N), word 1022
 //                   (XA 0x7FE) the DSP's ring to the PC (PC_INT_N)
@@ -41,11 +43,12 @@
 // contacts to ground), one drive enable per axis, 8 general inputs and
 // outputs.
 //
-// Analog axes: not on this card yet. motion_controller_servo is this
-// controller with the DAC outputs (three AD669s on one bus); since #35's
-// second step it fits beside the host links (6104 of the 7680 logic
-// cells, 79 %, placed at 48 MHz), and wiring it here is the next step.
-// motion_controller_dda's DAC pins idle.
+// Analog axes: three AD669s share DAC_D, DAC_L1_N (first rank, active
+// low) and DAC_LDAC (second rank, active high); each has its own chip
+// select (DAC_CS_N[0] X, [1] Y, [2] Z). An axis with AXIS_CONFIG.ANALOG set
+// drives its DAC with its FIFO entries as codes; the others step. The
+// AD669's digital inputs are TTL-compatible, so the 3.3 V outputs drive
+// them directly.
 
 `default_nettype none
 
@@ -79,6 +82,11 @@ module seed_board (
     input  wire        Z_LIMIT_POS, Z_LIMIT_NEG, Z_HOME, Z_ALARM,
     input  wire        ESTOP,
     output wire        X_DRIVE_ENABLE, Y_DRIVE_ENABLE, Z_DRIVE_ENABLE,
+    // AD669 DACs (analog axes)
+    output wire [15:0] DAC_D,
+    output wire [2:0]  DAC_CS_N,
+    output wire        DAC_L1_N,
+    output wire        DAC_LDAC,
     // General I/O (spindle, coolant, probe, ...)
     input  wire [7:0]  GPIO_IN,
     output wire [7:0]  GPIO_OUT,
@@ -148,7 +156,7 @@ module seed_board (
     wire [2:0] step_a;
     wire [2:0] step_b;
     wire [2:0] drive_enable;
-    motion_controller_dda controller (
+    motion_controller_servo controller (
         .clock(clock), .reset(reset),
         .bus_address(reg_address), .bus_write_data(reg_write_data),
         .bus_write(reg_write), .bus_read(reg_read), .bus_read_data(reg_read_data),
@@ -165,8 +173,8 @@ module seed_board (
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
         .gpio_out(GPIO_OUT),
-        // No DAC in this build (see the header): the pins idle.
-        .dac_data(), .dac_cs_n(), .dac_l1_n(), .dac_ldac()
+        .dac_data(DAC_D), .dac_cs_n(DAC_CS_N),
+        .dac_l1_n(DAC_L1_N), .dac_ldac(DAC_LDAC)
     );
 
     assign {Z_STEP, Y_STEP, X_STEP} = step_a;

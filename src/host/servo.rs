@@ -54,7 +54,7 @@ pub struct ServoGains {
 }
 
 impl Default for ServoGains {
-    /// A stiff loop for the default [`ServoMotor`] at a 1 ms period.
+    /// A stiff loop for the default [`crate::sim::ServoMotor`] at a 1 ms period.
     fn default() -> Self {
         Self {
             kp: 150.0,

@@ -1,14 +1,103 @@
 //! `scaling-report.md`: the motion controller's size and Fmax on iCE40 HX8K
 //! at K = 1, 3 and 6 axes (#19), from configurations that are synthesized
-//! in a work folder, not exported. A configuration that does not fit is
+//! in a work folder, not exported, and the seed card (`seed_board.v`)
+//! placed with each controller build (#35). A design that does not fit is
 //! packed only: its logic cells are what it would need.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use super::synth::{synthesize_if_it_fits, SynthFigures, DEVICE, DEVICE_LOGIC_CELLS};
-use super::{work_dir, ToolError};
+use super::synth::{
+    place_board_if_it_fits, synthesize_if_it_fits, SynthFigures, DEVICE, DEVICE_LOGIC_CELLS,
+};
+use super::{repo_root, work_dir, ToolError};
+use crate::blocks::motion_controller::MotionController3UniformServo;
 use crate::export::catalog::controller_scaling;
 use crate::export::module_verilog;
+
+/// The seed card's board clock, and the seed its figures are placed with.
+pub const SEED_CARD_MHZ: f64 = 48.0;
+/// See [`SEED_CARD_MHZ`].
+pub const SEED_CARD_SEED: u64 = 1;
+/// The share of the HX8K's logic cells the seed card may use, in percent.
+pub const SEED_CARD_BUDGET_PERCENT: u32 = 85;
+/// The controller instance's module in `seed_board.v`.
+const SEED_CARD_CONTROLLER: &str = "motion_controller_servo";
+
+/// One controller build on the seed card.
+pub struct SeedCardRow {
+    /// The controller's module name.
+    pub build: &'static str,
+    /// It has the uniform pulse generators.
+    pub uniform: bool,
+    /// It has the analog outputs.
+    pub analog: bool,
+    /// It is exported (in `rtl-out`); else generated for this table.
+    pub exported: bool,
+    /// The whole card's figures (no Fmax when it does not fit).
+    pub figures: SynthFigures,
+}
+
+/// The seed card (`boards/ice40-hx8k-breakout/seed_board.v` with its pin
+/// file and `host_links`) placed with each controller build in place of
+/// its own, at [`SEED_CARD_MHZ`] and [`SEED_CARD_SEED`]. The exported
+/// builds are read from `rtl-out` (run `export` first); the build with both
+/// options is generated here.
+pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
+    let root = repo_root();
+    let board = root.join("boards/ice40-hx8k-breakout");
+    let card =
+        std::fs::read_to_string(board.join("seed_board.v")).map_err(|source| ToolError::Io {
+            context: "reading seed_board.v".into(),
+            source,
+        })?;
+    let instance = format!("{SEED_CARD_CONTROLLER} controller (");
+    if !card.contains(&instance) {
+        return Err(ToolError::Parse {
+            tool: "seed_board.v".into(),
+            detail: format!("no `{instance}` to put each build in"),
+        });
+    }
+    let dir = work_dir("seed-card")?;
+    let full = dir.path().join("motion_controller_uniform_servo.v");
+    write_verilog(
+        &full,
+        "motion_controller_uniform_servo",
+        &mut MotionController3UniformServo::default(),
+    )?;
+    let builds: [(&'static str, bool, bool, Option<PathBuf>); 4] = [
+        ("motion_controller_dda", false, false, None),
+        ("motion_controller_servo", false, true, None),
+        ("motion_controller", true, false, None),
+        ("motion_controller_uniform_servo", true, true, Some(full)),
+    ];
+    builds
+        .into_iter()
+        .map(|(build, uniform, analog, generated)| {
+            let top = dir.path().join(format!("seed_board_{build}.v"));
+            write_text(
+                &top,
+                &card.replace(&instance, &format!("{build} controller (")),
+            )?;
+            let exported = generated.is_none();
+            let controller = generated.unwrap_or_else(|| root.join(format!("rtl-out/{build}.v")));
+            let links = root.join("rtl-out/host_links.v");
+            let figures = place_board_if_it_fits(
+                &[&top, &links, &controller],
+                "seed_board",
+                &board.join("seed_board.pcf"),
+                SEED_CARD_SEED,
+                SEED_CARD_MHZ,
+            )?;
+            Ok(SeedCardRow {
+                build,
+                uniform,
+                analog,
+                exported,
+                figures,
+            })
+        })
+        .collect()
+}
 
 /// One configuration's row.
 pub struct ScalingRow {
@@ -28,7 +117,7 @@ pub fn measure(seeds: &[u64], target_mhz: f64) -> Result<Vec<ScalingRow>, ToolEr
             let rtl = dir
                 .path()
                 .join(format!("motion_controller_k{}.v", variant.axes));
-            write_verilog(&rtl, &mut *(variant.build)())?;
+            write_verilog(&rtl, "motion_controller", &mut *(variant.build)())?;
             Ok(ScalingRow {
                 axes: variant.axes,
                 figures: synthesize_if_it_fits(&rtl, "motion_controller", seeds, target_mhz)?,
@@ -39,20 +128,25 @@ pub fn measure(seeds: &[u64], target_mhz: f64) -> Result<Vec<ScalingRow>, ToolEr
 
 fn write_verilog(
     path: &Path,
+    name: &str,
     block: &mut dyn rust_hdl::core::prelude::Block,
 ) -> Result<(), ToolError> {
-    let verilog = module_verilog("motion_controller", block).map_err(|e| ToolError::Parse {
+    let verilog = module_verilog(name, block).map_err(|e| ToolError::Parse {
         tool: "rust-hdl".into(),
         detail: e.to_string(),
     })?;
-    std::fs::write(path, verilog).map_err(|source| ToolError::Io {
+    write_text(path, &verilog)
+}
+
+fn write_text(path: &Path, text: &str) -> Result<(), ToolError> {
+    std::fs::write(path, text).map_err(|source| ToolError::Io {
         context: format!("writing {}", path.display()),
         source,
     })
 }
 
 /// The report as Markdown.
-pub fn render(rows: &[ScalingRow], seeds: &[u64], target_mhz: f64) -> String {
+pub fn render(rows: &[ScalingRow], card: &[SeedCardRow], seeds: &[u64], target_mhz: f64) -> String {
     let mut md = format!(
         "# motion_controller against its axis count: {DEVICE}\n\n\
          Generated by {} with `motion-hdl report --scaling`: the controller with 16-entry FIFOs \
@@ -81,9 +175,54 @@ pub fn render(rows: &[ScalingRow], seeds: &[u64], target_mhz: f64) -> String {
             f.carry,
             f.ram,
             f.logic_cells,
-            100.0 * f.logic_cells as f64 / DEVICE_LOGIC_CELLS as f64,
+            percent(f.logic_cells),
             median,
             per_seed
+        ));
+    }
+    md.push_str(&render_seed_card(card));
+    md
+}
+
+fn percent(logic_cells: u32) -> f64 {
+    100.0 * logic_cells as f64 / DEVICE_LOGIC_CELLS as f64
+}
+
+fn render_seed_card(card: &[SeedCardRow]) -> String {
+    let yes_no = |b: bool| if b { "yes" } else { "no" };
+    let mut md = format!(
+        "\n## The seed card\n\n\
+         `boards/ice40-hx8k-breakout/seed_board.v` with its pin file, `host_links` (the 16-bit \
+         DSP bus, the 8-bit PC bus and the mailbox) and each controller build in place of its \
+         own (`{SEED_CARD_CONTROLLER}`), synthesized the same way and placed at the board's \
+         {SEED_CARD_MHZ:.0} MHz, seed {SEED_CARD_SEED}. The card must stay within \
+         {SEED_CARD_BUDGET_PERCENT} % of the HX8K's logic cells. `motion_controller_uniform_servo` (both \
+         options) is not exported: it is generated for this table. A card that does not fit is \
+         only packed.\n\n\
+         | controller build | uniform generators | analog outputs | LUT4 | DFF | carry | RAM | \
+         logic cells | of the HX8K | within {SEED_CARD_BUDGET_PERCENT} % | Fmax seed {SEED_CARD_SEED} (MHz) |\n\
+         |---|---|---|---:|---:|---:|---:|---:|---:|---|---:|\n"
+    );
+    for row in card {
+        let f = &row.figures;
+        let fmax = f
+            .fmax_mhz
+            .first()
+            .map_or("does not fit".to_string(), |x| format!("{x:.1}"));
+        md.push_str(&format!(
+            "| `{}`{} | {} | {} | {} | {} | {} | {} | {} | {:.0} % | {} | {} |\n",
+            row.build,
+            if row.exported { "" } else { " (not exported)" },
+            yes_no(row.uniform),
+            yes_no(row.analog),
+            f.lut4,
+            f.dff,
+            f.carry,
+            f.ram,
+            f.logic_cells,
+            percent(f.logic_cells),
+            yes_no(f.logic_cells * 100 <= DEVICE_LOGIC_CELLS * SEED_CARD_BUDGET_PERCENT),
+            fmax
         ));
     }
     md
@@ -91,7 +230,7 @@ pub fn render(rows: &[ScalingRow], seeds: &[u64], target_mhz: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{render, ScalingRow};
+    use super::{render, ScalingRow, SeedCardRow};
     use crate::tools::synth::SynthFigures;
 
     #[test]
@@ -114,13 +253,51 @@ mod tests {
                 figures: figures(15360, vec![]),
             },
         ];
-        let md = render(&rows, &[1, 2, 3], 100.0);
+        let md = render(&rows, &[], &[1, 2, 3], 100.0);
         assert!(
             md.contains("| 1 | 1 | 2 | 3 | 4 | 3840 | 50 % | 100.0 | 101.0, 99.0, 100.0 |"),
             "{md}"
         );
         assert!(
             md.contains("| 6 | 1 | 2 | 3 | 4 | 15360 | 200 % | does not fit | - |"),
+            "{md}"
+        );
+    }
+
+    #[test]
+    fn the_seed_card_table_says_which_builds_fit_within_the_budget() {
+        let row = |build, logic_cells, fmax_mhz: Vec<f64>| SeedCardRow {
+            build,
+            uniform: true,
+            analog: true,
+            exported: build != "b",
+            figures: SynthFigures {
+                lut4: 1,
+                dff: 2,
+                carry: 3,
+                ram: 4,
+                logic_cells,
+                fmax_mhz,
+            },
+        };
+        let card = [
+            row("a", 6528, vec![64.25]),
+            row("b", 6529, vec![61.0]),
+            row("c", 8000, vec![]),
+        ];
+        let md = render(&[], &card, &[1], 100.0);
+        assert!(
+            md.contains("| `a` | yes | yes | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains(
+                "| `b` (not exported) | yes | yes | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 |"
+            ),
+            "{md}"
+        );
+        assert!(
+            md.contains("| `c` | yes | yes | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit |"),
             "{md}"
         );
     }

@@ -228,13 +228,64 @@ fn place(
     Ok(())
 }
 
+/// A board design (`sources`, top module `top`) placed with its pin file
+/// `pcf` at `target_mhz` and `seed`, after the packer says it fits; like
+/// [`synthesize_if_it_fits`] otherwise (one that does not fit has no Fmax).
+pub fn place_board_if_it_fits(
+    sources: &[&Path],
+    top: &str,
+    pcf: &Path,
+    seed: u64,
+    target_mhz: f64,
+) -> Result<SynthFigures, ToolError> {
+    let dir = work_dir("board")?;
+    let netlist = dir.path().join("netlist.json");
+    let pack = dir.path().join("report-pack.json");
+    let mut figures = map_ice40_sources(sources, top, &netlist)?;
+    run(
+        nextpnr(&netlist, &pack)
+            .arg("--pcf")
+            .arg(pcf)
+            .arg("--pack-only"),
+        false,
+    )?;
+    figures.logic_cells = read_nextpnr_utilization(&pack)?;
+    if figures.logic_cells <= DEVICE_LOGIC_CELLS {
+        let report = dir.path().join("report.json");
+        run(
+            nextpnr(&netlist, &report)
+                .arg("--pcf")
+                .arg(pcf)
+                .arg("--freq")
+                .arg(format!("{target_mhz}"))
+                .arg("--seed")
+                .arg(seed.to_string()),
+            false,
+        )?;
+        let (fmax, cells) = read_nextpnr_report(&report)?;
+        figures.fmax_mhz.push(fmax);
+        figures.logic_cells = cells;
+    }
+    Ok(figures)
+}
+
 /// yosys `synth_ice40` of `rtl` into `netlist`: the cell counts (no logic
 /// cells or Fmax yet).
 fn map_ice40(rtl: &Path, top: &str, netlist: &Path) -> Result<SynthFigures, ToolError> {
+    map_ice40_sources(&[rtl], top, netlist)
+}
+
+/// [`map_ice40`] of several source files.
+fn map_ice40_sources(
+    sources: &[&Path],
+    top: &str,
+    netlist: &Path,
+) -> Result<SynthFigures, ToolError> {
+    let sources: Vec<String> = sources.iter().map(|p| p.display().to_string()).collect();
     let yosys_log = run(
         Command::new("yosys").arg("-p").arg(format!(
             "read_verilog {}; synth_ice40 -dffe_min_ce_use 4 -top {top} -json {}; stat",
-            rtl.display(),
+            sources.join(" "),
             netlist.display()
         )),
         false,

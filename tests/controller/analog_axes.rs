@@ -359,6 +359,29 @@ fn servo_build_matches_its_model_under_random_traffic() {
     run.assert_busy("K=3 servo", 60_000, 3_000, 75);
 }
 
+/// Both build options at once (`MotionController3UniformServo`: uniform
+/// generators and analog outputs, not exported, measured on the seed card
+/// in the scaling report): 3 x 10^5 clocks of the chaos traffic, its
+/// Verilog compiled by Verilator, in lockstep with the model built the
+/// same way.
+#[test]
+fn uniform_servo_build_matches_its_model_under_random_traffic() {
+    let backend =
+        motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator).unwrap();
+    let run = crate::motion_controller::chaos_run_on(
+        crate::bench::Bench::<3, 4, 5, true, true>::on(backend),
+        0x0f_0011,
+        300_000,
+    );
+    assert_eq!(
+        run.status_seen,
+        crate::motion_controller::ALL_STATUS,
+        "every STATUS bit seen set: {:#x}",
+        run.status_seen
+    );
+    run.assert_busy("K=3 uniform servo", 60_000, 3_000, 75);
+}
+
 /// The exported `motion_controller_servo.v` in Icarus and Verilator, cycle
 /// for cycle against the Rust simulation.
 #[test]

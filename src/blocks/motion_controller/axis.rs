@@ -12,7 +12,7 @@
 use rust_hdl::prelude::*;
 
 use super::axis_io::AxisIo;
-use super::registers::{axis, fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
+use super::registers::{fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
 use super::{PERIOD_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
 use crate::blocks::dda_integrator::DdaIntegrator;
@@ -21,6 +21,7 @@ use crate::blocks::quadrature_decoder::QuadratureDecoder;
 use crate::blocks::step_output::StepOutput;
 use crate::blocks::uniform_pulse_gen::UniformPulseCore;
 
+use super::axis_registers::{AxisRegisters, WRITE_BITS};
 use super::entry::{ENTRY_BITS, ENTRY_CODE_WIDE, ENTRY_NONZERO, ENTRY_SIGN, ENTRY_TOO_LARGE};
 
 // `update()` reads the entry's flags at literal bits, and its bits 15..0
@@ -157,12 +158,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     encoder: QuadratureDecoder<32, 8, 16>,
     io: AxisIo,
 
-    settings: DFF<Bits<32>>,
-    step_len: DFF<Bits<32>>,
-    step_space: DFF<Bits<32>>,
-    dir_setup: DFF<Bits<32>>,
-    dir_hold: DFF<Bits<32>>,
-    sample_rate: DFF<Bits<32>>,
+    /// The register window (configuration, strobes, snapshots, reads).
+    registers: AxisRegisters<NP1>,
     /// The entry popped at the last edge (0 after reset: every flag
     /// clear), and that a pop (an underrun) happened then: the
     /// interpolators take it one clock after the boundary, so the block
@@ -220,18 +217,13 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// The step request to the output stage, registered.
     request: DFF<Bit>,
     request_forward: DFF<Bit>,
-    cmd_snapshot: DFF<Bits<32>>,
-    act_snapshot: DFF<Bits<32>>,
     encoder_error_prev: DFF<Bit>,
 
-    selected: Signal<Local, Bit>,
-    offset: Signal<Local, Bits<4>>,
     /// The interpolator's step offered to the request register, and its
     /// direction.
     candidate: Signal<Local, Bit>,
     candidate_forward: Signal<Local, Bit>,
     candidate_blocked: Signal<Local, Bit>,
-    command: Signal<Local, Bit>,
     clear_faults: Signal<Local, Bit>,
     /// |popped| does not fit the interpolators.
     too_large: Signal<Local, Bit>,
@@ -248,52 +240,15 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     uniform_running: Signal<Local, Bit>,
     uniform_overrange: Signal<Local, Bit>,
     uniform_overflow: Signal<Local, Bit>,
-    fifo_status: Signal<Local, Bits<32>>,
-    axis_status: Signal<Local, Bits<32>>,
 
     window: Constant<Bits<3>>,
     /// The build has the uniform generator (the controller's `UNIFORM`).
     has_uniform: Constant<Bit>,
     /// The build has the analog outputs (the controller's `ANALOG`).
     has_analog: Constant<Bit>,
-    bit0_32: Constant<Bits<32>>,
-    bit16_32: Constant<Bits<32>>,
-    bit17_32: Constant<Bits<32>>,
-    bit18_32: Constant<Bits<32>>,
-    bit1_32: Constant<Bits<32>>,
-    bit2_32: Constant<Bits<32>>,
-    bit3_32: Constant<Bits<32>>,
-    bit4_32: Constant<Bits<32>>,
-    bit5_32: Constant<Bits<32>>,
-    bit6_32: Constant<Bits<32>>,
-    bit7_32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
     zero_count: Constant<Bits<PERIOD_BITS>>,
     zero_entry: Constant<Bits<ENTRY_BITS>>,
-    /// `bit_mask[i]` = 1 << i, one per FIFO level bit.
-    bit_mask: [Constant<Bits<32>>; NP1],
-    /// Register widths: the upper bits of the 32-bit registers are always
-    /// 0, and yosys removes their flip-flops.
-    mask16: Constant<Bits<32>>,
-    /// AXIS_CONFIG's writable bits (the register map's read-write fields:
-    /// without the uniform generator, not UNIFORM and INTERLEAVED).
-    config_mask: Constant<Bits<32>>,
-    mask8: Constant<Bits<32>>,
-    off_fifo_write: Constant<Bits<4>>,
-    off_fifo_status: Constant<Bits<4>>,
-    off_config: Constant<Bits<4>>,
-    off_step_len: Constant<Bits<4>>,
-    off_step_space: Constant<Bits<4>>,
-    off_dir_setup: Constant<Bits<4>>,
-    off_dir_hold: Constant<Bits<4>>,
-    off_sample_rate: Constant<Bits<4>>,
-    off_cmd_position: Constant<Bits<4>>,
-    off_act_position: Constant<Bits<4>>,
-    off_cmd_snapshot: Constant<Bits<4>>,
-    off_act_snapshot: Constant<Bits<4>>,
-    off_axis_status: Constant<Bits<4>>,
-    off_index_position: Constant<Bits<4>>,
-    off_command: Constant<Bits<4>>,
 }
 
 impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
@@ -303,8 +258,6 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
     /// AXIS_CONFIG's read-write bits in the controller's register map.
     pub fn new(index: usize, uniform: bool, analog: bool, config_mask: u32) -> Self {
         let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2;
-        let c4 = |v: u32| Constant::new((v as u64).into());
-        let bit32 = |n: u32| Constant::new((1u64 << n).into());
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -365,12 +318,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             position: Default::default(),
             encoder: Default::default(),
             io: Default::default(),
-            settings: Default::default(),
-            step_len: Default::default(),
-            step_space: Default::default(),
-            dir_setup: Default::default(),
-            dir_hold: Default::default(),
-            sample_rate: Default::default(),
+            registers: AxisRegisters::new(index, config_mask),
             popped: Default::default(),
             popped_valid: Default::default(),
             underrun_d: Default::default(),
@@ -399,15 +347,10 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             uniform_pulse_prev: Default::default(),
             request: Default::default(),
             request_forward: Default::default(),
-            cmd_snapshot: Default::default(),
-            act_snapshot: Default::default(),
             encoder_error_prev: Default::default(),
-            selected: Default::default(),
-            offset: Default::default(),
             candidate: Default::default(),
             candidate_forward: Default::default(),
             candidate_blocked: Default::default(),
-            command: Default::default(),
             clear_faults: Default::default(),
             too_large: Default::default(),
             count: Default::default(),
@@ -418,44 +361,12 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             uniform_running: Default::default(),
             uniform_overrange: Default::default(),
             uniform_overflow: Default::default(),
-            fifo_status: Default::default(),
-            axis_status: Default::default(),
             window: Constant::new((window as u64).into()),
             has_uniform: Constant::new(uniform),
             has_analog: Constant::new(analog),
-            bit0_32: bit32(fields::STATUS_STEP_OVERRUN),
-            bit16_32: bit32(fields::FIFO_EMPTY),
-            bit17_32: bit32(fields::FIFO_FULL),
-            bit18_32: bit32(fields::FIFO_LOW),
-            bit1_32: bit32(fields::STATUS_INTERP_OVERRANGE),
-            bit2_32: bit32(fields::STATUS_INTERP_OVERFLOW),
-            bit3_32: bit32(fields::STATUS_ENCODER_ERROR),
-            bit4_32: bit32(fields::STATUS_INDEX_SEEN),
-            bit5_32: bit32(fields::STATUS_STEP_BUSY),
-            bit6_32: bit32(fields::STATUS_UNIFORM_RUNNING),
-            bit7_32: bit32(fields::STATUS_STEP_MODE_INVALID),
             zero32: Constant::new(0u64.into()),
             zero_count: Constant::new(0u64.into()),
             zero_entry: Constant::new(0u64.into()),
-            bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
-            mask16: Constant::new(crate::blocks::width_mask(fields::STEP_TIMING_WIDTH).into()),
-            config_mask: Constant::new((config_mask as u64).into()),
-            mask8: Constant::new(crate::blocks::width_mask(fields::ENC_SAMPLE_RATE_WIDTH).into()),
-            off_fifo_write: c4(axis::FIFO_WRITE),
-            off_fifo_status: c4(axis::FIFO_STATUS),
-            off_config: c4(axis::AXIS_CONFIG),
-            off_step_len: c4(axis::STEP_LEN),
-            off_step_space: c4(axis::STEP_SPACE),
-            off_dir_setup: c4(axis::DIR_SETUP),
-            off_dir_hold: c4(axis::DIR_HOLD),
-            off_sample_rate: c4(axis::ENC_SAMPLE_RATE),
-            off_cmd_position: c4(axis::CMD_POSITION),
-            off_act_position: c4(axis::ACT_POSITION),
-            off_cmd_snapshot: c4(axis::CMD_SNAPSHOT),
-            off_act_snapshot: c4(axis::ACT_SNAPSHOT),
-            off_axis_status: c4(axis::AXIS_STATUS),
-            off_index_position: c4(axis::INDEX_POSITION),
-            off_command: c4(axis::AXIS_COMMAND),
         }
     }
 }
@@ -505,12 +416,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         dff_setup!(
             self,
             clock,
-            settings,
-            step_len,
-            step_space,
-            dir_setup,
-            dir_hold,
-            sample_rate,
             popped,
             popped_valid,
             underrun_d,
@@ -537,8 +442,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             uniform_pulse_prev,
             request,
             request_forward,
-            cmd_snapshot,
-            act_snapshot,
             encoder_error_prev
         );
         self.fifo.clock.next = self.clock.val();
@@ -549,42 +452,19 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder.clock.next = self.clock.val();
         self.io.clock.next = self.clock.val();
 
-        // Register window decode: bits 7..5 the window (AXIS_STRIDE_LOG2 =
-        // 5), bit 4 the half (motion core or machine I/O), 3..0 the offset
-        // (address bits, not register fields: asserted above).
-        self.selected.next = (self.address.val().get_bits::<3>(5) == self.window.val())
-            & !self.address.val().get_bit(4);
-        self.offset.next = self.address.val().get_bits::<4>(0);
-        self.command.next =
-            self.write.val() & self.selected.val() & (self.offset.val() == self.off_command.val());
+        // The register window: configuration, strobes, snapshots, reads.
+        self.registers.clock.next = self.clock.val();
+        self.registers.reset.next = self.reset.val();
+        self.registers.address.next = self.address.val();
+        self.registers.write.next = self.write.val();
+        self.registers.write_data.next = self.write_data.val().get_bits::<WRITE_BITS>(0);
+        self.registers.snapshot.next = self.snapshot.val();
         // AXIS_COMMAND.CLEAR_FAULTS
-        self.clear_faults.next = self.command.val() & self.write_data.val().get_bit(0);
-        if self.write.val() & self.selected.val() {
-            if self.offset.val() == self.off_config.val() {
-                self.settings.d.next = self.write_data.val() & self.config_mask.val();
-            }
-            if self.offset.val() == self.off_step_len.val() {
-                self.step_len.d.next = self.write_data.val() & self.mask16.val();
-            }
-            if self.offset.val() == self.off_step_space.val() {
-                self.step_space.d.next = self.write_data.val() & self.mask16.val();
-            }
-            if self.offset.val() == self.off_dir_setup.val() {
-                self.dir_setup.d.next = self.write_data.val() & self.mask16.val();
-            }
-            if self.offset.val() == self.off_dir_hold.val() {
-                self.dir_hold.d.next = self.write_data.val() & self.mask16.val();
-            }
-            if self.offset.val() == self.off_sample_rate.val() {
-                self.sample_rate.d.next = self.write_data.val() & self.mask8.val();
-            }
-        }
+        self.clear_faults.next = self.registers.command.val() & self.write_data.val().get_bit(0);
 
         // Command FIFO.
         self.fifo.reset.next = self.reset.val() | self.flush.val();
-        self.fifo.write.next = self.write.val()
-            & self.selected.val()
-            & (self.offset.val() == self.off_fifo_write.val());
+        self.fifo.write.next = self.registers.fifo_write.val();
         self.fifo.write_data.next = self.fifo_entry.val();
         self.fifo.pop.next = self.pop.val();
         self.fifo.low_water.next = self.low_water.val();
@@ -648,12 +528,13 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // the switch waits for the next start, and no pulse is cut off.
         if self.start.val() & !self.uniform_running.val() {
             // AXIS_CONFIG.UNIFORM
-            self.uniform_active.d.next = self.settings.q.val().get_bit(0);
+            self.uniform_active.d.next = self.registers.axis_config.val().get_bit(0);
         }
         // An analog axis takes no steps: its entries are DAC codes
         // (AXIS_CONFIG.ANALOG).
         if self.start.val() {
-            self.analog_active.d.next = self.has_analog.val() & self.settings.q.val().get_bit(13);
+            self.analog_active.d.next =
+                self.has_analog.val() & self.registers.axis_config.val().get_bit(13);
         }
         if self.popped_valid.q.val() {
             self.forward.d.next = !self.popped.q.val().get_bit(17);
@@ -694,7 +575,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.uniform.period.next = self.period_active.val();
         self.uniform.count.next = self.count.val();
         // AXIS_CONFIG.INTERLEAVED
-        self.uniform.mode.next = self.settings.q.val().get_bit(1);
+        self.uniform.mode.next = self.registers.axis_config.val().get_bit(1);
         self.uniform.load.next =
             self.popped_valid.q.val() & self.uniform_active.q.val() & !self.analog_active.q.val();
         self.uniform.clear_flags.next = self.clear_faults.val() | self.start.val();
@@ -740,11 +621,11 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.stage.step.next = self.request.q.val();
         self.stage.dir.next = self.request_forward.q.val();
         self.stage.flush.next = self.abort.val() | self.io.cut.val();
-        self.stage.mode.next = self.settings.q.val().get_value_step_mode();
-        self.stage.step_len.next = self.step_len.q.val().get_value_step_timing();
-        self.stage.step_space.next = self.step_space.q.val().get_value_step_timing();
-        self.stage.dir_setup.next = self.dir_setup.q.val().get_value_step_timing();
-        self.stage.dir_hold.next = self.dir_hold.q.val().get_value_step_timing();
+        self.stage.mode.next = self.registers.axis_config.val().get_value_step_mode();
+        self.stage.step_len.next = self.registers.step_len.val().get_value_step_timing();
+        self.stage.step_space.next = self.registers.step_space.val().get_value_step_timing();
+        self.stage.dir_setup.next = self.registers.dir_setup.val().get_value_step_timing();
+        self.stage.dir_hold.next = self.registers.dir_hold.val().get_value_step_timing();
         self.stage.clear_overrun.next = self.clear_faults.val();
         self.out_a.next = self.stage.out_a.val();
         self.out_b.next = self.stage.out_b.val();
@@ -760,7 +641,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // 32-bit carry chain in placement: nextpnr allows 32 LUT inputs per
         // tile. It was the slowest path of the top.)
         // AXIS_COMMAND.CLEAR_POSITION
-        self.clear_position.next = (self.command.val() & self.write_data.val().get_bit(3))
+        self.clear_position.next = (self.registers.command.val()
+            & self.write_data.val().get_bit(3))
             | self.clear_position_pending.q.val();
         self.position.clear.next = self.clear_position.val() & !self.stage.emitted.val();
         self.clear_position_pending.d.next = self.clear_position.val() & self.stage.emitted.val();
@@ -773,19 +655,22 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder.a.next = self.enc_a.val();
         self.encoder.b.next = self.enc_b.val();
         self.encoder.index.next = self.enc_index.val();
-        self.encoder.filter.next = self.settings.q.val().get_value_enc_filter();
-        self.encoder.sample_rate.next = self.sample_rate.q.val().get_value_enc_sample_rate();
+        self.encoder.filter.next = self.registers.axis_config.val().get_value_enc_filter();
+        self.encoder.sample_rate.next =
+            self.registers.sample_rate.val().get_value_enc_sample_rate();
         // AXIS_CONFIG.ENC_COUNTER_MODE, INDEX_INVERT, INDEX_CLEAR,
         // INDEX_LATCH, INDEX_ONCE; AXIS_COMMAND.CLEAR_ENCODER, REARM_INDEX,
         // CLEAR_ENCODER_ERROR.
-        self.encoder.counter_mode.next = self.settings.q.val().get_bit(8);
-        self.encoder.index_invert.next = self.settings.q.val().get_bit(9);
-        self.encoder.index_clear.next = self.settings.q.val().get_bit(10);
-        self.encoder.index_latch.next = self.settings.q.val().get_bit(11);
-        self.encoder.index_once.next = self.settings.q.val().get_bit(12);
-        self.encoder.clear.next = self.command.val() & self.write_data.val().get_bit(1);
-        self.encoder.index_rearm.next = self.command.val() & self.write_data.val().get_bit(2);
-        self.encoder.clear_error.next = self.command.val() & self.write_data.val().get_bit(4);
+        self.encoder.counter_mode.next = self.registers.axis_config.val().get_bit(8);
+        self.encoder.index_invert.next = self.registers.axis_config.val().get_bit(9);
+        self.encoder.index_clear.next = self.registers.axis_config.val().get_bit(10);
+        self.encoder.index_latch.next = self.registers.axis_config.val().get_bit(11);
+        self.encoder.index_once.next = self.registers.axis_config.val().get_bit(12);
+        self.encoder.clear.next = self.registers.command.val() & self.write_data.val().get_bit(1);
+        self.encoder.index_rearm.next =
+            self.registers.command.val() & self.write_data.val().get_bit(2);
+        self.encoder.clear_error.next =
+            self.registers.command.val() & self.write_data.val().get_bit(4);
 
         // Machine I/O: limits, alarm, home and drive enable.
         self.io.reset.next = self.reset.val();
@@ -820,11 +705,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.alarm_event.next = self.io.alarm_event.val();
         self.home_event.next = self.io.home_event.val();
 
-        if self.snapshot.val() {
-            self.cmd_snapshot.d.next = self.position.count.val();
-            self.act_snapshot.d.next = self.encoder.count.val();
-        }
-
         // Events: each rise of a sub-block's sticky flag, and each
         // saturated entry.
         self.overrun_prev.d.next = self.stage.overrun.val();
@@ -840,83 +720,26 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.encoder_error_prev.d.next = self.encoder.error.val();
         self.encoder_error_event.next = self.encoder.error.val() & !self.encoder_error_prev.q.val();
 
-        // Read data.
-        // Zero-extended bit by bit: rust-hdl's cast prints as a mask that
-        // Verilator flags for width.
-        self.fifo_status.next = self.zero32.val();
-        for i in 0..NP1 {
-            if self.fifo.level.val().get_bit(i) {
-                self.fifo_status.next = self.fifo_status.val() | self.bit_mask[i].val();
-            }
-        }
-        if self.fifo.empty.val() {
-            self.fifo_status.next = self.fifo_status.val() | self.bit16_32.val();
-        }
-        if self.fifo.full.val() {
-            self.fifo_status.next = self.fifo_status.val() | self.bit17_32.val();
-        }
-        if self.fifo.low.val() {
-            self.fifo_status.next = self.fifo_status.val() | self.bit18_32.val();
-        }
-        self.axis_status.next = self.zero32.val();
-        if self.stage.overrun.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit0_32.val();
-        }
-        if self.overrange_flag.q.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit1_32.val();
-        }
-        if self.overflow_flag.q.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit2_32.val();
-        }
-        if self.encoder.error.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit3_32.val();
-        }
-        if self.encoder.index_seen.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit4_32.val();
-        }
-        if self.stage.busy.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit5_32.val();
-        }
-        if self.uniform_running.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit6_32.val();
-        }
-        if self.stage.mode_invalid.val() {
-            self.axis_status.next = self.axis_status.val() | self.bit7_32.val();
-        }
-        // One-hot AND-OR: the offsets are exclusive, which synthesis cannot
-        // know of a priority chain; ORing gated sources packs two per LUT4.
-        self.read_data.next = self.io.read_data.val();
-        if self.selected.val() {
-            if self.offset.val() == self.off_fifo_status.val() {
-                self.read_data.next = self.read_data.val() | self.fifo_status.val();
-            }
-            if self.offset.val() == self.off_cmd_position.val() {
-                self.read_data.next = self.read_data.val() | self.position.count.val();
-            }
-            if self.offset.val() == self.off_act_position.val() {
-                self.read_data.next = self.read_data.val() | self.encoder.count.val();
-            }
-            if self.offset.val() == self.off_cmd_snapshot.val() {
-                self.read_data.next = self.read_data.val() | self.cmd_snapshot.q.val();
-            }
-            if self.offset.val() == self.off_act_snapshot.val() {
-                self.read_data.next = self.read_data.val() | self.act_snapshot.q.val();
-            }
-            if self.offset.val() == self.off_axis_status.val() {
-                self.read_data.next = self.read_data.val() | self.axis_status.val();
-            }
-            if self.offset.val() == self.off_index_position.val() {
-                self.read_data.next = self.read_data.val() | self.encoder.index_count.val();
-            }
-        }
+        // Read data: the window's registers and the axis I/O's.
+        self.registers.fifo_level.next = self.fifo.level.val();
+        self.registers.fifo_empty.next = self.fifo.empty.val();
+        self.registers.fifo_full.next = self.fifo.full.val();
+        self.registers.fifo_low.next = self.fifo.low.val();
+        self.registers.step_overrun.next = self.stage.overrun.val();
+        self.registers.interp_overrange.next = self.overrange_flag.q.val();
+        self.registers.interp_overflow.next = self.overflow_flag.q.val();
+        self.registers.encoder_error.next = self.encoder.error.val();
+        self.registers.index_seen.next = self.encoder.index_seen.val();
+        self.registers.step_busy.next = self.stage.busy.val();
+        self.registers.uniform_running.next = self.uniform_running.val();
+        self.registers.step_mode_invalid.next = self.stage.mode_invalid.val();
+        self.registers.cmd_position.next = self.position.count.val();
+        self.registers.act_position.next = self.encoder.count.val();
+        self.registers.index_position.next = self.encoder.index_count.val();
+        self.registers.io_read_data.next = self.io.read_data.val();
+        self.read_data.next = self.registers.read_data.val();
 
         if self.reset.val() {
-            self.settings.d.next = self.zero32.val();
-            self.step_len.d.next = self.zero32.val();
-            self.step_space.d.next = self.zero32.val();
-            self.dir_setup.d.next = self.zero32.val();
-            self.dir_hold.d.next = self.zero32.val();
-            self.sample_rate.d.next = self.zero32.val();
             self.popped.d.next = self.zero_entry.val();
             self.popped_valid.d.next = false;
             self.underrun_d.d.next = false;
@@ -943,8 +766,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.uniform_pulse_prev.d.next = false;
             self.request.d.next = false;
             self.request_forward.d.next = false;
-            self.cmd_snapshot.d.next = self.zero32.val();
-            self.act_snapshot.d.next = self.zero32.val();
             self.encoder_error_prev.d.next = false;
         }
     }

@@ -321,6 +321,30 @@
 //! uniform generator gated off, or the analog code's direction also offered
 //! to the limit gate); drive alarms, stop on home and the watchdog.
 //!
+//! ## Structure
+//! The controller is its core and a register layer apart from it, each a
+//! sub-block in its own file here (internal: their behavior is the
+//! controller's, modelled by [`model`]):
+//! * [`global_registers`]: the global registers' flip-flops, write strobes
+//!   and read word (ID to STOP_CAUSE), fields placed by the register map;
+//! * [`config_shadow`]: the axes' configuration registers read back from
+//!   block RAM;
+//! * [`period_sequencer`]: RUN, FLUSH, the base ticks of each period and
+//!   its boundary (pop or underrun), PERIOD_COUNT;
+//! * [`stop_cause`]: STOP_CAUSE, taken when RUN falls;
+//! * [`entry`]: the 20-bit FIFO entry and the converter that makes it from
+//!   the bus word, once for every axis;
+//! * [`analog_outputs`]: the DAC, its walk over the analog axes after each
+//!   pop, the 0 V update, and the DAC's registers on the bus;
+//! * [`machine_io`]: switch conditioning, the E-stop latch, general I/O;
+//! * [`axis`] (one per axis): FIFO, DDA, uniform generator, output stage,
+//!   position counter, encoder, the axis's I/O ([`axis_io`]) and its
+//!   register window.
+//!
+//! The controller's own `update()` wires these together, ORs the stop
+//! causes and events, and arbitrates the uniform generators' shared
+//! divider.
+//!
 //! ## Resources (iCE40 HX8K, 16-entry FIFOs)
 //! See `rtl-out/synthesis-report.md`, which also has K = 1 and K = 6 and
 //! four other FPGA families. Each axis carries a uniform pulse generator
@@ -363,13 +387,16 @@
 //!   analog outputs (with the board's bus adapter it nearly fills an
 //!   iCE40 HX8K: the DAC does not fit beside it);
 //! * `motion_controller_dda` ([`MotionController3Dda`]): DDA only, no
-//!   analog outputs: small enough for an iCE40 HX8K with the host links
-//!   and mailbox, with the 15 % of it free the seed card asks for
-//!   (`seed_board.v`, checked by its placement test);
+//!   analog outputs: the seed design's scheme for step drives;
 //! * `motion_controller_servo` ([`MotionController3Servo`]): DDA only,
-//!   with the analog outputs (step and AD669 servo drives). Since #35's
-//!   second step it fits an HX8K beside the host links within the seed
-//!   card's 85 %; `seed_board.v` does not wire the DACs yet.
+//!   with the analog outputs (step and AD669 servo drives): the seed
+//!   card's controller (`seed_board.v`, which its placement test keeps
+//!   within the 85 % of an iCE40 HX8K the card asks for).
+//!
+//! [`MotionController3UniformServo`], both options on, is not exported: with the
+//! host links it does not fit the seed card's HX8K within those 85 %. The
+//! scaling report measures it there ("The seed card"), with the three
+//! exported builds.
 //!
 //! Without the uniform generators the ports are the same; for software:
 //! * `CONFIG.DDA_ONLY` reads 1 (0 in the full build, and in cores older
@@ -394,6 +421,7 @@
 pub mod analog_outputs;
 pub mod axis;
 pub mod axis_io;
+pub mod axis_registers;
 pub mod config_shadow;
 pub mod entry;
 pub mod global_registers;
@@ -502,6 +530,10 @@ pub type MotionController3Dda = MotionController<3, 4, 5, false, false>;
 /// The exported servo configuration (`motion_controller_servo`): the
 /// DDA-only controller with the analog outputs (see "Build options").
 pub type MotionController3Servo = MotionController<3, 4, 5, false, true>;
+
+/// Both build options (uniform generators and analog outputs): measured on
+/// the seed card in the scaling report, not exported (see "Build options").
+pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
@@ -1147,9 +1179,8 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.analog.bus_write.next = self.bus_write.val();
         self.analog.bus_read.next = self.bus_read.val();
         self.analog.pop.next = self.pop.val();
-        self.analog.stop_zero.next = self.period.running.val()
-            & (self.underrun.val() | self.halt.val())
-            & !self.abort.val();
+        self.analog.stop_zero.next =
+            self.period.running.val() & (self.underrun.val() | self.halt.val()) & !self.abort.val();
         self.analog.abort.next = self.abort.val();
         self.analog.analog_axes.next = self.analog_axes.val();
         self.analog.code_magnitude.next = self.walk_magnitude.val();

@@ -95,7 +95,7 @@ pub const DAC_BITS: usize = 16;
 /// the register fields the RTL, the models and the tests use by name. The
 /// map below is built from these: they are the one place a field's
 /// position is written. The RTL reads them through
-/// [`crate::blocks::field_slices`] (slices) or at a literal bit tied to
+/// `field_slices!` (`src/blocks/mod.rs`: slices) or at a literal bit tied to
 /// them by a compile-time assertion (single bits: rust-hdl prints a named
 /// constant by name); the test `fields_agree_with_the_map` checks each
 /// against the map by register and field name.
