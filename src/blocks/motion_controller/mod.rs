@@ -339,7 +339,8 @@
 //! * [`machine_io`]: switch conditioning, the E-stop latch, general I/O;
 //! * [`axis`] (one per axis): FIFO, DDA, uniform generator, output stage,
 //!   position counter, encoder, the axis's I/O ([`axis_io`]) and its
-//!   register window.
+//!   register window ([`axis_registers`]: configuration, strobes,
+//!   snapshots and reads, apart from the axis's core).
 //!
 //! The controller's own `update()` wires these together, ORs the stop
 //! causes and events, and arbitrates the uniform generators' shared
@@ -393,10 +394,10 @@
 //!   card's controller (`seed_board.v`, which its placement test keeps
 //!   within the 85 % of an iCE40 HX8K the card asks for).
 //!
-//! [`MotionController3UniformServo`], both options on, is not exported: with the
-//! host links it does not fit the seed card's HX8K within those 85 %. The
-//! scaling report measures it there ("The seed card"), with the three
-//! exported builds.
+//! [`MotionController3UniformServo`], both options on, is not exported:
+//! with the host links it does not fit the seed card's HX8K. The scaling
+//! report places the seed card with it and with the three exported builds
+//! ("The seed card"); a lockstep test runs it against the model.
 //!
 //! Without the uniform generators the ports are the same; for software:
 //! * `CONFIG.DDA_ONLY` reads 1 (0 in the full build, and in cores older
