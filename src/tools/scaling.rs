@@ -20,8 +20,9 @@ pub const SEED_CARD_MHZ: f64 = 48.0;
 pub const SEED_CARD_SEED: u64 = 1;
 /// The share of the HX8K's logic cells the seed card may use, in percent.
 pub const SEED_CARD_BUDGET_PERCENT: u32 = 85;
-/// The controller instance's module in `seed_board.v`.
-const SEED_CARD_CONTROLLER: &str = "motion_controller_servo";
+/// The controller instance's module in `seed_board.v` (the card's own
+/// build; its placement test places the card with it).
+pub const SEED_CARD_CONTROLLER: &str = "motion_controller_servo";
 
 /// One controller build on the seed card.
 pub struct SeedCardRow {
