@@ -176,7 +176,7 @@ pub fn synthesize(
     let dir = work_dir("synth")?;
     let netlist = dir.path().join("netlist.json");
     let mut figures = map_ice40(rtl, top, &netlist)?;
-    place(dir.path(), &netlist, seeds, target_mhz, &mut figures)?;
+    place(dir.path(), &netlist, None, seeds, target_mhz, &mut figures)?;
     Ok(figures)
 }
 
@@ -190,42 +190,7 @@ pub fn synthesize_if_it_fits(
     seeds: &[u64],
     target_mhz: f64,
 ) -> Result<SynthFigures, ToolError> {
-    let dir = work_dir("synth")?;
-    let netlist = dir.path().join("netlist.json");
-    let report = dir.path().join("report-pack.json");
-    let mut figures = map_ice40(rtl, top, &netlist)?;
-    run(nextpnr(&netlist, &report).arg("--pack-only"), false)?;
-    figures.logic_cells = read_nextpnr_utilization(&report)?;
-    if figures.logic_cells <= DEVICE_LOGIC_CELLS {
-        place(dir.path(), &netlist, seeds, target_mhz, &mut figures)?;
-    }
-    Ok(figures)
-}
-
-/// Places and routes `netlist` once per seed (reports in `dir`), adding
-/// each Fmax and the logic cells to `figures`.
-fn place(
-    dir: &Path,
-    netlist: &Path,
-    seeds: &[u64],
-    target_mhz: f64,
-    figures: &mut SynthFigures,
-) -> Result<(), ToolError> {
-    for seed in seeds {
-        let report = dir.join(format!("report-{seed}.json"));
-        run(
-            nextpnr(netlist, &report)
-                .arg("--freq")
-                .arg(format!("{target_mhz}"))
-                .arg("--seed")
-                .arg(seed.to_string()),
-            false,
-        )?;
-        let (fmax, cells) = read_nextpnr_report(&report)?;
-        figures.fmax_mhz.push(fmax);
-        figures.logic_cells = cells;
-    }
-    Ok(())
+    place_if_it_fits(&[rtl], top, None, seeds, target_mhz)
 }
 
 /// A board design (`sources`, top module `top`) placed with its pin file
@@ -238,24 +203,45 @@ pub fn place_board_if_it_fits(
     seed: u64,
     target_mhz: f64,
 ) -> Result<SynthFigures, ToolError> {
-    let dir = work_dir("board")?;
+    place_if_it_fits(sources, top, Some(pcf), &[seed], target_mhz)
+}
+
+/// One yosys run, nextpnr's packer, then (if it fits) one placement per
+/// seed, with the pin file `pcf` if there is one.
+fn place_if_it_fits(
+    sources: &[&Path],
+    top: &str,
+    pcf: Option<&Path>,
+    seeds: &[u64],
+    target_mhz: f64,
+) -> Result<SynthFigures, ToolError> {
+    let dir = work_dir("synth")?;
     let netlist = dir.path().join("netlist.json");
-    let pack = dir.path().join("report-pack.json");
+    let report = dir.path().join("report-pack.json");
     let mut figures = map_ice40_sources(sources, top, &netlist)?;
-    run(
-        nextpnr(&netlist, &pack)
-            .arg("--pcf")
-            .arg(pcf)
-            .arg("--pack-only"),
-        false,
-    )?;
-    figures.logic_cells = read_nextpnr_utilization(&pack)?;
+    run(nextpnr(&netlist, &report, pcf).arg("--pack-only"), false)?;
+    figures.logic_cells = read_nextpnr_utilization(&report)?;
     if figures.logic_cells <= DEVICE_LOGIC_CELLS {
-        let report = dir.path().join("report.json");
+        place(dir.path(), &netlist, pcf, seeds, target_mhz, &mut figures)?;
+    }
+    Ok(figures)
+}
+
+/// Places and routes `netlist` once per seed (reports in `dir`), with the
+/// pin file `pcf` if there is one, adding each Fmax and the logic cells to
+/// `figures`.
+fn place(
+    dir: &Path,
+    netlist: &Path,
+    pcf: Option<&Path>,
+    seeds: &[u64],
+    target_mhz: f64,
+    figures: &mut SynthFigures,
+) -> Result<(), ToolError> {
+    for seed in seeds {
+        let report = dir.join(format!("report-{seed}.json"));
         run(
-            nextpnr(&netlist, &report)
-                .arg("--pcf")
-                .arg(pcf)
+            nextpnr(netlist, &report, pcf)
                 .arg("--freq")
                 .arg(format!("{target_mhz}"))
                 .arg("--seed")
@@ -266,7 +252,7 @@ pub fn place_board_if_it_fits(
         figures.fmax_mhz.push(fmax);
         figures.logic_cells = cells;
     }
-    Ok(figures)
+    Ok(())
 }
 
 /// yosys `synth_ice40` of `rtl` into `netlist`: the cell counts (no logic
@@ -308,8 +294,9 @@ fn map_ice40_sources(
     })
 }
 
-/// nextpnr-ice40 on the HX8K with unconstrained IO, writing its JSON report.
-fn nextpnr(netlist: &Path, report: &Path) -> Command {
+/// nextpnr-ice40 on the HX8K, writing its JSON report: IO placed by the
+/// pin file `pcf` if there is one, any other IO unconstrained.
+fn nextpnr(netlist: &Path, report: &Path, pcf: Option<&Path>) -> Command {
     let mut command = Command::new("nextpnr-ice40");
     command
         .args([
@@ -324,6 +311,9 @@ fn nextpnr(netlist: &Path, report: &Path) -> Command {
         .arg(netlist)
         .arg("--report")
         .arg(report);
+    if let Some(pcf) = pcf {
+        command.arg("--pcf").arg(pcf);
+    }
     command
 }
 

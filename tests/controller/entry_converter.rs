@@ -22,23 +22,12 @@ fn convert(uut: &mut EntryConverter, w: i32) -> u32 {
     panic!("the entry converter did not settle for {w}");
 }
 
-/// Every word within 2 of each edge of the format: 0, ±2^15, ±2^16 and
-/// the ends of 32 bits.
+/// Every word within 2 of each edge of the format (the controller tests'
+/// `ENTRY_EDGES`: 0, 16 bits signed, 16 bits unsigned, 32 bits).
 fn edge_words() -> Vec<i32> {
-    let edges: [i64; 9] = [
-        0,
-        1 << 15,
-        -(1 << 15),
-        1 << 16,
-        -(1 << 16),
-        0xffff,
-        -0xffff,
-        i32::MAX as i64,
-        i32::MIN as i64,
-    ];
-    let mut words: Vec<i32> = edges
+    let mut words: Vec<i32> = crate::motion_controller::ENTRY_EDGES
         .iter()
-        .flat_map(|&e| (-2..=2).filter_map(move |d| i32::try_from(e + d).ok()))
+        .flat_map(|&e| (-2..=2).filter_map(move |d| i32::try_from(e as i64 + d).ok()))
         .collect();
     words.sort_unstable();
     words.dedup();
