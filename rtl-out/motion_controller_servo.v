@@ -162,8 +162,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [15:0] axes__0__div_dividend;
     wire  [15:0] axes__0__div_divisor;
     reg  axes__0__div_done;
-    reg  [15:0] axes__0__div_quotient;
-    reg  [15:0] axes__0__div_remainder;
+    reg  [15:0] axes__0__div_half;
+    reg  [15:0] axes__0__div_long_pulses;
+    reg  [15:0] axes__0__div_short_negated;
+    reg  axes__0__div_half_is_one;
+    reg  axes__0__div_has_pulses;
+    reg  axes__0__div_clamped;
     wire  axes__0__analog;
     wire  [15:0] axes__0__dac_code;
     wire  axes__0__code_out_of_range;
@@ -214,8 +218,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [15:0] axes__1__div_dividend;
     wire  [15:0] axes__1__div_divisor;
     reg  axes__1__div_done;
-    reg  [15:0] axes__1__div_quotient;
-    reg  [15:0] axes__1__div_remainder;
+    reg  [15:0] axes__1__div_half;
+    reg  [15:0] axes__1__div_long_pulses;
+    reg  [15:0] axes__1__div_short_negated;
+    reg  axes__1__div_half_is_one;
+    reg  axes__1__div_has_pulses;
+    reg  axes__1__div_clamped;
     wire  axes__1__analog;
     wire  [15:0] axes__1__dac_code;
     wire  axes__1__code_out_of_range;
@@ -266,8 +274,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [15:0] axes__2__div_dividend;
     wire  [15:0] axes__2__div_divisor;
     reg  axes__2__div_done;
-    reg  [15:0] axes__2__div_quotient;
-    reg  [15:0] axes__2__div_remainder;
+    reg  [15:0] axes__2__div_half;
+    reg  [15:0] axes__2__div_long_pulses;
+    reg  [15:0] axes__2__div_short_negated;
+    reg  axes__2__div_half_is_one;
+    reg  axes__2__div_has_pulses;
+    reg  axes__2__div_clamped;
     wire  axes__2__analog;
     wire  [15:0] axes__2__dac_code;
     wire  axes__2__code_out_of_range;
@@ -405,16 +417,19 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [2:0] analog__dac_cs_n;
     wire  analog__dac_l1_n;
     wire  analog__dac_ldac;
-    reg  divider__clock;
-    reg  divider__reset;
-    reg  divider__start;
-    reg  [15:0] divider__dividend;
-    reg  [15:0] divider__divisor;
-    wire  divider__busy;
-    wire  divider__done;
-    wire  [15:0] divider__quotient;
-    wire  [15:0] divider__remainder;
-    wire  divider__divide_by_zero;
+    reg  planner__clock;
+    reg  planner__reset;
+    reg  planner__start;
+    reg  [15:0] planner__dividend;
+    reg  [15:0] planner__divisor;
+    wire  planner__busy;
+    wire  planner__done;
+    wire  [15:0] planner__half;
+    wire  [15:0] planner__long_pulses;
+    wire  [15:0] planner__short_negated;
+    wire  planner__half_is_one;
+    wire  planner__has_pulses;
+    wire  planner__clamped;
     reg  [2:0] div_owner__d;
     wire  [2:0] div_owner__q;
     reg  div_owner__clock;
@@ -514,8 +529,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .div_dividend(axes__0__div_dividend),
         .div_divisor(axes__0__div_divisor),
         .div_done(axes__0__div_done),
-        .div_quotient(axes__0__div_quotient),
-        .div_remainder(axes__0__div_remainder),
+        .div_half(axes__0__div_half),
+        .div_long_pulses(axes__0__div_long_pulses),
+        .div_short_negated(axes__0__div_short_negated),
+        .div_half_is_one(axes__0__div_half_is_one),
+        .div_has_pulses(axes__0__div_has_pulses),
+        .div_clamped(axes__0__div_clamped),
         .analog(axes__0__analog),
         .dac_code(axes__0__dac_code),
         .code_out_of_range(axes__0__code_out_of_range),
@@ -568,8 +587,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .div_dividend(axes__1__div_dividend),
         .div_divisor(axes__1__div_divisor),
         .div_done(axes__1__div_done),
-        .div_quotient(axes__1__div_quotient),
-        .div_remainder(axes__1__div_remainder),
+        .div_half(axes__1__div_half),
+        .div_long_pulses(axes__1__div_long_pulses),
+        .div_short_negated(axes__1__div_short_negated),
+        .div_half_is_one(axes__1__div_half_is_one),
+        .div_has_pulses(axes__1__div_has_pulses),
+        .div_clamped(axes__1__div_clamped),
         .analog(axes__1__analog),
         .dac_code(axes__1__dac_code),
         .code_out_of_range(axes__1__code_out_of_range),
@@ -622,8 +645,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .div_dividend(axes__2__div_dividend),
         .div_divisor(axes__2__div_divisor),
         .div_done(axes__2__div_done),
-        .div_quotient(axes__2__div_quotient),
-        .div_remainder(axes__2__div_remainder),
+        .div_half(axes__2__div_half),
+        .div_long_pulses(axes__2__div_long_pulses),
+        .div_short_negated(axes__2__div_short_negated),
+        .div_half_is_one(axes__2__div_half_is_one),
+        .div_has_pulses(axes__2__div_has_pulses),
+        .div_clamped(axes__2__div_clamped),
         .analog(axes__2__analog),
         .dac_code(axes__2__dac_code),
         .code_out_of_range(axes__2__code_out_of_range),
@@ -782,17 +809,20 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .dac_l1_n(analog__dac_l1_n),
         .dac_ldac(analog__dac_ldac)
     );
-    motion_controller_servo__divider divider(
-        .clock(divider__clock),
-        .reset(divider__reset),
-        .start(divider__start),
-        .dividend(divider__dividend),
-        .divisor(divider__divisor),
-        .busy(divider__busy),
-        .done(divider__done),
-        .quotient(divider__quotient),
-        .remainder(divider__remainder),
-        .divide_by_zero(divider__divide_by_zero)
+    motion_controller_servo__planner planner(
+        .clock(planner__clock),
+        .reset(planner__reset),
+        .start(planner__start),
+        .dividend(planner__dividend),
+        .divisor(planner__divisor),
+        .busy(planner__busy),
+        .done(planner__done),
+        .half(planner__half),
+        .long_pulses(planner__long_pulses),
+        .short_negated(planner__short_negated),
+        .half_is_one(planner__half_is_one),
+        .has_pulses(planner__has_pulses),
+        .clamped(planner__clamped)
     );
     motion_controller_servo__div_owner div_owner(
         .d(div_owner__d),
@@ -839,7 +869,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         watchdog__clock = clock;
         interrupts__clock = clock;
         io__clock = clock;
-        divider__clock = clock;
+        planner__clock = clock;
         analog__clock = clock;
         registers__reset = reset;
         registers__address = bus_address;
@@ -976,42 +1006,54 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         cause_register__running = period__running;
         cause_register__underrun = underrun;
         cause_register__halt = halt;
-        divider__reset = reset | halt;
-        div_idle = ~divider__busy & ~divider__done & has_uniform;
+        planner__reset = reset | halt;
+        div_idle = ~planner__busy & ~planner__done & has_uniform;
         div_granted = 1'b0;
-        divider__start = 1'b0;
-        divider__dividend = axes__0__div_dividend;
-        divider__divisor = axes__0__div_divisor;
+        planner__start = 1'b0;
+        planner__dividend = axes__0__div_dividend;
+        planner__divisor = axes__0__div_divisor;
         if (div_idle & ~div_granted & axes__0__div_request) begin
             div_granted = 1'b1;
-            divider__start = 1'b1;
-            divider__dividend = axes__0__div_dividend;
-            divider__divisor = axes__0__div_divisor;
+            planner__start = 1'b1;
+            planner__dividend = axes__0__div_dividend;
+            planner__divisor = axes__0__div_divisor;
             div_owner__d = axis_bit__0;
         end
-        axes__0__div_done = has_uniform & divider__done & ((div_owner__q & axis_bit__0) != zero_k);
-        axes__0__div_quotient = divider__quotient;
-        axes__0__div_remainder = divider__remainder;
+        axes__0__div_done = has_uniform & planner__done & ((div_owner__q & axis_bit__0) != zero_k);
+        axes__0__div_half = planner__half;
+        axes__0__div_long_pulses = planner__long_pulses;
+        axes__0__div_short_negated = planner__short_negated;
+        axes__0__div_half_is_one = planner__half_is_one;
+        axes__0__div_has_pulses = planner__has_pulses;
+        axes__0__div_clamped = planner__clamped;
         if (div_idle & ~div_granted & axes__1__div_request) begin
             div_granted = 1'b1;
-            divider__start = 1'b1;
-            divider__dividend = axes__1__div_dividend;
-            divider__divisor = axes__1__div_divisor;
+            planner__start = 1'b1;
+            planner__dividend = axes__1__div_dividend;
+            planner__divisor = axes__1__div_divisor;
             div_owner__d = axis_bit__1;
         end
-        axes__1__div_done = has_uniform & divider__done & ((div_owner__q & axis_bit__1) != zero_k);
-        axes__1__div_quotient = divider__quotient;
-        axes__1__div_remainder = divider__remainder;
+        axes__1__div_done = has_uniform & planner__done & ((div_owner__q & axis_bit__1) != zero_k);
+        axes__1__div_half = planner__half;
+        axes__1__div_long_pulses = planner__long_pulses;
+        axes__1__div_short_negated = planner__short_negated;
+        axes__1__div_half_is_one = planner__half_is_one;
+        axes__1__div_has_pulses = planner__has_pulses;
+        axes__1__div_clamped = planner__clamped;
         if (div_idle & ~div_granted & axes__2__div_request) begin
             div_granted = 1'b1;
-            divider__start = 1'b1;
-            divider__dividend = axes__2__div_dividend;
-            divider__divisor = axes__2__div_divisor;
+            planner__start = 1'b1;
+            planner__dividend = axes__2__div_dividend;
+            planner__divisor = axes__2__div_divisor;
             div_owner__d = axis_bit__2;
         end
-        axes__2__div_done = has_uniform & divider__done & ((div_owner__q & axis_bit__2) != zero_k);
-        axes__2__div_quotient = divider__quotient;
-        axes__2__div_remainder = divider__remainder;
+        axes__2__div_done = has_uniform & planner__done & ((div_owner__q & axis_bit__2) != zero_k);
+        axes__2__div_half = planner__half;
+        axes__2__div_long_pulses = planner__long_pulses;
+        axes__2__div_short_negated = planner__short_negated;
+        axes__2__div_half_is_one = planner__half_is_one;
+        axes__2__div_has_pulses = planner__has_pulses;
+        axes__2__div_clamped = planner__clamped;
         if (reset) begin
             div_owner__d = zero_k;
         end
@@ -3274,7 +3316,7 @@ module motion_controller_servo__any_low_prev_n(d,q,clock);
 endmodule // motion_controller_servo__any_low_prev_n
 
 
-module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -3323,8 +3365,12 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     output reg  [15:0] div_dividend;
     output reg  [15:0] div_divisor;
     input wire  div_done;
-    input wire  [15:0] div_quotient;
-    input wire  [15:0] div_remainder;
+    input wire  [15:0] div_half;
+    input wire  [15:0] div_long_pulses;
+    input wire  [15:0] div_short_negated;
+    input wire  div_half_is_one;
+    input wire  div_has_pulses;
+    input wire  div_clamped;
     output reg  analog;
     output reg  [15:0] dac_code;
     output reg  code_out_of_range;
@@ -3380,8 +3426,12 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     wire  [15:0] uniform__div_dividend;
     wire  [15:0] uniform__div_divisor;
     reg  uniform__div_done;
-    reg  [15:0] uniform__div_quotient;
-    reg  [15:0] uniform__div_remainder;
+    reg  [15:0] uniform__div_half;
+    reg  [15:0] uniform__div_long_pulses;
+    reg  [15:0] uniform__div_short_negated;
+    reg  uniform__div_half_is_one;
+    reg  uniform__div_has_pulses;
+    reg  uniform__div_clamped;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -3643,8 +3693,12 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .div_dividend(uniform__div_dividend),
         .div_divisor(uniform__div_divisor),
         .div_done(uniform__div_done),
-        .div_quotient(uniform__div_quotient),
-        .div_remainder(uniform__div_remainder)
+        .div_half(uniform__div_half),
+        .div_long_pulses(uniform__div_long_pulses),
+        .div_short_negated(uniform__div_short_negated),
+        .div_half_is_one(uniform__div_half_is_one),
+        .div_has_pulses(uniform__div_has_pulses),
+        .div_clamped(uniform__div_clamped)
     );
     motion_controller_servo__axes__0__stage stage(
         .clock(stage__clock),
@@ -4057,8 +4111,12 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
-        uniform__div_quotient = div_quotient;
-        uniform__div_remainder = div_remainder;
+        uniform__div_half = div_half;
+        uniform__div_long_pulses = div_long_pulses;
+        uniform__div_short_negated = div_short_negated;
+        uniform__div_half_is_one = div_half_is_one;
+        uniform__div_has_pulses = div_has_pulses;
+        uniform__div_clamped = div_clamped;
         if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h11];
         end
@@ -8383,7 +8441,7 @@ module motion_controller_servo__axes__0__underrun_d(d,q,clock);
 endmodule // motion_controller_servo__axes__0__underrun_d
 
 
-module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
 
     // Module arguments
     input wire  clock;
@@ -8405,8 +8463,12 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     output reg  [15:0] div_dividend;
     output reg  [15:0] div_divisor;
     input wire  div_done;
-    input wire  [15:0] div_quotient;
-    input wire  [15:0] div_remainder;
+    input wire  [15:0] div_half;
+    input wire  [15:0] div_long_pulses;
+    input wire  [15:0] div_short_negated;
+    input wire  div_half_is_one;
+    input wire  div_has_pulses;
+    input wire  div_clamped;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -8432,9 +8494,6 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     reg  [15:0] slot_period__d;
     wire  [15:0] slot_period__q;
     reg  slot_period__clock;
-    reg  [15:0] slot_count__d;
-    wire  [15:0] slot_count__q;
-    reg  slot_count__clock;
     reg  slot_interleaved__d;
     wire  slot_interleaved__q;
     reg  slot_interleaved__clock;
@@ -8444,15 +8503,18 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [15:0] slot_short_pulses__d;
-    wire  [15:0] slot_short_pulses__q;
-    reg  slot_short_pulses__clock;
+    reg  [15:0] slot_short_negated__d;
+    wire  [15:0] slot_short_negated__q;
+    reg  slot_short_negated__clock;
     reg  [15:0] slot_long_pulses__d;
     wire  [15:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
+    reg  slot_clamped__d;
+    wire  slot_clamped__q;
+    reg  slot_clamped__clock;
     reg  running_reg__d;
     wire  running_reg__q;
     reg  running_reg__clock;
@@ -8513,14 +8575,11 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
-    reg  count_too_large__d;
-    wire  count_too_large__q;
-    reg  count_too_large__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] period_half;
+    reg  [15:0] short_step;
 
     // Sub module instances
     motion_controller_servo__axes__0__uniform__slot_state slot_state(
@@ -8538,11 +8597,6 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         .q(slot_period__q),
         .clock(slot_period__clock)
     );
-    motion_controller_servo__axes__0__uniform__slot_count slot_count(
-        .d(slot_count__d),
-        .q(slot_count__q),
-        .clock(slot_count__clock)
-    );
     motion_controller_servo__axes__0__uniform__slot_interleaved slot_interleaved(
         .d(slot_interleaved__d),
         .q(slot_interleaved__q),
@@ -8558,10 +8612,10 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    motion_controller_servo__axes__0__uniform__slot_short_pulses slot_short_pulses(
-        .d(slot_short_pulses__d),
-        .q(slot_short_pulses__q),
-        .clock(slot_short_pulses__clock)
+    motion_controller_servo__axes__0__uniform__slot_short_negated slot_short_negated(
+        .d(slot_short_negated__d),
+        .q(slot_short_negated__q),
+        .clock(slot_short_negated__clock)
     );
     motion_controller_servo__axes__0__uniform__slot_long_pulses slot_long_pulses(
         .d(slot_long_pulses__d),
@@ -8572,6 +8626,11 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         .d(slot_has_pulses__d),
         .q(slot_has_pulses__q),
         .clock(slot_has_pulses__clock)
+    );
+    motion_controller_servo__axes__0__uniform__slot_clamped slot_clamped(
+        .d(slot_clamped__d),
+        .q(slot_clamped__q),
+        .clock(slot_clamped__clock)
     );
     motion_controller_servo__axes__0__uniform__running_reg running_reg(
         .d(running_reg__d),
@@ -8673,24 +8732,19 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         .q(period_small__q),
         .clock(period_small__clock)
     );
-    motion_controller_servo__axes__0__uniform__count_too_large count_too_large(
-        .d(count_too_large__d),
-        .q(count_too_large__q),
-        .clock(count_too_large__clock)
-    );
 
     // Update code
     always @(*) begin
         slot_state__clock = clock;
         slot_full__clock = clock;
         slot_period__clock = clock;
-        slot_count__clock = clock;
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_short_pulses__clock = clock;
+        slot_short_negated__clock = clock;
         slot_long_pulses__clock = clock;
         slot_has_pulses__clock = clock;
+        slot_clamped__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
@@ -8711,17 +8765,16 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
-        count_too_large__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
-        slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_short_pulses__d = slot_short_pulses__q;
+        slot_short_negated__d = slot_short_negated__q;
         slot_long_pulses__d = slot_long_pulses__q;
         slot_has_pulses__d = slot_has_pulses__q;
+        slot_clamped__d = slot_clamped__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
@@ -8742,7 +8795,6 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
-        count_too_large__d = count_too_large__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -8755,18 +8807,16 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
-        period_half = slot_period__q >> one;
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
-        count_too_large__d = slot_count__q > period_half;
-        div_dividend = period_half;
-        div_divisor = slot_count__q;
+        div_dividend = slot_period__q >> one;
+        div_divisor = slot_short_negated__q;
         div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
                 slot_period__d = period;
-                slot_count__d = count;
+                slot_short_negated__d = count;
                 slot_interleaved__d = mode;
             end
         end
@@ -8784,34 +8834,36 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
             if (period_small__q) begin
                 overrange_reg__d = 1'b1;
                 slot_period__d = two;
-                if (slot_count__q != zero) begin
-                    slot_count__d = one;
-                end
-                if (slot_count__q > one) begin
-                    overrange_reg__d = 1'b1;
-                end
-            end
-            else if (count_too_large__q) begin
-                overrange_reg__d = 1'b1;
-                slot_count__d = period_half;
             end
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
             if (div_done) begin
-                slot_half__d = div_quotient;
-                slot_long_pulses__d = div_remainder;
-                slot_has_pulses__d = slot_count__q != zero;
+                slot_half__d = div_half;
+                slot_long_pulses__d = div_long_pulses;
+                slot_short_negated__d = div_short_negated;
+                slot_half_is_one__d = div_half_is_one;
+                slot_has_pulses__d = div_has_pulses;
+                slot_clamped__d = div_clamped;
+                if (div_clamped) begin
+                    overrange_reg__d = 1'b1;
+                    slot_long_pulses__d = zero;
+                end
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
-            slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_half_is_one__d = slot_half__q == one;
+            if (slot_clamped__q) begin
+                slot_short_negated__d = div_short_negated;
+            end
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
             slot_state__d = full;
+        end
+        short_step = one;
+        if (slot_interleaved__q) begin
+            short_step = slot_long_pulses__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
@@ -8877,16 +8929,12 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
+            step_short__d = short_step;
+            step_long__d = one;
             if (slot_interleaved__q) begin
-                step_short__d = slot_long_pulses__q;
-                step_long__d = zero - slot_short_pulses__q;
-                error__d = slot_long_pulses__q - slot_short_pulses__q;
+                step_long__d = slot_short_negated__q;
             end
-            else begin
-                step_short__d = one;
-                step_long__d = one;
-                error__d = one - slot_short_pulses__q;
-            end
+            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -8903,25 +8951,6 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     end
 
 endmodule // motion_controller_servo__axes__0__uniform
-
-
-module motion_controller_servo__axes__0__uniform__count_too_large(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__uniform__count_too_large
 
 
 module motion_controller_servo__axes__0__uniform__error(d,q,clock);
@@ -9209,23 +9238,23 @@ module motion_controller_servo__axes__0__uniform__running_reg(d,q,clock);
 endmodule // motion_controller_servo__axes__0__uniform__running_reg
 
 
-module motion_controller_servo__axes__0__uniform__slot_count(d,q,clock);
+module motion_controller_servo__axes__0__uniform__slot_clamped(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__axes__0__uniform__slot_count
+endmodule // motion_controller_servo__axes__0__uniform__slot_clamped
 
 
 module motion_controller_servo__axes__0__uniform__slot_full(d,q,clock);
@@ -9361,7 +9390,7 @@ module motion_controller_servo__axes__0__uniform__slot_period(d,q,clock);
 endmodule // motion_controller_servo__axes__0__uniform__slot_period
 
 
-module motion_controller_servo__axes__0__uniform__slot_short_pulses(d,q,clock);
+module motion_controller_servo__axes__0__uniform__slot_short_negated(d,q,clock);
 
     // Module arguments
     input wire  [15:0] d;
@@ -9377,7 +9406,7 @@ module motion_controller_servo__axes__0__uniform__slot_short_pulses(d,q,clock);
        q <= d;
     end
 
-endmodule // motion_controller_servo__axes__0__uniform__slot_short_pulses
+endmodule // motion_controller_servo__axes__0__uniform__slot_short_negated
 
 
 module motion_controller_servo__axes__0__uniform__slot_state(d,q,clock);
@@ -9627,7 +9656,7 @@ module motion_controller_servo__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__0__uniform_running_forward
 
 
-module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -9676,8 +9705,12 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     output reg  [15:0] div_dividend;
     output reg  [15:0] div_divisor;
     input wire  div_done;
-    input wire  [15:0] div_quotient;
-    input wire  [15:0] div_remainder;
+    input wire  [15:0] div_half;
+    input wire  [15:0] div_long_pulses;
+    input wire  [15:0] div_short_negated;
+    input wire  div_half_is_one;
+    input wire  div_has_pulses;
+    input wire  div_clamped;
     output reg  analog;
     output reg  [15:0] dac_code;
     output reg  code_out_of_range;
@@ -9733,8 +9766,12 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     wire  [15:0] uniform__div_dividend;
     wire  [15:0] uniform__div_divisor;
     reg  uniform__div_done;
-    reg  [15:0] uniform__div_quotient;
-    reg  [15:0] uniform__div_remainder;
+    reg  [15:0] uniform__div_half;
+    reg  [15:0] uniform__div_long_pulses;
+    reg  [15:0] uniform__div_short_negated;
+    reg  uniform__div_half_is_one;
+    reg  uniform__div_has_pulses;
+    reg  uniform__div_clamped;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -9996,8 +10033,12 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .div_dividend(uniform__div_dividend),
         .div_divisor(uniform__div_divisor),
         .div_done(uniform__div_done),
-        .div_quotient(uniform__div_quotient),
-        .div_remainder(uniform__div_remainder)
+        .div_half(uniform__div_half),
+        .div_long_pulses(uniform__div_long_pulses),
+        .div_short_negated(uniform__div_short_negated),
+        .div_half_is_one(uniform__div_half_is_one),
+        .div_has_pulses(uniform__div_has_pulses),
+        .div_clamped(uniform__div_clamped)
     );
     motion_controller_servo__axes__1__stage stage(
         .clock(stage__clock),
@@ -10410,8 +10451,12 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
-        uniform__div_quotient = div_quotient;
-        uniform__div_remainder = div_remainder;
+        uniform__div_half = div_half;
+        uniform__div_long_pulses = div_long_pulses;
+        uniform__div_short_negated = div_short_negated;
+        uniform__div_half_is_one = div_half_is_one;
+        uniform__div_has_pulses = div_has_pulses;
+        uniform__div_clamped = div_clamped;
         if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h11];
         end
@@ -14736,7 +14781,7 @@ module motion_controller_servo__axes__1__underrun_d(d,q,clock);
 endmodule // motion_controller_servo__axes__1__underrun_d
 
 
-module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
 
     // Module arguments
     input wire  clock;
@@ -14758,8 +14803,12 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     output reg  [15:0] div_dividend;
     output reg  [15:0] div_divisor;
     input wire  div_done;
-    input wire  [15:0] div_quotient;
-    input wire  [15:0] div_remainder;
+    input wire  [15:0] div_half;
+    input wire  [15:0] div_long_pulses;
+    input wire  [15:0] div_short_negated;
+    input wire  div_half_is_one;
+    input wire  div_has_pulses;
+    input wire  div_clamped;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -14785,9 +14834,6 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     reg  [15:0] slot_period__d;
     wire  [15:0] slot_period__q;
     reg  slot_period__clock;
-    reg  [15:0] slot_count__d;
-    wire  [15:0] slot_count__q;
-    reg  slot_count__clock;
     reg  slot_interleaved__d;
     wire  slot_interleaved__q;
     reg  slot_interleaved__clock;
@@ -14797,15 +14843,18 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [15:0] slot_short_pulses__d;
-    wire  [15:0] slot_short_pulses__q;
-    reg  slot_short_pulses__clock;
+    reg  [15:0] slot_short_negated__d;
+    wire  [15:0] slot_short_negated__q;
+    reg  slot_short_negated__clock;
     reg  [15:0] slot_long_pulses__d;
     wire  [15:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
+    reg  slot_clamped__d;
+    wire  slot_clamped__q;
+    reg  slot_clamped__clock;
     reg  running_reg__d;
     wire  running_reg__q;
     reg  running_reg__clock;
@@ -14866,14 +14915,11 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
-    reg  count_too_large__d;
-    wire  count_too_large__q;
-    reg  count_too_large__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] period_half;
+    reg  [15:0] short_step;
 
     // Sub module instances
     motion_controller_servo__axes__1__uniform__slot_state slot_state(
@@ -14891,11 +14937,6 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         .q(slot_period__q),
         .clock(slot_period__clock)
     );
-    motion_controller_servo__axes__1__uniform__slot_count slot_count(
-        .d(slot_count__d),
-        .q(slot_count__q),
-        .clock(slot_count__clock)
-    );
     motion_controller_servo__axes__1__uniform__slot_interleaved slot_interleaved(
         .d(slot_interleaved__d),
         .q(slot_interleaved__q),
@@ -14911,10 +14952,10 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    motion_controller_servo__axes__1__uniform__slot_short_pulses slot_short_pulses(
-        .d(slot_short_pulses__d),
-        .q(slot_short_pulses__q),
-        .clock(slot_short_pulses__clock)
+    motion_controller_servo__axes__1__uniform__slot_short_negated slot_short_negated(
+        .d(slot_short_negated__d),
+        .q(slot_short_negated__q),
+        .clock(slot_short_negated__clock)
     );
     motion_controller_servo__axes__1__uniform__slot_long_pulses slot_long_pulses(
         .d(slot_long_pulses__d),
@@ -14925,6 +14966,11 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         .d(slot_has_pulses__d),
         .q(slot_has_pulses__q),
         .clock(slot_has_pulses__clock)
+    );
+    motion_controller_servo__axes__1__uniform__slot_clamped slot_clamped(
+        .d(slot_clamped__d),
+        .q(slot_clamped__q),
+        .clock(slot_clamped__clock)
     );
     motion_controller_servo__axes__1__uniform__running_reg running_reg(
         .d(running_reg__d),
@@ -15026,24 +15072,19 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         .q(period_small__q),
         .clock(period_small__clock)
     );
-    motion_controller_servo__axes__1__uniform__count_too_large count_too_large(
-        .d(count_too_large__d),
-        .q(count_too_large__q),
-        .clock(count_too_large__clock)
-    );
 
     // Update code
     always @(*) begin
         slot_state__clock = clock;
         slot_full__clock = clock;
         slot_period__clock = clock;
-        slot_count__clock = clock;
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_short_pulses__clock = clock;
+        slot_short_negated__clock = clock;
         slot_long_pulses__clock = clock;
         slot_has_pulses__clock = clock;
+        slot_clamped__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
@@ -15064,17 +15105,16 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
-        count_too_large__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
-        slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_short_pulses__d = slot_short_pulses__q;
+        slot_short_negated__d = slot_short_negated__q;
         slot_long_pulses__d = slot_long_pulses__q;
         slot_has_pulses__d = slot_has_pulses__q;
+        slot_clamped__d = slot_clamped__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
@@ -15095,7 +15135,6 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
-        count_too_large__d = count_too_large__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -15108,18 +15147,16 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
-        period_half = slot_period__q >> one;
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
-        count_too_large__d = slot_count__q > period_half;
-        div_dividend = period_half;
-        div_divisor = slot_count__q;
+        div_dividend = slot_period__q >> one;
+        div_divisor = slot_short_negated__q;
         div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
                 slot_period__d = period;
-                slot_count__d = count;
+                slot_short_negated__d = count;
                 slot_interleaved__d = mode;
             end
         end
@@ -15137,34 +15174,36 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
             if (period_small__q) begin
                 overrange_reg__d = 1'b1;
                 slot_period__d = two;
-                if (slot_count__q != zero) begin
-                    slot_count__d = one;
-                end
-                if (slot_count__q > one) begin
-                    overrange_reg__d = 1'b1;
-                end
-            end
-            else if (count_too_large__q) begin
-                overrange_reg__d = 1'b1;
-                slot_count__d = period_half;
             end
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
             if (div_done) begin
-                slot_half__d = div_quotient;
-                slot_long_pulses__d = div_remainder;
-                slot_has_pulses__d = slot_count__q != zero;
+                slot_half__d = div_half;
+                slot_long_pulses__d = div_long_pulses;
+                slot_short_negated__d = div_short_negated;
+                slot_half_is_one__d = div_half_is_one;
+                slot_has_pulses__d = div_has_pulses;
+                slot_clamped__d = div_clamped;
+                if (div_clamped) begin
+                    overrange_reg__d = 1'b1;
+                    slot_long_pulses__d = zero;
+                end
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
-            slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_half_is_one__d = slot_half__q == one;
+            if (slot_clamped__q) begin
+                slot_short_negated__d = div_short_negated;
+            end
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
             slot_state__d = full;
+        end
+        short_step = one;
+        if (slot_interleaved__q) begin
+            short_step = slot_long_pulses__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
@@ -15230,16 +15269,12 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
+            step_short__d = short_step;
+            step_long__d = one;
             if (slot_interleaved__q) begin
-                step_short__d = slot_long_pulses__q;
-                step_long__d = zero - slot_short_pulses__q;
-                error__d = slot_long_pulses__q - slot_short_pulses__q;
+                step_long__d = slot_short_negated__q;
             end
-            else begin
-                step_short__d = one;
-                step_long__d = one;
-                error__d = one - slot_short_pulses__q;
-            end
+            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -15256,25 +15291,6 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     end
 
 endmodule // motion_controller_servo__axes__1__uniform
-
-
-module motion_controller_servo__axes__1__uniform__count_too_large(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__uniform__count_too_large
 
 
 module motion_controller_servo__axes__1__uniform__error(d,q,clock);
@@ -15562,23 +15578,23 @@ module motion_controller_servo__axes__1__uniform__running_reg(d,q,clock);
 endmodule // motion_controller_servo__axes__1__uniform__running_reg
 
 
-module motion_controller_servo__axes__1__uniform__slot_count(d,q,clock);
+module motion_controller_servo__axes__1__uniform__slot_clamped(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__axes__1__uniform__slot_count
+endmodule // motion_controller_servo__axes__1__uniform__slot_clamped
 
 
 module motion_controller_servo__axes__1__uniform__slot_full(d,q,clock);
@@ -15714,7 +15730,7 @@ module motion_controller_servo__axes__1__uniform__slot_period(d,q,clock);
 endmodule // motion_controller_servo__axes__1__uniform__slot_period
 
 
-module motion_controller_servo__axes__1__uniform__slot_short_pulses(d,q,clock);
+module motion_controller_servo__axes__1__uniform__slot_short_negated(d,q,clock);
 
     // Module arguments
     input wire  [15:0] d;
@@ -15730,7 +15746,7 @@ module motion_controller_servo__axes__1__uniform__slot_short_pulses(d,q,clock);
        q <= d;
     end
 
-endmodule // motion_controller_servo__axes__1__uniform__slot_short_pulses
+endmodule // motion_controller_servo__axes__1__uniform__slot_short_negated
 
 
 module motion_controller_servo__axes__1__uniform__slot_state(d,q,clock);
@@ -15980,7 +15996,7 @@ module motion_controller_servo__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__1__uniform_running_forward
 
 
-module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -16029,8 +16045,12 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     output reg  [15:0] div_dividend;
     output reg  [15:0] div_divisor;
     input wire  div_done;
-    input wire  [15:0] div_quotient;
-    input wire  [15:0] div_remainder;
+    input wire  [15:0] div_half;
+    input wire  [15:0] div_long_pulses;
+    input wire  [15:0] div_short_negated;
+    input wire  div_half_is_one;
+    input wire  div_has_pulses;
+    input wire  div_clamped;
     output reg  analog;
     output reg  [15:0] dac_code;
     output reg  code_out_of_range;
@@ -16086,8 +16106,12 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     wire  [15:0] uniform__div_dividend;
     wire  [15:0] uniform__div_divisor;
     reg  uniform__div_done;
-    reg  [15:0] uniform__div_quotient;
-    reg  [15:0] uniform__div_remainder;
+    reg  [15:0] uniform__div_half;
+    reg  [15:0] uniform__div_long_pulses;
+    reg  [15:0] uniform__div_short_negated;
+    reg  uniform__div_half_is_one;
+    reg  uniform__div_has_pulses;
+    reg  uniform__div_clamped;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -16349,8 +16373,12 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .div_dividend(uniform__div_dividend),
         .div_divisor(uniform__div_divisor),
         .div_done(uniform__div_done),
-        .div_quotient(uniform__div_quotient),
-        .div_remainder(uniform__div_remainder)
+        .div_half(uniform__div_half),
+        .div_long_pulses(uniform__div_long_pulses),
+        .div_short_negated(uniform__div_short_negated),
+        .div_half_is_one(uniform__div_half_is_one),
+        .div_has_pulses(uniform__div_has_pulses),
+        .div_clamped(uniform__div_clamped)
     );
     motion_controller_servo__axes__2__stage stage(
         .clock(stage__clock),
@@ -16763,8 +16791,12 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         uniform__load = popped_valid__q & uniform_active__q & ~analog_active__q;
         uniform__clear_flags = clear_faults | start;
         uniform__div_done = div_done;
-        uniform__div_quotient = div_quotient;
-        uniform__div_remainder = div_remainder;
+        uniform__div_half = div_half;
+        uniform__div_long_pulses = div_long_pulses;
+        uniform__div_short_negated = div_short_negated;
+        uniform__div_half_is_one = div_half_is_one;
+        uniform__div_has_pulses = div_has_pulses;
+        uniform__div_clamped = div_clamped;
         if (popped_valid__q & uniform_active__q & ~analog_active__q & uniform_ready) begin
             uniform_loaded_forward__d = ~popped__q[32'h11];
         end
@@ -21089,7 +21121,7 @@ module motion_controller_servo__axes__2__underrun_d(d,q,clock);
 endmodule // motion_controller_servo__axes__2__underrun_d
 
 
-module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
 
     // Module arguments
     input wire  clock;
@@ -21111,8 +21143,12 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     output reg  [15:0] div_dividend;
     output reg  [15:0] div_divisor;
     input wire  div_done;
-    input wire  [15:0] div_quotient;
-    input wire  [15:0] div_remainder;
+    input wire  [15:0] div_half;
+    input wire  [15:0] div_long_pulses;
+    input wire  [15:0] div_short_negated;
+    input wire  div_half_is_one;
+    input wire  div_has_pulses;
+    input wire  div_clamped;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -21138,9 +21174,6 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     reg  [15:0] slot_period__d;
     wire  [15:0] slot_period__q;
     reg  slot_period__clock;
-    reg  [15:0] slot_count__d;
-    wire  [15:0] slot_count__q;
-    reg  slot_count__clock;
     reg  slot_interleaved__d;
     wire  slot_interleaved__q;
     reg  slot_interleaved__clock;
@@ -21150,15 +21183,18 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [15:0] slot_short_pulses__d;
-    wire  [15:0] slot_short_pulses__q;
-    reg  slot_short_pulses__clock;
+    reg  [15:0] slot_short_negated__d;
+    wire  [15:0] slot_short_negated__q;
+    reg  slot_short_negated__clock;
     reg  [15:0] slot_long_pulses__d;
     wire  [15:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
+    reg  slot_clamped__d;
+    wire  slot_clamped__q;
+    reg  slot_clamped__clock;
     reg  running_reg__d;
     wire  running_reg__q;
     reg  running_reg__clock;
@@ -21219,14 +21255,11 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
-    reg  count_too_large__d;
-    wire  count_too_large__q;
-    reg  count_too_large__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] period_half;
+    reg  [15:0] short_step;
 
     // Sub module instances
     motion_controller_servo__axes__2__uniform__slot_state slot_state(
@@ -21244,11 +21277,6 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         .q(slot_period__q),
         .clock(slot_period__clock)
     );
-    motion_controller_servo__axes__2__uniform__slot_count slot_count(
-        .d(slot_count__d),
-        .q(slot_count__q),
-        .clock(slot_count__clock)
-    );
     motion_controller_servo__axes__2__uniform__slot_interleaved slot_interleaved(
         .d(slot_interleaved__d),
         .q(slot_interleaved__q),
@@ -21264,10 +21292,10 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    motion_controller_servo__axes__2__uniform__slot_short_pulses slot_short_pulses(
-        .d(slot_short_pulses__d),
-        .q(slot_short_pulses__q),
-        .clock(slot_short_pulses__clock)
+    motion_controller_servo__axes__2__uniform__slot_short_negated slot_short_negated(
+        .d(slot_short_negated__d),
+        .q(slot_short_negated__q),
+        .clock(slot_short_negated__clock)
     );
     motion_controller_servo__axes__2__uniform__slot_long_pulses slot_long_pulses(
         .d(slot_long_pulses__d),
@@ -21278,6 +21306,11 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         .d(slot_has_pulses__d),
         .q(slot_has_pulses__q),
         .clock(slot_has_pulses__clock)
+    );
+    motion_controller_servo__axes__2__uniform__slot_clamped slot_clamped(
+        .d(slot_clamped__d),
+        .q(slot_clamped__q),
+        .clock(slot_clamped__clock)
     );
     motion_controller_servo__axes__2__uniform__running_reg running_reg(
         .d(running_reg__d),
@@ -21379,24 +21412,19 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         .q(period_small__q),
         .clock(period_small__clock)
     );
-    motion_controller_servo__axes__2__uniform__count_too_large count_too_large(
-        .d(count_too_large__d),
-        .q(count_too_large__q),
-        .clock(count_too_large__clock)
-    );
 
     // Update code
     always @(*) begin
         slot_state__clock = clock;
         slot_full__clock = clock;
         slot_period__clock = clock;
-        slot_count__clock = clock;
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_short_pulses__clock = clock;
+        slot_short_negated__clock = clock;
         slot_long_pulses__clock = clock;
         slot_has_pulses__clock = clock;
+        slot_clamped__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
@@ -21417,17 +21445,16 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
-        count_too_large__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
-        slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_short_pulses__d = slot_short_pulses__q;
+        slot_short_negated__d = slot_short_negated__q;
         slot_long_pulses__d = slot_long_pulses__q;
         slot_has_pulses__d = slot_has_pulses__q;
+        slot_clamped__d = slot_clamped__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
@@ -21448,7 +21475,6 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
-        count_too_large__d = count_too_large__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -21461,18 +21487,16 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
-        period_half = slot_period__q >> one;
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
-        count_too_large__d = slot_count__q > period_half;
-        div_dividend = period_half;
-        div_divisor = slot_count__q;
+        div_dividend = slot_period__q >> one;
+        div_divisor = slot_short_negated__q;
         div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
                 slot_period__d = period;
-                slot_count__d = count;
+                slot_short_negated__d = count;
                 slot_interleaved__d = mode;
             end
         end
@@ -21490,34 +21514,36 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
             if (period_small__q) begin
                 overrange_reg__d = 1'b1;
                 slot_period__d = two;
-                if (slot_count__q != zero) begin
-                    slot_count__d = one;
-                end
-                if (slot_count__q > one) begin
-                    overrange_reg__d = 1'b1;
-                end
-            end
-            else if (count_too_large__q) begin
-                overrange_reg__d = 1'b1;
-                slot_count__d = period_half;
             end
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
             if (div_done) begin
-                slot_half__d = div_quotient;
-                slot_long_pulses__d = div_remainder;
-                slot_has_pulses__d = slot_count__q != zero;
+                slot_half__d = div_half;
+                slot_long_pulses__d = div_long_pulses;
+                slot_short_negated__d = div_short_negated;
+                slot_half_is_one__d = div_half_is_one;
+                slot_has_pulses__d = div_has_pulses;
+                slot_clamped__d = div_clamped;
+                if (div_clamped) begin
+                    overrange_reg__d = 1'b1;
+                    slot_long_pulses__d = zero;
+                end
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
-            slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_half_is_one__d = slot_half__q == one;
+            if (slot_clamped__q) begin
+                slot_short_negated__d = div_short_negated;
+            end
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
             slot_state__d = full;
+        end
+        short_step = one;
+        if (slot_interleaved__q) begin
+            short_step = slot_long_pulses__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
@@ -21583,16 +21609,12 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
+            step_short__d = short_step;
+            step_long__d = one;
             if (slot_interleaved__q) begin
-                step_short__d = slot_long_pulses__q;
-                step_long__d = zero - slot_short_pulses__q;
-                error__d = slot_long_pulses__q - slot_short_pulses__q;
+                step_long__d = slot_short_negated__q;
             end
-            else begin
-                step_short__d = one;
-                step_long__d = one;
-                error__d = one - slot_short_pulses__q;
-            end
+            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -21609,25 +21631,6 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     end
 
 endmodule // motion_controller_servo__axes__2__uniform
-
-
-module motion_controller_servo__axes__2__uniform__count_too_large(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__uniform__count_too_large
 
 
 module motion_controller_servo__axes__2__uniform__error(d,q,clock);
@@ -21915,23 +21918,23 @@ module motion_controller_servo__axes__2__uniform__running_reg(d,q,clock);
 endmodule // motion_controller_servo__axes__2__uniform__running_reg
 
 
-module motion_controller_servo__axes__2__uniform__slot_count(d,q,clock);
+module motion_controller_servo__axes__2__uniform__slot_clamped(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__axes__2__uniform__slot_count
+endmodule // motion_controller_servo__axes__2__uniform__slot_clamped
 
 
 module motion_controller_servo__axes__2__uniform__slot_full(d,q,clock);
@@ -22067,7 +22070,7 @@ module motion_controller_servo__axes__2__uniform__slot_period(d,q,clock);
 endmodule // motion_controller_servo__axes__2__uniform__slot_period
 
 
-module motion_controller_servo__axes__2__uniform__slot_short_pulses(d,q,clock);
+module motion_controller_servo__axes__2__uniform__slot_short_negated(d,q,clock);
 
     // Module arguments
     input wire  [15:0] d;
@@ -22083,7 +22086,7 @@ module motion_controller_servo__axes__2__uniform__slot_short_pulses(d,q,clock);
        q <= d;
     end
 
-endmodule // motion_controller_servo__axes__2__uniform__slot_short_pulses
+endmodule // motion_controller_servo__axes__2__uniform__slot_short_negated
 
 
 module motion_controller_servo__axes__2__uniform__slot_state(d,q,clock);
@@ -22733,349 +22736,6 @@ module motion_controller_servo__div_owner(d,q,clock);
     end
 
 endmodule // motion_controller_servo__div_owner
-
-
-module motion_controller_servo__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  start;
-    input wire  [15:0] dividend;
-    input wire  [15:0] divisor;
-    output reg  busy;
-    output reg  done;
-    output reg  [15:0] quotient;
-    output reg  [15:0] remainder;
-    output reg  divide_by_zero;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  zero_d = 16'h0;
-    localparam  one_d = 16'h1;
-    localparam  msb_d = 16'h8000;
-    localparam  width = 8'h10;
-    localparam  one_step = 8'h1;
-    localparam  no_steps = 8'h0;
-
-    // Stub signals
-    reg  [15:0] shift__d;
-    wire  [15:0] shift__q;
-    reg  shift__clock;
-    reg  [15:0] partial__d;
-    wire  [15:0] partial__q;
-    reg  partial__clock;
-    reg  [15:0] denominator_inverted__d;
-    wire  [15:0] denominator_inverted__q;
-    reg  denominator_inverted__clock;
-    reg  [7:0] steps_left__d;
-    wire  [7:0] steps_left__q;
-    reg  steps_left__clock;
-    reg  running__d;
-    wire  running__q;
-    reg  running__clock;
-    reg  finished__d;
-    wire  finished__q;
-    reg  finished__clock;
-    reg  by_zero__d;
-    wire  by_zero__q;
-    reg  by_zero__clock;
-    reg  [15:0] subtractor__a;
-    reg  [15:0] subtractor__b;
-    wire  [15:0] subtractor__sum;
-    wire  subtractor__carry_out;
-
-    // Local signals
-    reg  [15:0] shifted;
-    reg  shifted_overflows;
-
-    // Sub module instances
-    motion_controller_servo__divider__shift shift(
-        .d(shift__d),
-        .q(shift__q),
-        .clock(shift__clock)
-    );
-    motion_controller_servo__divider__partial partial(
-        .d(partial__d),
-        .q(partial__q),
-        .clock(partial__clock)
-    );
-    motion_controller_servo__divider__denominator_inverted denominator_inverted(
-        .d(denominator_inverted__d),
-        .q(denominator_inverted__q),
-        .clock(denominator_inverted__clock)
-    );
-    motion_controller_servo__divider__steps_left steps_left(
-        .d(steps_left__d),
-        .q(steps_left__q),
-        .clock(steps_left__clock)
-    );
-    motion_controller_servo__divider__running running(
-        .d(running__d),
-        .q(running__q),
-        .clock(running__clock)
-    );
-    motion_controller_servo__divider__finished finished(
-        .d(finished__d),
-        .q(finished__q),
-        .clock(finished__clock)
-    );
-    motion_controller_servo__divider__by_zero by_zero(
-        .d(by_zero__d),
-        .q(by_zero__q),
-        .clock(by_zero__clock)
-    );
-    motion_controller_servo__divider__subtractor subtractor(
-        .a(subtractor__a),
-        .b(subtractor__b),
-        .sum(subtractor__sum),
-        .carry_out(subtractor__carry_out)
-    );
-
-    // Update code
-    always @(*) begin
-        shift__clock = clock;
-        partial__clock = clock;
-        denominator_inverted__clock = clock;
-        steps_left__clock = clock;
-        running__clock = clock;
-        finished__clock = clock;
-        by_zero__clock = clock;
-        shift__d = shift__q;
-        partial__d = partial__q;
-        denominator_inverted__d = denominator_inverted__q;
-        steps_left__d = steps_left__q;
-        running__d = running__q;
-        finished__d = finished__q;
-        by_zero__d = by_zero__q;
-        busy = running__q;
-        done = finished__q;
-        quotient = shift__q;
-        remainder = partial__q;
-        divide_by_zero = by_zero__q;
-        shifted = partial__q << 32'h1;
-        if ((shift__q & msb) != zero) begin
-            shifted = (partial__q << 32'h1) | one_d;
-        end
-        shifted_overflows = (partial__q & msb_d) != zero_d;
-        subtractor__a = shifted;
-        subtractor__b = denominator_inverted__q;
-        finished__d = 1'b0;
-        if (running__q) begin
-            if (subtractor__carry_out | shifted_overflows) begin
-                partial__d = subtractor__sum;
-                shift__d = (shift__q << 32'h1) | one;
-            end
-            else begin
-                partial__d = shifted;
-                shift__d = shift__q << 32'h1;
-            end
-            steps_left__d = steps_left__q - one_step;
-            if (steps_left__q == one_step) begin
-                running__d = 1'b0;
-                finished__d = 1'b1;
-            end
-        end
-        else if (start) begin
-            shift__d = dividend;
-            partial__d = zero_d;
-            denominator_inverted__d = ~divisor;
-            steps_left__d = width;
-            running__d = 1'b1;
-            by_zero__d = divisor == zero_d;
-        end
-        if (reset) begin
-            shift__d = zero;
-            partial__d = zero_d;
-            denominator_inverted__d = ~zero_d;
-            steps_left__d = no_steps;
-            running__d = 1'b0;
-            finished__d = 1'b0;
-            by_zero__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_servo__divider
-
-
-module motion_controller_servo__divider__by_zero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__divider__by_zero
-
-
-module motion_controller_servo__divider__denominator_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__divider__denominator_inverted
-
-
-module motion_controller_servo__divider__finished(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__divider__finished
-
-
-module motion_controller_servo__divider__partial(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__divider__partial
-
-
-module motion_controller_servo__divider__running(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__divider__running
-
-
-module motion_controller_servo__divider__shift(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__divider__shift
-
-
-module motion_controller_servo__divider__steps_left(d,q,clock);
-
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__divider__steps_left
-
-
-module motion_controller_servo__divider__subtractor(a,b,sum,carry_out);
-
-    // Module arguments
-    input wire  [15:0] a;
-    input wire  [15:0] b;
-    output reg  [15:0] sum;
-    output reg  carry_out;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  low_half = 16'hff;
-    localparam  high_half = 16'hff00;
-    localparam  mid_bit = 16'h100;
-
-    // Local signals
-    reg  [15:0] low_sum;
-    reg  [15:0] high_sum_carry0;
-    reg  [15:0] high_sum_carry1;
-    reg  carry_mid;
-    reg  carry_out0;
-    reg  carry_out1;
-
-    // Update code
-    always @(*) begin
-        low_sum = (a & low_half) + (b & low_half) + one;
-        carry_mid = (low_sum & mid_bit) != zero;
-        high_sum_carry0 = (a & high_half) + (b & high_half);
-        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
-        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
-        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
-        if (carry_mid) begin
-            sum = (low_sum & low_half) | high_sum_carry1;
-            carry_out = carry_out1;
-        end
-        else begin
-            sum = (low_sum & low_half) | high_sum_carry0;
-            carry_out = carry_out0;
-        end
-    end
-
-endmodule // motion_controller_servo__divider__subtractor
 
 
 module motion_controller_servo__entry_converter(word,entry);
@@ -28986,6 +28646,490 @@ module motion_controller_servo__period__ticks_left(d,q,clock);
 endmodule // motion_controller_servo__period__ticks_left
 
 
+module motion_controller_servo__planner(clock,reset,start,dividend,divisor,busy,done,half,long_pulses,short_negated,half_is_one,has_pulses,clamped);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  start;
+    input wire  [15:0] dividend;
+    input wire  [15:0] divisor;
+    output reg  busy;
+    output reg  done;
+    output reg  [15:0] half;
+    output reg  [15:0] long_pulses;
+    output reg  [15:0] short_negated;
+    output reg  half_is_one;
+    output reg  has_pulses;
+    output reg  clamped;
+
+    // Constant declarations
+    localparam  zero = 16'h0;
+    localparam  one = 16'h1;
+
+    // Stub signals
+    reg  divider__clock;
+    reg  divider__reset;
+    reg  divider__start;
+    reg  [15:0] divider__dividend;
+    reg  [15:0] divider__divisor;
+    wire  divider__busy;
+    wire  divider__done;
+    wire  [15:0] divider__quotient;
+    wire  [15:0] divider__remainder;
+    wire  divider__divide_by_zero;
+    reg  [15:0] count__d;
+    wire  [15:0] count__q;
+    reg  count__clock;
+    reg  after_done__d;
+    wire  after_done__q;
+    reg  after_done__clock;
+
+    // Local signals
+    reg  [15:0] subtrahend;
+    reg  [15:0] plan_half;
+
+    // Sub module instances
+    motion_controller_servo__planner__divider divider(
+        .clock(divider__clock),
+        .reset(divider__reset),
+        .start(divider__start),
+        .dividend(divider__dividend),
+        .divisor(divider__divisor),
+        .busy(divider__busy),
+        .done(divider__done),
+        .quotient(divider__quotient),
+        .remainder(divider__remainder),
+        .divide_by_zero(divider__divide_by_zero)
+    );
+    motion_controller_servo__planner__count count(
+        .d(count__d),
+        .q(count__q),
+        .clock(count__clock)
+    );
+    motion_controller_servo__planner__after_done after_done(
+        .d(after_done__d),
+        .q(after_done__q),
+        .clock(after_done__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        divider__clock = clock;
+        count__clock = clock;
+        after_done__clock = clock;
+        count__d = count__q;
+        after_done__d = after_done__q;
+        divider__reset = reset;
+        divider__start = start;
+        divider__dividend = dividend;
+        divider__divisor = divisor;
+        if (start & ~divider__busy) begin
+            count__d = divisor;
+        end
+        busy = divider__busy;
+        done = divider__done;
+        has_pulses = ~divider__divide_by_zero;
+        clamped = (divider__quotient == zero) & ~divider__divide_by_zero;
+        half_is_one = (divider__quotient >> one) == zero;
+        plan_half = divider__quotient;
+        if (clamped) begin
+            plan_half = divider__quotient | one;
+        end
+        after_done__d = divider__done;
+        subtrahend = count__q;
+        if (after_done__q) begin
+            subtrahend = divider__remainder << one;
+        end
+        half = plan_half;
+        long_pulses = divider__remainder;
+        short_negated = divider__remainder - subtrahend;
+    end
+
+endmodule // motion_controller_servo__planner
+
+
+module motion_controller_servo__planner__after_done(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__after_done
+
+
+module motion_controller_servo__planner__count(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__count
+
+
+module motion_controller_servo__planner__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  start;
+    input wire  [15:0] dividend;
+    input wire  [15:0] divisor;
+    output reg  busy;
+    output reg  done;
+    output reg  [15:0] quotient;
+    output reg  [15:0] remainder;
+    output reg  divide_by_zero;
+
+    // Constant declarations
+    localparam  zero = 16'h0;
+    localparam  one = 16'h1;
+    localparam  msb = 16'h8000;
+    localparam  zero_d = 16'h0;
+    localparam  one_d = 16'h1;
+    localparam  msb_d = 16'h8000;
+    localparam  width = 8'h10;
+    localparam  one_step = 8'h1;
+    localparam  no_steps = 8'h0;
+
+    // Stub signals
+    reg  [15:0] shift__d;
+    wire  [15:0] shift__q;
+    reg  shift__clock;
+    reg  [15:0] partial__d;
+    wire  [15:0] partial__q;
+    reg  partial__clock;
+    reg  [15:0] denominator_inverted__d;
+    wire  [15:0] denominator_inverted__q;
+    reg  denominator_inverted__clock;
+    reg  [7:0] steps_left__d;
+    wire  [7:0] steps_left__q;
+    reg  steps_left__clock;
+    reg  running__d;
+    wire  running__q;
+    reg  running__clock;
+    reg  finished__d;
+    wire  finished__q;
+    reg  finished__clock;
+    reg  by_zero__d;
+    wire  by_zero__q;
+    reg  by_zero__clock;
+    reg  [15:0] subtractor__a;
+    reg  [15:0] subtractor__b;
+    wire  [15:0] subtractor__sum;
+    wire  subtractor__carry_out;
+
+    // Local signals
+    reg  [15:0] shifted;
+    reg  shifted_overflows;
+
+    // Sub module instances
+    motion_controller_servo__planner__divider__shift shift(
+        .d(shift__d),
+        .q(shift__q),
+        .clock(shift__clock)
+    );
+    motion_controller_servo__planner__divider__partial partial(
+        .d(partial__d),
+        .q(partial__q),
+        .clock(partial__clock)
+    );
+    motion_controller_servo__planner__divider__denominator_inverted denominator_inverted(
+        .d(denominator_inverted__d),
+        .q(denominator_inverted__q),
+        .clock(denominator_inverted__clock)
+    );
+    motion_controller_servo__planner__divider__steps_left steps_left(
+        .d(steps_left__d),
+        .q(steps_left__q),
+        .clock(steps_left__clock)
+    );
+    motion_controller_servo__planner__divider__running running(
+        .d(running__d),
+        .q(running__q),
+        .clock(running__clock)
+    );
+    motion_controller_servo__planner__divider__finished finished(
+        .d(finished__d),
+        .q(finished__q),
+        .clock(finished__clock)
+    );
+    motion_controller_servo__planner__divider__by_zero by_zero(
+        .d(by_zero__d),
+        .q(by_zero__q),
+        .clock(by_zero__clock)
+    );
+    motion_controller_servo__planner__divider__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
+
+    // Update code
+    always @(*) begin
+        shift__clock = clock;
+        partial__clock = clock;
+        denominator_inverted__clock = clock;
+        steps_left__clock = clock;
+        running__clock = clock;
+        finished__clock = clock;
+        by_zero__clock = clock;
+        shift__d = shift__q;
+        partial__d = partial__q;
+        denominator_inverted__d = denominator_inverted__q;
+        steps_left__d = steps_left__q;
+        running__d = running__q;
+        finished__d = finished__q;
+        by_zero__d = by_zero__q;
+        busy = running__q;
+        done = finished__q;
+        quotient = shift__q;
+        remainder = partial__q;
+        divide_by_zero = by_zero__q;
+        shifted = partial__q << 32'h1;
+        if ((shift__q & msb) != zero) begin
+            shifted = (partial__q << 32'h1) | one_d;
+        end
+        shifted_overflows = (partial__q & msb_d) != zero_d;
+        subtractor__a = shifted;
+        subtractor__b = denominator_inverted__q;
+        finished__d = 1'b0;
+        if (running__q) begin
+            if (subtractor__carry_out | shifted_overflows) begin
+                partial__d = subtractor__sum;
+                shift__d = (shift__q << 32'h1) | one;
+            end
+            else begin
+                partial__d = shifted;
+                shift__d = shift__q << 32'h1;
+            end
+            steps_left__d = steps_left__q - one_step;
+            if (steps_left__q == one_step) begin
+                running__d = 1'b0;
+                finished__d = 1'b1;
+            end
+        end
+        else if (start) begin
+            shift__d = dividend;
+            partial__d = zero_d;
+            denominator_inverted__d = ~divisor;
+            steps_left__d = width;
+            running__d = 1'b1;
+            by_zero__d = divisor == zero_d;
+        end
+        if (reset) begin
+            shift__d = zero;
+            partial__d = zero_d;
+            denominator_inverted__d = ~zero_d;
+            steps_left__d = no_steps;
+            running__d = 1'b0;
+            finished__d = 1'b0;
+            by_zero__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__planner__divider
+
+
+module motion_controller_servo__planner__divider__by_zero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__divider__by_zero
+
+
+module motion_controller_servo__planner__divider__denominator_inverted(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__divider__denominator_inverted
+
+
+module motion_controller_servo__planner__divider__finished(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__divider__finished
+
+
+module motion_controller_servo__planner__divider__partial(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__divider__partial
+
+
+module motion_controller_servo__planner__divider__running(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__divider__running
+
+
+module motion_controller_servo__planner__divider__shift(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__divider__shift
+
+
+module motion_controller_servo__planner__divider__steps_left(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__planner__divider__steps_left
+
+
+module motion_controller_servo__planner__divider__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [15:0] a;
+    input wire  [15:0] b;
+    output reg  [15:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 16'h0;
+    localparam  one = 16'h1;
+    localparam  msb = 16'h8000;
+    localparam  low_half = 16'hff;
+    localparam  high_half = 16'hff00;
+    localparam  mid_bit = 16'h100;
+
+    // Local signals
+    reg  [15:0] low_sum;
+    reg  [15:0] high_sum_carry0;
+    reg  [15:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // motion_controller_servo__planner__divider__subtractor
+
+
 module motion_controller_servo__read_data(d,q,clock);
 
     // Module arguments
@@ -29051,7 +29195,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h300;
+    localparam  version_value = 32'h301;
     localparam  config_value = 32'h3810403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;

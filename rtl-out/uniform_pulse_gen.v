@@ -67,18 +67,25 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     wire  [31:0] core__div_dividend;
     wire  [31:0] core__div_divisor;
     reg  core__div_done;
-    reg  [31:0] core__div_quotient;
-    reg  [31:0] core__div_remainder;
-    reg  divider__clock;
-    reg  divider__reset;
-    reg  divider__start;
-    reg  [31:0] divider__dividend;
-    reg  [31:0] divider__divisor;
-    wire  divider__busy;
-    wire  divider__done;
-    wire  [31:0] divider__quotient;
-    wire  [31:0] divider__remainder;
-    wire  divider__divide_by_zero;
+    reg  [31:0] core__div_half;
+    reg  [31:0] core__div_long_pulses;
+    reg  [31:0] core__div_short_negated;
+    reg  core__div_half_is_one;
+    reg  core__div_has_pulses;
+    reg  core__div_clamped;
+    reg  planner__clock;
+    reg  planner__reset;
+    reg  planner__start;
+    reg  [31:0] planner__dividend;
+    reg  [31:0] planner__divisor;
+    wire  planner__busy;
+    wire  planner__done;
+    wire  [31:0] planner__half;
+    wire  [31:0] planner__long_pulses;
+    wire  [31:0] planner__short_negated;
+    wire  planner__half_is_one;
+    wire  planner__has_pulses;
+    wire  planner__clamped;
 
     // Sub module instances
     uniform_pulse_gen__core core(
@@ -101,26 +108,33 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         .div_dividend(core__div_dividend),
         .div_divisor(core__div_divisor),
         .div_done(core__div_done),
-        .div_quotient(core__div_quotient),
-        .div_remainder(core__div_remainder)
+        .div_half(core__div_half),
+        .div_long_pulses(core__div_long_pulses),
+        .div_short_negated(core__div_short_negated),
+        .div_half_is_one(core__div_half_is_one),
+        .div_has_pulses(core__div_has_pulses),
+        .div_clamped(core__div_clamped)
     );
-    uniform_pulse_gen__divider divider(
-        .clock(divider__clock),
-        .reset(divider__reset),
-        .start(divider__start),
-        .dividend(divider__dividend),
-        .divisor(divider__divisor),
-        .busy(divider__busy),
-        .done(divider__done),
-        .quotient(divider__quotient),
-        .remainder(divider__remainder),
-        .divide_by_zero(divider__divide_by_zero)
+    uniform_pulse_gen__planner planner(
+        .clock(planner__clock),
+        .reset(planner__reset),
+        .start(planner__start),
+        .dividend(planner__dividend),
+        .divisor(planner__divisor),
+        .busy(planner__busy),
+        .done(planner__done),
+        .half(planner__half),
+        .long_pulses(planner__long_pulses),
+        .short_negated(planner__short_negated),
+        .half_is_one(planner__half_is_one),
+        .has_pulses(planner__has_pulses),
+        .clamped(planner__clamped)
     );
 
     // Update code
     always @(*) begin
         core__clock = clock;
-        divider__clock = clock;
+        planner__clock = clock;
         core__reset = reset;
         core__tick = tick;
         core__period = period;
@@ -135,19 +149,23 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         underrun = core__underrun;
         overrange = core__overrange;
         overflow = core__overflow;
-        divider__reset = reset;
-        divider__start = core__div_request & ~divider__busy & ~divider__done;
-        divider__dividend = core__div_dividend;
-        divider__divisor = core__div_divisor;
-        core__div_done = divider__done;
-        core__div_quotient = divider__quotient;
-        core__div_remainder = divider__remainder;
+        planner__reset = reset;
+        planner__start = core__div_request & ~planner__busy & ~planner__done;
+        planner__dividend = core__div_dividend;
+        planner__divisor = core__div_divisor;
+        core__div_done = planner__done;
+        core__div_half = planner__half;
+        core__div_long_pulses = planner__long_pulses;
+        core__div_short_negated = planner__short_negated;
+        core__div_half_is_one = planner__half_is_one;
+        core__div_has_pulses = planner__has_pulses;
+        core__div_clamped = planner__clamped;
     end
 
 endmodule // uniform_pulse_gen
 
 
-module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_quotient,div_remainder);
+module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
 
     // Module arguments
     input wire  clock;
@@ -169,8 +187,12 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     output reg  [31:0] div_dividend;
     output reg  [31:0] div_divisor;
     input wire  div_done;
-    input wire  [31:0] div_quotient;
-    input wire  [31:0] div_remainder;
+    input wire  [31:0] div_half;
+    input wire  [31:0] div_long_pulses;
+    input wire  [31:0] div_short_negated;
+    input wire  div_half_is_one;
+    input wire  div_has_pulses;
+    input wire  div_clamped;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -196,9 +218,6 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     reg  [31:0] slot_period__d;
     wire  [31:0] slot_period__q;
     reg  slot_period__clock;
-    reg  [31:0] slot_count__d;
-    wire  [31:0] slot_count__q;
-    reg  slot_count__clock;
     reg  slot_interleaved__d;
     wire  slot_interleaved__q;
     reg  slot_interleaved__clock;
@@ -208,15 +227,18 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     reg  slot_half_is_one__d;
     wire  slot_half_is_one__q;
     reg  slot_half_is_one__clock;
-    reg  [31:0] slot_short_pulses__d;
-    wire  [31:0] slot_short_pulses__q;
-    reg  slot_short_pulses__clock;
+    reg  [31:0] slot_short_negated__d;
+    wire  [31:0] slot_short_negated__q;
+    reg  slot_short_negated__clock;
     reg  [31:0] slot_long_pulses__d;
     wire  [31:0] slot_long_pulses__q;
     reg  slot_long_pulses__clock;
     reg  slot_has_pulses__d;
     wire  slot_has_pulses__q;
     reg  slot_has_pulses__clock;
+    reg  slot_clamped__d;
+    wire  slot_clamped__q;
+    reg  slot_clamped__clock;
     reg  running_reg__d;
     wire  running_reg__q;
     reg  running_reg__clock;
@@ -277,14 +299,11 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
-    reg  count_too_large__d;
-    wire  count_too_large__q;
-    reg  count_too_large__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [31:0] period_half;
+    reg  [31:0] short_step;
 
     // Sub module instances
     uniform_pulse_gen__core__slot_state slot_state(
@@ -302,11 +321,6 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         .q(slot_period__q),
         .clock(slot_period__clock)
     );
-    uniform_pulse_gen__core__slot_count slot_count(
-        .d(slot_count__d),
-        .q(slot_count__q),
-        .clock(slot_count__clock)
-    );
     uniform_pulse_gen__core__slot_interleaved slot_interleaved(
         .d(slot_interleaved__d),
         .q(slot_interleaved__q),
@@ -322,10 +336,10 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         .q(slot_half_is_one__q),
         .clock(slot_half_is_one__clock)
     );
-    uniform_pulse_gen__core__slot_short_pulses slot_short_pulses(
-        .d(slot_short_pulses__d),
-        .q(slot_short_pulses__q),
-        .clock(slot_short_pulses__clock)
+    uniform_pulse_gen__core__slot_short_negated slot_short_negated(
+        .d(slot_short_negated__d),
+        .q(slot_short_negated__q),
+        .clock(slot_short_negated__clock)
     );
     uniform_pulse_gen__core__slot_long_pulses slot_long_pulses(
         .d(slot_long_pulses__d),
@@ -336,6 +350,11 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         .d(slot_has_pulses__d),
         .q(slot_has_pulses__q),
         .clock(slot_has_pulses__clock)
+    );
+    uniform_pulse_gen__core__slot_clamped slot_clamped(
+        .d(slot_clamped__d),
+        .q(slot_clamped__q),
+        .clock(slot_clamped__clock)
     );
     uniform_pulse_gen__core__running_reg running_reg(
         .d(running_reg__d),
@@ -437,24 +456,19 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         .q(period_small__q),
         .clock(period_small__clock)
     );
-    uniform_pulse_gen__core__count_too_large count_too_large(
-        .d(count_too_large__d),
-        .q(count_too_large__q),
-        .clock(count_too_large__clock)
-    );
 
     // Update code
     always @(*) begin
         slot_state__clock = clock;
         slot_full__clock = clock;
         slot_period__clock = clock;
-        slot_count__clock = clock;
         slot_interleaved__clock = clock;
         slot_half__clock = clock;
         slot_half_is_one__clock = clock;
-        slot_short_pulses__clock = clock;
+        slot_short_negated__clock = clock;
         slot_long_pulses__clock = clock;
         slot_has_pulses__clock = clock;
+        slot_clamped__clock = clock;
         running_reg__clock = clock;
         ticks_left__clock = clock;
         period_last__clock = clock;
@@ -475,17 +489,16 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
-        count_too_large__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
-        slot_count__d = slot_count__q;
         slot_interleaved__d = slot_interleaved__q;
         slot_half__d = slot_half__q;
         slot_half_is_one__d = slot_half_is_one__q;
-        slot_short_pulses__d = slot_short_pulses__q;
+        slot_short_negated__d = slot_short_negated__q;
         slot_long_pulses__d = slot_long_pulses__q;
         slot_has_pulses__d = slot_has_pulses__q;
+        slot_clamped__d = slot_clamped__q;
         running_reg__d = running_reg__q;
         ticks_left__d = ticks_left__q;
         period_last__d = period_last__q;
@@ -506,7 +519,6 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
-        count_too_large__d = count_too_large__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -519,18 +531,16 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
         end
-        period_half = slot_period__q >> one;
         period_odd__d = slot_period__q[32'h0];
         period_small__d = (slot_period__q & not_one) == zero;
-        count_too_large__d = slot_count__q > period_half;
-        div_dividend = period_half;
-        div_divisor = slot_count__q;
+        div_dividend = slot_period__q >> one;
+        div_divisor = slot_short_negated__q;
         div_request = slot_state__q == divide;
         if (slot_state__q == empty) begin
             if (load) begin
                 slot_state__d = check;
                 slot_period__d = period;
-                slot_count__d = count;
+                slot_short_negated__d = count;
                 slot_interleaved__d = mode;
             end
         end
@@ -548,34 +558,36 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
             if (period_small__q) begin
                 overrange_reg__d = 1'b1;
                 slot_period__d = two;
-                if (slot_count__q != zero) begin
-                    slot_count__d = one;
-                end
-                if (slot_count__q > one) begin
-                    overrange_reg__d = 1'b1;
-                end
-            end
-            else if (count_too_large__q) begin
-                overrange_reg__d = 1'b1;
-                slot_count__d = period_half;
             end
             slot_state__d = divide;
         end
         if (slot_state__q == divide) begin
             if (div_done) begin
-                slot_half__d = div_quotient;
-                slot_long_pulses__d = div_remainder;
-                slot_has_pulses__d = slot_count__q != zero;
+                slot_half__d = div_half;
+                slot_long_pulses__d = div_long_pulses;
+                slot_short_negated__d = div_short_negated;
+                slot_half_is_one__d = div_half_is_one;
+                slot_has_pulses__d = div_has_pulses;
+                slot_clamped__d = div_clamped;
+                if (div_clamped) begin
+                    overrange_reg__d = 1'b1;
+                    slot_long_pulses__d = zero;
+                end
                 slot_state__d = split;
             end
         end
         if (slot_state__q == split) begin
-            slot_short_pulses__d = slot_count__q - slot_long_pulses__q;
-            slot_half_is_one__d = slot_half__q == one;
+            if (slot_clamped__q) begin
+                slot_short_negated__d = div_short_negated;
+            end
             slot_state__d = steps;
         end
         if (slot_state__q == steps) begin
             slot_state__d = full;
+        end
+        short_step = one;
+        if (slot_interleaved__q) begin
+            short_step = slot_long_pulses__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
@@ -641,16 +653,12 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
+            step_short__d = short_step;
+            step_long__d = one;
             if (slot_interleaved__q) begin
-                step_short__d = slot_long_pulses__q;
-                step_long__d = zero - slot_short_pulses__q;
-                error__d = slot_long_pulses__q - slot_short_pulses__q;
+                step_long__d = slot_short_negated__q;
             end
-            else begin
-                step_short__d = one;
-                step_long__d = one;
-                error__d = one - slot_short_pulses__q;
-            end
+            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
         end
@@ -667,25 +675,6 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     end
 
 endmodule // uniform_pulse_gen__core
-
-
-module uniform_pulse_gen__core__count_too_large(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__core__count_too_large
 
 
 module uniform_pulse_gen__core__error(d,q,clock);
@@ -973,23 +962,23 @@ module uniform_pulse_gen__core__running_reg(d,q,clock);
 endmodule // uniform_pulse_gen__core__running_reg
 
 
-module uniform_pulse_gen__core__slot_count(d,q,clock);
+module uniform_pulse_gen__core__slot_clamped(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 1'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__core__slot_count
+endmodule // uniform_pulse_gen__core__slot_clamped
 
 
 module uniform_pulse_gen__core__slot_full(d,q,clock);
@@ -1125,7 +1114,7 @@ module uniform_pulse_gen__core__slot_period(d,q,clock);
 endmodule // uniform_pulse_gen__core__slot_period
 
 
-module uniform_pulse_gen__core__slot_short_pulses(d,q,clock);
+module uniform_pulse_gen__core__slot_short_negated(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -1141,7 +1130,7 @@ module uniform_pulse_gen__core__slot_short_pulses(d,q,clock);
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__core__slot_short_pulses
+endmodule // uniform_pulse_gen__core__slot_short_negated
 
 
 module uniform_pulse_gen__core__slot_state(d,q,clock);
@@ -1258,7 +1247,148 @@ module uniform_pulse_gen__core__underrun_reg(d,q,clock);
 endmodule // uniform_pulse_gen__core__underrun_reg
 
 
-module uniform_pulse_gen__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
+module uniform_pulse_gen__planner(clock,reset,start,dividend,divisor,busy,done,half,long_pulses,short_negated,half_is_one,has_pulses,clamped);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  start;
+    input wire  [31:0] dividend;
+    input wire  [31:0] divisor;
+    output reg  busy;
+    output reg  done;
+    output reg  [31:0] half;
+    output reg  [31:0] long_pulses;
+    output reg  [31:0] short_negated;
+    output reg  half_is_one;
+    output reg  has_pulses;
+    output reg  clamped;
+
+    // Constant declarations
+    localparam  zero = 32'h0;
+    localparam  one = 32'h1;
+
+    // Stub signals
+    reg  divider__clock;
+    reg  divider__reset;
+    reg  divider__start;
+    reg  [31:0] divider__dividend;
+    reg  [31:0] divider__divisor;
+    wire  divider__busy;
+    wire  divider__done;
+    wire  [31:0] divider__quotient;
+    wire  [31:0] divider__remainder;
+    wire  divider__divide_by_zero;
+    reg  [31:0] count__d;
+    wire  [31:0] count__q;
+    reg  count__clock;
+    reg  after_done__d;
+    wire  after_done__q;
+    reg  after_done__clock;
+
+    // Local signals
+    reg  [31:0] subtrahend;
+    reg  [31:0] plan_half;
+
+    // Sub module instances
+    uniform_pulse_gen__planner__divider divider(
+        .clock(divider__clock),
+        .reset(divider__reset),
+        .start(divider__start),
+        .dividend(divider__dividend),
+        .divisor(divider__divisor),
+        .busy(divider__busy),
+        .done(divider__done),
+        .quotient(divider__quotient),
+        .remainder(divider__remainder),
+        .divide_by_zero(divider__divide_by_zero)
+    );
+    uniform_pulse_gen__planner__count count(
+        .d(count__d),
+        .q(count__q),
+        .clock(count__clock)
+    );
+    uniform_pulse_gen__planner__after_done after_done(
+        .d(after_done__d),
+        .q(after_done__q),
+        .clock(after_done__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        divider__clock = clock;
+        count__clock = clock;
+        after_done__clock = clock;
+        count__d = count__q;
+        after_done__d = after_done__q;
+        divider__reset = reset;
+        divider__start = start;
+        divider__dividend = dividend;
+        divider__divisor = divisor;
+        if (start & ~divider__busy) begin
+            count__d = divisor;
+        end
+        busy = divider__busy;
+        done = divider__done;
+        has_pulses = ~divider__divide_by_zero;
+        clamped = (divider__quotient == zero) & ~divider__divide_by_zero;
+        half_is_one = (divider__quotient >> one) == zero;
+        plan_half = divider__quotient;
+        if (clamped) begin
+            plan_half = divider__quotient | one;
+        end
+        after_done__d = divider__done;
+        subtrahend = count__q;
+        if (after_done__q) begin
+            subtrahend = divider__remainder << one;
+        end
+        half = plan_half;
+        long_pulses = divider__remainder;
+        short_negated = divider__remainder - subtrahend;
+    end
+
+endmodule // uniform_pulse_gen__planner
+
+
+module uniform_pulse_gen__planner__after_done(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__planner__after_done
+
+
+module uniform_pulse_gen__planner__count(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__planner__count
+
+
+module uniform_pulse_gen__planner__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
 
     // Module arguments
     input wire  clock;
@@ -1315,42 +1445,42 @@ module uniform_pulse_gen__divider(clock,reset,start,dividend,divisor,busy,done,q
     reg  shifted_overflows;
 
     // Sub module instances
-    uniform_pulse_gen__divider__shift shift(
+    uniform_pulse_gen__planner__divider__shift shift(
         .d(shift__d),
         .q(shift__q),
         .clock(shift__clock)
     );
-    uniform_pulse_gen__divider__partial partial(
+    uniform_pulse_gen__planner__divider__partial partial(
         .d(partial__d),
         .q(partial__q),
         .clock(partial__clock)
     );
-    uniform_pulse_gen__divider__denominator_inverted denominator_inverted(
+    uniform_pulse_gen__planner__divider__denominator_inverted denominator_inverted(
         .d(denominator_inverted__d),
         .q(denominator_inverted__q),
         .clock(denominator_inverted__clock)
     );
-    uniform_pulse_gen__divider__steps_left steps_left(
+    uniform_pulse_gen__planner__divider__steps_left steps_left(
         .d(steps_left__d),
         .q(steps_left__q),
         .clock(steps_left__clock)
     );
-    uniform_pulse_gen__divider__running running(
+    uniform_pulse_gen__planner__divider__running running(
         .d(running__d),
         .q(running__q),
         .clock(running__clock)
     );
-    uniform_pulse_gen__divider__finished finished(
+    uniform_pulse_gen__planner__divider__finished finished(
         .d(finished__d),
         .q(finished__q),
         .clock(finished__clock)
     );
-    uniform_pulse_gen__divider__by_zero by_zero(
+    uniform_pulse_gen__planner__divider__by_zero by_zero(
         .d(by_zero__d),
         .q(by_zero__q),
         .clock(by_zero__clock)
     );
-    uniform_pulse_gen__divider__subtractor subtractor(
+    uniform_pulse_gen__planner__divider__subtractor subtractor(
         .a(subtractor__a),
         .b(subtractor__b),
         .sum(subtractor__sum),
@@ -1420,48 +1550,10 @@ module uniform_pulse_gen__divider(clock,reset,start,dividend,divisor,busy,done,q
         end
     end
 
-endmodule // uniform_pulse_gen__divider
+endmodule // uniform_pulse_gen__planner__divider
 
 
-module uniform_pulse_gen__divider__by_zero(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__divider__by_zero
-
-
-module uniform_pulse_gen__divider__denominator_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // uniform_pulse_gen__divider__denominator_inverted
-
-
-module uniform_pulse_gen__divider__finished(d,q,clock);
+module uniform_pulse_gen__planner__divider__by_zero(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -1477,10 +1569,10 @@ module uniform_pulse_gen__divider__finished(d,q,clock);
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__divider__finished
+endmodule // uniform_pulse_gen__planner__divider__by_zero
 
 
-module uniform_pulse_gen__divider__partial(d,q,clock);
+module uniform_pulse_gen__planner__divider__denominator_inverted(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -1496,10 +1588,10 @@ module uniform_pulse_gen__divider__partial(d,q,clock);
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__divider__partial
+endmodule // uniform_pulse_gen__planner__divider__denominator_inverted
 
 
-module uniform_pulse_gen__divider__running(d,q,clock);
+module uniform_pulse_gen__planner__divider__finished(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -1515,10 +1607,10 @@ module uniform_pulse_gen__divider__running(d,q,clock);
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__divider__running
+endmodule // uniform_pulse_gen__planner__divider__finished
 
 
-module uniform_pulse_gen__divider__shift(d,q,clock);
+module uniform_pulse_gen__planner__divider__partial(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -1534,10 +1626,48 @@ module uniform_pulse_gen__divider__shift(d,q,clock);
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__divider__shift
+endmodule // uniform_pulse_gen__planner__divider__partial
 
 
-module uniform_pulse_gen__divider__steps_left(d,q,clock);
+module uniform_pulse_gen__planner__divider__running(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__planner__divider__running
+
+
+module uniform_pulse_gen__planner__divider__shift(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__planner__divider__shift
+
+
+module uniform_pulse_gen__planner__divider__steps_left(d,q,clock);
 
     // Module arguments
     input wire  [7:0] d;
@@ -1553,10 +1683,10 @@ module uniform_pulse_gen__divider__steps_left(d,q,clock);
        q <= d;
     end
 
-endmodule // uniform_pulse_gen__divider__steps_left
+endmodule // uniform_pulse_gen__planner__divider__steps_left
 
 
-module uniform_pulse_gen__divider__subtractor(a,b,sum,carry_out);
+module uniform_pulse_gen__planner__divider__subtractor(a,b,sum,carry_out);
 
     // Module arguments
     input wire  [31:0] a;
@@ -1598,5 +1728,5 @@ module uniform_pulse_gen__divider__subtractor(a,b,sum,carry_out);
         end
     end
 
-endmodule // uniform_pulse_gen__divider__subtractor
+endmodule // uniform_pulse_gen__planner__divider__subtractor
 `default_nettype wire

@@ -376,3 +376,61 @@ fn sparse_ticks_keep_every_period_exact() {
         }
     }
 }
+
+/// The shared period planner alone, exhaustively at 8 bits: every T/2 the
+/// generator can ask with (1 to 127) and every N (0 to 255), checked at
+/// `done` against the model's plan (N clamped to T/2, its half, N2 and
+/// -N1 in two's complement, a clamped one in the clock after `done`),
+/// with `done` exactly 8 clocks after the start edge.
+#[test]
+fn the_period_planner_gives_the_models_plan_for_every_8_bit_request() {
+    use motion_hdl::blocks::uniform_pulse_gen::PeriodPlanner;
+    use motion_hdl::sim::Harness;
+    const W: usize = 8;
+    let mut rtl = Harness::new("period_planner", PeriodPlanner::<W>::default()).unwrap();
+    let mut plans = 0;
+    for half_period in 1..=127u64 {
+        for count in 0..=255u64 {
+            let mut out = rtl.step_vector(&[0, 1, half_period, count]).unwrap();
+            let mut clocks = 1;
+            while out[1] == 0 {
+                out = rtl.step_vector(&[0, 0, 0, 0]).unwrap();
+                clocks += 1;
+                assert!(clocks <= W + 2, "no done");
+            }
+            // The start's edge and W more: `done` follows edge s + W.
+            assert_eq!(clocks, W + 1, "done W clocks after the start edge");
+            let (plan, _) = PulsePlan::new(2 * half_period, count);
+            let [_, _, half, long, short_negated, half_is_one, has_pulses, clamped] = out[..]
+            else {
+                panic!("eight outputs")
+            };
+            let request = format!("T/2 = {half_period}, N = {count}");
+            assert_eq!(has_pulses != 0, count > 0, "{request}");
+            assert_eq!(clamped != 0, count > half_period, "{request}");
+            if count == 0 {
+                continue;
+            }
+            assert_eq!(half, plan.half, "{request}");
+            assert_eq!(half_is_one != 0, plan.half == 1, "{request}");
+            if clamped == 0 {
+                assert_eq!(long, plan.long_pulses, "{request}");
+            } else {
+                assert_eq!(plan.long_pulses, 0, "{request}: the generator clears N2");
+            }
+            // A clamped N's -N1 comes in the clock after `done`.
+            let short_negated = if clamped == 0 {
+                short_negated
+            } else {
+                rtl.step_vector(&[0, 0, 0, 0]).unwrap()[4]
+            };
+            assert_eq!(
+                short_negated,
+                plan.short_pulses.wrapping_neg() & 0xff,
+                "{request}"
+            );
+            plans += 1;
+        }
+    }
+    assert_eq!(plans, 127 * 255);
+}

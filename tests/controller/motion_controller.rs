@@ -1244,7 +1244,7 @@ fn interpolator_faults_are_sticky_until_cleared_and_interrupt_each_time() {
     assert_eq!(b.field("AXIS_STATUS", "INTERP_OVERFLOW", s), 1);
 }
 
-/// The uniform axes take turns at the shared divider: each later uniform
+/// The uniform axes take turns at the shared period planner: each later uniform
 /// axis starts its periods `UNIFORM_TURN` clocks after the one before it,
 /// and a DDA axis takes no turn.
 #[test]
@@ -1286,6 +1286,71 @@ fn uniform_axes_take_turns_at_the_shared_divider() {
     assert_eq!(
         last_only[2], all_uniform[0],
         "a lone uniform axis takes the first turn"
+    );
+}
+
+/// Clocks from the start write to the first `irq`, with only `enabled`,
+/// on three uniform axes with `period`-tick periods (one tick per clock),
+/// every axis fed 10, `second`, 10, except that axis `axis` is fed
+/// 10, `oversized`, 10.
+fn uniform_clocks_to_first_irq(
+    period: u32,
+    axis: u32,
+    oversized: i32,
+    enabled: &[(&str, u64)],
+) -> Option<u64> {
+    let mut b = Controller3::new();
+    configure(&mut b, period, [true; 3]);
+    let enable = b.pack("IRQ_ENABLE", enabled);
+    b.write("IRQ_ENABLE", 0, enable);
+    for a in 0..3 {
+        let second = if a == axis { oversized } else { 10 };
+        queue(&mut b, a, &[10, second, 10]);
+    }
+    b.write("CONTROL", 0, 1);
+    for clock in 1..=2000 {
+        if b.clock(false, 0, 0, false, false).irq {
+            return Some(clock);
+        }
+    }
+    None
+}
+
+/// The datasheet's timing of the uniform clamps (VERSION 0.3.1), at the
+/// pins against the boundary's PERIOD_DONE interrupt (one clock after the
+/// boundary; an event's interrupt follows its flag by one clock): an odd
+/// PERIOD_TICKS is flagged 4 clocks after the boundary, and |n| > P/2 on
+/// the j-th uniform axis UNIFORM_LAG - 2 + j * UNIFORM_TURN clocks after
+/// it, when the axis's plan arrives.
+#[test]
+fn uniform_clamps_are_flagged_when_the_period_is_corrected_and_when_the_plan_arrives() {
+    use motion_hdl::blocks::motion_controller::latency::{UNIFORM_LAG, UNIFORM_TURN};
+    let fault = [("AXIS_FAULT", 1)];
+    let first = |period, axis, n, enabled: &[(&str, u64)]| {
+        uniform_clocks_to_first_irq(period, axis, n, enabled).expect("an interrupt")
+    };
+    let boundary = first(200, 0, 10, &[("PERIOD_DONE", 1)]);
+    for axis in 0..3u32 {
+        let clamp = first(200, axis, 101, &fault);
+        assert_eq!(
+            clamp,
+            boundary + UNIFORM_LAG - 2 + axis as u64 * UNIFORM_TURN,
+            "axis {axis}: boundary irq at {boundary}, clamp irq at {clamp}"
+        );
+    }
+    assert_eq!(
+        uniform_clocks_to_first_irq(200, 0, 100, &fault),
+        None,
+        "n = P/2 is not clamped"
+    );
+    // An odd period is corrected at the first boundary, one PERIOD_TICKS
+    // before the second one, whose PERIOD_DONE is the first.
+    let odd = first(201, 0, 10, &fault);
+    let second_boundary = first(201, 0, 10, &[("PERIOD_DONE", 1)]);
+    assert_eq!(
+        odd,
+        second_boundary - 201 + 4,
+        "odd-period irq at {odd}, second boundary's irq at {second_boundary}"
     );
 }
 

@@ -124,8 +124,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub alarm_event: Signal<Out, Bit>,
     /// HOME_SEEN rose.
     pub home_event: Signal<Out, Bit>,
-    /// The uniform generator's division port, answered by the controller's
-    /// shared divider: see [`UniformPulseCore`].
+    /// The uniform generator's planning port, answered by the controller's
+    /// shared planner: see [`UniformPulseCore`].
     pub div_request: Signal<Out, Bit>,
     /// T/2 to divide.
     pub div_dividend: Signal<Out, Bits<PERIOD_BITS>>,
@@ -133,10 +133,18 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub div_divisor: Signal<Out, Bits<PERIOD_BITS>>,
     /// This axis's division is done.
     pub div_done: Signal<In, Bit>,
-    /// The shared divider's quotient.
-    pub div_quotient: Signal<In, Bits<PERIOD_BITS>>,
-    /// The shared divider's remainder.
-    pub div_remainder: Signal<In, Bits<PERIOD_BITS>>,
+    /// The shared plan's Tp1 / 2.
+    pub div_half: Signal<In, Bits<PERIOD_BITS>>,
+    /// The shared plan's N2.
+    pub div_long_pulses: Signal<In, Bits<PERIOD_BITS>>,
+    /// The shared plan's -N1.
+    pub div_short_negated: Signal<In, Bits<PERIOD_BITS>>,
+    /// The shared plan's half is one tick.
+    pub div_half_is_one: Signal<In, Bit>,
+    /// The shared plan has pulses.
+    pub div_has_pulses: Signal<In, Bit>,
+    /// The shared plan clamped N.
+    pub div_clamped: Signal<In, Bit>,
     /// The axis is an analog axis in this run (`AXIS_CONFIG.ANALOG`,
     /// latched at the start; always 0 in a build without the DAC).
     pub analog: Signal<Out, Bit>,
@@ -305,8 +313,12 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             div_dividend: Default::default(),
             div_divisor: Default::default(),
             div_done: Default::default(),
-            div_quotient: Default::default(),
-            div_remainder: Default::default(),
+            div_half: Default::default(),
+            div_long_pulses: Default::default(),
+            div_short_negated: Default::default(),
+            div_half_is_one: Default::default(),
+            div_has_pulses: Default::default(),
+            div_clamped: Default::default(),
             analog: Default::default(),
             dac_code: Default::default(),
             code_out_of_range: Default::default(),
@@ -580,8 +592,12 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.popped_valid.q.val() & self.uniform_active.q.val() & !self.analog_active.q.val();
         self.uniform.clear_flags.next = self.clear_faults.val() | self.start.val();
         self.uniform.div_done.next = self.div_done.val();
-        self.uniform.div_quotient.next = self.div_quotient.val();
-        self.uniform.div_remainder.next = self.div_remainder.val();
+        self.uniform.div_half.next = self.div_half.val();
+        self.uniform.div_long_pulses.next = self.div_long_pulses.val();
+        self.uniform.div_short_negated.next = self.div_short_negated.val();
+        self.uniform.div_half_is_one.next = self.div_half_is_one.val();
+        self.uniform.div_has_pulses.next = self.div_has_pulses.val();
+        self.uniform.div_clamped.next = self.div_clamped.val();
         if self.popped_valid.q.val()
             & self.uniform_active.q.val()
             & !self.analog_active.q.val()

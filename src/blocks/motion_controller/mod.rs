@@ -60,7 +60,8 @@
 //!   period. DDA axes emit exactly |n| steps spread over the period's P
 //!   ticks (at most one per tick: |n| <= P). Uniform axes load the dual-period
 //!   generator with (P, |n|), |n| <= P/2. The uniform axes share one
-//!   divider and take turns at it in axis order, so the j-th uniform axis
+//!   period planner (the divider, the clamp of |n| and the split) and take
+//!   turns at it in axis order, so the j-th uniform axis
 //!   (from 0) runs each period [`latency::UNIFORM_LAG`] + j *
 //!   [`latency::UNIFORM_TURN`] = 24 + 18 j clocks or more after its
 //!   boundary: a fixed lag for a given choice of uniform axes, at most
@@ -119,6 +120,13 @@
 //! * **Entry too large**: |n| > 65535 is saturated to 65535 and
 //!   `INTERP_OVERRANGE` is set one clock after the entry is taken (then the
 //!   interpolator's own clamp applies).
+//! * **Uniform clamp timing** (VERSION 0.3.1): on a uniform axis, an odd
+//!   or too small `PERIOD_TICKS` sets `INTERP_OVERRANGE` 4 clocks after
+//!   the boundary (3 after the entry is taken); |n| > P/2 sets it when the
+//!   axis's plan arrives from the shared planner,
+//!   [`latency::UNIFORM_LAG`] - 2 + j * [`latency::UNIFORM_TURN`] clocks
+//!   after the boundary (22 + 18 j; j as for the lag). Before 0.3.1 both
+//!   were set 4 clocks after it.
 //! * **`CLEAR_POSITION` in motion**: `CMD_POSITION` becomes 0 at the first
 //!   edge, from the one that ends the write on, at which no step is
 //!   counted: one clock later if a step is counted on the write's own
@@ -344,12 +352,13 @@
 //!
 //! The controller's own `update()` wires these together, ORs the stop
 //! causes and events, and arbitrates the uniform generators' shared
-//! divider.
+//! period planner.
 //!
 //! ## Resources (iCE40 HX8K, 16-entry FIFOs)
 //! See `rtl-out/synthesis-report.md`, which also has K = 1 and K = 6 and
 //! four other FPGA families. Each axis carries a uniform pulse generator
-//! (a double-buffered period plan; the divider is shared by all axes), a
+//! (a double-buffered period plan; the planner that computes it is shared
+//! by all axes), a
 //! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
 //! a quadrature decoder, a FIFO, its machine I/O (two 32-bit home latches)
 //! and its register window with two 32-bit snapshots; `rtl-out/scaling-report.md`
@@ -382,7 +391,7 @@
 //! the DAC. Both exports keep the same ports.
 //!
 //! `UNIFORM` = false builds the controller without the uniform pulse
-//! generators and their shared divider: the seed design's own DDA-only
+//! generators and their shared planner: the seed design's own DDA-only
 //! scheme. The two options are exported as:
 //! * `motion_controller` ([`MotionController3`]): uniform generators, no
 //!   analog outputs (with the board's bus adapter it nearly fills an
@@ -416,7 +425,7 @@
 //! Its register map is `rtl-out/motion_controller_dda_regs.h` and `.md`
 //! (same names as the full build's, with UNIFORM and INTERLEAVED read-only).
 //! The generators stay in the Rust block, but every use of their outputs,
-//! and the divider's, is gated by a constant: in the DDA-only build they
+//! and the planner's, is gated by a constant: in the DDA-only build they
 //! drive nothing, and synthesis removes them.
 
 pub mod analog_outputs;
@@ -439,7 +448,7 @@ use crate::blocks::port_doc::{port, PortDoc};
 
 use crate::blocks::freq_divider::FreqDivider;
 use crate::blocks::interrupt_controller::InterruptController;
-use crate::blocks::sequential_divider::SequentialDivider;
+use crate::blocks::uniform_pulse_gen::PeriodPlanner;
 use crate::blocks::watchdog::Watchdog;
 use analog_outputs::AnalogOutputs;
 use axis::MotionAxis;
@@ -482,7 +491,7 @@ pub mod latency {
     /// A uniform axis runs each period `UNIFORM_LAG` + j * `UNIFORM_TURN`
     /// clocks after its boundary, or later (the first tick edge from then
     /// on), where j is the number of lower-numbered uniform axes that load
-    /// a period at the same boundary: the axes take turns at one divider,
+    /// a period at the same boundary: the axes take turns at one planner,
     /// and each turn lasts a division of `PERIOD_BITS` clocks and 2 of
     /// handover. The lag of an axis is thus fixed by which axes are uniform.
     pub const UNIFORM_LAG: u64 =
@@ -695,18 +704,18 @@ pub struct MotionController<
     walk_negative: Signal<Local, Bit>,
     zero_code: Constant<Bits<DAC_BITS>>,
     read_out: Signal<Local, Bits<32>>,
-    /// One divider for every axis's uniform generator: each asks for one
-    /// division per period, so they take turns (see "Time base and
+    /// One planner for every axis's uniform generator: each asks for one
+    /// plan per period, so they take turns (see "Time base and
     /// periods").
-    divider: SequentialDivider<PERIOD_BITS, PERIOD_BITS>,
-    /// The axis whose division is running (one-hot).
+    planner: PeriodPlanner<PERIOD_BITS>,
+    /// The axis whose plan is being computed (one-hot).
     div_owner: DFF<Bits<K>>,
-    /// `UNIFORM`: the axes have uniform generators, and so the divider is
+    /// `UNIFORM`: the axes have uniform generators, and so the planner is
     /// used. (A const generic cannot appear in `#[hdl_gen]` code.)
     has_uniform: Constant<Bit>,
-    /// A division can start in this clock.
+    /// A plan can start in this clock.
     div_idle: Signal<Local, Bit>,
-    /// An axis was granted the divider in this clock.
+    /// An axis was granted the planner in this clock.
     div_granted: Signal<Local, Bit>,
     /// A stop cause is held (registered OR of every latch): every axis
     /// flushed, interpolators halted.
@@ -837,7 +846,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             watchdog: Default::default(),
             interrupts: Default::default(),
             io: Default::default(),
-            divider: Default::default(),
+            planner: Default::default(),
             div_owner: Default::default(),
             has_uniform: Constant::new(UNIFORM),
             div_idle: Default::default(),
@@ -925,7 +934,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             watchdog,
             interrupts,
             io,
-            divider,
+            planner,
             analog
         );
 
@@ -1062,35 +1071,39 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.cause_register.underrun.next = self.underrun.val();
         self.cause_register.halt.next = self.halt.val();
 
-        // The shared divider: the lowest-numbered axis that asks gets it
+        // The shared planner: the lowest-numbered axis that asks gets it
         // when it is idle (a start in its `done` clock would hand the
-        // owner's request, still high then, a second division). Without
+        // owner's request, still high then, a second plan). Without
         // uniform generators it is never started and its results reach no
         // axis, so synthesis removes it (the axes' requests are already 0,
         // but that is not visible across the axis's module boundary).
-        self.divider.reset.next = self.reset.val() | self.halt.val();
+        self.planner.reset.next = self.reset.val() | self.halt.val();
         self.div_idle.next =
-            !self.divider.busy.val() & !self.divider.done.val() & self.has_uniform.val();
+            !self.planner.busy.val() & !self.planner.done.val() & self.has_uniform.val();
         self.div_granted.next = false;
-        self.divider.start.next = false;
-        self.divider.dividend.next = self.axes[0].div_dividend.val();
-        self.divider.divisor.next = self.axes[0].div_divisor.val();
+        self.planner.start.next = false;
+        self.planner.dividend.next = self.axes[0].div_dividend.val();
+        self.planner.divisor.next = self.axes[0].div_divisor.val();
         for i in 0..K {
             if self.div_idle.val() & !self.div_granted.val() & self.axes[i].div_request.val() {
                 self.div_granted.next = true;
-                self.divider.start.next = true;
-                self.divider.dividend.next = self.axes[i].div_dividend.val();
-                self.divider.divisor.next = self.axes[i].div_divisor.val();
+                self.planner.start.next = true;
+                self.planner.dividend.next = self.axes[i].div_dividend.val();
+                self.planner.divisor.next = self.axes[i].div_divisor.val();
                 self.div_owner.d.next = self.axis_bit[i].val();
             }
             // One assignment each, no default-then-override: these nets
             // and the axes' requests form a cycle of always blocks, and a
             // glitch on both sides keeps Icarus re-evaluating forever.
             self.axes[i].div_done.next = self.has_uniform.val()
-                & self.divider.done.val()
+                & self.planner.done.val()
                 & ((self.div_owner.q.val() & self.axis_bit[i].val()) != self.zero_k.val());
-            self.axes[i].div_quotient.next = self.divider.quotient.val();
-            self.axes[i].div_remainder.next = self.divider.remainder.val();
+            self.axes[i].div_half.next = self.planner.half.val();
+            self.axes[i].div_long_pulses.next = self.planner.long_pulses.val();
+            self.axes[i].div_short_negated.next = self.planner.short_negated.val();
+            self.axes[i].div_half_is_one.next = self.planner.half_is_one.val();
+            self.axes[i].div_has_pulses.next = self.planner.has_pulses.val();
+            self.axes[i].div_clamped.next = self.planner.clamped.val();
         }
         if self.reset.val() {
             self.div_owner.d.next = self.zero_k.val();

@@ -741,7 +741,7 @@ pub struct MotionControllerModel {
     io: MachineIoModel,
     abort_hold: bool,
     stop_cause: u32,
-    /// The uniform generators' shared divider: only its timing matters
+    /// The uniform generators' shared period planner: only its timing matters
     /// here (each axis's plan computes its own quotient).
     divider: SequentialDividerModel,
     /// The build has the analog outputs (`ANALOG`).
@@ -835,7 +835,7 @@ impl MotionControllerModel {
         })
     }
 
-    /// The shared divider at one edge: the lowest-numbered axis whose
+    /// The shared planner at one edge: the lowest-numbered axis whose
     /// uniform generator waits for its division gets it, if it is idle.
     /// `axes` is the state before the edge; a reset (or halt) idles it.
     fn divider_edge(&mut self, reset: bool, axes: &[AxisModel]) -> Option<usize> {

@@ -19,9 +19,12 @@ use crate::regmap::{field, register, Access, Field, RegMapError, Register, Regis
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
-/// `VERSION` register value: major 0, minor 3, patch 0 (minor 2: machine
-/// I/O, 32-word axis windows; minor 3: analog axes, `CONFIG.ANALOG`).
-pub const VERSION_VALUE: u32 = 0x0000_0300;
+/// `VERSION` register value: major 0, minor 3, patch 1 (minor 2: machine
+/// I/O, 32-word axis windows; minor 3: analog axes, `CONFIG.ANALOG`;
+/// patch 1: on a uniform axis, `INTERP_OVERRANGE` for |n| > P/2 is set
+/// when the axis's period plan arrives from the shared planner, not two
+/// clocks after the entry is taken).
+pub const VERSION_VALUE: u32 = 0x0000_0301;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -526,9 +529,9 @@ pub fn register_map(
                 global::VERSION,
                 "core version",
                 vec![
-                    field("PATCH", 0, 8, ReadOnly, "patch"),
+                    Field { reset: VERSION_VALUE as u64 & 0xff, ..field("PATCH", 0, 8, ReadOnly, "patch") },
                     Field { reset: (VERSION_VALUE as u64 >> 8) & 0xff, ..field("MINOR", 8, 8, ReadOnly, "minor") },
-                    field("MAJOR", 16, 8, ReadOnly, "major"),
+                    Field { reset: (VERSION_VALUE as u64 >> 16) & 0xff, ..field("MAJOR", 16, 8, ReadOnly, "major") },
                 ],
             ),
             config,

@@ -24,8 +24,9 @@
 //! ## Load protocol and timing
 //! * A load is accepted at an edge where `ready` is high; `ready` falls
 //!   after that edge and rises again after the edge that starts the loaded
-//!   period. The slot needs [`LOAD_TO_READY`] clocks (a check and a clamp
-//!   clock, a 32-clock division, a split clock and a spare one) before its
+//!   period. The slot needs [`LOAD_TO_READY`] clocks (a check and a correction
+//!   clock, the 32-clock plan of the [`PeriodPlanner`] and its start
+//!   clock, and two spare clocks where the split once was) before its
 //!   period can start.
 //! * From idle, a computed period starts at the first tick edge after it is
 //!   complete: at the earliest LOAD_TO_READY + 1 clocks after the load edge.
@@ -41,8 +42,12 @@
 //! * `period`, `count` and `mode` are sampled only with an accepted load.
 //!
 //! ## Bad input
-//! * N > T/2: clamped to T/2 (every pulse 2 ticks), `overrange` set.
-//! * Odd T: rounded down to even; T below 2: becomes 2. `overrange` set.
+//! * N > T/2: clamped to T/2 (every pulse 2 ticks), `overrange` set at the
+//!   edge the slot takes its plan: LOAD_TO_READY - 2 clocks after the load
+//!   edge (later in the motion controller while the shared planner serves
+//!   another axis). N is compared with the corrected T.
+//! * Odd T: rounded down to even; T below 2: becomes 2. `overrange` set 2
+//!   clocks after the load edge.
 //! * No next period at the end of one: the output stays low, `running`
 //!   falls, `underrun` is set; the next computed period starts on the first
 //!   tick after it is ready.
@@ -52,22 +57,27 @@
 //!
 //! ## Structure
 //! [`UniformPulseCore`] (the slot sequencer and the running period) asks
-//! for T/2 / N on a division port, which this block answers with a
-//! [`SequentialDivider`] of its own. The motion controller instead answers
-//! its axes' cores from one shared divider, in turns. A long pulse's half
+//! for the plan of (T/2, N) on a planning port, which this block answers
+//! with a [`PeriodPlanner`] of its own: a
+//! [`SequentialDivider`](crate::blocks::sequential_divider::SequentialDivider)
+//! for T/2 / N, whose zero quotient is the clamp of N, and the split into
+//! N1 and N2. The motion controller instead answers its axes' cores from
+//! one shared planner, in turns, so the comparator, the clamp and the
+//! subtractor exist once there. A long pulse's half
 //! is a short half plus one tick (`stretch`), so neither Tp2/2 nor the
 //! error steps are stored in the slot: the steps are formed when a period
-//! starts, from N1, N2 and the order.
+//! starts, from N2, -N1 (as the planner gives it) and the order, with one
+//! adder: the first error is the short step plus -N1.
 
 pub mod model;
+pub mod period_planner;
 pub mod pulse_core;
 
 use rust_hdl::prelude::*;
 
 use crate::blocks::port_doc::{port, PortDoc};
 
-use crate::blocks::sequential_divider::SequentialDivider;
-
+pub use period_planner::PeriodPlanner;
 pub use pulse_core::UniformPulseCore;
 
 pub use model::{load_to_ready, LOAD_TO_READY};
@@ -129,7 +139,7 @@ pub struct UniformPulseGen<const W: usize> {
     /// Sticky overflow.
     pub overflow: Signal<Out, Bit>,
     core: UniformPulseCore<W>,
-    divider: SequentialDivider<W, W>,
+    planner: PeriodPlanner<W>,
 }
 
 impl<const W: usize> Default for UniformPulseGen<W> {
@@ -155,7 +165,7 @@ impl<const W: usize> Default for UniformPulseGen<W> {
             overrange: Default::default(),
             overflow: Default::default(),
             core: Default::default(),
-            divider: Default::default(),
+            planner: Default::default(),
         }
     }
 }
@@ -163,7 +173,7 @@ impl<const W: usize> Default for UniformPulseGen<W> {
 impl<const W: usize> Logic for UniformPulseGen<W> {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, core, divider);
+        clock!(self, clock, core, planner);
         self.core.reset.next = self.reset.val();
         self.core.tick.next = self.tick.val();
         self.core.period.next = self.period.val();
@@ -178,16 +188,20 @@ impl<const W: usize> Logic for UniformPulseGen<W> {
         self.underrun.next = self.core.underrun.val();
         self.overrange.next = self.core.overrange.val();
         self.overflow.next = self.core.overflow.val();
-        // A divider of its own is idle whenever the slot asks: the division
+        // A planner of its own is idle whenever the slot asks: the plan
         // starts in the request's first clock.
-        self.divider.reset.next = self.reset.val();
-        self.divider.start.next =
-            self.core.div_request.val() & !self.divider.busy.val() & !self.divider.done.val();
-        self.divider.dividend.next = self.core.div_dividend.val();
-        self.divider.divisor.next = self.core.div_divisor.val();
-        self.core.div_done.next = self.divider.done.val();
-        self.core.div_quotient.next = self.divider.quotient.val();
-        self.core.div_remainder.next = self.divider.remainder.val();
+        self.planner.reset.next = self.reset.val();
+        self.planner.start.next =
+            self.core.div_request.val() & !self.planner.busy.val() & !self.planner.done.val();
+        self.planner.dividend.next = self.core.div_dividend.val();
+        self.planner.divisor.next = self.core.div_divisor.val();
+        self.core.div_done.next = self.planner.done.val();
+        self.core.div_half.next = self.planner.half.val();
+        self.core.div_long_pulses.next = self.planner.long_pulses.val();
+        self.core.div_short_negated.next = self.planner.short_negated.val();
+        self.core.div_half_is_one.next = self.planner.half_is_one.val();
+        self.core.div_has_pulses.next = self.planner.has_pulses.val();
+        self.core.div_clamped.next = self.planner.clamped.val();
     }
 }
 

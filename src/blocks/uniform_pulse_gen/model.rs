@@ -175,13 +175,18 @@ impl UniformPulseGenOutputs {
 }
 
 /// Clocks from the edge that accepts a load to the edge after which the
-/// slot is complete, for a `width`-bit generator (a check and a clamp
-/// clock, the `width`-clock division, a split clock and a spare one): a
+/// slot is complete, for a `width`-bit generator (a check and a correction
+/// clock, the `width`-clock plan and its start clock, and two spare
+/// clocks): a
 /// period loaded at edge L can start at the first tick edge after
 /// L + `load_to_ready(width)`.
 pub const fn load_to_ready(width: u32) -> u32 {
     width + 6
 }
+
+/// Clocks from the edge at which the slot takes its plan (and flags a
+/// clamped N) to the edge after which it is complete.
+const PLAN_TO_READY: u32 = 2;
 
 /// [`load_to_ready`] of the exported 32-bit generator.
 pub const LOAD_TO_READY: u32 = load_to_ready(32);
@@ -323,10 +328,14 @@ impl UniformPulseGenModel {
             self.out.pulse = plan.count > 0;
         }
         if let Some((plan, _, left)) = &mut self.slot {
+            let (period, count) = plan.requested;
             if *left == self.load_to_ready - 1 {
-                // The clamp, two clocks after the load, reports corrected
-                // input.
-                self.out.overrange |= PulsePlan::new(plan.requested.0, plan.requested.1).1;
+                // The correction of T, two clocks after the load.
+                self.out.overrange |= period % 2 == 1 || period < 2;
+            }
+            if *left == PLAN_TO_READY + 1 {
+                // The plan arrives: N above the corrected T/2 was clamped.
+                self.out.overrange |= count > plan.period / 2;
             }
             if !waits_for_division || granted {
                 *left = left.saturating_sub(1);

@@ -1,8 +1,9 @@
 //! The uniform pulse generator's slot and running period, without the
-//! divider: see [`super::UniformPulseGen`] for the behavior, which this
-//! block has whenever its division port is answered as
-//! [`super::UniformPulseGen`] answers it (a start in the first clock of
-//! the request, the result `W` clocks later).
+//! per-period work: see [`super::UniformPulseGen`] for the behavior, which
+//! this block has whenever its planning port is answered as
+//! [`super::UniformPulseGen`] answers it, by a
+//! [`super::PeriodPlanner`] (a start in the first clock of the request,
+//! the plan `W` clocks later).
 
 use rust_hdl::prelude::*;
 
@@ -15,9 +16,10 @@ const SLOT_SPLIT: u64 = 4;
 const SLOT_STEPS: u64 = 5;
 const SLOT_FULL: u64 = 6;
 
-/// The generator without its divider: the slot asks for T/2 / N on its
-/// division port. [`super::UniformPulseGen`] gives it a divider of its own;
-/// the motion controller shares one among its axes.
+/// The generator without its per-period work: the slot asks for the plan
+/// of (T/2, N) on its planning port (the `div_` ports).
+/// [`super::UniformPulseGen`] gives it a [`super::PeriodPlanner`] of its
+/// own; the motion controller shares one among its axes.
 #[derive(Clone, Debug, LogicBlock)]
 pub struct UniformPulseCore<const W: usize> {
     /// Rising-edge clock.
@@ -50,19 +52,27 @@ pub struct UniformPulseCore<const W: usize> {
     pub overrange: Signal<Out, Bit>,
     /// Sticky overflow.
     pub overflow: Signal<Out, Bit>,
-    /// The slot waits for T/2 / N: `div_dividend` / `div_divisor` are
+    /// The slot waits for its plan: `div_dividend` / `div_divisor` are
     /// stable while it is high, until the clock after `div_done`.
     pub div_request: Signal<Out, Bit>,
-    /// T/2 of the slot's (corrected) period.
+    /// T/2 of the slot's corrected period (at least 1).
     pub div_dividend: Signal<Out, Bits<W>>,
-    /// N of the slot's (corrected) count.
+    /// N as loaded.
     pub div_divisor: Signal<Out, Bits<W>>,
-    /// One-clock strobe: this slot's quotient and remainder are valid.
+    /// One-clock strobe: this slot's plan is on the `div_` inputs.
     pub div_done: Signal<In, Bit>,
-    /// floor(T/2 / N).
-    pub div_quotient: Signal<In, Bits<W>>,
-    /// T/2 mod N.
-    pub div_remainder: Signal<In, Bits<W>>,
+    /// The plan's Tp1 / 2 ([`super::PeriodPlanner`]'s `half`).
+    pub div_half: Signal<In, Bits<W>>,
+    /// The plan's N2 (ignored when `div_clamped`: N2 = 0).
+    pub div_long_pulses: Signal<In, Bits<W>>,
+    /// The plan's -N1 (if `div_clamped`, in the clock after `div_done`).
+    pub div_short_negated: Signal<In, Bits<W>>,
+    /// `div_half` == 1.
+    pub div_half_is_one: Signal<In, Bit>,
+    /// N > 0.
+    pub div_has_pulses: Signal<In, Bit>,
+    /// N > T/2 was clamped: `overrange`.
+    pub div_clamped: Signal<In, Bit>,
     // The next-period slot, filled by a small sequencer after a load.
     slot_state: DFF<Bits<3>>,
     /// `slot_state == full`, registered: the start decision is then one
@@ -70,13 +80,16 @@ pub struct UniformPulseCore<const W: usize> {
     /// register.
     slot_full: DFF<Bit>,
     slot_period: DFF<Bits<W>>,
-    slot_count: DFF<Bits<W>>,
     slot_interleaved: DFF<Bit>,
     slot_half: DFF<Bits<W>>,
     slot_half_is_one: DFF<Bit>,
-    slot_short_pulses: DFF<Bits<W>>,
+    /// N as loaded until the plan arrives, then -N1: the step of a long
+    /// interleaved pulse as it is, and one adder from the first error.
+    slot_short_negated: DFF<Bits<W>>,
     slot_long_pulses: DFF<Bits<W>>,
     slot_has_pulses: DFF<Bit>,
+    /// The plan clamped N: -N1 is taken again in the split clock.
+    slot_clamped: DFF<Bit>,
     // The running period.
     running_reg: DFF<Bit>,
     ticks_left: DFF<Bits<W>>,
@@ -103,14 +116,13 @@ pub struct UniformPulseCore<const W: usize> {
     underrun_reg: DFF<Bit>,
     overrange_reg: DFF<Bit>,
     overflow_reg: DFF<Bit>,
-    /// The loaded T and N checked one clock before they are corrected, so
-    /// the 32-bit comparison has a clock of its own.
+    /// The loaded T checked one clock before it is corrected.
     period_odd: DFF<Bit>,
     period_small: DFF<Bit>,
-    count_too_large: DFF<Bit>,
     start: Signal<Local, Bit>,
     next_long: Signal<Local, Bit>,
-    period_half: Signal<Local, Bits<W>>,
+    /// The slot's short step: N2 interleaved, 1 in paper order.
+    short_step: Signal<Local, Bits<W>>,
     empty: Constant<Bits<3>>,
     check: Constant<Bits<3>>,
     clamp: Constant<Bits<3>>,
@@ -151,18 +163,22 @@ impl<const W: usize> Default for UniformPulseCore<W> {
             div_dividend: Default::default(),
             div_divisor: Default::default(),
             div_done: Default::default(),
-            div_quotient: Default::default(),
-            div_remainder: Default::default(),
+            div_half: Default::default(),
+            div_long_pulses: Default::default(),
+            div_short_negated: Default::default(),
+            div_half_is_one: Default::default(),
+            div_has_pulses: Default::default(),
+            div_clamped: Default::default(),
             slot_state: Default::default(),
             slot_full: Default::default(),
             slot_period: Default::default(),
-            slot_count: Default::default(),
             slot_interleaved: Default::default(),
             slot_half: Default::default(),
             slot_half_is_one: Default::default(),
-            slot_short_pulses: Default::default(),
+            slot_short_negated: Default::default(),
             slot_long_pulses: Default::default(),
             slot_has_pulses: Default::default(),
+            slot_clamped: Default::default(),
             running_reg: Default::default(),
             ticks_left: Default::default(),
             period_last: Default::default(),
@@ -183,10 +199,9 @@ impl<const W: usize> Default for UniformPulseCore<W> {
             overflow_reg: Default::default(),
             period_odd: Default::default(),
             period_small: Default::default(),
-            count_too_large: Default::default(),
             start: Default::default(),
             next_long: Default::default(),
-            period_half: Default::default(),
+            short_step: Default::default(),
             empty: Constant::new(SLOT_EMPTY.into()),
             check: Constant::new(SLOT_CHECK.into()),
             clamp: Constant::new(SLOT_CLAMP.into()),
@@ -212,13 +227,13 @@ impl<const W: usize> Logic for UniformPulseCore<W> {
             slot_state,
             slot_full,
             slot_period,
-            slot_count,
             slot_interleaved,
             slot_half,
             slot_half_is_one,
-            slot_short_pulses,
+            slot_short_negated,
             slot_long_pulses,
             slot_has_pulses,
+            slot_clamped,
             running_reg,
             ticks_left,
             period_last,
@@ -238,8 +253,7 @@ impl<const W: usize> Logic for UniformPulseCore<W> {
             overrange_reg,
             overflow_reg,
             period_odd,
-            period_small,
-            count_too_large
+            period_small
         );
         self.pulse.next = self.pulse_reg.q.val();
         self.period_done.next = self.period_done_reg.q.val();
@@ -257,21 +271,19 @@ impl<const W: usize> Logic for UniformPulseCore<W> {
             self.overflow_reg.d.next = false;
         }
 
-        // The slot: load, clamp, divide T/2 by N, then precompute what the
-        // first clock of the period needs.
-        self.period_half.next = self.slot_period.q.val() >> self.one.val();
+        // The slot: load, correct T, then ask for the plan of (T/2, N): the
+        // clamp of N and the split are the planner's.
         self.period_odd.d.next = self.slot_period.q.val().get_bit(0);
         self.period_small.d.next =
             (self.slot_period.q.val() & self.not_one.val()) == self.zero.val();
-        self.count_too_large.d.next = self.slot_count.q.val() > self.period_half.val();
-        self.div_dividend.next = self.period_half.val();
-        self.div_divisor.next = self.slot_count.q.val();
+        self.div_dividend.next = self.slot_period.q.val() >> self.one.val();
+        self.div_divisor.next = self.slot_short_negated.q.val();
         self.div_request.next = self.slot_state.q.val() == self.divide.val();
         if self.slot_state.q.val() == self.empty.val() {
             if self.load.val() {
                 self.slot_state.d.next = self.check.val();
                 self.slot_period.d.next = self.period.val();
-                self.slot_count.d.next = self.count.val();
+                self.slot_short_negated.d.next = self.count.val();
                 self.slot_interleaved.d.next = self.mode.val();
             }
         } else if self.load.val() {
@@ -281,8 +293,8 @@ impl<const W: usize> Logic for UniformPulseCore<W> {
             self.slot_state.d.next = self.clamp.val();
         }
         if self.slot_state.q.val() == self.clamp.val() {
-            // An odd T is rounded down; a T below 2 becomes 2; N > T/2 is
-            // clamped to T/2 (with T corrected first).
+            // An odd T is rounded down; a T below 2 becomes 2. N > T/2 is
+            // the planner's, flagged when the plan arrives.
             if self.period_odd.q.val() {
                 self.overrange_reg.d.next = true;
             }
@@ -290,35 +302,41 @@ impl<const W: usize> Logic for UniformPulseCore<W> {
             if self.period_small.q.val() {
                 self.overrange_reg.d.next = true;
                 self.slot_period.d.next = self.two.val();
-                if self.slot_count.q.val() != self.zero.val() {
-                    self.slot_count.d.next = self.one.val();
-                }
-                if self.slot_count.q.val() > self.one.val() {
-                    self.overrange_reg.d.next = true;
-                }
-            } else if self.count_too_large.q.val() {
-                self.overrange_reg.d.next = true;
-                self.slot_count.d.next = self.period_half.val();
             }
             self.slot_state.d.next = self.divide.val();
         }
         if self.slot_state.q.val() == self.divide.val() {
             if self.div_done.val() {
-                self.slot_half.d.next = self.div_quotient.val();
-                self.slot_long_pulses.d.next = self.div_remainder.val();
-                self.slot_has_pulses.d.next = self.slot_count.q.val() != self.zero.val();
+                self.slot_half.d.next = self.div_half.val();
+                self.slot_long_pulses.d.next = self.div_long_pulses.val();
+                self.slot_short_negated.d.next = self.div_short_negated.val();
+                self.slot_half_is_one.d.next = self.div_half_is_one.val();
+                self.slot_has_pulses.d.next = self.div_has_pulses.val();
+                self.slot_clamped.d.next = self.div_clamped.val();
+                if self.div_clamped.val() {
+                    self.overrange_reg.d.next = true;
+                    self.slot_long_pulses.d.next = self.zero.val();
+                }
                 self.slot_state.d.next = self.split.val();
             }
         }
+        // Two clocks kept so that the slot's timing stays LOAD_TO_READY:
+        // the split they once did is now the planner's (but for a clamped
+        // N's -N1, which it gives one clock late), and the error steps
+        // they once stored are formed when the period starts.
         if self.slot_state.q.val() == self.split.val() {
-            self.slot_short_pulses.d.next = self.slot_count.q.val() - self.slot_long_pulses.q.val();
-            self.slot_half_is_one.d.next = self.slot_half.q.val() == self.one.val();
+            if self.slot_clamped.q.val() {
+                self.slot_short_negated.d.next = self.div_short_negated.val();
+            }
             self.slot_state.d.next = self.steps.val();
         }
-        // A clock kept so that the slot's timing stays LOAD_TO_READY: the
-        // error steps it once stored are now formed when the period starts.
         if self.slot_state.q.val() == self.steps.val() {
             self.slot_state.d.next = self.full.val();
+        }
+
+        self.short_step.next = self.one.val();
+        if self.slot_interleaved.q.val() {
+            self.short_step.next = self.slot_long_pulses.q.val();
         }
 
         // The running period, advanced on tick edges.
@@ -384,17 +402,15 @@ impl<const W: usize> Logic for UniformPulseCore<W> {
             self.half.d.next = self.slot_half.q.val();
             self.half_is_one.d.next = self.slot_half_is_one.q.val();
             // Error steps: paper order counts the pulse index up from -N1;
-            // interleaved adds N2 per short pulse and subtracts N1 per long
-            // one. Pulse 0 is short, so the period starts one step in.
+            // interleaved adds N2 per short pulse and adds -N1 per long
+            // one. Pulse 0 is short, so the period starts one short step
+            // in: error = short step - N1, one adder for both orders.
+            self.step_short.d.next = self.short_step.val();
+            self.step_long.d.next = self.one.val();
             if self.slot_interleaved.q.val() {
-                self.step_short.d.next = self.slot_long_pulses.q.val();
-                self.step_long.d.next = self.zero.val() - self.slot_short_pulses.q.val();
-                self.error.d.next = self.slot_long_pulses.q.val() - self.slot_short_pulses.q.val();
-            } else {
-                self.step_short.d.next = self.one.val();
-                self.step_long.d.next = self.one.val();
-                self.error.d.next = self.one.val() - self.slot_short_pulses.q.val();
+                self.step_long.d.next = self.slot_short_negated.q.val();
             }
+            self.error.d.next = self.short_step.val() + self.slot_short_negated.q.val();
             self.has_pulses.d.next = self.slot_has_pulses.q.val();
             self.slot_state.d.next = self.empty.val();
         }
@@ -414,6 +430,6 @@ impl<const W: usize> Logic for UniformPulseCore<W> {
 }
 
 crate::vector_ports!(impl[const W: usize] UniformPulseCore<W> {
-    inputs: [reset, tick, period, count, mode, load, clear_flags, div_done, div_quotient, div_remainder],
+    inputs: [reset, tick, period, count, mode, load, clear_flags, div_done, div_half, div_long_pulses, div_short_negated, div_half_is_one, div_has_pulses, div_clamped],
     outputs: [pulse, period_done, ready, running, underrun, overrange, overflow, div_request, div_dividend, div_divisor],
 });
