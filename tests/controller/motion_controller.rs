@@ -1308,12 +1308,7 @@ fn uniform_clocks_to_first_irq(
         queue(&mut b, a, &[10, second, 10]);
     }
     b.write("CONTROL", 0, 1);
-    for clock in 1..=2000 {
-        if b.clock(false, 0, 0, false, false).irq {
-            return Some(clock);
-        }
-    }
-    None
+    (1..=2000u64).find(|_| b.clock(false, 0, 0, false, false).irq)
 }
 
 /// The datasheet's timing of the uniform clamps (VERSION 0.3.1), at the
