@@ -28724,7 +28724,7 @@ module motion_controller_servo__planner(clock,reset,start,dividend,divisor,busy,
         divider__start = start;
         divider__dividend = dividend;
         divider__divisor = divisor;
-        if (start & ~divider__busy) begin
+        if (~divider__busy) begin
             count__d = divisor;
         end
         busy = divider__busy;

@@ -1325,7 +1325,7 @@ module uniform_pulse_gen__planner(clock,reset,start,dividend,divisor,busy,done,h
         divider__start = start;
         divider__dividend = dividend;
         divider__divisor = divisor;
-        if (start & ~divider__busy) begin
+        if (~divider__busy) begin
             count__d = divisor;
         end
         busy = divider__busy;

@@ -6,8 +6,9 @@
 //! * `start` (sampled while `busy` is low) takes T/2 on `dividend` and the
 //!   requested N on `divisor`; `done` is high `W` clocks later, for one
 //!   clock, with the plan on the other outputs (valid from `done` until
-//!   the next `start`, except `short_negated`: see `clamped`). The user
-//!   starts the next plan no earlier than the clock after `done`.
+//!   the next `start`, except `short_negated`: see `clamped`, and it is
+//!   N2 - N only in the `done` clock). The user starts the next plan no
+//!   earlier than the clock after `done`.
 //! * The plan is that of [`super::model::PulsePlan`] for a corrected T
 //!   (even, at least 2): `half` = floor(T/2 / N'), `long_pulses` = N2 =
 //!   T/2 mod N', `short_negated` = -N1 = N2 - N' (W-bit two's
@@ -117,7 +118,12 @@ impl<const W: usize> Logic for PeriodPlanner<W> {
         self.divider.start.next = self.start.val();
         self.divider.dividend.next = self.dividend.val();
         self.divider.divisor.next = self.divisor.val();
-        if self.start.val() & !self.divider.busy.val() {
+        // N follows `divisor` whenever the divider is idle, so it holds the
+        // started one through the division: its enable is then a register,
+        // not the start (in the controller, the end of the arbiter's grant
+        // chain). It changes at the edge after `done`, and the `done` clock
+        // is the only one that reads it.
+        if !self.divider.busy.val() {
             self.count.d.next = self.divisor.val();
         }
         self.busy.next = self.divider.busy.val();
