@@ -1069,21 +1069,35 @@ fn a_restart_right_after_an_underrun_loses_nothing() {
 /// only the interrupts `enabled`, on DDA axes with 100-tick periods (one
 /// tick per clock) and axis 0 fed 10, `second`, 10.
 fn clocks_to_first_irq(second: i32, enabled: &[(&str, u64)]) -> u64 {
+    first_irq(false, 100, 0, second, 0, enabled).expect("an interrupt")
+}
+
+/// Clocks from the start write to the first clock with `irq` high, if any
+/// within 2000, with only the interrupts `enabled`, on three axes, all
+/// uniform or all DDA, with `period`-tick periods (one tick per clock):
+/// axis `axis` fed 10, `second`, 10 and the others `others` three times.
+fn first_irq(
+    uniform: bool,
+    period: u32,
+    axis: u32,
+    second: i32,
+    others: i32,
+    enabled: &[(&str, u64)],
+) -> Option<u64> {
     let mut b = Controller3::new();
-    configure(&mut b, 100, [false; 3]);
+    configure(&mut b, period, [uniform; 3]);
     let enable = b.pack("IRQ_ENABLE", enabled);
     b.write("IRQ_ENABLE", 0, enable);
-    queue(&mut b, 0, &[10, second, 10]);
-    for axis in 1..3 {
-        queue(&mut b, axis, &[0; 3]);
+    for a in 0..3 {
+        let entries = if a == axis {
+            [10, second, 10]
+        } else {
+            [others; 3]
+        };
+        queue(&mut b, a, &entries);
     }
     b.write("CONTROL", 0, 1);
-    for clock in 1..=1000 {
-        if b.clock(false, 0, 0, false, false).irq {
-            return clock;
-        }
-    }
-    panic!("no interrupt");
+    (1..=2000u64).find(|_| b.clock(false, 0, 0, false, false).irq)
 }
 
 /// The datasheet's timing of an oversized entry, measured at the pins
@@ -1244,9 +1258,9 @@ fn interpolator_faults_are_sticky_until_cleared_and_interrupt_each_time() {
     assert_eq!(b.field("AXIS_STATUS", "INTERP_OVERFLOW", s), 1);
 }
 
-/// The uniform axes take turns at the shared period planner: each later uniform
-/// axis starts its periods `UNIFORM_TURN` clocks after the one before it,
-/// and a DDA axis takes no turn.
+/// The uniform axes take turns at the shared period planner: each later
+/// uniform axis starts its periods `UNIFORM_TURN` clocks after the one
+/// before it, and a DDA axis takes no turn.
 #[test]
 fn uniform_axes_take_turns_at_the_shared_divider() {
     use motion_hdl::blocks::motion_controller::latency::UNIFORM_TURN;
@@ -1289,28 +1303,6 @@ fn uniform_axes_take_turns_at_the_shared_divider() {
     );
 }
 
-/// Clocks from the start write to the first `irq`, with only `enabled`,
-/// on three uniform axes with `period`-tick periods (one tick per clock),
-/// every axis fed 10, `second`, 10, except that axis `axis` is fed
-/// 10, `oversized`, 10.
-fn uniform_clocks_to_first_irq(
-    period: u32,
-    axis: u32,
-    oversized: i32,
-    enabled: &[(&str, u64)],
-) -> Option<u64> {
-    let mut b = Controller3::new();
-    configure(&mut b, period, [true; 3]);
-    let enable = b.pack("IRQ_ENABLE", enabled);
-    b.write("IRQ_ENABLE", 0, enable);
-    for a in 0..3 {
-        let second = if a == axis { oversized } else { 10 };
-        queue(&mut b, a, &[10, second, 10]);
-    }
-    b.write("CONTROL", 0, 1);
-    (1..=2000u64).find(|_| b.clock(false, 0, 0, false, false).irq)
-}
-
 /// The datasheet's timing of the uniform clamps (VERSION 0.3.1), at the
 /// pins against the boundary's PERIOD_DONE interrupt (one clock after the
 /// boundary; an event's interrupt follows its flag by one clock): an odd
@@ -1321,8 +1313,11 @@ fn uniform_clocks_to_first_irq(
 fn uniform_clamps_are_flagged_when_the_period_is_corrected_and_when_the_plan_arrives() {
     use motion_hdl::blocks::motion_controller::latency::{UNIFORM_LAG, UNIFORM_TURN};
     let fault = [("AXIS_FAULT", 1)];
+    // Three uniform axes, each fed 10 a period but `axis`'s second.
+    let uniform_irq =
+        |period, axis, n, enabled: &[(&str, u64)]| first_irq(true, period, axis, n, 10, enabled);
     let first = |period, axis, n, enabled: &[(&str, u64)]| {
-        uniform_clocks_to_first_irq(period, axis, n, enabled).expect("an interrupt")
+        uniform_irq(period, axis, n, enabled).expect("an interrupt")
     };
     let boundary = first(200, 0, 10, &[("PERIOD_DONE", 1)]);
     for axis in 0..3u32 {
@@ -1334,7 +1329,7 @@ fn uniform_clamps_are_flagged_when_the_period_is_corrected_and_when_the_plan_arr
         );
     }
     assert_eq!(
-        uniform_clocks_to_first_irq(200, 0, 100, &fault),
+        uniform_irq(200, 0, 100, &fault),
         None,
         "n = P/2 is not clamped"
     );

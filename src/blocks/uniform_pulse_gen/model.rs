@@ -28,15 +28,9 @@ impl PulsePlan {
     pub fn new(period: u64, count: u64) -> (Self, bool) {
         let period = period & 0xffff_ffff;
         let count = count & 0xffff_ffff;
-        let mut overrange = period % 2 == 1 || period < 2;
         let t = (period & !1).max(2);
         let half_t = t / 2;
-        let n = if count > half_t {
-            overrange = true;
-            half_t
-        } else {
-            count
-        };
+        let n = count.min(half_t);
         let plan = if n == 0 {
             Self {
                 period: t,
@@ -53,7 +47,18 @@ impl PulsePlan {
                 requested: (period, count),
             }
         };
+        let overrange = plan.period_corrected() || plan.count_clamped();
         (plan, overrange)
+    }
+
+    /// The requested T was odd or below 2, and was corrected.
+    pub fn period_corrected(&self) -> bool {
+        self.requested.0 != self.period
+    }
+
+    /// The requested N was above the corrected T/2, and was clamped.
+    pub fn count_clamped(&self) -> bool {
+        self.requested.1 != self.count
     }
 
     /// Tp1, the short pulse period in ticks (0 when N = 0).
@@ -328,14 +333,13 @@ impl UniformPulseGenModel {
             self.out.pulse = plan.count > 0;
         }
         if let Some((plan, _, left)) = &mut self.slot {
-            let (period, count) = plan.requested;
             if *left == self.load_to_ready - 1 {
                 // The correction of T, two clocks after the load.
-                self.out.overrange |= period % 2 == 1 || period < 2;
+                self.out.overrange |= plan.period_corrected();
             }
             if *left == PLAN_TO_READY + 1 {
                 // The plan arrives: N above the corrected T/2 was clamped.
-                self.out.overrange |= count > plan.period / 2;
+                self.out.overrange |= plan.count_clamped();
             }
             if !waits_for_division || granted {
                 *left = left.saturating_sub(1);
