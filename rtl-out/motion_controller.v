@@ -122,7 +122,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__0__pop;
     reg  axes__0__underrun;
     reg  [15:0] axes__0__period_active;
-    reg  [15:0] axes__0__modulus;
+    reg  [16:0] axes__0__modulus_negated;
     reg  axes__0__snapshot;
     reg  [4:0] axes__0__low_water;
     reg  [7:0] axes__0__address;
@@ -178,7 +178,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__1__pop;
     reg  axes__1__underrun;
     reg  [15:0] axes__1__period_active;
-    reg  [15:0] axes__1__modulus;
+    reg  [16:0] axes__1__modulus_negated;
     reg  axes__1__snapshot;
     reg  [4:0] axes__1__low_water;
     reg  [7:0] axes__1__address;
@@ -234,7 +234,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__2__pop;
     reg  axes__2__underrun;
     reg  [15:0] axes__2__period_active;
-    reg  [15:0] axes__2__modulus;
+    reg  [16:0] axes__2__modulus_negated;
     reg  axes__2__snapshot;
     reg  [4:0] axes__2__low_water;
     reg  [7:0] axes__2__address;
@@ -325,7 +325,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  period__period_done;
     wire  period__running;
     wire  [15:0] period__period_active;
-    wire  [15:0] period__modulus;
+    wire  [16:0] period__modulus_negated;
     wire  [31:0] period__period_count;
     reg  cause_register__clock;
     reg  cause_register__reset;
@@ -489,7 +489,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .pop(axes__0__pop),
         .underrun(axes__0__underrun),
         .period_active(axes__0__period_active),
-        .modulus(axes__0__modulus),
+        .modulus_negated(axes__0__modulus_negated),
         .snapshot(axes__0__snapshot),
         .low_water(axes__0__low_water),
         .address(axes__0__address),
@@ -547,7 +547,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .pop(axes__1__pop),
         .underrun(axes__1__underrun),
         .period_active(axes__1__period_active),
-        .modulus(axes__1__modulus),
+        .modulus_negated(axes__1__modulus_negated),
         .snapshot(axes__1__snapshot),
         .low_water(axes__1__low_water),
         .address(axes__1__address),
@@ -605,7 +605,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .pop(axes__2__pop),
         .underrun(axes__2__underrun),
         .period_active(axes__2__period_active),
-        .modulus(axes__2__modulus),
+        .modulus_negated(axes__2__modulus_negated),
         .snapshot(axes__2__snapshot),
         .low_water(axes__2__low_water),
         .address(axes__2__address),
@@ -700,7 +700,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .period_done(period__period_done),
         .running(period__running),
         .period_active(period__period_active),
-        .modulus(period__modulus),
+        .modulus_negated(period__modulus_negated),
         .period_count(period__period_count)
     );
     motion_controller__cause_register cause_register(
@@ -1070,7 +1070,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__0__pop = pop;
         axes__0__underrun = underrun;
         axes__0__period_active = period__period_active;
-        axes__0__modulus = period__modulus;
+        axes__0__modulus_negated = period__modulus_negated;
         axes__0__snapshot = registers__snapshot;
         axes__0__low_water = registers__low_water;
         axes__0__address = bus_address;
@@ -1106,7 +1106,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__1__pop = pop;
         axes__1__underrun = underrun;
         axes__1__period_active = period__period_active;
-        axes__1__modulus = period__modulus;
+        axes__1__modulus_negated = period__modulus_negated;
         axes__1__snapshot = registers__snapshot;
         axes__1__low_water = registers__low_water;
         axes__1__address = bus_address;
@@ -1142,7 +1142,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__2__pop = pop;
         axes__2__underrun = underrun;
         axes__2__period_active = period__period_active;
-        axes__2__modulus = period__modulus;
+        axes__2__modulus_negated = period__modulus_negated;
         axes__2__snapshot = registers__snapshot;
         axes__2__low_water = registers__low_water;
         axes__2__address = bus_address;
@@ -3314,7 +3314,7 @@ module motion_controller__any_low_prev_n(d,q,clock);
 endmodule // motion_controller__any_low_prev_n
 
 
-module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -3325,7 +3325,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  pop;
     input wire  underrun;
     input wire  [15:0] period_active;
-    input wire  [15:0] modulus;
+    input wire  [16:0] modulus_negated;
     input wire  snapshot;
     input wire  [4:0] low_water;
     input wire  [7:0] address;
@@ -3400,8 +3400,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  dda__clock;
     reg  dda__reset;
     reg  dda__tick;
+    reg  dda__reload;
     reg  [15:0] dda__integrand;
-    reg  [15:0] dda__modulus;
+    reg  [16:0] dda__modulus_negated;
     reg  dda__clear_overrange;
     wire  dda__pulse;
     wire  dda__overrange;
@@ -3560,6 +3561,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  dda_reload__d;
+    wire  dda_reload__q;
+    reg  dda_reload__clock;
     reg  overrange_flag__d;
     wire  overrange_flag__q;
     reg  overrange_flag__clock;
@@ -3665,8 +3669,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .clock(dda__clock),
         .reset(dda__reset),
         .tick(dda__tick),
+        .reload(dda__reload),
         .integrand(dda__integrand),
-        .modulus(dda__modulus),
+        .modulus_negated(dda__modulus_negated),
         .clear_overrange(dda__clear_overrange),
         .pulse(dda__pulse),
         .overrange(dda__overrange)
@@ -3848,6 +3853,11 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller__axes__0__dda_reload dda_reload(
+        .d(dda_reload__d),
+        .q(dda_reload__q),
+        .clock(dda_reload__clock)
+    );
     motion_controller__axes__0__overrange_flag overrange_flag(
         .d(overrange_flag__d),
         .q(overrange_flag__q),
@@ -3966,6 +3976,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
         overrun_prev__clock = clock;
@@ -3993,6 +4004,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
         overrun_prev__d = overrun_prev__q;
@@ -4096,10 +4108,12 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
+        dda_reload__d = popped_valid__q | underrun_d__q | halt;
         dda__reset = reset | halt;
         dda__tick = tick_d__q;
+        dda__reload = dda_reload__q;
         dda__integrand = integrand__q;
-        dda__modulus = modulus;
+        dda__modulus_negated = modulus_negated;
         dda__clear_overrange = clear_faults;
         uniform__reset = reset | halt;
         uniform__tick = tick_d__q;
@@ -4232,6 +4246,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
             overrun_prev__d = 1'b0;
@@ -4336,54 +4351,50 @@ module motion_controller__axes__0__code_forward(d,q,clock);
 endmodule // motion_controller__axes__0__code_forward
 
 
-module motion_controller__axes__0__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
+module motion_controller__axes__0__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
 
     // Module arguments
     input wire  clock;
     input wire  reset;
     input wire  tick;
+    input wire  reload;
     input wire  [15:0] integrand;
-    input wire  [15:0] modulus;
+    input wire  [16:0] modulus_negated;
     input wire  clear_overrange;
     output reg  pulse;
     output reg  overrange;
 
     // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  msb = 16'h8000;
+    localparam  zero = 17'b0;
+    localparam  zero_j = 16'h0;
+    localparam  sign = 17'b10000000000000000;
 
     // Stub signals
     reg  ticked__d;
     wire  ticked__q;
     reg  ticked__clock;
-    reg  [15:0] step__d;
-    wire  [15:0] step__q;
-    reg  step__clock;
-    reg  [15:0] back_inverted__d;
-    wire  [15:0] back_inverted__q;
-    reg  back_inverted__clock;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
+    reg  error__clock;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
+    reg  step_long__clock;
     reg  saturated__d;
     wire  saturated__q;
     reg  saturated__clock;
-    reg  [15:0] acc__d;
-    wire  [15:0] acc__q;
-    reg  acc__clock;
     reg  pulse_reg__d;
     wire  pulse_reg__q;
     reg  pulse_reg__clock;
     reg  overrange_reg__d;
     wire  overrange_reg__q;
     reg  overrange_reg__clock;
-    reg  [15:0] subtractor__a;
-    reg  [15:0] subtractor__b;
-    wire  [15:0] subtractor__sum;
-    wire  subtractor__carry_out;
 
     // Local signals
-    reg  [15:0] headroom;
-    reg  too_large;
-    reg  [15:0] wrapped;
-    reg  below;
+    reg  [16:0] integrand_wide;
+    reg  overflows;
+    reg  [16:0] addend_a;
+    reg  [16:0] addend_b;
+    reg  [16:0] sum;
 
     // Sub module instances
     motion_controller__axes__0__dda__ticked ticked(
@@ -4391,25 +4402,20 @@ module motion_controller__axes__0__dda(clock,reset,tick,integrand,modulus,clear_
         .q(ticked__q),
         .clock(ticked__clock)
     );
-    motion_controller__axes__0__dda__step step(
-        .d(step__d),
-        .q(step__q),
-        .clock(step__clock)
+    motion_controller__axes__0__dda__error error(
+        .d(error__d),
+        .q(error__q),
+        .clock(error__clock)
     );
-    motion_controller__axes__0__dda__back_inverted back_inverted(
-        .d(back_inverted__d),
-        .q(back_inverted__q),
-        .clock(back_inverted__clock)
+    motion_controller__axes__0__dda__step_long step_long(
+        .d(step_long__d),
+        .q(step_long__q),
+        .clock(step_long__clock)
     );
     motion_controller__axes__0__dda__saturated saturated(
         .d(saturated__d),
         .q(saturated__q),
         .clock(saturated__clock)
-    );
-    motion_controller__axes__0__dda__acc acc(
-        .d(acc__d),
-        .q(acc__q),
-        .clock(acc__clock)
     );
     motion_controller__axes__0__dda__pulse_reg pulse_reg(
         .d(pulse_reg__d),
@@ -4421,61 +4427,52 @@ module motion_controller__axes__0__dda(clock,reset,tick,integrand,modulus,clear_
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
-    motion_controller__axes__0__dda__subtractor subtractor(
-        .a(subtractor__a),
-        .b(subtractor__b),
-        .sum(subtractor__sum),
-        .carry_out(subtractor__carry_out)
-    );
 
     // Update code
     always @(*) begin
         ticked__clock = clock;
-        step__clock = clock;
-        back_inverted__clock = clock;
+        error__clock = clock;
+        step_long__clock = clock;
         saturated__clock = clock;
-        acc__clock = clock;
         pulse_reg__clock = clock;
         overrange_reg__clock = clock;
         ticked__d = ticked__q;
-        step__d = step__q;
-        back_inverted__d = back_inverted__q;
+        error__d = error__q;
+        step_long__d = step_long__q;
         saturated__d = saturated__q;
-        acc__d = acc__q;
         pulse_reg__d = pulse_reg__q;
         overrange_reg__d = overrange_reg__q;
         pulse = pulse_reg__q;
         overrange = overrange_reg__q;
-        headroom = modulus - integrand;
-        too_large = (((~modulus & integrand) | (~(modulus ^ integrand) & headroom)) & msb) != zero;
-        too_large = too_large & (modulus != zero);
-        ticked__d = tick & (integrand != zero);
-        saturated__d = too_large;
-        step__d = integrand;
-        back_inverted__d = ~headroom;
-        subtractor__a = acc__q;
-        subtractor__b = back_inverted__q;
-        wrapped = subtractor__sum;
-        below = ~subtractor__carry_out;
-        pulse_reg__d = ticked__q & (saturated__q | ~below);
+        ticked__d = tick & (integrand != zero_j);
+        integrand_wide = ((integrand) & 17'h1ffff);
+        overflows = (error__q & sign) == zero;
+        addend_a = error__q;
+        if (reload) begin
+            addend_a = modulus_negated;
+        end
+        addend_b = integrand_wide;
+        if (overflows & ~reload) begin
+            addend_b = step_long__q;
+        end
+        sum = addend_a + addend_b;
+        pulse_reg__d = ticked__q & overflows;
         if (ticked__q & ~saturated__q) begin
-            if (below) begin
-                acc__d = acc__q + step__q;
-            end
-            else begin
-                acc__d = wrapped;
-            end
+            error__d = sum;
         end
         if (ticked__q & saturated__q) begin
             overrange_reg__d = 1'b1;
+        end
+        if (reload) begin
+            error__d = sum;
+            step_long__d = sum;
+            saturated__d = ((sum & sign) == zero) & (sum != zero);
         end
         if (clear_overrange) begin
             overrange_reg__d = 1'b0;
         end
         if (reset) begin
             ticked__d = 1'b0;
-            saturated__d = 1'b0;
-            acc__d = zero;
             pulse_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
         end
@@ -4484,42 +4481,23 @@ module motion_controller__axes__0__dda(clock,reset,tick,integrand,modulus,clear_
 endmodule // motion_controller__axes__0__dda
 
 
-module motion_controller__axes__0__dda__acc(d,q,clock);
+module motion_controller__axes__0__dda__error(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller__axes__0__dda__acc
-
-
-module motion_controller__axes__0__dda__back_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__dda__back_inverted
+endmodule // motion_controller__axes__0__dda__error
 
 
 module motion_controller__axes__0__dda__overrange_reg(d,q,clock);
@@ -4579,68 +4557,23 @@ module motion_controller__axes__0__dda__saturated(d,q,clock);
 endmodule // motion_controller__axes__0__dda__saturated
 
 
-module motion_controller__axes__0__dda__step(d,q,clock);
+module motion_controller__axes__0__dda__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller__axes__0__dda__step
-
-
-module motion_controller__axes__0__dda__subtractor(a,b,sum,carry_out);
-
-    // Module arguments
-    input wire  [15:0] a;
-    input wire  [15:0] b;
-    output reg  [15:0] sum;
-    output reg  carry_out;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  low_half = 16'hff;
-    localparam  high_half = 16'hff00;
-    localparam  mid_bit = 16'h100;
-
-    // Local signals
-    reg  [15:0] low_sum;
-    reg  [15:0] high_sum_carry0;
-    reg  [15:0] high_sum_carry1;
-    reg  carry_mid;
-    reg  carry_out0;
-    reg  carry_out1;
-
-    // Update code
-    always @(*) begin
-        low_sum = (a & low_half) + (b & low_half) + one;
-        carry_mid = (low_sum & mid_bit) != zero;
-        high_sum_carry0 = (a & high_half) + (b & high_half);
-        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
-        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
-        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
-        if (carry_mid) begin
-            sum = (low_sum & low_half) | high_sum_carry1;
-            carry_out = carry_out1;
-        end
-        else begin
-            sum = (low_sum & low_half) | high_sum_carry0;
-            carry_out = carry_out0;
-        end
-    end
-
-endmodule // motion_controller__axes__0__dda__subtractor
+endmodule // motion_controller__axes__0__dda__step_long
 
 
 module motion_controller__axes__0__dda__ticked(d,q,clock);
@@ -4679,6 +4612,25 @@ module motion_controller__axes__0__dda_overrange_prev(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__dda_overrange_prev
+
+
+module motion_controller__axes__0__dda_reload(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__dda_reload
 
 
 module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
@@ -9654,7 +9606,7 @@ module motion_controller__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_running_forward
 
 
-module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -9665,7 +9617,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  pop;
     input wire  underrun;
     input wire  [15:0] period_active;
-    input wire  [15:0] modulus;
+    input wire  [16:0] modulus_negated;
     input wire  snapshot;
     input wire  [4:0] low_water;
     input wire  [7:0] address;
@@ -9740,8 +9692,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  dda__clock;
     reg  dda__reset;
     reg  dda__tick;
+    reg  dda__reload;
     reg  [15:0] dda__integrand;
-    reg  [15:0] dda__modulus;
+    reg  [16:0] dda__modulus_negated;
     reg  dda__clear_overrange;
     wire  dda__pulse;
     wire  dda__overrange;
@@ -9900,6 +9853,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  dda_reload__d;
+    wire  dda_reload__q;
+    reg  dda_reload__clock;
     reg  overrange_flag__d;
     wire  overrange_flag__q;
     reg  overrange_flag__clock;
@@ -10005,8 +9961,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .clock(dda__clock),
         .reset(dda__reset),
         .tick(dda__tick),
+        .reload(dda__reload),
         .integrand(dda__integrand),
-        .modulus(dda__modulus),
+        .modulus_negated(dda__modulus_negated),
         .clear_overrange(dda__clear_overrange),
         .pulse(dda__pulse),
         .overrange(dda__overrange)
@@ -10188,6 +10145,11 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller__axes__1__dda_reload dda_reload(
+        .d(dda_reload__d),
+        .q(dda_reload__q),
+        .clock(dda_reload__clock)
+    );
     motion_controller__axes__1__overrange_flag overrange_flag(
         .d(overrange_flag__d),
         .q(overrange_flag__q),
@@ -10306,6 +10268,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
         overrun_prev__clock = clock;
@@ -10333,6 +10296,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
         overrun_prev__d = overrun_prev__q;
@@ -10436,10 +10400,12 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
+        dda_reload__d = popped_valid__q | underrun_d__q | halt;
         dda__reset = reset | halt;
         dda__tick = tick_d__q;
+        dda__reload = dda_reload__q;
         dda__integrand = integrand__q;
-        dda__modulus = modulus;
+        dda__modulus_negated = modulus_negated;
         dda__clear_overrange = clear_faults;
         uniform__reset = reset | halt;
         uniform__tick = tick_d__q;
@@ -10572,6 +10538,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
             overrun_prev__d = 1'b0;
@@ -10676,54 +10643,50 @@ module motion_controller__axes__1__code_forward(d,q,clock);
 endmodule // motion_controller__axes__1__code_forward
 
 
-module motion_controller__axes__1__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
+module motion_controller__axes__1__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
 
     // Module arguments
     input wire  clock;
     input wire  reset;
     input wire  tick;
+    input wire  reload;
     input wire  [15:0] integrand;
-    input wire  [15:0] modulus;
+    input wire  [16:0] modulus_negated;
     input wire  clear_overrange;
     output reg  pulse;
     output reg  overrange;
 
     // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  msb = 16'h8000;
+    localparam  zero = 17'b0;
+    localparam  zero_j = 16'h0;
+    localparam  sign = 17'b10000000000000000;
 
     // Stub signals
     reg  ticked__d;
     wire  ticked__q;
     reg  ticked__clock;
-    reg  [15:0] step__d;
-    wire  [15:0] step__q;
-    reg  step__clock;
-    reg  [15:0] back_inverted__d;
-    wire  [15:0] back_inverted__q;
-    reg  back_inverted__clock;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
+    reg  error__clock;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
+    reg  step_long__clock;
     reg  saturated__d;
     wire  saturated__q;
     reg  saturated__clock;
-    reg  [15:0] acc__d;
-    wire  [15:0] acc__q;
-    reg  acc__clock;
     reg  pulse_reg__d;
     wire  pulse_reg__q;
     reg  pulse_reg__clock;
     reg  overrange_reg__d;
     wire  overrange_reg__q;
     reg  overrange_reg__clock;
-    reg  [15:0] subtractor__a;
-    reg  [15:0] subtractor__b;
-    wire  [15:0] subtractor__sum;
-    wire  subtractor__carry_out;
 
     // Local signals
-    reg  [15:0] headroom;
-    reg  too_large;
-    reg  [15:0] wrapped;
-    reg  below;
+    reg  [16:0] integrand_wide;
+    reg  overflows;
+    reg  [16:0] addend_a;
+    reg  [16:0] addend_b;
+    reg  [16:0] sum;
 
     // Sub module instances
     motion_controller__axes__1__dda__ticked ticked(
@@ -10731,25 +10694,20 @@ module motion_controller__axes__1__dda(clock,reset,tick,integrand,modulus,clear_
         .q(ticked__q),
         .clock(ticked__clock)
     );
-    motion_controller__axes__1__dda__step step(
-        .d(step__d),
-        .q(step__q),
-        .clock(step__clock)
+    motion_controller__axes__1__dda__error error(
+        .d(error__d),
+        .q(error__q),
+        .clock(error__clock)
     );
-    motion_controller__axes__1__dda__back_inverted back_inverted(
-        .d(back_inverted__d),
-        .q(back_inverted__q),
-        .clock(back_inverted__clock)
+    motion_controller__axes__1__dda__step_long step_long(
+        .d(step_long__d),
+        .q(step_long__q),
+        .clock(step_long__clock)
     );
     motion_controller__axes__1__dda__saturated saturated(
         .d(saturated__d),
         .q(saturated__q),
         .clock(saturated__clock)
-    );
-    motion_controller__axes__1__dda__acc acc(
-        .d(acc__d),
-        .q(acc__q),
-        .clock(acc__clock)
     );
     motion_controller__axes__1__dda__pulse_reg pulse_reg(
         .d(pulse_reg__d),
@@ -10761,61 +10719,52 @@ module motion_controller__axes__1__dda(clock,reset,tick,integrand,modulus,clear_
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
-    motion_controller__axes__1__dda__subtractor subtractor(
-        .a(subtractor__a),
-        .b(subtractor__b),
-        .sum(subtractor__sum),
-        .carry_out(subtractor__carry_out)
-    );
 
     // Update code
     always @(*) begin
         ticked__clock = clock;
-        step__clock = clock;
-        back_inverted__clock = clock;
+        error__clock = clock;
+        step_long__clock = clock;
         saturated__clock = clock;
-        acc__clock = clock;
         pulse_reg__clock = clock;
         overrange_reg__clock = clock;
         ticked__d = ticked__q;
-        step__d = step__q;
-        back_inverted__d = back_inverted__q;
+        error__d = error__q;
+        step_long__d = step_long__q;
         saturated__d = saturated__q;
-        acc__d = acc__q;
         pulse_reg__d = pulse_reg__q;
         overrange_reg__d = overrange_reg__q;
         pulse = pulse_reg__q;
         overrange = overrange_reg__q;
-        headroom = modulus - integrand;
-        too_large = (((~modulus & integrand) | (~(modulus ^ integrand) & headroom)) & msb) != zero;
-        too_large = too_large & (modulus != zero);
-        ticked__d = tick & (integrand != zero);
-        saturated__d = too_large;
-        step__d = integrand;
-        back_inverted__d = ~headroom;
-        subtractor__a = acc__q;
-        subtractor__b = back_inverted__q;
-        wrapped = subtractor__sum;
-        below = ~subtractor__carry_out;
-        pulse_reg__d = ticked__q & (saturated__q | ~below);
+        ticked__d = tick & (integrand != zero_j);
+        integrand_wide = ((integrand) & 17'h1ffff);
+        overflows = (error__q & sign) == zero;
+        addend_a = error__q;
+        if (reload) begin
+            addend_a = modulus_negated;
+        end
+        addend_b = integrand_wide;
+        if (overflows & ~reload) begin
+            addend_b = step_long__q;
+        end
+        sum = addend_a + addend_b;
+        pulse_reg__d = ticked__q & overflows;
         if (ticked__q & ~saturated__q) begin
-            if (below) begin
-                acc__d = acc__q + step__q;
-            end
-            else begin
-                acc__d = wrapped;
-            end
+            error__d = sum;
         end
         if (ticked__q & saturated__q) begin
             overrange_reg__d = 1'b1;
+        end
+        if (reload) begin
+            error__d = sum;
+            step_long__d = sum;
+            saturated__d = ((sum & sign) == zero) & (sum != zero);
         end
         if (clear_overrange) begin
             overrange_reg__d = 1'b0;
         end
         if (reset) begin
             ticked__d = 1'b0;
-            saturated__d = 1'b0;
-            acc__d = zero;
             pulse_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
         end
@@ -10824,42 +10773,23 @@ module motion_controller__axes__1__dda(clock,reset,tick,integrand,modulus,clear_
 endmodule // motion_controller__axes__1__dda
 
 
-module motion_controller__axes__1__dda__acc(d,q,clock);
+module motion_controller__axes__1__dda__error(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller__axes__1__dda__acc
-
-
-module motion_controller__axes__1__dda__back_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__dda__back_inverted
+endmodule // motion_controller__axes__1__dda__error
 
 
 module motion_controller__axes__1__dda__overrange_reg(d,q,clock);
@@ -10919,68 +10849,23 @@ module motion_controller__axes__1__dda__saturated(d,q,clock);
 endmodule // motion_controller__axes__1__dda__saturated
 
 
-module motion_controller__axes__1__dda__step(d,q,clock);
+module motion_controller__axes__1__dda__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller__axes__1__dda__step
-
-
-module motion_controller__axes__1__dda__subtractor(a,b,sum,carry_out);
-
-    // Module arguments
-    input wire  [15:0] a;
-    input wire  [15:0] b;
-    output reg  [15:0] sum;
-    output reg  carry_out;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  low_half = 16'hff;
-    localparam  high_half = 16'hff00;
-    localparam  mid_bit = 16'h100;
-
-    // Local signals
-    reg  [15:0] low_sum;
-    reg  [15:0] high_sum_carry0;
-    reg  [15:0] high_sum_carry1;
-    reg  carry_mid;
-    reg  carry_out0;
-    reg  carry_out1;
-
-    // Update code
-    always @(*) begin
-        low_sum = (a & low_half) + (b & low_half) + one;
-        carry_mid = (low_sum & mid_bit) != zero;
-        high_sum_carry0 = (a & high_half) + (b & high_half);
-        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
-        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
-        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
-        if (carry_mid) begin
-            sum = (low_sum & low_half) | high_sum_carry1;
-            carry_out = carry_out1;
-        end
-        else begin
-            sum = (low_sum & low_half) | high_sum_carry0;
-            carry_out = carry_out0;
-        end
-    end
-
-endmodule // motion_controller__axes__1__dda__subtractor
+endmodule // motion_controller__axes__1__dda__step_long
 
 
 module motion_controller__axes__1__dda__ticked(d,q,clock);
@@ -11019,6 +10904,25 @@ module motion_controller__axes__1__dda_overrange_prev(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__dda_overrange_prev
+
+
+module motion_controller__axes__1__dda_reload(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__dda_reload
 
 
 module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
@@ -15994,7 +15898,7 @@ module motion_controller__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_running_forward
 
 
-module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -16005,7 +15909,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  pop;
     input wire  underrun;
     input wire  [15:0] period_active;
-    input wire  [15:0] modulus;
+    input wire  [16:0] modulus_negated;
     input wire  snapshot;
     input wire  [4:0] low_water;
     input wire  [7:0] address;
@@ -16080,8 +15984,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  dda__clock;
     reg  dda__reset;
     reg  dda__tick;
+    reg  dda__reload;
     reg  [15:0] dda__integrand;
-    reg  [15:0] dda__modulus;
+    reg  [16:0] dda__modulus_negated;
     reg  dda__clear_overrange;
     wire  dda__pulse;
     wire  dda__overrange;
@@ -16240,6 +16145,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  dda_reload__d;
+    wire  dda_reload__q;
+    reg  dda_reload__clock;
     reg  overrange_flag__d;
     wire  overrange_flag__q;
     reg  overrange_flag__clock;
@@ -16345,8 +16253,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .clock(dda__clock),
         .reset(dda__reset),
         .tick(dda__tick),
+        .reload(dda__reload),
         .integrand(dda__integrand),
-        .modulus(dda__modulus),
+        .modulus_negated(dda__modulus_negated),
         .clear_overrange(dda__clear_overrange),
         .pulse(dda__pulse),
         .overrange(dda__overrange)
@@ -16528,6 +16437,11 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller__axes__2__dda_reload dda_reload(
+        .d(dda_reload__d),
+        .q(dda_reload__q),
+        .clock(dda_reload__clock)
+    );
     motion_controller__axes__2__overrange_flag overrange_flag(
         .d(overrange_flag__d),
         .q(overrange_flag__q),
@@ -16646,6 +16560,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
         overrun_prev__clock = clock;
@@ -16673,6 +16588,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
         overrun_prev__d = overrun_prev__q;
@@ -16776,10 +16692,12 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
+        dda_reload__d = popped_valid__q | underrun_d__q | halt;
         dda__reset = reset | halt;
         dda__tick = tick_d__q;
+        dda__reload = dda_reload__q;
         dda__integrand = integrand__q;
-        dda__modulus = modulus;
+        dda__modulus_negated = modulus_negated;
         dda__clear_overrange = clear_faults;
         uniform__reset = reset | halt;
         uniform__tick = tick_d__q;
@@ -16912,6 +16830,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
             overrun_prev__d = 1'b0;
@@ -17016,54 +16935,50 @@ module motion_controller__axes__2__code_forward(d,q,clock);
 endmodule // motion_controller__axes__2__code_forward
 
 
-module motion_controller__axes__2__dda(clock,reset,tick,integrand,modulus,clear_overrange,pulse,overrange);
+module motion_controller__axes__2__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
 
     // Module arguments
     input wire  clock;
     input wire  reset;
     input wire  tick;
+    input wire  reload;
     input wire  [15:0] integrand;
-    input wire  [15:0] modulus;
+    input wire  [16:0] modulus_negated;
     input wire  clear_overrange;
     output reg  pulse;
     output reg  overrange;
 
     // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  msb = 16'h8000;
+    localparam  zero = 17'b0;
+    localparam  zero_j = 16'h0;
+    localparam  sign = 17'b10000000000000000;
 
     // Stub signals
     reg  ticked__d;
     wire  ticked__q;
     reg  ticked__clock;
-    reg  [15:0] step__d;
-    wire  [15:0] step__q;
-    reg  step__clock;
-    reg  [15:0] back_inverted__d;
-    wire  [15:0] back_inverted__q;
-    reg  back_inverted__clock;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
+    reg  error__clock;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
+    reg  step_long__clock;
     reg  saturated__d;
     wire  saturated__q;
     reg  saturated__clock;
-    reg  [15:0] acc__d;
-    wire  [15:0] acc__q;
-    reg  acc__clock;
     reg  pulse_reg__d;
     wire  pulse_reg__q;
     reg  pulse_reg__clock;
     reg  overrange_reg__d;
     wire  overrange_reg__q;
     reg  overrange_reg__clock;
-    reg  [15:0] subtractor__a;
-    reg  [15:0] subtractor__b;
-    wire  [15:0] subtractor__sum;
-    wire  subtractor__carry_out;
 
     // Local signals
-    reg  [15:0] headroom;
-    reg  too_large;
-    reg  [15:0] wrapped;
-    reg  below;
+    reg  [16:0] integrand_wide;
+    reg  overflows;
+    reg  [16:0] addend_a;
+    reg  [16:0] addend_b;
+    reg  [16:0] sum;
 
     // Sub module instances
     motion_controller__axes__2__dda__ticked ticked(
@@ -17071,25 +16986,20 @@ module motion_controller__axes__2__dda(clock,reset,tick,integrand,modulus,clear_
         .q(ticked__q),
         .clock(ticked__clock)
     );
-    motion_controller__axes__2__dda__step step(
-        .d(step__d),
-        .q(step__q),
-        .clock(step__clock)
+    motion_controller__axes__2__dda__error error(
+        .d(error__d),
+        .q(error__q),
+        .clock(error__clock)
     );
-    motion_controller__axes__2__dda__back_inverted back_inverted(
-        .d(back_inverted__d),
-        .q(back_inverted__q),
-        .clock(back_inverted__clock)
+    motion_controller__axes__2__dda__step_long step_long(
+        .d(step_long__d),
+        .q(step_long__q),
+        .clock(step_long__clock)
     );
     motion_controller__axes__2__dda__saturated saturated(
         .d(saturated__d),
         .q(saturated__q),
         .clock(saturated__clock)
-    );
-    motion_controller__axes__2__dda__acc acc(
-        .d(acc__d),
-        .q(acc__q),
-        .clock(acc__clock)
     );
     motion_controller__axes__2__dda__pulse_reg pulse_reg(
         .d(pulse_reg__d),
@@ -17101,61 +17011,52 @@ module motion_controller__axes__2__dda(clock,reset,tick,integrand,modulus,clear_
         .q(overrange_reg__q),
         .clock(overrange_reg__clock)
     );
-    motion_controller__axes__2__dda__subtractor subtractor(
-        .a(subtractor__a),
-        .b(subtractor__b),
-        .sum(subtractor__sum),
-        .carry_out(subtractor__carry_out)
-    );
 
     // Update code
     always @(*) begin
         ticked__clock = clock;
-        step__clock = clock;
-        back_inverted__clock = clock;
+        error__clock = clock;
+        step_long__clock = clock;
         saturated__clock = clock;
-        acc__clock = clock;
         pulse_reg__clock = clock;
         overrange_reg__clock = clock;
         ticked__d = ticked__q;
-        step__d = step__q;
-        back_inverted__d = back_inverted__q;
+        error__d = error__q;
+        step_long__d = step_long__q;
         saturated__d = saturated__q;
-        acc__d = acc__q;
         pulse_reg__d = pulse_reg__q;
         overrange_reg__d = overrange_reg__q;
         pulse = pulse_reg__q;
         overrange = overrange_reg__q;
-        headroom = modulus - integrand;
-        too_large = (((~modulus & integrand) | (~(modulus ^ integrand) & headroom)) & msb) != zero;
-        too_large = too_large & (modulus != zero);
-        ticked__d = tick & (integrand != zero);
-        saturated__d = too_large;
-        step__d = integrand;
-        back_inverted__d = ~headroom;
-        subtractor__a = acc__q;
-        subtractor__b = back_inverted__q;
-        wrapped = subtractor__sum;
-        below = ~subtractor__carry_out;
-        pulse_reg__d = ticked__q & (saturated__q | ~below);
+        ticked__d = tick & (integrand != zero_j);
+        integrand_wide = ((integrand) & 17'h1ffff);
+        overflows = (error__q & sign) == zero;
+        addend_a = error__q;
+        if (reload) begin
+            addend_a = modulus_negated;
+        end
+        addend_b = integrand_wide;
+        if (overflows & ~reload) begin
+            addend_b = step_long__q;
+        end
+        sum = addend_a + addend_b;
+        pulse_reg__d = ticked__q & overflows;
         if (ticked__q & ~saturated__q) begin
-            if (below) begin
-                acc__d = acc__q + step__q;
-            end
-            else begin
-                acc__d = wrapped;
-            end
+            error__d = sum;
         end
         if (ticked__q & saturated__q) begin
             overrange_reg__d = 1'b1;
+        end
+        if (reload) begin
+            error__d = sum;
+            step_long__d = sum;
+            saturated__d = ((sum & sign) == zero) & (sum != zero);
         end
         if (clear_overrange) begin
             overrange_reg__d = 1'b0;
         end
         if (reset) begin
             ticked__d = 1'b0;
-            saturated__d = 1'b0;
-            acc__d = zero;
             pulse_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
         end
@@ -17164,42 +17065,23 @@ module motion_controller__axes__2__dda(clock,reset,tick,integrand,modulus,clear_
 endmodule // motion_controller__axes__2__dda
 
 
-module motion_controller__axes__2__dda__acc(d,q,clock);
+module motion_controller__axes__2__dda__error(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller__axes__2__dda__acc
-
-
-module motion_controller__axes__2__dda__back_inverted(d,q,clock);
-
-    // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 16'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__dda__back_inverted
+endmodule // motion_controller__axes__2__dda__error
 
 
 module motion_controller__axes__2__dda__overrange_reg(d,q,clock);
@@ -17259,68 +17141,23 @@ module motion_controller__axes__2__dda__saturated(d,q,clock);
 endmodule // motion_controller__axes__2__dda__saturated
 
 
-module motion_controller__axes__2__dda__step(d,q,clock);
+module motion_controller__axes__2__dda__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller__axes__2__dda__step
-
-
-module motion_controller__axes__2__dda__subtractor(a,b,sum,carry_out);
-
-    // Module arguments
-    input wire  [15:0] a;
-    input wire  [15:0] b;
-    output reg  [15:0] sum;
-    output reg  carry_out;
-
-    // Constant declarations
-    localparam  zero = 16'h0;
-    localparam  one = 16'h1;
-    localparam  msb = 16'h8000;
-    localparam  low_half = 16'hff;
-    localparam  high_half = 16'hff00;
-    localparam  mid_bit = 16'h100;
-
-    // Local signals
-    reg  [15:0] low_sum;
-    reg  [15:0] high_sum_carry0;
-    reg  [15:0] high_sum_carry1;
-    reg  carry_mid;
-    reg  carry_out0;
-    reg  carry_out1;
-
-    // Update code
-    always @(*) begin
-        low_sum = (a & low_half) + (b & low_half) + one;
-        carry_mid = (low_sum & mid_bit) != zero;
-        high_sum_carry0 = (a & high_half) + (b & high_half);
-        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
-        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
-        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
-        if (carry_mid) begin
-            sum = (low_sum & low_half) | high_sum_carry1;
-            carry_out = carry_out1;
-        end
-        else begin
-            sum = (low_sum & low_half) | high_sum_carry0;
-            carry_out = carry_out0;
-        end
-    end
-
-endmodule // motion_controller__axes__2__dda__subtractor
+endmodule // motion_controller__axes__2__dda__step_long
 
 
 module motion_controller__axes__2__dda__ticked(d,q,clock);
@@ -17359,6 +17196,25 @@ module motion_controller__axes__2__dda_overrange_prev(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__dda_overrange_prev
+
+
+module motion_controller__axes__2__dda_reload(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__dda_reload
 
 
 module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
@@ -28345,7 +28201,7 @@ module motion_controller__io__sample_count(d,q,clock);
 endmodule // motion_controller__io__sample_count
 
 
-module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bit,refuse_run,abort,all_ready,period_ticks,start,halt,flush,pop,underrun,period_done,running,period_active,modulus,period_count);
+module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bit,refuse_run,abort,all_ready,period_ticks,start,halt,flush,pop,underrun,period_done,running,period_active,modulus_negated,period_count);
 
     // Module arguments
     input wire  clock;
@@ -28366,11 +28222,12 @@ module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bi
     output reg  period_done;
     output reg  running;
     output reg  [15:0] period_active;
-    output reg  [15:0] modulus;
+    output reg  [16:0] modulus_negated;
     output reg  [31:0] period_count;
 
     // Constant declarations
     localparam  zero_p = 16'h0;
+    localparam  zero_e = 17'b0;
     localparam  one_p = 16'h1;
     localparam  two_p = 16'h2;
     localparam  not_one_p = 16'hfffe;
@@ -28393,9 +28250,9 @@ module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bi
     reg  [15:0] period_active_reg__d;
     wire  [15:0] period_active_reg__q;
     reg  period_active_reg__clock;
-    reg  [15:0] modulus_reg__d;
-    wire  [15:0] modulus_reg__q;
-    reg  modulus_reg__clock;
+    reg  [16:0] modulus_negated_reg__d;
+    wire  [16:0] modulus_negated_reg__q;
+    reg  modulus_negated_reg__clock;
     reg  [31:0] period_count_reg__d;
     wire  [31:0] period_count_reg__q;
     reg  period_count_reg__clock;
@@ -28430,10 +28287,10 @@ module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bi
         .q(period_active_reg__q),
         .clock(period_active_reg__clock)
     );
-    motion_controller__period__modulus_reg modulus_reg(
-        .d(modulus_reg__d),
-        .q(modulus_reg__q),
-        .clock(modulus_reg__clock)
+    motion_controller__period__modulus_negated_reg modulus_negated_reg(
+        .d(modulus_negated_reg__d),
+        .q(modulus_negated_reg__q),
+        .clock(modulus_negated_reg__clock)
     );
     motion_controller__period__period_count_reg period_count_reg(
         .d(period_count_reg__d),
@@ -28448,18 +28305,18 @@ module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bi
         boundary_next__clock = clock;
         in_period__clock = clock;
         period_active_reg__clock = clock;
-        modulus_reg__clock = clock;
+        modulus_negated_reg__clock = clock;
         period_count_reg__clock = clock;
         run__d = run__q;
         ticks_left__d = ticks_left__q;
         boundary_next__d = boundary_next__q;
         in_period__d = in_period__q;
         period_active_reg__d = period_active_reg__q;
-        modulus_reg__d = modulus_reg__q;
+        modulus_negated_reg__d = modulus_negated_reg__q;
         period_count_reg__d = period_count_reg__q;
         running = run__q;
         period_active = period_active_reg__q;
-        modulus = modulus_reg__q;
+        modulus_negated = modulus_negated_reg__q;
         period_count = period_count_reg__q;
         start = control_write & run_bit & ~refuse_run;
         halt = (control_write & ~run_bit) | abort;
@@ -28488,7 +28345,7 @@ module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bi
                 boundary_next__d = ticks_left__q == two_p;
             end
         end
-        modulus_reg__d = period_active_reg__q;
+        modulus_negated_reg__d = zero_e - ((period_active_reg__q) & 17'h1ffff);
         if (pop) begin
             in_period__d = 1'b1;
             period_count_reg__d = period_count_reg__q + one32;
@@ -28503,7 +28360,7 @@ module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bi
             boundary_next__d = 1'b0;
             in_period__d = 1'b0;
             period_active_reg__d = zero_p;
-            modulus_reg__d = zero_p;
+            modulus_negated_reg__d = zero_e;
             period_count_reg__d = zero32;
         end
     end
@@ -28549,23 +28406,23 @@ module motion_controller__period__in_period(d,q,clock);
 endmodule // motion_controller__period__in_period
 
 
-module motion_controller__period__modulus_reg(d,q,clock);
+module motion_controller__period__modulus_negated_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller__period__modulus_reg
+endmodule // motion_controller__period__modulus_negated_reg
 
 
 module motion_controller__period__period_active_reg(d,q,clock);

@@ -137,3 +137,88 @@ crate::lockstep_model!(DdaIntegratorModel {
     outputs: DdaIntegratorOutputs,
     step: |model, inputs| model.step(*inputs),
 });
+
+/// Inputs of one clock cycle of a [`super::PeriodDda`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PeriodDdaInputs {
+    /// Synchronous reset.
+    pub reset: bool,
+    /// Accumulate enable.
+    pub tick: bool,
+    /// The first clock of a new J and -M.
+    pub reload: bool,
+    /// J.
+    pub integrand: u64,
+    /// -M, two's complement in `width + 1` bits.
+    pub modulus_negated: u64,
+    /// Clears `overrange`.
+    pub clear_overrange: bool,
+}
+
+impl PeriodDdaInputs {
+    /// The RTL's input vector, in its port order.
+    pub fn to_vector(&self) -> Vec<u64> {
+        vec![
+            self.reset as u64,
+            self.tick as u64,
+            self.reload as u64,
+            self.integrand,
+            self.modulus_negated,
+            self.clear_overrange as u64,
+        ]
+    }
+}
+
+/// Plain-Rust, cycle-exact model of a [`super::PeriodDda`]: the
+/// [`DdaIntegratorModel`] it stands in for, fed J and M = -(-M), and a
+/// check of the contract that lets the block keep no accumulator: the
+/// phase is 0 at every `reload`.
+#[derive(Clone, Debug)]
+pub struct PeriodDdaModel {
+    dda: DdaIntegratorModel,
+    width: u32,
+    /// The accumulator at the first `reload` that found it not 0.
+    broken_contract: Option<u128>,
+}
+
+impl PeriodDdaModel {
+    /// The model of a `PeriodDda<width, width + 1>`.
+    pub fn new(width: u32) -> Self {
+        Self {
+            dda: DdaIntegratorModel::new(width),
+            width,
+            broken_contract: None,
+        }
+    }
+
+    /// The accumulator a `reload` found not at 0, if one did: the
+    /// stimulus broke the contract, and the block need not match.
+    pub fn broken_contract(&self) -> Option<u128> {
+        self.broken_contract
+    }
+
+    /// One rising clock edge; returns the outputs after it.
+    pub fn step(&mut self, inputs: PeriodDdaInputs) -> DdaIntegratorOutputs {
+        let error_mask = (1u64 << (self.width + 1)) - 1;
+        let modulus = inputs.modulus_negated.wrapping_neg() & error_mask;
+        let out = self.dda.step(DdaIntegratorInputs {
+            reset: inputs.reset,
+            tick: inputs.tick,
+            integrand: inputs.integrand,
+            modulus,
+            clear_overrange: inputs.clear_overrange,
+        });
+        // The tick taken at this edge was the old period's last: the phase
+        // must be back at 0 for the reloaded error to be the DDA's.
+        if inputs.reload && self.dda.accumulator() != 0 && self.broken_contract.is_none() {
+            self.broken_contract = Some(self.dda.accumulator());
+        }
+        out
+    }
+}
+
+crate::lockstep_model!(PeriodDdaModel {
+    inputs: PeriodDdaInputs,
+    outputs: DdaIntegratorOutputs,
+    step: |model, inputs| model.step(*inputs),
+});

@@ -13,9 +13,9 @@ use rust_hdl::prelude::*;
 
 use super::axis_io::AxisIo;
 use super::registers::{fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
-use super::{PERIOD_BITS, STAGE_PENDING_BITS};
+use super::{ERROR_BITS, PERIOD_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
-use crate::blocks::dda_integrator::DdaIntegrator;
+use crate::blocks::dda_integrator::PeriodDda;
 use crate::blocks::pulse_counter::PulseCounter;
 use crate::blocks::quadrature_decoder::QuadratureDecoder;
 use crate::blocks::step_output::StepOutput;
@@ -53,9 +53,9 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// The running period's length (the uniform generator's T; updated at
     /// each boundary).
     pub period_active: Signal<In, Bits<PERIOD_BITS>>,
-    /// `period_active` one clock late: the DDA's modulus, in step with its
-    /// delayed tick.
-    pub modulus: Signal<In, Bits<PERIOD_BITS>>,
+    /// -`period_active` one clock late: the DDA's -M, in step with its
+    /// delayed tick and its J.
+    pub modulus_negated: Signal<In, Bits<ERROR_BITS>>,
     /// Latch both positions into the snapshot registers.
     pub snapshot: Signal<In, Bit>,
     /// FIFO low-water threshold.
@@ -159,7 +159,7 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub code_negative: Signal<Out, Bit>,
 
     fifo: CommandFifo<N, NP1, ENTRY_BITS>,
-    dda: DdaIntegrator<PERIOD_BITS>,
+    dda: PeriodDda<PERIOD_BITS, ERROR_BITS>,
     uniform: UniformPulseCore<PERIOD_BITS>,
     stage: StepOutput<16, STAGE_PENDING_BITS>,
     position: PulseCounter<32>,
@@ -180,6 +180,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     tick_d: DFF<Bit>,
     /// The DDA's J for the running period (0 when stopped or uniform).
     integrand: DFF<Bits<PERIOD_BITS>>,
+    /// J (and M) changed at the last edge: the DDA reloads its error.
+    dda_reload: DFF<Bit>,
     /// AXIS_STATUS.INTERP_OVERRANGE: an entry did not fit the
     /// interpolators (saturated to 2^PERIOD_BITS - 1) or an interpolator
     /// clamped one. Kept here, cleared only by CLEAR_FAULTS: the
@@ -275,7 +277,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             pop: Default::default(),
             underrun: Default::default(),
             period_active: Default::default(),
-            modulus: Default::default(),
+            modulus_negated: Default::default(),
             snapshot: Default::default(),
             low_water: Default::default(),
             address: Default::default(),
@@ -336,6 +338,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             underrun_d: Default::default(),
             tick_d: Default::default(),
             integrand: Default::default(),
+            dda_reload: Default::default(),
             overrange_flag: Default::default(),
             overflow_flag: Default::default(),
             overrun_prev: Default::default(),
@@ -433,6 +436,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             underrun_d,
             tick_d,
             integrand,
+            dda_reload,
             overrange_flag,
             overflow_flag,
             overrun_prev,
@@ -570,12 +574,18 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.forward_1.d.next = self.forward.q.val();
         self.forward_2.d.next = self.forward_1.q.val();
 
-        // Not reset at a start: its accumulator is 0 at every boundary, and
-        // the boundary tick's pulse may still be in its pipeline.
+        // Not reset at a start: the boundary tick's pulse may still be in
+        // its pipeline. J and M change together, at the edge after a pop or
+        // an underrun (M with `period_active`, one clock late), or J alone
+        // to 0 on a halt; every period before had all its M ticks, so the
+        // DDA's phase is 0 and the error is reloaded in the next clock.
+        self.dda_reload.d.next =
+            self.popped_valid.q.val() | self.underrun_d.q.val() | self.halt.val();
         self.dda.reset.next = self.reset.val() | self.halt.val();
         self.dda.tick.next = self.tick_d.q.val();
+        self.dda.reload.next = self.dda_reload.q.val();
         self.dda.integrand.next = self.integrand.q.val();
-        self.dda.modulus.next = self.modulus.val();
+        self.dda.modulus_negated.next = self.modulus_negated.val();
         self.dda.clear_overrange.next = self.clear_faults.val();
 
         // The uniform generator runs each loaded period after its set-up
@@ -761,6 +771,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.underrun_d.d.next = false;
             self.tick_d.d.next = false;
             self.integrand.d.next = self.zero_count.val();
+            self.dda_reload.d.next = false;
             self.overrange_flag.d.next = false;
             self.overflow_flag.d.next = false;
             self.overrun_prev.d.next = false;

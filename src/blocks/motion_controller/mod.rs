@@ -11,7 +11,8 @@
 //! fault; a watchdog stops everything when the CPU goes silent.
 //!
 //! Composition (per axis): [`CommandFifo`](crate::blocks::command_fifo),
-//! [`DdaIntegrator`](crate::blocks::dda_integrator),
+//! [`PeriodDda`](crate::blocks::dda_integrator::PeriodDda) (the
+//! [`DdaIntegrator`](crate::blocks::dda_integrator) for whole periods),
 //! [`UniformPulseGen`](crate::blocks::uniform_pulse_gen),
 //! [`StepOutput`](crate::blocks::step_output),
 //! [`PulseCounter`](crate::blocks::pulse_counter) and
@@ -364,7 +365,7 @@
 //! and its register window with two 32-bit snapshots; `rtl-out/scaling-report.md`
 //! gives the cost of an axis (K = 1, 3 and 6).
 //!
-//! Three things keep the per-axis cost down without changing a register
+//! Four things keep the per-axis cost down without changing a register
 //! or a clock of the behavior above:
 //! * **Entries converted once.** The FIFOs hold 20-bit entries, not the
 //!   written 32-bit words: |n| saturated to 16 bits, its sign, and whether
@@ -379,7 +380,16 @@
 //!   same clock still returns the old value.
 //! * **No read-first logic behind the FIFOs' RAMs**: each FIFO's own
 //!   bypass already hides a read that collides with a write
-//!   (`command_fifo`, proved). The DDA-only build
+//!   (`command_fifo`, proved).
+//! * **A DDA without an accumulator.** Every DDA period has all its
+//!   PERIOD_TICKS ticks at one J, so the DDA's phase is 0 at each
+//!   boundary. Each axis's [`PeriodDda`](crate::blocks::dda_integrator::PeriodDda)
+//!   keeps only the Bresenham error and the step J - M, reloaded one
+//!   clock after J changes, with one adder; -M is formed once for all
+//!   axes. The controller's model keeps the accumulating
+//!   `DdaIntegrator` model, so the lockstep tests check the phase too.
+//!
+//! The DDA-only build
 //! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
 //! the DAC and its walk) have their own rows in the synthesis report.
 //!
@@ -567,6 +577,10 @@ pub const STAGE_PENDING_BITS: usize = 8;
 /// 2^16 - 1 base ticks, and an axis emits at most that many steps in one.
 /// (At 32 bits the uniform generators alone would not fit an HX8K at K = 3.)
 pub const PERIOD_BITS: usize = 16;
+
+/// Width of the axes' DDA error, PERIOD_BITS + 1: it lies in [-M, M) for a
+/// period of M ticks ([`PeriodDda`](crate::blocks::dda_integrator::PeriodDda)).
+pub const ERROR_BITS: usize = PERIOD_BITS + 1;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str =
@@ -1129,7 +1143,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             self.axes[i].pop.next = self.pop.val();
             self.axes[i].underrun.next = self.underrun.val();
             self.axes[i].period_active.next = self.period.period_active.val();
-            self.axes[i].modulus.next = self.period.modulus.val();
+            self.axes[i].modulus_negated.next = self.period.modulus_negated.val();
             self.axes[i].snapshot.next = self.registers.snapshot.val();
             self.axes[i].low_water.next = self.registers.low_water.val();
             self.axes[i].address.next = self.bus_address.val();

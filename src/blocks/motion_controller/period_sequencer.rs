@@ -15,13 +15,13 @@
 //!   underrun. A halt (a CONTROL write with RUN clear, or `abort`) wins
 //!   over a boundary in the same clock: nothing is popped.
 //! * Each popped period lasts PERIOD_TICKS base ticks (0 acting as 1),
-//!   taken at its boundary (`period_active`, and one clock later
-//!   `modulus` for the DDAs).
+//!   taken at its boundary (`period_active`, and one clock later its
+//!   negation `modulus_negated`, formed once for every axis's DDA).
 //! * PERIOD_COUNT counts pops from reset, wrapping at 2^32.
 
 use rust_hdl::prelude::*;
 
-use super::PERIOD_BITS;
+use super::{ERROR_BITS, PERIOD_BITS};
 
 /// Run control and period boundaries. See the [module documentation](self).
 #[derive(LogicBlock)]
@@ -62,8 +62,9 @@ pub struct PeriodSequencer {
     pub running: Signal<Out, Bit>,
     /// The running period's length in base ticks, from its boundary on.
     pub period_active: Signal<Out, Bits<PERIOD_BITS>>,
-    /// `period_active` one clock late, for the DDAs.
-    pub modulus: Signal<Out, Bits<PERIOD_BITS>>,
+    /// -`period_active` one clock late, in `ERROR_BITS` two's complement:
+    /// the DDAs' -M ([`PeriodDda`](crate::blocks::dda_integrator::PeriodDda)).
+    pub modulus_negated: Signal<Out, Bits<ERROR_BITS>>,
     /// PERIOD_COUNT.
     pub period_count: Signal<Out, Bits<32>>,
 
@@ -75,12 +76,13 @@ pub struct PeriodSequencer {
     /// A period has been popped since the start (so a boundary ends one).
     in_period: DFF<Bit>,
     period_active_reg: DFF<Bits<PERIOD_BITS>>,
-    modulus_reg: DFF<Bits<PERIOD_BITS>>,
+    modulus_negated_reg: DFF<Bits<ERROR_BITS>>,
     period_count_reg: DFF<Bits<32>>,
     boundary: Signal<Local, Bit>,
     /// PERIOD_TICKS, 0 acting as 1.
     period_next: Signal<Local, Bits<PERIOD_BITS>>,
     zero_p: Constant<Bits<PERIOD_BITS>>,
+    zero_e: Constant<Bits<ERROR_BITS>>,
     one_p: Constant<Bits<PERIOD_BITS>>,
     two_p: Constant<Bits<PERIOD_BITS>>,
     not_one_p: Constant<Bits<PERIOD_BITS>>,
@@ -109,18 +111,19 @@ impl Default for PeriodSequencer {
             period_done: Default::default(),
             running: Default::default(),
             period_active: Default::default(),
-            modulus: Default::default(),
+            modulus_negated: Default::default(),
             period_count: Default::default(),
             run: Default::default(),
             ticks_left: Default::default(),
             boundary_next: Default::default(),
             in_period: Default::default(),
             period_active_reg: Default::default(),
-            modulus_reg: Default::default(),
+            modulus_negated_reg: Default::default(),
             period_count_reg: Default::default(),
             boundary: Default::default(),
             period_next: Default::default(),
             zero_p: Constant::new(0u64.into()),
+            zero_e: Constant::new(0u64.into()),
             one_p: Constant::new(1u64.into()),
             two_p: Constant::new(2u64.into()),
             not_one_p: Constant::new((crate::blocks::width_mask(PERIOD_BITS as u32) & !1).into()),
@@ -141,12 +144,12 @@ impl Logic for PeriodSequencer {
             boundary_next,
             in_period,
             period_active_reg,
-            modulus_reg,
+            modulus_negated_reg,
             period_count_reg
         );
         self.running.next = self.run.q.val();
         self.period_active.next = self.period_active_reg.q.val();
-        self.modulus.next = self.modulus_reg.q.val();
+        self.modulus_negated.next = self.modulus_negated_reg.q.val();
         self.period_count.next = self.period_count_reg.q.val();
 
         self.start.next = self.control_write.val() & self.run_bit.val() & !self.refuse_run.val();
@@ -178,7 +181,8 @@ impl Logic for PeriodSequencer {
                 self.boundary_next.d.next = self.ticks_left.q.val() == self.two_p.val();
             }
         }
-        self.modulus_reg.d.next = self.period_active_reg.q.val();
+        self.modulus_negated_reg.d.next =
+            self.zero_e.val() - bit_cast::<ERROR_BITS, PERIOD_BITS>(self.period_active_reg.q.val());
         if self.pop.val() {
             self.in_period.d.next = true;
             self.period_count_reg.d.next = self.period_count_reg.q.val() + self.one32.val();
@@ -193,7 +197,7 @@ impl Logic for PeriodSequencer {
             self.boundary_next.d.next = false;
             self.in_period.d.next = false;
             self.period_active_reg.d.next = self.zero_p.val();
-            self.modulus_reg.d.next = self.zero_p.val();
+            self.modulus_negated_reg.d.next = self.zero_e.val();
             self.period_count_reg.d.next = self.zero32.val();
         }
     }
