@@ -3397,15 +3397,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -3431,6 +3422,14 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -3561,6 +3560,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -3665,17 +3667,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller__axes__0__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller__axes__0__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -3701,7 +3692,15 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller__axes__0__stage stage(
         .clock(stage__clock),
@@ -3853,6 +3852,11 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller__axes__0__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller__axes__0__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -3976,6 +3980,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -4004,6 +4009,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -4028,7 +4034,6 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -4076,7 +4081,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -4092,9 +4097,11 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -4103,20 +4110,21 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -4146,7 +4154,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -4216,10 +4224,10 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -4246,6 +4254,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -4349,250 +4358,6 @@ module motion_controller__axes__0__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__code_forward
-
-
-module motion_controller__axes__0__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller__axes__0__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller__axes__0__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller__axes__0__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller__axes__0__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller__axes__0__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller__axes__0__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller__axes__0__dda
-
-
-module motion_controller__axes__0__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__dda__error
-
-
-module motion_controller__axes__0__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__dda__overrange_reg
-
-
-module motion_controller__axes__0__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__dda__pulse_reg
-
-
-module motion_controller__axes__0__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__dda__saturated
-
-
-module motion_controller__axes__0__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__dda__step_long
-
-
-module motion_controller__axes__0__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__0__dda__ticked
 
 
 module motion_controller__axes__0__dda_overrange_prev(d,q,clock);
@@ -6413,6 +6178,25 @@ module motion_controller__axes__0__integrand(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__integrand
+
+
+module motion_controller__axes__0__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__integrand_nonzero
 
 
 module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -8391,7 +8175,7 @@ module motion_controller__axes__0__underrun_d(d,q,clock);
 endmodule // motion_controller__axes__0__underrun_d
 
 
-module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -8419,6 +8203,14 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -8432,7 +8224,12 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b1;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -8489,8 +8286,8 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -8498,11 +8295,11 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -8525,11 +8322,28 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller__axes__0__uniform__slot_state slot_state(
@@ -8682,6 +8496,21 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller__axes__0__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller__axes__0__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller__axes__0__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -8715,6 +8544,9 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -8745,6 +8577,9 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -8811,13 +8646,33 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -8849,11 +8704,8 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -8879,14 +8731,35 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -8896,6 +8769,9 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -8903,16 +8779,73 @@ module motion_controller__axes__0__uniform(clock,reset,tick,period,count,mode,lo
 endmodule // motion_controller__axes__0__uniform
 
 
-module motion_controller__axes__0__uniform__error(d,q,clock);
+module motion_controller__axes__0__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__uniform__dda_overrange_reg
+
+
+module motion_controller__axes__0__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__uniform__dda_pulse_reg
+
+
+module motion_controller__axes__0__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__uniform__dda_ticked
+
+
+module motion_controller__axes__0__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9381,13 +9314,13 @@ endmodule // motion_controller__axes__0__uniform__slot_state
 module motion_controller__axes__0__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9400,13 +9333,13 @@ endmodule // motion_controller__axes__0__uniform__step_long
 module motion_controller__axes__0__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9689,15 +9622,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -9723,6 +9647,14 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -9853,6 +9785,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -9957,17 +9892,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller__axes__1__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller__axes__1__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -9993,7 +9917,15 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller__axes__1__stage stage(
         .clock(stage__clock),
@@ -10145,6 +10077,11 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller__axes__1__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller__axes__1__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -10268,6 +10205,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -10296,6 +10234,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -10320,7 +10259,6 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -10368,7 +10306,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -10384,9 +10322,11 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -10395,20 +10335,21 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -10438,7 +10379,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -10508,10 +10449,10 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -10538,6 +10479,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -10641,250 +10583,6 @@ module motion_controller__axes__1__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__code_forward
-
-
-module motion_controller__axes__1__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller__axes__1__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller__axes__1__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller__axes__1__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller__axes__1__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller__axes__1__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller__axes__1__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller__axes__1__dda
-
-
-module motion_controller__axes__1__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__dda__error
-
-
-module motion_controller__axes__1__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__dda__overrange_reg
-
-
-module motion_controller__axes__1__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__dda__pulse_reg
-
-
-module motion_controller__axes__1__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__dda__saturated
-
-
-module motion_controller__axes__1__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__dda__step_long
-
-
-module motion_controller__axes__1__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__1__dda__ticked
 
 
 module motion_controller__axes__1__dda_overrange_prev(d,q,clock);
@@ -12705,6 +12403,25 @@ module motion_controller__axes__1__integrand(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__integrand
+
+
+module motion_controller__axes__1__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__integrand_nonzero
 
 
 module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -14683,7 +14400,7 @@ module motion_controller__axes__1__underrun_d(d,q,clock);
 endmodule // motion_controller__axes__1__underrun_d
 
 
-module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -14711,6 +14428,14 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -14724,7 +14449,12 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b1;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -14781,8 +14511,8 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -14790,11 +14520,11 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -14817,11 +14547,28 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller__axes__1__uniform__slot_state slot_state(
@@ -14974,6 +14721,21 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller__axes__1__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller__axes__1__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller__axes__1__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -15007,6 +14769,9 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -15037,6 +14802,9 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -15103,13 +14871,33 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -15141,11 +14929,8 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -15171,14 +14956,35 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -15188,6 +14994,9 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -15195,16 +15004,73 @@ module motion_controller__axes__1__uniform(clock,reset,tick,period,count,mode,lo
 endmodule // motion_controller__axes__1__uniform
 
 
-module motion_controller__axes__1__uniform__error(d,q,clock);
+module motion_controller__axes__1__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__uniform__dda_overrange_reg
+
+
+module motion_controller__axes__1__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__uniform__dda_pulse_reg
+
+
+module motion_controller__axes__1__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__uniform__dda_ticked
+
+
+module motion_controller__axes__1__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15673,13 +15539,13 @@ endmodule // motion_controller__axes__1__uniform__slot_state
 module motion_controller__axes__1__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15692,13 +15558,13 @@ endmodule // motion_controller__axes__1__uniform__step_long
 module motion_controller__axes__1__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15981,15 +15847,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -16015,6 +15872,14 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -16145,6 +16010,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -16249,17 +16117,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller__axes__2__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller__axes__2__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -16285,7 +16142,15 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller__axes__2__stage stage(
         .clock(stage__clock),
@@ -16437,6 +16302,11 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller__axes__2__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller__axes__2__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -16560,6 +16430,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -16588,6 +16459,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -16612,7 +16484,6 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -16660,7 +16531,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -16676,9 +16547,11 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -16687,20 +16560,21 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -16730,7 +16604,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -16800,10 +16674,10 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -16830,6 +16704,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -16933,250 +16808,6 @@ module motion_controller__axes__2__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__code_forward
-
-
-module motion_controller__axes__2__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller__axes__2__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller__axes__2__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller__axes__2__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller__axes__2__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller__axes__2__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller__axes__2__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller__axes__2__dda
-
-
-module motion_controller__axes__2__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__dda__error
-
-
-module motion_controller__axes__2__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__dda__overrange_reg
-
-
-module motion_controller__axes__2__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__dda__pulse_reg
-
-
-module motion_controller__axes__2__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__dda__saturated
-
-
-module motion_controller__axes__2__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__dda__step_long
-
-
-module motion_controller__axes__2__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__axes__2__dda__ticked
 
 
 module motion_controller__axes__2__dda_overrange_prev(d,q,clock);
@@ -18997,6 +18628,25 @@ module motion_controller__axes__2__integrand(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__integrand
+
+
+module motion_controller__axes__2__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__integrand_nonzero
 
 
 module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -20975,7 +20625,7 @@ module motion_controller__axes__2__underrun_d(d,q,clock);
 endmodule // motion_controller__axes__2__underrun_d
 
 
-module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -21003,6 +20653,14 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -21016,7 +20674,12 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b1;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -21073,8 +20736,8 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -21082,11 +20745,11 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -21109,11 +20772,28 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller__axes__2__uniform__slot_state slot_state(
@@ -21266,6 +20946,21 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller__axes__2__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller__axes__2__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller__axes__2__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -21299,6 +20994,9 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -21329,6 +21027,9 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -21395,13 +21096,33 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -21433,11 +21154,8 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -21463,14 +21181,35 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -21480,6 +21219,9 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -21487,16 +21229,73 @@ module motion_controller__axes__2__uniform(clock,reset,tick,period,count,mode,lo
 endmodule // motion_controller__axes__2__uniform
 
 
-module motion_controller__axes__2__uniform__error(d,q,clock);
+module motion_controller__axes__2__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__uniform__dda_overrange_reg
+
+
+module motion_controller__axes__2__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__uniform__dda_pulse_reg
+
+
+module motion_controller__axes__2__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__uniform__dda_ticked
+
+
+module motion_controller__axes__2__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -21965,13 +21764,13 @@ endmodule // motion_controller__axes__2__uniform__slot_state
 module motion_controller__axes__2__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -21984,13 +21783,13 @@ endmodule // motion_controller__axes__2__uniform__step_long
 module motion_controller__axes__2__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin

@@ -3398,15 +3398,6 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -3432,6 +3423,14 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -3562,6 +3561,9 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -3666,17 +3668,6 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller_dda__axes__0__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller_dda__axes__0__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -3702,7 +3693,15 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller_dda__axes__0__stage stage(
         .clock(stage__clock),
@@ -3854,6 +3853,11 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller_dda__axes__0__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller_dda__axes__0__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -3977,6 +3981,7 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -4005,6 +4010,7 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -4029,7 +4035,6 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -4077,7 +4082,7 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -4093,9 +4098,11 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -4104,20 +4111,21 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -4147,7 +4155,7 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -4217,10 +4225,10 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -4247,6 +4255,7 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -4350,250 +4359,6 @@ module motion_controller_dda__axes__0__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_dda__axes__0__code_forward
-
-
-module motion_controller_dda__axes__0__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller_dda__axes__0__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller_dda__axes__0__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller_dda__axes__0__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller_dda__axes__0__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller_dda__axes__0__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller_dda__axes__0__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_dda__axes__0__dda
-
-
-module motion_controller_dda__axes__0__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__0__dda__error
-
-
-module motion_controller_dda__axes__0__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__0__dda__overrange_reg
-
-
-module motion_controller_dda__axes__0__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__0__dda__pulse_reg
-
-
-module motion_controller_dda__axes__0__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__0__dda__saturated
-
-
-module motion_controller_dda__axes__0__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__0__dda__step_long
-
-
-module motion_controller_dda__axes__0__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__0__dda__ticked
 
 
 module motion_controller_dda__axes__0__dda_overrange_prev(d,q,clock);
@@ -6414,6 +6179,25 @@ module motion_controller_dda__axes__0__integrand(d,q,clock);
     end
 
 endmodule // motion_controller_dda__axes__0__integrand
+
+
+module motion_controller_dda__axes__0__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__0__integrand_nonzero
 
 
 module motion_controller_dda__axes__0__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -8392,7 +8176,7 @@ module motion_controller_dda__axes__0__underrun_d(d,q,clock);
 endmodule // motion_controller_dda__axes__0__underrun_d
 
 
-module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -8420,6 +8204,14 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -8433,7 +8225,12 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b0;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -8490,8 +8287,8 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -8499,11 +8296,11 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -8526,11 +8323,28 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller_dda__axes__0__uniform__slot_state slot_state(
@@ -8683,6 +8497,21 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller_dda__axes__0__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller_dda__axes__0__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller_dda__axes__0__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -8716,6 +8545,9 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -8746,6 +8578,9 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -8812,13 +8647,33 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -8850,11 +8705,8 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -8880,14 +8732,35 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -8897,6 +8770,9 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -8904,16 +8780,73 @@ module motion_controller_dda__axes__0__uniform(clock,reset,tick,period,count,mod
 endmodule // motion_controller_dda__axes__0__uniform
 
 
-module motion_controller_dda__axes__0__uniform__error(d,q,clock);
+module motion_controller_dda__axes__0__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__0__uniform__dda_overrange_reg
+
+
+module motion_controller_dda__axes__0__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__0__uniform__dda_pulse_reg
+
+
+module motion_controller_dda__axes__0__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__0__uniform__dda_ticked
+
+
+module motion_controller_dda__axes__0__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9382,13 +9315,13 @@ endmodule // motion_controller_dda__axes__0__uniform__slot_state
 module motion_controller_dda__axes__0__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9401,13 +9334,13 @@ endmodule // motion_controller_dda__axes__0__uniform__step_long
 module motion_controller_dda__axes__0__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9690,15 +9623,6 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -9724,6 +9648,14 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -9854,6 +9786,9 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -9958,17 +9893,6 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller_dda__axes__1__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller_dda__axes__1__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -9994,7 +9918,15 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller_dda__axes__1__stage stage(
         .clock(stage__clock),
@@ -10146,6 +10078,11 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller_dda__axes__1__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller_dda__axes__1__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -10269,6 +10206,7 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -10297,6 +10235,7 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -10321,7 +10260,6 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -10369,7 +10307,7 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -10385,9 +10323,11 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -10396,20 +10336,21 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -10439,7 +10380,7 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -10509,10 +10450,10 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -10539,6 +10480,7 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -10642,250 +10584,6 @@ module motion_controller_dda__axes__1__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_dda__axes__1__code_forward
-
-
-module motion_controller_dda__axes__1__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller_dda__axes__1__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller_dda__axes__1__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller_dda__axes__1__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller_dda__axes__1__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller_dda__axes__1__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller_dda__axes__1__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_dda__axes__1__dda
-
-
-module motion_controller_dda__axes__1__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__1__dda__error
-
-
-module motion_controller_dda__axes__1__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__1__dda__overrange_reg
-
-
-module motion_controller_dda__axes__1__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__1__dda__pulse_reg
-
-
-module motion_controller_dda__axes__1__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__1__dda__saturated
-
-
-module motion_controller_dda__axes__1__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__1__dda__step_long
-
-
-module motion_controller_dda__axes__1__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__1__dda__ticked
 
 
 module motion_controller_dda__axes__1__dda_overrange_prev(d,q,clock);
@@ -12706,6 +12404,25 @@ module motion_controller_dda__axes__1__integrand(d,q,clock);
     end
 
 endmodule // motion_controller_dda__axes__1__integrand
+
+
+module motion_controller_dda__axes__1__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__1__integrand_nonzero
 
 
 module motion_controller_dda__axes__1__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -14684,7 +14401,7 @@ module motion_controller_dda__axes__1__underrun_d(d,q,clock);
 endmodule // motion_controller_dda__axes__1__underrun_d
 
 
-module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -14712,6 +14429,14 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -14725,7 +14450,12 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b0;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -14782,8 +14512,8 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -14791,11 +14521,11 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -14818,11 +14548,28 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller_dda__axes__1__uniform__slot_state slot_state(
@@ -14975,6 +14722,21 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller_dda__axes__1__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller_dda__axes__1__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller_dda__axes__1__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -15008,6 +14770,9 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -15038,6 +14803,9 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -15104,13 +14872,33 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -15142,11 +14930,8 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -15172,14 +14957,35 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -15189,6 +14995,9 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -15196,16 +15005,73 @@ module motion_controller_dda__axes__1__uniform(clock,reset,tick,period,count,mod
 endmodule // motion_controller_dda__axes__1__uniform
 
 
-module motion_controller_dda__axes__1__uniform__error(d,q,clock);
+module motion_controller_dda__axes__1__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__1__uniform__dda_overrange_reg
+
+
+module motion_controller_dda__axes__1__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__1__uniform__dda_pulse_reg
+
+
+module motion_controller_dda__axes__1__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__1__uniform__dda_ticked
+
+
+module motion_controller_dda__axes__1__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15674,13 +15540,13 @@ endmodule // motion_controller_dda__axes__1__uniform__slot_state
 module motion_controller_dda__axes__1__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15693,13 +15559,13 @@ endmodule // motion_controller_dda__axes__1__uniform__step_long
 module motion_controller_dda__axes__1__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15982,15 +15848,6 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -16016,6 +15873,14 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -16146,6 +16011,9 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -16250,17 +16118,6 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller_dda__axes__2__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller_dda__axes__2__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -16286,7 +16143,15 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller_dda__axes__2__stage stage(
         .clock(stage__clock),
@@ -16438,6 +16303,11 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller_dda__axes__2__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller_dda__axes__2__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -16561,6 +16431,7 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -16589,6 +16460,7 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -16613,7 +16485,6 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -16661,7 +16532,7 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -16677,9 +16548,11 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -16688,20 +16561,21 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -16731,7 +16605,7 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -16801,10 +16675,10 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -16831,6 +16705,7 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -16934,250 +16809,6 @@ module motion_controller_dda__axes__2__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_dda__axes__2__code_forward
-
-
-module motion_controller_dda__axes__2__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller_dda__axes__2__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller_dda__axes__2__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller_dda__axes__2__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller_dda__axes__2__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller_dda__axes__2__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller_dda__axes__2__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_dda__axes__2__dda
-
-
-module motion_controller_dda__axes__2__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__2__dda__error
-
-
-module motion_controller_dda__axes__2__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__2__dda__overrange_reg
-
-
-module motion_controller_dda__axes__2__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__2__dda__pulse_reg
-
-
-module motion_controller_dda__axes__2__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__2__dda__saturated
-
-
-module motion_controller_dda__axes__2__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__2__dda__step_long
-
-
-module motion_controller_dda__axes__2__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_dda__axes__2__dda__ticked
 
 
 module motion_controller_dda__axes__2__dda_overrange_prev(d,q,clock);
@@ -18998,6 +18629,25 @@ module motion_controller_dda__axes__2__integrand(d,q,clock);
     end
 
 endmodule // motion_controller_dda__axes__2__integrand
+
+
+module motion_controller_dda__axes__2__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__2__integrand_nonzero
 
 
 module motion_controller_dda__axes__2__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -20976,7 +20626,7 @@ module motion_controller_dda__axes__2__underrun_d(d,q,clock);
 endmodule // motion_controller_dda__axes__2__underrun_d
 
 
-module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -21004,6 +20654,14 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -21017,7 +20675,12 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b0;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -21074,8 +20737,8 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -21083,11 +20746,11 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -21110,11 +20773,28 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller_dda__axes__2__uniform__slot_state slot_state(
@@ -21267,6 +20947,21 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller_dda__axes__2__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller_dda__axes__2__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller_dda__axes__2__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -21300,6 +20995,9 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -21330,6 +21028,9 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -21396,13 +21097,33 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -21434,11 +21155,8 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -21464,14 +21182,35 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -21481,6 +21220,9 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -21488,16 +21230,73 @@ module motion_controller_dda__axes__2__uniform(clock,reset,tick,period,count,mod
 endmodule // motion_controller_dda__axes__2__uniform
 
 
-module motion_controller_dda__axes__2__uniform__error(d,q,clock);
+module motion_controller_dda__axes__2__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__2__uniform__dda_overrange_reg
+
+
+module motion_controller_dda__axes__2__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__2__uniform__dda_pulse_reg
+
+
+module motion_controller_dda__axes__2__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__axes__2__uniform__dda_ticked
+
+
+module motion_controller_dda__axes__2__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -21966,13 +21765,13 @@ endmodule // motion_controller_dda__axes__2__uniform__slot_state
 module motion_controller_dda__axes__2__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -21985,13 +21784,13 @@ endmodule // motion_controller_dda__axes__2__uniform__step_long
 module motion_controller_dda__axes__2__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin

@@ -3399,15 +3399,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -3433,6 +3424,14 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -3563,6 +3562,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -3667,17 +3669,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller_servo__axes__0__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller_servo__axes__0__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -3703,7 +3694,15 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller_servo__axes__0__stage stage(
         .clock(stage__clock),
@@ -3855,6 +3854,11 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller_servo__axes__0__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller_servo__axes__0__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -3978,6 +3982,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -4006,6 +4011,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -4030,7 +4036,6 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -4078,7 +4083,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -4094,9 +4099,11 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -4105,20 +4112,21 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -4148,7 +4156,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -4218,10 +4226,10 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -4248,6 +4256,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -4351,250 +4360,6 @@ module motion_controller_servo__axes__0__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__code_forward
-
-
-module motion_controller_servo__axes__0__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller_servo__axes__0__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller_servo__axes__0__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller_servo__axes__0__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller_servo__axes__0__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller_servo__axes__0__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller_servo__axes__0__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_servo__axes__0__dda
-
-
-module motion_controller_servo__axes__0__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dda__error
-
-
-module motion_controller_servo__axes__0__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dda__overrange_reg
-
-
-module motion_controller_servo__axes__0__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dda__pulse_reg
-
-
-module motion_controller_servo__axes__0__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dda__saturated
-
-
-module motion_controller_servo__axes__0__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dda__step_long
-
-
-module motion_controller_servo__axes__0__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__0__dda__ticked
 
 
 module motion_controller_servo__axes__0__dda_overrange_prev(d,q,clock);
@@ -6415,6 +6180,25 @@ module motion_controller_servo__axes__0__integrand(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__integrand
+
+
+module motion_controller_servo__axes__0__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__integrand_nonzero
 
 
 module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -8393,7 +8177,7 @@ module motion_controller_servo__axes__0__underrun_d(d,q,clock);
 endmodule // motion_controller_servo__axes__0__underrun_d
 
 
-module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -8421,6 +8205,14 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -8434,7 +8226,12 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b0;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -8491,8 +8288,8 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -8500,11 +8297,11 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -8527,11 +8324,28 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller_servo__axes__0__uniform__slot_state slot_state(
@@ -8684,6 +8498,21 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller_servo__axes__0__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller_servo__axes__0__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller_servo__axes__0__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -8717,6 +8546,9 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -8747,6 +8579,9 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -8813,13 +8648,33 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -8851,11 +8706,8 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -8881,14 +8733,35 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -8898,6 +8771,9 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -8905,16 +8781,73 @@ module motion_controller_servo__axes__0__uniform(clock,reset,tick,period,count,m
 endmodule // motion_controller_servo__axes__0__uniform
 
 
-module motion_controller_servo__axes__0__uniform__error(d,q,clock);
+module motion_controller_servo__axes__0__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__uniform__dda_overrange_reg
+
+
+module motion_controller_servo__axes__0__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__uniform__dda_pulse_reg
+
+
+module motion_controller_servo__axes__0__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__uniform__dda_ticked
+
+
+module motion_controller_servo__axes__0__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9383,13 +9316,13 @@ endmodule // motion_controller_servo__axes__0__uniform__slot_state
 module motion_controller_servo__axes__0__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9402,13 +9335,13 @@ endmodule // motion_controller_servo__axes__0__uniform__step_long
 module motion_controller_servo__axes__0__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -9691,15 +9624,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -9725,6 +9649,14 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -9855,6 +9787,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -9959,17 +9894,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller_servo__axes__1__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller_servo__axes__1__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -9995,7 +9919,15 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller_servo__axes__1__stage stage(
         .clock(stage__clock),
@@ -10147,6 +10079,11 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller_servo__axes__1__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller_servo__axes__1__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -10270,6 +10207,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -10298,6 +10236,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -10322,7 +10261,6 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -10370,7 +10308,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -10386,9 +10324,11 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -10397,20 +10337,21 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -10440,7 +10381,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -10510,10 +10451,10 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -10540,6 +10481,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -10643,250 +10585,6 @@ module motion_controller_servo__axes__1__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__code_forward
-
-
-module motion_controller_servo__axes__1__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller_servo__axes__1__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller_servo__axes__1__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller_servo__axes__1__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller_servo__axes__1__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller_servo__axes__1__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller_servo__axes__1__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_servo__axes__1__dda
-
-
-module motion_controller_servo__axes__1__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dda__error
-
-
-module motion_controller_servo__axes__1__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dda__overrange_reg
-
-
-module motion_controller_servo__axes__1__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dda__pulse_reg
-
-
-module motion_controller_servo__axes__1__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dda__saturated
-
-
-module motion_controller_servo__axes__1__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dda__step_long
-
-
-module motion_controller_servo__axes__1__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__1__dda__ticked
 
 
 module motion_controller_servo__axes__1__dda_overrange_prev(d,q,clock);
@@ -12707,6 +12405,25 @@ module motion_controller_servo__axes__1__integrand(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__integrand
+
+
+module motion_controller_servo__axes__1__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__integrand_nonzero
 
 
 module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -14685,7 +14402,7 @@ module motion_controller_servo__axes__1__underrun_d(d,q,clock);
 endmodule // motion_controller_servo__axes__1__underrun_d
 
 
-module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -14713,6 +14430,14 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -14726,7 +14451,12 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b0;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -14783,8 +14513,8 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -14792,11 +14522,11 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -14819,11 +14549,28 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller_servo__axes__1__uniform__slot_state slot_state(
@@ -14976,6 +14723,21 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller_servo__axes__1__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller_servo__axes__1__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller_servo__axes__1__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -15009,6 +14771,9 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -15039,6 +14804,9 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -15105,13 +14873,33 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -15143,11 +14931,8 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -15173,14 +14958,35 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -15190,6 +14996,9 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -15197,16 +15006,73 @@ module motion_controller_servo__axes__1__uniform(clock,reset,tick,period,count,m
 endmodule // motion_controller_servo__axes__1__uniform
 
 
-module motion_controller_servo__axes__1__uniform__error(d,q,clock);
+module motion_controller_servo__axes__1__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__uniform__dda_overrange_reg
+
+
+module motion_controller_servo__axes__1__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__uniform__dda_pulse_reg
+
+
+module motion_controller_servo__axes__1__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__uniform__dda_ticked
+
+
+module motion_controller_servo__axes__1__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15675,13 +15541,13 @@ endmodule // motion_controller_servo__axes__1__uniform__slot_state
 module motion_controller_servo__axes__1__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15694,13 +15560,13 @@ endmodule // motion_controller_servo__axes__1__uniform__step_long
 module motion_controller_servo__axes__1__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -15983,15 +15849,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  fifo__clear_flags;
     wire  fifo__overflow;
     wire  fifo__underflow;
-    reg  dda__clock;
-    reg  dda__reset;
-    reg  dda__tick;
-    reg  dda__reload;
-    reg  [15:0] dda__integrand;
-    reg  [16:0] dda__modulus_negated;
-    reg  dda__clear_overrange;
-    wire  dda__pulse;
-    wire  dda__overrange;
     reg  uniform__clock;
     reg  uniform__reset;
     reg  uniform__tick;
@@ -16017,6 +15874,14 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  uniform__div_half_is_one;
     reg  uniform__div_has_pulses;
     reg  uniform__div_clamped;
+    reg  uniform__dda_tick;
+    reg  uniform__dda_reload;
+    reg  [15:0] uniform__dda_integrand;
+    reg  uniform__dda_active;
+    reg  [16:0] uniform__dda_modulus_negated;
+    reg  uniform__dda_clear_overrange;
+    wire  uniform__dda_pulse;
+    wire  uniform__dda_overrange;
     reg  stage__clock;
     reg  stage__reset;
     reg  stage__step;
@@ -16147,6 +16012,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  [15:0] integrand__d;
     wire  [15:0] integrand__q;
     reg  integrand__clock;
+    reg  integrand_nonzero__d;
+    wire  integrand_nonzero__q;
+    reg  integrand_nonzero__clock;
     reg  dda_reload__d;
     wire  dda_reload__q;
     reg  dda_reload__clock;
@@ -16251,17 +16119,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .overflow(fifo__overflow),
         .underflow(fifo__underflow)
     );
-    motion_controller_servo__axes__2__dda dda(
-        .clock(dda__clock),
-        .reset(dda__reset),
-        .tick(dda__tick),
-        .reload(dda__reload),
-        .integrand(dda__integrand),
-        .modulus_negated(dda__modulus_negated),
-        .clear_overrange(dda__clear_overrange),
-        .pulse(dda__pulse),
-        .overrange(dda__overrange)
-    );
     motion_controller_servo__axes__2__uniform uniform(
         .clock(uniform__clock),
         .reset(uniform__reset),
@@ -16287,7 +16144,15 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .div_short_negated(uniform__div_short_negated),
         .div_half_is_one(uniform__div_half_is_one),
         .div_has_pulses(uniform__div_has_pulses),
-        .div_clamped(uniform__div_clamped)
+        .div_clamped(uniform__div_clamped),
+        .dda_tick(uniform__dda_tick),
+        .dda_reload(uniform__dda_reload),
+        .dda_integrand(uniform__dda_integrand),
+        .dda_active(uniform__dda_active),
+        .dda_modulus_negated(uniform__dda_modulus_negated),
+        .dda_clear_overrange(uniform__dda_clear_overrange),
+        .dda_pulse(uniform__dda_pulse),
+        .dda_overrange(uniform__dda_overrange)
     );
     motion_controller_servo__axes__2__stage stage(
         .clock(stage__clock),
@@ -16439,6 +16304,11 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .q(integrand__q),
         .clock(integrand__clock)
     );
+    motion_controller_servo__axes__2__integrand_nonzero integrand_nonzero(
+        .d(integrand_nonzero__d),
+        .q(integrand_nonzero__q),
+        .clock(integrand_nonzero__clock)
+    );
     motion_controller_servo__axes__2__dda_reload dda_reload(
         .d(dda_reload__d),
         .q(dda_reload__q),
@@ -16562,6 +16432,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         underrun_d__clock = clock;
         tick_d__clock = clock;
         integrand__clock = clock;
+        integrand_nonzero__clock = clock;
         dda_reload__clock = clock;
         overrange_flag__clock = clock;
         overflow_flag__clock = clock;
@@ -16590,6 +16461,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         underrun_d__d = underrun_d__q;
         tick_d__d = tick_d__q;
         integrand__d = integrand__q;
+        integrand_nonzero__d = integrand_nonzero__q;
         dda_reload__d = dda_reload__q;
         overrange_flag__d = overrange_flag__q;
         overflow_flag__d = overflow_flag__q;
@@ -16614,7 +16486,6 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
         fifo__clock = clock;
-        dda__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
@@ -16662,7 +16533,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             overflow_flag__d = 1'b0;
         end
         saturated__d = popped_valid__q & ((analog_active__q & popped__q[32'h12]) | (~analog_active__q & too_large));
-        if (saturated__q | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
+        if (saturated__q | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q)) begin
             overrange_flag__d = 1'b1;
         end
         if (uniform_overflow & ~uniform_overflow_prev__q) begin
@@ -16678,9 +16549,11 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             forward__d = ~popped__q[32'h11];
             if (uniform_active__q | analog_active__q) begin
                 integrand__d = zero_count;
+                integrand_nonzero__d = 1'b0;
             end
             else begin
                 integrand__d = count;
+                integrand_nonzero__d = code_nonzero;
             end
             if (analog_active__q) begin
                 code_forward__d = ~popped__q[32'h11] & code_nonzero;
@@ -16689,20 +16562,21 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         end
         if (underrun_d__q | halt) begin
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             code_forward__d = 1'b0;
             code_backward__d = 1'b0;
         end
         forward_1__d = forward__q;
         forward_2__d = forward_1__q;
         dda_reload__d = popped_valid__q | underrun_d__q | halt;
-        dda__reset = reset | halt;
-        dda__tick = tick_d__q;
-        dda__reload = dda_reload__q;
-        dda__integrand = integrand__q;
-        dda__modulus_negated = modulus_negated;
-        dda__clear_overrange = clear_faults;
+        uniform__dda_tick = tick_d__q;
+        uniform__dda_reload = dda_reload__q;
+        uniform__dda_integrand = integrand__q;
+        uniform__dda_active = integrand_nonzero__q;
+        uniform__dda_modulus_negated = modulus_negated;
+        uniform__dda_clear_overrange = clear_faults;
         uniform__reset = reset | halt;
-        uniform__tick = tick_d__q;
+        uniform__tick = has_uniform & tick_d__q;
         uniform__period = period_active;
         uniform__count = count;
         uniform__mode = registers__axis_config[32'h1];
@@ -16732,7 +16606,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             candidate_forward = uniform_forward;
         end
         else begin
-            candidate = dda__pulse;
+            candidate = uniform__dda_pulse;
             candidate_forward = forward_2__q;
         end
         candidate_blocked = io__block_backward;
@@ -16802,10 +16676,10 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
-        dda_overrange_prev__d = dda__overrange;
+        dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (dda__overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -16832,6 +16706,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             underrun_d__d = 1'b0;
             tick_d__d = 1'b0;
             integrand__d = zero_count;
+            integrand_nonzero__d = 1'b0;
             dda_reload__d = 1'b0;
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
@@ -16935,250 +16810,6 @@ module motion_controller_servo__axes__2__code_forward(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__code_forward
-
-
-module motion_controller_servo__axes__2__dda(clock,reset,tick,reload,integrand,modulus_negated,clear_overrange,pulse,overrange);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  tick;
-    input wire  reload;
-    input wire  [15:0] integrand;
-    input wire  [16:0] modulus_negated;
-    input wire  clear_overrange;
-    output reg  pulse;
-    output reg  overrange;
-
-    // Constant declarations
-    localparam  zero = 17'b0;
-    localparam  zero_j = 16'h0;
-    localparam  sign = 17'b10000000000000000;
-
-    // Stub signals
-    reg  ticked__d;
-    wire  ticked__q;
-    reg  ticked__clock;
-    reg  [16:0] error__d;
-    wire  [16:0] error__q;
-    reg  error__clock;
-    reg  [16:0] step_long__d;
-    wire  [16:0] step_long__q;
-    reg  step_long__clock;
-    reg  saturated__d;
-    wire  saturated__q;
-    reg  saturated__clock;
-    reg  pulse_reg__d;
-    wire  pulse_reg__q;
-    reg  pulse_reg__clock;
-    reg  overrange_reg__d;
-    wire  overrange_reg__q;
-    reg  overrange_reg__clock;
-
-    // Local signals
-    reg  [16:0] integrand_wide;
-    reg  overflows;
-    reg  [16:0] addend_a;
-    reg  [16:0] addend_b;
-    reg  [16:0] sum;
-
-    // Sub module instances
-    motion_controller_servo__axes__2__dda__ticked ticked(
-        .d(ticked__d),
-        .q(ticked__q),
-        .clock(ticked__clock)
-    );
-    motion_controller_servo__axes__2__dda__error error(
-        .d(error__d),
-        .q(error__q),
-        .clock(error__clock)
-    );
-    motion_controller_servo__axes__2__dda__step_long step_long(
-        .d(step_long__d),
-        .q(step_long__q),
-        .clock(step_long__clock)
-    );
-    motion_controller_servo__axes__2__dda__saturated saturated(
-        .d(saturated__d),
-        .q(saturated__q),
-        .clock(saturated__clock)
-    );
-    motion_controller_servo__axes__2__dda__pulse_reg pulse_reg(
-        .d(pulse_reg__d),
-        .q(pulse_reg__q),
-        .clock(pulse_reg__clock)
-    );
-    motion_controller_servo__axes__2__dda__overrange_reg overrange_reg(
-        .d(overrange_reg__d),
-        .q(overrange_reg__q),
-        .clock(overrange_reg__clock)
-    );
-
-    // Update code
-    always @(*) begin
-        ticked__clock = clock;
-        error__clock = clock;
-        step_long__clock = clock;
-        saturated__clock = clock;
-        pulse_reg__clock = clock;
-        overrange_reg__clock = clock;
-        ticked__d = ticked__q;
-        error__d = error__q;
-        step_long__d = step_long__q;
-        saturated__d = saturated__q;
-        pulse_reg__d = pulse_reg__q;
-        overrange_reg__d = overrange_reg__q;
-        pulse = pulse_reg__q;
-        overrange = overrange_reg__q;
-        ticked__d = tick & (integrand != zero_j);
-        integrand_wide = ((integrand) & 17'h1ffff);
-        overflows = (error__q & sign) == zero;
-        addend_a = error__q;
-        if (reload) begin
-            addend_a = modulus_negated;
-        end
-        addend_b = integrand_wide;
-        if (overflows & ~reload) begin
-            addend_b = step_long__q;
-        end
-        sum = addend_a + addend_b;
-        pulse_reg__d = ticked__q & overflows;
-        if (ticked__q & ~saturated__q) begin
-            error__d = sum;
-        end
-        if (ticked__q & saturated__q) begin
-            overrange_reg__d = 1'b1;
-        end
-        if (reload) begin
-            error__d = sum;
-            step_long__d = sum;
-            saturated__d = ((sum & sign) == zero) & (sum != zero);
-        end
-        if (clear_overrange) begin
-            overrange_reg__d = 1'b0;
-        end
-        if (reset) begin
-            ticked__d = 1'b0;
-            pulse_reg__d = 1'b0;
-            overrange_reg__d = 1'b0;
-        end
-    end
-
-endmodule // motion_controller_servo__axes__2__dda
-
-
-module motion_controller_servo__axes__2__dda__error(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dda__error
-
-
-module motion_controller_servo__axes__2__dda__overrange_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dda__overrange_reg
-
-
-module motion_controller_servo__axes__2__dda__pulse_reg(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dda__pulse_reg
-
-
-module motion_controller_servo__axes__2__dda__saturated(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dda__saturated
-
-
-module motion_controller_servo__axes__2__dda__step_long(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dda__step_long
-
-
-module motion_controller_servo__axes__2__dda__ticked(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__axes__2__dda__ticked
 
 
 module motion_controller_servo__axes__2__dda_overrange_prev(d,q,clock);
@@ -18999,6 +18630,25 @@ module motion_controller_servo__axes__2__integrand(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__integrand
+
+
+module motion_controller_servo__axes__2__integrand_nonzero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__integrand_nonzero
 
 
 module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
@@ -20977,7 +20627,7 @@ module motion_controller_servo__axes__2__underrun_d(d,q,clock);
 endmodule // motion_controller_servo__axes__2__underrun_d
 
 
-module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -21005,6 +20655,14 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [15:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [16:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -21018,7 +20676,12 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     localparam  one = 16'h1;
     localparam  two = 16'h2;
     localparam  not_one = 16'hfffe;
-    localparam  sign = 16'h8000;
+    localparam  has_generator = 1'b0;
+    localparam  sign_w = 16'h8000;
+    localparam  zero_e = 17'b0;
+    localparam  one_e = 17'b1;
+    localparam  sign = 17'b10000000000000000;
+    localparam  extension = 17'b10000000000000000;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -21075,8 +20738,8 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     reg  long__d;
     wire  long__q;
     reg  long__clock;
-    reg  [15:0] error__d;
-    wire  [15:0] error__q;
+    reg  [16:0] error__d;
+    wire  [16:0] error__q;
     reg  error__clock;
     reg  [15:0] half__d;
     wire  [15:0] half__q;
@@ -21084,11 +20747,11 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     reg  half_is_one__d;
     wire  half_is_one__q;
     reg  half_is_one__clock;
-    reg  [15:0] step_long__d;
-    wire  [15:0] step_long__q;
+    reg  [16:0] step_long__d;
+    wire  [16:0] step_long__q;
     reg  step_long__clock;
-    reg  [15:0] step_short__d;
-    wire  [15:0] step_short__q;
+    reg  [16:0] step_short__d;
+    wire  [16:0] step_short__q;
     reg  step_short__clock;
     reg  has_pulses__d;
     wire  has_pulses__q;
@@ -21111,11 +20774,28 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
-    reg  [15:0] short_step;
+    reg  [16:0] short_step;
+    reg  [16:0] short_negated_wide;
+    reg  [16:0] start_a;
+    reg  [16:0] start_b;
+    reg  [16:0] start_sum;
+    reg  [16:0] pulse_step;
+    reg  [16:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     motion_controller_servo__axes__2__uniform__slot_state slot_state(
@@ -21268,6 +20948,21 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    motion_controller_servo__axes__2__uniform__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    motion_controller_servo__axes__2__uniform__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    motion_controller_servo__axes__2__uniform__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -21301,6 +20996,9 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -21331,6 +21029,9 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -21397,13 +21098,33 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 17'h1ffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 17'h1ffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 17'h1ffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 17'h1ffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -21435,11 +21156,8 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -21465,14 +21183,35 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -21482,6 +21221,9 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
@@ -21489,16 +21231,73 @@ module motion_controller_servo__axes__2__uniform(clock,reset,tick,period,count,m
 endmodule // motion_controller_servo__axes__2__uniform
 
 
-module motion_controller_servo__axes__2__uniform__error(d,q,clock);
+module motion_controller_servo__axes__2__uniform__dda_overrange_reg(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__uniform__dda_overrange_reg
+
+
+module motion_controller_servo__axes__2__uniform__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__uniform__dda_pulse_reg
+
+
+module motion_controller_servo__axes__2__uniform__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__uniform__dda_ticked
+
+
+module motion_controller_servo__axes__2__uniform__error(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -21967,13 +21766,13 @@ endmodule // motion_controller_servo__axes__2__uniform__slot_state
 module motion_controller_servo__axes__2__uniform__step_long(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
@@ -21986,13 +21785,13 @@ endmodule // motion_controller_servo__axes__2__uniform__step_long
 module motion_controller_servo__axes__2__uniform__step_short(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin

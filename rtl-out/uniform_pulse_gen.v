@@ -47,6 +47,9 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     output reg  overrange;
     output reg  overflow;
 
+    // Constant declarations
+    localparam  zero = 32'h0;
+
     // Stub signals
     reg  core__clock;
     reg  core__reset;
@@ -73,6 +76,14 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
     reg  core__div_half_is_one;
     reg  core__div_has_pulses;
     reg  core__div_clamped;
+    reg  core__dda_tick;
+    reg  core__dda_reload;
+    reg  [31:0] core__dda_integrand;
+    reg  core__dda_active;
+    reg  [31:0] core__dda_modulus_negated;
+    reg  core__dda_clear_overrange;
+    wire  core__dda_pulse;
+    wire  core__dda_overrange;
     reg  planner__clock;
     reg  planner__reset;
     reg  planner__start;
@@ -113,7 +124,15 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         .div_short_negated(core__div_short_negated),
         .div_half_is_one(core__div_half_is_one),
         .div_has_pulses(core__div_has_pulses),
-        .div_clamped(core__div_clamped)
+        .div_clamped(core__div_clamped),
+        .dda_tick(core__dda_tick),
+        .dda_reload(core__dda_reload),
+        .dda_integrand(core__dda_integrand),
+        .dda_active(core__dda_active),
+        .dda_modulus_negated(core__dda_modulus_negated),
+        .dda_clear_overrange(core__dda_clear_overrange),
+        .dda_pulse(core__dda_pulse),
+        .dda_overrange(core__dda_overrange)
     );
     uniform_pulse_gen__planner planner(
         .clock(planner__clock),
@@ -142,6 +161,12 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
         core__mode = mode;
         core__load = load;
         core__clear_flags = clear_flags;
+        core__dda_tick = 1'b0;
+        core__dda_reload = 1'b0;
+        core__dda_integrand = zero;
+        core__dda_active = 1'b0;
+        core__dda_modulus_negated = zero;
+        core__dda_clear_overrange = 1'b0;
         pulse = core__pulse;
         period_done = core__period_done;
         ready = core__ready;
@@ -165,7 +190,7 @@ module uniform_pulse_gen(clock,reset,tick,period,count,mode,load,clear_flags,pul
 endmodule // uniform_pulse_gen
 
 
-module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped);
+module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_flags,pulse,period_done,ready,running,underrun,overrange,overflow,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,dda_tick,dda_reload,dda_integrand,dda_active,dda_modulus_negated,dda_clear_overrange,dda_pulse,dda_overrange);
 
     // Module arguments
     input wire  clock;
@@ -193,6 +218,14 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     input wire  div_half_is_one;
     input wire  div_has_pulses;
     input wire  div_clamped;
+    input wire  dda_tick;
+    input wire  dda_reload;
+    input wire  [31:0] dda_integrand;
+    input wire  dda_active;
+    input wire  [31:0] dda_modulus_negated;
+    input wire  dda_clear_overrange;
+    output reg  dda_pulse;
+    output reg  dda_overrange;
 
     // Constant declarations
     localparam  empty = 3'b0;
@@ -206,7 +239,12 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     localparam  one = 32'h1;
     localparam  two = 32'h2;
     localparam  not_one = 32'hfffffffe;
+    localparam  has_generator = 1'b1;
+    localparam  sign_w = 32'h80000000;
+    localparam  zero_e = 32'h0;
+    localparam  one_e = 32'h1;
     localparam  sign = 32'h80000000;
+    localparam  extension = 32'h0;
 
     // Stub signals
     reg  [2:0] slot_state__d;
@@ -299,11 +337,28 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
     reg  period_small__d;
     wire  period_small__q;
     reg  period_small__clock;
+    reg  dda_ticked__d;
+    wire  dda_ticked__q;
+    reg  dda_ticked__clock;
+    reg  dda_pulse_reg__d;
+    wire  dda_pulse_reg__q;
+    reg  dda_pulse_reg__clock;
+    reg  dda_overrange_reg__d;
+    wire  dda_overrange_reg__q;
+    reg  dda_overrange_reg__clock;
 
     // Local signals
     reg  start;
     reg  next_long;
     reg  [31:0] short_step;
+    reg  [31:0] short_negated_wide;
+    reg  [31:0] start_a;
+    reg  [31:0] start_b;
+    reg  [31:0] start_sum;
+    reg  [31:0] pulse_step;
+    reg  [31:0] step_sum;
+    reg  dda_reloading;
+    reg  dda_too_large;
 
     // Sub module instances
     uniform_pulse_gen__core__slot_state slot_state(
@@ -456,6 +511,21 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         .q(period_small__q),
         .clock(period_small__clock)
     );
+    uniform_pulse_gen__core__dda_ticked dda_ticked(
+        .d(dda_ticked__d),
+        .q(dda_ticked__q),
+        .clock(dda_ticked__clock)
+    );
+    uniform_pulse_gen__core__dda_pulse_reg dda_pulse_reg(
+        .d(dda_pulse_reg__d),
+        .q(dda_pulse_reg__q),
+        .clock(dda_pulse_reg__clock)
+    );
+    uniform_pulse_gen__core__dda_overrange_reg dda_overrange_reg(
+        .d(dda_overrange_reg__d),
+        .q(dda_overrange_reg__q),
+        .clock(dda_overrange_reg__clock)
+    );
 
     // Update code
     always @(*) begin
@@ -489,6 +559,9 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         overflow_reg__clock = clock;
         period_odd__clock = clock;
         period_small__clock = clock;
+        dda_ticked__clock = clock;
+        dda_pulse_reg__clock = clock;
+        dda_overrange_reg__clock = clock;
         slot_state__d = slot_state__q;
         slot_full__d = slot_full__q;
         slot_period__d = slot_period__q;
@@ -519,6 +592,9 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         overflow_reg__d = overflow_reg__q;
         period_odd__d = period_odd__q;
         period_small__d = period_small__q;
+        dda_ticked__d = dda_ticked__q;
+        dda_pulse_reg__d = dda_pulse_reg__q;
+        dda_overrange_reg__d = dda_overrange_reg__q;
         pulse = pulse_reg__q;
         period_done = period_done_reg__q;
         ready = slot_state__q == empty;
@@ -585,13 +661,33 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
         if (slot_state__q == steps) begin
             slot_state__d = full;
         end
-        short_step = one;
+        short_step = one_e;
         if (slot_interleaved__q) begin
-            short_step = slot_long_pulses__q;
+            short_step = ((slot_long_pulses__q) & 32'hffffffff);
+        end
+        short_negated_wide = ((slot_short_negated__q) & 32'hffffffff);
+        if ((slot_short_negated__q & sign_w) != zero) begin
+            short_negated_wide = short_negated_wide | extension;
+        end
+        dda_reloading = dda_reload & dda_active;
+        start_a = short_step;
+        start_b = short_negated_wide;
+        if (dda_reloading | ~has_generator) begin
+            start_a = ((dda_integrand) & 32'hffffffff);
+            start_b = dda_modulus_negated;
+        end
+        start_sum = start_a + start_b;
+        next_long = (error__q & sign) == zero_e;
+        pulse_step = step_short__q;
+        if (~has_generator) begin
+            pulse_step = ((dda_integrand) & 32'hffffffff);
+        end
+        step_sum = error__q + pulse_step;
+        if (next_long) begin
+            step_sum = error__q + step_long__q;
         end
         period_done_reg__d = 1'b0;
         start = 1'b0;
-        next_long = (error__q & sign) == zero;
         if (tick) begin
             if (running_reg__q) begin
                 if (period_last__q) begin
@@ -623,11 +719,8 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
                                 pulse_reg__d = 1'b1;
                                 long__d = next_long;
                                 stretch__d = next_long;
-                                if (next_long) begin
-                                    error__d = error__q + step_long__q;
-                                end
-                                else begin
-                                    error__d = error__q + step_short__q;
+                                if (~dda_active) begin
+                                    error__d = step_sum;
                                 end
                             end
                         end
@@ -653,14 +746,35 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
             long__d = 1'b0;
             half__d = slot_half__q;
             half_is_one__d = slot_half_is_one__q;
-            step_short__d = short_step;
-            step_long__d = one;
-            if (slot_interleaved__q) begin
-                step_long__d = slot_short_negated__q;
+            if (~dda_active) begin
+                step_short__d = short_step;
+                step_long__d = one_e;
+                if (slot_interleaved__q) begin
+                    step_long__d = short_negated_wide;
+                end
+                error__d = start_sum;
             end
-            error__d = short_step + slot_short_negated__q;
             has_pulses__d = slot_has_pulses__q;
             slot_state__d = empty;
+        end
+        dda_pulse = dda_pulse_reg__q;
+        dda_overrange = dda_overrange_reg__q;
+        dda_ticked__d = dda_tick & dda_active;
+        dda_pulse_reg__d = dda_ticked__q & next_long;
+        dda_too_large = ((step_long__q & sign) == zero_e) & (step_long__q != zero_e);
+        if (dda_ticked__q & ~dda_too_large) begin
+            error__d = step_sum;
+        end
+        if (dda_ticked__q & dda_too_large) begin
+            dda_overrange_reg__d = 1'b1;
+        end
+        if (dda_reloading) begin
+            error__d = start_sum;
+            step_long__d = start_sum;
+            step_short__d = start_a;
+        end
+        if (dda_clear_overrange) begin
+            dda_overrange_reg__d = 1'b0;
         end
         if (reset) begin
             slot_state__d = empty;
@@ -670,11 +784,71 @@ module uniform_pulse_gen__core(clock,reset,tick,period,count,mode,load,clear_fla
             underrun_reg__d = 1'b0;
             overrange_reg__d = 1'b0;
             overflow_reg__d = 1'b0;
+            dda_ticked__d = 1'b0;
+            dda_pulse_reg__d = 1'b0;
+            dda_overrange_reg__d = 1'b0;
         end
         slot_full__d = slot_state__d == full;
     end
 
 endmodule // uniform_pulse_gen__core
+
+
+module uniform_pulse_gen__core__dda_overrange_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__dda_overrange_reg
+
+
+module uniform_pulse_gen__core__dda_pulse_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__dda_pulse_reg
+
+
+module uniform_pulse_gen__core__dda_ticked(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // uniform_pulse_gen__core__dda_ticked
 
 
 module uniform_pulse_gen__core__error(d,q,clock);

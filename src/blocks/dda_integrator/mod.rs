@@ -40,15 +40,12 @@
 //!   M - J again, then the normal distribution resumes.
 
 pub mod model;
-mod period_dda;
 
 use rust_hdl::prelude::*;
 
 use crate::blocks::port_doc::{port, PortDoc};
 
 use crate::blocks::carry_select_adder::CarrySelectAdder;
-
-pub use period_dda::PeriodDda;
 
 /// One line for the export header and the `rtl-out` index.
 pub const SUMMARY: &str = "DDA integrator: exactly floor(t*J/M) evenly spread pulses after t ticks";

@@ -138,7 +138,9 @@ crate::lockstep_model!(DdaIntegratorModel {
     step: |model, inputs| model.step(*inputs),
 });
 
-/// Inputs of one clock cycle of a [`super::PeriodDda`].
+/// Inputs of one clock cycle of the DDA mode of a
+/// [`UniformPulseCore`](crate::blocks::uniform_pulse_gen::UniformPulseCore)
+/// (its `dda_` ports; the generator's inputs idle).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PeriodDdaInputs {
     /// Synchronous reset.
@@ -155,24 +157,43 @@ pub struct PeriodDdaInputs {
     pub clear_overrange: bool,
 }
 
+/// Where the `dda_` ports sit in `UniformPulseCore`'s port vectors.
+const CORE_INPUTS: usize = 20;
+const CORE_DDA_INPUTS: usize = 14;
+const CORE_DDA_OUTPUTS: usize = 10;
+
 impl PeriodDdaInputs {
-    /// The RTL's input vector, in its port order.
+    /// The core's input vector, in its port order: `reset`, the
+    /// generator's inputs at 0 (no tick, no load, no plan), then the
+    /// `dda_` ports.
     pub fn to_vector(&self) -> Vec<u64> {
-        vec![
-            self.reset as u64,
+        let mut v = vec![0; CORE_INPUTS];
+        v[0] = self.reset as u64;
+        v[CORE_DDA_INPUTS..].copy_from_slice(&[
             self.tick as u64,
             self.reload as u64,
             self.integrand,
+            (self.integrand != 0) as u64,
             self.modulus_negated,
             self.clear_overrange as u64,
-        ]
+        ]);
+        v
     }
 }
 
-/// Plain-Rust, cycle-exact model of a [`super::PeriodDda`]: the
-/// [`DdaIntegratorModel`] it stands in for, fed J and M = -(-M), and a
-/// check of the contract that lets the block keep no accumulator: the
-/// phase is 0 at every `reload`.
+impl DdaIntegratorOutputs {
+    /// Reads `dda_pulse` and `dda_overrange` from a `UniformPulseCore`'s
+    /// output vector.
+    pub fn from_core_vector(v: &[u64]) -> Self {
+        Self::from_vector(&v[CORE_DDA_OUTPUTS..])
+    }
+}
+
+/// Plain-Rust, cycle-exact model of the DDA mode of a
+/// [`UniformPulseCore`](crate::blocks::uniform_pulse_gen::UniformPulseCore):
+/// the [`DdaIntegratorModel`] it stands in for, fed J and M = -(-M), and a
+/// check of the contract that lets the core keep no accumulator: the
+/// phase is 0 at every `reload` with J != 0.
 #[derive(Clone, Debug)]
 pub struct PeriodDdaModel {
     dda: DdaIntegratorModel,
@@ -182,7 +203,7 @@ pub struct PeriodDdaModel {
 }
 
 impl PeriodDdaModel {
-    /// The model of a `PeriodDda<width, width + 1>`.
+    /// The model of the DDA mode of a `UniformPulseCore<width, width + 1>`.
     pub fn new(width: u32) -> Self {
         Self {
             dda: DdaIntegratorModel::new(width),
@@ -192,7 +213,7 @@ impl PeriodDdaModel {
     }
 
     /// The accumulator a `reload` found not at 0, if one did: the
-    /// stimulus broke the contract, and the block need not match.
+    /// stimulus broke the contract, and the core need not match.
     pub fn broken_contract(&self) -> Option<u128> {
         self.broken_contract
     }
@@ -210,15 +231,27 @@ impl PeriodDdaModel {
         });
         // The tick taken at this edge was the old period's last: the phase
         // must be back at 0 for the reloaded error to be the DDA's.
-        if inputs.reload && self.dda.accumulator() != 0 && self.broken_contract.is_none() {
+        if inputs.reload
+            && inputs.integrand != 0
+            && self.dda.accumulator() != 0
+            && self.broken_contract.is_none()
+        {
             self.broken_contract = Some(self.dda.accumulator());
         }
         out
     }
 }
 
-crate::lockstep_model!(PeriodDdaModel {
-    inputs: PeriodDdaInputs,
-    outputs: DdaIntegratorOutputs,
-    step: |model, inputs| model.step(*inputs),
-});
+impl crate::sim::LockstepModel for PeriodDdaModel {
+    type Inputs = PeriodDdaInputs;
+    type Outputs = DdaIntegratorOutputs;
+    fn input_vector(inputs: &PeriodDdaInputs, vector: &mut Vec<u64>) {
+        *vector = inputs.to_vector();
+    }
+    fn read_outputs(&self, vector: &[u64]) -> DdaIntegratorOutputs {
+        DdaIntegratorOutputs::from_core_vector(vector)
+    }
+    fn expected(&mut self, inputs: &PeriodDdaInputs) -> DdaIntegratorOutputs {
+        self.step(*inputs)
+    }
+}

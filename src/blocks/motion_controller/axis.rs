@@ -15,7 +15,6 @@ use super::axis_io::AxisIo;
 use super::registers::{fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
 use super::{ERROR_BITS, PERIOD_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
-use crate::blocks::dda_integrator::PeriodDda;
 use crate::blocks::pulse_counter::PulseCounter;
 use crate::blocks::quadrature_decoder::QuadratureDecoder;
 use crate::blocks::step_output::StepOutput;
@@ -159,8 +158,9 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub code_negative: Signal<Out, Bit>,
 
     fifo: CommandFifo<N, NP1, ENTRY_BITS>,
-    dda: PeriodDda<PERIOD_BITS, ERROR_BITS>,
-    uniform: UniformPulseCore<PERIOD_BITS>,
+    /// The uniform generator, whose engine also runs the DDA (its DDA
+    /// mode, while J != 0).
+    uniform: UniformPulseCore<PERIOD_BITS, ERROR_BITS>,
     stage: StepOutput<16, STAGE_PENDING_BITS>,
     position: PulseCounter<32>,
     encoder: QuadratureDecoder<32, 8, 16>,
@@ -180,6 +180,9 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     tick_d: DFF<Bit>,
     /// The DDA's J for the running period (0 when stopped or uniform).
     integrand: DFF<Bits<PERIOD_BITS>>,
+    /// J != 0, registered with J (the entry's nonzero flag): the DDA's
+    /// decisions come from a flip-flop, not a 16-input OR.
+    integrand_nonzero: DFF<Bit>,
     /// J (and M) changed at the last edge: the DDA reloads its error.
     dda_reload: DFF<Bit>,
     /// AXIS_STATUS.INTERP_OVERRANGE: an entry did not fit the
@@ -326,8 +329,11 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             code_out_of_range: Default::default(),
             code_negative: Default::default(),
             fifo: Default::default(),
-            dda: Default::default(),
-            uniform: Default::default(),
+            uniform: if uniform {
+                UniformPulseCore::default()
+            } else {
+                UniformPulseCore::without_generator()
+            },
             stage: Default::default(),
             position: Default::default(),
             encoder: Default::default(),
@@ -338,6 +344,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             underrun_d: Default::default(),
             tick_d: Default::default(),
             integrand: Default::default(),
+            integrand_nonzero: Default::default(),
             dda_reload: Default::default(),
             overrange_flag: Default::default(),
             overflow_flag: Default::default(),
@@ -436,6 +443,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             underrun_d,
             tick_d,
             integrand,
+            integrand_nonzero,
             dda_reload,
             overrange_flag,
             overflow_flag,
@@ -461,7 +469,6 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             encoder_error_prev
         );
         self.fifo.clock.next = self.clock.val();
-        self.dda.clock.next = self.clock.val();
         self.uniform.clock.next = self.clock.val();
         self.stage.clock.next = self.clock.val();
         self.position.clock.next = self.clock.val();
@@ -506,8 +513,9 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.count.next = self.popped.q.val().get_bits::<PERIOD_BITS>(0);
         // The uniform generator's outputs, and its division request, are
         // taken only in a build with the generator: without it they are
-        // constant 0 and the generator (and the controller's divider) has
-        // no fanout, so synthesis removes them.
+        // constant 0, its core is built `without_generator`, and only the
+        // engine of its DDA mode is left (the controller's planner has no
+        // fanout): synthesis removes the rest.
         // (One assignment each, no default-then-override: see the
         // controller's divider grant.) The dividend and divisor matter only
         // with a request.
@@ -529,7 +537,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             & ((self.analog_active.q.val() & self.popped.q.val().get_bit(18))
                 | (!self.analog_active.q.val() & self.too_large.val()));
         if self.saturated.q.val()
-            | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
+            | (self.uniform.dda_overrange.val() & !self.dda_overrange_prev.q.val())
             | (self.uniform_overrange.val() & !self.uniform_overrange_prev.q.val())
         {
             self.overrange_flag.d.next = true;
@@ -556,8 +564,10 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.forward.d.next = !self.popped.q.val().get_bit(17);
             if self.uniform_active.q.val() | self.analog_active.q.val() {
                 self.integrand.d.next = self.zero_count.val();
+                self.integrand_nonzero.d.next = false;
             } else {
                 self.integrand.d.next = self.count.val();
+                self.integrand_nonzero.d.next = self.code_nonzero.val();
             }
             if self.analog_active.q.val() {
                 self.code_forward.d.next =
@@ -568,6 +578,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // The controller sets the analog channels to 0 when RUN falls.
         if self.underrun_d.q.val() | self.halt.val() {
             self.integrand.d.next = self.zero_count.val();
+            self.integrand_nonzero.d.next = false;
             self.code_forward.d.next = false;
             self.code_backward.d.next = false;
         }
@@ -581,19 +592,21 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // DDA's phase is 0 and the error is reloaded in the next clock.
         self.dda_reload.d.next =
             self.popped_valid.q.val() | self.underrun_d.q.val() | self.halt.val();
-        self.dda.reset.next = self.reset.val() | self.halt.val();
-        self.dda.tick.next = self.tick_d.q.val();
-        self.dda.reload.next = self.dda_reload.q.val();
-        self.dda.integrand.next = self.integrand.q.val();
-        self.dda.modulus_negated.next = self.modulus_negated.val();
-        self.dda.clear_overrange.next = self.clear_faults.val();
+        self.uniform.dda_tick.next = self.tick_d.q.val();
+        self.uniform.dda_reload.next = self.dda_reload.q.val();
+        self.uniform.dda_integrand.next = self.integrand.q.val();
+        self.uniform.dda_active.next = self.integrand_nonzero.q.val();
+        self.uniform.dda_modulus_negated.next = self.modulus_negated.val();
+        self.uniform.dda_clear_overrange.next = self.clear_faults.val();
 
         // The uniform generator runs each loaded period after its set-up
         // time; the direction moves with the period it belongs to: `ready`
         // rises in the clock after the edge that starts a loaded period,
         // together with that period's first pulse.
         self.uniform.reset.next = self.reset.val() | self.halt.val();
-        self.uniform.tick.next = self.tick_d.q.val();
+        // Without the generator (`has_uniform` = 0) no tick reaches it, so
+        // no period starts and only the DDA mode of its engine is left.
+        self.uniform.tick.next = self.has_uniform.val() & self.tick_d.q.val();
         self.uniform.period.next = self.period_active.val();
         self.uniform.count.next = self.count.val();
         // AXIS_CONFIG.INTERLEAVED
@@ -634,7 +647,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.candidate.next = self.uniform_pulse.val() & !self.uniform_pulse_prev.q.val();
             self.candidate_forward.next = self.uniform_forward.val();
         } else {
-            self.candidate.next = self.dda.pulse.val();
+            self.candidate.next = self.uniform.dda_pulse.val();
             self.candidate_forward.next = self.forward_2.q.val();
         }
         self.candidate_blocked.next = self.io.block_backward.val();
@@ -734,11 +747,11 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // Events: each rise of a sub-block's sticky flag, and each
         // saturated entry.
         self.overrun_prev.d.next = self.stage.overrun.val();
-        self.dda_overrange_prev.d.next = self.dda.overrange.val();
+        self.dda_overrange_prev.d.next = self.uniform.dda_overrange.val();
         self.uniform_overrange_prev.d.next = self.uniform_overrange.val();
         self.uniform_overflow_prev.d.next = self.uniform_overflow.val();
         self.fault_event.next = (self.stage.overrun.val() & !self.overrun_prev.q.val())
-            | (self.dda.overrange.val() & !self.dda_overrange_prev.q.val())
+            | (self.uniform.dda_overrange.val() & !self.dda_overrange_prev.q.val())
             | (self.uniform_overrange.val() & !self.uniform_overrange_prev.q.val())
             | (self.uniform_overflow.val() & !self.uniform_overflow_prev.q.val())
             | self.saturated.q.val();
@@ -771,6 +784,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.underrun_d.d.next = false;
             self.tick_d.d.next = false;
             self.integrand.d.next = self.zero_count.val();
+            self.integrand_nonzero.d.next = false;
             self.dda_reload.d.next = false;
             self.overrange_flag.d.next = false;
             self.overflow_flag.d.next = false;

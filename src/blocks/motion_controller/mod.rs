@@ -11,9 +11,9 @@
 //! fault; a watchdog stops everything when the CPU goes silent.
 //!
 //! Composition (per axis): [`CommandFifo`](crate::blocks::command_fifo),
-//! [`PeriodDda`](crate::blocks::dda_integrator::PeriodDda) (the
-//! [`DdaIntegrator`](crate::blocks::dda_integrator) for whole periods),
-//! [`UniformPulseGen`](crate::blocks::uniform_pulse_gen),
+//! [`UniformPulseGen`](crate::blocks::uniform_pulse_gen) (whose engine
+//! also runs the axis's [`DdaIntegrator`](crate::blocks::dda_integrator),
+//! in its DDA mode),
 //! [`StepOutput`](crate::blocks::step_output),
 //! [`PulseCounter`](crate::blocks::pulse_counter) and
 //! [`QuadratureDecoder`](crate::blocks::quadrature_decoder); shared: a
@@ -381,13 +381,15 @@
 //! * **No read-first logic behind the FIFOs' RAMs**: each FIFO's own
 //!   bypass already hides a read that collides with a write
 //!   (`command_fifo`, proved).
-//! * **A DDA without an accumulator.** Every DDA period has all its
+//! * **One interpolator engine per axis.** Every DDA period has all its
 //!   PERIOD_TICKS ticks at one J, so the DDA's phase is 0 at each
-//!   boundary. Each axis's [`PeriodDda`](crate::blocks::dda_integrator::PeriodDda)
-//!   keeps only the Bresenham error and the step J - M, reloaded one
-//!   clock after J changes, with one adder; -M is formed once for all
-//!   axes. The controller's model keeps the accumulating
-//!   `DdaIntegrator` model, so the lockstep tests check the phase too.
+//!   boundary and the DDA needs no accumulator: its Bresenham error
+//!   e = acc + J - M, with the steps J - M and J, is the uniform
+//!   generator's error with its long and short steps. The axis's DDA is
+//!   the generator core's DDA mode (`UniformPulseCore`), reloaded one
+//!   clock after J changes; -M is formed once for all axes. The
+//!   controller's model keeps the accumulating `DdaIntegrator` model, so
+//!   the lockstep tests check the phase too.
 //!
 //! The DDA-only build
 //! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
@@ -579,7 +581,8 @@ pub const STAGE_PENDING_BITS: usize = 8;
 pub const PERIOD_BITS: usize = 16;
 
 /// Width of the axes' DDA error, PERIOD_BITS + 1: it lies in [-M, M) for a
-/// period of M ticks ([`PeriodDda`](crate::blocks::dda_integrator::PeriodDda)).
+/// period of M ticks (the DDA mode of
+/// [`UniformPulseCore`](crate::blocks::uniform_pulse_gen::UniformPulseCore)).
 pub const ERROR_BITS: usize = PERIOD_BITS + 1;
 
 /// One line for the export header and the `rtl-out` index.

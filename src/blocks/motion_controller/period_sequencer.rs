@@ -63,7 +63,8 @@ pub struct PeriodSequencer {
     /// The running period's length in base ticks, from its boundary on.
     pub period_active: Signal<Out, Bits<PERIOD_BITS>>,
     /// -`period_active` one clock late, in `ERROR_BITS` two's complement:
-    /// the DDAs' -M ([`PeriodDda`](crate::blocks::dda_integrator::PeriodDda)).
+    /// the DDAs' -M (the DDA mode of
+    /// [`UniformPulseCore`](crate::blocks::uniform_pulse_gen::UniformPulseCore)).
     pub modulus_negated: Signal<Out, Bits<ERROR_BITS>>,
     /// PERIOD_COUNT.
     pub period_count: Signal<Out, Bits<32>>,

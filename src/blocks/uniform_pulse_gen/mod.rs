@@ -138,8 +138,9 @@ pub struct UniformPulseGen<const W: usize> {
     pub overrange: Signal<Out, Bit>,
     /// Sticky overflow.
     pub overflow: Signal<Out, Bit>,
-    core: UniformPulseCore<W>,
+    core: UniformPulseCore<W, W>,
     planner: PeriodPlanner<W>,
+    zero: Constant<Bits<W>>,
 }
 
 impl<const W: usize> Default for UniformPulseGen<W> {
@@ -166,6 +167,7 @@ impl<const W: usize> Default for UniformPulseGen<W> {
             overflow: Default::default(),
             core: Default::default(),
             planner: Default::default(),
+            zero: Constant::new(0u64.into()),
         }
     }
 }
@@ -181,6 +183,13 @@ impl<const W: usize> Logic for UniformPulseGen<W> {
         self.core.mode.next = self.mode.val();
         self.core.load.next = self.load.val();
         self.core.clear_flags.next = self.clear_flags.val();
+        // No DDA mode: J = 0 leaves the engine to the generator.
+        self.core.dda_tick.next = false;
+        self.core.dda_reload.next = false;
+        self.core.dda_integrand.next = self.zero.val();
+        self.core.dda_active.next = false;
+        self.core.dda_modulus_negated.next = self.zero.val();
+        self.core.dda_clear_overrange.next = false;
         self.pulse.next = self.core.pulse.val();
         self.period_done.next = self.core.period_done.val();
         self.ready.next = self.core.ready.val();

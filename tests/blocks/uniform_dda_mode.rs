@@ -1,10 +1,11 @@
-//! `PeriodDda` (the controller axes' DDA): RTL against its model, the
-//! `DdaIntegrator` model it stands in for, under stimulus that keeps its
-//! contract (J and M change only between whole periods); every 4-bit J and
-//! M; and the contract check's own failure.
+//! The DDA mode of `UniformPulseCore` (the controller axes' DDA, in the
+//! uniform generator's engine), with and without the generator: RTL
+//! against its model, the `DdaIntegrator` model it stands in for, under
+//! stimulus that keeps its contract (J and M change only between whole
+//! periods); every 4-bit J and M; and the contract check's own failure.
 
 use motion_hdl::blocks::dda_integrator::model::{PeriodDdaInputs, PeriodDdaModel};
-use motion_hdl::blocks::dda_integrator::PeriodDda;
+use motion_hdl::blocks::uniform_pulse_gen::UniformPulseCore;
 use motion_hdl::blocks::width_mask;
 use motion_hdl::sim::Lockstep;
 use rand::rngs::StdRng;
@@ -84,22 +85,38 @@ fn random_stimulus(rng: &mut StdRng, cycles: usize, width: u32) -> Vec<PeriodDda
     out
 }
 
-fn run(width: u32, stimulus: &[PeriodDdaInputs]) {
-    let mut pair = match width {
-        16 => Lockstep::harness(
-            "period_dda",
-            PeriodDda::<16, 17>::default(),
-            PeriodDdaModel::new(16),
+/// The core under test: `W` data bits, with its generator or without.
+fn core(width: u32, generator: bool) -> Lockstep<PeriodDdaModel> {
+    let model = PeriodDdaModel::new(width);
+    match (width, generator) {
+        (16, true) => {
+            Lockstep::harness("uniform_dda", UniformPulseCore::<16, 17>::default(), model)
+        }
+        (16, false) => Lockstep::harness(
+            "uniform_dda",
+            UniformPulseCore::<16, 17>::without_generator(),
+            model,
         ),
-        4 => Lockstep::harness(
-            "period_dda",
-            PeriodDda::<4, 5>::default(),
-            PeriodDdaModel::new(4),
+        (4, true) => Lockstep::harness("uniform_dda", UniformPulseCore::<4, 5>::default(), model),
+        (4, false) => Lockstep::harness(
+            "uniform_dda",
+            UniformPulseCore::<4, 5>::without_generator(),
+            model,
         ),
         _ => unreachable!("widths under test: 4 and 16"),
-    };
+    }
+}
+
+fn run(width: u32, stimulus: &[PeriodDdaInputs]) {
+    for generator in [true, false] {
+        run_core(width, generator, stimulus);
+    }
+}
+
+fn run_core(width: u32, generator: bool, stimulus: &[PeriodDdaInputs]) {
+    let mut pair = core(width, generator);
     pair.run_all(stimulus, |_, _, _| {})
-        .unwrap_or_else(|e| panic!("W={width}: {e}"));
+        .unwrap_or_else(|e| panic!("W={width}, generator {generator}: {e}"));
     assert_eq!(pair.cycles(), stimulus.len() as u64);
     assert_eq!(
         pair.model().broken_contract(),
@@ -132,7 +149,7 @@ fn every_4_bit_integrand_and_modulus_matches_the_dda_model() {
 }
 
 /// The model's contract check fails on a reload in the middle of a
-/// period, and the block then pulses differently from the DDA: the
+/// period, and the core then pulses differently from the DDA: the
 /// contract is what lets it keep no accumulator.
 #[test]
 fn a_reload_in_the_middle_of_a_period_breaks_the_contract() {
@@ -141,11 +158,7 @@ fn a_reload_in_the_middle_of_a_period_breaks_the_contract() {
     push_periods(&mut stimulus, &mut rng, 4, (5, 13), 1, 1.0);
     stimulus.truncate(6);
     push_periods(&mut stimulus, &mut rng, 4, (3, 7), 2, 1.0);
-    let mut pair = Lockstep::harness(
-        "period_dda",
-        PeriodDda::<4, 5>::default(),
-        PeriodDdaModel::new(4),
-    );
+    let mut pair = core(4, true);
     let outcome = pair.run_all(&stimulus, |_, _, _| {});
     assert!(pair.model().broken_contract().is_some());
     assert!(
