@@ -157,19 +157,38 @@ pub struct PeriodDdaInputs {
     pub clear_overrange: bool,
 }
 
-/// Where the `dda_` ports sit in `UniformPulseCore`'s port vectors.
-const CORE_INPUTS: usize = 20;
-const CORE_DDA_INPUTS: usize = 14;
-const CORE_DDA_OUTPUTS: usize = 10;
+/// Where the `dda_` ports sit in `UniformPulseCore`'s port vectors: the
+/// number of inputs, the first `dda_` input and the first `dda_` output,
+/// read from the core's own port lists (its `vector_ports!`).
+fn core_layout() -> (usize, usize, usize) {
+    use crate::sim::VectorPorts;
+    type Core = crate::blocks::uniform_pulse_gen::UniformPulseCore<4, 5>;
+    static LAYOUT: std::sync::OnceLock<(usize, usize, usize)> = std::sync::OnceLock::new();
+    *LAYOUT.get_or_init(|| {
+        let inputs = Core::input_names();
+        let first = |names: &[String], port: &str| {
+            names
+                .iter()
+                .position(|name| name == port)
+                .expect("UniformPulseCore has its dda_ ports")
+        };
+        (
+            inputs.len(),
+            first(&inputs, "dda_tick"),
+            first(&Core::output_names(), "dda_pulse"),
+        )
+    })
+}
 
 impl PeriodDdaInputs {
     /// The core's input vector, in its port order: `reset`, the
     /// generator's inputs at 0 (no tick, no load, no plan), then the
     /// `dda_` ports.
     pub fn to_vector(&self) -> Vec<u64> {
-        let mut v = vec![0; CORE_INPUTS];
+        let (inputs, dda_inputs, _) = core_layout();
+        let mut v = vec![0; inputs];
         v[0] = self.reset as u64;
-        v[CORE_DDA_INPUTS..].copy_from_slice(&[
+        v[dda_inputs..].copy_from_slice(&[
             self.tick as u64,
             self.reload as u64,
             self.integrand,
@@ -185,7 +204,7 @@ impl DdaIntegratorOutputs {
     /// Reads `dda_pulse` and `dda_overrange` from a `UniformPulseCore`'s
     /// output vector.
     pub fn from_core_vector(v: &[u64]) -> Self {
-        Self::from_vector(&v[CORE_DDA_OUTPUTS..])
+        Self::from_vector(&v[core_layout().2..])
     }
 }
 
