@@ -3378,7 +3378,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -3456,9 +3458,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -3476,11 +3478,11 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -3649,6 +3651,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller__axes__0__fifo fifo(
@@ -4181,8 +4186,8 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -4214,8 +4219,20 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -4243,9 +4260,9 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -4416,20 +4433,20 @@ module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sa
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -4502,11 +4519,11 @@ module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sa
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -4517,8 +4534,8 @@ module motion_controller__axes__0__encoder(clock,reset,a,b,index,filter,clear,sa
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -4941,13 +4958,13 @@ endmodule // motion_controller__axes__0__encoder__count_time_reg
 module motion_controller__axes__0__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -5506,13 +5523,13 @@ endmodule // motion_controller__axes__0__encoder__index_meta
 module motion_controller__axes__0__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -5563,13 +5580,13 @@ endmodule // motion_controller__axes__0__encoder__index_sync
 module motion_controller__axes__0__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -6724,27 +6741,27 @@ module motion_controller__axes__0__position(clock,reset,up,down,clear,load,load_
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller__axes__0__position__value value(
@@ -6810,13 +6827,13 @@ endmodule // motion_controller__axes__0__position__overridden
 module motion_controller__axes__0__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -9603,7 +9620,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -9681,9 +9700,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -9701,11 +9720,11 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -9874,6 +9893,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller__axes__1__fifo fifo(
@@ -10406,8 +10428,8 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -10439,8 +10461,20 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -10468,9 +10502,9 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -10641,20 +10675,20 @@ module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sa
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -10727,11 +10761,11 @@ module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sa
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -10742,8 +10776,8 @@ module motion_controller__axes__1__encoder(clock,reset,a,b,index,filter,clear,sa
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -11166,13 +11200,13 @@ endmodule // motion_controller__axes__1__encoder__count_time_reg
 module motion_controller__axes__1__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -11731,13 +11765,13 @@ endmodule // motion_controller__axes__1__encoder__index_meta
 module motion_controller__axes__1__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -11788,13 +11822,13 @@ endmodule // motion_controller__axes__1__encoder__index_sync
 module motion_controller__axes__1__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -12949,27 +12983,27 @@ module motion_controller__axes__1__position(clock,reset,up,down,clear,load,load_
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller__axes__1__position__value value(
@@ -13035,13 +13069,13 @@ endmodule // motion_controller__axes__1__position__overridden
 module motion_controller__axes__1__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -15828,7 +15862,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b1;
     localparam  has_analog = 1'b0;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -15906,9 +15942,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -15926,11 +15962,11 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -16099,6 +16135,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller__axes__2__fifo fifo(
@@ -16631,8 +16670,8 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -16664,8 +16703,20 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -16693,9 +16744,9 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -16866,20 +16917,20 @@ module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sa
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -16952,11 +17003,11 @@ module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sa
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -16967,8 +17018,8 @@ module motion_controller__axes__2__encoder(clock,reset,a,b,index,filter,clear,sa
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -17391,13 +17442,13 @@ endmodule // motion_controller__axes__2__encoder__count_time_reg
 module motion_controller__axes__2__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -17956,13 +18007,13 @@ endmodule // motion_controller__axes__2__encoder__index_meta
 module motion_controller__axes__2__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -18013,13 +18064,13 @@ endmodule // motion_controller__axes__2__encoder__index_sync
 module motion_controller__axes__2__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -19174,27 +19225,27 @@ module motion_controller__axes__2__position(clock,reset,up,down,clear,load,load_
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller__axes__2__position__value value(
@@ -19260,13 +19311,13 @@ endmodule // motion_controller__axes__2__position__overridden
 module motion_controller__axes__2__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -28849,8 +28900,8 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h301;
-    localparam  config_value = 32'h810403;
+    localparam  version_value = 32'h400;
+    localparam  config_value = 32'h610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
     localparam  m_state_watchdog_expired = 32'h4;

@@ -3379,7 +3379,9 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b0;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -3457,9 +3459,9 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -3477,11 +3479,11 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -3650,6 +3652,9 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller_dda__axes__0__fifo fifo(
@@ -4182,8 +4187,8 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -4215,8 +4220,20 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -4244,9 +4261,9 @@ module motion_controller_dda__axes__0(clock,reset,tick,start,halt,pop,underrun,p
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -4417,20 +4434,20 @@ module motion_controller_dda__axes__0__encoder(clock,reset,a,b,index,filter,clea
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -4503,11 +4520,11 @@ module motion_controller_dda__axes__0__encoder(clock,reset,a,b,index,filter,clea
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -4518,8 +4535,8 @@ module motion_controller_dda__axes__0__encoder(clock,reset,a,b,index,filter,clea
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -4942,13 +4959,13 @@ endmodule // motion_controller_dda__axes__0__encoder__count_time_reg
 module motion_controller_dda__axes__0__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -5507,13 +5524,13 @@ endmodule // motion_controller_dda__axes__0__encoder__index_meta
 module motion_controller_dda__axes__0__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -5564,13 +5581,13 @@ endmodule // motion_controller_dda__axes__0__encoder__index_sync
 module motion_controller_dda__axes__0__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -6725,27 +6742,27 @@ module motion_controller_dda__axes__0__position(clock,reset,up,down,clear,load,l
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller_dda__axes__0__position__value value(
@@ -6811,13 +6828,13 @@ endmodule // motion_controller_dda__axes__0__position__overridden
 module motion_controller_dda__axes__0__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -9604,7 +9621,9 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b0;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -9682,9 +9701,9 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -9702,11 +9721,11 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -9875,6 +9894,9 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller_dda__axes__1__fifo fifo(
@@ -10407,8 +10429,8 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -10440,8 +10462,20 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -10469,9 +10503,9 @@ module motion_controller_dda__axes__1(clock,reset,tick,start,halt,pop,underrun,p
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -10642,20 +10676,20 @@ module motion_controller_dda__axes__1__encoder(clock,reset,a,b,index,filter,clea
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -10728,11 +10762,11 @@ module motion_controller_dda__axes__1__encoder(clock,reset,a,b,index,filter,clea
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -10743,8 +10777,8 @@ module motion_controller_dda__axes__1__encoder(clock,reset,a,b,index,filter,clea
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -11167,13 +11201,13 @@ endmodule // motion_controller_dda__axes__1__encoder__count_time_reg
 module motion_controller_dda__axes__1__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -11732,13 +11766,13 @@ endmodule // motion_controller_dda__axes__1__encoder__index_meta
 module motion_controller_dda__axes__1__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -11789,13 +11823,13 @@ endmodule // motion_controller_dda__axes__1__encoder__index_sync
 module motion_controller_dda__axes__1__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -12950,27 +12984,27 @@ module motion_controller_dda__axes__1__position(clock,reset,up,down,clear,load,l
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller_dda__axes__1__position__value value(
@@ -13036,13 +13070,13 @@ endmodule // motion_controller_dda__axes__1__position__overridden
 module motion_controller_dda__axes__1__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -15829,7 +15863,9 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b0;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -15907,9 +15943,9 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -15927,11 +15963,11 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -16100,6 +16136,9 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller_dda__axes__2__fifo fifo(
@@ -16632,8 +16671,8 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -16665,8 +16704,20 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -16694,9 +16745,9 @@ module motion_controller_dda__axes__2(clock,reset,tick,start,halt,pop,underrun,p
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -16867,20 +16918,20 @@ module motion_controller_dda__axes__2__encoder(clock,reset,a,b,index,filter,clea
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -16953,11 +17004,11 @@ module motion_controller_dda__axes__2__encoder(clock,reset,a,b,index,filter,clea
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -16968,8 +17019,8 @@ module motion_controller_dda__axes__2__encoder(clock,reset,a,b,index,filter,clea
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -17392,13 +17443,13 @@ endmodule // motion_controller_dda__axes__2__encoder__count_time_reg
 module motion_controller_dda__axes__2__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -17957,13 +18008,13 @@ endmodule // motion_controller_dda__axes__2__encoder__index_meta
 module motion_controller_dda__axes__2__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -18014,13 +18065,13 @@ endmodule // motion_controller_dda__axes__2__encoder__index_sync
 module motion_controller_dda__axes__2__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -19175,27 +19226,27 @@ module motion_controller_dda__axes__2__position(clock,reset,up,down,clear,load,l
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller_dda__axes__2__position__value value(
@@ -19261,13 +19312,13 @@ endmodule // motion_controller_dda__axes__2__position__overridden
 module motion_controller_dda__axes__2__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -28850,8 +28901,8 @@ module motion_controller_dda__registers(clock,reset,address,write_data,write,run
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h301;
-    localparam  config_value = 32'h1810403;
+    localparam  version_value = 32'h400;
+    localparam  config_value = 32'h1610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
     localparam  m_state_watchdog_expired = 32'h4;

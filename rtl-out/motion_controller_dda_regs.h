@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000301UL
+#define MC_VERSION_RESET 0x00000400UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
-#define MC_VERSION_PATCH_RESET 0x1UL
+#define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x3UL
+#define MC_VERSION_MINOR_RESET 0x4UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -43,7 +43,7 @@
 #define MC_CONFIG_OFFSET 0x0008UL
 #define MC_CONFIG_ADDR16 0x0004UL
 #define MC_CONFIG_ADDR8 0x0008UL
-#define MC_CONFIG_RESET 0x01810403UL
+#define MC_CONFIG_RESET 0x01610403UL
 #define MC_CONFIG_AXES_SHIFT 0UL /* RO number of axes K */
 #define MC_CONFIG_AXES_MASK 0x000000ffUL
 #define MC_CONFIG_AXES_RESET 0x3UL
@@ -55,7 +55,7 @@
 #define MC_CONFIG_TIMER_BITS_RESET 0x10UL
 #define MC_CONFIG_POSITION_BITS_SHIFT 18UL /* RO width of the position counters */
 #define MC_CONFIG_POSITION_BITS_MASK 0x00fc0000UL
-#define MC_CONFIG_POSITION_BITS_RESET 0x20UL
+#define MC_CONFIG_POSITION_BITS_RESET 0x18UL
 #define MC_CONFIG_DDA_ONLY_SHIFT 24UL /* RO 1 = no uniform pulse generators in this build: AXIS_CONFIG.UNIFORM and INTERLEAVED read 0 and ignore writes, every axis runs its DDA */
 #define MC_CONFIG_DDA_ONLY_MASK 0x01000000UL
 #define MC_CONFIG_DDA_ONLY_RESET 0x1UL
@@ -490,25 +490,25 @@
 #define MC_ENC_SAMPLE_RATE_VALUE_MASK 0x000000ffUL
 #define MC_ENC_SAMPLE_RATE_VALUE_RESET 0x0UL
 
-/* CMD_POSITION: commanded position: steps emitted at the pins, signed */
+/* CMD_POSITION: commanded position: steps emitted at the pins, signed, modulo 2^CONFIG.POSITION_BITS, its sign carried up to bit 31 */
 #define MC_CMD_POSITION_COUNT 3UL
 #define MC_CMD_POSITION_INDEX(n) (0x0028UL + (unsigned long)(n) * 0x20UL)
 #define MC_CMD_POSITION_OFFSET(n) (MC_CMD_POSITION_INDEX(n) * 4UL)
 #define MC_CMD_POSITION_ADDR16(n) (MC_CMD_POSITION_INDEX(n) * 2UL)
 #define MC_CMD_POSITION_ADDR8(n) (MC_CMD_POSITION_INDEX(n) * 4UL)
 #define MC_CMD_POSITION_RESET 0x00000000UL
-#define MC_CMD_POSITION_VALUE_SHIFT 0UL /* RO commanded position: steps emitted at the pins, signed */
+#define MC_CMD_POSITION_VALUE_SHIFT 0UL /* RO commanded position: steps emitted at the pins, signed, modulo 2^CONFIG.POSITION_BITS, its sign carried up to bit 31 */
 #define MC_CMD_POSITION_VALUE_MASK 0xffffffffUL
 #define MC_CMD_POSITION_VALUE_RESET 0x0UL
 
-/* ACT_POSITION: actual position: encoder count, signed */
+/* ACT_POSITION: actual position: encoder count, signed, modulo 2^CONFIG.POSITION_BITS, its sign carried up to bit 31 */
 #define MC_ACT_POSITION_COUNT 3UL
 #define MC_ACT_POSITION_INDEX(n) (0x0029UL + (unsigned long)(n) * 0x20UL)
 #define MC_ACT_POSITION_OFFSET(n) (MC_ACT_POSITION_INDEX(n) * 4UL)
 #define MC_ACT_POSITION_ADDR16(n) (MC_ACT_POSITION_INDEX(n) * 2UL)
 #define MC_ACT_POSITION_ADDR8(n) (MC_ACT_POSITION_INDEX(n) * 4UL)
 #define MC_ACT_POSITION_RESET 0x00000000UL
-#define MC_ACT_POSITION_VALUE_SHIFT 0UL /* RO actual position: encoder count, signed */
+#define MC_ACT_POSITION_VALUE_SHIFT 0UL /* RO actual position: encoder count, signed, modulo 2^CONFIG.POSITION_BITS, its sign carried up to bit 31 */
 #define MC_ACT_POSITION_VALUE_MASK 0xffffffffUL
 #define MC_ACT_POSITION_VALUE_RESET 0x0UL
 

@@ -3380,7 +3380,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -3458,9 +3460,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -3478,11 +3480,11 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -3651,6 +3653,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller_servo__axes__0__fifo fifo(
@@ -4183,8 +4188,8 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -4216,8 +4221,20 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -4245,9 +4262,9 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -4418,20 +4435,20 @@ module motion_controller_servo__axes__0__encoder(clock,reset,a,b,index,filter,cl
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -4504,11 +4521,11 @@ module motion_controller_servo__axes__0__encoder(clock,reset,a,b,index,filter,cl
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -4519,8 +4536,8 @@ module motion_controller_servo__axes__0__encoder(clock,reset,a,b,index,filter,cl
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -4943,13 +4960,13 @@ endmodule // motion_controller_servo__axes__0__encoder__count_time_reg
 module motion_controller_servo__axes__0__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -5508,13 +5525,13 @@ endmodule // motion_controller_servo__axes__0__encoder__index_meta
 module motion_controller_servo__axes__0__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -5565,13 +5582,13 @@ endmodule // motion_controller_servo__axes__0__encoder__index_sync
 module motion_controller_servo__axes__0__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -6726,27 +6743,27 @@ module motion_controller_servo__axes__0__position(clock,reset,up,down,clear,load
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller_servo__axes__0__position__value value(
@@ -6812,13 +6829,13 @@ endmodule // motion_controller_servo__axes__0__position__overridden
 module motion_controller_servo__axes__0__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -9605,7 +9622,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -9683,9 +9702,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -9703,11 +9722,11 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -9876,6 +9895,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller_servo__axes__1__fifo fifo(
@@ -10408,8 +10430,8 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -10441,8 +10463,20 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -10470,9 +10504,9 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -10643,20 +10677,20 @@ module motion_controller_servo__axes__1__encoder(clock,reset,a,b,index,filter,cl
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -10729,11 +10763,11 @@ module motion_controller_servo__axes__1__encoder(clock,reset,a,b,index,filter,cl
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -10744,8 +10778,8 @@ module motion_controller_servo__axes__1__encoder(clock,reset,a,b,index,filter,cl
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -11168,13 +11202,13 @@ endmodule // motion_controller_servo__axes__1__encoder__count_time_reg
 module motion_controller_servo__axes__1__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -11733,13 +11767,13 @@ endmodule // motion_controller_servo__axes__1__encoder__index_meta
 module motion_controller_servo__axes__1__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -11790,13 +11824,13 @@ endmodule // motion_controller_servo__axes__1__encoder__index_sync
 module motion_controller_servo__axes__1__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -12951,27 +12985,27 @@ module motion_controller_servo__axes__1__position(clock,reset,up,down,clear,load
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller_servo__axes__1__position__value value(
@@ -13037,13 +13071,13 @@ endmodule // motion_controller_servo__axes__1__position__overridden
 module motion_controller_servo__axes__1__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -15830,7 +15864,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
-    localparam  zero32 = 32'h0;
+    localparam  zero_position = 24'h0;
+    localparam  position_extension = 32'hff000000;
+    localparam  position_sign = 24'h800000;
     localparam  zero_count = 16'h0;
     localparam  zero_entry = 20'h0;
 
@@ -15908,9 +15944,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  position__down;
     reg  position__clear;
     reg  position__load;
-    reg  [31:0] position__load_value;
-    reg  [31:0] position__compare_value;
-    wire  [31:0] position__count;
+    reg  [23:0] position__load_value;
+    reg  [23:0] position__compare_value;
+    wire  [23:0] position__count;
     wire  position__compare_match;
     wire  position__pulse_overridden;
     reg  encoder__clock;
@@ -15928,11 +15964,11 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  encoder__index_once;
     reg  encoder__index_rearm;
     reg  encoder__clear_error;
-    wire  [31:0] encoder__count;
+    wire  [23:0] encoder__count;
     wire  encoder__dir;
     wire  encoder__error;
     wire  encoder__index_seen;
-    wire  [31:0] encoder__index_count;
+    wire  [23:0] encoder__index_count;
     wire  [15:0] encoder__count_time;
     wire  [15:0] encoder__timestamp;
     reg  io__clock;
@@ -16101,6 +16137,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  uniform_running;
     reg  uniform_overrange;
     reg  uniform_overflow;
+    reg  [31:0] cmd_word;
+    reg  [31:0] act_word;
+    reg  [31:0] index_word;
 
     // Sub module instances
     motion_controller_servo__axes__2__fifo fifo(
@@ -16633,8 +16672,8 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         position__clear = clear_position & ~stage__emitted;
         clear_position_pending__d = clear_position & stage__emitted;
         position__load = 1'b0;
-        position__load_value = zero32;
-        position__compare_value = zero32;
+        position__load_value = zero_position;
+        position__compare_value = zero_position;
         encoder__reset = reset;
         encoder__a = enc_a;
         encoder__b = enc_b;
@@ -16666,8 +16705,20 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         io__request_forward = request_forward__q;
         io__pulse = candidate | code_forward__q | code_backward__q;
         io__pulse_forward = (analog_active__q & code_forward__q) | (~analog_active__q & candidate_forward);
-        io__cmd_position = position__count;
-        io__act_position = encoder__count;
+        cmd_word = ((position__count) & 32'hffffffff);
+        if ((position__count & position_sign) != zero_position) begin
+            cmd_word = cmd_word | position_extension;
+        end
+        act_word = ((encoder__count) & 32'hffffffff);
+        if ((encoder__count & position_sign) != zero_position) begin
+            act_word = act_word | position_extension;
+        end
+        index_word = ((encoder__index_count) & 32'hffffffff);
+        if ((encoder__index_count & position_sign) != zero_position) begin
+            index_word = index_word | position_extension;
+        end
+        io__cmd_position = cmd_word;
+        io__act_position = act_word;
         drive_enable = io__drive_enable;
         limit_held = io__limit_held;
         alarm_held = io__alarm_held;
@@ -16695,9 +16746,9 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         registers__step_busy = stage__busy;
         registers__uniform_running = uniform_running;
         registers__step_mode_invalid = stage__mode_invalid;
-        registers__cmd_position = position__count;
-        registers__act_position = encoder__count;
-        registers__index_position = encoder__index_count;
+        registers__cmd_position = cmd_word;
+        registers__act_position = act_word;
+        registers__index_position = index_word;
         registers__io_read_data = io__read_data;
         read_data = registers__read_data;
         if (reset) begin
@@ -16868,20 +16919,20 @@ module motion_controller_servo__axes__2__encoder(clock,reset,a,b,index,filter,cl
     input wire  index_once;
     input wire  index_rearm;
     input wire  clear_error;
-    output reg  [31:0] count;
+    output reg  [23:0] count;
     output reg  dir;
     output reg  error;
     output reg  index_seen;
-    output reg  [31:0] index_count;
+    output reg  [23:0] index_count;
     output reg  [15:0] count_time;
     output reg  [15:0] timestamp;
 
     // Constant declarations
-    localparam  zero_w = 32'h0;
-    localparam  one_w = 32'h1;
-    localparam  two_w = 32'h2;
-    localparam  minus_one_w = 32'hffffffff;
-    localparam  minus_two_w = 32'hfffffffe;
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
     localparam  zero_s = 8'h0;
     localparam  one_s = 8'h1;
     localparam  one_ts = 16'h1;
@@ -16954,11 +17005,11 @@ module motion_controller_servo__axes__2__encoder(clock,reset,a,b,index,filter,cl
     reg  index_event__d;
     wire  index_event__q;
     reg  index_event__clock;
-    reg  [31:0] position__d;
-    wire  [31:0] position__q;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
     reg  position__clock;
-    reg  [31:0] delta__d;
-    wire  [31:0] delta__q;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
     reg  delta__clock;
     reg  dir_reg__d;
     wire  dir_reg__q;
@@ -16969,8 +17020,8 @@ module motion_controller_servo__axes__2__encoder(clock,reset,a,b,index,filter,cl
     reg  index_seen_reg__d;
     wire  index_seen_reg__q;
     reg  index_seen_reg__clock;
-    reg  [31:0] index_position__d;
-    wire  [31:0] index_position__q;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
     reg  index_position__clock;
     reg  [15:0] samples__d;
     wire  [15:0] samples__q;
@@ -17393,13 +17444,13 @@ endmodule // motion_controller_servo__axes__2__encoder__count_time_reg
 module motion_controller_servo__axes__2__encoder__delta(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -17958,13 +18009,13 @@ endmodule // motion_controller_servo__axes__2__encoder__index_meta
 module motion_controller_servo__axes__2__encoder__index_position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -18015,13 +18066,13 @@ endmodule // motion_controller_servo__axes__2__encoder__index_sync
 module motion_controller_servo__axes__2__encoder__position(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -19176,27 +19227,27 @@ module motion_controller_servo__axes__2__position(clock,reset,up,down,clear,load
     input wire  down;
     input wire  clear;
     input wire  load;
-    input wire  [31:0] load_value;
-    input wire  [31:0] compare_value;
-    output reg  [31:0] count;
+    input wire  [23:0] load_value;
+    input wire  [23:0] compare_value;
+    output reg  [23:0] count;
     output reg  compare_match;
     output reg  pulse_overridden;
 
     // Constant declarations
-    localparam  zero = 32'h0;
-    localparam  one = 32'h1;
-    localparam  all_ones = 32'hffffffff;
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  all_ones = 24'hffffff;
 
     // Stub signals
-    reg  [31:0] value__d;
-    wire  [31:0] value__q;
+    reg  [23:0] value__d;
+    wire  [23:0] value__q;
     reg  value__clock;
     reg  overridden__d;
     wire  overridden__q;
     reg  overridden__clock;
 
     // Local signals
-    reg  [31:0] delta;
+    reg  [23:0] delta;
 
     // Sub module instances
     motion_controller_servo__axes__2__position__value value(
@@ -19262,13 +19313,13 @@ endmodule // motion_controller_servo__axes__2__position__overridden
 module motion_controller_servo__axes__2__position__value(d,q,clock);
 
     // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+    input wire  [23:0] d;
+    output reg  [23:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 32'h0;
+       q = 24'h0;
     end
 
     always @(posedge clock) begin
@@ -28851,8 +28902,8 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h301;
-    localparam  config_value = 32'h3810403;
+    localparam  version_value = 32'h400;
+    localparam  config_value = 32'h3610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
     localparam  m_state_watchdog_expired = 32'h4;

@@ -119,6 +119,22 @@ pub enum DriverError {
         /// Which rule.
         why: &'static str,
     },
+    /// A path would take an axis's commanded position beyond the range of
+    /// the controller's position counters (`CONFIG.POSITION_BITS`), where
+    /// they wrap.
+    #[error("period {period}, axis {axis}: the commanded position would reach {position} steps, beyond the controller's range of +-{limit} (CONFIG.POSITION_BITS = {bits})")]
+    PositionOutOfRange {
+        /// Period index.
+        period: usize,
+        /// Axis.
+        axis: usize,
+        /// The position the path reaches, steps.
+        position: i64,
+        /// The largest magnitude the counters hold, 2^(bits - 1) - 1.
+        limit: i64,
+        /// `CONFIG.POSITION_BITS`.
+        bits: u32,
+    },
     /// The controller reported a fault that loses steps.
     #[error("controller fault: STATUS {status:#x}, AXIS_STATUS {axis_status:?}")]
     Fault {
@@ -165,6 +181,8 @@ pub struct Driver<B: ControllerBus> {
     map: RegisterMap,
     config: DriverConfig,
     depth: u32,
+    /// `CONFIG.POSITION_BITS`: the position counters wrap beyond it.
+    position_bits: u32,
 }
 
 mod servo_run;
@@ -204,6 +222,7 @@ impl<B: ControllerBus> Driver<B> {
             map,
             config,
             depth: 0,
+            position_bits: 32,
         };
         let id = driver.read("ID", 0)?;
         if id != crate::blocks::motion_controller::registers::ID_VALUE {
@@ -217,6 +236,13 @@ impl<B: ControllerBus> Driver<B> {
             )));
         }
         driver.depth = 1 << driver.field("CONFIG", "FIFO_DEPTH_LOG2", build)?;
+        driver.position_bits = driver.field("CONFIG", "POSITION_BITS", build)? as u32;
+        if !(2..=32).contains(&driver.position_bits) {
+            return Err(DriverError::Identity(format!(
+                "CONFIG.POSITION_BITS reads {}, not 2 to 32",
+                driver.position_bits
+            )));
+        }
         let uniform = driver.field("CONFIG", "DDA_ONLY", build)? == 0;
         let analog = driver.field("CONFIG", "ANALOG", build)? == 1;
         driver.map = register_map(3, driver.depth.trailing_zeros(), uniform, analog)?;
@@ -324,7 +350,16 @@ impl<B: ControllerBus> Driver<B> {
         }
     }
 
-    fn check(&self, counts: &[[i32; 3]]) -> Result<(), DriverError> {
+    /// Checks every period's counts against the interpolators' limits, and
+    /// the positions they reach, from where the axes stand, against the
+    /// position counters' range: the controller's counters wrap there, and
+    /// the driver reads the positions only between runs.
+    fn check(&mut self, counts: &[[i32; 3]]) -> Result<(), DriverError> {
+        let range = (1i64 << (self.position_bits - 1)) - 1;
+        let mut position = [0i64; 3];
+        for (axis, p) in position.iter_mut().enumerate() {
+            *p = self.read("CMD_POSITION", axis as u32)? as i32 as i64;
+        }
         for (period, c) in counts.iter().enumerate() {
             // An analog axis's position is the servo loop's business.
             for axis in (0..3).filter(|&k| !self.config.analog[k]) {
@@ -336,6 +371,16 @@ impl<B: ControllerBus> Driver<B> {
                         count: c[axis],
                         limit,
                         why,
+                    });
+                }
+                position[axis] += c[axis] as i64;
+                if position[axis].abs() > range {
+                    return Err(DriverError::PositionOutOfRange {
+                        period,
+                        axis,
+                        position: position[axis],
+                        limit: range,
+                        bits: self.position_bits,
                     });
                 }
             }

@@ -307,6 +307,19 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
             .contains("axis 1: 101 steps exceed the limit of 50"),
         "{error}"
     );
+    // A path that would leave the position counters' range
+    // (CONFIG.POSITION_BITS) is refused before anything is queued.
+    let far = vec![[50, 0, 0]; 167_773];
+    let error = driver.run(&far, |_| {}).unwrap_err();
+    assert!(
+        matches!(error, DriverError::PositionOutOfRange { .. }),
+        "{error}"
+    );
+    assert_eq!(
+        error.to_string(),
+        "period 167772, axis 0: the commanded position would reach 8388650 steps, beyond the controller's range of +-8388607 (CONFIG.POSITION_BITS = 24)"
+    );
+    assert!(!driver.bus().log.contains("FIFO_WRITE"), "nothing queued");
     let report = driver.run(&[[3, -2, 1], [0, 0, 0]], |_| {}).unwrap();
     assert_eq!(report.commanded, [3, -2, 1]);
     assert_eq!(report.underruns, 0);

@@ -17,3 +17,4 @@ mod gcode;
 mod host;
 mod machine_io;
 mod motion_controller;
+mod position_range;

@@ -1186,6 +1186,64 @@ fn entries_at_every_width_edge_step_as_the_model_says() {
     }
 }
 
+/// The DDA's own edge, |n| = PERIOD_TICKS (J = M: a step on every tick)
+/// and one past it (J = M + 1: clamped to M and flagged), on all three axes
+/// as DDA axes, in lockstep with the model. The random firmware never hits
+/// these entries in a DDA run; a mutation that flags J = M as overrange
+/// passed it and fails here.
+#[test]
+fn dda_entries_at_and_past_the_period_step_as_the_model_says() {
+    let mut b = Controller3::on(Backend::Verilator).with_loopback();
+    let period = 64i32;
+    configure_with_tick(&mut b, 4, period as u32, [false; 3]);
+    // First run: every entry within the period, so no axis is flagged.
+    let within = [period, -period, period - 1, period, 0, -period, 1, period];
+    for (i, &n) in within.iter().enumerate() {
+        b.write("FIFO_WRITE", 0, n as u32);
+        b.write("FIFO_WRITE", 1, -n as u32);
+        b.write("FIFO_WRITE", 2, within[within.len() - 1 - i] as u32);
+    }
+    b.write("CONTROL", 0, 1);
+    drain(&mut b);
+    let sum: i64 = within.iter().map(|&n| n as i64).sum();
+    assert_eq!(
+        [b.pin_steps(0), b.pin_steps(1), b.pin_steps(2)],
+        [sum, -sum, sum]
+    );
+    for axis in 0..3 {
+        let s = b.read("AXIS_STATUS", axis);
+        assert_eq!(
+            b.field("AXIS_STATUS", "INTERP_OVERRANGE", s),
+            0,
+            "axis {axis}: |n| = PERIOD_TICKS is in range"
+        );
+    }
+    // Second run: one period past the edge on each axis, in turn.
+    for axis in 0..3u32 {
+        for k in 0..3u32 {
+            let n = if k == axis { period + 1 } else { period };
+            b.write("FIFO_WRITE", k, n as u32);
+        }
+    }
+    b.write("CONTROL", 0, 1);
+    drain(&mut b);
+    let first = [sum, -sum, sum];
+    for axis in 0..3 {
+        // Three periods of 64 steps: the 65 is clamped to 64.
+        assert_eq!(
+            b.pin_steps(axis),
+            first[axis] + 3 * period as i64,
+            "axis {axis}"
+        );
+        let s = b.read("AXIS_STATUS", axis as u32);
+        assert_eq!(
+            b.field("AXIS_STATUS", "INTERP_OVERRANGE", s),
+            1,
+            "axis {axis}: |n| = PERIOD_TICKS + 1 is clamped and flagged"
+        );
+    }
+}
+
 /// Lost or clamped steps are flagged per axis, raise AXIS_FAULT once per
 /// fault, and stay flagged through stops and restarts until CLEAR_FAULTS.
 #[test]

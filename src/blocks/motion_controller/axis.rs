@@ -13,7 +13,7 @@ use rust_hdl::prelude::*;
 
 use super::axis_io::AxisIo;
 use super::registers::{fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
-use super::{ERROR_BITS, PERIOD_BITS, STAGE_PENDING_BITS};
+use super::{ERROR_BITS, PERIOD_BITS, POSITION_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
 use crate::blocks::pulse_counter::PulseCounter;
 use crate::blocks::quadrature_decoder::QuadratureDecoder;
@@ -162,8 +162,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     /// mode, while J != 0).
     uniform: UniformPulseCore<PERIOD_BITS, ERROR_BITS>,
     stage: StepOutput<16, STAGE_PENDING_BITS>,
-    position: PulseCounter<32>,
-    encoder: QuadratureDecoder<32, 8, 16>,
+    position: PulseCounter<POSITION_BITS>,
+    encoder: QuadratureDecoder<POSITION_BITS, 8, 16>,
     io: AxisIo,
 
     /// The register window (configuration, strobes, snapshots, reads).
@@ -259,7 +259,16 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     has_uniform: Constant<Bit>,
     /// The build has the analog outputs (the controller's `ANALOG`).
     has_analog: Constant<Bit>,
-    zero32: Constant<Bits<32>>,
+    zero_position: Constant<Bits<POSITION_BITS>>,
+    /// Bits 31..POSITION_BITS set: ORed into a negative position's word.
+    position_extension: Constant<Bits<32>>,
+    /// A position's sign bit, as a mask (rust-hdl prints a constant's name
+    /// in a bit index).
+    position_sign: Constant<Bits<POSITION_BITS>>,
+    /// The positions as 32-bit register words, sign-extended.
+    cmd_word: Signal<Local, Bits<32>>,
+    act_word: Signal<Local, Bits<32>>,
+    index_word: Signal<Local, Bits<32>>,
     zero_count: Constant<Bits<PERIOD_BITS>>,
     zero_entry: Constant<Bits<ENTRY_BITS>>,
 }
@@ -386,7 +395,14 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             window: Constant::new((window as u64).into()),
             has_uniform: Constant::new(uniform),
             has_analog: Constant::new(analog),
-            zero32: Constant::new(0u64.into()),
+            zero_position: Constant::new(0u64.into()),
+            position_extension: Constant::new(
+                (0xffff_ffffu64 & !crate::blocks::width_mask(POSITION_BITS as u32)).into(),
+            ),
+            position_sign: Constant::new((1u64 << (POSITION_BITS - 1)).into()),
+            cmd_word: Default::default(),
+            act_word: Default::default(),
+            index_word: Default::default(),
             zero_count: Constant::new(0u64.into()),
             zero_entry: Constant::new(0u64.into()),
         }
@@ -686,8 +702,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.position.clear.next = self.clear_position.val() & !self.stage.emitted.val();
         self.clear_position_pending.d.next = self.clear_position.val() & self.stage.emitted.val();
         self.position.load.next = false;
-        self.position.load_value.next = self.zero32.val();
-        self.position.compare_value.next = self.zero32.val();
+        self.position.load_value.next = self.zero_position.val();
+        self.position.compare_value.next = self.zero_position.val();
 
         // Encoder.
         self.encoder.reset.next = self.reset.val();
@@ -734,8 +750,22 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.candidate.val() | self.code_forward.q.val() | self.code_backward.q.val();
         self.io.pulse_forward.next = (self.analog_active.q.val() & self.code_forward.q.val())
             | (!self.analog_active.q.val() & self.candidate_forward.val());
-        self.io.cmd_position.next = self.position.count.val();
-        self.io.act_position.next = self.encoder.count.val();
+        // The positions wrap at POSITION_BITS; the register words carry
+        // their sign up to bit 31 (the host extends them further).
+        self.cmd_word.next = bit_cast::<32, POSITION_BITS>(self.position.count.val());
+        if (self.position.count.val() & self.position_sign.val()) != self.zero_position.val() {
+            self.cmd_word.next = self.cmd_word.val() | self.position_extension.val();
+        }
+        self.act_word.next = bit_cast::<32, POSITION_BITS>(self.encoder.count.val());
+        if (self.encoder.count.val() & self.position_sign.val()) != self.zero_position.val() {
+            self.act_word.next = self.act_word.val() | self.position_extension.val();
+        }
+        self.index_word.next = bit_cast::<32, POSITION_BITS>(self.encoder.index_count.val());
+        if (self.encoder.index_count.val() & self.position_sign.val()) != self.zero_position.val() {
+            self.index_word.next = self.index_word.val() | self.position_extension.val();
+        }
+        self.io.cmd_position.next = self.cmd_word.val();
+        self.io.act_position.next = self.act_word.val();
         self.drive_enable.next = self.io.drive_enable.val();
         self.limit_held.next = self.io.limit_held.val();
         self.alarm_held.next = self.io.alarm_held.val();
@@ -772,9 +802,9 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.registers.step_busy.next = self.stage.busy.val();
         self.registers.uniform_running.next = self.uniform_running.val();
         self.registers.step_mode_invalid.next = self.stage.mode_invalid.val();
-        self.registers.cmd_position.next = self.position.count.val();
-        self.registers.act_position.next = self.encoder.count.val();
-        self.registers.index_position.next = self.encoder.index_count.val();
+        self.registers.cmd_position.next = self.cmd_word.val();
+        self.registers.act_position.next = self.act_word.val();
+        self.registers.index_position.next = self.index_word.val();
         self.registers.io_read_data.next = self.io.read_data.val();
         self.read_data.next = self.registers.read_data.val();
 

@@ -71,6 +71,14 @@
 //!   next one (`INTERP_OVERFLOW`).
 //! * The commanded position counts the steps that left each output stage,
 //!   so it is exact whatever happened before.
+//! * **Position range.** CMD_POSITION, ACT_POSITION and their snapshot,
+//!   index and home latches are [`POSITION_BITS`] = 24 bits wide
+//!   (`CONFIG.POSITION_BITS`; 32 before VERSION 0.4.0). They count modulo
+//!   2^24: one step past +8388607 reads -8388608, and no count is lost.
+//!   Each register word carries the sign up to bit 31. A driver either
+//!   keeps the machine's travel within the range (the crate's driver
+//!   refuses a path that leaves it, `PositionOutOfRange`) or extends the
+//!   words itself, reading each position at least once per 2^23 counts.
 //!
 //! ## Bad input and faults
 //! * **Underrun**: a boundary that finds any axis's FIFO empty pops
@@ -360,13 +368,14 @@
 //! four other FPGA families. Each axis carries a uniform pulse generator
 //! (a double-buffered period plan; the planner that computes it is shared
 //! by all axes), a
-//! DDA, an output stage with four 16-bit timers, a 32-bit position counter,
-//! a quadrature decoder, a FIFO, its machine I/O (two 32-bit home latches)
-//! and its register window with two 32-bit snapshots; `rtl-out/scaling-report.md`
+//! DDA, an output stage with four 16-bit timers, a 24-bit position counter,
+//! a quadrature decoder, a FIFO, its machine I/O (two 24-bit home latches)
+//! and its register window with two 24-bit snapshots; `rtl-out/scaling-report.md`
 //! gives the cost of an axis (K = 1, 3 and 6).
 //!
-//! Four things keep the per-axis cost down without changing a register
-//! or a clock of the behavior above:
+//! Five things keep the per-axis cost down. Only the position width
+//! changes a register (its range, VERSION 0.4.0); the others change no
+//! register and no clock of the behavior above:
 //! * **Entries converted once.** The FIFOs hold 20-bit entries, not the
 //!   written 32-bit words: |n| saturated to 16 bits, its sign, and whether
 //!   it was too large, beyond 16 bits signed, or 0 (`entry::ENTRY_BITS`).
@@ -381,6 +390,9 @@
 //! * **No read-first logic behind the FIFOs' RAMs**: each FIFO's own
 //!   bypass already hides a read that collides with a write
 //!   (`command_fifo`, proved).
+//! * **24-bit positions** ([`POSITION_BITS`], see "Position range"): the
+//!   counters, latches and snapshots hold 24 bits; the read path carries
+//!   bit 23 up to bit 31 (synthesis merges the copies).
 //! * **One interpolator engine per axis.** Every DDA period has all its
 //!   PERIOD_TICKS ticks at one J, so the DDA's phase is 0 at each
 //!   boundary and the DDA needs no accumulator: its Bresenham error
@@ -574,6 +586,15 @@ pub const TIMER_BITS: u32 = 16;
 /// lost its path; 8 bits rather than the standalone stage's 16 also
 /// shorten the stage's emit-to-count adder, one of the top's slowest paths.
 pub const STAGE_PENDING_BITS: usize = 8;
+
+/// Width of each axis's position counters (CMD_POSITION and ACT_POSITION)
+/// and of their snapshot, index and home latches. They count modulo
+/// 2^POSITION_BITS; each register word carries the sign up to bit 31, and
+/// the host extends the wrap (as hostmot2's driver does with its 16-bit
+/// encoder counts) by reading each position at least once per
+/// 2^(POSITION_BITS - 1) counts. 24 bits: +-8388608 steps, 8.4 m of
+/// travel at 1 um a step; 3.4 s at 2.5 M steps/s between two reads.
+pub const POSITION_BITS: usize = 24;
 
 /// Width of `PERIOD_TICKS` and of both interpolators: a period is at most
 /// 2^16 - 1 base ticks, and an axis emits at most that many steps in one.

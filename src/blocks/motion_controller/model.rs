@@ -33,6 +33,13 @@ use crate::blocks::uniform_pulse_gen::model::{
 };
 use crate::blocks::watchdog::model::WatchdogModel;
 
+/// A POSITION_BITS-wide position count as its register word: the count's
+/// sign carried up to bit 31, as the axis's read path does.
+pub fn position_word(count: u64) -> u32 {
+    let shift = 64 - super::POSITION_BITS as u32;
+    (((count << shift) as i64) >> shift) as u32
+}
+
 /// The largest count the interpolators take.
 const COUNT_MAX: u64 = (1 << super::PERIOD_BITS) - 1;
 
@@ -280,13 +287,13 @@ impl AxisModel {
         // in its first clock after power-up.
         let stage = StepOutputModel::new(super::TIMER_BITS, super::STAGE_PENDING_BITS as u32);
         let stage_out = stage.outputs(0);
-        let mut position = PulseCounterModel::new(32);
+        let mut position = PulseCounterModel::new(super::POSITION_BITS as u32);
         let position_out = position.step(PulseCounterInputs {
             reset: true,
             ..Default::default()
         });
         let dda = DdaIntegratorModel::new(super::PERIOD_BITS as u32);
-        let encoder = QuadratureDecoderModel::new(32, 8, 16);
+        let encoder = QuadratureDecoderModel::new(super::POSITION_BITS as u32, 8, 16);
         Self {
             window: (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2,
             config_mask,
@@ -314,12 +321,12 @@ impl AxisModel {
 
     /// Steps emitted by the output stage, net (the commanded position).
     pub fn commanded_position(&self) -> i32 {
-        self.position_out.count as u32 as i32
+        position_word(self.position_out.count) as i32
     }
 
     /// The encoder count (the actual position).
     pub fn actual_position(&self) -> i32 {
-        self.encoder_out.count as u32 as i32
+        position_word(self.encoder_out.count) as i32
     }
 
     /// Entries queued in the FIFO.
@@ -474,8 +481,8 @@ impl AxisModel {
                     axis::DIR_SETUP => self.glue.dir_setup,
                     axis::DIR_HOLD => self.glue.dir_hold,
                     axis::ENC_SAMPLE_RATE => self.glue.sample_rate,
-                    axis::CMD_POSITION => self.position_out.count as u32,
-                    axis::ACT_POSITION => self.encoder_out.count as u32,
+                    axis::CMD_POSITION => position_word(self.position_out.count),
+                    axis::ACT_POSITION => position_word(self.encoder_out.count),
                     axis::CMD_SNAPSHOT => self.glue.cmd_snapshot,
                     axis::ACT_SNAPSHOT => self.glue.act_snapshot,
                     axis::AXIS_STATUS => {
@@ -488,7 +495,7 @@ impl AxisModel {
                             | flag(self.uniform_out.running, fields::STATUS_UNIFORM_RUNNING)
                             | flag(self.step_mode() == 3, fields::STATUS_STEP_MODE_INVALID)
                     }
-                    axis::INDEX_POSITION => self.encoder_out.index_count as u32,
+                    axis::INDEX_POSITION => position_word(self.encoder_out.index_count),
                     _ => 0,
                 }
             };
@@ -683,8 +690,8 @@ impl AxisModel {
             clear_error: command_bit(fields::CMD_CLEAR_ENCODER_ERROR),
         });
         if c.snapshot {
-            next.glue.cmd_snapshot = self.position_out.count as u32;
-            next.glue.act_snapshot = self.encoder_out.count as u32;
+            next.glue.cmd_snapshot = position_word(self.position_out.count);
+            next.glue.act_snapshot = position_word(self.encoder_out.count);
         }
         next.glue.encoder_error_prev = self.encoder_out.error;
         let io_offset = c.address & (AXIS_STRIDE - 1);
@@ -695,8 +702,8 @@ impl AxisModel {
             io_write,
             &comb.io,
             (
-                self.position_out.count as u32,
-                self.encoder_out.count as u32,
+                position_word(self.position_out.count),
+                position_word(self.encoder_out.count),
             ),
             c.drive_allowed,
         );

@@ -19,12 +19,14 @@ use crate::regmap::{field, register, Access, Field, RegMapError, Register, Regis
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
-/// `VERSION` register value: major 0, minor 3, patch 1 (minor 2: machine
+/// `VERSION` register value: major 0, minor 4, patch 0 (minor 2: machine
 /// I/O, 32-word axis windows; minor 3: analog axes, `CONFIG.ANALOG`;
 /// patch 1: on a uniform axis, `INTERP_OVERRANGE` for |n| > P/2 is set
 /// when the axis's period plan arrives from the shared planner, not two
-/// clocks after the entry is taken).
-pub const VERSION_VALUE: u32 = 0x0000_0301;
+/// clocks after the entry is taken). Minor 4: the position counters and
+/// their latches are `CONFIG.POSITION_BITS` = 24 bits wide, not 32; their
+/// words carry the sign up to bit 31 and wrap at 2^24.
+pub const VERSION_VALUE: u32 = 0x0000_0400;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -489,7 +491,7 @@ pub fn register_map(
     config.fields[0].reset = axes as u64;
     config.fields[1].reset = fifo_log2 as u64;
     config.fields[2].reset = super::TIMER_BITS as u64;
-    config.fields[3].reset = 32;
+    config.fields[3].reset = super::POSITION_BITS as u64;
     config.fields[4].reset = !uniform as u64;
     config.fields[5].reset = analog as u64;
     let analog_access = if analog { ReadWrite } else { ReadOnly };
@@ -669,8 +671,8 @@ pub fn register_map(
             per_axis(number("DIR_SETUP", at(axis::DIR_SETUP), fields::STEP_TIMING_WIDTH, "dir stable before a step rises, clocks (0 acts as 1)")),
             per_axis(number("DIR_HOLD", at(axis::DIR_HOLD), fields::STEP_TIMING_WIDTH, "dir stable after a step falls, clocks (0 acts as 1)")),
             per_axis(number("ENC_SAMPLE_RATE", at(axis::ENC_SAMPLE_RATE), fields::ENC_SAMPLE_RATE_WIDTH, "encoder sample every n + 1 clocks")),
-            per_axis(Register::word("CMD_POSITION", at(axis::CMD_POSITION), ReadOnly, 0, "commanded position: steps emitted at the pins, signed")),
-            per_axis(Register::word("ACT_POSITION", at(axis::ACT_POSITION), ReadOnly, 0, "actual position: encoder count, signed")),
+            per_axis(Register::word("CMD_POSITION", at(axis::CMD_POSITION), ReadOnly, 0, "commanded position: steps emitted at the pins, signed, modulo 2^CONFIG.POSITION_BITS, its sign carried up to bit 31")),
+            per_axis(Register::word("ACT_POSITION", at(axis::ACT_POSITION), ReadOnly, 0, "actual position: encoder count, signed, modulo 2^CONFIG.POSITION_BITS, its sign carried up to bit 31")),
             per_axis(Register::word("CMD_SNAPSHOT", at(axis::CMD_SNAPSHOT), ReadOnly, 0, "CMD_POSITION at the last SNAPSHOT write")),
             per_axis(Register::word("ACT_SNAPSHOT", at(axis::ACT_SNAPSHOT), ReadOnly, 0, "ACT_POSITION at the last SNAPSHOT write")),
             per_axis(register(
