@@ -255,6 +255,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     ignored.word, ignored.line, ignored.what
                 );
             }
+            if let Some(ending) = &r.ending {
+                println!("end        {ending}");
+            }
             if let Some((end, units)) = r.program_end {
                 let unit = units.name();
                 println!(

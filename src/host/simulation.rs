@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::gcode::{interpret, Ignored, Units};
+use super::gcode::{interpret, program_text, Ignored, Units};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::{
@@ -65,6 +65,8 @@ pub struct Job {
     pub program_end: Option<([f64; 3], Units)>,
     /// G-code only: the words that do not change motion, each once.
     pub ignored: Vec<Ignored>,
+    /// G-code only: how the program ended, as a sentence.
+    pub ending: Option<String>,
 }
 
 impl Job {
@@ -81,9 +83,15 @@ impl Job {
                 file.display()
             )
         })?;
-        let text = std::fs::read_to_string(file)
-            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        let bytes =
+            std::fs::read(file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
         let located = |e: &dyn std::fmt::Display| format!("{}: {e}", file.display());
+        let text = match format {
+            InputFormat::Gcode => program_text(&bytes).map_err(|e| located(&e))?,
+            InputFormat::Path => std::str::from_utf8(&bytes)
+                .map(std::borrow::Cow::Borrowed)
+                .map_err(|e| format!("cannot read {}: not UTF-8 text: {e}", file.display()))?,
+        };
         match format {
             InputFormat::Path => {
                 if machine.is_some() {
@@ -98,6 +106,7 @@ impl Job {
                     machine: path.machine(),
                     program_end: None,
                     ignored: Vec::new(),
+                    ending: None,
                 })
             }
             InputFormat::Gcode => {
@@ -107,11 +116,22 @@ impl Job {
                 if program.toolpath.items.is_empty() {
                     return Err(format!("{}: the program has no motion", file.display()));
                 }
+                let ending = match (program.end, program.blocks_after_end) {
+                    (Some(line), 0) => format!("M2 or M30 on line {line}"),
+                    (Some(line), n) => {
+                        format!("M2 or M30 on line {line}; {n} blocks after it not run")
+                    }
+                    (None, _) => {
+                        "end of file without M2 or M30 (LinuxCNC ends the program there too)"
+                            .to_string()
+                    }
+                };
                 Ok(Job {
                     toolpath: program.toolpath,
                     machine,
                     program_end: Some((program.final_position, program.units)),
                     ignored: program.ignored,
+                    ending: Some(ending),
                 })
             }
         }
@@ -237,6 +257,8 @@ pub struct SimulationReport {
     pub program_end: Option<([f64; 3], Units)>,
     /// G-code: the words ignored because they do not change motion.
     pub ignored: Vec<Ignored>,
+    /// G-code: how the program ended, as a sentence.
+    pub ending: Option<String>,
     /// Final commanded positions (steps emitted), per axis.
     pub commanded: [i32; 3],
     /// Final actual (encoder) positions.
@@ -506,6 +528,7 @@ pub fn simulate(
         target,
         program_end: job.program_end,
         ignored: job.ignored,
+        ending: job.ending,
         commanded: commanded.map(|v| v as i32),
         actual: actual.map(|v| v as i32),
         peak_rate: bus.peak_steps_per_clock().map(|r| r * options.clock_hz),

@@ -198,6 +198,31 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
         message(&bad, None, None),
         "DIR/bad.ngc: line 3: G41 (cutter radius compensation) changes the motion and is not supported"
     );
+    // Latin-1 bytes from a Windows post: read in a comment, refused by
+    // line elsewhere.
+    let latin1 = dir.path().join("latin1.nc");
+    std::fs::write(&latin1, b"(Fr\xe4ser \xd8 6)\nG1 X1 F100 ; Ende \xb1\nM2\n").unwrap();
+    let job = Job::read(&latin1, None, None).unwrap();
+    assert_eq!(job.ending.as_deref(), Some("M2 or M30 on line 3"));
+    let open_ended = write("open.ngc", "G1 X1 F100\n");
+    assert_eq!(
+        Job::read(&open_ended, None, None)
+            .unwrap()
+            .ending
+            .as_deref(),
+        Some("end of file without M2 or M30 (LinuxCNC ends the program there too)")
+    );
+    let trailing = write("trailing.ngc", "G1 X1 F100\nM30\nG0 X0\nG0 Y0\n");
+    assert_eq!(
+        Job::read(&trailing, None, None).unwrap().ending.as_deref(),
+        Some("M2 or M30 on line 2; 2 blocks after it not run")
+    );
+    let stray = dir.path().join("stray.nc");
+    std::fs::write(&stray, b"G1 X1 F100\nG1 X\xb12\n").unwrap();
+    assert_eq!(
+        message(&stray, None, None),
+        "DIR/stray.nc: line 2: byte 0xB1 outside a comment: the line is not UTF-8 text (Latin-1 is read in comments only)"
+    );
     let empty = write("empty.tap", "G21 G90\nM3 S1000\nM2\n");
     assert_eq!(
         message(&empty, None, None),

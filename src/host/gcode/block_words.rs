@@ -149,6 +149,8 @@ pub(super) struct Words<'a> {
     pub(super) q: Option<&'a Word>,
     /// (the word, what it controls, the key it is reported once under).
     pub(super) ignored: Vec<(&'a Word, &'static str, String)>,
+    /// `O<number>` alone on its block: a post's program number.
+    pub(super) program_number: Option<&'a Word>,
 }
 
 impl<'a> Words<'a> {
@@ -248,6 +250,14 @@ impl<'a> Words<'a> {
                             return Err(format!(
                                 "{name} drives an extruder (RepRap), an axis this machine does not have"
                             ))
+                        }
+                        'O' if block.words.len() == 1
+                            && word.value >= 0.0
+                            && word.value.fract() == 0.0 =>
+                        {
+                            words.program_number = Some(word);
+                            words.ignored.push((word, "program number", "O".to_string()));
+                            continue;
                         }
                         'O' => {
                             return Err(format!(

@@ -93,8 +93,11 @@ pub struct Program {
     /// The words that do nothing here, each once, at its first line:
     /// once per M code, per ignored G code, and per letter S, T, H and D.
     pub ignored: Vec<Ignored>,
-    /// The line of the M2 or M30 that ended the program, if one did.
+    /// The line of the M2 or M30 that ended the program, if one did; `None`
+    /// when the file ended without one (LinuxCNC ends the program there too).
     pub end: Option<usize>,
+    /// Blocks after the M2 or M30, not run (block-deleted ones not counted).
+    pub blocks_after_end: usize,
 }
 
 /// Interprets `program` from the origin. See the [module doc](super).
@@ -106,19 +109,23 @@ pub fn interpret(program: &str) -> Result<Program, GcodeError> {
 /// incremental moves and arc centers count from there.
 pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeError> {
     let mut state = State::new(start);
+    let mut after_end = 0;
     for block in lex_program(program)? {
         if block.deleted {
+            continue;
+        }
+        if state.end.is_some() {
+            after_end += 1;
             continue;
         }
         state.apply(&block).map_err(|message| GcodeError {
             line: block.line,
             message,
         })?;
-        if state.end.is_some() {
-            break;
-        }
     }
-    Ok(state.finish())
+    let mut program = state.finish();
+    program.blocks_after_end = after_end;
+    Ok(program)
 }
 
 const AXES: [char; 3] = ['X', 'Y', 'Z'];
@@ -171,12 +178,23 @@ impl State {
             final_position: self.position,
             ignored: self.ignored,
             end: self.end,
+            blocks_after_end: 0,
         }
     }
 
     /// One block, in RS-274's order of execution.
     fn apply(&mut self, block: &Block) -> Result<(), String> {
-        let words = Words::read(block)?;
+        let mut words = Words::read(block)?;
+        if let Some(number) = words.program_number {
+            // A Fanuc- or Haas-style post's program number: accepted only
+            // before the program has moved, where it can name nothing else.
+            if !self.toolpath.items.is_empty() {
+                return Err(format!(
+                    "{}: a program number stands before any motion; subroutines and flow control (O words) are not supported",
+                    number.name()
+                ));
+            }
+        }
         let motion = self.motion_to_run(&words)?;
         if let Some(p) = words.p {
             let used =
@@ -231,6 +249,24 @@ impl State {
         }
         if let Some((_, m)) = words.motion {
             self.motion = Some(m);
+        }
+        if let Some(motion) = motion.filter(|m| m.is_arc()) {
+            // grbl ignores an out-of-plane offset, and FreeCAD's grbl post
+            // writes K0 on every G17 arc: exactly zero changes nothing, so
+            // it is dropped and reported once. Any other value stays an
+            // error (LinuxCNC refuses every out-of-plane offset).
+            let normal = self.plane.axes().2;
+            if let Some(offset) = words.offsets[normal].filter(|w| w.value == 0.0) {
+                words.offsets[normal] = None;
+                let key = format!("zero out-of-plane offset {}", self.plane.gcode());
+                if self.reported.insert(key) {
+                    self.ignored.push(Ignored {
+                        line: block.line,
+                        word: format!("{} on {}", offset.name(), motion.name()),
+                        what: "out-of-plane arc offset of zero (grbl-style posts)",
+                    });
+                }
+            }
         }
         if let Some(motion) = motion {
             self.run(motion, &words, block.line)?;

@@ -415,8 +415,11 @@ fn block_delete_and_program_end() {
         moves("/G1 X5 F60\nG0 X1\n/G41"),
         vec![line([1.0, 0.0, 0.0], None, 2)]
     );
-    let p = run("G0 X1\nM30\nG41\nG0 X5");
+    let p = run("G0 X1\nM30\nG41\n/G0 X7\nG0 X5");
     assert_eq!((p.end, p.toolpath.items.len()), (Some(2), 1));
+    // Counted for the report; a block-deleted one is not.
+    assert_eq!(p.blocks_after_end, 2);
+    assert_eq!(run("G0 X1\nM2").blocks_after_end, 0);
     // The motion on the end's own block runs first.
     let p = run("G0 X1\nG0 X2 M2\nG0 X3");
     assert_eq!((p.end, p.toolpath.end()), (Some(2), [2.0, 0.0, 0.0]));
@@ -520,7 +523,7 @@ fn words_this_machine_does_not_have() {
         "line 1: E5 drives an extruder (RepRap), an axis this machine does not have"
     );
     assert_eq!(
-        error("O100"),
+        error("O100 G0 X1"),
         "line 1: O100: subroutines and flow control (O words) are not supported"
     );
     assert_eq!(
@@ -615,4 +618,50 @@ fn lexer_errors_keep_their_line_and_message() {
         }
     );
     assert_eq!(e.to_string(), "line 2: word `X` has no number");
+}
+
+/// Posts' conventions (#40): a Fanuc/Haas program-number line before any
+/// motion, and FreeCAD's grbl post's K0 on G17 arcs.
+#[test]
+fn a_program_number_before_any_motion_is_reported_and_later_refused() {
+    let p = run("%\nO1003 (PART)\nG21 G90\nG0 X1\nM30\n%");
+    assert_eq!(p.toolpath.items.len(), 1);
+    let got: Vec<_> = p
+        .ignored
+        .iter()
+        .map(|i| (i.line, i.word.as_str(), i.what))
+        .collect();
+    assert_eq!(got, vec![(2, "O1003", "program number")]);
+    assert_eq!(
+        error("G0 X1\nO1003\nM30"),
+        "line 2: O1003: a program number stands before any motion; subroutines and flow control (O words) are not supported"
+    );
+    // Not alone on its block, or not a whole number: flow control, refused.
+    assert_eq!(
+        error("O100 G0 X1"),
+        "line 1: O100: subroutines and flow control (O words) are not supported"
+    );
+    assert_eq!(
+        error("O1.5"),
+        "line 1: O1.5: subroutines and flow control (O words) are not supported"
+    );
+}
+
+#[test]
+fn a_zero_out_of_plane_arc_offset_is_dropped_and_reported_once() {
+    let with_k = only_arc("G17 G2 X10 Y0 I5 J0 K0.000 F60");
+    let without = only_arc("G17 G2 X10 Y0 I5 J0 F60");
+    assert_eq!(with_k, without);
+    let p = run("G17 G2 X10 I5 K0 F60\nG3 X0 I-5 K0.0\nG18 G2 Z10 K5 J0\nM2");
+    let got: Vec<_> = p
+        .ignored
+        .iter()
+        .map(|i| (i.line, i.word.as_str()))
+        .collect();
+    assert_eq!(got, vec![(1, "K0 on G2"), (3, "J0 on G2")]);
+    // A non-zero one is still LinuxCNC's error.
+    assert_eq!(
+        error("G2 X10 I5 K0.001 F60"),
+        "line 1: K0.001 is not in the G17 plane's offsets (I and J)"
+    );
 }

@@ -3,6 +3,9 @@
 //! of lines, arcs and dwells in mm by [`interpret`].
 //!
 //! # Reading
+//! [`program_text`] turns a file's bytes into text: UTF-8, or Latin-1 on a
+//! line whose bytes above 0x7F all lie in comments (Windows CAM posts);
+//! such a byte outside a comment is an error naming its line.
 //! [`lex_program`] reads lines into blocks of words (see [`lexer`]): either
 //! case, spaces anywhere, `N` numbers, `( )` and `;` comments, block delete
 //! `/`, RepRap `*NN` checksums, `%` lines. Values are `f64`; G and M codes
@@ -24,7 +27,10 @@
 //! Y, Z, I, J, K, R, P), then M2/M30. A feed keeps its speed across a
 //! change of units (it is held in mm/s), as in LinuxCNC. A block deleted by `/` is skipped whole. After M2 or M30
 //! nothing more is interpreted (the lexer has read every line by then, so
-//! a malformed line after the end is still an error).
+//! a malformed line after the end is still an error); the blocks left are
+//! counted ([`Program::blocks_after_end`]) and `simulate` reports them. A
+//! file without M2 or M30 ends at its last line, as in LinuxCNC, and
+//! `simulate` says so.
 //!
 //! # Supported
 //! | Words | Effect |
@@ -69,6 +75,16 @@
 //! code": user M100 to M199 macros and RepRap's M104, M106... run nothing
 //! here, so the path is the program's own).
 //!
+//! Two posts' conventions are accepted and reported once:
+//! * `O1003`, a whole number alone on its block (comments aside) before
+//!   the program's first move or dwell: the program number Fanuc- and
+//!   Haas-style posts write at the top ("program number"). After a move,
+//!   or beside another word, an O word is flow control and refused.
+//! * An arc's out-of-plane offset of exactly zero (`K0.000` on a G17 arc,
+//!   which FreeCAD's grbl post writes on every arc; grbl ignores it): it
+//!   is dropped, reported once per plane as `K0 on G2`. Any other value
+//!   is LinuxCNC's error, below.
+//!
 //! # Errors
 //! Every error is a [`GcodeError`], "line N: message", naming the word:
 //! * `G41 (cutter radius compensation) changes the motion and is not
@@ -85,7 +101,8 @@
 //! * `A5 moves an axis this machine does not have (X, Y and Z only)` (A, B,
 //!   C, U, V, W); `E5 drives an extruder (RepRap), an axis this machine
 //!   does not have`; `O100: subroutines and flow control (O words) are not
-//!   supported`; `L2 is used only by G10 and canned cycles, which are not
+//!   supported` (and `O1003: a program number stands before any motion; ...`
+//!   after a move); `L2 is used only by G10 and canned cycles, which are not
 //!   supported`.
 //! * `X appears twice`; `G0 and G1 in one block: one motion per block`;
 //!   `G90 and G91 in one block: both select the distance mode` (and so for
@@ -116,6 +133,8 @@ mod arc_center;
 mod block_words;
 pub mod interpreter;
 pub mod lexer;
+mod text;
 
 pub use interpreter::{interpret, interpret_from, GcodeError, Ignored, Program, Units};
 pub use lexer::{lex_line, lex_program, Block, LexError, Word};
+pub use text::program_text;
