@@ -122,7 +122,7 @@ impl Job {
                         format!("M2 or M30 on line {line}; {n} blocks after it not run")
                     }
                     (None, _) => {
-                        "end of file without M2 or M30 (LinuxCNC ends the program there too)"
+                        "end of file without M2 or M30 (the program ends there; LinuxCNC would refuse the file)"
                             .to_string()
                     }
                 };

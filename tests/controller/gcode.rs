@@ -210,7 +210,7 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
             .unwrap()
             .ending
             .as_deref(),
-        Some("end of file without M2 or M30 (LinuxCNC ends the program there too)")
+        Some("end of file without M2 or M30 (the program ends there; LinuxCNC would refuse the file)")
     );
     let trailing = write("trailing.ngc", "G1 X1 F100\nM30\nG0 X0\nG0 Y0\n");
     assert_eq!(

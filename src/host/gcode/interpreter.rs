@@ -94,7 +94,9 @@ pub struct Program {
     /// once per M code, per ignored G code, and per letter S, T, H and D.
     pub ignored: Vec<Ignored>,
     /// The line of the M2 or M30 that ended the program, if one did; `None`
-    /// when the file ended without one (LinuxCNC ends the program there too).
+    /// when the file ended without one (the program ends there, as #40 asks;
+    /// LinuxCNC 2.9 refuses such a file: "File ended with no percent sign (%)
+    /// or program end (M2)").
     pub end: Option<usize>,
     /// Blocks after the M2 or M30, not run (block-deleted ones not counted).
     pub blocks_after_end: usize,

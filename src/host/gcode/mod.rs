@@ -29,8 +29,9 @@
 //! nothing more is interpreted (the lexer has read every line by then, so
 //! a malformed line after the end is still an error); the blocks left are
 //! counted ([`Program::blocks_after_end`]) and `simulate` reports them. A
-//! file without M2 or M30 ends at its last line, as in LinuxCNC, and
-//! `simulate` says so.
+//! file without M2 or M30 ends at its last line and `simulate` says so
+//! (a leniency for posts that omit it: LinuxCNC 2.9 refuses such a file,
+//! "File ended with no percent sign (%) or program end (M2)").
 //!
 //! # Supported
 //! | Words | Effect |
