@@ -88,3 +88,11 @@ pub fn width_mask(width: u32) -> u64 {
     assert!((1..=64).contains(&width), "width must be 1..=64");
     u64::MAX >> (64 - width)
 }
+
+/// The low `width` bits (1 to 64) of `value` as a two's-complement number:
+/// a signed `width`-bit port's value, for models.
+pub fn signed_value(value: u64, width: u32) -> i64 {
+    assert!((1..=64).contains(&width), "width must be 1..=64");
+    let shift = 64 - width;
+    ((value << shift) as i64) >> shift
+}

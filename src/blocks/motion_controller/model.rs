@@ -36,8 +36,7 @@ use crate::blocks::watchdog::model::WatchdogModel;
 /// A POSITION_BITS-wide position count as its register word: the count's
 /// sign carried up to bit 31, as the axis's read path does.
 pub fn position_word(count: u64) -> u32 {
-    let shift = 64 - super::POSITION_BITS as u32;
-    (((count << shift) as i64) >> shift) as u32
+    crate::blocks::signed_value(count, super::POSITION_BITS as u32) as u32
 }
 
 /// The largest count the interpolators take.

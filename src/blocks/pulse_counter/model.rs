@@ -72,8 +72,7 @@ impl PulseCounterModel {
 
     /// The count as a signed number.
     pub fn signed_count(&self) -> i64 {
-        let shift = 64 - self.mask.count_ones();
-        ((self.count << shift) as i64) >> shift
+        crate::blocks::signed_value(self.count, self.mask.count_ones())
     }
 
     /// One rising clock edge; returns the outputs after it (with the same

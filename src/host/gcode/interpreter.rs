@@ -125,9 +125,7 @@ pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeEr
             message,
         })?;
     }
-    let mut program = state.finish();
-    program.blocks_after_end = after_end;
-    Ok(program)
+    Ok(state.finish(after_end))
 }
 
 const AXES: [char; 3] = ['X', 'Y', 'Z'];
@@ -173,14 +171,22 @@ impl State {
         }
     }
 
-    fn finish(self) -> Program {
+    fn finish(self, blocks_after_end: usize) -> Program {
         Program {
             toolpath: self.toolpath,
             units: self.units,
             final_position: self.position,
             ignored: self.ignored,
             end: self.end,
-            blocks_after_end: 0,
+            blocks_after_end,
+        }
+    }
+
+    /// Lists `word` in [`Program::ignored`] unless something was already
+    /// reported under `key`.
+    fn report(&mut self, key: &str, line: usize, word: String, what: &'static str) {
+        if self.reported.insert(key.to_string()) {
+            self.ignored.push(Ignored { line, word, what });
         }
     }
 
@@ -210,13 +216,7 @@ impl State {
         }
 
         for (word, what, key) in &words.ignored {
-            if self.reported.insert(key.clone()) {
-                self.ignored.push(Ignored {
-                    line: block.line,
-                    word: word.name(),
-                    what,
-                });
-            }
+            self.report(key, block.line, word.name(), what);
         }
         // RS-274/NGC's order of execution sets F (step 3) before the units
         // (step 12): an F beside a G20 is in the units in force before it.
@@ -260,14 +260,12 @@ impl State {
             let normal = self.plane.axes().2;
             if let Some(offset) = words.offsets[normal].filter(|w| w.value == 0.0) {
                 words.offsets[normal] = None;
-                let key = format!("zero out-of-plane offset {}", self.plane.gcode());
-                if self.reported.insert(key) {
-                    self.ignored.push(Ignored {
-                        line: block.line,
-                        word: format!("{} on {}", offset.name(), motion.name()),
-                        what: "out-of-plane arc offset of zero (grbl-style posts)",
-                    });
-                }
+                self.report(
+                    &format!("zero out-of-plane offset {}", self.plane.gcode()),
+                    block.line,
+                    format!("{} on {}", offset.name(), motion.name()),
+                    "out-of-plane arc offset of zero (grbl-style posts)",
+                );
             }
         }
         if let Some(motion) = motion {
