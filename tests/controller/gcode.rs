@@ -281,7 +281,7 @@ fn machine_settings_files_read_over_the_defaults_and_name_bad_lines() {
 /// The options the tests simulate with: the compiled backend, step axes,
 /// 50 clocks per 1 ms period (the fastest axis, Z at 20 mm/s, is 8 steps a
 /// period, 32 clocks at 2 + 2 clocks a step).
-fn options(out_dir: &std::path::Path) -> SimulationOptions {
+pub(crate) fn options(out_dir: &std::path::Path) -> SimulationOptions {
     SimulationOptions {
         format: None,
         machine: None,

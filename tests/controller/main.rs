@@ -14,6 +14,7 @@ mod controller_behind_bus_adapter;
 mod dda_only;
 mod entry_converter;
 mod gcode;
+mod gcode_corpus;
 mod host;
 mod machine_io;
 mod motion_controller;

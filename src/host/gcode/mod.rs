@@ -139,3 +139,6 @@ mod text;
 pub use interpreter::{interpret, interpret_from, GcodeError, Ignored, Program, Units};
 pub use lexer::{lex_line, lex_program, Block, LexError, Word};
 pub use text::program_text;
+
+#[cfg(test)]
+mod fuzz_tests;
