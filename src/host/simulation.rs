@@ -116,13 +116,14 @@ impl Job {
                 if program.toolpath.items.is_empty() {
                     return Err(format!("{}: the program has no motion", file.display()));
                 }
-                let ending = match (program.end, program.blocks_after_end) {
-                    (Some(line), 0) => format!("M2 or M30 on line {line}"),
-                    (Some(line), n) => {
+                let ending = match (program.end, program.blocks_after_end, program.closing_percent) {
+                    (Some(line), 0, _) => format!("M2 or M30 on line {line}"),
+                    (Some(line), n, _) => {
                         format!("M2 or M30 on line {line}; {n} blocks after it not run")
                     }
-                    (None, _) => {
-                        "end of file without M2 or M30 (the program ends there; LinuxCNC would refuse the file)"
+                    (None, _, Some(line)) => format!("the closing % on line {line}"),
+                    (None, _, None) => {
+                        "end of file without M2, M30 or a closing % (the program ends there; LinuxCNC would refuse the file)"
                             .to_string()
                     }
                 };

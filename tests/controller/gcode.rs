@@ -210,7 +210,12 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
             .unwrap()
             .ending
             .as_deref(),
-        Some("end of file without M2 or M30 (the program ends there; LinuxCNC would refuse the file)")
+        Some("end of file without M2, M30 or a closing % (the program ends there; LinuxCNC would refuse the file)")
+    );
+    let percent = write("percent.ngc", "%\nG1 X1 F100\n%\nnot read\n");
+    assert_eq!(
+        Job::read(&percent, None, None).unwrap().ending.as_deref(),
+        Some("the closing % on line 3")
     );
     let trailing = write("trailing.ngc", "G1 X1 F100\nM30\nG0 X0\nG0 Y0\n");
     assert_eq!(

@@ -35,6 +35,8 @@ impl Motion {
 #[derive(Clone, Copy)]
 enum GEffect {
     Motion(Motion),
+    /// G80: no motion mode (LinuxCNC's motion group 1).
+    CancelMotion,
     Dwell,
     Plane(Plane),
     Units(Units),
@@ -60,6 +62,7 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
             Motion(self::Motion::CounterClockwise),
             "one motion per block",
         ),
+        800 => (CancelMotion, "one motion per block"),
         40 => (Dwell, "one dwell per block"),
         170 => (Plane(self::Plane::Xy), "both select the plane"),
         180 => (Plane(self::Plane::Zx), "both select the plane"),
@@ -75,7 +78,6 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
         540 => (Nothing, "both select the coordinate system"),
         400 => (Nothing, "both set cutter radius compensation"),
         490 => (Nothing, "both set the tool length offset"),
-        800 => (Nothing, "both cancel canned cycles"),
         960 | 970 => (Ignored("spindle"), "both select the spindle speed mode"),
         980 | 990 => (
             Ignored("canned cycle return level"),
@@ -130,6 +132,8 @@ fn m_effect(code: u32) -> (Option<&'static str>, Option<&'static str>) {
 #[derive(Default)]
 pub(super) struct Words<'a> {
     pub(super) motion: Option<(&'a Word, Motion)>,
+    /// G80.
+    pub(super) cancel_motion: Option<&'a Word>,
     pub(super) dwell: Option<&'a Word>,
     pub(super) plane: Option<Plane>,
     pub(super) units: Option<Units>,
@@ -187,6 +191,7 @@ impl<'a> Words<'a> {
                     group(g)?;
                     match effect {
                         GEffect::Motion(m) => words.motion = Some((word, m)),
+                        GEffect::CancelMotion => words.cancel_motion = Some(word),
                         GEffect::Dwell => words.dwell = Some(word),
                         GEffect::Plane(p) => words.plane = Some(p),
                         GEffect::Units(u) => words.units = Some(u),

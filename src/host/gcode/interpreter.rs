@@ -100,6 +100,10 @@ pub struct Program {
     pub end: Option<usize>,
     /// Blocks after the M2 or M30, not run (block-deleted ones not counted).
     pub blocks_after_end: usize,
+    /// The line of the `%` that closed the program (its first line being
+    /// `%` too): the end of the program, as in LinuxCNC, when no M2 or M30
+    /// came before it. Nothing after it is read.
+    pub closing_percent: Option<usize>,
 }
 
 /// Interprets `program` from the origin. See the [module doc](super).
@@ -112,7 +116,8 @@ pub fn interpret(program: &str) -> Result<Program, GcodeError> {
 pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeError> {
     let mut state = State::new(start);
     let mut after_end = 0;
-    for block in lex_program(program)? {
+    let lexed = lex_program(program)?;
+    for block in &lexed.blocks {
         if block.deleted {
             continue;
         }
@@ -120,12 +125,12 @@ pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeEr
             after_end += 1;
             continue;
         }
-        state.apply(&block).map_err(|message| GcodeError {
+        state.apply(block).map_err(|message| GcodeError {
             line: block.line,
             message,
         })?;
     }
-    Ok(state.finish(after_end))
+    Ok(state.finish(after_end, lexed.closing_percent))
 }
 
 const AXES: [char; 3] = ['X', 'Y', 'Z'];
@@ -171,7 +176,7 @@ impl State {
         }
     }
 
-    fn finish(self, blocks_after_end: usize) -> Program {
+    fn finish(self, blocks_after_end: usize, closing_percent: Option<usize>) -> Program {
         Program {
             toolpath: self.toolpath,
             units: self.units,
@@ -179,6 +184,7 @@ impl State {
             ignored: self.ignored,
             end: self.end,
             blocks_after_end,
+            closing_percent,
         }
     }
 
@@ -252,6 +258,9 @@ impl State {
         if let Some((_, m)) = words.motion {
             self.motion = Some(m);
         }
+        if words.cancel_motion.is_some() {
+            self.motion = None;
+        }
         if let Some(motion) = motion.filter(|m| m.is_arc()) {
             // grbl ignores an out-of-plane offset, and FreeCAD's grbl post
             // writes K0 on every G17 arc: exactly zero changes nothing, so
@@ -279,26 +288,16 @@ impl State {
 
     /// The motion the block runs, if it runs one: its own G0 to G3 or the
     /// modal one, when it has axis words (or, for an arc, center words).
+    /// A G4 beside it dwells first (LinuxCNC's order of execution).
     fn motion_to_run(&self, words: &Words) -> Result<Option<Motion>, String> {
         let (axis, center) = (words.first_axis, words.first_center);
-        if let Some(dwell) = words.dwell {
-            if let (Some((written, _)), Some(_)) = (words.motion, axis.or(center)) {
-                return Err(format!(
-                    "{} and {} in one block: one motion per block",
-                    written.name(),
-                    dwell.name()
-                ));
-            }
-            if let Some(axis) = axis {
-                return Err(format!(
-                    "{} on a G4 block: a dwell moves no axis",
-                    axis.name()
-                ));
-            }
-            if let Some(center) = center {
-                return Err(format!("{} has no G2 or G3 to use it", center.name()));
-            }
-            return Ok(None);
+        if let (Some(g80), Some(word)) = (words.cancel_motion, axis.or(center)) {
+            return Err(format!(
+                "{} with {}: G80 cancels the motion mode and takes no axis or arc words \
+                 (LinuxCNC: Cannot use axis values with g80)",
+                word.name(),
+                g80.name()
+            ));
         }
         let motion = match words.motion {
             Some((_, m)) => Some(m),
@@ -432,6 +431,20 @@ impl State {
             }
             center_from_radius(from, to, r.value * scale, clockwise, &r.name(), self.units)?
         } else if has_offset {
+            if !self.arc_incremental {
+                if let Some(missing) = [first, second]
+                    .into_iter()
+                    .find(|&k| words.offsets[k].is_none())
+                {
+                    return Err(format!(
+                        "{name} needs {} with G90.1: absolute arc centers need both of the {} plane's offsets \
+                         (LinuxCNC: {} word missing in absolute center arc)",
+                        offset_letter(missing),
+                        self.plane.gcode(),
+                        offset_letter(missing)
+                    ));
+                }
+            }
             let center = [first, second].map(|axis| {
                 let offset = words.offsets[axis].map_or(0.0, |w| w.value);
                 let base = if self.arc_incremental {
@@ -461,6 +474,11 @@ impl State {
             turns,
         })
     }
+}
+
+/// I, J or K: the arc center offset along axis `k` (X, Y or Z).
+fn offset_letter(k: usize) -> char {
+    ['I', 'J', 'K'][k]
 }
 
 fn check_range(what: &str, mm: f64) -> Result<(), String> {

@@ -87,9 +87,29 @@ fn blocks_that_move_nothing_emit_nothing() {
 
 #[test]
 fn the_accepted_no_op_codes_change_nothing() {
-    let p = run("G17 G21 G40 G49 G80 G90 G94 G54 G91.1\nG1 X1 F60\nG80\nX2");
-    assert_eq!(p.toolpath.items.len(), 2, "G80 keeps G1");
+    let p = run("G17 G21 G40 G49 G80 G90 G94 G54 G91.1\nG1 X1 F60\nX2");
+    assert_eq!(p.toolpath.items.len(), 2);
     assert!(p.ignored.is_empty());
+}
+
+/// G80 is in LinuxCNC's motion group: it ends the motion mode, and takes
+/// no axis words (both as LinuxCNC 2.9's interpreter refuses them).
+#[test]
+fn g80_cancels_the_motion_mode() {
+    assert_eq!(
+        error("G1 X1 F60\nG80\nX2"),
+        "line 3: X2 needs a motion mode (G0, G1, G2 or G3) first"
+    );
+    assert_eq!(
+        error("G0 X1\nG80 X2"),
+        "line 2: X2 with G80: G80 cancels the motion mode and takes no axis or arc words \
+         (LinuxCNC: Cannot use axis values with g80)"
+    );
+    assert_eq!(
+        error("G80 G0 X1"),
+        "line 1: G80 and G0 in one block: one motion per block"
+    );
+    assert_eq!(moves("G80\nG0 X1").len(), 1);
 }
 
 #[test]
@@ -225,6 +245,18 @@ fn absolute_arc_centers_in_either_unit() {
         other => panic!("{other:?}"),
     }
     assert_eq!(m[1].end, [0.5 * 25.4, 1.5 * 25.4, 0.0]);
+    // Absolute centers need both offsets of the plane (incremental ones
+    // count a missing offset as 0).
+    assert_eq!(
+        error("G0 X1\nG90.1 G2 X3 Y0 I2 F100"),
+        "line 2: G2 needs J with G90.1: absolute arc centers need both of the G17 plane's offsets \
+         (LinuxCNC: J word missing in absolute center arc)"
+    );
+    assert_eq!(
+        error("G18 G90.1 G3 X3 Z0 I2 F100"),
+        "line 1: G3 needs K with G90.1: absolute arc centers need both of the G18 plane's offsets \
+         (LinuxCNC: K word missing in absolute center arc)"
+    );
 }
 
 #[test]
@@ -394,13 +426,27 @@ fn dwells() {
         error("G4 P-1"),
         "line 1: P-1 is not a dwell time: it must be 0 or more seconds"
     );
+    // Axis words beside G4 run the motion after the dwell (LinuxCNC's
+    // skeleton.ngc writes `G04 P.001 G0 ...`).
+    let p = run("G1 X1 F60\nG4 P1 X2\nG4 P0.5 G0 X3 Y1");
     assert_eq!(
-        error("G1 X1 F60\nG4 P1 X1"),
-        "line 2: X1 on a G4 block: a dwell moves no axis"
+        p.toolpath.items[1..],
+        [
+            Item::Dwell {
+                seconds: 1.0,
+                line: 2
+            },
+            Item::Move(line([2.0, 0.0, 0.0], Some(1.0), 2)),
+            Item::Dwell {
+                seconds: 0.5,
+                line: 3
+            },
+            Item::Move(line([3.0, 1.0, 0.0], None, 3)),
+        ]
     );
     assert_eq!(
-        error("G1 G4 P1 X1 F60"),
-        "line 1: G1 and G4 in one block: one motion per block"
+        error("G4 P1 X1"),
+        "line 1: X1 needs a motion mode (G0, G1, G2 or G3) first"
     );
     assert_eq!(error("G4 P1 P2"), "line 1: P appears twice");
     assert_eq!(
@@ -424,6 +470,10 @@ fn block_delete_and_program_end() {
     let p = run("G0 X1\nG0 X2 M2\nG0 X3");
     assert_eq!((p.end, p.toolpath.end()), (Some(2), [2.0, 0.0, 0.0]));
     assert_eq!(run("/M2\nG0 X1").end, None);
+    // A closing `%` ends the program when no M2 or M30 came first.
+    let p = run("%\nG0 X1\n%\nG0 X5");
+    assert_eq!((p.end, p.closing_percent), (None, Some(3)));
+    assert_eq!(p.toolpath.end(), [1.0, 0.0, 0.0]);
     // The lexer reads every line first.
     assert_eq!(error("M2\nG1 X1 $"), "line 2: unexpected character `$`");
 }

@@ -9,7 +9,10 @@
 //! * an `N` line number as the first word;
 //! * comments: `( ... )` anywhere (not nested), `;` to the end of the line;
 //! * a checksum `*NN` at the end: the XOR of every byte before the `*`;
-//! * a line holding only `%` delimits the program and is skipped.
+//! * a line holding only `%`: when it is the program's first non-blank
+//!   line it opens the program, and the next such line closes it
+//!   (LinuxCNC's rule: nothing after the closing `%` is read); a `%` line
+//!   with no opening one is an error.
 //!
 //! Numbers are kept as `f64` and as their text: G and M codes are compared
 //! as integers ([`Word::code`]), never as floats. Every error names the
@@ -78,16 +81,46 @@ pub struct Block {
     pub comments: Vec<String>,
 }
 
-/// Reads every line of `program`; `%` lines are skipped, so are lines
-/// with nothing but spaces.
-pub fn lex_program(program: &str) -> Result<Vec<Block>, LexError> {
-    let mut blocks = Vec::new();
+/// A program read line by line.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Lexed {
+    /// The blocks, in order; blank lines and `%` lines have none.
+    pub blocks: Vec<Block>,
+    /// The line of the `%` that closed the program, when its first
+    /// non-blank line was `%`: the lines after it are not read.
+    pub closing_percent: Option<usize>,
+}
+
+/// Reads the lines of `program` up to its closing `%`, if it has one (see
+/// the [module doc](self)); lines with nothing but spaces are skipped.
+pub fn lex_program(program: &str) -> Result<Lexed, LexError> {
+    let mut lexed = Lexed::default();
+    let mut opened = false;
+    let mut first = true;
     for (index, text) in program.lines().enumerate() {
-        if let Some(block) = lex_line(index + 1, text)? {
-            blocks.push(block);
+        let line = index + 1;
+        let trimmed = text.trim();
+        if trimmed == "%" {
+            if first {
+                opened = true;
+            } else if opened {
+                lexed.closing_percent = Some(line);
+                break;
+            } else {
+                return Err(LexError {
+                    line,
+                    message: "`%` closes a program only when its first line is `%` too \
+                        (LinuxCNC: Bad character '%' used)"
+                        .into(),
+                });
+            }
+        }
+        first &= trimmed.is_empty();
+        if let Some(block) = lex_line(line, text)? {
+            lexed.blocks.push(block);
         }
     }
-    Ok(blocks)
+    Ok(lexed)
 }
 
 /// Reads one line (`line` is its 1-based number in the file). `None` for a
@@ -336,6 +369,27 @@ mod tests {
         assert_eq!(
             lex_program("G21\n\nG1 X1 @\n").unwrap_err().to_string(),
             "line 3: unexpected character `@`"
+        );
+    }
+
+    /// LinuxCNC's `%` rule, as its 2.9 interpreter runs it: an opening `%`
+    /// (after blank lines) and the next `%` closes the program, whatever
+    /// follows; a `%` line after other lines with no opening one is refused.
+    #[test]
+    fn percent_lines_open_and_close_the_program() {
+        let lexed = lex_program("\n %\nG0 X1\n%\nG0 X5\nnot G-code at all\n").unwrap();
+        assert_eq!(lexed.blocks.len(), 1);
+        assert_eq!(lexed.closing_percent, Some(4));
+        let lexed = lex_program("%\nG0 X1\n").unwrap();
+        assert_eq!((lexed.blocks.len(), lexed.closing_percent), (1, None));
+        let lexed = lex_program("G0 X1\nM2\n").unwrap();
+        assert_eq!((lexed.blocks.len(), lexed.closing_percent), (2, None));
+        assert_eq!(
+            lex_program("G21\nG0 X1\n%\nG0 X3\n")
+                .unwrap_err()
+                .to_string(),
+            "line 3: `%` closes a program only when its first line is `%` too \
+             (LinuxCNC: Bad character '%' used)"
         );
     }
 }

@@ -8,7 +8,9 @@
 //! such a byte outside a comment is an error naming its line.
 //! [`lex_program`] reads lines into blocks of words (see [`lexer`]): either
 //! case, spaces anywhere, `N` numbers, `( )` and `;` comments, block delete
-//! `/`, RepRap `*NN` checksums, `%` lines. Values are `f64`; G and M codes
+//! `/`, RepRap `*NN` checksums, `%` lines (an opening `%` on the first
+//! non-blank line, and the next `%` line closes the program: nothing after
+//! it is read, as in LinuxCNC). Values are `f64`; G and M codes
 //! are compared as integers (tenths: G90.1 is 901). The lexer is our own:
 //! the `gcode` crate (0.7.0, and 0.6.1) keeps values as `f32` (`X1234.5678`
 //! reads 1234.5677), rejects block delete and checksums, and drops a
@@ -23,15 +25,18 @@
 //! All words are read first (errors for unknown or repeated words), then
 //! applied in RS-274/NGC's order of execution: F (in the units in force
 //! before the block: F comes before G20/G21 in that order), G20/G21,
-//! G17/G18/G19, G90/G91 and G90.1/G91.1, G4, the motion (G0 to G3 with X,
-//! Y, Z, I, J, K, R, P), then M2/M30. A feed keeps its speed across a
+//! G17/G18/G19, G90/G91 and G90.1/G91.1, G4 (a dwell, then the block's
+//! motion if it has axis words: `G4 P1 G0 X5` dwells, then moves), G80,
+//! the motion (G0 to G3 with X, Y, Z, I, J, K, R, P), then M2/M30. A feed keeps its speed across a
 //! change of units (it is held in mm/s), as in LinuxCNC. A block deleted by `/` is skipped whole. After M2 or M30
 //! nothing more is interpreted (the lexer has read every line by then, so
 //! a malformed line after the end is still an error); the blocks left are
 //! counted ([`Program::blocks_after_end`]) and `simulate` reports them. A
-//! file without M2 or M30 ends at its last line and `simulate` says so
-//! (a leniency for posts that omit it: LinuxCNC 2.9 refuses such a file,
-//! "File ended with no percent sign (%) or program end (M2)").
+//! closing `%` ends the program too ([`Program::closing_percent`]). A
+//! file without M2, M30 or a closing `%` ends at its last line and
+//! `simulate` says so (a leniency for posts that omit it: LinuxCNC 2.9
+//! refuses such a file, "File ended with no percent sign (%) or program
+//! end (M2)").
 //!
 //! # Supported
 //! | Words | Effect |
@@ -39,7 +44,8 @@
 //! | G0 | rapid line (`Move::feed` is `None`) |
 //! | G1 | line at the modal feed |
 //! | G2, G3 | clockwise, counter-clockwise arc seen from the plane's positive normal; the normal axis may move (helix) |
-//! | G4 P | dwell, P in **seconds** (RS-274/NGC and LinuxCNC; not Fanuc's milliseconds), P ≥ 0; non-modal, keeps the motion mode |
+//! | G4 P | dwell, P in **seconds** (RS-274/NGC and LinuxCNC; not Fanuc's milliseconds), P ≥ 0; non-modal, keeps the motion mode; axis words beside it run the motion mode after the dwell |
+//! | G80 | ends the motion mode (LinuxCNC's motion group 1): axis words after it need a G0 to G3 again |
 //! | G17, G18, G19 | arc plane XY, ZX, YZ |
 //! | G20, G21 | inch, mm: every later length and F in those units |
 //! | G90, G91 | X, Y, Z absolute or incremental |
@@ -47,15 +53,17 @@
 //! | X Y Z | the end, in the current units; an axis not written keeps its position |
 //! | F | feed, units per minute, > 0, modal; stored as mm/s (F600 in G21 is 10 mm/s) |
 //! | M2, M30 | end of program ([`Program::end`]) |
-//! | G94, G54, G40, G49, G80 | accepted, no effect: the only feed mode, the only coordinate system (no offsets), and cancels of modes that are never on. G80 does not cancel G0 to G3 (as in Fanuc, where it is in a group of its own). |
+//! | G94, G54, G40, G49 | accepted, no effect: the only feed mode, the only coordinate system (no offsets), and cancels of modes that are never on |
 //!
 //! Motion is modal: a block with only axis words runs the last G0 to G3. A
 //! G0 or G1 (or a G2, G3) with no axis word only sets the mode; a line
 //! ending exactly where it starts adds no move.
 //!
 //! Arcs: the center is either I, J, K (the plane's two: I and J for G17,
-//! K and I for G18's (Z, X), J and K for G19; a missing one counts 0), or
-//! R. With I, J, K an end equal to the start in the plane (within 1e-9 mm)
+//! K and I for G18's (Z, X), J and K for G19; under G91.1 a missing one
+//! counts 0), or
+//! R. Under G90.1 (absolute centers) both of the plane's offsets must be
+//! given. With I, J, K an end equal to the start in the plane (within 1e-9 mm)
 //! is a full circle; the radius at the end must match the start's within
 //! max(0.002 mm, 0.1 %). R > 0 is the arc of at most half a circle, R < 0
 //! the longer one (LinuxCNC's rule); |R| short of half the chord by less
@@ -112,8 +120,12 @@
 //!   rate: no F word so far` (G2, G3 likewise); `F0 is not a feed rate: it
 //!   must be above zero`.
 //! * `G4 needs a dwell time: P, in seconds`; `P-1 is not a dwell time: it
-//!   must be 0 or more seconds`; `X1 on a G4 block: a dwell moves no axis`;
-//!   `G1 and G4 in one block: one motion per block` (with axis words).
+//!   must be 0 or more seconds`.
+//! * `X2 with G80: G80 cancels the motion mode and takes no axis or arc
+//!   words (LinuxCNC: Cannot use axis values with g80)`.
+//! * `%` on a line after others, with no `%` on the first line: "`%`
+//!   closes a program only when its first line is `%` too (LinuxCNC: Bad
+//!   character '%' used)".
 //! * `P2 has no G2, G3, G4 or G64 to use it`; `Q1 has no G64 to use it`;
 //!   `I5 has no G2 or G3 to use it` (I, J, K, R without an arc).
 //! * Arcs: `G2 needs a center (I, J or K) or a radius (R)`; `R5 with I, J
@@ -121,7 +133,9 @@
 //!   plane's offsets (I and J)`; `G2 needs X or Y (its end in the G17
 //!   plane)`; `R cannot make a full circle (the end is the start); give
 //!   the center with I, J or K`; `R5 cannot reach the end: |R| must be at
-//!   least half the chord, 6.0000 mm`; `the arc's radius is 10.0000 mm at
+//!   least half the chord, 6.0000 mm`; `G2 needs J with G90.1: absolute
+//!   arc centers need both of the G17 plane's offsets (LinuxCNC: J word
+//!   missing in absolute center arc)`; `the arc's radius is 10.0000 mm at
 //!   its start and 10.0100 mm at its end`; `the arc's center is its start
 //!   (zero radius)` (or `its end`); `P1.5 is not a number of turns: a whole
 //!   number, 1 or more`. Lengths are in the program's units, 4 decimals.
@@ -137,7 +151,7 @@ pub mod lexer;
 mod text;
 
 pub use interpreter::{interpret, interpret_from, GcodeError, Ignored, Program, Units};
-pub use lexer::{lex_line, lex_program, Block, LexError, Word};
+pub use lexer::{lex_line, lex_program, Block, LexError, Lexed, Word};
 pub use text::program_text;
 
 #[cfg(test)]
