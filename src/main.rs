@@ -258,11 +258,15 @@ fn run(cli: Cli) -> Result<(), String> {
             if let Some(ending) = &r.ending {
                 println!("end        {ending}");
             }
-            if let Some((end, units)) = r.program_end {
-                let unit = units.name();
+            if let Some(end) = r.program_end {
+                let (work, unit, machine) = (end.work, end.units.name(), end.machine_mm);
                 println!(
-                    "program    X {:.4} {unit}  Y {:.4} {unit}  Z {:.4} {unit}",
-                    end[0], end[1], end[2]
+                    "program    X {:.4} {unit}  Y {:.4} {unit}  Z {:.4} {unit}  ({})",
+                    work[0], work[1], work[2], end.coordinate_system
+                );
+                println!(
+                    "machine    X {:.4} mm  Y {:.4} mm  Z {:.4} mm",
+                    machine[0], machine[1], machine[2]
                 );
             }
             println!("target     {:?}", r.target);

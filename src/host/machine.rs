@@ -11,6 +11,7 @@
 //! max_accel 500 500 200        # mm/s^2 per axis
 //! contour_error 0.01           # mm: corner deviation and arc chord error
 //! period_us 1000               # interpolation period T
+//! parameter 5221 100.0         # G54's X origin, machine mm (LinuxCNC's #5221)
 //! ```
 //!
 //! | setting | default | meaning |
@@ -20,10 +21,12 @@
 //! | `max_accel` | 500 500 200 | per-axis acceleration limit, mm/s^2 |
 //! | `contour_error` | 0.01 | mm: how far a corner is rounded, and the chord error of an arc's per-period chords |
 //! | `period_us` | 1000 | interpolation period T, microseconds |
+//! | `parameter N V` | see [`PersistentParameters`] | a G-code parameter LinuxCNC keeps between runs (#5161 to #5390: G28 and G30 positions, G92 offset, active coordinate system, G54 to G59.3 origins), mm; repeatable |
 //!
 //! The defaults are a small stepper mill: 1.8 degree motors at 1/8
 //! microstep on 16 mm-lead (X, Y) and 4 mm-lead (Z) screws.
 
+use super::gcode::PersistentParameters;
 use super::path::PathError;
 use super::statements::statements;
 
@@ -46,6 +49,8 @@ pub struct MachineSettings {
     pub contour_error: f64,
     /// Interpolation period, seconds.
     pub period: f64,
+    /// The G-code parameters kept between runs (#5161 to #5390), mm.
+    pub parameters: PersistentParameters,
 }
 
 impl Default for MachineSettings {
@@ -57,6 +62,7 @@ impl Default for MachineSettings {
             path_accel: f64::INFINITY,
             contour_error: 0.01,
             period: 1e-3,
+            parameters: PersistentParameters::default(),
         }
     }
 }
@@ -121,9 +127,20 @@ impl MachineSettings {
                 "max_accel" => settings.max_accel = numbers.exactly()?,
                 "contour_error" => [settings.contour_error] = numbers.exactly()?,
                 "period_us" => settings.period = numbers.exactly::<1>()?[0] * 1e-6,
+                "parameter" => {
+                    let [n, value] = numbers.exactly()?;
+                    let n = u32::try_from(n as i64)
+                        .ok()
+                        .filter(|&whole| f64::from(whole) == n)
+                        .ok_or_else(|| statement.error(format!("parameter `{n}` is not a parameter number")))?;
+                    settings
+                        .parameters
+                        .set(n, value)
+                        .map_err(|e| statement.error(e))?;
+                }
                 other => {
                     return Err(statement.error(format!(
-                        "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us)"
+                        "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter)"
                     )))
                 }
             }

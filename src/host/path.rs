@@ -155,6 +155,7 @@ impl Path {
             path_accel: self.accel,
             contour_error: self.contour_error,
             period: self.period,
+            parameters: Default::default(),
         }
     }
 

@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::gcode::{interpret, program_text, Ignored, Units};
+use super::gcode::{interpret_with, program_text, Ignored, Units};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::{
@@ -53,6 +53,20 @@ impl InputFormat {
     }
 }
 
+/// Where a G-code program ends, in its own terms and the machine's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProgramEnd {
+    /// The work position, in `units`, in `coordinate_system` (with the G92
+    /// offset if one applies).
+    pub work: [f64; 3],
+    /// The program's units at its end.
+    pub units: Units,
+    /// The coordinate system in force at the end: "G54" to "G59.3".
+    pub coordinate_system: &'static str,
+    /// The machine position, mm (the toolpath's end).
+    pub machine_mm: [f64; 3],
+}
+
 /// A file read for simulation: the toolpath, the machine it runs on, and
 /// for G-code what the program itself says.
 #[derive(Clone, Debug)]
@@ -61,8 +75,8 @@ pub struct Job {
     pub toolpath: Toolpath,
     /// The limits and resolution.
     pub machine: MachineSettings,
-    /// G-code only: the program's final position in its units.
-    pub program_end: Option<([f64; 3], Units)>,
+    /// G-code only: where the program ends.
+    pub program_end: Option<ProgramEnd>,
     /// G-code only: the words that do not change motion, each once.
     pub ignored: Vec<Ignored>,
     /// G-code only: how the program ended, as a sentence.
@@ -110,9 +124,10 @@ impl Job {
                 })
             }
             InputFormat::Gcode => {
-                let program = interpret(&text).map_err(|e| located(&e))?;
                 let machine = machine.unwrap_or_default();
                 machine.validate().map_err(|e| located(&e))?;
+                let program = interpret_with(&text, [0.0; 3], &machine.parameters)
+                    .map_err(|e| located(&e))?;
                 if program.toolpath.items.is_empty() {
                     return Err(format!("{}: the program has no motion", file.display()));
                 }
@@ -130,7 +145,12 @@ impl Job {
                 Ok(Job {
                     toolpath: program.toolpath,
                     machine,
-                    program_end: Some((program.final_position, program.units)),
+                    program_end: Some(ProgramEnd {
+                        work: program.final_position,
+                        units: program.units,
+                        coordinate_system: program.coordinate_system,
+                        machine_mm: program.final_machine,
+                    }),
                     ignored: program.ignored,
                     ending: Some(ending),
                 })
@@ -254,8 +274,8 @@ fn trip_schedule(trips: &[Trip]) -> Vec<(f64, MachinePins)> {
 pub struct SimulationReport {
     /// The path's end, steps.
     pub target: [i64; 3],
-    /// G-code: the program's final position in its own units.
-    pub program_end: Option<([f64; 3], Units)>,
+    /// G-code: where the program ends.
+    pub program_end: Option<ProgramEnd>,
     /// G-code: the words ignored because they do not change motion.
     pub ignored: Vec<Ignored>,
     /// G-code: how the program ended, as a sentence.

@@ -447,6 +447,7 @@ fn random_lines_and_arcs_end_exactly_within_every_limit() {
             // binds before the centripetal one.
             contour_error: rng.gen_range(1e-4..0.05),
             period: [2.5e-4, 1e-3, 4e-3, 1e-2][rng.gen_range(0..4)],
+            parameters: Default::default(),
         };
         let toolpath = random_toolpath(&mut rng);
         let (segments, i) = run(&toolpath, &machine);

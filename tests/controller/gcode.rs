@@ -274,12 +274,29 @@ fn machine_settings_files_read_over_the_defaults_and_name_bad_lines() {
     );
     assert_eq!(
         message("feed 100"),
-        "line 1: unknown setting `feed` (steps_per_mm, max_velocity, max_accel, contour_error, period_us)"
+        "line 1: unknown setting `feed` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter)"
     );
     assert_eq!(message("contour_error x"), "line 1: `x` is not a number");
     assert_eq!(
         message("steps_per_mm 1e12 100 400"),
         "line 1: steps_per_mm for X is 1000000000000, beyond 1000000 (a nanometre a step)"
+    );
+    // LinuxCNC's persistent parameters, by number, in mm.
+    let settings = MachineSettings::parse(
+        "parameter 5221 100
+parameter 5220 2
+",
+    )
+    .unwrap();
+    assert_eq!(settings.parameters.get(5221), Some(100.0));
+    assert_eq!(settings.parameters.get(5220), Some(2.0));
+    assert_eq!(
+        message("parameter 5221.5 1"),
+        "line 1: parameter `5221.5` is not a parameter number"
+    );
+    assert_eq!(
+        message("\nparameter 5230 45"),
+        "line 2: #5230 = 45 rotates a coordinate system, which is not supported"
     );
 }
 
@@ -321,8 +338,12 @@ fn the_pocket_program_runs_through_the_rtl_controller_to_its_exact_end() {
         r.commanded,
         r.actual
     );
-    let (end, units) = r.program_end.unwrap();
-    assert_eq!((end, units), ([0.0, 0.0, 5.0], Units::Millimetre));
+    let end = r.program_end.unwrap();
+    assert_eq!((end.work, end.units), ([0.0, 0.0, 5.0], Units::Millimetre));
+    assert_eq!(
+        (end.coordinate_system, end.machine_mm),
+        ("G54", [0.0, 0.0, 5.0])
+    );
     assert_eq!(r.target, [0, 0, 2000]);
     assert_eq!(r.commanded.map(i64::from), r.target);
     assert_eq!(r.actual.map(i64::from), r.target);
@@ -343,7 +364,8 @@ fn the_engraving_program_runs_through_the_rtl_controller_to_its_exact_end() {
         "engraving: {} periods, {} clocks in {:.1} s, actual {:?}",
         r.periods, r.cycles, r.seconds, r.actual
     );
-    assert_eq!(r.program_end, Some(([0.0, 0.0, 2.0], Units::Millimetre)));
+    let end = r.program_end.unwrap();
+    assert_eq!((end.work, end.units), ([0.0, 0.0, 2.0], Units::Millimetre));
     assert_eq!(r.target, [0, 0, 800]);
     assert_eq!(r.commanded.map(i64::from), r.target);
     assert_eq!(r.actual.map(i64::from), r.target);

@@ -31,6 +31,46 @@ impl Motion {
     }
 }
 
+/// The non-modal G codes other than G4 (LinuxCNC's group 0): each acts
+/// on its own block only.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum NonModal {
+    /// G10 (L2, L20): set a coordinate system's origin.
+    SetOrigin,
+    /// G28 (`second` false) or G30: rapid to the stored position.
+    Home { second: bool },
+    /// G28.1 or G30.1: store the current position.
+    StoreHome { second: bool },
+    /// G53: the block's G0 or G1 in machine coordinates.
+    MachineCoordinates,
+    /// G92: offset the coordinates so that the position reads the words.
+    SetOffset,
+    /// G92.1: clear the G92 offset and its parameters.
+    ClearOffset,
+    /// G92.2: stop applying the G92 offset, keeping its parameters.
+    SuspendOffset,
+    /// G92.3: apply the G92 offset kept in its parameters.
+    RestoreOffset,
+}
+
+impl NonModal {
+    /// Whether the code takes the block's axis words (then no motion runs).
+    pub(super) fn takes_axes(self) -> bool {
+        matches!(
+            self,
+            NonModal::SetOrigin | NonModal::Home { .. } | NonModal::SetOffset
+        )
+    }
+
+    /// Whether the code reads axis words at all.
+    pub(super) fn reads_axes(self) -> bool {
+        self.takes_axes() || self == NonModal::MachineCoordinates
+    }
+}
+
+/// The group message of LinuxCNC's group 0: one code of it per block.
+const GROUP_0: &str = "one non-modal code (G4, G10, G28, G30, G53, G92) per block";
+
 /// What a supported or accepted G code does.
 #[derive(Clone, Copy)]
 enum GEffect {
@@ -38,6 +78,9 @@ enum GEffect {
     /// G80: no motion mode (LinuxCNC's motion group 1).
     CancelMotion,
     Dwell,
+    NonModal(NonModal),
+    /// G54 to G59.3: 0 to 8.
+    System(usize),
     Plane(Plane),
     Units(Units),
     Incremental(bool),
@@ -63,7 +106,31 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
             "one motion per block",
         ),
         800 => (CancelMotion, "one motion per block"),
-        40 => (Dwell, "one dwell per block"),
+        40 => (Dwell, GROUP_0),
+        100 => (NonModal(self::NonModal::SetOrigin), GROUP_0),
+        280 => (NonModal(self::NonModal::Home { second: false }), GROUP_0),
+        300 => (NonModal(self::NonModal::Home { second: true }), GROUP_0),
+        281 => (
+            NonModal(self::NonModal::StoreHome { second: false }),
+            GROUP_0,
+        ),
+        301 => (
+            NonModal(self::NonModal::StoreHome { second: true }),
+            GROUP_0,
+        ),
+        530 => (NonModal(self::NonModal::MachineCoordinates), GROUP_0),
+        920 => (NonModal(self::NonModal::SetOffset), GROUP_0),
+        921 => (NonModal(self::NonModal::ClearOffset), GROUP_0),
+        922 => (NonModal(self::NonModal::SuspendOffset), GROUP_0),
+        923 => (NonModal(self::NonModal::RestoreOffset), GROUP_0),
+        540 | 550 | 560 | 570 | 580 | 590 => (
+            System((code / 10 - 54) as usize),
+            "both select the coordinate system",
+        ),
+        591..=593 => (
+            System((code - 585) as usize),
+            "both select the coordinate system",
+        ),
         170 => (Plane(self::Plane::Xy), "both select the plane"),
         180 => (Plane(self::Plane::Zx), "both select the plane"),
         190 => (Plane(self::Plane::Yz), "both select the plane"),
@@ -75,7 +142,6 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
         911 => (ArcIncremental(true), "both select the arc center mode"),
         610 | 611 | 640 => (PathControl, "both select path control"),
         940 => (Nothing, "both select the feed mode"),
-        540 => (Nothing, "both select the coordinate system"),
         400 => (Nothing, "both set cutter radius compensation"),
         490 => (Nothing, "both set the tool length offset"),
         960 | 970 => (Ignored("spindle"), "both select the spindle speed mode"),
@@ -94,15 +160,11 @@ fn g_refused(code: u32) -> Option<&'static str> {
         50..=53 => "spline",
         70 => "lathe diameter mode",
         80 => "lathe radius mode",
-        100 => "setting offsets",
-        280 | 281 | 300 | 301 => "return to a stored position",
         330 | 331 => "spindle-synchronized motion",
         382..=385 => "probing",
         410 | 411 | 420 | 421 => "cutter radius compensation",
         430..=432 => "tool length offset",
-        520 | 920..=923 => "coordinate offset",
-        530 => "machine coordinates",
-        550 | 560 | 570 | 580 | 590..=593 => "another coordinate system",
+        520 => "local coordinate offset",
         730 | 740 | 760 => "canned cycle",
         c if (810..=890).contains(&c) && c % 10 == 0 => "canned cycle",
         930 => "inverse-time feed",
@@ -134,6 +196,10 @@ pub(super) struct Words<'a> {
     pub(super) motion: Option<(&'a Word, Motion)>,
     /// G80.
     pub(super) cancel_motion: Option<&'a Word>,
+    /// G10, G28, G30, G53, G92 and their variants.
+    pub(super) non_modal: Option<(&'a Word, NonModal)>,
+    /// G54 to G59.3: 0 to 8.
+    pub(super) system: Option<usize>,
     pub(super) dwell: Option<&'a Word>,
     pub(super) plane: Option<Plane>,
     pub(super) units: Option<Units>,
@@ -144,6 +210,9 @@ pub(super) struct Words<'a> {
     pub(super) axes: [Option<&'a Word>; 3],
     pub(super) offsets: [Option<&'a Word>; 3],
     pub(super) radius: Option<&'a Word>,
+    /// R on a G10 block: the coordinate system's rotation.
+    pub(super) rotation: Option<&'a Word>,
+    pub(super) l: Option<&'a Word>,
     /// The first X, Y or Z and the first I, J, K or R as written, for the
     /// messages.
     pub(super) first_axis: Option<&'a Word>,
@@ -192,6 +261,8 @@ impl<'a> Words<'a> {
                     match effect {
                         GEffect::Motion(m) => words.motion = Some((word, m)),
                         GEffect::CancelMotion => words.cancel_motion = Some(word),
+                        GEffect::NonModal(n) => words.non_modal = Some((word, n)),
+                        GEffect::System(index) => words.system = Some(index),
                         GEffect::Dwell => words.dwell = Some(word),
                         GEffect::Plane(p) => words.plane = Some(p),
                         GEffect::Units(u) => words.units = Some(u),
@@ -269,16 +340,20 @@ impl<'a> Words<'a> {
                                 "{name}: subroutines and flow control (O words) are not supported"
                             ))
                         }
-                        'L' => {
-                            return Err(format!(
-                                "{name} is used only by G10 and canned cycles, which are not supported"
-                            ))
-                        }
+                        'L' => &mut words.l,
                         _ => return Err(format!("{name} is not a word this interpreter knows")),
                     };
                     *slot = Some(word);
                 }
             }
+        }
+        if let Some((_, NonModal::SetOrigin)) = words.non_modal {
+            // G10's R is the system's rotation, not an arc's radius.
+            words.rotation = words.radius.take();
+            words.first_center = block
+                .words
+                .iter()
+                .find(|w| matches!(w.letter, 'I' | 'J' | 'K'));
         }
         Ok(words)
     }

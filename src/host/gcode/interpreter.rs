@@ -6,8 +6,9 @@ use std::collections::HashSet;
 use thiserror::Error;
 
 use super::arc_center::{center_from_radius, check_center};
-use super::block_words::{Motion, Words};
+use super::block_words::{Motion, NonModal, Words};
 use super::lexer::{lex_program, Block, LexError};
+use super::parameters::{system_name, PersistentParameters};
 // An arc whose end is within SAME_POINT of its start, in its plane, is a
 // full circle (and its end is set to the start exactly).
 use crate::host::geometry::SAME_POINT;
@@ -88,8 +89,16 @@ pub struct Program {
     pub toolpath: Toolpath,
     /// The units mode in force at the end.
     pub units: Units,
-    /// Where the program ends, in `units` (the toolpath's end, converted).
+    /// Where the program ends, in `units`, in the work coordinates of the
+    /// coordinate system in force at its end (`coordinate_system`, with the
+    /// G92 offset if one applies).
     pub final_position: [f64; 3],
+    /// Where the program ends in machine coordinates, mm: the toolpath's end.
+    pub final_machine: [f64; 3],
+    /// The coordinate system in force at the end: "G54" to "G59.3".
+    pub coordinate_system: &'static str,
+    /// The persistent parameters (#5161 to #5390) as the program left them.
+    pub parameters: PersistentParameters,
     /// The words that do nothing here, each once, at its first line:
     /// once per M code, per ignored G code, and per letter S, T, H and D.
     pub ignored: Vec<Ignored>,
@@ -106,15 +115,27 @@ pub struct Program {
     pub closing_percent: Option<usize>,
 }
 
-/// Interprets `program` from the origin. See the [module doc](super).
+/// Interprets `program` from the machine's origin with the default
+/// parameters (every offset 0, G54). See the [module doc](super).
 pub fn interpret(program: &str) -> Result<Program, GcodeError> {
     interpret_from(program, [0.0; 3])
 }
 
-/// Interprets `program` from `start` (absolute, mm): a program's first
-/// incremental moves and arc centers count from there.
+/// Interprets `program` from `start` (machine mm) with the default
+/// parameters: a program's first incremental moves and arc centers count
+/// from there.
 pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeError> {
-    let mut state = State::new(start);
+    interpret_with(program, start, &PersistentParameters::default())
+}
+
+/// Interprets `program` from `start` (machine mm) with `parameters` (the
+/// machine settings' #5161 to #5390: coordinate systems, G92, G28 and G30).
+pub fn interpret_with(
+    program: &str,
+    start: [f64; 3],
+    parameters: &PersistentParameters,
+) -> Result<Program, GcodeError> {
+    let mut state = State::new(start, *parameters);
     let mut after_end = 0;
     let lexed = lex_program(program)?;
     for block in &lexed.blocks {
@@ -136,28 +157,31 @@ pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeEr
 const AXES: [char; 3] = ['X', 'Y', 'Z'];
 
 /// The modal state and what the program has produced so far.
-struct State {
-    units: Units,
-    plane: Plane,
-    incremental: bool,
-    arc_incremental: bool,
-    motion: Option<Motion>,
+pub(super) struct State {
+    pub(super) units: Units,
+    pub(super) plane: Plane,
+    pub(super) incremental: bool,
+    pub(super) arc_incremental: bool,
+    pub(super) motion: Option<Motion>,
     /// mm/s.
-    feed: Option<f64>,
-    /// The position in the program's current units: kept apart from the
-    /// mm one so that a program's own sums (G91 in inches) come out as it
-    /// computes them, not through a round trip by 25.4.
-    position: [f64; 3],
-    position_mm: [f64; 3],
-    toolpath: Toolpath,
-    ignored: Vec<Ignored>,
-    reported: HashSet<String>,
-    end: Option<usize>,
+    pub(super) feed: Option<f64>,
+    /// The work position in the program's current units: kept apart from
+    /// the machine one so that a program's own sums (G91 in inches) come
+    /// out as it computes them, not through a round trip by 25.4.
+    pub(super) position: [f64; 3],
+    /// The machine position, mm: the toolpath's coordinates.
+    pub(super) position_mm: [f64; 3],
+    /// Coordinate systems, G92, G28 and G30 positions.
+    pub(super) parameters: PersistentParameters,
+    pub(super) toolpath: Toolpath,
+    pub(super) ignored: Vec<Ignored>,
+    pub(super) reported: HashSet<String>,
+    pub(super) end: Option<usize>,
 }
 
 impl State {
-    fn new(start: [f64; 3]) -> Self {
-        State {
+    fn new(start: [f64; 3], parameters: PersistentParameters) -> Self {
+        let mut state = State {
             units: Units::Millimetre,
             plane: Plane::Xy,
             incremental: false,
@@ -166,6 +190,7 @@ impl State {
             feed: None,
             position: start,
             position_mm: start,
+            parameters,
             toolpath: Toolpath {
                 start,
                 items: Vec::new(),
@@ -173,7 +198,24 @@ impl State {
             ignored: Vec::new(),
             reported: HashSet::new(),
             end: None,
-        }
+        };
+        state.sync_work_position();
+        state
+    }
+
+    /// Machine = work + this, mm: the active system's origin and the G92
+    /// offset in force.
+    pub(super) fn offset(&self) -> [f64; 3] {
+        let origin = self.parameters.origin(self.parameters.active_system());
+        let g92 = self.parameters.g92();
+        [0, 1, 2].map(|k| origin[k] + g92[k])
+    }
+
+    /// The work position from the machine one, after the units or an
+    /// offset changed.
+    pub(super) fn sync_work_position(&mut self) {
+        let (offset, scale) = (self.offset(), self.units.mm_per_unit());
+        self.position = [0, 1, 2].map(|k| (self.position_mm[k] - offset[k]) / scale);
     }
 
     fn finish(self, blocks_after_end: usize, closing_percent: Option<usize>) -> Program {
@@ -181,6 +223,9 @@ impl State {
             toolpath: self.toolpath,
             units: self.units,
             final_position: self.position,
+            final_machine: self.position_mm,
+            coordinate_system: system_name(self.parameters.active_system()),
+            parameters: self.parameters,
             ignored: self.ignored,
             end: self.end,
             blocks_after_end,
@@ -210,15 +255,27 @@ impl State {
             }
         }
         let motion = self.motion_to_run(&words)?;
+        let g10 = matches!(words.non_modal, Some((_, NonModal::SetOrigin)));
         if let Some(p) = words.p {
-            let used =
-                words.dwell.is_some() || words.path_control || motion.is_some_and(Motion::is_arc);
+            let used = words.dwell.is_some()
+                || words.path_control
+                || g10
+                || motion.is_some_and(Motion::is_arc);
             if !used {
-                return Err(format!("{} has no G2, G3, G4 or G64 to use it", p.name()));
+                return Err(format!(
+                    "{} has no G2, G3, G4, G10 or G64 to use it",
+                    p.name()
+                ));
             }
         }
         if let Some(q) = words.q.filter(|_| !words.path_control) {
             return Err(format!("{} has no G64 to use it", q.name()));
+        }
+        if let Some(l) = words.l.filter(|_| !g10) {
+            return Err(format!(
+                "{} has no G10 to use it (canned cycles are not supported)",
+                l.name()
+            ));
         }
 
         for (word, what, key) in &words.ignored {
@@ -237,7 +294,7 @@ impl State {
         }
         if let Some(units) = words.units.filter(|u| *u != self.units) {
             self.units = units;
-            self.position = self.position_mm.map(|mm| mm / units.mm_per_unit());
+            self.sync_work_position();
         }
         self.plane = words.plane.unwrap_or(self.plane);
         self.incremental = words.incremental.unwrap_or(self.incremental);
@@ -255,11 +312,22 @@ impl State {
                 line: block.line,
             });
         }
+        // LinuxCNC's order: the coordinate system (step 15), the distance
+        // mode (17, above), then G10, G28, G30, G92 (19) and the motion (20).
+        if let Some(index) = words.system {
+            self.parameters.select_system(index);
+            self.sync_work_position();
+        }
         if let Some((_, m)) = words.motion {
             self.motion = Some(m);
         }
         if words.cancel_motion.is_some() {
             self.motion = None;
+        }
+        let mut machine = false;
+        if let Some((word, code)) = words.non_modal {
+            machine = code == NonModal::MachineCoordinates;
+            self.non_modal(word, code, &words, motion, block.line)?;
         }
         if let Some(motion) = motion.filter(|m| m.is_arc()) {
             // grbl ignores an out-of-plane offset, and FreeCAD's grbl post
@@ -278,7 +346,7 @@ impl State {
             }
         }
         if let Some(motion) = motion {
-            self.run(motion, &words, block.line)?;
+            self.run(motion, &words, block.line, machine)?;
         }
         if words.end {
             self.end = Some(block.line);
@@ -291,6 +359,29 @@ impl State {
     /// A G4 beside it dwells first (LinuxCNC's order of execution).
     fn motion_to_run(&self, words: &Words) -> Result<Option<Motion>, String> {
         let (axis, center) = (words.first_axis, words.first_center);
+        if let Some((code_word, code)) = words.non_modal {
+            if code.takes_axes() {
+                if let (Some((written, _)), Some(_)) = (words.motion, axis) {
+                    return Err(format!(
+                        "{} and {} in one block: both use the axis words \
+                         (LinuxCNC: Cannot use two g codes that both use axis values)",
+                        code_word.name(),
+                        written.name()
+                    ));
+                }
+                if let Some(center) = center {
+                    return Err(format!("{} has no G2 or G3 to use it", center.name()));
+                }
+                return Ok(None);
+            }
+            if let Some(word) = axis.or(center).filter(|_| !code.reads_axes()) {
+                return Err(format!(
+                    "{} with {}: it takes no axis words",
+                    word.name(),
+                    code_word.name()
+                ));
+            }
+        }
         if let (Some(g80), Some(word)) = (words.cancel_motion, axis.or(center)) {
             return Err(format!(
                 "{} with {}: G80 cancels the motion mode and takes no axis or arc words \
@@ -318,7 +409,15 @@ impl State {
         Ok(motion.filter(|_| axis.or(center).is_some()))
     }
 
-    fn run(&mut self, motion: Motion, words: &Words, line: usize) -> Result<(), String> {
+    /// Runs `motion` to the block's axis words: work coordinates, or with
+    /// `machine` (G53) machine coordinates.
+    fn run(
+        &mut self,
+        motion: Motion,
+        words: &Words,
+        line: usize,
+        machine: bool,
+    ) -> Result<(), String> {
         let feed =
             match motion {
                 Motion::Rapid => None,
@@ -326,25 +425,9 @@ impl State {
                     format!("{} needs a feed rate: no F word so far", motion.name())
                 })?),
             };
-        let scale = self.units.mm_per_unit();
         let start_mm = self.position_mm;
-        let mut end = self.position;
-        for (axis, word) in words.axes.iter().enumerate() {
-            if let Some(word) = word {
-                end[axis] = if self.incremental {
-                    end[axis] + word.value
-                } else {
-                    word.value
-                };
-            }
-        }
-        let mut end_mm = start_mm;
-        for axis in 0..3 {
-            if words.axes[axis].is_some() {
-                end_mm[axis] = end[axis] * scale;
-                check_range(&format!("the {} axis", AXES[axis]), end_mm[axis])?;
-            }
-        }
+        let offset = if machine { [0.0; 3] } else { self.offset() };
+        let (mut end, mut end_mm) = self.target(words, offset)?;
         let kind = if motion.is_arc() {
             let arc = self.arc(motion, words, &mut end, &mut end_mm)?;
             MoveKind::Arc(arc)
@@ -355,6 +438,9 @@ impl State {
         };
         self.position = end;
         self.position_mm = end_mm;
+        if machine {
+            self.sync_work_position();
+        }
         self.toolpath.items.push(Item::Move(Move {
             kind,
             end: end_mm,
@@ -362,6 +448,46 @@ impl State {
             line,
         }));
         Ok(())
+    }
+
+    /// The block's axis words as an end: in the program's units (absolute
+    /// or added to the work position, as G90 or G91 says) and in machine
+    /// mm (`offset` added); an axis not written keeps its position.
+    pub(super) fn target(
+        &self,
+        words: &Words,
+        offset: [f64; 3],
+    ) -> Result<([f64; 3], [f64; 3]), String> {
+        let scale = self.units.mm_per_unit();
+        let mut end = self.position;
+        let mut end_mm = self.position_mm;
+        for (axis, word) in words.axes.iter().enumerate() {
+            if let Some(word) = word {
+                end[axis] = if self.incremental {
+                    end[axis] + word.value
+                } else {
+                    word.value
+                };
+                end_mm[axis] = end[axis] * scale + offset[axis];
+                check_range(&format!("the {} axis", AXES[axis]), end_mm[axis])?;
+            }
+        }
+        Ok((end, end_mm))
+    }
+
+    /// A rapid to `end_mm` (machine), if it moves at all; the work
+    /// position follows.
+    pub(super) fn rapid_to_machine(&mut self, end_mm: [f64; 3], line: usize) {
+        if end_mm != self.position_mm {
+            self.position_mm = end_mm;
+            self.toolpath.items.push(Item::Move(Move {
+                kind: MoveKind::Line,
+                end: end_mm,
+                feed: None,
+                line,
+            }));
+        }
+        self.sync_work_position();
     }
 
     /// The arc's shape; a full circle's end (`end` in program units and
@@ -431,6 +557,7 @@ impl State {
             }
             center_from_radius(from, to, r.value * scale, clockwise, &r.name(), self.units)?
         } else if has_offset {
+            let frame = self.offset();
             if !self.arc_incremental {
                 if let Some(missing) = [first, second]
                     .into_iter()
@@ -452,7 +579,7 @@ impl State {
                 } else {
                     0.0
                 };
-                (base + offset) * scale
+                (base + offset) * scale + frame[axis]
             });
             if full {
                 for axis in [first, second] {

@@ -451,7 +451,7 @@ fn dwells() {
     assert_eq!(error("G4 P1 P2"), "line 1: P appears twice");
     assert_eq!(
         error("G4 G4 P2"),
-        "line 1: G4 and G4 in one block: one dwell per block"
+        "line 1: G4 and G4 in one block: one non-modal code (G4, G10, G28, G30, G53, G92) per block"
     );
 }
 
@@ -520,19 +520,7 @@ fn refused_g_codes_name_what_they_do() {
         ("G43", "tool length offset"),
         ("G43.1", "tool length offset"),
         ("G43.2", "tool length offset"),
-        ("G28", "return to a stored position"),
-        ("G28.1", "return to a stored position"),
-        ("G30", "return to a stored position"),
-        ("G30.1", "return to a stored position"),
-        ("G53", "machine coordinates"),
-        ("G55", "another coordinate system"),
-        ("G59.3", "another coordinate system"),
-        ("G52", "coordinate offset"),
-        ("G92", "coordinate offset"),
-        ("G92.1", "coordinate offset"),
-        ("G92.2", "coordinate offset"),
-        ("G92.3", "coordinate offset"),
-        ("G10", "setting offsets"),
+        ("G52", "local coordinate offset"),
         ("G33", "spindle-synchronized motion"),
         ("G33.1", "spindle-synchronized motion"),
         ("G38.2", "probing"),
@@ -578,12 +566,12 @@ fn words_this_machine_does_not_have() {
     );
     assert_eq!(
         error("G0 X1 L2"),
-        "line 1: L2 is used only by G10 and canned cycles, which are not supported"
+        "line 1: L2 has no G10 to use it (canned cycles are not supported)"
     );
     assert_eq!(error("G0 X1 Q1"), "line 1: Q1 has no G64 to use it");
     assert_eq!(
         error("G1 X1 P2 F60"),
-        "line 1: P2 has no G2, G3, G4 or G64 to use it"
+        "line 1: P2 has no G2, G3, G4, G10 or G64 to use it"
     );
 }
 

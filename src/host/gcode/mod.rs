@@ -53,7 +53,27 @@
 //! | X Y Z | the end, in the current units; an axis not written keeps its position |
 //! | F | feed, units per minute, > 0, modal; stored as mm/s (F600 in G21 is 10 mm/s) |
 //! | M2, M30 | end of program ([`Program::end`]) |
-//! | G94, G54, G40, G49 | accepted, no effect: the only feed mode, the only coordinate system (no offsets), and cancels of modes that are never on |
+//! | G54 to G59, G59.1 to G59.3 | select coordinate system 1 to 9; the active one at the start is #5220 (1, G54, by default) |
+//! | G10 L2 P X Y Z [R0] | system P's origin at X Y Z, machine coordinates (P0: the active system; G91 does not apply); R, the rotation, must be 0 |
+//! | G10 L20 P X Y Z | system P's origin such that the current position reads X Y Z |
+//! | G92 X Y Z | an offset such that the current position reads X Y Z; an axis not named keeps the offset in force (LinuxCNC's source); #5210 = 1 |
+//! | G92.1, G92.2, G92.3 | clear the G92 offset and #5211..; stop applying it (kept); apply the kept one |
+//! | G53 | with G0 or G1 (its own or the modal one) under G90: the block's X Y Z are machine coordinates |
+//! | G28, G30 [X Y Z] | rapid through the point of the axis words (current distance mode and offsets), then the named axes (all when none is) to the stored position, #5161.. or #5181.. (machine mm); the motion mode is kept |
+//! | G28.1, G30.1 | store the current machine position there |
+//! | G94, G40, G49 | accepted, no effect: the only feed mode, and cancels of modes that are never on |
+//!
+//! Coordinates: the toolpath is in machine mm; a program's X Y Z are work
+//! coordinates, machine = work + the active system's origin + the G92
+//! offset in force (LinuxCNC's order of execution: the system is selected
+//! before G10, G28, G30 and G92 run, and those before the motion). The
+//! origins, the offset and the stored positions are LinuxCNC's persistent
+//! parameters: the machine settings give their values at the start
+//! ([`PersistentParameters`], in mm), and [`Program::parameters`] has them
+//! as the program left them. [`Program::final_position`] is the end in
+//! work coordinates, [`Program::final_machine`] in machine mm. What LinuxCNC
+//! does at M2 (select G54 again) is not modelled: the report names the
+//! system the program ended in.
 //!
 //! Motion is modal: a block with only axis words runs the last G0 to G3. A
 //! G0 or G1 (or a G2, G3) with no axis word only sets the mode; a line
@@ -98,10 +118,8 @@
 //! Every error is a [`GcodeError`], "line N: message", naming the word:
 //! * `G41 (cutter radius compensation) changes the motion and is not
 //!   supported`; likewise G41.1, G42, G42.1; G43, G43.1, G43.2 (tool
-//!   length offset); G28, G28.1, G30, G30.1 (return to a stored
-//!   position); G53 (machine coordinates); G55 to G59.3 (another
-//!   coordinate system); G52, G92 to G92.3 (coordinate offset); G10
-//!   (setting offsets); G33, G33.1 (spindle-synchronized motion); G38.2
+//!   length offset); G52 (local coordinate offset); G33, G33.1
+//!   (spindle-synchronized motion); G38.2
 //!   to G38.5 (probing); G73, G74, G76, G81 to G89 (canned cycle); G93
 //!   (inverse-time feed); G95 (feed per revolution); G5 to G5.3 (spline);
 //!   G7, G8 (lathe diameter, radius mode).
@@ -111,8 +129,8 @@
 //!   C, U, V, W); `E5 drives an extruder (RepRap), an axis this machine
 //!   does not have`; `O100: subroutines and flow control (O words) are not
 //!   supported` (and `O1003: a program number stands before any motion; ...`
-//!   after a move); `L2 is used only by G10 and canned cycles, which are not
-//!   supported`.
+//!   after a move); `L2 has no G10 to use it (canned cycles are not
+//!   supported)`.
 //! * `X appears twice`; `G0 and G1 in one block: one motion per block`;
 //!   `G90 and G91 in one block: both select the distance mode` (and so for
 //!   every modal group); `M2 and M30 in one block: both stop the program`.
@@ -123,10 +141,23 @@
 //!   must be 0 or more seconds`.
 //! * `X2 with G80: G80 cancels the motion mode and takes no axis or arc
 //!   words (LinuxCNC: Cannot use axis values with g80)`.
+//! * `G4 and G53 in one block: one non-modal code (G4, G10, G28, G30, G53,
+//!   G92) per block`; `G28 and G1 in one block: both use the axis words
+//!   (LinuxCNC: Cannot use two g codes that both use axis values)`;
+//!   `X1 with G92.1: it takes no axis words` (G28.1, G30.1, G92.1 to G92.3).
+//! * `G53 needs a G0 or G1 move with axis words (LinuxCNC: Must use g0 or
+//!   g1 with g53)`; `G53 with G91: machine coordinates are absolute
+//!   (LinuxCNC: Cannot use g53 incremental)`; `G92 needs an axis word
+//!   (LinuxCNC: All axes missing with g92)`.
+//! * G10: `G10 needs P: the coordinate system, 0 (the active one) or 1
+//!   (G54) to 9 (G59.3)`; `P10 is not a coordinate system: ...`; `G10 with
+//!   L1: L2 and L20 set a coordinate system; L1, L10 and L11 set the tool
+//!   table, which is not supported` (or `with no L`); `R30 on G10 rotates
+//!   the coordinate system, which is not supported`.
 //! * `%` on a line after others, with no `%` on the first line: "`%`
 //!   closes a program only when its first line is `%` too (LinuxCNC: Bad
 //!   character '%' used)".
-//! * `P2 has no G2, G3, G4 or G64 to use it`; `Q1 has no G64 to use it`;
+//! * `P2 has no G2, G3, G4, G10 or G64 to use it`; `Q1 has no G64 to use it`;
 //!   `I5 has no G2 or G3 to use it` (I, J, K, R without an arc).
 //! * Arcs: `G2 needs a center (I, J or K) or a radius (R)`; `R5 with I, J
 //!   or K: give the center or the radius, not both`; `K5 is not in the G17
@@ -148,10 +179,15 @@ mod arc_center;
 mod block_words;
 pub mod interpreter;
 pub mod lexer;
+mod non_modal;
+pub mod parameters;
 mod text;
 
-pub use interpreter::{interpret, interpret_from, GcodeError, Ignored, Program, Units};
+pub use interpreter::{
+    interpret, interpret_from, interpret_with, GcodeError, Ignored, Program, Units,
+};
 pub use lexer::{lex_line, lex_program, Block, LexError, Lexed, Word};
+pub use parameters::PersistentParameters;
 pub use text::program_text;
 
 #[cfg(test)]
