@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export, ExportDirs};
 use motion_hdl::host::simulation::{simulate, InputFormat, SimulationOptions, Trip};
-use motion_hdl::host::MachineSettings;
+use motion_hdl::host::{MachineSettings, ToolTable};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
 use motion_hdl::tools::{families, formal, report, scaling};
@@ -88,6 +88,11 @@ enum Command {
         /// 500 500 200 mm/s^2, 0.01 mm, 1000 us.
         #[arg(long)]
         machine: Option<PathBuf>,
+        /// Tool table for a G-code program, LinuxCNC's .tbl format in mm
+        /// (T, P, X, Y, Z, D; see host::tool_table). Without one, every tool
+        /// number is accepted with no length and no diameter.
+        #[arg(long)]
+        tools: Option<PathBuf>,
         /// System clock in MHz (default: 48, the board example's clock, on
         /// verilator; 1 on rust-hdl). The controller's behavior is the same
         /// at any clock (its timing registers count clocks); a lower clock
@@ -171,6 +176,7 @@ fn run(cli: Cli) -> Result<(), String> {
             path_file,
             format,
             machine,
+            tools,
             clock_mhz,
             uniform,
             servo,
@@ -234,9 +240,17 @@ fn run(cli: Cli) -> Result<(), String> {
                     MachineSettings::parse(&text).map_err(|e| format!("{}: {e}", file.display()))
                 })
                 .transpose()?;
+            let tools = tools
+                .map(|file| {
+                    let text = std::fs::read_to_string(&file)
+                        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+                    ToolTable::parse(&text).map_err(|e| format!("{}: {e}", file.display()))
+                })
+                .transpose()?;
             let options = SimulationOptions {
                 format,
                 machine,
+                tools,
                 clock_hz: clock_mhz * 1e6,
                 uniform: uniform_axes,
                 servo: servo_axes,

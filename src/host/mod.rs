@@ -15,6 +15,7 @@ pub mod planner;
 pub mod servo;
 pub mod simulation;
 mod statements;
+pub mod tool_table;
 pub mod toolpath;
 
 pub use bus::{ControllerBus, ModelBus, RecordingBus, RtlBus};
@@ -24,4 +25,5 @@ pub use machine::MachineSettings;
 pub use path::{Path, PathError, Segment};
 pub use planner::{plan, plan_toolpath, PlannedSegment, Shape};
 pub use servo::{DriveScale, FollowingError, LoopOutput, PositionLoop, ServoError, ServoGains};
+pub use tool_table::{Tool, ToolTable, ToolTableError};
 pub use toolpath::{Arc, Item, Move, MoveKind, Plane, Toolpath};

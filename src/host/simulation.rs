@@ -11,9 +11,10 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::gcode::{interpret_with, program_text, Ignored, Units};
+use super::gcode::{interpret_with, program_text, Ignored, Setup, Units};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
+use super::tool_table::ToolTable;
 use super::{
     interpolate, plan_toolpath, Driver, DriverConfig, MachineSettings, Path, RtlBus, Toolpath,
 };
@@ -85,11 +86,13 @@ pub struct Job {
 
 impl Job {
     /// Reads `file` as `format` (default: from its extension); a G-code
-    /// program runs on `machine` (default: [`MachineSettings::default`]).
+    /// program runs on `machine` (default: [`MachineSettings::default`])
+    /// with `tools` (default: none; see [`Setup::tools`]).
     pub fn read(
         file: &FsPath,
         format: Option<InputFormat>,
         machine: Option<MachineSettings>,
+        tools: Option<ToolTable>,
     ) -> Result<Job, String> {
         let format = format.or_else(|| InputFormat::from_extension(file)).ok_or_else(|| {
             format!(
@@ -114,6 +117,12 @@ impl Job {
                         file.display()
                     ));
                 }
+                if tools.is_some() {
+                    return Err(format!(
+                        "{}: a tool table applies to G-code only",
+                        file.display()
+                    ));
+                }
                 let path = Path::parse(&text).map_err(|e| located(&e))?;
                 Ok(Job {
                     toolpath: path.toolpath(),
@@ -126,8 +135,12 @@ impl Job {
             InputFormat::Gcode => {
                 let machine = machine.unwrap_or_default();
                 machine.validate().map_err(|e| located(&e))?;
-                let program = interpret_with(&text, [0.0; 3], &machine.parameters)
-                    .map_err(|e| located(&e))?;
+                let setup = Setup {
+                    start: [0.0; 3],
+                    parameters: machine.parameters,
+                    tools,
+                };
+                let program = interpret_with(&text, &setup).map_err(|e| located(&e))?;
                 if program.toolpath.items.is_empty() {
                     return Err(format!("{}: the program has no motion", file.display()));
                 }
@@ -167,6 +180,8 @@ pub struct SimulationOptions {
     /// The machine a G-code program runs on (default:
     /// [`MachineSettings::default`]); a path file carries its own.
     pub machine: Option<MachineSettings>,
+    /// A G-code program's tool table (default: none).
+    pub tools: Option<ToolTable>,
     /// System clock, Hz (sets the clocks per interpolation period).
     pub clock_hz: f64,
     /// Per axis: the uniform pulse generator instead of the DDA.
@@ -380,7 +395,12 @@ pub fn simulate(
     path_file: &FsPath,
     options: &SimulationOptions,
 ) -> Result<SimulationReport, String> {
-    let job = Job::read(path_file, options.format, options.machine)?;
+    let job = Job::read(
+        path_file,
+        options.format,
+        options.machine,
+        options.tools.clone(),
+    )?;
     let machine = job.machine;
     let start = to_steps(job.toolpath.start, machine.steps_per_mm);
     let target = to_steps(job.toolpath.end(), machine.steps_per_mm);

@@ -127,6 +127,7 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
     let options = SimulationOptions {
         format: None,
         machine: None,
+        tools: None,
         clock_hz: 4e6,
         uniform: [false; 3],
         servo: [true, false, false],

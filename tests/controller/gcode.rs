@@ -180,7 +180,7 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
     };
     let message =
         |file: &PathBuf, format: Option<InputFormat>, machine: Option<MachineSettings>| {
-            Job::read(file, format, machine)
+            Job::read(file, format, machine, None)
                 .unwrap_err()
                 .replace(&format!("{}", dir.path().display()), "DIR")
         };
@@ -190,7 +190,7 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
         "DIR/part.txt: unknown file type: G-code ends in .nc, .ngc, .gcode or .tap, a path file in .path (or give --format)"
     );
     assert!(
-        Job::read(&program, Some(InputFormat::Gcode), None).is_ok(),
+        Job::read(&program, Some(InputFormat::Gcode), None, None).is_ok(),
         "--format gcode reads any name"
     );
     let bad = write("bad.ngc", "G21\nG1 X1 F100\nG41 D1\n");
@@ -202,11 +202,11 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
     // line elsewhere.
     let latin1 = dir.path().join("latin1.nc");
     std::fs::write(&latin1, b"(Fr\xe4ser \xd8 6)\nG1 X1 F100 ; Ende \xb1\nM2\n").unwrap();
-    let job = Job::read(&latin1, None, None).unwrap();
+    let job = Job::read(&latin1, None, None, None).unwrap();
     assert_eq!(job.ending.as_deref(), Some("M2 or M30 on line 3"));
     let open_ended = write("open.ngc", "G1 X1 F100\n");
     assert_eq!(
-        Job::read(&open_ended, None, None)
+        Job::read(&open_ended, None, None, None)
             .unwrap()
             .ending
             .as_deref(),
@@ -214,12 +214,18 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
     );
     let percent = write("percent.ngc", "%\nG1 X1 F100\n%\nnot read\n");
     assert_eq!(
-        Job::read(&percent, None, None).unwrap().ending.as_deref(),
+        Job::read(&percent, None, None, None)
+            .unwrap()
+            .ending
+            .as_deref(),
         Some("the closing % on line 3")
     );
     let trailing = write("trailing.ngc", "G1 X1 F100\nM30\nG0 X0\nG0 Y0\n");
     assert_eq!(
-        Job::read(&trailing, None, None).unwrap().ending.as_deref(),
+        Job::read(&trailing, None, None, None)
+            .unwrap()
+            .ending
+            .as_deref(),
         Some("M2 or M30 on line 2; 2 blocks after it not run")
     );
     let stray = dir.path().join("stray.nc");
@@ -307,6 +313,7 @@ pub(crate) fn options(out_dir: &std::path::Path) -> SimulationOptions {
     SimulationOptions {
         format: None,
         machine: None,
+        tools: None,
         clock_hz: 5e4,
         uniform: [false; 3],
         servo: [false; 3],

@@ -84,7 +84,7 @@ fn corpus_programs_plan_as_the_manifest_says() {
     let mut differ = 0;
     for entry in manifest() {
         let path = corpus_file(&entry);
-        let outcome = Job::read(&path, None, None).and_then(|job| {
+        let outcome = Job::read(&path, None, None, None).and_then(|job| {
             let machine = job.machine;
             let segments = plan_toolpath(&job.toolpath, &machine).map_err(|e| e.to_string())?;
             let start = to_steps(job.toolpath.start, machine.steps_per_mm);

@@ -68,6 +68,26 @@ impl NonModal {
     }
 }
 
+/// G43, G43.1, G43.2, G49: the tool length offset (LinuxCNC's group 8).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum ToolLength {
+    /// G43 [H]: the offset of tool H, or of the loaded tool.
+    FromTable,
+    /// G43.1: the offset given by the axis words.
+    Dynamic,
+    /// G43.2: tool H's offset or the axis words added to the one in force.
+    Add,
+    /// G49: no offset.
+    Cancel,
+}
+
+impl ToolLength {
+    /// Whether the code takes the block's axis words (G43.1, G43.2).
+    pub(super) fn takes_axes(self) -> bool {
+        matches!(self, ToolLength::Dynamic | ToolLength::Add)
+    }
+}
+
 /// The group message of LinuxCNC's group 0: one code of it per block.
 const GROUP_0: &str = "one non-modal code (G4, G10, G28, G30, G53, G92) per block";
 
@@ -79,6 +99,7 @@ enum GEffect {
     CancelMotion,
     Dwell,
     NonModal(NonModal),
+    ToolLength(ToolLength),
     /// G54 to G59.3: 0 to 8.
     System(usize),
     Plane(Plane),
@@ -143,7 +164,22 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
         610 | 611 | 640 => (PathControl, "both select path control"),
         940 => (Nothing, "both select the feed mode"),
         400 => (Nothing, "both set cutter radius compensation"),
-        490 => (Nothing, "both set the tool length offset"),
+        430 => (
+            ToolLength(self::ToolLength::FromTable),
+            "both set the tool length offset",
+        ),
+        431 => (
+            ToolLength(self::ToolLength::Dynamic),
+            "both set the tool length offset",
+        ),
+        432 => (
+            ToolLength(self::ToolLength::Add),
+            "both set the tool length offset",
+        ),
+        490 => (
+            ToolLength(self::ToolLength::Cancel),
+            "both set the tool length offset",
+        ),
         960 | 970 => (Ignored("spindle"), "both select the spindle speed mode"),
         980 | 990 => (
             Ignored("canned cycle return level"),
@@ -163,7 +199,6 @@ fn g_refused(code: u32) -> Option<&'static str> {
         330 | 331 => "spindle-synchronized motion",
         382..=385 => "probing",
         410 | 411 | 420 | 421 => "cutter radius compensation",
-        430..=432 => "tool length offset",
         520 => "local coordinate offset",
         730 | 740 | 760 => "canned cycle",
         c if (810..=890).contains(&c) && c % 10 == 0 => "canned cycle",
@@ -200,6 +235,16 @@ pub(super) struct Words<'a> {
     pub(super) non_modal: Option<(&'a Word, NonModal)>,
     /// G54 to G59.3: 0 to 8.
     pub(super) system: Option<usize>,
+    /// G43, G43.1, G43.2, G49 as written.
+    pub(super) tool_length: Option<(&'a Word, ToolLength)>,
+    /// T: the tool to select.
+    pub(super) tool: Option<&'a Word>,
+    /// H: the tool whose offset G43 or G43.2 takes.
+    pub(super) h: Option<&'a Word>,
+    /// M6: load the selected tool.
+    pub(super) tool_change: Option<&'a Word>,
+    /// M61: set the loaded tool to Q.
+    pub(super) set_tool: Option<&'a Word>,
     pub(super) dwell: Option<&'a Word>,
     pub(super) plane: Option<Plane>,
     pub(super) units: Option<Units>,
@@ -263,6 +308,7 @@ impl<'a> Words<'a> {
                         GEffect::CancelMotion => words.cancel_motion = Some(word),
                         GEffect::NonModal(n) => words.non_modal = Some((word, n)),
                         GEffect::System(index) => words.system = Some(index),
+                        GEffect::ToolLength(t) => words.tool_length = Some((word, t)),
                         GEffect::Dwell => words.dwell = Some(word),
                         GEffect::Plane(p) => words.plane = Some(p),
                         GEffect::Units(u) => words.units = Some(u),
@@ -281,6 +327,11 @@ impl<'a> Words<'a> {
                         .code()
                         .filter(|c| c % 10 == 0)
                         .ok_or_else(|| format!("{name} is not an M code"))?;
+                    match code {
+                        60 => words.tool_change = Some(word),
+                        610 => words.set_tool = Some(word),
+                        _ => {}
+                    }
                     let (effect, m) = m_effect(code);
                     if let Some(m) = m {
                         group(m)?;
@@ -308,10 +359,14 @@ impl<'a> Words<'a> {
                         'F' => &mut words.feed,
                         'P' => &mut words.p,
                         'Q' => &mut words.q,
-                        'S' | 'T' | 'H' | 'D' => {
+                        'T' => {
+                            words.ignored.push((word, "tool", "T".to_string()));
+                            &mut words.tool
+                        }
+                        'H' => &mut words.h,
+                        'S' | 'D' => {
                             let what = match letter {
                                 'S' => "spindle speed",
-                                'T' => "tool",
                                 _ => "tool offset",
                             };
                             words.ignored.push((word, what, letter.to_string()));

@@ -9,6 +9,7 @@ use super::arc_center::{center_from_radius, check_center};
 use super::block_words::{Motion, NonModal, Words};
 use super::lexer::{lex_program, Block, LexError};
 use super::parameters::{system_name, PersistentParameters};
+use crate::host::tool_table::ToolTable;
 // An arc whose end is within SAME_POINT of its start, in its plane, is a
 // full circle (and its end is set to the start exactly).
 use crate::host::geometry::SAME_POINT;
@@ -125,17 +126,32 @@ pub fn interpret(program: &str) -> Result<Program, GcodeError> {
 /// parameters: a program's first incremental moves and arc centers count
 /// from there.
 pub fn interpret_from(program: &str, start: [f64; 3]) -> Result<Program, GcodeError> {
-    interpret_with(program, start, &PersistentParameters::default())
+    interpret_with(
+        program,
+        &Setup {
+            start,
+            ..Setup::default()
+        },
+    )
 }
 
-/// Interprets `program` from `start` (machine mm) with `parameters` (the
-/// machine settings' #5161 to #5390: coordinate systems, G92, G28 and G30).
-pub fn interpret_with(
-    program: &str,
-    start: [f64; 3],
-    parameters: &PersistentParameters,
-) -> Result<Program, GcodeError> {
-    let mut state = State::new(start, *parameters);
+/// What a program starts from besides its text.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Setup {
+    /// The machine position, mm.
+    pub start: [f64; 3],
+    /// The machine settings' #5161 to #5390: coordinate systems, G92, G28
+    /// and G30.
+    pub parameters: PersistentParameters,
+    /// The tool table; `None` when none is given: every tool number is
+    /// then accepted, with no offsets and no diameter (reported once when
+    /// G43 or G43.2 takes a tool's offset).
+    pub tools: Option<ToolTable>,
+}
+
+/// Interprets `program` from `setup`.
+pub fn interpret_with(program: &str, setup: &Setup) -> Result<Program, GcodeError> {
+    let mut state = State::new(setup.start, setup.parameters, setup.tools.clone());
     let mut after_end = 0;
     let lexed = lex_program(program)?;
     for block in &lexed.blocks {
@@ -173,6 +189,13 @@ pub(super) struct State {
     pub(super) position_mm: [f64; 3],
     /// Coordinate systems, G92, G28 and G30 positions.
     pub(super) parameters: PersistentParameters,
+    pub(super) tools: Option<ToolTable>,
+    /// The tool T selected, if any (0: none).
+    pub(super) selected: Option<u32>,
+    /// The tool in the spindle (0: none).
+    pub(super) loaded: u32,
+    /// The tool length offset in force, mm (G43, G43.1, G43.2).
+    pub(super) tool_offset: [f64; 3],
     pub(super) toolpath: Toolpath,
     pub(super) ignored: Vec<Ignored>,
     pub(super) reported: HashSet<String>,
@@ -180,7 +203,7 @@ pub(super) struct State {
 }
 
 impl State {
-    fn new(start: [f64; 3], parameters: PersistentParameters) -> Self {
+    fn new(start: [f64; 3], parameters: PersistentParameters, tools: Option<ToolTable>) -> Self {
         let mut state = State {
             units: Units::Millimetre,
             plane: Plane::Xy,
@@ -191,6 +214,10 @@ impl State {
             position: start,
             position_mm: start,
             parameters,
+            tools,
+            selected: None,
+            loaded: 0,
+            tool_offset: [0.0; 3],
             toolpath: Toolpath {
                 start,
                 items: Vec::new(),
@@ -203,12 +230,12 @@ impl State {
         state
     }
 
-    /// Machine = work + this, mm: the active system's origin and the G92
-    /// offset in force.
+    /// Machine = work + this, mm: the active system's origin, the G92
+    /// offset and the tool length offset in force.
     pub(super) fn offset(&self) -> [f64; 3] {
         let origin = self.parameters.origin(self.parameters.active_system());
         let g92 = self.parameters.g92();
-        [0, 1, 2].map(|k| origin[k] + g92[k])
+        [0, 1, 2].map(|k| origin[k] + g92[k] + self.tool_offset[k])
     }
 
     /// The work position from the machine one, after the units or an
@@ -235,7 +262,7 @@ impl State {
 
     /// Lists `word` in [`Program::ignored`] unless something was already
     /// reported under `key`.
-    fn report(&mut self, key: &str, line: usize, word: String, what: &'static str) {
+    pub(super) fn report(&mut self, key: &str, line: usize, word: String, what: &'static str) {
         if self.reported.insert(key.to_string()) {
             self.ignored.push(Ignored { line, word, what });
         }
@@ -268,8 +295,11 @@ impl State {
                 ));
             }
         }
-        if let Some(q) = words.q.filter(|_| !words.path_control) {
-            return Err(format!("{} has no G64 to use it", q.name()));
+        if let Some(q) = words
+            .q
+            .filter(|_| !words.path_control && words.set_tool.is_none())
+        {
+            return Err(format!("{} has no G64 or M61 to use it", q.name()));
         }
         if let Some(l) = words.l.filter(|_| !g10) {
             return Err(format!(
@@ -296,6 +326,9 @@ impl State {
             self.units = units;
             self.sync_work_position();
         }
+        // T (step 5) and M6 (6) before everything that moves; the tool
+        // length offset (14) after the units (12).
+        self.tool_words(&words, block.line)?;
         self.plane = words.plane.unwrap_or(self.plane);
         self.incremental = words.incremental.unwrap_or(self.incremental);
         self.arc_incremental = words.arc_incremental.unwrap_or(self.arc_incremental);
@@ -312,6 +345,7 @@ impl State {
                 line: block.line,
             });
         }
+        self.tool_length(&words, block.line)?;
         // LinuxCNC's order: the coordinate system (step 15), the distance
         // mode (17, above), then G10, G28, G30, G92 (19) and the motion (20).
         if let Some(index) = words.system {
@@ -359,21 +393,34 @@ impl State {
     /// A G4 beside it dwells first (LinuxCNC's order of execution).
     fn motion_to_run(&self, words: &Words) -> Result<Option<Motion>, String> {
         let (axis, center) = (words.first_axis, words.first_center);
-        if let Some((code_word, code)) = words.non_modal {
-            if code.takes_axes() {
-                if let (Some((written, _)), Some(_)) = (words.motion, axis) {
-                    return Err(format!(
-                        "{} and {} in one block: both use the axis words \
-                         (LinuxCNC: Cannot use two g codes that both use axis values)",
-                        code_word.name(),
-                        written.name()
-                    ));
-                }
-                if let Some(center) = center {
-                    return Err(format!("{} has no G2 or G3 to use it", center.name()));
-                }
-                return Ok(None);
+        // The codes other than G0 to G3 that take the axis words: then no
+        // motion runs.
+        let mut takers = Vec::new();
+        if let Some((word, _)) = words.non_modal.filter(|(_, c)| c.takes_axes()) {
+            takers.push(word);
+        }
+        if let Some((word, _)) = words.tool_length.filter(|(_, t)| t.takes_axes()) {
+            takers.push(word);
+        }
+        if let Some((written, _)) = words.motion {
+            takers.push(written);
+        }
+        if let (Some(_), [first, second, ..]) = (axis, takers.as_slice()) {
+            return Err(format!(
+                "{} and {} in one block: both use the axis words \
+                 (LinuxCNC: Cannot use two g codes that both use axis values)",
+                first.name(),
+                second.name()
+            ));
+        }
+        let motion_takes = words.motion.is_some() || takers.is_empty();
+        if !motion_takes {
+            if let Some(center) = center {
+                return Err(format!("{} has no G2 or G3 to use it", center.name()));
             }
+            return Ok(None);
+        }
+        if let Some((code_word, code)) = words.non_modal {
             if let Some(word) = axis.or(center).filter(|_| !code.reads_axes()) {
                 return Err(format!(
                     "{} with {}: it takes no axis words",

@@ -499,8 +499,8 @@ fn ignored_words_are_reported_once_at_their_first_line() {
             (5, "M9", "coolant"),
             (5, "M0", "program pause"),
             (6, "G61", "path control"),
-            (7, "H1", "tool offset"),
             (7, "D2", "tool offset"),
+            (7, "H1", "tool offset"),
             (8, "M104", "unknown M code"),
             (9, "G97", "spindle"),
             (9, "M1", "program pause"),
@@ -517,9 +517,6 @@ fn refused_g_codes_name_what_they_do() {
         ("G41.1", "cutter radius compensation"),
         ("G42", "cutter radius compensation"),
         ("G42.1", "cutter radius compensation"),
-        ("G43", "tool length offset"),
-        ("G43.1", "tool length offset"),
-        ("G43.2", "tool length offset"),
         ("G52", "local coordinate offset"),
         ("G33", "spindle-synchronized motion"),
         ("G33.1", "spindle-synchronized motion"),
@@ -568,7 +565,7 @@ fn words_this_machine_does_not_have() {
         error("G0 X1 L2"),
         "line 1: L2 has no G10 to use it (canned cycles are not supported)"
     );
-    assert_eq!(error("G0 X1 Q1"), "line 1: Q1 has no G64 to use it");
+    assert_eq!(error("G0 X1 Q1"), "line 1: Q1 has no G64 or M61 to use it");
     assert_eq!(
         error("G1 X1 P2 F60"),
         "line 1: P2 has no G2, G3, G4, G10 or G64 to use it"

@@ -61,12 +61,24 @@
 //! | G53 | with G0 or G1 (its own or the modal one) under G90: the block's X Y Z are machine coordinates |
 //! | G28, G30 [X Y Z] | rapid through the point of the axis words (current distance mode and offsets), then the named axes (all when none is) to the stored position, #5161.. or #5181.. (machine mm); the motion mode is kept |
 //! | G28.1, G30.1 | store the current machine position there |
-//! | G94, G40, G49 | accepted, no effect: the only feed mode, and cancels of modes that are never on |
+//! | T | select a tool (a whole number; 0 is no tool); with a tool table it must be in it |
+//! | M6 | load the selected tool (a T so far is needed); no motion |
+//! | M61 Q | the loaded tool is Q, without a change |
+//! | G43 [H] | tool length offset of tool H, or of the loaded tool: X, Y, Z from the table, mm |
+//! | G43.1 X Y Z | tool length offset of the axis words (program units); an axis not named has none |
+//! | G43.2 H or X Y Z | add tool H's offset, or the axis words, to the one in force |
+//! | G49 | no tool length offset |
+//! | G94, G40 | accepted, no effect: the only feed mode, and the cancel of a mode that is never on |
 //!
 //! Coordinates: the toolpath is in machine mm; a program's X Y Z are work
 //! coordinates, machine = work + the active system's origin + the G92
-//! offset in force (LinuxCNC's order of execution: the system is selected
-//! before G10, G28, G30 and G92 run, and those before the motion). The
+//! offset in force + the tool length offset (LinuxCNC's order of
+//! execution: T, then M6 or M61, then the units, the tool length offset,
+//! the system, then G10, G28, G30 and G92, then the motion; G53 and the
+//! G28 and G30 positions are machine coordinates of the spindle, so the
+//! tool length offset does not apply to them). A tool offset comes from the
+//! tool table ([`Setup::tools`], LinuxCNC's `.tbl` format, in mm); without
+//! one, every tool has no offset, which is reported once. The
 //! origins, the offset and the stored positions are LinuxCNC's persistent
 //! parameters: the machine settings give their values at the start
 //! ([`PersistentParameters`], in mm), and [`Program::parameters`] has them
@@ -96,8 +108,9 @@
 //! [`Program::ignored`] at its first occurrence (once per M code, per G
 //! code, per letter S, T, H, D) and otherwise ignored:
 //! M0, M1, M60 (program pause); M3, M4, M5, G96, G97 (spindle); S (spindle
-//! speed); M6 (tool change); T, M61 (tool); H, D (tool offset, used only by
-//! the refused G41, G43); M7, M8, M9 (coolant); M48 to M53 (override); M62
+//! speed); M6 (tool change) and T, M61 (tool), which change no motion by
+//! themselves; H without G43 or G43.2 and D (tool offset: D is used only by
+//! the refused G41); M7, M8, M9 (coolant); M48 to M53 (override); M62
 //! to M68 (digital and analog I/O); G61, G61.1, G64, and a P or Q beside them (path
 //! control: the planner always blends within its own contour error); G98,
 //! G99 (canned cycle return level); and **any other M code** ("unknown M
@@ -117,8 +130,7 @@
 //! # Errors
 //! Every error is a [`GcodeError`], "line N: message", naming the word:
 //! * `G41 (cutter radius compensation) changes the motion and is not
-//!   supported`; likewise G41.1, G42, G42.1; G43, G43.1, G43.2 (tool
-//!   length offset); G52 (local coordinate offset); G33, G33.1
+//!   supported`; likewise G41.1, G42, G42.1; G52 (local coordinate offset); G33, G33.1
 //!   (spindle-synchronized motion); G38.2
 //!   to G38.5 (probing); G73, G74, G76, G81 to G89 (canned cycle); G93
 //!   (inverse-time feed); G95 (feed per revolution); G5 to G5.3 (spline);
@@ -149,6 +161,13 @@
 //!   g1 with g53)`; `G53 with G91: machine coordinates are absolute
 //!   (LinuxCNC: Cannot use g53 incremental)`; `G92 needs an axis word
 //!   (LinuxCNC: All axes missing with g92)`.
+//! * Tools: `T7: tool 7 is not in the tool table (LinuxCNC: Requested tool
+//!   7 not found in the tool table)` (and for H, Q); `M6 needs a tool
+//!   selected first with T (LinuxCNC: Need tool prepared -Txx- for
+//!   toolchange)`; `T1.5 is not a tool number: a whole number, 0 (no tool)
+//!   or more`; `M61 needs Q: the tool now in the spindle`; `G43.2 needs H
+//!   (a tool) or axis words (the offset to add)`; `G43.1 and G0 in one
+//!   block: both use the axis words (...)`.
 //! * G10: `G10 needs P: the coordinate system, 0 (the active one) or 1
 //!   (G54) to 9 (G59.3)`; `P10 is not a coordinate system: ...`; `G10 with
 //!   L1: L2 and L20 set a coordinate system; L1, L10 and L11 set the tool
@@ -157,7 +176,7 @@
 //! * `%` on a line after others, with no `%` on the first line: "`%`
 //!   closes a program only when its first line is `%` too (LinuxCNC: Bad
 //!   character '%' used)".
-//! * `P2 has no G2, G3, G4, G10 or G64 to use it`; `Q1 has no G64 to use it`;
+//! * `P2 has no G2, G3, G4, G10 or G64 to use it`; `Q1 has no G64 or M61 to use it`;
 //!   `I5 has no G2 or G3 to use it` (I, J, K, R without an arc).
 //! * Arcs: `G2 needs a center (I, J or K) or a radius (R)`; `R5 with I, J
 //!   or K: give the center or the radius, not both`; `K5 is not in the G17
@@ -182,9 +201,10 @@ pub mod lexer;
 mod non_modal;
 pub mod parameters;
 mod text;
+mod tools;
 
 pub use interpreter::{
-    interpret, interpret_from, interpret_with, GcodeError, Ignored, Program, Units,
+    interpret, interpret_from, interpret_with, GcodeError, Ignored, Program, Setup, Units,
 };
 pub use lexer::{lex_line, lex_program, Block, LexError, Lexed, Word};
 pub use parameters::PersistentParameters;

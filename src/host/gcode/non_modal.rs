@@ -70,7 +70,8 @@ impl State {
                 let scale = self.units.mm_per_unit();
                 for (k, w) in words.axes.iter().enumerate() {
                     if let Some(w) = w {
-                        offset[k] = self.position_mm[k] - origin[k] - w.value * scale;
+                        offset[k] =
+                            self.position_mm[k] - origin[k] - self.tool_offset[k] - w.value * scale;
                     }
                 }
                 self.parameters.set_g92(offset, true);
@@ -134,7 +135,7 @@ impl State {
         for (k, w) in words.axes.iter().enumerate() {
             if let Some(w) = w {
                 origin[k] = if l20 {
-                    self.position_mm[k] - g92[k] - w.value * scale
+                    self.position_mm[k] - g92[k] - self.tool_offset[k] - w.value * scale
                 } else {
                     w.value * scale
                 };

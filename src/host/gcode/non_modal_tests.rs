@@ -4,12 +4,16 @@
 //! it sets): the machine positions here are its work positions plus its
 //! offsets.
 
-use super::super::interpreter::{interpret, interpret_with, Program};
+use super::super::interpreter::{interpret, interpret_with, Program, Setup};
 use super::super::parameters::PersistentParameters;
 use crate::host::toolpath::{Item, MoveKind};
 
 fn run_with(program: &str, parameters: &PersistentParameters) -> Program {
-    interpret_with(program, [0.0; 3], parameters).unwrap_or_else(|e| panic!("{program:?}: {e}"))
+    let setup = Setup {
+        parameters: *parameters,
+        ..Setup::default()
+    };
+    interpret_with(program, &setup).unwrap_or_else(|e| panic!("{program:?}: {e}"))
 }
 
 fn run(program: &str) -> Program {

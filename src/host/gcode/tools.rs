@@ -1,0 +1,123 @@
+//! Tools with LinuxCNC's semantics: T selects, M6 loads the selected tool,
+//! M61 Q sets the loaded tool without a change; G43 [H], G43.1, G43.2 and
+//! G49 set the tool length offset, which moves nothing by itself: it
+//! shifts the work coordinates (machine = work + origin + G92 + this).
+
+use super::block_words::{ToolLength, Words};
+use super::interpreter::State;
+use super::lexer::Word;
+
+/// A tool number word (T, H, Q): a whole number, 0 (no tool) or more.
+fn tool_number(word: &Word) -> Result<u32, String> {
+    let v = word.value;
+    if v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v) {
+        Ok(v as u32)
+    } else {
+        Err(format!(
+            "{} is not a tool number: a whole number, 0 (no tool) or more",
+            word.name()
+        ))
+    }
+}
+
+impl State {
+    /// `number`'s offset, mm, checking that the table has it (tool 0 is
+    /// no tool: no offset).
+    fn tool_offset_of(&self, word: &Word, number: u32) -> Result<[f64; 3], String> {
+        match (&self.tools, number) {
+            (_, 0) | (None, _) => Ok([0.0; 3]),
+            (Some(table), n) => table.get(n).map(|t| t.offset).ok_or_else(|| {
+                format!(
+                    "{}: tool {n} is not in the tool table (LinuxCNC: Requested tool {n} not found in the tool table)",
+                    word.name()
+                )
+            }),
+        }
+    }
+
+    /// T, then M6 or M61 (LinuxCNC's steps 5 and 6).
+    pub(super) fn tool_words(&mut self, words: &Words, _line: usize) -> Result<(), String> {
+        if let Some(t) = words.tool {
+            let number = tool_number(t)?;
+            self.tool_offset_of(t, number)?;
+            self.selected = Some(number);
+        }
+        if let Some(m6) = words.tool_change {
+            self.loaded = self.selected.ok_or_else(|| {
+                format!(
+                    "{} needs a tool selected first with T (LinuxCNC: Need tool prepared -Txx- for toolchange)",
+                    m6.name()
+                )
+            })?;
+        }
+        if let Some(m61) = words.set_tool {
+            let q = words
+                .q
+                .ok_or_else(|| format!("{} needs Q: the tool now in the spindle", m61.name()))?;
+            let number = tool_number(q)?;
+            self.tool_offset_of(q, number)?;
+            self.loaded = number;
+        }
+        Ok(())
+    }
+
+    /// G43, G43.1, G43.2, G49 (LinuxCNC's step 14); H unused is reported.
+    pub(super) fn tool_length(&mut self, words: &Words, line: usize) -> Result<(), String> {
+        let code = words.tool_length;
+        let uses_h = matches!(code, Some((_, ToolLength::FromTable | ToolLength::Add)));
+        if let Some(h) = words.h.filter(|_| !uses_h) {
+            self.report("H", line, h.name(), "tool offset");
+        }
+        let Some((g43, code)) = code else {
+            return Ok(());
+        };
+        let scale = self.units.mm_per_unit();
+        let h_offset = |state: &mut Self, h: &Word| -> Result<[f64; 3], String> {
+            let number = tool_number(h)?;
+            if state.tools.is_none() && number != 0 {
+                state.report(
+                    "no tool table",
+                    line,
+                    format!("{} {}", g43.name(), h.name()),
+                    "tool length offset 0: no tool table given (--tools)",
+                );
+            }
+            state.tool_offset_of(h, number)
+        };
+        match code {
+            ToolLength::FromTable => {
+                let loaded = Word {
+                    letter: 'T',
+                    text: self.loaded.to_string(),
+                    value: f64::from(self.loaded),
+                };
+                self.tool_offset = h_offset(self, words.h.unwrap_or(&loaded))?;
+            }
+            ToolLength::Dynamic => {
+                self.tool_offset = words.axes.map(|w| w.map_or(0.0, |w| w.value * scale));
+            }
+            ToolLength::Add => {
+                let added = match words.h {
+                    Some(h) => h_offset(self, h)?,
+                    None if words.first_axis.is_some() => {
+                        words.axes.map(|w| w.map_or(0.0, |w| w.value * scale))
+                    }
+                    None => {
+                        return Err(format!(
+                            "{} needs H (a tool) or axis words (the offset to add)",
+                            g43.name()
+                        ))
+                    }
+                };
+                self.tool_offset = [0, 1, 2].map(|k| self.tool_offset[k] + added[k]);
+            }
+            ToolLength::Cancel => self.tool_offset = [0.0; 3],
+        }
+        self.sync_work_position();
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+#[path = "tools_tests.rs"]
+mod tests;
