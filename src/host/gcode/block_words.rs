@@ -14,6 +14,47 @@ pub(super) enum Motion {
     Line,
     Clockwise,
     CounterClockwise,
+    Cycle(Cycle),
+}
+
+/// The canned cycles that run here (G74, G84 and G33.1 need spindle
+/// synchronisation and are refused).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum Cycle {
+    /// Peck drilling, chip breaking: back off by the clearance.
+    G73,
+    /// Drilling.
+    G81,
+    /// Drilling with a dwell.
+    G82,
+    /// Peck drilling: back out to R after each peck.
+    G83,
+    /// Boring, feed out.
+    G85,
+    /// Boring, spindle stop, rapid out.
+    G86,
+    /// Back boring.
+    G87,
+    /// Boring, spindle stop, manual out.
+    G88,
+    /// Boring, dwell, feed out.
+    G89,
+}
+
+impl Cycle {
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Cycle::G73 => "G73",
+            Cycle::G81 => "G81",
+            Cycle::G82 => "G82",
+            Cycle::G83 => "G83",
+            Cycle::G85 => "G85",
+            Cycle::G86 => "G86",
+            Cycle::G87 => "G87",
+            Cycle::G88 => "G88",
+            Cycle::G89 => "G89",
+        }
+    }
 }
 
 impl Motion {
@@ -23,11 +64,16 @@ impl Motion {
             Motion::Line => "G1",
             Motion::Clockwise => "G2",
             Motion::CounterClockwise => "G3",
+            Motion::Cycle(c) => c.name(),
         }
     }
 
     pub(super) fn is_arc(self) -> bool {
         matches!(self, Motion::Clockwise | Motion::CounterClockwise)
+    }
+
+    pub(super) fn is_cycle(self) -> bool {
+        matches!(self, Motion::Cycle(_))
     }
 }
 
@@ -102,6 +148,8 @@ enum GEffect {
     ToolLength(ToolLength),
     /// G54 to G59.3: 0 to 8.
     System(usize),
+    /// G98 (false: back to the initial level), G99 (true: to R).
+    RetractToR(bool),
     Plane(Plane),
     Units(Units),
     Incremental(bool),
@@ -127,6 +175,50 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
             "one motion per block",
         ),
         800 => (CancelMotion, "one motion per block"),
+        730 => (
+            Motion(self::Motion::Cycle(self::Cycle::G73)),
+            "one motion per block",
+        ),
+        810 => (
+            Motion(self::Motion::Cycle(self::Cycle::G81)),
+            "one motion per block",
+        ),
+        820 => (
+            Motion(self::Motion::Cycle(self::Cycle::G82)),
+            "one motion per block",
+        ),
+        830 => (
+            Motion(self::Motion::Cycle(self::Cycle::G83)),
+            "one motion per block",
+        ),
+        850 => (
+            Motion(self::Motion::Cycle(self::Cycle::G85)),
+            "one motion per block",
+        ),
+        860 => (
+            Motion(self::Motion::Cycle(self::Cycle::G86)),
+            "one motion per block",
+        ),
+        870 => (
+            Motion(self::Motion::Cycle(self::Cycle::G87)),
+            "one motion per block",
+        ),
+        880 => (
+            Motion(self::Motion::Cycle(self::Cycle::G88)),
+            "one motion per block",
+        ),
+        890 => (
+            Motion(self::Motion::Cycle(self::Cycle::G89)),
+            "one motion per block",
+        ),
+        980 => (
+            RetractToR(false),
+            "both select the canned cycle return level",
+        ),
+        990 => (
+            RetractToR(true),
+            "both select the canned cycle return level",
+        ),
         40 => (Dwell, GROUP_0),
         100 => (NonModal(self::NonModal::SetOrigin), GROUP_0),
         280 => (NonModal(self::NonModal::Home { second: false }), GROUP_0),
@@ -181,10 +273,6 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
             "both set the tool length offset",
         ),
         960 | 970 => (Ignored("spindle"), "both select the spindle speed mode"),
-        980 | 990 => (
-            Ignored("canned cycle return level"),
-            "both select the canned cycle return level",
-        ),
         _ => return None,
     })
 }
@@ -196,12 +284,13 @@ fn g_refused(code: u32) -> Option<&'static str> {
         50..=53 => "spline",
         70 => "lathe diameter mode",
         80 => "lathe radius mode",
-        330 | 331 => "spindle-synchronized motion",
+        330 => "spindle-synchronized motion",
+        331 => "rigid tapping: it needs spindle synchronisation",
+        740 | 840 => "tapping: it needs spindle synchronisation",
+        760 => "lathe threading cycle",
         382..=385 => "probing",
         410 | 411 | 420 | 421 => "cutter radius compensation",
         520 => "local coordinate offset",
-        730 | 740 | 760 => "canned cycle",
-        c if (810..=890).contains(&c) && c % 10 == 0 => "canned cycle",
         930 => "inverse-time feed",
         950 => "feed per revolution",
         _ => return None,
@@ -241,6 +330,12 @@ pub(super) struct Words<'a> {
     pub(super) tool: Option<&'a Word>,
     /// H: the tool whose offset G43 or G43.2 takes.
     pub(super) h: Option<&'a Word>,
+    /// D: G73's and G83's clearance (else reported: cutter compensation).
+    pub(super) d: Option<&'a Word>,
+    /// G98 (false), G99 (true).
+    pub(super) retract_to_r: Option<bool>,
+    /// M3 (Some(true)), M4 (Some(false)): the spindle turns; M5: stops.
+    pub(super) spindle: Option<Option<bool>>,
     /// M6: load the selected tool.
     pub(super) tool_change: Option<&'a Word>,
     /// M61: set the loaded tool to Q.
@@ -302,13 +397,18 @@ impl<'a> Words<'a> {
                     }
                     let (effect, g) = g_effect(code)
                         .ok_or_else(|| format!("{name} is not a supported G code"))?;
-                    group(g)?;
+                    // LinuxCNC lets G80 share a block with another motion
+                    // code, which wins (its read_g).
+                    if !matches!(effect, GEffect::CancelMotion) {
+                        group(g)?;
+                    }
                     match effect {
                         GEffect::Motion(m) => words.motion = Some((word, m)),
                         GEffect::CancelMotion => words.cancel_motion = Some(word),
                         GEffect::NonModal(n) => words.non_modal = Some((word, n)),
                         GEffect::System(index) => words.system = Some(index),
                         GEffect::ToolLength(t) => words.tool_length = Some((word, t)),
+                        GEffect::RetractToR(r) => words.retract_to_r = Some(r),
                         GEffect::Dwell => words.dwell = Some(word),
                         GEffect::Plane(p) => words.plane = Some(p),
                         GEffect::Units(u) => words.units = Some(u),
@@ -328,6 +428,9 @@ impl<'a> Words<'a> {
                         .filter(|c| c % 10 == 0)
                         .ok_or_else(|| format!("{name} is not an M code"))?;
                     match code {
+                        30 => words.spindle = Some(Some(true)),
+                        40 => words.spindle = Some(Some(false)),
+                        50 => words.spindle = Some(None),
                         60 => words.tool_change = Some(word),
                         610 => words.set_tool = Some(word),
                         _ => {}
@@ -364,12 +467,9 @@ impl<'a> Words<'a> {
                             &mut words.tool
                         }
                         'H' => &mut words.h,
-                        'S' | 'D' => {
-                            let what = match letter {
-                                'S' => "spindle speed",
-                                _ => "tool offset",
-                            };
-                            words.ignored.push((word, what, letter.to_string()));
+                        'D' => &mut words.d,
+                        'S' => {
+                            words.ignored.push((word, "spindle speed", "S".to_string()));
                             continue;
                         }
                         'A' | 'B' | 'C' | 'U' | 'V' | 'W' => {
@@ -401,6 +501,9 @@ impl<'a> Words<'a> {
                     *slot = Some(word);
                 }
             }
+        }
+        if words.motion.is_some() {
+            words.cancel_motion = None;
         }
         if let Some((_, NonModal::SetOrigin)) = words.non_modal {
             // G10's R is the system's rotation, not an arc's radius.

@@ -7,6 +7,7 @@ use thiserror::Error;
 
 use super::arc_center::{center_from_radius, check_center};
 use super::block_words::{Motion, NonModal, Words};
+use super::cycles::CycleMemory;
 use super::lexer::{lex_program, Block, LexError};
 use super::parameters::{system_name, PersistentParameters};
 use crate::host::tool_table::ToolTable;
@@ -196,6 +197,12 @@ pub(super) struct State {
     pub(super) loaded: u32,
     /// The tool length offset in force, mm (G43, G43.1, G43.2).
     pub(super) tool_offset: [f64; 3],
+    /// G99 (true, LinuxCNC's default: cycles retract to R) or G98 (false).
+    pub(super) retract_to_r: bool,
+    /// M3 (Some(true)), M4 (Some(false)), M5 or none yet (None).
+    pub(super) spindle_turning: Option<bool>,
+    /// What the last canned cycle keeps for the next.
+    pub(super) cycle_memory: CycleMemory,
     pub(super) toolpath: Toolpath,
     pub(super) ignored: Vec<Ignored>,
     pub(super) reported: HashSet<String>,
@@ -218,6 +225,9 @@ impl State {
             selected: None,
             loaded: 0,
             tool_offset: [0.0; 3],
+            retract_to_r: true,
+            spindle_turning: None,
+            cycle_memory: CycleMemory::default(),
             toolpath: Toolpath {
                 start,
                 items: Vec::new(),
@@ -283,30 +293,44 @@ impl State {
         }
         let motion = self.motion_to_run(&words)?;
         let g10 = matches!(words.non_modal, Some((_, NonModal::SetOrigin)));
+        // The cycle mode in force or set by the block, whether it runs here
+        // or not: its words (R, Q, P, L) may stand on a block without
+        // axis words.
+        let cycle = words
+            .motion
+            .map(|(_, m)| m)
+            .or(self.motion)
+            .filter(|m| m.is_cycle());
         if let Some(p) = words.p {
             let used = words.dwell.is_some()
                 || words.path_control
                 || g10
+                || cycle.is_some()
                 || motion.is_some_and(Motion::is_arc);
             if !used {
                 return Err(format!(
-                    "{} has no G2, G3, G4, G10 or G64 to use it",
+                    "{} has no G2, G3, G4, G10, G64 or canned cycle to use it",
                     p.name()
                 ));
             }
         }
-        if let Some(q) = words
-            .q
-            .filter(|_| !words.path_control && words.set_tool.is_none())
-        {
-            return Err(format!("{} has no G64 or M61 to use it", q.name()));
-        }
-        if let Some(l) = words.l.filter(|_| !g10) {
+        let q_used = words.path_control || words.set_tool.is_some() || cycle.is_some();
+        if let Some(q) = words.q.filter(|_| !q_used) {
             return Err(format!(
-                "{} has no G10 to use it (canned cycles are not supported)",
-                l.name()
+                "{} has no G64, M61 or canned cycle to use it",
+                q.name()
             ));
         }
+        if let Some(l) = words.l.filter(|_| !g10 && cycle.is_none()) {
+            return Err(format!("{} has no G10 or canned cycle to use it", l.name()));
+        }
+        if let Some(d) = words.d.filter(|_| cycle.is_none()) {
+            self.report("D", block.line, d.name(), "tool offset");
+        }
+        if let Some(turning) = words.spindle {
+            self.spindle_turning = turning;
+        }
+        self.retract_to_r = words.retract_to_r.unwrap_or(self.retract_to_r);
 
         for (word, what, key) in &words.ignored {
             self.report(key, block.line, word.name(), what);
@@ -352,11 +376,17 @@ impl State {
             self.parameters.select_system(index);
             self.sync_work_position();
         }
+        let previous_motion = self.motion;
         if let Some((_, m)) = words.motion {
             self.motion = Some(m);
         }
         if words.cancel_motion.is_some() {
             self.motion = None;
+        }
+        // A series of cycles ends at any other motion or G80 (LinuxCNC's
+        // cycle_il_flag).
+        if words.cancel_motion.is_some() || motion.is_some_and(|m| !m.is_cycle()) {
+            self.cycle_memory.initial = None;
         }
         let mut machine = false;
         if let Some((word, code)) = words.non_modal {
@@ -379,8 +409,13 @@ impl State {
                 );
             }
         }
-        if let Some(motion) = motion {
-            self.run(motion, &words, block.line, machine)?;
+        match motion {
+            Some(Motion::Cycle(c)) => {
+                let same = previous_motion == Some(Motion::Cycle(c));
+                self.cycle(c, same, &words, block.line)?
+            }
+            Some(motion) => self.run(motion, &words, block.line, machine)?,
+            None => {}
         }
         if words.end {
             self.end = Some(block.line);
@@ -447,6 +482,11 @@ impl State {
                 "{} needs a motion mode (G0, G1, G2 or G3) first",
                 axis.name()
             ));
+        }
+        if let Some(motion) = motion.filter(|m| m.is_cycle()) {
+            // A cycle runs on axis words only; its R, Q, P, L, I, J, K
+            // alone set its values for later.
+            return Ok(Some(motion).filter(|_| axis.is_some()));
         }
         if let Some(center) = center.filter(|_| !motion.is_some_and(Motion::is_arc)) {
             return Err(format!("{} has no G2 or G3 to use it", center.name()));

@@ -105,10 +105,8 @@ fn g80_cancels_the_motion_mode() {
         "line 2: X2 with G80: G80 cancels the motion mode and takes no axis or arc words \
          (LinuxCNC: Cannot use axis values with g80)"
     );
-    assert_eq!(
-        error("G80 G0 X1"),
-        "line 1: G80 and G0 in one block: one motion per block"
-    );
+    // Beside another motion code, G80 gives way (LinuxCNC's read_g).
+    assert_eq!(moves("G80 G0 X1").len(), 1);
     assert_eq!(moves("G80\nG0 X1").len(), 1);
 }
 
@@ -519,13 +517,12 @@ fn refused_g_codes_name_what_they_do() {
         ("G42.1", "cutter radius compensation"),
         ("G52", "local coordinate offset"),
         ("G33", "spindle-synchronized motion"),
-        ("G33.1", "spindle-synchronized motion"),
+        ("G33.1", "rigid tapping: it needs spindle synchronisation"),
         ("G38.2", "probing"),
         ("G38.5", "probing"),
-        ("G73", "canned cycle"),
-        ("G76", "canned cycle"),
-        ("G81", "canned cycle"),
-        ("G89", "canned cycle"),
+        ("G76", "lathe threading cycle"),
+        ("G74", "tapping: it needs spindle synchronisation"),
+        ("G84", "tapping: it needs spindle synchronisation"),
         ("G93", "inverse-time feed"),
         ("G95", "feed per revolution"),
         ("G5", "spline"),
@@ -563,12 +560,15 @@ fn words_this_machine_does_not_have() {
     );
     assert_eq!(
         error("G0 X1 L2"),
-        "line 1: L2 has no G10 to use it (canned cycles are not supported)"
+        "line 1: L2 has no G10 or canned cycle to use it"
     );
-    assert_eq!(error("G0 X1 Q1"), "line 1: Q1 has no G64 or M61 to use it");
+    assert_eq!(
+        error("G0 X1 Q1"),
+        "line 1: Q1 has no G64, M61 or canned cycle to use it"
+    );
     assert_eq!(
         error("G1 X1 P2 F60"),
-        "line 1: P2 has no G2, G3, G4, G10 or G64 to use it"
+        "line 1: P2 has no G2, G3, G4, G10, G64 or canned cycle to use it"
     );
 }
 

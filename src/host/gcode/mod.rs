@@ -45,7 +45,10 @@
 //! | G1 | line at the modal feed |
 //! | G2, G3 | clockwise, counter-clockwise arc seen from the plane's positive normal; the normal axis may move (helix) |
 //! | G4 P | dwell, P in **seconds** (RS-274/NGC and LinuxCNC; not Fanuc's milliseconds), P ≥ 0; non-modal, keeps the motion mode; axis words beside it run the motion mode after the dwell |
-//! | G80 | ends the motion mode (LinuxCNC's motion group 1): axis words after it need a G0 to G3 again |
+//! | G80 | ends the motion mode (LinuxCNC's motion group 1): axis words after it need a motion code again; beside another motion code it gives way (LinuxCNC's reader) |
+//! | G73, G81, G82, G83, G85 to G89 | canned cycles with R, Q, P, L (G87: I, J, K; G73, G83: D, the peck clearance, else 0.254 mm), modal: a later block with axis words repeats the cycle there. LinuxCNC's motion, move for move: see [`cycles`] |
+//! | G98, G99 | cycles retract to the initial level, or to R (G99, LinuxCNC's default) |
+//! | M3, M4, M5 | the spindle turns (G86, G87 and G88 need it) or stops; reported once |
 //! | G17, G18, G19 | arc plane XY, ZX, YZ |
 //! | G20, G21 | inch, mm: every later length and F in those units |
 //! | G90, G91 | X, Y, Z absolute or incremental |
@@ -109,11 +112,11 @@
 //! code, per letter S, T, H, D) and otherwise ignored:
 //! M0, M1, M60 (program pause); M3, M4, M5, G96, G97 (spindle); S (spindle
 //! speed); M6 (tool change) and T, M61 (tool), which change no motion by
-//! themselves; H without G43 or G43.2 and D (tool offset: D is used only by
-//! the refused G41); M7, M8, M9 (coolant); M48 to M53 (override); M62
+//! themselves; H without G43 or G43.2 and D without a canned cycle (tool
+//! offset: the refused G41 would use D); M7, M8, M9 (coolant); M48 to M53 (override); M62
 //! to M68 (digital and analog I/O); G61, G61.1, G64, and a P or Q beside them (path
-//! control: the planner always blends within its own contour error); G98,
-//! G99 (canned cycle return level); and **any other M code** ("unknown M
+//! control: the planner always blends within its own contour error); and
+//! **any other M code** ("unknown M
 //! code": user M100 to M199 macros and RepRap's M104, M106... run nothing
 //! here, so the path is the program's own).
 //!
@@ -130,9 +133,10 @@
 //! # Errors
 //! Every error is a [`GcodeError`], "line N: message", naming the word:
 //! * `G41 (cutter radius compensation) changes the motion and is not
-//!   supported`; likewise G41.1, G42, G42.1; G52 (local coordinate offset); G33, G33.1
-//!   (spindle-synchronized motion); G38.2
-//!   to G38.5 (probing); G73, G74, G76, G81 to G89 (canned cycle); G93
+//!   supported`; likewise G41.1, G42, G42.1; G52 (local coordinate offset); G33
+//!   (spindle-synchronized motion); G33.1 (rigid tapping: it needs spindle
+//!   synchronisation); G74, G84 (tapping: it needs spindle synchronisation);
+//!   G76 (lathe threading cycle); G38.2 to G38.5 (probing); G93
 //!   (inverse-time feed); G95 (feed per revolution); G5 to G5.3 (spline);
 //!   G7, G8 (lathe diameter, radius mode).
 //! * `G12 is not a supported G code`; `G1.25 is not a G code`;
@@ -141,8 +145,7 @@
 //!   C, U, V, W); `E5 drives an extruder (RepRap), an axis this machine
 //!   does not have`; `O100: subroutines and flow control (O words) are not
 //!   supported` (and `O1003: a program number stands before any motion; ...`
-//!   after a move); `L2 has no G10 to use it (canned cycles are not
-//!   supported)`.
+//!   after a move); `L2 has no G10 or canned cycle to use it`.
 //! * `X appears twice`; `G0 and G1 in one block: one motion per block`;
 //!   `G90 and G91 in one block: both select the distance mode` (and so for
 //!   every modal group); `M2 and M30 in one block: both stop the program`.
@@ -176,7 +179,16 @@
 //! * `%` on a line after others, with no `%` on the first line: "`%`
 //!   closes a program only when its first line is `%` too (LinuxCNC: Bad
 //!   character '%' used)".
-//! * `P2 has no G2, G3, G4, G10 or G64 to use it`; `Q1 has no G64 or M61 to use it`;
+//! * Canned cycles, with LinuxCNC's text in brackets: `Q0 is not a peck
+//!   depth: it must be above zero (LinuxCNC: Negative or zero q value
+//!   used)`; `G83 needs Q (LinuxCNC: Q word missing with g83)`; `G82 needs P
+//!   (...)`; `G81 needs R, the retract level (...)`; `G81 needs Z, the bottom
+//!   of the hole (...)`; `R-2 is below the bottom Z0 (...)`; `L0 is not a
+//!   number of repeats: ...`; `G86 needs the spindle turning: M3 or M4 first
+//!   (...)`; `G87 needs K (...)`; `I1 has no G2, G3 or G87 to use it`. R, Z,
+//!   Q, P, I, J, K may be left out only when the cycle repeats itself.
+//! * `P2 has no G2, G3, G4, G10, G64 or canned cycle to use it`; `Q1 has no
+//!   G64, M61 or canned cycle to use it`;
 //!   `I5 has no G2 or G3 to use it` (I, J, K, R without an arc).
 //! * Arcs: `G2 needs a center (I, J or K) or a radius (R)`; `R5 with I, J
 //!   or K: give the center or the radius, not both`; `K5 is not in the G17
@@ -196,6 +208,7 @@
 
 mod arc_center;
 mod block_words;
+pub mod cycles;
 pub mod interpreter;
 pub mod lexer;
 mod non_modal;

@@ -226,8 +226,8 @@ fn g10_words_are_checked_by_name() {
         ("G10 L2 P10 X1", "line 1: P10 is not a coordinate system: 0 (the active one) or 1 (G54) to 9 (G59.3)"),
         ("G10 L2 P1 R30", "line 1: R30 on G10 rotates the coordinate system, which is not supported"),
         ("G10 L2 P1 I1", "line 1: I1 has no G2 or G3 to use it"),
-        ("G0 X1 L2", "line 1: L2 has no G10 to use it (canned cycles are not supported)"),
-        ("G0 X1 P2", "line 1: P2 has no G2, G3, G4, G10 or G64 to use it"),
+        ("G0 X1 L2", "line 1: L2 has no G10 or canned cycle to use it"),
+        ("G0 X1 P2", "line 1: P2 has no G2, G3, G4, G10, G64 or canned cycle to use it"),
     ] {
         assert_eq!(error(program), message, "{program:?}");
     }
