@@ -269,6 +269,12 @@ fn run(cli: Cli) -> Result<(), String> {
                     ignored.word, ignored.line, ignored.what
                 );
             }
+            for message in &r.messages {
+                println!(
+                    "message    line {} ({}): {}",
+                    message.line, message.kind, message.text
+                );
+            }
             if let Some(ending) = &r.ending {
                 println!("end        {ending}");
             }

@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::gcode::{interpret_with, program_text, Ignored, Setup, Units};
+use super::gcode::{interpret_with, program_text, Ignored, Message, Setup, Units};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::tool_table::ToolTable;
@@ -82,6 +82,8 @@ pub struct Job {
     pub ignored: Vec<Ignored>,
     /// G-code only: how the program ended, as a sentence.
     pub ending: Option<String>,
+    /// G-code only: the active comments (MSG, DEBUG, PRINT) as they ran.
+    pub messages: Vec<Message>,
 }
 
 impl Job {
@@ -130,6 +132,7 @@ impl Job {
                     program_end: None,
                     ignored: Vec::new(),
                     ending: None,
+                    messages: Vec::new(),
                 })
             }
             InputFormat::Gcode => {
@@ -166,6 +169,7 @@ impl Job {
                     }),
                     ignored: program.ignored,
                     ending: Some(ending),
+                    messages: program.messages,
                 })
             }
         }
@@ -295,6 +299,8 @@ pub struct SimulationReport {
     pub ignored: Vec<Ignored>,
     /// G-code: how the program ended, as a sentence.
     pub ending: Option<String>,
+    /// G-code only: the active comments (MSG, DEBUG, PRINT) as they ran.
+    pub messages: Vec<Message>,
     /// Final commanded positions (steps emitted), per axis.
     pub commanded: [i32; 3],
     /// Final actual (encoder) positions.
@@ -570,6 +576,7 @@ pub fn simulate(
         program_end: job.program_end,
         ignored: job.ignored,
         ending: job.ending,
+        messages: job.messages,
         commanded: commanded.map(|v| v as i32),
         actual: actual.map(|v| v as i32),
         peak_rate: bus.peak_steps_per_clock().map(|r| r * options.clock_hz),

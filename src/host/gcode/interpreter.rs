@@ -9,6 +9,8 @@ use super::arc_center::{center_from_radius, check_center};
 use super::block_words::{Motion, NonModal, Words};
 use super::cycles::CycleMemory;
 use super::lexer::{lex_program, Block, LexError};
+use super::messages::Message;
+use super::param_store::ParamStore;
 use super::parameters::{system_name, PersistentParameters};
 use crate::host::tool_table::ToolTable;
 // An arc whose end is within SAME_POINT of its start, in its plane, is a
@@ -101,6 +103,8 @@ pub struct Program {
     pub coordinate_system: &'static str,
     /// The persistent parameters (#5161 to #5390) as the program left them.
     pub parameters: PersistentParameters,
+    /// The active comments (MSG, DEBUG, PRINT) in the order they ran.
+    pub messages: Vec<Message>,
     /// The words that do nothing here, each once, at its first line:
     /// once per M code, per ignored G code, and per letter S, T, H and D.
     pub ignored: Vec<Ignored>,
@@ -163,7 +167,7 @@ pub fn interpret_with(program: &str, setup: &Setup) -> Result<Program, GcodeErro
             after_end += 1;
             continue;
         }
-        state.apply(block).map_err(|message| GcodeError {
+        state.run_block(block).map_err(|message| GcodeError {
             line: block.line,
             message,
         })?;
@@ -203,6 +207,9 @@ pub(super) struct State {
     pub(super) spindle_turning: Option<bool>,
     /// What the last canned cycle keeps for the next.
     pub(super) cycle_memory: CycleMemory,
+    /// Numbered and named parameters (the persistent ones aside).
+    pub(super) params: ParamStore,
+    pub(super) messages: Vec<Message>,
     pub(super) toolpath: Toolpath,
     pub(super) ignored: Vec<Ignored>,
     pub(super) reported: HashSet<String>,
@@ -228,6 +235,8 @@ impl State {
             retract_to_r: true,
             spindle_turning: None,
             cycle_memory: CycleMemory::default(),
+            params: ParamStore::default(),
+            messages: Vec::new(),
             toolpath: Toolpath {
                 start,
                 items: Vec::new(),
@@ -263,6 +272,7 @@ impl State {
             final_machine: self.position_mm,
             coordinate_system: system_name(self.parameters.active_system()),
             parameters: self.parameters,
+            messages: self.messages,
             ignored: self.ignored,
             end: self.end,
             blocks_after_end,
@@ -276,6 +286,15 @@ impl State {
         if self.reported.insert(key.to_string()) {
             self.ignored.push(Ignored { line, word, what });
         }
+    }
+
+    /// One block as written: its values evaluated, run, then its
+    /// parameter assignments made.
+    fn run_block(&mut self, block: &Block) -> Result<(), String> {
+        let evaluated = self.evaluate(block)?;
+        self.messages(&evaluated);
+        self.apply(&evaluated)?;
+        self.assign(&block.assignments)
     }
 
     /// One block, in RS-274's order of execution.

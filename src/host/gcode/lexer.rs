@@ -20,6 +20,8 @@
 
 use thiserror::Error;
 
+use super::expr::{Cursor, Expr, Param};
+
 /// A line of a G-code program that cannot be read.
 #[derive(Debug, Error, PartialEq, Eq, Clone)]
 #[error("line {line}: {message}")]
@@ -35,10 +37,14 @@ pub struct LexError {
 pub struct Word {
     /// The letter, upper case.
     pub letter: char,
-    /// The number as written, without spaces (`-0.25`, `90.1`, `+1.`).
+    /// The number as written, without spaces (`-0.25`, `90.1`, `+1.`);
+    /// for a value computed when the block runs, the value as text.
     pub text: String,
-    /// The number's value.
+    /// The number's value (NaN until `expr` is evaluated).
     pub value: f64,
+    /// A parameter, `[expression]` or signed one, evaluated when the block
+    /// runs; `None` for a plain number.
+    pub expr: Option<Expr>,
 }
 
 impl Word {
@@ -79,6 +85,12 @@ pub struct Block {
     pub words: Vec<Word>,
     /// The comments' texts, without their delimiters.
     pub comments: Vec<String>,
+    /// `#n = value` and `#<name> = value`, in order: they take effect
+    /// after the block (LinuxCNC's rule).
+    pub assignments: Vec<(Param, Expr)>,
+    /// An O-word statement other than a program number (`o100 sub`,
+    /// `o<x> call [1]`), as written: subroutines and flow control.
+    pub o_statement: Option<String>,
 }
 
 /// A program read line by line.
@@ -164,11 +176,61 @@ pub fn lex_line(line: usize, text: &str) -> Result<Option<Block>, LexError> {
                 block.comments.push(body[at + 1..].to_string());
                 break;
             }
+            b'#' => {
+                let mut cursor = Cursor { bytes, at: at + 1 };
+                let param = cursor.param().map_err(error)?;
+                if cursor.peek() != Some(b'=') {
+                    return Err(error(
+                        "a parameter alone on a line is set with `=`: `#1 = 2`".into(),
+                    ));
+                }
+                cursor.at += 1;
+                let value = cursor.value().map_err(error)?;
+                block.assignments.push((param, value));
+                at = cursor.at;
+            }
             letter if letter.is_ascii_alphabetic() => {
                 let letter = letter.to_ascii_uppercase() as char;
                 at += 1;
-                let number = read_number(bytes, &mut at);
-                let word = parse_word(letter, &number).map_err(error)?;
+                if letter == 'O' {
+                    if let Some(statement) = o_statement(body, at) {
+                        block.o_statement = Some(statement);
+                        break;
+                    }
+                }
+                let mut cursor = Cursor { bytes, at };
+                let computed = match cursor.peek() {
+                    Some(b'[' | b'#') => true,
+                    Some(b'-' | b'+') => {
+                        let sign = cursor.at;
+                        cursor.at += 1;
+                        let next = cursor.peek();
+                        cursor.at = sign;
+                        matches!(next, Some(b'[' | b'#'))
+                    }
+                    _ => false,
+                };
+                let word = if computed {
+                    let start = cursor.at;
+                    let expr = cursor.value().map_err(error)?;
+                    let text: String = body[start..cursor.at].split_whitespace().collect();
+                    at = cursor.at;
+                    Word {
+                        letter,
+                        text,
+                        value: f64::NAN,
+                        expr: Some(expr),
+                    }
+                } else {
+                    let number = read_number(bytes, &mut at);
+                    parse_word(letter, &number).map_err(error)?
+                };
+                if letter == 'N' && word.expr.is_some() {
+                    return Err(error(format!(
+                        "line number N{} is not a whole number",
+                        word.text
+                    )));
+                }
                 if letter == 'N' {
                     if !block.words.is_empty() || block.number.is_some() {
                         return Err(error(format!(
@@ -211,15 +273,19 @@ fn checked_body(line: &str) -> Result<&str, String> {
     Ok(body)
 }
 
-/// Where the checksum's `*` is: the first `*` outside a comment.
+/// Where the checksum's `*` is: the first `*` outside a comment and
+/// outside `[ ]` (where `*` and `**` are operators).
 fn checksum_star(line: &str) -> Option<usize> {
     let mut in_comment = false;
+    let mut depth = 0usize;
     for (i, c) in line.char_indices() {
         match c {
             '(' => in_comment = true,
             ')' => in_comment = false,
+            '[' if !in_comment => depth += 1,
+            ']' if !in_comment => depth = depth.saturating_sub(1),
             ';' if !in_comment => return None,
-            '*' if !in_comment => return Some(i),
+            '*' if !in_comment && depth == 0 => return Some(i),
             _ => {}
         }
     }
@@ -263,6 +329,48 @@ fn parse_word(letter: char, number: &str) -> Result<Word, String> {
         letter,
         text: number.to_string(),
         value,
+        expr: None,
+    })
+}
+
+/// The O-word statement starting after the `O` at `at`, if the line holds
+/// one: `<name>` or a number followed by a keyword (`sub`, `call`, `if`...).
+/// A bare `O1003` is a program number, not a statement.
+fn o_statement(body: &str, at: usize) -> Option<String> {
+    let rest = body[at..].trim_start();
+    let after_name = if rest.starts_with('<') {
+        &rest[rest.find('>').map_or(rest.len(), |i| i + 1)..]
+    } else {
+        rest.trim_start_matches(|c: char| c.is_ascii_digit() || c == '.' || c.is_whitespace())
+    };
+    const KEYWORDS: [&str; 15] = [
+        "sub",
+        "endsub",
+        "call",
+        "return",
+        "do",
+        "while",
+        "endwhile",
+        "if",
+        "elseif",
+        "else",
+        "endif",
+        "break",
+        "continue",
+        "repeat",
+        "endrepeat",
+    ];
+    let named = rest.starts_with('<');
+    let word: String = after_name
+        .trim_start()
+        .chars()
+        .take_while(char::is_ascii_alphabetic)
+        .map(|c| c.to_ascii_lowercase())
+        .collect();
+    let keyword = KEYWORDS.contains(&word.as_str());
+    (named || keyword).then(|| {
+        let end = body[at..].find([';', '(']).map_or(body.len(), |i| at + i);
+        format!("O{}", body[at..end].trim())
     })
 }
 

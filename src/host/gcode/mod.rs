@@ -16,6 +16,19 @@
 //! reads 1234.5677), rejects block delete and checksums, and drops a
 //! malformed G number without an error.
 //!
+//! # Parameters and expressions
+//! A word's value may be a parameter or an expression, evaluated when its
+//! block runs ([`expr`]): `X#1`, `Z-#<depth>`, `F[#2 * 60]`, `G#3`, with
+//! LinuxCNC's operators, precedence and functions. `#n = value` and
+//! `#<name> = value` anywhere on a line set parameters after the line has
+//! run, as LinuxCNC does. Numbered parameters are #1 to #5602; #5161 to
+//! #5390 are the persistent ones, #5400 the loaded tool and #5420 to #5422
+//! the current X, Y, Z (see [`param_store`]). `(MSG, ...)`, `(DEBUG, ...)`
+//! and `(PRINT, ...)` are collected in [`Program::messages`], the last two
+//! with their parameters replaced by values. O-word statements (`o100
+//! sub`, `o<x> call`, `o1 while`...) are refused by name for now. The
+//! RepRap checksum `*NN` is a `*` outside comments and `[ ]`.
+//!
 //! # Modal state at the start
 //! G17 (XY plane), G21 (mm), G90 (absolute), G91.1 (I, J, K are offsets
 //! from the arc's start), G94 (feed per minute), no motion mode, no feed,
@@ -143,9 +156,10 @@
 //!   `M1.5 is not an M code`.
 //! * `A5 moves an axis this machine does not have (X, Y and Z only)` (A, B,
 //!   C, U, V, W); `E5 drives an extruder (RepRap), an axis this machine
-//!   does not have`; `O100: subroutines and flow control (O words) are not
-//!   supported` (and `O1003: a program number stands before any motion; ...`
-//!   after a move); `L2 has no G10 or canned cycle to use it`.
+//!   does not have`; `O100 sub: subroutines and flow control (O words) are
+//!   not supported yet`; `O100: subroutines and flow control (O words) are
+//!   not supported` (an O number beside other words; and `O1003: a program
+//!   number stands before any motion; ...` after a move); `L2 has no G10 or canned cycle to use it`.
 //! * `X appears twice`; `G0 and G1 in one block: one motion per block`;
 //!   `G90 and G91 in one block: both select the distance mode` (and so for
 //!   every modal group); `M2 and M30 in one block: both stop the program`.
@@ -204,14 +218,27 @@
 //! * `the X axis would be at 2000000.0000 mm, beyond ±1000000 mm` (and
 //!   `the arc's center ...`); `X1000…0 is not a finite number` (more digits
 //!   than f64 holds).
-//! * The lexer's errors, with their line and message unchanged.
+//! * Values: `X[1/0]: division by zero (LinuxCNC: Attempt to divide by
+//!   zero)`; `SQRT[-1]: the argument must be 0 or more (...)`; `LN[0]: ...`;
+//!   `ACOS[2]: the argument must be from -1 to 1 (...)`; `X#<nope>:
+//!   #<nope> is not set (LinuxCNC: Named parameter #<nope> not defined)`;
+//!   `#6000 is not a parameter: a whole number from 1 to 5602 (...)`; `#5420
+//!   is read-only here: the current position`; a persistent parameter's
+//!   value is checked as the settings file's is.
+//! * The lexer's errors, with their line and message unchanged; for
+//!   values: `` `[` is not closed by `]` ``, `` `?` is not an operator ``,
+//!   `` `FOO` is not a function ``, `` a parameter alone on a line is set
+//!   with `=`: `#1 = 2` ``.
 
 mod arc_center;
 mod block_words;
 pub mod cycles;
+pub mod expr;
 pub mod interpreter;
 pub mod lexer;
+mod messages;
 mod non_modal;
+pub mod param_store;
 pub mod parameters;
 mod text;
 mod tools;
@@ -220,6 +247,7 @@ pub use interpreter::{
     interpret, interpret_from, interpret_with, GcodeError, Ignored, Program, Setup, Units,
 };
 pub use lexer::{lex_line, lex_program, Block, LexError, Lexed, Word};
+pub use messages::Message;
 pub use parameters::PersistentParameters;
 pub use text::program_text;
 

@@ -90,6 +90,7 @@ impl State {
                     letter: 'T',
                     text: self.loaded.to_string(),
                     value: f64::from(self.loaded),
+                    expr: None,
                 };
                 self.tool_offset = h_offset(self, words.h.unwrap_or(&loaded))?;
             }

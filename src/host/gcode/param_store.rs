@@ -1,0 +1,132 @@
+//! A program's parameters while it runs: numbered #1 to #5602 and named
+//! `#<name>` (local) and `#<_name>` (global; without subroutines both live
+//! in the program's one scope), evaluated into each block's words before
+//! it runs, and set after it (LinuxCNC: "parameter setting takes effect
+//! after the line is read").
+//!
+//! Numbers with a meaning here: #5161 to #5390 are the persistent
+//! parameters ([`PersistentParameters`](super::PersistentParameters): a
+//! write is checked as the settings file's is, and an offset written takes
+//! effect at once); #5400 (the loaded tool) and #5420 to #5422 (the
+//! current X, Y, Z in the program's units and coordinates) read the state
+//! and cannot be written. Every other number reads 0 until set.
+
+use std::collections::HashMap;
+
+use super::expr::{Expr, Param, Parameters};
+use super::interpreter::State;
+use super::lexer::{Block, Word};
+use super::parameters::{FIRST, LAST};
+
+/// The highest parameter number (LinuxCNC's RS274NGC_MAX_PARAMETERS - 1).
+pub const MAX_NUMBERED: u32 = 5602;
+const LOADED_TOOL: u32 = 5400;
+const POSITION: u32 = 5420;
+
+/// The numbered and named parameters that are not persistent.
+#[derive(Clone, Debug, Default)]
+pub(super) struct ParamStore {
+    numbered: HashMap<u32, f64>,
+    named: HashMap<String, f64>,
+}
+
+/// A parameter number from a value: a whole number from 1 to 5602.
+fn number(n: f64) -> Result<u32, String> {
+    let rounded = n.round();
+    if (n - rounded).abs() > 1e-6 || !(1.0..=f64::from(MAX_NUMBERED)).contains(&rounded) {
+        return Err(format!(
+            "#{n} is not a parameter: a whole number from 1 to {MAX_NUMBERED} (LinuxCNC: Parameter number out of range)"
+        ));
+    }
+    Ok(rounded as u32)
+}
+
+impl Parameters for State {
+    fn numbered(&self, n: f64) -> Result<f64, String> {
+        let n = number(n)?;
+        Ok(match n {
+            FIRST..=LAST => self.parameters.get(n).unwrap_or(0.0),
+            LOADED_TOOL => f64::from(self.loaded),
+            POSITION..=5422 => self.position[(n - POSITION) as usize],
+            _ => self.params.numbered.get(&n).copied().unwrap_or(0.0),
+        })
+    }
+
+    fn named(&self, name: &str) -> Option<f64> {
+        self.params.named.get(name).copied()
+    }
+}
+
+/// A value as a word's text: whole numbers without a point, others with
+/// up to 6 decimals (so that `G[90+0.1]` reads as G90.1).
+fn as_text(v: f64) -> String {
+    let text = format!("{v:.6}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    if text == "-0" {
+        "0".into()
+    } else {
+        text.into()
+    }
+}
+
+impl State {
+    /// `block` with every computed word evaluated.
+    pub(super) fn evaluate(&self, block: &Block) -> Result<Block, String> {
+        let mut evaluated = block.clone();
+        for word in &mut evaluated.words {
+            if let Some(expr) = word.expr.take() {
+                let value = expr
+                    .evaluate(self)
+                    .map_err(|e| format!("{}{}: {e}", word.letter, word.text))?;
+                *word = Word {
+                    letter: word.letter,
+                    text: as_text(value),
+                    value,
+                    expr: None,
+                };
+            }
+        }
+        Ok(evaluated)
+    }
+
+    /// The block's assignments, every value read before any is set.
+    pub(super) fn assign(&mut self, assignments: &[(Param, Expr)]) -> Result<(), String> {
+        let mut values = Vec::with_capacity(assignments.len());
+        for (param, expr) in assignments {
+            let target = match param {
+                Param::Numbered(n) => Ok(number(n.evaluate(self)?)?),
+                Param::Named(name) => Err(name.clone()),
+            };
+            values.push((target, expr.evaluate(self)?));
+        }
+        for (target, value) in values {
+            match target {
+                Ok(n @ FIRST..=LAST) => {
+                    self.parameters.set(n, value)?;
+                    self.sync_work_position();
+                }
+                Ok(n @ (LOADED_TOOL | POSITION..=5422)) => {
+                    return Err(format!(
+                        "#{n} is read-only here: {}",
+                        if n == LOADED_TOOL {
+                            "the loaded tool"
+                        } else {
+                            "the current position"
+                        }
+                    ))
+                }
+                Ok(n) => {
+                    self.params.numbered.insert(n, value);
+                }
+                Err(name) => {
+                    self.params.named.insert(name, value);
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+#[path = "param_store_tests.rs"]
+mod tests;
