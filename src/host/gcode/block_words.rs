@@ -371,11 +371,7 @@ impl<'a> Words<'a> {
         let mut words = Words::default();
         let mut groups: Vec<(&'static str, &Word)> = Vec::new();
         let mut letters = HashSet::new();
-        if let Some(statement) = &block.o_statement {
-            return Err(format!(
-                "{statement}: subroutines and flow control (O words) are not supported yet"
-            ));
-        }
+
         for word in &block.words {
             let name = word.name();
             if !word.value.is_finite() {

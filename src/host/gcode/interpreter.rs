@@ -8,6 +8,7 @@ use thiserror::Error;
 use super::arc_center::{center_from_radius, check_center};
 use super::block_words::{Motion, NonModal, Words};
 use super::cycles::CycleMemory;
+use super::flow::structure;
 use super::lexer::{lex_program, Block, LexError};
 use super::messages::Message;
 use super::param_store::ParamStore;
@@ -157,21 +158,19 @@ pub struct Setup {
 /// Interprets `program` from `setup`.
 pub fn interpret_with(program: &str, setup: &Setup) -> Result<Program, GcodeError> {
     let mut state = State::new(setup.start, setup.parameters, setup.tools.clone());
-    let mut after_end = 0;
     let lexed = lex_program(program)?;
-    for block in &lexed.blocks {
-        if block.deleted {
-            continue;
-        }
-        if state.end.is_some() {
-            after_end += 1;
-            continue;
-        }
-        state.run_block(block).map_err(|message| GcodeError {
-            line: block.line,
-            message,
-        })?;
-    }
+    let structure =
+        structure(&lexed.blocks).map_err(|(line, message)| GcodeError { line, message })?;
+    let next = state.run_blocks(&lexed.blocks, &structure)?;
+    let after_end = match state.end {
+        Some(_) => lexed
+            .blocks
+            .iter()
+            .skip(next)
+            .filter(|b| !b.deleted)
+            .count(),
+        None => 0,
+    };
     Ok(state.finish(after_end, lexed.closing_percent))
 }
 
@@ -290,7 +289,7 @@ impl State {
 
     /// One block as written: its values evaluated, run, then its
     /// parameter assignments made.
-    fn run_block(&mut self, block: &Block) -> Result<(), String> {
+    pub(super) fn run_block(&mut self, block: &Block) -> Result<(), String> {
         let evaluated = self.evaluate(block)?;
         self.messages(&evaluated);
         self.apply(&evaluated)?;

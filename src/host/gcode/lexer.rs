@@ -21,6 +21,7 @@
 use thiserror::Error;
 
 use super::expr::{Cursor, Expr, Param};
+use super::flow::OWord;
 
 /// A line of a G-code program that cannot be read.
 #[derive(Debug, Error, PartialEq, Eq, Clone)]
@@ -91,6 +92,8 @@ pub struct Block {
     /// An O-word statement other than a program number (`o100 sub`,
     /// `o<x> call [1]`), as written: subroutines and flow control.
     pub o_statement: Option<String>,
+    /// That statement, parsed.
+    pub o_word: Option<OWord>,
 }
 
 /// A program read line by line.
@@ -194,6 +197,7 @@ pub fn lex_line(line: usize, text: &str) -> Result<Option<Block>, LexError> {
                 at += 1;
                 if letter == 'O' {
                     if let Some(statement) = o_statement(body, at) {
+                        block.o_word = Some(super::flow::parse(&statement[1..]).map_err(error)?);
                         block.o_statement = Some(statement);
                         break;
                     }
@@ -343,23 +347,6 @@ fn o_statement(body: &str, at: usize) -> Option<String> {
     } else {
         rest.trim_start_matches(|c: char| c.is_ascii_digit() || c == '.' || c.is_whitespace())
     };
-    const KEYWORDS: [&str; 15] = [
-        "sub",
-        "endsub",
-        "call",
-        "return",
-        "do",
-        "while",
-        "endwhile",
-        "if",
-        "elseif",
-        "else",
-        "endif",
-        "break",
-        "continue",
-        "repeat",
-        "endrepeat",
-    ];
     let named = rest.starts_with('<');
     let word: String = after_name
         .trim_start()
@@ -367,7 +354,10 @@ fn o_statement(body: &str, at: usize) -> Option<String> {
         .take_while(char::is_ascii_alphabetic)
         .map(|c| c.to_ascii_lowercase())
         .collect();
-    let keyword = KEYWORDS.contains(&word.as_str());
+    // A keyword (`sub`, `if`...) or any word of two letters or more, which
+    // the O-word parser refuses by name; one letter and a number is a
+    // G-code word after an O number.
+    let keyword = word.len() >= 2;
     (named || keyword).then(|| {
         let end = body[at..].find([';', '(']).map_or(body.len(), |i| at + i);
         format!("O{}", body[at..end].trim())

@@ -25,9 +25,17 @@
 //! #5390 are the persistent ones, #5400 the loaded tool and #5420 to #5422
 //! the current X, Y, Z (see [`param_store`]). `(MSG, ...)`, `(DEBUG, ...)`
 //! and `(PRINT, ...)` are collected in [`Program::messages`], the last two
-//! with their parameters replaced by values. O-word statements (`o100
-//! sub`, `o<x> call`, `o1 while`...) are refused by name for now. The
-//! RepRap checksum `*NN` is a `*` outside comments and `[ ]`.
+//! with their parameters replaced by values. The RepRap checksum `*NN` is
+//! a `*` outside comments and `[ ]`.
+//!
+//! # O-words
+//! `sub`/`endsub`/`call`/`return` (arguments #1 to #30, `#<_value>`, 10
+//! levels), `if`/`elseif`/`else`/`endif`, `while`/`endwhile`,
+//! `do`/`while`, `repeat`/`endrepeat`, `break`/`continue`, paired by label
+//! (`o100`, `o<name>`) before the program runs ([`flow`]). Subroutines are
+//! those of the file itself (LinuxCNC would also look for `name.ngc` files
+//! in its subroutine path). The program's loops may jump back at most
+//! 10^7 times together: past that the loop is an error, never a hang.
 //!
 //! # Modal state at the start
 //! G17 (XY plane), G21 (mm), G90 (absolute), G91.1 (I, J, K are offsets
@@ -156,10 +164,9 @@
 //!   `M1.5 is not an M code`.
 //! * `A5 moves an axis this machine does not have (X, Y and Z only)` (A, B,
 //!   C, U, V, W); `E5 drives an extruder (RepRap), an axis this machine
-//!   does not have`; `O100 sub: subroutines and flow control (O words) are
-//!   not supported yet`; `O100: subroutines and flow control (O words) are
-//!   not supported` (an O number beside other words; and `O1003: a program
-//!   number stands before any motion; ...` after a move); `L2 has no G10 or canned cycle to use it`.
+//!   does not have`; `O100: subroutines and flow control (O words) are
+//!   not supported` (an O number beside other words, not a statement; and
+//!   `O1003: a program number stands before any motion; ...` after a move); `L2 has no G10 or canned cycle to use it`.
 //! * `X appears twice`; `G0 and G1 in one block: one motion per block`;
 //!   `G90 and G91 in one block: both select the distance mode` (and so for
 //!   every modal group); `M2 and M30 in one block: both stop the program`.
@@ -225,6 +232,14 @@
 //!   `#6000 is not a parameter: a whole number from 1 to 5602 (...)`; `#5420
 //!   is read-only here: the current position`; a persistent parameter's
 //!   value is checked as the settings file's is.
+//! * O-words: `O1 if is never closed`; `O1 endif closes no open O1 if`;
+//!   `O1 else has no open O1 if`; `O1 break is in no O1 loop`; `O1 sub is
+//!   defined twice`; `O2 sub inside another O-word structure`; `O9 call:
+//!   this file has no O9 sub (...)`; `O1 return outside a subroutine`;
+//!   `O<f> call: more than 10 calls deep (LinuxCNC: Too many subroutine
+//!   levels)`; `O1: the program's loops jumped back 10000000 times: a loop
+//!   that does not end (...)`; `O1 frobnicate: not an O-word keyword`; an
+//!   error inside a subroutine adds `(in O<f> called on line N)`.
 //! * The lexer's errors, with their line and message unchanged; for
 //!   values: `` `[` is not closed by `]` ``, `` `?` is not an operator ``,
 //!   `` `FOO` is not a function ``, `` a parameter alone on a line is set
@@ -234,6 +249,8 @@ mod arc_center;
 mod block_words;
 pub mod cycles;
 pub mod expr;
+pub mod flow;
+mod flow_run;
 pub mod interpreter;
 pub mod lexer;
 mod messages;

@@ -30,6 +30,52 @@ pub(super) struct ParamStore {
     named: HashMap<String, f64>,
 }
 
+/// What a call hides from its caller: #1 to #30 and the local names.
+pub(super) struct Saved {
+    numbered: [Option<f64>; 30],
+    locals: HashMap<String, f64>,
+}
+
+impl ParamStore {
+    /// A call's entry: #1 to #30 are the arguments (0 past them) and no
+    /// local name is set; the caller's are kept for [`leave`](Self::leave).
+    pub(super) fn enter(&mut self, arguments: &[f64]) -> Saved {
+        let numbered = std::array::from_fn(|k| self.numbered.remove(&(k as u32 + 1)));
+        for k in 0..30 {
+            let value = arguments.get(k).copied().unwrap_or(0.0);
+            self.numbered.insert(k as u32 + 1, value);
+        }
+        let locals = self
+            .named
+            .iter()
+            .filter(|(name, _)| !name.starts_with('_'))
+            .map(|(name, v)| (name.clone(), *v))
+            .collect();
+        self.named.retain(|name, _| name.starts_with('_'));
+        Saved { numbered, locals }
+    }
+
+    /// A call's return: the caller's #1 to #30 and locals back; a returned
+    /// value in `#<_value>`, and `#<_value_returned>` 1 or 0 (LinuxCNC's).
+    pub(super) fn leave(&mut self, saved: Saved, value: Option<f64>) {
+        for (k, kept) in saved.numbered.into_iter().enumerate() {
+            match kept {
+                Some(v) => self.numbered.insert(k as u32 + 1, v),
+                None => self.numbered.remove(&(k as u32 + 1)),
+            };
+        }
+        self.named.retain(|name, _| name.starts_with('_'));
+        self.named.extend(saved.locals);
+        if let Some(v) = value {
+            self.named.insert("_value".into(), v);
+        }
+        self.named.insert(
+            "_value_returned".into(),
+            f64::from(u8::from(value.is_some())),
+        );
+    }
+}
+
 /// A parameter number from a value: a whole number from 1 to 5602.
 fn number(n: f64) -> Result<u32, String> {
     let rounded = n.round();

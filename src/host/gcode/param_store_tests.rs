@@ -91,8 +91,6 @@ fn bad_values_are_named_errors() {
         ("G0 X[1 ? 2]", "line 1: `?` is not an operator"),
         ("G0 X[FOO[1]]", "line 1: `FOO` is not a function"),
         ("#1", "line 1: a parameter alone on a line is set with `=`: `#1 = 2`"),
-        ("o100 sub", "line 1: O100 sub: subroutines and flow control (O words) are not supported yet"),
-        ("o<drill> call [1] [2]", "line 1: O<drill> call [1] [2]: subroutines and flow control (O words) are not supported yet"),
         ("N#1 G0 X1", "line 1: line number N#1 is not a whole number"),
     ] {
         assert_eq!(error(program), message, "{program:?}");
