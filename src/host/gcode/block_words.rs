@@ -348,6 +348,9 @@ pub(super) struct Words<'a> {
     pub(super) path_control: bool,
     pub(super) end: bool,
     pub(super) axes: [Option<&'a Word>; 3],
+    /// `@` (distance) and `^` (angle, degrees): X and Y in polar
+    /// coordinates about the work origin.
+    pub(super) polar: [Option<&'a Word>; 2],
     pub(super) offsets: [Option<&'a Word>; 3],
     pub(super) radius: Option<&'a Word>,
     /// R on a G10 block: the coordinate system's rotation.
@@ -450,7 +453,9 @@ impl<'a> Words<'a> {
                         return Err(format!("{letter} appears twice"));
                     }
                     match letter {
-                        'X' | 'Y' | 'Z' => words.first_axis = words.first_axis.or(Some(word)),
+                        'X' | 'Y' | 'Z' | '@' | '^' => {
+                            words.first_axis = words.first_axis.or(Some(word))
+                        }
                         'I' | 'J' | 'K' | 'R' => {
                             words.first_center = words.first_center.or(Some(word))
                         }
@@ -458,6 +463,8 @@ impl<'a> Words<'a> {
                     }
                     let slot = match letter {
                         'X' | 'Y' | 'Z' => &mut words.axes[axis_index(letter, 'X')],
+                        '@' => &mut words.polar[0],
+                        '^' => &mut words.polar[1],
                         'I' | 'J' | 'K' => &mut words.offsets[axis_index(letter, 'I')],
                         'R' => &mut words.radius,
                         'F' => &mut words.feed,

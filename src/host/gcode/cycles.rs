@@ -147,6 +147,9 @@ impl State {
         } else {
             a = words.axes[first].map_or(a, |w| w.value);
             b = words.axes[second].map_or(b, |w| w.value);
+            if let Some([x, y]) = self.polar_xy(words, [a, b])? {
+                (a, b) = (x, y);
+            }
             (0.0, 0.0, r, z)
         };
         if r_level < bottom {
@@ -166,6 +169,13 @@ impl State {
         for repeat in 0..repeats {
             a += step_a;
             b += step_b;
+            if self.incremental {
+                // Polar increments add on every repeat (LinuxCNC's
+                // CYCLE_MACRO).
+                if let Some([x, y]) = self.polar_xy(words, [a, b])? {
+                    (a, b) = (x, y);
+                }
+            }
             if repeat == 0 && level > r_level {
                 self.cycle_move(true, [a, b, level], line);
                 self.cycle_move(true, [a, b, r_level], line);

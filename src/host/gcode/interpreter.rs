@@ -406,9 +406,9 @@ impl State {
         if words.cancel_motion.is_some() || motion.is_some_and(|m| !m.is_cycle()) {
             self.cycle_memory.initial = None;
         }
-        let mut machine = false;
+        let machine = matches!(words.non_modal, Some((_, NonModal::MachineCoordinates)));
+        self.check_polar(&words, motion, machine)?;
         if let Some((word, code)) = words.non_modal {
-            machine = code == NonModal::MachineCoordinates;
             self.non_modal(word, code, &words, motion, block.line)?;
         }
         if let Some(motion) = motion.filter(|m| m.is_arc()) {
@@ -573,6 +573,13 @@ impl State {
                 } else {
                     word.value
                 };
+                end_mm[axis] = end[axis] * scale + offset[axis];
+                check_range(&format!("the {} axis", AXES[axis]), end_mm[axis])?;
+            }
+        }
+        if let Some(xy) = self.polar_xy(words, [end[0], end[1]])? {
+            for axis in 0..2 {
+                end[axis] = xy[axis];
                 end_mm[axis] = end[axis] * scale + offset[axis];
                 check_range(&format!("the {} axis", AXES[axis]), end_mm[axis])?;
             }

@@ -192,7 +192,8 @@ pub fn lex_line(line: usize, text: &str) -> Result<Option<Block>, LexError> {
                 block.assignments.push((param, value));
                 at = cursor.at;
             }
-            letter if letter.is_ascii_alphabetic() => {
+            // `@` and `^`: LinuxCNC's polar distance and angle words.
+            letter if letter.is_ascii_alphabetic() || letter == b'@' || letter == b'^' => {
                 let letter = letter.to_ascii_uppercase() as char;
                 at += 1;
                 if letter == 'O' {
@@ -465,8 +466,8 @@ mod tests {
             "line 12: line number N3.5 is not a whole number"
         );
         assert_eq!(
-            lex_program("G21\n\nG1 X1 @\n").unwrap_err().to_string(),
-            "line 3: unexpected character `@`"
+            lex_program("G21\n\nG1 X1 $\n").unwrap_err().to_string(),
+            "line 3: unexpected character `$`"
         );
     }
 

@@ -28,6 +28,16 @@
 //! with their parameters replaced by values. The RepRap checksum `*NN` is
 //! a `*` outside comments and `[ ]`.
 //!
+//! # Polar coordinates
+//! `@` (distance) and `^` (angle, degrees) give X and Y about the work
+//! origin for G0, G1 and G17 canned cycles, absolute or (G91) added to the
+//! current point's distance and angle, on every repeat of a cycle (see
+//! `polar`). Errors: `@2 with X1: give the end in X and Y or in polar
+//! coordinates, not both (...)`; `@2 with G53: ...`; `@2: polar
+//! coordinates give the end of a G0 or G1, or a canned cycle's hole in the
+//! G17 plane`; incremental at the origin: `... (LinuxCNC: Incremental
+//! motion with polar coordinates is indeterminate when at the origin)`.
+//!
 //! # O-words
 //! `sub`/`endsub`/`call`/`return` (arguments #1 to #30, `#<_value>`, 10
 //! levels), `if`/`elseif`/`else`/`endif`, `while`/`endwhile`,
@@ -257,6 +267,7 @@ mod messages;
 mod non_modal;
 pub mod param_store;
 pub mod parameters;
+mod polar;
 mod text;
 mod tools;
 
