@@ -16,7 +16,7 @@
 use super::block_words::{Cycle, Words};
 use super::interpreter::State;
 use super::lexer::Word;
-use crate::host::toolpath::{Item, Move, MoveKind};
+use crate::host::toolpath::Item;
 
 /// G73's and G83's clearance when no D word gives it: LinuxCNC 2.9's, as
 /// its G-code documentation states it (0.010 in). LinuxCNC's newer
@@ -292,15 +292,7 @@ impl State {
         let (offset, scale) = (self.offset(), self.units.mm_per_unit());
         let end_mm = [0, 1, 2].map(|k| end[k] * scale + offset[k]);
         self.position = end;
-        if end_mm != self.position_mm {
-            self.position_mm = end_mm;
-            self.toolpath.items.push(Item::Move(Move {
-                kind: MoveKind::Line,
-                end: end_mm,
-                feed: if rapid { None } else { self.feed },
-                line,
-            }));
-        }
+        self.line_to(end_mm, if rapid { None } else { self.feed }, line);
     }
 }
 

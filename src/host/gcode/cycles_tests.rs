@@ -3,6 +3,7 @@
 //! machine's origin so that work = machine), and its errors.
 
 use super::super::interpreter::{interpret, Program};
+use super::super::test_support::error;
 use crate::host::toolpath::Item;
 
 /// `R`apid, `F`eed or `D`well, with the end (or the seconds in [0]).
@@ -27,10 +28,6 @@ fn check(program: &str, expected: &[(char, [f64; 3])]) {
         .map(|(k, e)| (k, e.map(|v| (v * 1e4).round() / 1e4)))
         .collect();
     assert_eq!(got, expected, "{program:?}");
-}
-
-fn error(program: &str) -> String {
-    interpret(program).unwrap_err().to_string()
 }
 
 const R: char = 'R';

@@ -1,29 +1,7 @@
 //! O-words: each structure's path worked out by hand (the X of each move
 //! records where the program went), and the errors.
 
-use super::super::interpreter::{interpret, Program};
-use crate::host::toolpath::Item;
-
-fn run(program: &str) -> Program {
-    interpret(program).unwrap_or_else(|e| panic!("{program:?}: {e}"))
-}
-
-fn error(program: &str) -> String {
-    interpret(program).unwrap_err().to_string()
-}
-
-/// The X of every move: `G0 X...` lines mark the path taken.
-fn xs(program: &str) -> Vec<f64> {
-    run(program)
-        .toolpath
-        .items
-        .iter()
-        .filter_map(|i| match i {
-            Item::Move(m) => Some(m.end[0]),
-            Item::Dwell { .. } => None,
-        })
-        .collect()
-}
+use super::super::test_support::{error, xs};
 
 #[test]
 fn subroutines_take_arguments_return_values_and_keep_the_callers_parameters() {

@@ -370,7 +370,7 @@ impl State {
         }
         // T (step 5) and M6 (6) before everything that moves; the tool
         // length offset (14) after the units (12).
-        self.tool_words(&words, block.line)?;
+        self.tool_words(&words)?;
         self.plane = words.plane.unwrap_or(self.plane);
         self.incremental = words.incremental.unwrap_or(self.incremental);
         self.arc_incremental = words.arc_incremental.unwrap_or(self.arc_incremental);
@@ -590,16 +590,22 @@ impl State {
     /// A rapid to `end_mm` (machine), if it moves at all; the work
     /// position follows.
     pub(super) fn rapid_to_machine(&mut self, end_mm: [f64; 3], line: usize) {
+        self.line_to(end_mm, None, line);
+        self.sync_work_position();
+    }
+
+    /// A line to `end_mm` (machine) at `feed` (`None`: rapid), if it moves
+    /// at all. The work position is the caller's to set.
+    pub(super) fn line_to(&mut self, end_mm: [f64; 3], feed: Option<f64>, line: usize) {
         if end_mm != self.position_mm {
             self.position_mm = end_mm;
             self.toolpath.items.push(Item::Move(Move {
                 kind: MoveKind::Line,
                 end: end_mm,
-                feed: None,
+                feed,
                 line,
             }));
         }
-        self.sync_work_position();
     }
 
     /// The arc's shape; a full circle's end (`end` in program units and

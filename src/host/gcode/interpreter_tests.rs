@@ -1,16 +1,6 @@
+use super::super::test_support::{error, run};
 use super::*;
 use crate::host::toolpath::{Arc, Item, Move, MoveKind, Plane};
-
-fn run(program: &str) -> Program {
-    interpret(program).unwrap_or_else(|e| panic!("{program:?}: {e}"))
-}
-
-fn error(program: &str) -> String {
-    match interpret(program) {
-        Ok(p) => panic!("{program:?} was accepted: {p:?}"),
-        Err(e) => e.to_string(),
-    }
-}
 
 fn moves(program: &str) -> Vec<Move> {
     run(program)

@@ -90,9 +90,7 @@ pub struct Block {
     /// after the block (LinuxCNC's rule).
     pub assignments: Vec<(Param, Expr)>,
     /// An O-word statement other than a program number (`o100 sub`,
-    /// `o<x> call [1]`), as written: subroutines and flow control.
-    pub o_statement: Option<String>,
-    /// That statement, parsed.
+    /// `o<x> call [1]`): subroutines and flow control.
     pub o_word: Option<OWord>,
 }
 
@@ -199,7 +197,6 @@ pub fn lex_line(line: usize, text: &str) -> Result<Option<Block>, LexError> {
                 if letter == 'O' {
                     if let Some(statement) = o_statement(body, at) {
                         block.o_word = Some(super::flow::parse(&statement[1..]).map_err(error)?);
-                        block.o_statement = Some(statement);
                         break;
                     }
                 }

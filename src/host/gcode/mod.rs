@@ -281,3 +281,5 @@ pub use text::program_text;
 
 #[cfg(test)]
 mod fuzz_tests;
+#[cfg(test)]
+mod test_support;

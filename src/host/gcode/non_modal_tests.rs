@@ -4,8 +4,9 @@
 //! it sets): the machine positions here are its work positions plus its
 //! offsets.
 
-use super::super::interpreter::{interpret, interpret_with, Program, Setup};
+use super::super::interpreter::{interpret_with, Program, Setup};
 use super::super::parameters::PersistentParameters;
+use super::super::test_support::{error, run};
 use crate::host::toolpath::{Item, MoveKind};
 
 fn run_with(program: &str, parameters: &PersistentParameters) -> Program {
@@ -14,17 +15,6 @@ fn run_with(program: &str, parameters: &PersistentParameters) -> Program {
         ..Setup::default()
     };
     interpret_with(program, &setup).unwrap_or_else(|e| panic!("{program:?}: {e}"))
-}
-
-fn run(program: &str) -> Program {
-    run_with(program, &PersistentParameters::default())
-}
-
-fn error(program: &str) -> String {
-    match interpret(program) {
-        Ok(p) => panic!("{program:?} was accepted: {p:?}"),
-        Err(e) => e.to_string(),
-    }
 }
 
 /// Every move's (line, machine end) and whether it is a rapid.

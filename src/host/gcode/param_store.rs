@@ -11,6 +11,7 @@
 //! current X, Y, Z in the program's units and coordinates) read the state
 //! and cannot be written. Every other number reads 0 until set.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 use super::expr::{Expr, Param, Parameters};
@@ -116,8 +117,12 @@ fn as_text(v: f64) -> String {
 }
 
 impl State {
-    /// `block` with every computed word evaluated.
-    pub(super) fn evaluate(&self, block: &Block) -> Result<Block, String> {
+    /// `block` with every computed word evaluated; a block without one is
+    /// not copied.
+    pub(super) fn evaluate<'b>(&self, block: &'b Block) -> Result<Cow<'b, Block>, String> {
+        if block.words.iter().all(|w| w.expr.is_none()) {
+            return Ok(Cow::Borrowed(block));
+        }
         let mut evaluated = block.clone();
         for word in &mut evaluated.words {
             if let Some(expr) = word.expr.take() {
@@ -132,7 +137,7 @@ impl State {
                 };
             }
         }
-        Ok(evaluated)
+        Ok(Cow::Owned(evaluated))
     }
 
     /// The block's assignments, every value read before any is set.

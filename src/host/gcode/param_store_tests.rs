@@ -1,29 +1,7 @@
 //! Parameters, expressions and active comments, with values worked out by
 //! hand from LinuxCNC's documented precedence and functions.
 
-use super::super::interpreter::{interpret, Program};
-use crate::host::toolpath::Item;
-
-fn run(program: &str) -> Program {
-    interpret(program).unwrap_or_else(|e| panic!("{program:?}: {e}"))
-}
-
-fn error(program: &str) -> String {
-    interpret(program).unwrap_err().to_string()
-}
-
-/// The X of every move.
-fn xs(program: &str) -> Vec<f64> {
-    run(program)
-        .toolpath
-        .items
-        .iter()
-        .filter_map(|i| match i {
-            Item::Move(m) => Some(m.end[0]),
-            Item::Dwell { .. } => None,
-        })
-        .collect()
-}
+use super::super::test_support::{error, run, xs};
 
 fn x_of(expression: &str) -> f64 {
     xs(&format!("G0 Y1 X{expression}"))[0]

@@ -1,6 +1,7 @@
 //! Polar coordinates against LinuxCNC 2.9's `rs274` on the same programs.
 
 use super::super::interpreter::interpret;
+use super::super::test_support::error;
 use crate::host::toolpath::Item;
 
 fn ends(program: &str) -> Vec<[f64; 3]> {
@@ -14,10 +15,6 @@ fn ends(program: &str) -> Vec<[f64; 3]> {
             Item::Dwell { .. } => None,
         })
         .collect()
-}
-
-fn error(program: &str) -> String {
-    interpret(program).unwrap_err().to_string()
 }
 
 #[test]

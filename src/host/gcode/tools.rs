@@ -23,23 +23,23 @@ fn tool_number(word: &Word) -> Result<u32, String> {
 impl State {
     /// `number`'s offset, mm, checking that the table has it (tool 0 is
     /// no tool: no offset).
-    fn tool_offset_of(&self, word: &Word, number: u32) -> Result<[f64; 3], String> {
+    /// `name` is the word that asked for it, for the message.
+    fn tool_offset_of(&self, name: &str, number: u32) -> Result<[f64; 3], String> {
         match (&self.tools, number) {
             (_, 0) | (None, _) => Ok([0.0; 3]),
             (Some(table), n) => table.get(n).map(|t| t.offset).ok_or_else(|| {
                 format!(
-                    "{}: tool {n} is not in the tool table (LinuxCNC: Requested tool {n} not found in the tool table)",
-                    word.name()
+                    "{name}: tool {n} is not in the tool table (LinuxCNC: Requested tool {n} not found in the tool table)"
                 )
             }),
         }
     }
 
     /// T, then M6 or M61 (LinuxCNC's steps 5 and 6).
-    pub(super) fn tool_words(&mut self, words: &Words, _line: usize) -> Result<(), String> {
+    pub(super) fn tool_words(&mut self, words: &Words) -> Result<(), String> {
         if let Some(t) = words.tool {
             let number = tool_number(t)?;
-            self.tool_offset_of(t, number)?;
+            self.tool_offset_of(&t.name(), number)?;
             self.selected = Some(number);
         }
         if let Some(m6) = words.tool_change {
@@ -55,7 +55,7 @@ impl State {
                 .q
                 .ok_or_else(|| format!("{} needs Q: the tool now in the spindle", m61.name()))?;
             let number = tool_number(q)?;
-            self.tool_offset_of(q, number)?;
+            self.tool_offset_of(&q.name(), number)?;
             self.loaded = number;
         }
         Ok(())
@@ -72,34 +72,33 @@ impl State {
             return Ok(());
         };
         let scale = self.units.mm_per_unit();
-        let h_offset = |state: &mut Self, h: &Word| -> Result<[f64; 3], String> {
-            let number = tool_number(h)?;
+        // Tool `number`'s offset, asked for by the word `name` (H1, or T1
+        // for the loaded tool).
+        let offset_of = |state: &mut Self, name: String, number: u32| -> Result<[f64; 3], String> {
             if state.tools.is_none() && number != 0 {
                 state.report(
                     "no tool table",
                     line,
-                    format!("{} {}", g43.name(), h.name()),
+                    format!("{} {name}", g43.name()),
                     "tool length offset 0: no tool table given (--tools)",
                 );
             }
-            state.tool_offset_of(h, number)
+            state.tool_offset_of(&name, number)
         };
         match code {
             ToolLength::FromTable => {
-                let loaded = Word {
-                    letter: 'T',
-                    text: self.loaded.to_string(),
-                    value: f64::from(self.loaded),
-                    expr: None,
+                let (name, number) = match words.h {
+                    Some(h) => (h.name(), tool_number(h)?),
+                    None => (format!("T{}", self.loaded), self.loaded),
                 };
-                self.tool_offset = h_offset(self, words.h.unwrap_or(&loaded))?;
+                self.tool_offset = offset_of(self, name, number)?;
             }
             ToolLength::Dynamic => {
                 self.tool_offset = words.axes.map(|w| w.map_or(0.0, |w| w.value * scale));
             }
             ToolLength::Add => {
                 let added = match words.h {
-                    Some(h) => h_offset(self, h)?,
+                    Some(h) => offset_of(self, h.name(), tool_number(h)?)?,
                     None if words.first_axis.is_some() => {
                         words.axes.map(|w| w.map_or(0.0, |w| w.value * scale))
                     }
