@@ -1,5 +1,5 @@
 //! A tool table in LinuxCNC's `.tbl` format, read for G-code's T, M6,
-//! M61, G43 and (later) cutter compensation: `simulate --tools FILE`.
+//! M61, G43 and cutter compensation (G41, G42): `simulate --tools FILE`.
 //!
 //! ## Format
 //! One tool a line: words of a letter and a number, separated by spaces,
@@ -16,7 +16,7 @@
 //! | T | tool number, a whole number from 1 (required, once per table) |
 //! | P | pocket, a whole number from 0 (kept, not used: no tool changer is simulated) |
 //! | X, Y, Z | tool offsets, mm (LinuxCNC's machine units: this machine's are mm); G43 applies all three, a mill's is usually Z only |
-//! | D | diameter, mm, 0 or more |
+//! | D | diameter, mm; negative for a tool smaller than the one a compensated path was drawn for (cutter compensation then takes the other side, as in LinuxCNC) |
 //! | A, B, C, U, V, W | offsets along axes this machine does not have: 0 only |
 //! | I, J, Q | lathe front angle, back angle, orientation: accepted, not used |
 //!
@@ -109,8 +109,7 @@ impl ToolTable {
                         })?)
                     }
                     'X' | 'Y' | 'Z' => tool.offset[(letter as u8 - b'X') as usize] = value,
-                    'D' if value >= 0.0 => tool.diameter = value,
-                    'D' => return Err(error(format!("{word} is not a diameter: 0 or more"))),
+                    'D' => tool.diameter = value,
                     'A' | 'B' | 'C' | 'U' | 'V' | 'W' if value == 0.0 => {}
                     'A' | 'B' | 'C' | 'U' | 'V' | 'W' => {
                         return Err(error(format!(
@@ -168,7 +167,10 @@ mod tests {
         assert_eq!(error("T1 Z1\nT1 Z2"), "line 2: T1 is already in the table");
         assert_eq!(error("T1 Zx"), "line 1: `Zx` is not a number after Z");
         assert_eq!(error("T1 Z1 Z2"), "line 1: Z appears twice");
-        assert_eq!(error("T1 D-2"), "line 1: D-2 is not a diameter: 0 or more");
+        assert_eq!(
+            ToolTable::parse("T1 D-2").unwrap().get(1).unwrap().diameter,
+            -2.0
+        );
         assert_eq!(
             error("T1 A5"),
             "line 1: A5 offsets an axis this machine does not have (X, Y and Z only)"

@@ -193,10 +193,10 @@ fn a_file_simulate_cannot_run_is_refused_with_its_reason() {
         Job::read(&program, Some(InputFormat::Gcode), None, None).is_ok(),
         "--format gcode reads any name"
     );
-    let bad = write("bad.ngc", "G21\nG1 X1 F100\nG41 D1\n");
+    let bad = write("bad.ngc", "G21\nG1 X1 F100\nG52 X1\n");
     assert_eq!(
         message(&bad, None, None),
-        "DIR/bad.ngc: line 3: G41 (cutter radius compensation) changes the motion and is not supported"
+        "DIR/bad.ngc: line 3: G52 (local coordinate offset) changes the motion and is not supported"
     );
     // Latin-1 bytes from a Windows post: read in a comment, refused by
     // line elsewhere.

@@ -14,13 +14,16 @@ use std::path::PathBuf;
 
 use motion_hdl::host::planner::to_steps;
 use motion_hdl::host::simulation::{simulate, Job};
+use motion_hdl::host::tool_table::ToolTable;
 use motion_hdl::host::{interpolate, plan_toolpath};
 
 use super::gcode::options;
 
-/// One manifest row: the file and the outcome it should have.
+/// One manifest row: the file, its tool table and the outcome it should
+/// have.
 struct Entry {
     file: String,
+    tools: Option<ToolTable>,
     outcome: String,
 }
 
@@ -31,10 +34,18 @@ fn manifest() -> Vec<Entry> {
         .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
         .map(|line| {
             let columns: Vec<&str> = line.split('\t').collect();
-            assert_eq!(columns.len(), 7, "manifest row of 7 columns: {line}");
+            assert_eq!(columns.len(), 8, "manifest row of 8 columns: {line}");
+            let tools = (columns[6] != "-").then(|| {
+                let path = motion_hdl::tools::repo_root()
+                    .join("tests/corpus/tools")
+                    .join(columns[6]);
+                ToolTable::parse(&std::fs::read_to_string(&path).unwrap())
+                    .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+            });
             Entry {
                 file: columns[0].to_string(),
-                outcome: columns[6].to_string(),
+                tools,
+                outcome: columns[7].to_string(),
             }
         })
         .collect()
@@ -84,7 +95,7 @@ fn corpus_programs_plan_as_the_manifest_says() {
     let mut differ = 0;
     for entry in manifest() {
         let path = corpus_file(&entry);
-        let outcome = Job::read(&path, None, None, None).and_then(|job| {
+        let outcome = Job::read(&path, None, None, entry.tools.clone()).and_then(|job| {
             let machine = job.machine;
             let segments = plan_toolpath(&job.toolpath, &machine).map_err(|e| e.to_string())?;
             let start = to_steps(job.toolpath.start, machine.steps_per_mm);
@@ -117,6 +128,7 @@ fn corpus_programs_simulate_as_the_manifest_says() {
     let mut differ = 0;
     for entry in manifest() {
         let path = corpus_file(&entry);
+        options.tools = entry.tools.clone();
         let outcome = simulate(&path, &options).and_then(|r| {
             let commanded = r.commanded.map(i64::from);
             let actual = r.actual.map(i64::from);

@@ -25,7 +25,7 @@ dest=${MOTION_HDL_CORPUS:-target/corpus}
 mkdir -p "$dest"
 
 failed=0
-while IFS=$'\t' read -r file repo commit path blob _licence _outcome; do
+while IFS=$'\t' read -r file repo commit path blob _licence _tools _outcome; do
   case "$file" in '#'* | '') continue ;; esac
   out="$dest/$file"
   if [ -f "$out" ] && [ "$(git hash-object "$out")" = "$blob" ]; then

@@ -134,8 +134,23 @@ impl ToolLength {
     }
 }
 
+/// G40, G41, G42, G41.1, G42.1: cutter radius compensation (LinuxCNC's
+/// group 7).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum CutterComp {
+    /// G40.
+    Off,
+    /// G41 (`left`) or G42: the radius of tool D from the tool table, or
+    /// of the loaded tool without D.
+    FromTable { left: bool },
+    /// G41.1 (`left`) or G42.1: D is the diameter.
+    Dynamic { left: bool },
+}
+
 /// The group message of LinuxCNC's group 0: one code of it per block.
 const GROUP_0: &str = "one non-modal code (G4, G10, G28, G30, G53, G92) per block";
+
+const CUTTER_COMP: &str = "both set cutter radius compensation";
 
 /// What a supported or accepted G code does.
 #[derive(Clone, Copy)]
@@ -146,6 +161,7 @@ enum GEffect {
     Dwell,
     NonModal(NonModal),
     ToolLength(ToolLength),
+    CutterComp(CutterComp),
     /// G54 to G59.3: 0 to 8.
     System(usize),
     /// G98 (false: back to the initial level), G99 (true: to R).
@@ -255,7 +271,23 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
         911 => (ArcIncremental(true), "both select the arc center mode"),
         610 | 611 | 640 => (PathControl, "both select path control"),
         940 => (Nothing, "both select the feed mode"),
-        400 => (Nothing, "both set cutter radius compensation"),
+        400 => (CutterComp(self::CutterComp::Off), CUTTER_COMP),
+        410 => (
+            CutterComp(self::CutterComp::FromTable { left: true }),
+            CUTTER_COMP,
+        ),
+        420 => (
+            CutterComp(self::CutterComp::FromTable { left: false }),
+            CUTTER_COMP,
+        ),
+        411 => (
+            CutterComp(self::CutterComp::Dynamic { left: true }),
+            CUTTER_COMP,
+        ),
+        421 => (
+            CutterComp(self::CutterComp::Dynamic { left: false }),
+            CUTTER_COMP,
+        ),
         430 => (
             ToolLength(self::ToolLength::FromTable),
             "both set the tool length offset",
@@ -289,7 +321,6 @@ fn g_refused(code: u32) -> Option<&'static str> {
         740 | 840 => "tapping: it needs spindle synchronisation",
         760 => "lathe threading cycle",
         382..=385 => "probing",
-        410 | 411 | 420 | 421 => "cutter radius compensation",
         520 => "local coordinate offset",
         930 => "inverse-time feed",
         950 => "feed per revolution",
@@ -326,11 +357,14 @@ pub(super) struct Words<'a> {
     pub(super) system: Option<usize>,
     /// G43, G43.1, G43.2, G49 as written.
     pub(super) tool_length: Option<(&'a Word, ToolLength)>,
+    /// G40, G41, G42, G41.1, G42.1 as written.
+    pub(super) cutter_comp: Option<(&'a Word, CutterComp)>,
     /// T: the tool to select.
     pub(super) tool: Option<&'a Word>,
     /// H: the tool whose offset G43 or G43.2 takes.
     pub(super) h: Option<&'a Word>,
-    /// D: G73's and G83's clearance (else reported: cutter compensation).
+    /// D: G41's and G42's tool, G41.1's and G42.1's diameter, G73's and
+    /// G83's clearance (else reported).
     pub(super) d: Option<&'a Word>,
     /// G98 (false), G99 (true).
     pub(super) retract_to_r: Option<bool>,
@@ -347,6 +381,8 @@ pub(super) struct Words<'a> {
     pub(super) arc_incremental: Option<bool>,
     pub(super) path_control: bool,
     pub(super) end: bool,
+    /// M0, M1 or M60: a pause, which ends a compensated path's look-ahead.
+    pub(super) pause: Option<&'a Word>,
     pub(super) axes: [Option<&'a Word>; 3],
     /// `@` (distance) and `^` (angle, degrees): X and Y in polar
     /// coordinates about the work origin.
@@ -412,6 +448,7 @@ impl<'a> Words<'a> {
                         GEffect::NonModal(n) => words.non_modal = Some((word, n)),
                         GEffect::System(index) => words.system = Some(index),
                         GEffect::ToolLength(t) => words.tool_length = Some((word, t)),
+                        GEffect::CutterComp(c) => words.cutter_comp = Some((word, c)),
                         GEffect::RetractToR(r) => words.retract_to_r = Some(r),
                         GEffect::Dwell => words.dwell = Some(word),
                         GEffect::Plane(p) => words.plane = Some(p),
@@ -437,6 +474,7 @@ impl<'a> Words<'a> {
                         50 => words.spindle = Some(None),
                         60 => words.tool_change = Some(word),
                         610 => words.set_tool = Some(word),
+                        0 | 10 | 600 => words.pause = Some(word),
                         _ => {}
                     }
                     let (effect, m) = m_effect(code);

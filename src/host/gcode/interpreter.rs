@@ -6,7 +6,8 @@ use std::collections::HashSet;
 use thiserror::Error;
 
 use super::arc_center::{center_from_radius, check_center};
-use super::block_words::{Motion, NonModal, Words};
+use super::block_words::{CutterComp, Motion, NonModal, Words};
+use super::cutter_comp::Compensation;
 use super::cycles::CycleMemory;
 use super::flow::structure;
 use super::lexer::{lex_program, Block, LexError};
@@ -162,6 +163,14 @@ pub fn interpret_with(program: &str, setup: &Setup) -> Result<Program, GcodeErro
     let structure =
         structure(&lexed.blocks).map_err(|(line, message)| GcodeError { line, message })?;
     let next = state.run_blocks(&lexed.blocks, &structure)?;
+    // The file's end stops the program as M2 would: compensation's
+    // held-back moves run.
+    if state.end.is_none() {
+        let line = lexed.blocks.last().map_or(1, |b| b.line);
+        state
+            .comp_stop()
+            .map_err(|message| GcodeError { line, message })?;
+    }
     let after_end = match state.end {
         Some(_) => lexed
             .blocks
@@ -189,8 +198,17 @@ pub(super) struct State {
     /// the machine one so that a program's own sums (G91 in inches) come
     /// out as it computes them, not through a round trip by 25.4.
     pub(super) position: [f64; 3],
-    /// The machine position, mm: the toolpath's coordinates.
+    /// The machine position, mm: the toolpath's coordinates, where the
+    /// tool is.
     pub(super) position_mm: [f64; 3],
+    /// The programmed position, machine mm, where it is not the tool's:
+    /// while cutter compensation offsets the tool, and after G40 until the
+    /// next move (see [`State::base_mm`]).
+    pub(super) programmed_mm: Option<[f64; 3]>,
+    /// Cutter radius compensation, while it is on.
+    pub(super) comp: Option<Compensation>,
+    /// G40 has just ended compensation: the next move must be straight.
+    pub(super) arc_not_allowed: bool,
     /// Coordinate systems, G92, G28 and G30 positions.
     pub(super) parameters: PersistentParameters,
     pub(super) tools: Option<ToolTable>,
@@ -226,6 +244,9 @@ impl State {
             feed: None,
             position: start,
             position_mm: start,
+            programmed_mm: None,
+            comp: None,
+            arc_not_allowed: false,
             parameters,
             tools,
             selected: None,
@@ -259,8 +280,8 @@ impl State {
     /// The work position from the machine one, after the units or an
     /// offset changed.
     pub(super) fn sync_work_position(&mut self) {
-        let (offset, scale) = (self.offset(), self.units.mm_per_unit());
-        self.position = [0, 1, 2].map(|k| (self.position_mm[k] - offset[k]) / scale);
+        let (offset, scale, base) = (self.offset(), self.units.mm_per_unit(), self.base_mm());
+        self.position = [0, 1, 2].map(|k| (base[k] - offset[k]) / scale);
     }
 
     fn finish(self, blocks_after_end: usize, closing_percent: Option<usize>) -> Program {
@@ -339,17 +360,38 @@ impl State {
                 q.name()
             ));
         }
-        if let Some(l) = words.l.filter(|_| !g10 && cycle.is_none()) {
+        // G41 to G42.1 take D (their tool or diameter), and refuse L.
+        let comp_on = matches!(
+            words.cutter_comp,
+            Some((_, CutterComp::FromTable { .. } | CutterComp::Dynamic { .. }))
+        );
+        if let Some(l) = words.l.filter(|_| !g10 && cycle.is_none() && !comp_on) {
             return Err(format!("{} has no G10 or canned cycle to use it", l.name()));
         }
-        if let Some(d) = words.d.filter(|_| cycle.is_none()) {
+        if let Some(d) = words.d.filter(|_| cycle.is_none() && !comp_on) {
             self.report("D", block.line, d.name(), "tool offset");
         }
         if let Some(turning) = words.spindle {
             self.spindle_turning = turning;
         }
-        self.retract_to_r = words.retract_to_r.unwrap_or(self.retract_to_r);
+        if let Some(r) = words.retract_to_r {
+            let code = if r { "G99" } else { "G98" };
+            self.refuse_with_comp(
+                code,
+                "Cannot change retract mode with cutter radius compensation on",
+            )?;
+            self.retract_to_r = r;
+        }
 
+        if words.path_control {
+            if let Some((word, _, _)) = words.ignored.iter().find(|(_, w, _)| *w == "path control")
+            {
+                self.refuse_with_comp(
+                    &word.name(),
+                    "Cannot change control mode with cutter radius compensation on",
+                )?;
+            }
+        }
         for (word, what, key) in &words.ignored {
             self.report(key, block.line, word.name(), what);
         }
@@ -371,6 +413,14 @@ impl State {
         // T (step 5) and M6 (6) before everything that moves; the tool
         // length offset (14) after the units (12).
         self.tool_words(&words)?;
+        if let (Some(plane), Some(comp)) = (words.plane, &self.comp) {
+            if plane != comp.plane {
+                self.refuse_with_comp(
+                    plane.gcode(),
+                    "Cannot change planes with cutter radius compensation on",
+                )?;
+            }
+        }
         self.plane = words.plane.unwrap_or(self.plane);
         self.incremental = words.incremental.unwrap_or(self.incremental);
         self.arc_incremental = words.arc_incremental.unwrap_or(self.arc_incremental);
@@ -382,15 +432,20 @@ impl State {
                     p.name()
                 ));
             }
-            self.toolpath.items.push(Item::Dwell {
+            self.emit(Item::Dwell {
                 seconds: p.value,
                 line: block.line,
             });
         }
+        self.cutter_comp_words(&words, block.line)?;
         self.tool_length(&words, block.line)?;
         // LinuxCNC's order: the coordinate system (step 15), the distance
         // mode (17, above), then G10, G28, G30, G92 (19) and the motion (20).
         if let Some(index) = words.system {
+            self.refuse_with_comp(
+                system_name(index),
+                "Cannot change coordinate systems with cutter radius compensation on",
+            )?;
             self.parameters.select_system(index);
             self.sync_work_position();
         }
@@ -429,11 +484,18 @@ impl State {
         }
         match motion {
             Some(Motion::Cycle(c)) => {
+                self.refuse_with_comp(
+                    c.name(),
+                    "Cannot use canned cycles with cutter compensation on",
+                )?;
                 let same = previous_motion == Some(Motion::Cycle(c));
                 self.cycle(c, same, &words, block.line)?
             }
             Some(motion) => self.run(motion, &words, block.line, machine)?,
             None => {}
+        }
+        if words.end || words.pause.is_some() {
+            self.comp_stop()?;
         }
         if words.end {
             self.end = Some(block.line);
@@ -530,13 +592,37 @@ impl State {
                     format!("{} needs a feed rate: no F word so far", motion.name())
                 })?),
             };
+        if motion.is_arc() && self.arc_not_allowed {
+            return Err(format!(
+                "{}: the move just after G40 must be straight: it starts where compensation left the tool \
+                 (LinuxCNC: The move just after exiting cutter compensation mode must be straight, not an arc)",
+                motion.name()
+            ));
+        }
+        self.arc_not_allowed = false;
+        let compensating = self.comp.as_ref().is_some_and(|c| c.radius > 0.0);
+        if compensating && machine {
+            self.refuse_with_comp("G53", "Cannot use g53 with cutter radius comp")?;
+        }
         let start_mm = self.position_mm;
         let offset = if machine { [0.0; 3] } else { self.offset() };
         let (mut end, mut end_mm) = self.target(words, offset)?;
+        if compensating {
+            return match motion {
+                Motion::Rapid | Motion::Line => self.compensated_straight(end, end_mm, feed, line),
+                _ => {
+                    let arc = self.arc(motion, words, &mut end, &mut end_mm)?;
+                    let feed = feed.expect("arcs have a feed");
+                    self.compensated_arc(motion, arc, end, end_mm, feed, line)
+                }
+            };
+        }
+        self.programmed_mm = None;
         let kind = if motion.is_arc() {
             let arc = self.arc(motion, words, &mut end, &mut end_mm)?;
             MoveKind::Arc(arc)
         } else if end_mm == start_mm {
+            self.position = end;
             return Ok(());
         } else {
             MoveKind::Line
@@ -565,7 +651,7 @@ impl State {
     ) -> Result<([f64; 3], [f64; 3]), String> {
         let scale = self.units.mm_per_unit();
         let mut end = self.position;
-        let mut end_mm = self.position_mm;
+        let mut end_mm = self.base_mm();
         for (axis, word) in words.axes.iter().enumerate() {
             if let Some(word) = word {
                 end[axis] = if self.incremental {
@@ -597,6 +683,7 @@ impl State {
     /// A line to `end_mm` (machine) at `feed` (`None`: rapid), if it moves
     /// at all. The work position is the caller's to set.
     pub(super) fn line_to(&mut self, end_mm: [f64; 3], feed: Option<f64>, line: usize) {
+        self.programmed_mm = None;
         if end_mm != self.position_mm {
             self.position_mm = end_mm;
             self.toolpath.items.push(Item::Move(Move {
@@ -619,15 +706,20 @@ impl State {
         end_mm: &mut [f64; 3],
     ) -> Result<Arc, String> {
         let (first, second, normal) = self.plane.axes();
-        let start = self.position_mm;
+        let start = self.base_mm();
         let (mut a, mut b) = (AXES[first], AXES[second]);
         if a > b {
             std::mem::swap(&mut a, &mut b);
         }
         let name = motion.name();
-        if words.axes[first].is_none() && words.axes[second].is_none() {
+        // R needs an end in the plane; I, J, K alone make a full circle
+        // (LinuxCNC's rule).
+        let in_plane = words.axes[first].is_some()
+            || words.axes[second].is_some()
+            || (self.plane == Plane::Xy && words.polar.iter().any(Option::is_some));
+        if words.radius.is_some() && !in_plane {
             return Err(format!(
-                "{name} needs {a} or {b} (its end in the {} plane)",
+                "{name} with R needs {a} or {b} (its end in the {} plane): R cannot make a full circle",
                 self.plane.gcode()
             ));
         }

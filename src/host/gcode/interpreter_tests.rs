@@ -346,13 +346,15 @@ fn arc_errors() {
         "line 1: I5 is not in the G19 plane's offsets (J and K)"
     );
     assert_eq!(
-        error("G2 Z5 I5 F60"),
-        "line 1: G2 needs X or Y (its end in the G17 plane)"
+        error("G2 Z5 R5 F60"),
+        "line 1: G2 with R needs X or Y (its end in the G17 plane): R cannot make a full circle"
     );
     assert_eq!(
         error("G18 G3 Y1 R5 F60"),
-        "line 1: G3 needs X or Z (its end in the G18 plane)"
+        "line 1: G3 with R needs X or Z (its end in the G18 plane): R cannot make a full circle"
     );
+    // I, J, K alone: a full circle (a helix here), as in LinuxCNC.
+    assert_eq!(run("G2 Z5 I5 F60").final_machine, [0.0, 0.0, 5.0]);
     assert_eq!(
         error("G2 X20.02 I10 F60"),
         "line 1: the arc's radius is 10.0000 mm at its start and 10.0200 mm at its end"
@@ -501,10 +503,6 @@ fn ignored_words_are_reported_once_at_their_first_line() {
 #[test]
 fn refused_g_codes_name_what_they_do() {
     for (word, what) in [
-        ("G41", "cutter radius compensation"),
-        ("G41.1", "cutter radius compensation"),
-        ("G42", "cutter radius compensation"),
-        ("G42.1", "cutter radius compensation"),
         ("G52", "local coordinate offset"),
         ("G33", "spindle-synchronized motion"),
         ("G33.1", "rigid tapping: it needs spindle synchronisation"),

@@ -102,7 +102,10 @@
 //! | G43.1 X Y Z | tool length offset of the axis words (program units); an axis not named has none |
 //! | G43.2 H or X Y Z | add tool H's offset, or the axis words, to the one in force |
 //! | G49 | no tool length offset |
-//! | G94, G40 | accepted, no effect: the only feed mode, and the cancel of a mode that is never on |
+//! | G41 \[D\], G42 \[D\] | cutter radius compensation, the tool left (G41) or right of the path, in G17 or G18: the radius of tool D from the tool table, or of the loaded tool without D; a negative diameter takes the other side. LinuxCNC's geometry, move for move: see [`cutter_comp`](self::cutter_comp) |
+//! | G41.1 D, G42.1 D | the same with D the diameter, in program units |
+//! | G40 | compensation off: the held-back move ends where it was going; the next move must be straight |
+//! | G94 | accepted, no effect: the only feed mode |
 //!
 //! Coordinates: the toolpath is in machine mm; a program's X Y Z are work
 //! coordinates, machine = work + the active system's origin + the G92
@@ -135,7 +138,19 @@
 //! the longer one (LinuxCNC's rule); |R| short of half the chord by less
 //! than 0.005 mm (LinuxCNC's tolerance) is taken as a half circle. P, the number of turns (a
 //! whole number, at least 1, the default), gives `Arc::turns` = P − 1. An
-//! arc needs at least one of the plane's two axis words.
+//! arc given by R needs at least one of the plane's two axis words; I, J,
+//! K alone make a full circle.
+//!
+//! Cutter radius compensation (G41, G42) is LinuxCNC's: the entry move
+//! ends one tool radius to the side of its end, convex corners become
+//! arcs about the programmed corner, a move into a concave corner is held
+//! back and shortened to where the tool touches both sides (a corner too
+//! tight for the tool is an error, never a gouge), and M0, M1, M2, M30 or
+//! the file's end let the held-back move run as it is. While it is on,
+//! [`Program::final_position`] and the work position are the programmed
+//! point, and the toolpath (and [`Program::final_machine`]) the tool's.
+//! What it refuses and why is in [`cutter_comp`](self::cutter_comp) and
+//! below.
 //!
 //! # Ignored, reported once
 //! These words do not change the motion; each is listed in
@@ -143,8 +158,8 @@
 //! code, per letter S, T, H, D) and otherwise ignored:
 //! M0, M1, M60 (program pause); M3, M4, M5, G96, G97 (spindle); S (spindle
 //! speed); M6 (tool change) and T, M61 (tool), which change no motion by
-//! themselves; H without G43 or G43.2 and D without a canned cycle (tool
-//! offset: the refused G41 would use D); M7, M8, M9 (coolant); M48 to M53 (override); M62
+//! themselves; H without G43 or G43.2 and D without G41, G42, G41.1,
+//! G42.1 or a canned cycle (tool offset); M7, M8, M9 (coolant); M48 to M53 (override); M62
 //! to M68 (digital and analog I/O); G61, G61.1, G64, and a P or Q beside them (path
 //! control: the planner always blends within its own contour error); and
 //! **any other M code** ("unknown M
@@ -163,13 +178,29 @@
 //!
 //! # Errors
 //! Every error is a [`GcodeError`], "line N: message", naming the word:
-//! * `G41 (cutter radius compensation) changes the motion and is not
-//!   supported`; likewise G41.1, G42, G42.1; G52 (local coordinate offset); G33
+//! * `G52 (local coordinate offset) changes the motion and is not
+//!   supported`; likewise G33
 //!   (spindle-synchronized motion); G33.1 (rigid tapping: it needs spindle
 //!   synchronisation); G74, G84 (tapping: it needs spindle synchronisation);
 //!   G76 (lathe threading cycle); G38.2 to G38.5 (probing); G93
 //!   (inverse-time feed); G95 (feed per revolution); G5 to G5.3 (spline);
 //!   G7, G8 (lathe diameter, radius mode).
+//! * Cutter compensation: `G1: the cutter compensation entry move, 2.0000
+//!   mm, is not longer than the tool radius, 3.0000 mm (LinuxCNC: Length
+//!   of cutter compensation entry move is not greater than the tool
+//!   radius)`; `G3: the arc's radius, 2.0000 mm, is not more than the
+//!   tool's, 3.0000 mm, and the tool is inside it (LinuxCNC: ...)`;
+//!   `straight feed in concave corner cannot be reached by the tool
+//!   without gouging (...)` (and straight traverse, arc move, arc to
+//!   straight, arc to arc); `G2: the move just after G40 must be straight
+//!   (...)`; `T2 M6 with cutter radius compensation on (G41 on line 3):
+//!   turn it off with G40 first (LinuxCNC: Cannot change tools with cutter
+//!   radius compensation on)`, and likewise G43 to G49, G54 to G59.3,
+//!   G92 to G92.3, G28, G30, G28.1, G30.1, G10 L2 or L20 of the active
+//!   system, G53, canned cycles, G98, G99, G61, G64 and a change of plane;
+//!   `G42: cutter radius compensation is already on (...)`; `G41 in G19:
+//!   ... G17 and G18 only`; `G42.1 needs D`; `L3 with G41.1: lathe tool
+//!   orientations are not supported`.
 //! * `G12 is not a supported G code`; `G1.25 is not a G code`;
 //!   `M1.5 is not an M code`.
 //! * `A5 moves an axis this machine does not have (X, Y and Z only)` (A, B,
@@ -223,8 +254,8 @@
 //!   `I5 has no G2 or G3 to use it` (I, J, K, R without an arc).
 //! * Arcs: `G2 needs a center (I, J or K) or a radius (R)`; `R5 with I, J
 //!   or K: give the center or the radius, not both`; `K5 is not in the G17
-//!   plane's offsets (I and J)`; `G2 needs X or Y (its end in the G17
-//!   plane)`; `R cannot make a full circle (the end is the start); give
+//!   plane's offsets (I and J)`; `G2 with R needs X or Y (its end in the G17
+//!   plane): R cannot make a full circle`; `R cannot make a full circle (the end is the start); give
 //!   the center with I, J or K`; `R5 cannot reach the end: |R| must be at
 //!   least half the chord, 6.0000 mm`; `G2 needs J with G90.1: absolute
 //!   arc centers need both of the G17 plane's offsets (LinuxCNC: J word
@@ -257,10 +288,16 @@
 
 mod arc_center;
 mod block_words;
+#[cfg(test)]
+mod canon;
+mod comp_queue;
+pub mod cutter_comp;
 pub mod cycles;
 pub mod expr;
 pub mod flow;
 mod flow_run;
+#[cfg(test)]
+mod golden_tests;
 pub mod interpreter;
 pub mod lexer;
 mod messages;

@@ -21,6 +21,22 @@ impl State {
         line: usize,
     ) -> Result<(), String> {
         let named = words.axes.map(|w| w.is_some());
+        let refused = match code {
+            NonModal::Home { .. } => Some("Cannot use g28 or g30 with cutter radius comp"),
+            NonModal::StoreHome { .. } => {
+                Some("Cannot set reference point with cutter compensation in effect")
+            }
+            NonModal::SetOffset
+            | NonModal::ClearOffset
+            | NonModal::SuspendOffset
+            | NonModal::RestoreOffset => {
+                Some("Cannot change axis offsets with cutter radius compensation on")
+            }
+            NonModal::SetOrigin | NonModal::MachineCoordinates => None,
+        };
+        if let Some(lcnc) = refused {
+            self.refuse_with_comp(&word.name(), lcnc)?;
+        }
         match code {
             NonModal::MachineCoordinates => {
                 if !matches!(motion, Some(Motion::Rapid | Motion::Line)) {
@@ -54,7 +70,7 @@ impl State {
                 self.rapid_to_machine(end, line);
             }
             NonModal::StoreHome { second } => {
-                self.parameters.set_home(second, self.position_mm);
+                self.parameters.set_home(second, self.base_mm());
             }
             NonModal::SetOffset => {
                 if !named.iter().any(|&n| n) {
@@ -67,11 +83,10 @@ impl State {
                 // (LinuxCNC's source; its documentation says it is zeroed).
                 let origin = self.parameters.origin(self.parameters.active_system());
                 let mut offset = self.parameters.g92();
-                let scale = self.units.mm_per_unit();
+                let (scale, base) = (self.units.mm_per_unit(), self.base_mm());
                 for (k, w) in words.axes.iter().enumerate() {
                     if let Some(w) = w {
-                        offset[k] =
-                            self.position_mm[k] - origin[k] - self.tool_offset[k] - w.value * scale;
+                        offset[k] = base[k] - origin[k] - self.tool_offset[k] - w.value * scale;
                     }
                 }
                 self.parameters.set_g92(offset, true);
@@ -129,13 +144,19 @@ impl State {
         }
         let active = self.parameters.active_system();
         let index = system.checked_sub(1).unwrap_or(active);
+        if index == active {
+            self.refuse_with_comp(
+                &format!("{g10} {}", p.name()),
+                "Cannot change the active coordinate system with cutter radius compensation on",
+            )?;
+        }
         let mut origin = self.parameters.origin(index);
         let g92 = self.parameters.g92();
-        let scale = self.units.mm_per_unit();
+        let (scale, base) = (self.units.mm_per_unit(), self.base_mm());
         for (k, w) in words.axes.iter().enumerate() {
             if let Some(w) = w {
                 origin[k] = if l20 {
-                    self.position_mm[k] - g92[k] - self.tool_offset[k] - w.value * scale
+                    base[k] - g92[k] - self.tool_offset[k] - w.value * scale
                 } else {
                     w.value * scale
                 };

@@ -43,12 +43,21 @@ impl State {
             self.selected = Some(number);
         }
         if let Some(m6) = words.tool_change {
+            self.refuse_with_comp(
+                &m6.name(),
+                "Cannot change tools with cutter radius compensation on",
+            )?;
             self.loaded = self.selected.ok_or_else(|| {
                 format!(
                     "{} needs a tool selected first with T (LinuxCNC: Need tool prepared -Txx- for toolchange)",
                     m6.name()
                 )
             })?;
+            // LinuxCNC reads the position back after a change: a
+            // programmed point that G40 left apart from the tool's is
+            // dropped.
+            self.programmed_mm = None;
+            self.sync_work_position();
         }
         if let Some(m61) = words.set_tool {
             let q = words
@@ -71,6 +80,10 @@ impl State {
         let Some((g43, code)) = code else {
             return Ok(());
         };
+        self.refuse_with_comp(
+            &g43.name(),
+            "Cannot change tool offset with cutter radius compensation on",
+        )?;
         let scale = self.units.mm_per_unit();
         // Tool `number`'s offset, asked for by the word `name` (H1, or T1
         // for the loaded tool).
