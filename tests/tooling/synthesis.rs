@@ -115,13 +115,19 @@ fn place_board(top: &str, modules: &[&str]) -> String {
 /// input and output on a pin, synthesizes and places with its pin file at
 /// its 48 MHz clock.
 ///
-/// The board nearly fills the HX8K (the test prints its logic cells).
-/// With yosys's
-/// defaults (every enable on the cells' clock enable, which the 8 cells of
-/// a tile share) nextpnr could not legalise the placement ("Unable to find
-/// legal placement for all cells", 97 %); `-dffe_min_ce_use 4`, which puts
-/// an enable shared by fewer than 4 flip-flops into their LUTs, places.
+/// When the board nearly filled the HX8K (97 %, before #35's area work;
+/// 76 % now), yosys's defaults (every enable on the cells' clock enable,
+/// which the 8 cells of a tile share) left nextpnr unable to legalise the
+/// placement; `-dffe_min_ce_use 4`, which puts an enable shared by fewer
+/// than 4 flip-flops into their LUTs, placed it.
+///
+/// Ignored to keep the suite under 15 minutes (about 70 s alone, 120 s in
+/// the suite): the seed board below runs the same flow (a board top, its
+/// pin file, 48 MHz) in the suite, and the every-module test places the
+/// two modules it instantiates. Run it with `--run-ignored only` after a
+/// change to the board files.
 #[test]
+#[ignore = "about 70 s of yosys and nextpnr; the seed board runs the same flow in the suite"]
 fn the_board_example_places_with_its_pin_file() {
     place_board(
         "motion_board",

@@ -79,6 +79,27 @@ fn a_concave_corner_shortens_the_move_into_it() {
 }
 
 #[test]
+fn arcs_run_one_radius_inside_or_outside_the_programmed_circle() {
+    // Up to (20, 0) with the tool on the left, at (17, 0). G3 about the
+    // origin turns left, tangent to the entry: the tool is inside, on the
+    // circle of radius 20 - 3, to (0, 17). The line -X is tangent to its
+    // end: to (-10, 17). G2 about (-10, 40) turns right, tangent: the tool
+    // is outside, on the circle of radius 20 + 3, to (-33, 40).
+    let program = "G21 F600 G0 X20 Y-10\nT1 M6 G41\nG1 X20 Y0\n\
+                   G3 X0 Y20 I-20 J0\nG1 X-10\nG2 X-30 Y40 I0 J20\nM2";
+    assert_eq!(
+        moves(program),
+        vec![
+            (20.0, -10.0, None),
+            (17.0, 0.0, None),
+            (0.0, 17.0, Some(([0.0, 0.0], false))),
+            (-10.0, 17.0, None),
+            (-33.0, 40.0, Some(([-10.0, 40.0], true))),
+        ]
+    );
+}
+
+#[test]
 fn g42_and_a_negative_diameter_take_the_right() {
     // On the right, X10 turns into the tool: the entry stops at (3, -3).
     let right = vec![(0.0, -10.0, None), (3.0, -3.0, None), (10.0, -3.0, None)];

@@ -1,5 +1,7 @@
 //! Nothing panics on any input (#40): 10^5 generated programs through
-//! [`program_text`](super::program_text) and [`interpret`](super::interpret),
+//! [`program_text`](super::program_text) and
+//! [`interpret_with`](super::interpret_with) (with a tool table, so that
+//! cutter compensation has a radius),
 //! half of them built word by word from the letters, codes and numbers the
 //! interpreter treats specially, half of them byte mutations of real
 //! program lines. A panic prints the program's seed and text.
@@ -9,7 +11,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-use super::{interpret, program_text};
+use super::interpreter::{interpret_with, Setup};
+use super::program_text;
+use crate::host::tool_table::ToolTable;
 
 const PROGRAMS: u64 = 100_000;
 
@@ -85,6 +89,12 @@ const LINES: &[&str] = &[
     "M2",
     "(MSG, hello)",
     "F1e3 X.5",
+    "G41",
+    "G42 D1",
+    "G41.1 D3",
+    "G42.1 D-2",
+    "T2 M6 G41 G1 X5 Y5",
+    "G40",
 ];
 
 /// Words worth trying: every letter the lexer or the tables name, with
@@ -93,8 +103,8 @@ fn random_word(rng: &mut StdRng) -> String {
     const LETTERS: &[u8] = b"GGGGMMXXYYZZIJKRFFPQSTHDNOLABCUVWE";
     const CODES: &[&str] = &[
         "0", "1", "2", "3", "4", "10", "17", "18", "19", "20", "21", "28", "38.2", "40", "41",
-        "43", "49", "53", "54", "55", "59.3", "61", "64", "73", "80", "81", "83", "84", "90",
-        "90.1", "91", "91.1", "92", "94", "98", "99", "2.5", "1.25", "999", "-1",
+        "41.1", "42", "42.1", "43", "49", "53", "54", "55", "59.3", "61", "64", "73", "80", "81",
+        "83", "84", "90", "90.1", "91", "91.1", "92", "94", "98", "99", "2.5", "1.25", "999", "-1",
     ];
     let letter = LETTERS[rng.gen_range(0..LETTERS.len())] as char;
     let value = match rng.gen_range(0..10) {
@@ -141,6 +151,13 @@ fn generated_program(rng: &mut StdRng) -> Vec<u8> {
     } else {
         ""
     });
+    // A quarter of them with cutter compensation on: its geometry (the
+    // tool table below has T1 and T2) on random paths.
+    if rng.gen_bool(0.25) {
+        text.push_str(
+            ["T1 M6 G41\n", "T2 M6 G42\n", "G41.1 D4\n", "G42 D1\n"][rng.gen_range(0..4)],
+        );
+    }
     for _ in 0..rng.gen_range(1..25) {
         if rng.gen_bool(0.05) {
             text.push('/');
@@ -188,6 +205,10 @@ fn mutated_program(rng: &mut StdRng) -> Vec<u8> {
 
 #[test]
 fn no_program_makes_the_reader_or_the_interpreter_panic() {
+    let setup = Setup {
+        tools: Some(ToolTable::parse("T1 D6\nT2 D-4").unwrap()),
+        ..Setup::default()
+    };
     let mut refused = 0;
     for seed in 0..PROGRAMS {
         let mut rng = StdRng::seed_from_u64(seed);
@@ -199,7 +220,7 @@ fn no_program_makes_the_reader_or_the_interpreter_panic() {
         let outcome = catch_unwind(AssertUnwindSafe(|| {
             program_text(&bytes)
                 .map_err(|e| e.to_string())
-                .and_then(|text| interpret(&text).map_err(|e| e.to_string()))
+                .and_then(|text| interpret_with(&text, &setup).map_err(|e| e.to_string()))
                 .is_err()
         }));
         match outcome {
