@@ -8,6 +8,7 @@ pub mod bus;
 pub mod driver;
 pub mod gcode;
 pub mod geometry;
+pub mod hexapod;
 pub mod interpolator;
 pub mod machine;
 pub mod path;
