@@ -160,6 +160,8 @@ impl State {
                 }
                 None => (format!("T{}", self.loaded), self.loaded),
             };
+            // D0 is LinuxCNC's table slot 0, the tool in the spindle.
+            let number = if number == 0 { self.loaded } else { number };
             match (&self.tools, number) {
                 (_, 0) => 0.0,
                 (None, _) => {

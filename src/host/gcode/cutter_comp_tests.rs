@@ -161,6 +161,21 @@ fn the_held_back_move_runs_at_m2_m0_and_the_files_end() {
 }
 
 #[test]
+fn d0_is_the_loaded_tool_and_m61_reads_the_position_back() {
+    // LinuxCNC's D0 is table slot 0, the tool in the spindle: T1.
+    assert_eq!(
+        moves("G21 F600 G0 X0 Y-10\nT1 M6 G41 D0\nG1 X0 Y0\nX10\nM2")[1],
+        (-3.0, 0.0, None)
+    );
+    // After G40 the programmed point (10, 0) is apart from the tool's
+    // (10, 3); M61 drops it, so X20 keeps the tool's Y.
+    assert_eq!(
+        moves(&format!("{ENTRY}X10\nG40\nM61 Q1\nX20\nM2")).last(),
+        Some(&(20.0, 3.0, None))
+    );
+}
+
+#[test]
 fn a_tool_of_radius_0_compensates_nothing() {
     assert_eq!(
         moves("G21 F600 G0 X0 Y-10\nT0 M6 G41\nG1 X0 Y0\nX10\nM2"),
@@ -193,6 +208,15 @@ fn corners_the_tool_cannot_reach_are_errors_as_in_linuxcnc() {
         "line 8: straight feed in concave corner cannot be reached by the tool without gouging \
          (LinuxCNC: Straight feed in concave corner cannot be reached by the tool without gouging)"
     );
+    // A rapid into the slot: the held-back move is the feed, X8, and
+    // shortening it past its start is LinuxCNC's error for it.
+    assert_eq!(
+        error(&format!("{ENTRY}X10\nY10\nX8\nG0 Y0\nM2")),
+        "line 8: straight feed in concave corner cannot be reached by the tool without gouging \
+         (LinuxCNC: Straight feed in concave corner cannot be reached by the tool without gouging)"
+    );
+    // Straight back on itself is not a corner LinuxCNC refuses.
+    run(&format!("{ENTRY}X10\nX0\nM2"));
     assert_eq!(
         error("G21 F600 G0 X0 Y-10\nT1 M6\nG41\nG1 X0 Y-8\nM2"),
         "line 4: G1: the cutter compensation entry move, 2.0000 mm, is not longer than the tool radius, 3.0000 mm \

@@ -43,16 +43,17 @@ impl State {
             self.selected = Some(number);
         }
         if let Some(m6) = words.tool_change {
-            self.refuse_with_comp(
-                &m6.name(),
-                "Cannot change tools with cutter radius compensation on",
-            )?;
-            self.loaded = self.selected.ok_or_else(|| {
+            let selected = self.selected.ok_or_else(|| {
                 format!(
                     "{} needs a tool selected first with T (LinuxCNC: Need tool prepared -Txx- for toolchange)",
                     m6.name()
                 )
             })?;
+            self.refuse_with_comp(
+                &m6.name(),
+                "Cannot change tools with cutter radius compensation on",
+            )?;
+            self.loaded = selected;
             // LinuxCNC reads the position back after a change: a
             // programmed point that G40 left apart from the tool's is
             // dropped.
@@ -66,6 +67,9 @@ impl State {
             let number = tool_number(q)?;
             self.tool_offset_of(&q.name(), number)?;
             self.loaded = number;
+            // As after M6, LinuxCNC reads the position back.
+            self.programmed_mm = None;
+            self.sync_work_position();
         }
         Ok(())
     }
