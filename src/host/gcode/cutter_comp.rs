@@ -81,7 +81,37 @@ fn sweep_slack(units: Units) -> f64 {
     }
 }
 
+/// What a compensated move reads before it changes anything.
+struct Frame {
+    /// See [`sweep_slack`].
+    slack: f64,
+    units: Units,
+    /// The programmed point and the tool's, machine mm.
+    base: [f64; 3],
+    current: [f64; 3],
+    plane: Plane,
+    /// The tool's radius, mm, and its side.
+    r: f64,
+    left: bool,
+    /// The axis normal to the plane.
+    normal: usize,
+}
+
 impl State {
+    fn comp_frame(&self) -> Frame {
+        let comp = self.comp.as_ref().expect("compensation is on");
+        Frame {
+            slack: sweep_slack(self.units),
+            units: self.units,
+            base: self.base_mm(),
+            current: self.position_mm,
+            plane: comp.plane,
+            r: comp.radius,
+            left: comp.left,
+            normal: comp.plane.axes().2,
+        }
+    }
+
     /// Where the program is, machine mm: the programmed point, which
     /// differs from the tool's while compensation offsets it and after G40
     /// until the next move.
@@ -242,13 +272,10 @@ impl State {
         line: usize,
     ) -> Result<(), String> {
         let name = if feed.is_some() { "G1" } else { "G0" };
-        let slack = sweep_slack(self.units);
-        let units = self.units;
-        let base = self.base_mm();
-        let current = self.position_mm;
+        let f = self.comp_frame();
+        let (slack, units, base, current) = (f.slack, f.units, f.base, f.current);
+        let (plane, r, left, normal) = (f.plane, f.r, f.left, f.normal);
         let comp = self.comp.as_mut().expect("compensation is on");
-        let (plane, r, left) = (comp.plane, comp.radius, comp.left);
-        let (_, _, normal) = plane.axes();
         let p = in_plane(plane, end_mm);
         let line_to = |at: [f64; 2], z: f64| {
             let mut end = with_plane(plane, end_mm, at);
@@ -421,13 +448,10 @@ impl State {
         line: usize,
     ) -> Result<(), String> {
         let name = motion.name();
-        let slack = sweep_slack(self.units);
-        let units = self.units;
-        let base = self.base_mm();
-        let current = self.position_mm;
+        let f = self.comp_frame();
+        let (slack, units, base, current) = (f.slack, f.units, f.base, f.current);
+        let (plane, r, left, normal) = (f.plane, f.r, f.left, f.normal);
         let comp = self.comp.as_mut().expect("compensation is on");
-        let (plane, r, left) = (comp.plane, comp.radius, comp.left);
-        let (_, _, normal) = plane.axes();
         let turn = signed_turns(&MoveKind::Arc(arc));
         let tool_inside = inside(left, turn);
         let p = in_plane(plane, end_mm);
