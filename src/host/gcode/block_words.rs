@@ -379,7 +379,8 @@ pub(super) struct Words<'a> {
     pub(super) units: Option<Units>,
     pub(super) incremental: Option<bool>,
     pub(super) arc_incremental: Option<bool>,
-    pub(super) path_control: bool,
+    /// G61, G61.1 or G64 as written.
+    pub(super) path_control: Option<&'a Word>,
     pub(super) end: bool,
     /// M0, M1 or M60: a pause, which ends a compensated path's look-ahead.
     pub(super) pause: Option<&'a Word>,
@@ -456,7 +457,7 @@ impl<'a> Words<'a> {
                         GEffect::Incremental(i) => words.incremental = Some(i),
                         GEffect::ArcIncremental(i) => words.arc_incremental = Some(i),
                         GEffect::PathControl => {
-                            words.path_control = true;
+                            words.path_control = Some(word);
                             words.ignored.push((word, "path control", g_name(code)));
                         }
                         GEffect::Nothing => {}

@@ -82,12 +82,18 @@ pub(super) fn with_plane(plane: Plane, mut point: [f64; 3], at: [f64; 2]) -> [f6
 }
 
 impl CompQueue {
-    /// Whether the first held-back item is an arc, and its signed turn.
-    pub(super) fn front_arc(&self) -> Option<(&Item, i64)> {
+    /// The first held-back item if it is an arc: its center and radius in
+    /// `plane` and its signed turn.
+    pub(super) fn front_arc(&self, plane: Plane) -> Option<([f64; 2], f64, i64)> {
         match self.items.first().map(|q| &q.item) {
-            Some(item @ Item::Move(m)) if matches!(m.kind, MoveKind::Arc(_)) => {
-                Some((item, signed_turns(&m.kind)))
-            }
+            Some(Item::Move(m)) => match &m.kind {
+                MoveKind::Arc(arc) => {
+                    let end = in_plane(plane, m.end);
+                    let radius = (end[0] - arc.center[0]).hypot(end[1] - arc.center[1]);
+                    Some((arc.center, radius, signed_turns(&m.kind)))
+                }
+                MoveKind::Line => None,
+            },
             _ => None,
         }
     }

@@ -192,23 +192,16 @@ impl State {
             };
             // D0 is LinuxCNC's table slot 0, the tool in the spindle.
             let number = if number == 0 { self.loaded } else { number };
-            match (&self.tools, number) {
-                (_, 0) => 0.0,
-                (None, _) => {
-                    self.report(
-                        "no tool table for compensation",
-                        line,
-                        format!("{name} {tool_word}"),
-                        "cutter radius 0: no tool table given (--tools)",
-                    );
-                    0.0
-                }
-                (Some(table), n) => table.get(n).map(|t| t.diameter).ok_or_else(|| {
-                    format!(
-                        "{tool_word}: tool {n} is not in the tool table (LinuxCNC: Requested tool {n} not found in the tool table)"
-                    )
-                })?,
+            if self.tools.is_none() && number != 0 {
+                self.report(
+                    "no tool table for compensation",
+                    line,
+                    format!("{name} {tool_word}"),
+                    "cutter radius 0: no tool table given (--tools)",
+                );
             }
+            self.table_tool(&tool_word, number)?
+                .map_or(0.0, |t| t.diameter)
         };
         // A negative diameter (a tool smaller than the one the path was
         // drawn for) puts the tool on the other side.
@@ -227,17 +220,15 @@ impl State {
     /// G40: the held-back move ends where it was going; the next move,
     /// which must be straight, starts there.
     fn cutter_comp_off(&mut self) -> Result<(), String> {
-        let Some(mut comp) = self.comp.take() else {
-            return Ok(());
-        };
-        if comp.radius > 0.0 && !comp.first_move {
-            let here = in_plane(comp.plane, self.position_mm);
-            let slack = sweep_slack(self.units);
-            comp.queue
-                .end_at_and_flush(comp.plane, here, slack, &mut self.toolpath)?;
-            comp.queue.flush(&mut self.toolpath);
+        if self
+            .comp
+            .as_ref()
+            .is_some_and(|c| c.radius > 0.0 && !c.first_move)
+        {
+            self.comp_stop()?;
             self.arc_not_allowed = true;
         }
+        self.comp = None;
         Ok(())
     }
 
@@ -332,7 +323,7 @@ impl State {
         };
         let e = along(p, r, alpha + gamma);
         let mid = along(op, r, alpha + gamma);
-        let front = comp.queue.front_arc().map(|(_, turn)| turn);
+        let front = comp.queue.front_arc(plane).map(|(_, _, turn)| turn);
         let concave = !(-CORNER_TOLERANCE..=PI + CORNER_TOLERANCE).contains(&beta)
             // An "h": over the arc's top, then down beside the stem; the
             // tool stays above and right rather than looping around.
@@ -368,7 +359,7 @@ impl State {
             comp.queue.flush(&mut self.toolpath);
             comp.queue.start = Some(mid);
         } else if concave {
-            let to = match comp.queue.front_arc() {
+            let to = match comp.queue.front_arc(plane) {
                 None => {
                     // Line into line: back along the last move until the
                     // tool touches the new line too.
@@ -381,14 +372,9 @@ impl State {
                     }
                     along(c, r / half_corner.tan(), theta + gamma)
                 }
-                Some((Item::Move(prev), prev_turn)) => {
+                Some((pc, old_radius, prev_turn)) => {
                     // Arc into line: along the arc to where the tool
                     // touches the line.
-                    let MoveKind::Arc(prev_arc) = &prev.kind else {
-                        unreachable!("front_arc returns arcs")
-                    };
-                    let pc = prev_arc.center;
-                    let old_radius = distance(pc, in_plane(plane, prev.end));
                     let base_dir = angle_to(op, p);
                     let theta = if prev_turn > 0 {
                         base_dir + FRAC_PI_2
@@ -417,7 +403,6 @@ impl State {
                     };
                     along(pc, old_radius, angle)
                 }
-                Some(_) => unreachable!("front_arc returns moves"),
             };
             comp.queue
                 .end_at_and_flush(plane, to, slack, &mut self.toolpath)?;
@@ -540,7 +525,7 @@ impl State {
             // Over the top of an "m" or an "h": convex though tangent.
             || ((beta - PI).abs() < CORNER_TOLERANCE && !tool_inside)
         {
-            let to = match comp.queue.front_arc() {
+            let to = match comp.queue.front_arc(plane) {
                 None => {
                     // Line into arc: back along the line until the tool
                     // touches the arc's offset circle.
@@ -565,13 +550,8 @@ impl State {
                     };
                     along(center, from_center, angle)
                 }
-                Some((Item::Move(prev), prev_turn)) => {
+                Some((pc, old_radius, prev_turn)) => {
                     // Arc into arc: where the two offset circles meet.
-                    let MoveKind::Arc(prev_arc) = &prev.kind else {
-                        unreachable!("front_arc returns arcs")
-                    };
-                    let pc = prev_arc.center;
-                    let old_radius = distance(pc, in_plane(plane, prev.end));
                     let new_radius = if tool_inside {
                         arc_radius - r
                     } else {
@@ -601,7 +581,6 @@ impl State {
                     };
                     along(pc, old_radius, dir)
                 }
-                Some(_) => unreachable!("front_arc returns moves"),
             };
             comp.queue
                 .end_at_and_flush(plane, to, slack, &mut self.toolpath)?;

@@ -3,6 +3,7 @@
 //! (`golden_tests.rs`) check the geometry against LinuxCNC's own.
 
 use super::super::interpreter::{interpret_with, Program, Setup};
+use super::super::test_support::{error_with, run_with};
 use crate::host::tool_table::ToolTable;
 use crate::host::toolpath::{Item, MoveKind};
 
@@ -15,14 +16,11 @@ fn setup() -> Setup {
 }
 
 fn run(program: &str) -> Program {
-    interpret_with(program, &setup()).unwrap_or_else(|e| panic!("{program:?}: {e}"))
+    run_with(program, &setup())
 }
 
 fn error(program: &str) -> String {
-    match interpret_with(program, &setup()) {
-        Ok(p) => panic!("{program:?} was accepted: {:?}", p.toolpath),
-        Err(e) => e.to_string(),
-    }
+    error_with(program, &setup())
 }
 
 /// A move's x, y and, for an arc, its center and whether it is clockwise.

@@ -52,6 +52,29 @@ pub enum OKind {
     Continue,
 }
 
+impl OKind {
+    /// The word that names it: "sub", "elseif", "endrepeat"...
+    pub fn keyword(&self) -> &'static str {
+        match self {
+            OKind::Sub => "sub",
+            OKind::EndSub(_) => "endsub",
+            OKind::Call(_) => "call",
+            OKind::Return(_) => "return",
+            OKind::If(_) => "if",
+            OKind::ElseIf(_) => "elseif",
+            OKind::Else => "else",
+            OKind::EndIf => "endif",
+            OKind::Do => "do",
+            OKind::While(_) => "while",
+            OKind::EndWhile => "endwhile",
+            OKind::Repeat(_) => "repeat",
+            OKind::EndRepeat => "endrepeat",
+            OKind::Break => "break",
+            OKind::Continue => "continue",
+        }
+    }
+}
+
 /// Parses `O100 sub`, `O<x> call [1] [2]`, `O1 if [#1 GT 2]`... (the text
 /// after the `O` is `rest`).
 pub(super) fn parse(rest: &str) -> Result<OWord, String> {
@@ -220,14 +243,7 @@ pub(super) fn structure(blocks: &[Block]) -> Result<Structure, (usize, String)> 
                     .ok_or_else(|| {
                         (
                             line,
-                            format!(
-                                "O{label} {} has no open O{label} if",
-                                if matches!(o.kind, OKind::Else) {
-                                    "else"
-                                } else {
-                                    "elseif"
-                                }
-                            ),
+                            format!("O{label} {} has no open O{label} if", o.kind.keyword()),
                         )
                     })?;
                 let last = open[at].3;
@@ -281,14 +297,7 @@ pub(super) fn structure(blocks: &[Block]) -> Result<Structure, (usize, String)> 
                 let at = find(&open, &["while", "do", "repeat"]).ok_or_else(|| {
                     (
                         line,
-                        format!(
-                            "O{label} {} is in no O{label} loop",
-                            if matches!(o.kind, OKind::Break) {
-                                "break"
-                            } else {
-                                "continue"
-                            }
-                        ),
+                        format!("O{label} {} is in no O{label} loop", o.kind.keyword()),
                     )
                 })?;
                 let head = open[at].1;

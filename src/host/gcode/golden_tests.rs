@@ -17,14 +17,22 @@ fn golden_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/gcode_golden")
 }
 
+/// The golden programs' start with `table` (tools.tbl's text) for tools.
+fn setup(table: &str) -> Setup {
+    Setup {
+        tools: Some(ToolTable::parse(table).unwrap()),
+        ..Setup::default()
+    }
+}
+
+fn tools_tbl() -> String {
+    std::fs::read_to_string(golden_dir().join("tools.tbl")).unwrap()
+}
+
 #[test]
 fn golden_programs_move_as_linuxcnc_moves_them() {
     let dir = golden_dir();
-    let tools = ToolTable::parse(&std::fs::read_to_string(dir.join("tools.tbl")).unwrap()).unwrap();
-    let setup = Setup {
-        tools: Some(tools),
-        ..Setup::default()
-    };
+    let setup = setup(&tools_tbl());
     let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -50,13 +58,7 @@ fn golden_programs_move_as_linuxcnc_moves_them() {
 #[test]
 fn golden_comparison_sees_a_wrong_radius() {
     let dir = golden_dir();
-    let table = std::fs::read_to_string(dir.join("tools.tbl"))
-        .unwrap()
-        .replace("D6.0", "D6.02");
-    let setup = Setup {
-        tools: Some(ToolTable::parse(&table).unwrap()),
-        ..Setup::default()
-    };
+    let setup = setup(&tools_tbl().replace("D6.0", "D6.02"));
     let program = dir.join("comp_square_outside.ngc");
     let ours = interpret_with(&std::fs::read_to_string(&program).unwrap(), &setup).unwrap();
     let lcnc = parse(&std::fs::read_to_string(program.with_extension("canon")).unwrap()).unwrap();

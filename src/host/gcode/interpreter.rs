@@ -342,7 +342,7 @@ impl State {
             .filter(|m| m.is_cycle());
         if let Some(p) = words.p {
             let used = words.dwell.is_some()
-                || words.path_control
+                || words.path_control.is_some()
                 || g10
                 || cycle.is_some()
                 || motion.is_some_and(Motion::is_arc);
@@ -353,7 +353,7 @@ impl State {
                 ));
             }
         }
-        let q_used = words.path_control || words.set_tool.is_some() || cycle.is_some();
+        let q_used = words.path_control.is_some() || words.set_tool.is_some() || cycle.is_some();
         if let Some(q) = words.q.filter(|_| !q_used) {
             return Err(format!(
                 "{} has no G64, M61 or canned cycle to use it",
@@ -383,14 +383,11 @@ impl State {
             self.retract_to_r = r;
         }
 
-        if words.path_control {
-            if let Some((word, _, _)) = words.ignored.iter().find(|(_, w, _)| *w == "path control")
-            {
-                self.refuse_with_comp(
-                    &word.name(),
-                    "Cannot change control mode with cutter radius compensation on",
-                )?;
-            }
+        if let Some(word) = words.path_control {
+            self.refuse_with_comp(
+                &word.name(),
+                "Cannot change control mode with cutter radius compensation on",
+            )?;
         }
         for (word, what, key) in &words.ignored {
             self.report(key, block.line, word.name(), what);

@@ -1,17 +1,27 @@
 //! What the interpreter's unit tests share: a program run or refused, and
 //! the path it takes.
 
-use super::interpreter::{interpret, Program};
+use super::interpreter::{interpret_with, Program, Setup};
 use crate::host::toolpath::Item;
 
 /// `program` interpreted; a refusal fails the test, naming the program.
 pub(super) fn run(program: &str) -> Program {
-    interpret(program).unwrap_or_else(|e| panic!("{program:?}: {e}"))
+    run_with(program, &Setup::default())
+}
+
+/// `program` interpreted from `setup`.
+pub(super) fn run_with(program: &str, setup: &Setup) -> Program {
+    interpret_with(program, setup).unwrap_or_else(|e| panic!("{program:?}: {e}"))
 }
 
 /// The refusal of `program`, "line N: message"; acceptance fails the test.
 pub(super) fn error(program: &str) -> String {
-    match interpret(program) {
+    error_with(program, &Setup::default())
+}
+
+/// The refusal of `program` from `setup`.
+pub(super) fn error_with(program: &str, setup: &Setup) -> String {
+    match interpret_with(program, setup) {
         Ok(p) => panic!("{program:?} was accepted: {p:?}"),
         Err(e) => e.to_string(),
     }

@@ -6,6 +6,7 @@
 use super::block_words::{ToolLength, Words};
 use super::interpreter::State;
 use super::lexer::Word;
+use crate::host::tool_table::Tool;
 
 /// A tool number word (T, H, Q): a whole number, 0 (no tool) or more.
 fn tool_number(word: &Word) -> Result<u32, String> {
@@ -21,18 +22,32 @@ fn tool_number(word: &Word) -> Result<u32, String> {
 }
 
 impl State {
-    /// `number`'s offset, mm, checking that the table has it (tool 0 is
-    /// no tool: no offset).
-    /// `name` is the word that asked for it, for the message.
-    fn tool_offset_of(&self, name: &str, number: u32) -> Result<[f64; 3], String> {
+    /// Tool `number` from the table, checking that the table has it:
+    /// `None` for tool 0 (no tool) or without a table. `name` is the word
+    /// that asked for it, for the message.
+    pub(super) fn table_tool(&self, name: &str, number: u32) -> Result<Option<&Tool>, String> {
         match (&self.tools, number) {
-            (_, 0) | (None, _) => Ok([0.0; 3]),
-            (Some(table), n) => table.get(n).map(|t| t.offset).ok_or_else(|| {
+            (_, 0) | (None, _) => Ok(None),
+            (Some(table), n) => table.get(n).map(Some).ok_or_else(|| {
                 format!(
                     "{name}: tool {n} is not in the tool table (LinuxCNC: Requested tool {n} not found in the tool table)"
                 )
             }),
         }
+    }
+
+    /// `number`'s offset, mm (tool 0 and no table: none).
+    fn tool_offset_of(&self, name: &str, number: u32) -> Result<[f64; 3], String> {
+        Ok(self
+            .table_tool(name, number)?
+            .map_or([0.0; 3], |t| t.offset))
+    }
+
+    /// LinuxCNC reads the position back after M6 and M61: a programmed
+    /// point that G40 left apart from the tool's is dropped.
+    fn read_position_back(&mut self) {
+        self.programmed_mm = None;
+        self.sync_work_position();
     }
 
     /// T, then M6 or M61 (LinuxCNC's steps 5 and 6).
@@ -54,11 +69,7 @@ impl State {
                 "Cannot change tools with cutter radius compensation on",
             )?;
             self.loaded = selected;
-            // LinuxCNC reads the position back after a change: a
-            // programmed point that G40 left apart from the tool's is
-            // dropped.
-            self.programmed_mm = None;
-            self.sync_work_position();
+            self.read_position_back();
         }
         if let Some(m61) = words.set_tool {
             let q = words
@@ -67,9 +78,7 @@ impl State {
             let number = tool_number(q)?;
             self.tool_offset_of(&q.name(), number)?;
             self.loaded = number;
-            // As after M6, LinuxCNC reads the position back.
-            self.programmed_mm = None;
-            self.sync_work_position();
+            self.read_position_back();
         }
         Ok(())
     }
