@@ -71,6 +71,7 @@ pub mod input_conditioner;
 pub mod interrupt_controller;
 pub mod motion_controller;
 pub mod narrow_bus_adapter;
+pub mod parallel_card;
 pub mod port_doc;
 pub mod pulse_counter;
 pub mod quadrature_decoder;

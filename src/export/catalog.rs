@@ -15,6 +15,7 @@ use crate::blocks::motion_controller::{
     MotionController6,
 };
 use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
+use crate::blocks::parallel_card::{self, ParallelCard};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
@@ -350,6 +351,23 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(DacInterface3::default()),
+        },
+        ModuleSpec {
+            name: "parallel_card",
+            block: "parallel_card",
+            summary: parallel_card::SUMMARY,
+            parameters: &[
+                ("K", "3", "slave ports (motor-control DSPs), 2 joints each"),
+                ("N", "6", "FIFO depth 2^N = 64 words (the bridge's)"),
+                ("joints", "6", "quadrature decoders (32-bit counts) and DAC channels (16-bit codes, a pair per slave)"),
+                ("master address", "9", "register map PCARD"),
+                ("slave address", "6", "register map PCARD_SLAVE"),
+            ],
+            port_docs: parallel_card::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(ParallelCard::default()),
         },
     ]
 }

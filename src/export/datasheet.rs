@@ -132,6 +132,12 @@ pub fn datasheets() -> Vec<DatasheetSpec> {
             build: || Box::new(narrow_bus_adapter::ExternalBusAdapter16::default()),
         },
         DatasheetSpec {
+            block: "parallel_card",
+            port_docs: parallel_card::PORT_DOCS,
+            parameters: &[],
+            build: || Box::new(parallel_card::ParallelCard::default()),
+        },
+        DatasheetSpec {
             block: "pulse_counter",
             port_docs: pulse_counter::PORT_DOCS,
             parameters: &[("W", 32)],

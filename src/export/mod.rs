@@ -136,7 +136,7 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
             contents: module.testbench.clone(),
         });
     }
-    use crate::blocks::{dac_interface, motion_controller, sync_fifo_bridge};
+    use crate::blocks::{dac_interface, motion_controller, parallel_card, sync_fifo_bridge};
     // The register maps of the exported configurations (see the catalog).
     let maps = [
         (
@@ -165,6 +165,14 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
         (
             "sync_fifo_bridge_slave_regs",
             sync_fifo_bridge::registers::slave_map(sync_fifo_bridge::EXPORTED_FIFO_LOG2 as u32)?,
+        ),
+        (
+            "parallel_card_master_regs",
+            parallel_card::registers::master_map()?,
+        ),
+        (
+            "parallel_card_slave_regs",
+            parallel_card::registers::slave_map()?,
         ),
     ];
     for (name, map) in &maps {

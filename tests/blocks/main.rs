@@ -16,6 +16,7 @@ mod host_links;
 mod input_conditioner;
 mod interrupt_controller;
 mod narrow_bus_adapter;
+mod parallel_card;
 mod pulse_counter;
 mod quadrature_decoder;
 mod sequential_divider;
