@@ -14,6 +14,7 @@
 //! | [`pose_jacobian`] | d(legs)/d(X Y Z A B C), angles in radians |
 //! | [`forward`] | leg lengths → pose, Newton-Raphson from a guess, [`ForwardLimits`] (120 iterations, 1e-9 mm, 12700 mm) |
 //! | [`check_pose`] | a pose the machine can take: inside the workspace, legs within stroke, not near a singularity |
+//! | [`PeriodPoint`] | one period's pose, twist and acceleration as the 19 words the control DSP writes to every motor DSP through `parallel_card` (step 3 of #36 builds on it) |
 //!
 //! ## Accuracy and bad input
 //! - [`forward`] stops when every leg is within 1e-9 mm of its length; on
@@ -28,10 +29,12 @@
 //!   work (joints on one line, a stroke or speed of 0 or less, limits out
 //!   of order, a home the machine cannot take), naming the setting.
 
+mod commands;
 mod geometry;
 mod kinematics;
 mod linear;
 
+pub use commands::{CommandError, PeriodPoint, HEADER_MARK, POINTS_PER_FIFO, WORDS};
 pub use geometry::{check_pose, condition, Geometry, PoseError};
 pub use kinematics::{
     forward, inverse, leg_vectors, leg_velocities, pose_jacobian, rotation, twist_jacobian,
