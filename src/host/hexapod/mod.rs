@@ -14,6 +14,7 @@
 //! | [`pose_jacobian`] | d(legs)/d(X Y Z A B C), angles in radians |
 //! | [`forward`] | leg lengths → pose, Newton-Raphson from a guess, [`ForwardLimits`] (120 iterations, 1e-9 mm, 12700 mm) |
 //! | [`check_pose`] | a pose the machine can take: inside the workspace, legs within stroke, not near a singularity |
+//! | [`leg_inertia`], [`joint_inertia`] | the platform's inertia seen by each leg, Λ = J⁻ᵀ M J⁻¹ ([`PlatformInertia`]): the pose-dependent load the gains are scheduled on |
 //! | [`PeriodPoint`] | one period's pose, twist and acceleration as the 19 words the control DSP writes to every motor DSP through `parallel_card` (step 3 of #36 builds on it) |
 //!
 //! ## Accuracy and bad input
@@ -30,11 +31,13 @@
 //!   of order, a home the machine cannot take), naming the setting.
 
 mod commands;
+mod dynamics;
 mod geometry;
 mod kinematics;
 mod linear;
 
 pub use commands::{CommandError, PeriodPoint, HEADER_MARK, POINTS_PER_FIFO, WORDS};
+pub use dynamics::{joint_inertia, leg_inertia, PlatformInertia};
 pub use geometry::{check_pose, condition, Geometry, PoseError};
 pub use kinematics::{
     forward, inverse, leg_vectors, leg_velocities, pose_jacobian, rotation, twist_jacobian,
