@@ -236,11 +236,7 @@ pub fn assemble(ice40: &str, families: &str) -> String {
 /// row. The reading lives beside [`render`] so that the two agree on the
 /// layout.
 pub fn cell_counts(report: &str, module: &str) -> Option<(u32, u32, u32, u32)> {
-    let line = sections(report)
-        .0
-        .lines()
-        .find(|l| l.starts_with(&format!("| `{module}` |")))?;
-    let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+    let cells = ice40_cells(report, module)?;
     let number = |i: usize| cells.get(i)?.parse().ok();
     Some((number(2)?, number(4)?, number(5)?, number(6)?))
 }
@@ -248,12 +244,21 @@ pub fn cell_counts(report: &str, module: &str) -> Option<(u32, u32, u32, u32)> {
 /// The [`verilog_digest`] a rendered report records for one module's row
 /// of the iCE40 table, or `None` if the module has no row.
 pub fn recorded_digest(report: &str, module: &str) -> Option<String> {
-    let line = sections(report)
-        .0
-        .lines()
-        .find(|l| l.starts_with(&format!("| `{module}` |")))?;
-    let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+    let cells = ice40_cells(report, module)?;
     Some(cells.get(12)?.trim_matches('`').to_string())
+}
+
+/// The line of `module`'s row in a table, if it has one.
+fn module_row<'a>(table: &'a str, module: &str) -> Option<&'a str> {
+    let start = format!("| `{module}` |");
+    table.lines().find(|l| l.starts_with(&start))
+}
+
+/// The trimmed cells of `module`'s row in the iCE40 table (cell 1 is the
+/// module's name, as [`render`] writes it).
+fn ice40_cells<'a>(report: &'a str, module: &str) -> Option<Vec<&'a str>> {
+    let line = module_row(sections(report).0, module)?;
+    Some(line.split('|').map(str::trim).collect())
 }
 
 /// `fresh` (a report of some modules) with the rows of `previous` kept for
@@ -275,20 +280,14 @@ pub fn merge(previous: &str, fresh: &str, order: &[&str]) -> String {
 /// One section: the text of `fresh` up to its first module row, then one
 /// row per module of `order`, from `fresh` or else from `previous`.
 fn merge_table(previous: &str, fresh: &str, order: &[&str]) -> String {
-    let row = |report: &str, module: &str| {
-        report
-            .lines()
-            .find(|l| l.starts_with(&format!("| `{module}` |")))
-            .map(str::to_string)
-    };
     let mut merged: String = fresh
         .lines()
         .take_while(|l| !l.starts_with("| `"))
         .map(|l| format!("{l}\n"))
         .collect();
     for module in order {
-        if let Some(line) = row(fresh, module).or_else(|| row(previous, module)) {
-            merged.push_str(&line);
+        if let Some(line) = module_row(fresh, module).or_else(|| module_row(previous, module)) {
+            merged.push_str(line);
             merged.push('\n');
         }
     }
