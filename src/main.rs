@@ -68,6 +68,10 @@ enum Command {
         /// iCE40 HX8K and write rtl-out/scaling-report.md (or --out).
         #[arg(long, conflicts_with_all = ["families_only", "modules"])]
         scaling: bool,
+        /// With --scaling: place only the seed card (four builds, one seed
+        /// each); the configurations' table is kept from the existing file.
+        #[arg(long, requires = "scaling")]
+        seed_card_only: bool,
     },
     /// Run a path file (format: `cargo doc`, module host::path; examples in
     /// examples/) through the simulated 3-axis controller (RTL, steps looped
@@ -414,15 +418,25 @@ fn run(cli: Cli) -> Result<(), String> {
             families_only,
             ice40_only,
             scaling,
+            seed_card_only,
         } => {
             let seeds: Vec<u64> = (1..=seeds).collect();
             if scaling {
                 let out = out.unwrap_or_else(|| PathBuf::from("rtl-out/scaling-report.md"));
                 let target =
                     catalog::find("motion_controller").map_or(100.0, |spec| spec.fmax_target_mhz);
-                let rows = scaling::measure(&seeds, target).map_err(|e| e.to_string())?;
-                let card = scaling::measure_seed_card().map_err(|e| e.to_string())?;
-                std::fs::write(&out, scaling::render(&rows, &card, &seeds, target))
+                let text = if seed_card_only {
+                    let previous = std::fs::read_to_string(&out)
+                        .map_err(|e| format!("cannot read {}: {e}", out.display()))?;
+                    let card = scaling::measure_seed_card().map_err(|e| e.to_string())?;
+                    scaling::replace_seed_card(&previous, &card)
+                        .ok_or_else(|| format!("{} has no seed card section", out.display()))?
+                } else {
+                    let rows = scaling::measure(&seeds, target).map_err(|e| e.to_string())?;
+                    let card = scaling::measure_seed_card().map_err(|e| e.to_string())?;
+                    scaling::render(&rows, &card, &seeds, target)
+                };
+                std::fs::write(&out, text)
                     .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
                 println!("wrote {}", out.display());
                 return Ok(());

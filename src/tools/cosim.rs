@@ -24,8 +24,15 @@ pub enum Simulator {
 impl Simulator {
     /// The simulators that run the generated vector testbench.
     pub const TESTBENCH: [Simulator; 2] = [Simulator::Icarus, Simulator::Verilator];
-    /// Every simulator a cross-simulation runs.
+    /// Every simulator.
     pub const ALL: [Simulator; 3] = [Simulator::Icarus, Simulator::Verilator, Simulator::Compiled];
+    /// The simulators [`cross_simulate`] runs: Icarus on the vector
+    /// testbench, and Verilator stepped from Rust. Verilator on the vector
+    /// testbench would build the same Verilog into a second model (5 to
+    /// 15 s of g++ per module) to compare the same vectors again; the
+    /// tooling tests run the testbench in Verilator too, so the generated
+    /// testbench is known to work there.
+    pub const CROSS_SIMULATION: [Simulator; 2] = [Simulator::Icarus, Simulator::Compiled];
 
     fn arg(self) -> &'static str {
         match self {
@@ -134,8 +141,9 @@ pub struct CosimPass {
 }
 
 /// Runs `stimulus` (one input vector per cycle, in `B::input_names()` order) through
-/// `block` in the Rust harness, then through `design` in every simulator, and
-/// compares all outputs on every cycle.
+/// `block` in the Rust harness, then through `design` in Icarus (the vector
+/// testbench) and in Verilator (the compiled backend), and compares all
+/// outputs on every cycle ([`Simulator::CROSS_SIMULATION`]).
 pub fn cross_simulate<B: VectorPorts>(
     design: &CosimDesign,
     block: B,
@@ -143,19 +151,17 @@ pub fn cross_simulate<B: VectorPorts>(
 ) -> Result<CosimPass, CosimError> {
     let ports = top_ports(&block);
     let expected = rust_outputs(&design.module, block, stimulus)?;
-    for simulator in Simulator::TESTBENCH {
-        compare_in_ports(
-            simulator,
-            design,
-            stimulus,
-            &expected,
-            (&B::input_words(), &B::output_words()),
-        )?;
-    }
+    compare_in_ports(
+        Simulator::Icarus,
+        design,
+        stimulus,
+        &expected,
+        (&B::input_words(), &B::output_words()),
+    )?;
     compare_compiled::<B>(design, &ports, stimulus, &expected)?;
     Ok(CosimPass {
         cycles: stimulus.len(),
-        simulators: Simulator::ALL.to_vec(),
+        simulators: Simulator::CROSS_SIMULATION.to_vec(),
     })
 }
 
@@ -186,8 +192,8 @@ pub enum Instance<'a> {
 
 /// The cross-simulation test of one instance of `B` (built with
 /// `B::default()`): `stimulus` (one input vector per clock, from the block's
-/// model inputs' `to_vector`) through rust-hdl, Icarus, Verilator and the
-/// compiled model, every output compared on every clock. Each block's test
+/// model inputs' `to_vector`) through rust-hdl, Icarus and Verilator (the
+/// compiled model), every output compared on every clock. Each block's test
 /// file calls it twice, for the exported instance and for a narrow one.
 /// Panics with the first disagreement (a test's check).
 pub fn check_instance<B: VectorPorts + Default>(

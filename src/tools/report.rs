@@ -241,6 +241,12 @@ pub fn cell_counts(report: &str, module: &str) -> Option<(u32, u32, u32, u32)> {
     Some((number(2)?, number(4)?, number(5)?, number(6)?))
 }
 
+/// The logic cells a rendered report gives for one module's row of the
+/// iCE40 table, or `None` if the module has no row.
+pub fn recorded_logic_cells(report: &str, module: &str) -> Option<u32> {
+    ice40_cells(report, module)?.get(7)?.parse().ok()
+}
+
 /// The [`verilog_digest`] a rendered report records for one module's row
 /// of the iCE40 table, or `None` if the module has no row.
 pub fn recorded_digest(report: &str, module: &str) -> Option<String> {

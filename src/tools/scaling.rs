@@ -6,6 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
+use super::report::verilog_digest;
 use super::synth::{
     place_board_if_it_fits, synthesize_if_it_fits, SynthFigures, DEVICE, DEVICE_LOGIC_CELLS,
 };
@@ -36,6 +37,56 @@ pub struct SeedCardRow {
     pub exported: bool,
     /// The whole card's figures (no Fmax when it does not fit).
     pub figures: SynthFigures,
+    /// [`seed_card_digest`] of the files it was placed from.
+    pub digest: String,
+}
+
+/// The digest ([`verilog_digest`]) of the seed card's sources as placed:
+/// the board top with `build` in place of its controller, the pin file,
+/// `host_links` and the controller's Verilog, in that order. A committed
+/// row with today's digest measured today's files (yosys and nextpnr, with
+/// one seed, are deterministic).
+pub fn seed_card_digest(top: &str, pcf: &[u8], links: &[u8], controller: &[u8]) -> String {
+    let mut bytes = top.as_bytes().to_vec();
+    for part in [pcf, links, controller] {
+        bytes.extend_from_slice(part);
+    }
+    verilog_digest(&bytes)
+}
+
+/// The seed card's top (`seed_board.v`) with `build` in place of its own
+/// controller.
+pub fn seed_card_top(build: &str) -> Result<String, ToolError> {
+    let board = repo_root().join("boards/ice40-hx8k-breakout");
+    let card = read(&board.join("seed_board.v"))?;
+    let card = String::from_utf8_lossy(&card).into_owned();
+    let instance = format!("{SEED_CARD_CONTROLLER} controller (");
+    if !card.contains(&instance) {
+        return Err(ToolError::Parse {
+            tool: "seed_board.v".into(),
+            detail: format!("no `{instance}` to put each build in"),
+        });
+    }
+    Ok(card.replace(&instance, &format!("{build} controller (")))
+}
+
+/// [`seed_card_digest`] of the card with the exported `build`, from today's
+/// files.
+pub fn exported_seed_card_digest(build: &str) -> Result<String, ToolError> {
+    let root = repo_root();
+    Ok(seed_card_digest(
+        &seed_card_top(build)?,
+        &read(&root.join("boards/ice40-hx8k-breakout/seed_board.pcf"))?,
+        &read(&root.join("rtl-out/host_links.v"))?,
+        &read(&root.join(format!("rtl-out/{build}.v")))?,
+    ))
+}
+
+fn read(path: &Path) -> Result<Vec<u8>, ToolError> {
+    std::fs::read(path).map_err(|source| ToolError::Io {
+        context: format!("reading {}", path.display()),
+        source,
+    })
 }
 
 /// The seed card (`boards/ice40-hx8k-breakout/seed_board.v` with its pin
@@ -46,18 +97,7 @@ pub struct SeedCardRow {
 pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
     let root = repo_root();
     let board = root.join("boards/ice40-hx8k-breakout");
-    let card =
-        std::fs::read_to_string(board.join("seed_board.v")).map_err(|source| ToolError::Io {
-            context: "reading seed_board.v".into(),
-            source,
-        })?;
-    let instance = format!("{SEED_CARD_CONTROLLER} controller (");
-    if !card.contains(&instance) {
-        return Err(ToolError::Parse {
-            tool: "seed_board.v".into(),
-            detail: format!("no `{instance}` to put each build in"),
-        });
-    }
+    let pcf = board.join("seed_board.pcf");
     let dir = work_dir("seed-card")?;
     let full = dir.path().join("motion_controller_uniform_servo.v");
     write_verilog(
@@ -75,17 +115,17 @@ pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
         .into_iter()
         .map(|(build, uniform, analog, generated)| {
             let top = dir.path().join(format!("seed_board_{build}.v"));
-            write_text(
-                &top,
-                &card.replace(&instance, &format!("{build} controller (")),
-            )?;
+            let top_text = seed_card_top(build)?;
+            write_text(&top, &top_text)?;
             let exported = generated.is_none();
             let controller = generated.unwrap_or_else(|| root.join(format!("rtl-out/{build}.v")));
             let links = root.join("rtl-out/host_links.v");
+            let digest =
+                seed_card_digest(&top_text, &read(&pcf)?, &read(&links)?, &read(&controller)?);
             let figures = place_board_if_it_fits(
                 &[&top, &links, &controller],
                 "seed_board",
-                &board.join("seed_board.pcf"),
+                &pcf,
                 SEED_CARD_SEED,
                 SEED_CARD_MHZ,
             )?;
@@ -95,6 +135,7 @@ pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
                 analog,
                 exported,
                 figures,
+                digest,
             })
         })
         .collect()
@@ -185,6 +226,38 @@ pub fn render(rows: &[ScalingRow], card: &[SeedCardRow], seeds: &[u64], target_m
     md
 }
 
+/// `report` (the text of `scaling-report.md`) with its seed card section
+/// measured again as `card`; `None` if it has no such section.
+pub fn replace_seed_card(report: &str, card: &[SeedCardRow]) -> Option<String> {
+    let start = report.find(SEED_CARD_HEADING)?;
+    Some(format!("{}{}", &report[..start], render_seed_card(card)))
+}
+
+const SEED_CARD_HEADING: &str = "\n## The seed card";
+
+/// The seed card's figures as `scaling-report.md` records them for one
+/// controller build.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RecordedSeedCard {
+    /// The whole card's logic cells.
+    pub logic_cells: u32,
+    /// The digest of the sources it was placed from.
+    pub digest: String,
+}
+
+/// `build`'s row of the seed card table in `report` (the text of
+/// `scaling-report.md`), if it has one.
+pub fn recorded_seed_card(report: &str, build: &str) -> Option<RecordedSeedCard> {
+    let table = report.split(SEED_CARD_HEADING).nth(1)?;
+    let start = format!("| `{build}` |");
+    let line = table.lines().find(|l| l.starts_with(&start))?;
+    let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+    Some(RecordedSeedCard {
+        logic_cells: cells.get(8)?.parse().ok()?,
+        digest: cells.get(12)?.trim_matches('`').to_string(),
+    })
+}
+
 fn percent(logic_cells: u32) -> f64 {
     100.0 * logic_cells as f64 / DEVICE_LOGIC_CELLS as f64
 }
@@ -192,17 +265,19 @@ fn percent(logic_cells: u32) -> f64 {
 fn render_seed_card(card: &[SeedCardRow]) -> String {
     let yes_no = |b: bool| if b { "yes" } else { "no" };
     let mut md = format!(
-        "\n## The seed card\n\n\
+        "{SEED_CARD_HEADING}\n\n\
          `boards/ice40-hx8k-breakout/seed_board.v` with its pin file, `host_links` (the 16-bit \
          DSP bus, the 8-bit PC bus and the mailbox) and each controller build in place of its \
          own (`{SEED_CARD_CONTROLLER}`), synthesized the same way and placed at the board's \
          {SEED_CARD_MHZ:.0} MHz, seed {SEED_CARD_SEED}. The card must stay within \
          {SEED_CARD_BUDGET_PERCENT} % of the HX8K's logic cells. `motion_controller_uniform_servo` (both \
          options) is not exported: it is generated for this table. A card that does not fit is \
-         only packed.\n\n\
+         only packed. The last column is the digest of the sources placed (board top, pin file, \
+         `host_links`, controller: `scaling::seed_card_digest`); the suite checks the card's own \
+         row against today's files instead of placing it again.\n\n\
          | controller build | uniform generators | analog outputs | LUT4 | DFF | carry | RAM | \
-         logic cells | of the HX8K | within {SEED_CARD_BUDGET_PERCENT} % | Fmax seed {SEED_CARD_SEED} (MHz) |\n\
-         |---|---|---|---:|---:|---:|---:|---:|---:|---|---:|\n"
+         logic cells | of the HX8K | within {SEED_CARD_BUDGET_PERCENT} % | Fmax seed {SEED_CARD_SEED} (MHz) | sources |\n\
+         |---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---|\n"
     );
     for row in card {
         let f = &row.figures;
@@ -211,7 +286,7 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
             .first()
             .map_or("does not fit".to_string(), |x| format!("{x:.1}"));
         md.push_str(&format!(
-            "| `{}`{} | {} | {} | {} | {} | {} | {} | {} | {:.0} % | {} | {} |\n",
+            "| `{}`{} | {} | {} | {} | {} | {} | {} | {} | {:.0} % | {} | {} | `{}` |\n",
             row.build,
             if row.exported { "" } else { " (not exported)" },
             yes_no(row.uniform),
@@ -223,7 +298,8 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
             f.logic_cells,
             percent(f.logic_cells),
             yes_no(f.logic_cells * 100 <= DEVICE_LOGIC_CELLS * SEED_CARD_BUDGET_PERCENT),
-            fmax
+            fmax,
+            row.digest
         ));
     }
     md
@@ -280,6 +356,7 @@ mod tests {
                 logic_cells,
                 fmax_mhz,
             },
+            digest: format!("d{build}"),
         };
         let card = [
             row("a", 6528, vec![64.25]),
@@ -288,18 +365,34 @@ mod tests {
         ];
         let md = render(&[], &card, &[1], 100.0);
         assert!(
-            md.contains("| `a` | yes | yes | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 |"),
+            md.contains("| `a` | yes | yes | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 | `da` |"),
             "{md}"
         );
         assert!(
             md.contains(
-                "| `b` (not exported) | yes | yes | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 |"
+                "| `b` (not exported) | yes | yes | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
             ),
             "{md}"
         );
         assert!(
-            md.contains("| `c` | yes | yes | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit |"),
+            md.contains(
+                "| `c` | yes | yes | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
+            ),
             "{md}"
         );
+        assert_eq!(
+            super::recorded_seed_card(&md, "a"),
+            Some(super::RecordedSeedCard {
+                logic_cells: 6528,
+                digest: "da".into()
+            })
+        );
+        assert_eq!(super::recorded_seed_card(&md, "d"), None);
+        let again = super::replace_seed_card(&md, &card[..1]).unwrap();
+        assert!(
+            again.contains("| `a` |") && !again.contains("| `c` |"),
+            "{again}"
+        );
+        assert_eq!(again.matches(super::SEED_CARD_HEADING).count(), 1);
     }
 }
