@@ -164,6 +164,12 @@ impl PositionLoop {
         })
     }
 
+    /// New gains from the next period on (a schedule); the integral is
+    /// kept.
+    pub fn set_gains(&mut self, gains: ServoGains) {
+        self.gains = gains;
+    }
+
     /// One period: the commanded position and velocity (counts, counts/s)
     /// and the encoder count give the DAC code. The integral is held while
     /// the output is clamped (no wind-up).

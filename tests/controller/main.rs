@@ -18,4 +18,5 @@ mod gcode_corpus;
 mod host;
 mod machine_io;
 mod motion_controller;
+mod parallel_machine;
 mod position_range;

@@ -15,7 +15,8 @@
 //! | [`forward`] | leg lengths → pose, Newton-Raphson from a guess, [`ForwardLimits`] (120 iterations, 1e-9 mm, 12700 mm) |
 //! | [`check_pose`] | a pose the machine can take: inside the workspace, legs within stroke, not near a singularity |
 //! | [`leg_inertia`], [`joint_inertia`] | the platform's inertia seen by each leg, Λ = J⁻ᵀ M J⁻¹ ([`PlatformInertia`]): the pose-dependent load the gains are scheduled on |
-//! | [`PeriodPoint`] | one period's pose, twist and acceleration as the 19 words the control DSP writes to every motor DSP through `parallel_card` (step 3 of #36 builds on it) |
+//! | [`PeriodPoint`] | one period's pose, twist and acceleration as the 19 words the control DSP writes to every motor DSP through `parallel_card` |
+//! | [`card`] | the card run by its DSPs: control DSP, motor DSPs, leg plants, [`card::run_card`] |
 //!
 //! ## Accuracy and bad input
 //! - [`forward`] stops when every leg is within 1e-9 mm of its length; on
@@ -30,6 +31,7 @@
 //!   work (joints on one line, a stroke or speed of 0 or less, limits out
 //!   of order, a home the machine cannot take), naming the setting.
 
+pub mod card;
 mod commands;
 mod dynamics;
 mod geometry;
