@@ -386,7 +386,10 @@ fn uniform_servo_build_matches_its_model_under_random_traffic() {
 /// for cycle against the Rust simulation.
 #[test]
 fn exported_servo_verilog_matches_rust_in_icarus_and_verilator() {
-    crate::motion_controller::cross_simulate_exported::<false, true>("motion_controller_servo");
+    crate::motion_controller::cross_simulate_exported::<false, true>(
+        "motion_controller_servo",
+        crate::motion_controller::SUITE_CHAOS_CLOCKS,
+    );
 }
 
 /// The controller converts each written entry once, before the FIFOs, into

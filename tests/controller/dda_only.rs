@@ -230,5 +230,8 @@ fn dda_only_build_reads_the_uniform_bits_as_0_and_runs_its_dda() {
 /// cycle against the Rust simulation.
 #[test]
 fn exported_dda_only_verilog_matches_rust_in_icarus_and_verilator() {
-    cross_simulate_exported::<false, false>("motion_controller_dda");
+    cross_simulate_exported::<false, false>(
+        "motion_controller_dda",
+        crate::motion_controller::SUITE_CHAOS_CLOCKS,
+    );
 }

@@ -2,8 +2,11 @@
 //! DSPs and six leg plants around the exported `parallel_card`, compiled by
 //! Verilator.
 
-use motion_hdl::host::hexapod::card::{run_card, CardRun, CardSettings, Helix, MotorDspError};
-use motion_hdl::host::hexapod::Geometry;
+use motion_hdl::host::hexapod::card::{
+    run_card, CardRun, CardSettings, CartesianMotion, GainSchedule, Helix, MotorDspError,
+};
+use motion_hdl::host::hexapod::{leg_inertia, Geometry, PlatformInertia};
+use motion_hdl::host::ServoGains;
 
 fn helix() -> Helix {
     Helix {
@@ -14,6 +17,19 @@ fn helix() -> Helix {
         a_amplitude: 5.0,
         b_amplitude: 5.0,
         seconds: 2.0,
+    }
+}
+
+/// A wider, higher helix, 4 s: its legs' loads range from 0.8 to 1.4
+/// times their load at home.
+fn wide_helix() -> Helix {
+    Helix {
+        radius: 60.0,
+        rise: 120.0,
+        a_amplitude: 12.0,
+        b_amplitude: 9.0,
+        seconds: 4.0,
+        ..helix()
     }
 }
 
@@ -89,5 +105,65 @@ fn a_pose_outside_the_workspace_is_refused_before_any_motion() {
     assert!(
         text.contains(": X -") && text.contains("outside the workspace, -200 to 200"),
         "{text}"
+    );
+}
+
+/// The load-scheduled PID against fixed gains on a wide helix, with a
+/// heavy platform's sluggish drives (8 ms at home): each leg's load, and
+/// so its drive's lag, ranges from 0.8 to 1.4 times its value at home along
+/// the path. The scheduled loop's largest following error is at or below
+/// the best of five fixed gains (kp 20 to 320 /s, ki = kp² / 7.5, the
+/// default's ratio), each with the lag at home in its feed-forward.
+#[test]
+fn the_scheduled_pid_follows_at_least_as_well_as_the_best_fixed_gain() {
+    let run_with = |schedule, kp: f64| {
+        let mut settings = CardSettings::default();
+        settings.plant.time_constant_s = 0.008;
+        settings.motor.time_constant_s = 0.008;
+        settings.motor.schedule = schedule;
+        settings.motor.gains = ServoGains {
+            kp,
+            ki: kp * kp / 7.5,
+            ..ServoGains::default()
+        };
+        settings.settle_periods = 50;
+        let run = run_card(&wide_helix(), &settings).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((run.underrun, run.skew, run.saturated), (None, 0, 0));
+        let max = run.following.iter().map(|f| f.max).fold(0.0, f64::max);
+        let rms = run.following.iter().map(|f| f.rms).fold(0.0, f64::max);
+        println!(
+            "{schedule:?} kp {kp}: following error max {max:.2}, worst leg's RMS {rms:.2} counts"
+        );
+        max
+    };
+    let scheduled = run_with(GainSchedule::Load, 40.0);
+    let best = [20.0, 40.0, 80.0, 160.0, 320.0]
+        .into_iter()
+        .map(|kp| run_with(GainSchedule::Fixed, kp))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        scheduled <= best,
+        "scheduled {scheduled:.2} counts, best fixed {best:.2}"
+    );
+}
+
+/// The wide helix's loads span what the scheduling test says.
+#[test]
+fn the_wide_helix_loads_each_leg_from_0_8_to_1_4_times_home() {
+    let g = Geometry::default();
+    let body = PlatformInertia::default();
+    let home = leg_inertia(&g, &g.home, &body).unwrap();
+    let (mut lo, mut hi) = (f64::MAX, 0.0f64);
+    let h = wide_helix();
+    for i in 0..=400 {
+        let m = leg_inertia(&g, &h.at(i as f64 * 0.01).pose, &body).unwrap();
+        for j in 0..6 {
+            lo = lo.min(m[j] / home[j]);
+            hi = hi.max(m[j] / home[j]);
+        }
+    }
+    assert!(
+        (0.75..0.85).contains(&lo) && (1.35..1.45).contains(&hi),
+        "{lo:.3} to {hi:.3}"
     );
 }
