@@ -59,7 +59,8 @@ impl BusAgent {
         self.queue.push_back(Access::Write { address, data });
     }
 
-    /// Queues a read; its word joins [`BusAgent::results`] in order.
+    /// Queues a read; its word is returned in order by
+    /// [`BusAgent::take_results`].
     pub fn read(&mut self, address: u64) {
         self.queue.push_back(Access::Read { address });
     }
