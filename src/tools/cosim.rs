@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use super::{repo_root, run, work_dir, ToolError};
+use super::{read_text, repo_root, run, work_dir, ToolError};
 use crate::export::{generator, module_verilog, testbench_verilog, top_ports, Port, PortDirection};
 use crate::sim::{CompiledModel, CompiledStepper, Harness, HarnessError, Stepper, VectorPorts};
 
@@ -22,8 +22,6 @@ pub enum Simulator {
 }
 
 impl Simulator {
-    /// The simulators that run the generated vector testbench.
-    pub const TESTBENCH: [Simulator; 2] = [Simulator::Icarus, Simulator::Verilator];
     /// Every simulator.
     pub const ALL: [Simulator; 3] = [Simulator::Icarus, Simulator::Verilator, Simulator::Compiled];
     /// The simulators [`cross_simulate`] runs: Icarus on the vector
@@ -236,10 +234,7 @@ pub fn compare_compiled<B: VectorPorts>(
     expected: &[Vec<u64>],
 ) -> Result<usize, CosimError> {
     let setup = |e: &dyn std::fmt::Display| CosimError::Setup(e.to_string());
-    let verilog = std::fs::read_to_string(&design.rtl).map_err(|source| ToolError::Io {
-        context: format!("reading {}", design.rtl.display()),
-        source,
-    })?;
+    let verilog = read_text(&design.rtl)?;
     let model = CompiledModel::from_verilog(&design.module, &verilog, "clock", ports, false)
         .map_err(|e| setup(&e))?;
     let mut compiled = CompiledStepper::ordered::<B>(model).map_err(|e| setup(&e))?;

@@ -12,7 +12,7 @@ use std::path::Path;
 use std::process::Command;
 
 use super::synth::{final_stat, median, slowest_fmax};
-use super::{run, work_dir, ToolError};
+use super::{read_text, run, work_dir, ToolError};
 use crate::export::ModuleSpec;
 
 /// What one mapped cell type is.
@@ -331,10 +331,7 @@ pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Ecp5Plac
             false,
         )?;
         let path = dir.join(&report);
-        let text = std::fs::read_to_string(&path).map_err(|source| ToolError::Io {
-            context: format!("reading {}", path.display()),
-            source,
-        })?;
+        let text = read_text(&path)?;
         let (fmax, comb, ff) = read_ecp5_report(&text)?;
         placement.fmax_mhz.push(fmax);
         (placement.comb, placement.comb_available) = comb;

@@ -71,6 +71,14 @@ pub(crate) fn work_dir(purpose: &str) -> Result<tempfile::TempDir, ToolError> {
         })
 }
 
+/// The text of `path`, or an error naming it.
+pub(crate) fn read_text(path: &std::path::Path) -> Result<String, ToolError> {
+    std::fs::read_to_string(path).map_err(|source| ToolError::Io {
+        context: format!("reading {}", path.display()),
+        source,
+    })
+}
+
 /// Longest any single tool run may take. nextpnr can route for ever on a
 /// hopeless design; a stuck tool fails its test instead of hanging CI.
 pub const TOOL_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(300);

@@ -254,8 +254,9 @@ pub fn recorded_digest(report: &str, module: &str) -> Option<String> {
     Some(cells.get(12)?.trim_matches('`').to_string())
 }
 
-/// The line of `module`'s row in a table, if it has one.
-fn module_row<'a>(table: &'a str, module: &str) -> Option<&'a str> {
+/// The line of `module`'s row in a table (a row starting with the
+/// module's name in backquotes), if it has one.
+pub(crate) fn module_row<'a>(table: &'a str, module: &str) -> Option<&'a str> {
     let start = format!("| `{module}` |");
     table.lines().find(|l| l.starts_with(&start))
 }

@@ -6,11 +6,11 @@
 
 use std::path::{Path, PathBuf};
 
-use super::report::verilog_digest;
+use super::report::{module_row, verilog_digest};
 use super::synth::{
     place_board_if_it_fits, synthesize_if_it_fits, SynthFigures, DEVICE, DEVICE_LOGIC_CELLS,
 };
-use super::{repo_root, work_dir, ToolError};
+use super::{read_text, repo_root, work_dir, ToolError};
 use crate::blocks::motion_controller::MotionController3UniformServo;
 use crate::export::catalog::controller_scaling;
 use crate::export::module_verilog;
@@ -46,20 +46,39 @@ pub struct SeedCardRow {
 /// `host_links` and the controller's Verilog, in that order. A committed
 /// row with today's digest measured today's files (yosys and nextpnr, with
 /// one seed, are deterministic).
-pub fn seed_card_digest(top: &str, pcf: &[u8], links: &[u8], controller: &[u8]) -> String {
-    let mut bytes = top.as_bytes().to_vec();
-    for part in [pcf, links, controller] {
-        bytes.extend_from_slice(part);
-    }
-    verilog_digest(&bytes)
+pub fn seed_card_digest(top: &str, pcf: &str, links: &str, controller: &str) -> String {
+    verilog_digest([top, pcf, links, controller].concat().as_bytes())
+}
+
+/// The seed card's board folder.
+const SEED_CARD_BOARD: &str = "boards/ice40-hx8k-breakout";
+
+/// The card's sources besides its top and controller: the pin file and
+/// `host_links`.
+fn seed_card_fixed_sources() -> (PathBuf, PathBuf) {
+    let root = repo_root();
+    (
+        root.join(SEED_CARD_BOARD).join("seed_board.pcf"),
+        root.join("rtl-out/host_links.v"),
+    )
+}
+
+/// [`seed_card_digest`] of the card placed with `top` (its text) and the
+/// controller in `controller`.
+fn placed_card_digest(top: &str, controller: &Path) -> Result<String, ToolError> {
+    let (pcf, links) = seed_card_fixed_sources();
+    Ok(seed_card_digest(
+        top,
+        &read_text(&pcf)?,
+        &read_text(&links)?,
+        &read_text(controller)?,
+    ))
 }
 
 /// The seed card's top (`seed_board.v`) with `build` in place of its own
 /// controller.
 pub fn seed_card_top(build: &str) -> Result<String, ToolError> {
-    let board = repo_root().join("boards/ice40-hx8k-breakout");
-    let card = read(&board.join("seed_board.v"))?;
-    let card = String::from_utf8_lossy(&card).into_owned();
+    let card = read_text(&repo_root().join(SEED_CARD_BOARD).join("seed_board.v"))?;
     let instance = format!("{SEED_CARD_CONTROLLER} controller (");
     if !card.contains(&instance) {
         return Err(ToolError::Parse {
@@ -73,20 +92,10 @@ pub fn seed_card_top(build: &str) -> Result<String, ToolError> {
 /// [`seed_card_digest`] of the card with the exported `build`, from today's
 /// files.
 pub fn exported_seed_card_digest(build: &str) -> Result<String, ToolError> {
-    let root = repo_root();
-    Ok(seed_card_digest(
+    placed_card_digest(
         &seed_card_top(build)?,
-        &read(&root.join("boards/ice40-hx8k-breakout/seed_board.pcf"))?,
-        &read(&root.join("rtl-out/host_links.v"))?,
-        &read(&root.join(format!("rtl-out/{build}.v")))?,
-    ))
-}
-
-fn read(path: &Path) -> Result<Vec<u8>, ToolError> {
-    std::fs::read(path).map_err(|source| ToolError::Io {
-        context: format!("reading {}", path.display()),
-        source,
-    })
+        &repo_root().join(format!("rtl-out/{build}.v")),
+    )
 }
 
 /// The seed card (`boards/ice40-hx8k-breakout/seed_board.v` with its pin
@@ -96,8 +105,7 @@ fn read(path: &Path) -> Result<Vec<u8>, ToolError> {
 /// options is generated here.
 pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
     let root = repo_root();
-    let board = root.join("boards/ice40-hx8k-breakout");
-    let pcf = board.join("seed_board.pcf");
+    let (pcf, links) = seed_card_fixed_sources();
     let dir = work_dir("seed-card")?;
     let full = dir.path().join("motion_controller_uniform_servo.v");
     write_verilog(
@@ -119,9 +127,7 @@ pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
             write_text(&top, &top_text)?;
             let exported = generated.is_none();
             let controller = generated.unwrap_or_else(|| root.join(format!("rtl-out/{build}.v")));
-            let links = root.join("rtl-out/host_links.v");
-            let digest =
-                seed_card_digest(&top_text, &read(&pcf)?, &read(&links)?, &read(&controller)?);
+            let digest = placed_card_digest(&top_text, &controller)?;
             let figures = place_board_if_it_fits(
                 &[&top, &links, &controller],
                 "seed_board",
@@ -248,9 +254,7 @@ pub struct RecordedSeedCard {
 /// `build`'s row of the seed card table in `report` (the text of
 /// `scaling-report.md`), if it has one.
 pub fn recorded_seed_card(report: &str, build: &str) -> Option<RecordedSeedCard> {
-    let table = report.split(SEED_CARD_HEADING).nth(1)?;
-    let start = format!("| `{build}` |");
-    let line = table.lines().find(|l| l.starts_with(&start))?;
+    let line = module_row(report.split(SEED_CARD_HEADING).nth(1)?, build)?;
     let cells: Vec<&str> = line.split('|').map(str::trim).collect();
     Some(RecordedSeedCard {
         logic_cells: cells.get(8)?.parse().ok()?,

@@ -4,7 +4,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use super::{run, work_dir, ToolError};
+use super::{read_text, run, work_dir, ToolError};
 
 /// The iCE40 device and package every figure refers to.
 pub const DEVICE: &str = "iCE40 HX8K (ct256)";
@@ -145,10 +145,7 @@ pub fn synthesize_top(
     };
     let dir = work_dir("pins")?;
     let wrapped = dir.path().join(format!("{top}__pins.v"));
-    let source = std::fs::read_to_string(rtl).map_err(|source| ToolError::Io {
-        context: format!("reading {}", rtl.display()),
-        source,
-    })?;
+    let source = read_text(rtl)?;
     let text = format!("{source}\n{}", wrapper.verilog(top, ports, "clock"));
     std::fs::write(&wrapped, text).map_err(|source| ToolError::Io {
         context: format!("writing {}", wrapped.display()),
@@ -336,10 +333,7 @@ pub(crate) fn final_stat(log: &str) -> Vec<(String, u32)> {
 }
 
 fn read_nextpnr_json(path: &Path) -> Result<serde_json::Value, ToolError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ToolError::Io {
-        context: format!("reading {}", path.display()),
-        source,
-    })?;
+    let text = read_text(path)?;
     serde_json::from_str(&text).map_err(|e| nextpnr_parse_error(&e.to_string()))
 }
 

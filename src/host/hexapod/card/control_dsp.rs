@@ -4,6 +4,8 @@
 //! `period_tick` releases it), and reads the card's fault flags once a
 //! period to learn of an underrun.
 
+use std::collections::VecDeque;
+
 use crate::blocks::parallel_card::registers::{master_map, SLAVES};
 use crate::regmap::RegisterMap;
 
@@ -35,7 +37,8 @@ pub struct ControlDsp {
     pub drop_point: Option<(u64, usize)>,
     /// The first underrun read back, if any.
     pub underrun: Option<Underrun>,
-    fault_reads: Vec<u64>,
+    /// The period of each CARD_FAULT read in flight, oldest first.
+    fault_reads: VecDeque<u64>,
 }
 
 impl Default for ControlDsp {
@@ -45,7 +48,7 @@ impl Default for ControlDsp {
             bus: BusAgent::default(),
             drop_point: None,
             underrun: None,
-            fault_reads: Vec::new(),
+            fault_reads: VecDeque::new(),
         }
     }
 }
@@ -82,7 +85,7 @@ impl ControlDsp {
     pub fn after_tick(&mut self, period: u64, next: &PeriodPoint) -> Result<(), CommandError> {
         self.send(next, period + 1)?;
         self.bus.read(self.address("CARD_FAULT", 0));
-        self.fault_reads.push(period);
+        self.fault_reads.push_back(period);
         Ok(())
     }
 
@@ -111,7 +114,9 @@ impl ControlDsp {
             .field("CARD_FAULT", "UNDERRUN")
             .expect("CARD_FAULT.UNDERRUN");
         for word in self.bus.take_results() {
-            let period = self.fault_reads.remove(0);
+            let Some(period) = self.fault_reads.pop_front() else {
+                break;
+            };
             let slaves = field.extract(word as u32).unwrap_or(0);
             if slaves != 0 && self.underrun.is_none() {
                 self.underrun = Some(Underrun { slaves, period });

@@ -11,7 +11,7 @@ use crate::host::servo::{DriveScale, FollowingError, PositionLoop, ServoError, S
 use crate::regmap::RegisterMap;
 
 use super::super::{
-    inverse, leg_inertia, pose_jacobian, Geometry, PeriodPoint, PlatformInertia, Pose,
+    inverse, leg_inertia, pose_jacobian, Geometry, PeriodPoint, PlatformInertia, Pose, WORDS,
 };
 use super::bus::BusAgent;
 use super::LEAD_PERIODS;
@@ -172,7 +172,7 @@ impl MotorDsp {
     pub fn clock(&mut self, data_ready: bool) {
         if data_ready && !self.last_ready && !self.reading && self.error.is_none() {
             let cmd = self.address("CMD", 0);
-            for _ in 0..super::super::WORDS {
+            for _ in 0..WORDS {
                 self.bus.read(cmd);
             }
             for j in 0..JOINTS_PER_SLAVE as u32 {
@@ -182,7 +182,7 @@ impl MotorDsp {
             self.reading = true;
         }
         self.last_ready = data_ready;
-        if self.reading && self.bus.results_ready() == super::super::WORDS + JOINTS_PER_SLAVE {
+        if self.reading && self.bus.results_ready() == WORDS + JOINTS_PER_SLAVE {
             self.reading = false;
             let words = self.bus.take_results();
             let codes = match self.period(&words) {
@@ -203,10 +203,7 @@ impl MotorDsp {
 
     /// One period's loop on the point's words and the latched counts.
     fn period(&mut self, words: &[u64]) -> Result<[i64; JOINTS_PER_SLAVE], MotorDspError> {
-        let point_words: Vec<u32> = words[..super::super::WORDS]
-            .iter()
-            .map(|&w| w as u32)
-            .collect();
+        let point_words: Vec<u32> = words[..WORDS].iter().map(|&w| w as u32).collect();
         let point = PeriodPoint::decode(&point_words).map_err(|source| MotorDspError::Command {
             slave: self.slave,
             release: self.releases,
@@ -220,7 +217,7 @@ impl MotorDsp {
                 got: point.sequence,
             });
         }
-        let measured: Vec<i64> = words[super::super::WORDS..]
+        let measured: Vec<i64> = words[WORDS..]
             .iter()
             .map(|&w| w as u32 as i32 as i64)
             .collect();
