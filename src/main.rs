@@ -5,6 +5,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export, ExportDirs};
+use motion_hdl::host::hexapod::simulate::{schedule_name, simulate_hexapod, HexapodOptions};
+use motion_hdl::host::hexapod::Geometry;
 use motion_hdl::host::simulation::{simulate, InputFormat, SimulationOptions, Trip};
 use motion_hdl::host::{MachineSettings, ToolTable};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
@@ -19,6 +21,17 @@ struct Cli {
     command: Command,
 }
 
+/// `simulate --kinematics`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Kinematics {
+    /// X Y Z, one motor an axis: the 3-axis controller.
+    Cartesian,
+    /// A six-leg Stewart platform on the parallel-machine card.
+    Hexapod,
+}
+
+// Parsed once per run: the size of its largest variant costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Subcommand)]
 enum Command {
     /// Write every exported module as <module>.v, with its index, its
@@ -137,6 +150,26 @@ enum Command {
         /// from power-up. Repeatable.
         #[arg(long, value_name = "INPUT@MS")]
         trip: Vec<String>,
+        /// The machine: cartesian (the 3-axis controller) or hexapod (the
+        /// parallel-machine card: a G-code program in X Y Z mm and A B C
+        /// degrees on a Stewart platform, its legs driven by three motor
+        /// DSPs through the exported parallel_card, run with the
+        /// load-scheduled PID and with fixed gains; prints the pose error,
+        /// each leg's following error and the skew between slaves, and
+        /// plots both runs' leg errors and the tool path).
+        #[arg(long, value_enum, default_value_t = Kinematics::Cartesian)]
+        kinematics: Kinematics,
+        /// With --kinematics hexapod: the geometry file (joints, stroke,
+        /// leg speed, workspace, home; see host::hexapod). Default:
+        /// LinuxCNC genhexkins's sample machine in mm.
+        #[arg(long)]
+        geometry: Option<PathBuf>,
+        /// With --kinematics hexapod: the leg drives' velocity-loop time
+        /// constant with the platform at home, ms (default 2); it grows
+        /// with each leg's load at the pose, which the scheduled PID
+        /// follows and the fixed one does not.
+        #[arg(long)]
+        drive_lag_ms: Option<f64>,
     },
     /// Run the formal proofs (formal/*.sv on the blocks' generated Verilog;
     /// yosys-smtbmc with z3): a bounded check from power-up and a
@@ -174,6 +207,75 @@ fn main() -> ExitCode {
     }
 }
 
+/// `simulate --kinematics hexapod`'s own options.
+struct HexapodCli {
+    geometry: Option<PathBuf>,
+    tools: Option<PathBuf>,
+    backend: Option<String>,
+    out_dir: PathBuf,
+    drive_lag_ms: Option<f64>,
+}
+
+/// `simulate PROGRAM --kinematics hexapod`: the report's lines, the
+/// figures, and a failure when a run skewed or a leg ended off its target.
+fn simulate_hexapod_cli(program: &std::path::Path, cli: HexapodCli) -> Result<(), String> {
+    let HexapodCli {
+        geometry,
+        tools,
+        backend,
+        out_dir,
+        drive_lag_ms,
+    } = cli;
+    let mut options = HexapodOptions::default();
+    if let Some(ms) = drive_lag_ms {
+        if !(ms.is_finite() && ms > 0.0) {
+            return Err(format!("--drive-lag-ms must be above 0, not {ms}"));
+        }
+        options.card.plant.time_constant_s = ms / 1000.0;
+        options.card.motor.time_constant_s = ms / 1000.0;
+    }
+    if let Some(file) = geometry {
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        options.geometry =
+            Geometry::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+    }
+    if let Some(file) = tools {
+        let text = std::fs::read_to_string(&file)
+            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        options.tools =
+            Some(ToolTable::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?);
+    }
+    if let Some(name) = backend {
+        options.card.backend = Backend::parse(&name).map_err(|e| e.to_string())?;
+    }
+    options.out_dir = Some(out_dir);
+    let report = simulate_hexapod(program, &options)?;
+    for ignored in &report.ignored {
+        println!(
+            "ignored    {} on line {} ({}: does not change the motion)",
+            ignored.word, ignored.line, ignored.what
+        );
+    }
+    for line in report.summary() {
+        println!("{line}");
+    }
+    for figure in &report.figures {
+        println!("wrote {}", figure.display());
+    }
+    let runs = [&report.scheduled, &report.fixed];
+    if runs.iter().any(|r| r.run.skew != 0) {
+        return Err("the slaves were not released on one clock (skew above 0)".into());
+    }
+    if let Some(r) = runs.iter().find(|r| !r.ends_within_a_count()) {
+        return Err(format!(
+            "with the {} PID a leg ended more than one count from its target",
+            schedule_name(r.schedule)
+        ));
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Simulate {
@@ -190,7 +292,42 @@ fn run(cli: Cli) -> Result<(), String> {
             vcd,
             backend,
             trip,
+            kinematics,
+            geometry,
+            drive_lag_ms,
         } => {
+            if kinematics == Kinematics::Hexapod {
+                let unused = [
+                    ("--machine", machine.is_some()),
+                    ("--clock-mhz", clock_mhz.is_some()),
+                    ("--uniform", !uniform.is_empty()),
+                    ("--servo", !servo.is_empty()),
+                    ("--vcd", vcd.is_some()),
+                    ("--trip", !trip.is_empty()),
+                ];
+                if let Some((name, _)) = unused.iter().find(|(_, given)| *given) {
+                    return Err(format!(
+                        "{name} applies to the 3-axis controller, not to --kinematics hexapod"
+                    ));
+                }
+                if format.is_some_and(|f| InputFormat::parse(&f) != Ok(InputFormat::Gcode)) {
+                    return Err("--kinematics hexapod runs G-code programs only".into());
+                }
+                let hexapod = HexapodCli {
+                    geometry,
+                    tools,
+                    backend,
+                    out_dir,
+                    drive_lag_ms,
+                };
+                return simulate_hexapod_cli(&path_file, hexapod);
+            }
+            if geometry.is_some() || drive_lag_ms.is_some() {
+                return Err(
+                    "--geometry and --drive-lag-ms describe a hexapod: give --kinematics hexapod"
+                        .into(),
+                );
+            }
             let trips = trip
                 .iter()
                 .map(|t| Trip::parse(t))

@@ -106,6 +106,24 @@ impl ArcGeometry {
         unit(d).0
     }
 
+    /// The first and second derivatives of [`ArcGeometry::point`] by the
+    /// fraction, at `fraction`.
+    pub fn derivatives(&self, fraction: f64) -> ([f64; 3], [f64; 3]) {
+        let (a, b, n) = self.plane.axes();
+        let theta = self.start_angle + self.sweep * fraction;
+        let dr = self.radius[1] - self.radius[0];
+        let r = self.radius[0] + dr * fraction;
+        let (sin, cos) = theta.sin_cos();
+        let w = self.sweep;
+        let (mut d1, mut d2) = ([0.0; 3], [0.0; 3]);
+        d1[a] = dr * cos - r * w * sin;
+        d1[b] = dr * sin + r * w * cos;
+        d1[n] = self.normal[1] - self.normal[0];
+        d2[a] = -2.0 * dr * w * sin - r * w * w * cos;
+        d2[b] = 2.0 * dr * w * cos - r * w * w * sin;
+        (d1, d2)
+    }
+
     /// The normal axis's share of the move's speed: its travel over the
     /// length (0 for a flat arc). The plane axes share at most
     /// sqrt(1 - share^2).

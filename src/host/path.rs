@@ -137,11 +137,13 @@ impl Path {
                     Item::Move(Move {
                         kind: MoveKind::Line,
                         end: units(s.end),
+                        angles: [0.0; 3],
                         feed: Some(self.feed),
                         line: 0,
                     })
                 })
                 .collect(),
+            ..Toolpath::default()
         }
     }
 

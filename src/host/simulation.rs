@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::gcode::{interpret_with, program_text, Ignored, Message, Setup, Units};
+use super::gcode::{interpret_with, program_text, Ignored, Message, Program, Setup, Units};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::tool_table::ToolTable;
@@ -142,22 +142,9 @@ impl Job {
                     start: [0.0; 3],
                     parameters: machine.parameters,
                     tools,
+                    ..Setup::default()
                 };
-                let program = interpret_with(&text, &setup).map_err(|e| located(&e))?;
-                if program.toolpath.items.is_empty() {
-                    return Err(format!("{}: the program has no motion", file.display()));
-                }
-                let ending = match (program.end, program.blocks_after_end, program.closing_percent) {
-                    (Some(line), 0, _) => format!("M2 or M30 on line {line}"),
-                    (Some(line), n, _) => {
-                        format!("M2 or M30 on line {line}; {n} blocks after it not run")
-                    }
-                    (None, _, Some(line)) => format!("the closing % on line {line}"),
-                    (None, _, None) => {
-                        "end of file without M2, M30 or a closing % (the program ends there; LinuxCNC would refuse the file)"
-                            .to_string()
-                    }
-                };
+                let (program, ending) = run_gcode(file, &text, &setup)?;
                 Ok(Job {
                     toolpath: program.toolpath,
                     machine,
@@ -174,6 +161,34 @@ impl Job {
             }
         }
     }
+}
+
+/// Interprets G-code `text` read from `file` with `setup`: the program
+/// and how it ended, as a sentence. A program without motion is an error;
+/// every error names the file.
+pub fn run_gcode(file: &FsPath, text: &str, setup: &Setup) -> Result<(Program, String), String> {
+    let program = interpret_with(text, setup).map_err(|e| format!("{}: {e}", file.display()))?;
+    if program.toolpath.items.is_empty() {
+        return Err(format!("{}: the program has no motion", file.display()));
+    }
+    let ending = match (program.end, program.blocks_after_end, program.closing_percent) {
+        (Some(line), 0, _) => format!("M2 or M30 on line {line}"),
+        (Some(line), n, _) => format!("M2 or M30 on line {line}; {n} blocks after it not run"),
+        (None, _, Some(line)) => format!("the closing % on line {line}"),
+        (None, _, None) => {
+            "end of file without M2, M30 or a closing % (the program ends there; LinuxCNC would refuse the file)"
+                .to_string()
+        }
+    };
+    Ok((program, ending))
+}
+
+/// A G-code file's text: UTF-8, or Latin-1 in comments ([`program_text`]).
+pub fn read_gcode_text(file: &FsPath) -> Result<String, String> {
+    let bytes = std::fs::read(file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+    program_text(&bytes)
+        .map(|t| t.into_owned())
+        .map_err(|e| format!("{}: {e}", file.display()))
 }
 
 /// Settings of a simulation run.
@@ -564,7 +579,14 @@ pub fn simulate(
                 .map(|k| (k, names[k]))
                 .collect();
             let fe = dir.join(format!("{stem}-following-error.svg"));
-            plot_following_error(&errors, &axes, period_s, &fe).map_err(|e| e.to_string())?;
+            plot_following_error(
+                &errors,
+                &axes,
+                "Following error of the analog servo axes",
+                period_s,
+                &fe,
+            )
+            .map_err(|e| e.to_string())?;
             figures.push(fe);
         }
     }

@@ -70,8 +70,14 @@ pub struct Move {
     pub kind: MoveKind,
     /// End position, absolute, machine units.
     pub end: [f64; 3],
-    /// Path speed, machine units per second; `None` for a rapid (G0): as
-    /// fast as every axis's maximum velocity allows.
+    /// The rotary axes A, B, C at the end, absolute, degrees; they move
+    /// linearly along the move. Always 0 on a machine without them (a
+    /// `.path` file, G-code for the 3-axis controller).
+    pub angles: [f64; 3],
+    /// Path speed, machine units per second: along X Y Z, or in degrees
+    /// per second (the A B C change's length) for a move of the rotary
+    /// axes alone (LinuxCNC's rule); `None` for a rapid (G0): as fast as
+    /// every axis's maximum velocity allows.
     pub feed: Option<f64>,
     /// The 1-based line of the program it came from.
     pub line: usize,
@@ -96,6 +102,8 @@ pub enum Item {
 pub struct Toolpath {
     /// Start position, machine units.
     pub start: [f64; 3],
+    /// The rotary axes A, B, C at the start, degrees.
+    pub start_angles: [f64; 3],
     /// The moves and dwells, in order.
     pub items: Vec<Item>,
 }
@@ -111,5 +119,17 @@ impl Toolpath {
                 Item::Dwell { .. } => None,
             })
             .unwrap_or(self.start)
+    }
+
+    /// The rotary axes after the last move, degrees.
+    pub fn end_angles(&self) -> [f64; 3] {
+        self.items
+            .iter()
+            .rev()
+            .find_map(|item| match item {
+                Item::Move(m) => Some(m.angles),
+                Item::Dwell { .. } => None,
+            })
+            .unwrap_or(self.start_angles)
     }
 }

@@ -104,11 +104,13 @@ pub fn plot_speed(speeds: &[f64], period_s: f64, unit: &str, path: &Path) -> Res
     root.present().map_err(|e| err(e.to_string()))
 }
 
-/// Draws each analog axis's following error (counts) per period: `errors`
-/// holds one value per axis and period; `axes` names the axes drawn.
-pub fn plot_following_error(
-    errors: &[[f64; 3]],
+/// Draws each axis's following error (counts) per period under `title`:
+/// `errors` holds one value per axis and period; `axes` names the axes
+/// drawn.
+pub fn plot_following_error<const N: usize>(
+    errors: &[[f64; N]],
     axes: &[(usize, &str)],
+    title: &str,
     period_s: f64,
     path: &Path,
 ) -> Result<(), PlotError> {
@@ -123,10 +125,7 @@ pub fn plot_following_error(
     let root = SVGBackend::new(path, (1000, 450)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Following error of the analog servo axes",
-            ("sans-serif", 18),
-        )
+        .caption(title, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)

@@ -16,6 +16,7 @@ fn line(end: [f64; 3], feed: f64) -> Item {
     Item::Move(Move {
         kind: MoveKind::Line,
         end,
+        angles: [0.0; 3],
         feed: Some(feed),
         line: 0,
     })
@@ -30,6 +31,7 @@ fn arc(end: [f64; 3], center: [f64; 2], clockwise: bool, feed: f64) -> Item {
             turns: 0,
         }),
         end,
+        angles: [0.0; 3],
         feed: Some(feed),
         line: 0,
     })
@@ -50,6 +52,7 @@ fn a_full_circle_returns_exactly_to_its_start() {
     let machine = MachineSettings::default();
     for clockwise in [false, true] {
         let toolpath = Toolpath {
+            start_angles: [0.0; 3],
             start: [10.0, 0.0, 0.0],
             items: vec![arc([10.0, 0.0, 0.0], [0.0, 0.0], clockwise, 20.0)],
         };
@@ -83,6 +86,7 @@ fn a_quarter_arc_is_driven_at_its_centripetal_limit() {
     // Tangent lines before and after it, so that it is driven throughout
     // at its limit.
     let toolpath = Toolpath {
+        start_angles: [0.0; 3],
         start: [5.0, -20.0, 0.0],
         items: vec![
             line([5.0, 0.0, 0.0], 100.0),
@@ -136,6 +140,7 @@ fn a_coarse_period_limits_an_arcs_speed_by_its_chord_error() {
         ..MachineSettings::default()
     };
     let toolpath = Toolpath {
+        start_angles: [0.0; 3],
         start: [10.0, 0.0, 0.0],
         items: vec![arc([10.0, 0.0, 0.0], [0.0, 0.0], false, 100.0)],
     };
@@ -165,6 +170,7 @@ fn a_tangent_line_arc_line_chain_keeps_the_feed_through_its_junctions() {
     let machine = MachineSettings::default();
     let feed = 20.0;
     let toolpath = Toolpath {
+        start_angles: [0.0; 3],
         start: [0.0, 0.0, 0.0],
         items: vec![
             line([20.0, 0.0, 0.0], feed),
@@ -210,10 +216,12 @@ fn a_helix_and_a_dwell_end_exactly_and_the_dwell_holds_still() {
             turns: 1,
         }),
         end: [2.0, 0.0, -1.5],
+        angles: [0.0; 3],
         feed: Some(5.0),
         line: 0,
     });
     let toolpath = Toolpath {
+        start_angles: [0.0; 3],
         start: [2.0, 0.0, 0.0],
         items: vec![
             helix,
@@ -250,6 +258,7 @@ fn an_arc_without_contour_error_is_refused_by_its_line() {
         m.line = 7;
     }
     let toolpath = Toolpath {
+        start_angles: [0.0; 3],
         start: [5.0, 0.0, 0.0],
         items: vec![item],
     };
@@ -267,6 +276,7 @@ fn a_spiral_whose_radius_change_is_most_of_its_motion_keeps_every_axis_limit() {
     // limit; the planner's length is the fastest rate of the point.
     let machine = MachineSettings::default();
     let toolpath = Toolpath {
+        start_angles: [0.0; 3],
         start: [0.0, 0.0, 0.0],
         items: vec![
             line([100.0, 0.0, 0.0], 50.0),
@@ -308,6 +318,7 @@ fn a_toolpath_that_is_not_a_set_of_positions_is_refused_by_its_line() {
             .collect();
         plan_toolpath(
             &Toolpath {
+                start_angles: [0.0; 3],
                 start: [0.0; 3],
                 items,
             },
@@ -341,6 +352,7 @@ fn a_toolpath_that_is_not_a_set_of_positions_is_refused_by_its_line() {
         ..MachineSettings::default()
     };
     let toolpath = Toolpath {
+        start_angles: [0.0; 3],
         start: [0.0; 3],
         items: vec![line([1.0, 0.0, 0.0], 1e7)],
     };
@@ -413,7 +425,11 @@ fn random_toolpath(rng: &mut StdRng) -> Toolpath {
             }),
         }
     }
-    Toolpath { start, items }
+    Toolpath {
+        start,
+        start_angles: [0.0; 3],
+        items,
+    }
 }
 
 /// Random toolpaths on random machines: the last sample is the end in

@@ -15,6 +15,7 @@ mod dda_only;
 mod entry_converter;
 mod gcode;
 mod gcode_corpus;
+mod hexapod_program;
 mod host;
 mod machine_io;
 mod motion_controller;

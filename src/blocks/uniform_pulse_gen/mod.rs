@@ -5,7 +5,7 @@
 //! Tp2 = Tp1 + 2 (shared/BACKGROUND.md, section 2). The single-period
 //! algorithm, N pulses of Tp1 and then idle, leaves up to almost half of the
 //! period empty; this block leaves none. It computes Tp1, N1 and N2 itself
-//! with a [`SequentialDivider`], for the next period while the current one
+//! with a [`SequentialDivider`](crate::blocks::sequential_divider::SequentialDivider), for the next period while the current one
 //! runs, so loaded periods follow each other with zero idle ticks.
 //!
 //! ## Ports

@@ -385,6 +385,12 @@ pub(super) struct Words<'a> {
     /// M0, M1 or M60: a pause, which ends a compensated path's look-ahead.
     pub(super) pause: Option<&'a Word>,
     pub(super) axes: [Option<&'a Word>; 3],
+    /// A, B, C: the rotary axes, degrees (accepted by the interpreter only
+    /// on a machine that has them, [`super::Setup::rotary_axes`]).
+    pub(super) rotary: [Option<&'a Word>; 3],
+    /// U, V or W: an axis no machine here has (refused by the interpreter,
+    /// which knows which axes the machine has).
+    pub(super) missing_axis: Option<&'a Word>,
     /// `@` (distance) and `^` (angle, degrees): X and Y in polar
     /// coordinates about the work origin.
     pub(super) polar: [Option<&'a Word>; 2],
@@ -393,7 +399,7 @@ pub(super) struct Words<'a> {
     /// R on a G10 block: the coordinate system's rotation.
     pub(super) rotation: Option<&'a Word>,
     pub(super) l: Option<&'a Word>,
-    /// The first X, Y or Z and the first I, J, K or R as written, for the
+    /// The first X, Y, Z, A, B or C and the first I, J, K or R as written, for the
     /// messages.
     pub(super) first_axis: Option<&'a Word>,
     pub(super) first_center: Option<&'a Word>,
@@ -492,7 +498,7 @@ impl<'a> Words<'a> {
                         return Err(format!("{letter} appears twice"));
                     }
                     match letter {
-                        'X' | 'Y' | 'Z' | '@' | '^' => {
+                        'X' | 'Y' | 'Z' | 'A' | 'B' | 'C' | '@' | '^' => {
                             words.first_axis = words.first_axis.or(Some(word))
                         }
                         'I' | 'J' | 'K' | 'R' => {
@@ -502,6 +508,7 @@ impl<'a> Words<'a> {
                     }
                     let slot = match letter {
                         'X' | 'Y' | 'Z' => &mut words.axes[axis_index(letter, 'X')],
+                        'A' | 'B' | 'C' => &mut words.rotary[axis_index(letter, 'A')],
                         '@' => &mut words.polar[0],
                         '^' => &mut words.polar[1],
                         'I' | 'J' | 'K' => &mut words.offsets[axis_index(letter, 'I')],
@@ -519,11 +526,7 @@ impl<'a> Words<'a> {
                             words.ignored.push((word, "spindle speed", "S".to_string()));
                             continue;
                         }
-                        'A' | 'B' | 'C' | 'U' | 'V' | 'W' => {
-                            return Err(format!(
-                                "{name} moves an axis this machine does not have (X, Y and Z only)"
-                            ))
-                        }
+                        'U' | 'V' | 'W' => &mut words.missing_axis,
                         'E' => {
                             return Err(format!(
                                 "{name} drives an extruder (RepRap), an axis this machine does not have"

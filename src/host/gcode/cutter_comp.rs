@@ -10,7 +10,7 @@
 //! - a convex corner becomes an arc about the programmed corner (a rapid
 //!   straight to the next offset line for G0);
 //! - a move into a concave corner is shortened to where the tool touches
-//!   both sides: each move is held back (see [`CompQueue`]) until the next
+//!   both sides: each move is held back (see `CompQueue`) until the next
 //!   one shows where it must end; a corner the tool cannot reach without
 //!   gouging is an error;
 //! - G40 ends the last move where it was going, and the next move, which
@@ -266,6 +266,7 @@ impl State {
         let f = self.comp_frame();
         let (slack, units, base, current) = (f.slack, f.units, f.base, f.current);
         let (plane, r, left, normal) = (f.plane, f.r, f.left, f.normal);
+        let angles = self.angles;
         let comp = self.comp.as_mut().expect("compensation is on");
         let p = in_plane(plane, end_mm);
         let line_to = |at: [f64; 2], z: f64| {
@@ -274,6 +275,7 @@ impl State {
             Item::Move(Move {
                 kind: MoveKind::Line,
                 end,
+                angles,
                 feed,
                 line,
             })
@@ -350,6 +352,7 @@ impl State {
                 Item::Move(Move {
                     kind,
                     end: corner_end,
+                    angles: self.angles,
                     feed,
                     line,
                 }),
@@ -458,6 +461,7 @@ impl State {
             angle_to(center, p)
         };
         let e = along(p, r, gamma);
+        let angles = self.angles;
         let arc_item = |from: [f64; 2], center: [f64; 2], to: [f64; 2]| {
             let mut to = to;
             // A full circle stays one: its end is its start exactly.
@@ -467,6 +471,7 @@ impl State {
             Item::Move(Move {
                 kind: MoveKind::Arc(Arc { center, ..arc }),
                 end: with_plane(plane, end_mm, to),
+                angles,
                 feed: Some(feed),
                 line,
             })
@@ -599,6 +604,7 @@ impl State {
                     turns: 0,
                 }),
                 end: corner_end,
+                angles: self.angles,
                 feed: Some(feed),
                 line,
             }));

@@ -101,6 +101,9 @@ pub struct Program {
     pub final_position: [f64; 3],
     /// Where the program ends in machine coordinates, mm: the toolpath's end.
     pub final_machine: [f64; 3],
+    /// The rotary axes A, B, C at the end, degrees (0 on a machine
+    /// without them).
+    pub final_angles: [f64; 3],
     /// The coordinate system in force at the end: "G54" to "G59.3".
     pub coordinate_system: &'static str,
     /// The persistent parameters (#5161 to #5390) as the program left them.
@@ -154,11 +157,20 @@ pub struct Setup {
     /// then accepted, with no offsets and no diameter (reported once when
     /// G43 or G43.2 takes a tool's offset).
     pub tools: Option<ToolTable>,
+    /// The machine has the rotary axes A, B and C (the hexapod): G0 to G3
+    /// move them, in degrees. Without them (the default) an A, B or C word
+    /// is an error.
+    pub rotary_axes: bool,
+    /// The rotary axes at the start, degrees.
+    pub start_angles: [f64; 3],
 }
 
 /// Interprets `program` from `setup`.
 pub fn interpret_with(program: &str, setup: &Setup) -> Result<Program, GcodeError> {
     let mut state = State::new(setup.start, setup.parameters, setup.tools.clone());
+    state.rotary_axes = setup.rotary_axes;
+    state.angles = setup.start_angles;
+    state.toolpath.start_angles = setup.start_angles;
     let lexed = lex_program(program)?;
     let structure =
         structure(&lexed.blocks).map_err(|(line, message)| GcodeError { line, message })?;
@@ -194,6 +206,13 @@ pub(super) struct State {
     pub(super) motion: Option<Motion>,
     /// mm/s.
     pub(super) feed: Option<f64>,
+    /// The same F for a move of the rotary axes alone, degrees/s (F is
+    /// then degrees per minute in either unit mode).
+    pub(super) feed_degrees: Option<f64>,
+    /// The machine has A, B and C ([`Setup::rotary_axes`]).
+    pub(super) rotary_axes: bool,
+    /// A, B, C, degrees: no offsets apply, so work and machine agree.
+    pub(super) angles: [f64; 3],
     /// The work position in the program's current units: kept apart from
     /// the machine one so that a program's own sums (G91 in inches) come
     /// out as it computes them, not through a round trip by 25.4.
@@ -242,6 +261,9 @@ impl State {
             arc_incremental: true,
             motion: None,
             feed: None,
+            feed_degrees: None,
+            rotary_axes: false,
+            angles: [0.0; 3],
             position: start,
             position_mm: start,
             programmed_mm: None,
@@ -259,7 +281,7 @@ impl State {
             messages: Vec::new(),
             toolpath: Toolpath {
                 start,
-                items: Vec::new(),
+                ..Toolpath::default()
             },
             ignored: Vec::new(),
             reported: HashSet::new(),
@@ -290,6 +312,7 @@ impl State {
             units: self.units,
             final_position: self.position,
             final_machine: self.position_mm,
+            final_angles: self.angles,
             coordinate_system: system_name(self.parameters.active_system()),
             parameters: self.parameters,
             messages: self.messages,
@@ -330,7 +353,9 @@ impl State {
                 ));
             }
         }
+        self.check_axes(block, &words)?;
         let motion = self.motion_to_run(&words)?;
+        self.check_rotary_motion(&words, motion)?;
         let g10 = matches!(words.non_modal, Some((_, NonModal::SetOrigin)));
         // The cycle mode in force or set by the block, whether it runs here
         // or not: its words (R, Q, P, L) may stand on a block without
@@ -402,6 +427,7 @@ impl State {
                 ));
             }
             self.feed = Some(f.value * self.units.mm_per_unit() / 60.0);
+            self.feed_degrees = Some(f.value / 60.0);
         }
         if let Some(units) = words.units.filter(|u| *u != self.units) {
             self.units = units;
@@ -604,6 +630,7 @@ impl State {
         let start_mm = self.position_mm;
         let offset = if machine { [0.0; 3] } else { self.offset() };
         let (mut end, mut end_mm) = self.target(words, offset)?;
+        let angles = self.target_angles(words);
         if compensating {
             return match motion {
                 Motion::Rapid | Motion::Line => self.compensated_straight(end, end_mm, feed, line),
@@ -615,23 +642,30 @@ impl State {
             };
         }
         self.programmed_mm = None;
+        let mut feed = feed;
         let kind = if motion.is_arc() {
             let arc = self.arc(motion, words, &mut end, &mut end_mm)?;
             MoveKind::Arc(arc)
-        } else if end_mm == start_mm {
+        } else if end_mm == start_mm && angles == self.angles {
             self.position = end;
             return Ok(());
         } else {
+            if end_mm == start_mm {
+                // A and B and C alone: F is degrees per minute.
+                feed = feed.and(self.feed_degrees);
+            }
             MoveKind::Line
         };
         self.position = end;
         self.position_mm = end_mm;
+        self.angles = angles;
         if machine {
             self.sync_work_position();
         }
         self.toolpath.items.push(Item::Move(Move {
             kind,
             end: end_mm,
+            angles,
             feed,
             line,
         }));
@@ -670,6 +704,78 @@ impl State {
         Ok((end, end_mm))
     }
 
+    /// The block's A, B, C as an end, degrees: absolute or added to the
+    /// current angles, as G90 or G91 says; an axis not written keeps its
+    /// angle.
+    fn target_angles(&self, words: &Words) -> [f64; 3] {
+        std::array::from_fn(|k| match words.rotary[k] {
+            Some(w) if self.incremental => self.angles[k] + w.value,
+            Some(w) => w.value,
+            None => self.angles[k],
+        })
+    }
+
+    /// U, V and W, and A, B and C on a machine without them, are refused,
+    /// naming the first as written.
+    fn check_axes(&self, block: &Block, words: &Words) -> Result<(), String> {
+        let rotary = words.rotary.iter().any(Option::is_some);
+        if words.missing_axis.is_none() && (self.rotary_axes || !rotary) {
+            return Ok(());
+        }
+        let missing: &[char] = if self.rotary_axes {
+            &['U', 'V', 'W']
+        } else {
+            &['A', 'B', 'C', 'U', 'V', 'W']
+        };
+        let word = block
+            .words
+            .iter()
+            .find(|w| missing.contains(&w.letter))
+            .expect("a missing axis's word");
+        let have = if self.rotary_axes {
+            "X, Y, Z, A, B and C only"
+        } else {
+            "X, Y and Z only"
+        };
+        Err(format!(
+            "{} moves an axis this machine does not have ({have})",
+            word.name()
+        ))
+    }
+
+    /// A, B and C move with G0 to G3 only, and not while cutter
+    /// compensation is on.
+    fn check_rotary_motion(&self, words: &Words, motion: Option<Motion>) -> Result<(), String> {
+        let Some(word) = words.rotary.iter().flatten().next() else {
+            return Ok(());
+        };
+        let taker = words
+            .non_modal
+            .filter(|(_, c)| c.takes_axes())
+            .map(|(w, _)| w.name())
+            .or(words
+                .tool_length
+                .filter(|(_, t)| t.takes_axes())
+                .map(|(w, _)| w.name()));
+        match motion {
+            Some(Motion::Cycle(c)) => Err(format!(
+                "{} with {}: the rotary axes move with G0, G1, G2 and G3 only, not in canned cycles",
+                word.name(),
+                c.name()
+            )),
+            Some(_) if self.comp.is_some() || words.cutter_comp.is_some() => Err(format!(
+                "{}: the rotary axes cannot move while cutter radius compensation is on (G40 first)",
+                word.name()
+            )),
+            Some(_) => Ok(()),
+            None => Err(format!(
+                "{} with {}: the rotary axes move with G0, G1, G2 and G3 only; their offsets and stored positions are not supported",
+                word.name(),
+                taker.unwrap_or_else(|| "no motion".to_string())
+            )),
+        }
+    }
+
     /// A rapid to `end_mm` (machine), if it moves at all; the work
     /// position follows.
     pub(super) fn rapid_to_machine(&mut self, end_mm: [f64; 3], line: usize) {
@@ -686,6 +792,7 @@ impl State {
             self.toolpath.items.push(Item::Move(Move {
                 kind: MoveKind::Line,
                 end: end_mm,
+                angles: self.angles,
                 feed,
                 line,
             }));

@@ -29,6 +29,7 @@ fn line(end: [f64; 3], feed: Option<f64>, line: usize) -> Move {
     Move {
         kind: MoveKind::Line,
         end,
+        angles: [0.0; 3],
         feed,
         line,
     }
@@ -207,6 +208,7 @@ fn arcs_in_each_plane_with_offsets() {
         vec![Item::Move(Move {
             kind: MoveKind::Arc(arc),
             end: [7.0, 11.0, 1.0],
+            angles: [0.0; 3],
             feed: Some(1.0),
             line: 1
         })]

@@ -85,10 +85,11 @@
 //! | G90, G91 | X, Y, Z absolute or incremental |
 //! | G90.1, G91.1 | I, J, K absolute positions or offsets from the arc's start |
 //! | X Y Z | the end, in the current units; an axis not written keeps its position |
+//! | A B C | only on a machine with rotary axes ([`Setup::rotary_axes`], the hexapod): the end angles in degrees (any units mode), absolute or G91 incremental, on G0 to G3 only (G53 too); they move linearly along the move ([`Move::angles`](crate::host::toolpath::Move::angles)); no offsets apply to them; a move of A B C alone runs at F degrees per minute |
 //! | F | feed, units per minute, > 0, modal; stored as mm/s (F600 in G21 is 10 mm/s) |
 //! | M2, M30 | end of program ([`Program::end`]) |
 //! | G54 to G59, G59.1 to G59.3 | select coordinate system 1 to 9; the active one at the start is #5220 (1, G54, by default) |
-//! | G10 L2 P X Y Z [R0] | system P's origin at X Y Z, machine coordinates (P0: the active system; G91 does not apply); R, the rotation, must be 0 |
+//! | G10 L2 P X Y Z \[R0\] | system P's origin at X Y Z, machine coordinates (P0: the active system; G91 does not apply); R, the rotation, must be 0 |
 //! | G10 L20 P X Y Z | system P's origin such that the current position reads X Y Z |
 //! | G92 X Y Z | an offset such that the current position reads X Y Z; an axis not named keeps the offset in force (LinuxCNC's source); #5210 = 1 |
 //! | G92.1, G92.2, G92.3 | clear the G92 offset and #5211..; stop applying it (kept); apply the kept one |
@@ -98,11 +99,11 @@
 //! | T | select a tool (a whole number; 0 is no tool); with a tool table it must be in it |
 //! | M6 | load the selected tool (a T so far is needed); no motion |
 //! | M61 Q | the loaded tool is Q, without a change |
-//! | G43 [H] | tool length offset of tool H, or of the loaded tool: X, Y, Z from the table, mm |
+//! | G43 \[H\] | tool length offset of tool H, or of the loaded tool: X, Y, Z from the table, mm |
 //! | G43.1 X Y Z | tool length offset of the axis words (program units); an axis not named has none |
 //! | G43.2 H or X Y Z | add tool H's offset, or the axis words, to the one in force |
 //! | G49 | no tool length offset |
-//! | G41 \[D\], G42 \[D\] | cutter radius compensation, the tool left (G41) or right of the path, in G17 or G18: the radius of tool D from the tool table, or of the loaded tool without D; a negative diameter takes the other side. LinuxCNC's geometry, move for move: see [`cutter_comp`](self::cutter_comp) |
+//! | G41 \[D\], G42 \[D\] | cutter radius compensation, the tool left (G41) or right of the path, in G17 or G18: the radius of tool D from the tool table, or of the loaded tool without D; a negative diameter takes the other side. LinuxCNC's geometry, move for move: see [`cutter_comp`] |
 //! | G41.1 D, G42.1 D | the same with D the diameter, in program units |
 //! | G40 | compensation off: the held-back move ends where it was going; the next move must be straight |
 //! | G94 | accepted, no effect: the only feed mode |
@@ -149,7 +150,7 @@
 //! the file's end let the held-back move run as it is. While it is on,
 //! [`Program::final_position`] and the work position are the programmed
 //! point, and the toolpath (and [`Program::final_machine`]) the tool's.
-//! What it refuses and why is in [`cutter_comp`](self::cutter_comp) and
+//! What it refuses and why is in [`cutter_comp`] and
 //! below.
 //!
 //! # Ignored, reported once
@@ -204,7 +205,12 @@
 //! * `G12 is not a supported G code`; `G1.25 is not a G code`;
 //!   `M1.5 is not an M code`.
 //! * `A5 moves an axis this machine does not have (X, Y and Z only)` (A, B,
-//!   C, U, V, W); `E5 drives an extruder (RepRap), an axis this machine
+//!   C, U, V, W; with rotary axes, U, V, W: `(X, Y, Z, A, B and C
+//!   only)`); with rotary axes, `A5 with G92: the rotary axes move with
+//!   G0, G1, G2 and G3 only; their offsets and stored positions are not
+//!   supported` (G10, G28, G30, G43.1, G43.2, G92), `A3 with G81: ... not
+//!   in canned cycles`, `A1: the rotary axes cannot move while cutter
+//!   radius compensation is on (G40 first)`; `E5 drives an extruder (RepRap), an axis this machine
 //!   does not have`; `O100: subroutines and flow control (O words) are
 //!   not supported` (an O number beside other words, not a statement; and
 //!   `O1003: a program number stands before any motion; ...` after a move); `L2 has no G10 or canned cycle to use it`.
@@ -318,5 +324,7 @@ pub use text::program_text;
 
 #[cfg(test)]
 mod fuzz_tests;
+#[cfg(test)]
+mod rotary_tests;
 #[cfg(test)]
 mod test_support;

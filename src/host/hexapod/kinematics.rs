@@ -29,6 +29,14 @@ impl Pose {
         [x, y, z, a, b, c]
     }
 
+    /// X, Y, Z in mm and A, B, C in degrees: the units of a
+    /// [`MotionSample`](super::card::MotionSample).
+    pub fn coordinates_degrees(&self) -> [f64; 6] {
+        let [x, y, z] = self.position;
+        let [a, b, c] = self.angles;
+        [x, y, z, a, b, c]
+    }
+
     /// The pose of [`Pose::coordinates`].
     pub fn from_coordinates(q: [f64; 6]) -> Self {
         Pose {

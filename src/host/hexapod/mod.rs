@@ -16,7 +16,8 @@
 //! | [`check_pose`] | a pose the machine can take: inside the workspace, legs within stroke, not near a singularity |
 //! | [`leg_inertia`], [`joint_inertia`] | the platform's inertia seen by each leg, Λ = J⁻ᵀ M J⁻¹ ([`PlatformInertia`]): the pose-dependent load the gains are scheduled on |
 //! | [`PeriodPoint`] | one period's pose, twist and acceleration as the 19 words the control DSP writes to every motor DSP through `parallel_card` |
-//! | [`card`] | the card run by its DSPs: control DSP, motor DSPs, leg plants, [`card::run_card`] |
+//! | [`card`] | the card run by its DSPs: control DSP, motor DSPs, leg plants, [`card::run_card`]; the Cartesian planner [`card::PosePlan`] |
+//! | [`simulate`] | `simulate PROGRAM --kinematics hexapod`: a G-code program in X Y Z A B C on the card, scheduled and fixed gains |
 //!
 //! ## Accuracy and bad input
 //! - [`forward`] stops when every leg is within 1e-9 mm of its length; on
@@ -34,9 +35,10 @@
 pub mod card;
 mod commands;
 mod dynamics;
-mod geometry;
+pub mod geometry;
 mod kinematics;
 mod linear;
+pub mod simulate;
 
 pub use commands::{CommandError, PeriodPoint, HEADER_MARK, POINTS_PER_FIFO, WORDS};
 pub use dynamics::{joint_inertia, leg_inertia, PlatformInertia};

@@ -42,12 +42,14 @@
 mod bus;
 mod control_dsp;
 mod motor_dsp;
+mod program;
 mod run;
 mod trajectory;
 
 pub use bus::{Access, BusAgent, BusPins};
 pub use control_dsp::{ControlDsp, Underrun};
 pub use motor_dsp::{GainSchedule, MotorDsp, MotorDspError, MotorDspSettings};
+pub use program::{PlanError, PoseLimits, PosePlan};
 pub use run::{run_card, CardError, CardRun, CardSettings, LegPlant};
 pub use trajectory::{CartesianMotion, Helix, MotionSample};
 

@@ -9,7 +9,7 @@ use crate::host::servo::{FollowingError, ServoError};
 use crate::sim::{quadrature_state, stepper, Ad669Bank, Backend, ServoMotor, SimError};
 
 use super::super::{
-    check_pose, forward, inverse, leg_inertia, CommandError, ForwardLimits, PoseError,
+    check_pose, forward, inverse, leg_inertia, CommandError, ForwardLimits, Pose, PoseError,
 };
 use super::control_dsp::{ControlDsp, Underrun};
 use super::motor_dsp::{MotorDsp, MotorDspError, MotorDspSettings};
@@ -142,6 +142,9 @@ pub struct CardRun {
     pub saturated: u64,
     /// Each period's leg errors, commanded minus actual at the tick, counts.
     pub error_trace: Vec<[f64; JOINTS]>,
+    /// The platform's pose at each tick, by the forward kinematics of the
+    /// legs' encoder counts (the previous one where it did not converge).
+    pub pose_trace: Vec<Pose>,
 }
 
 /// Control DSP writes per period: a point to each slave and SYNC, and the
@@ -229,6 +232,7 @@ pub fn run_card(
         .prime(&points[0], settings.encoder_filter)
         .map_err(|source| CardError::Command { period: 0, source })?;
     let mut error_trace = Vec::new();
+    let mut pose_trace = Vec::new();
     loop {
         // The first tick once the priming writes are done; then one a period.
         if tick_at == u64::MAX && control.bus.idle() && clock > 2 {
@@ -304,6 +308,7 @@ pub fn run_card(
             if let Ok(f) = forward(geometry, &lengths, &plant_pose, &ForwardLimits::default()) {
                 plant_pose = f.pose;
             }
+            pose_trace.push(plant_pose);
             if let (Some(now), Some(home_load)) = (
                 leg_inertia(geometry, &plant_pose, &settings.motor.inertia),
                 home_load,
@@ -354,5 +359,6 @@ pub fn run_card(
         motor_error: motors.iter().find_map(|m| m.error.clone()),
         saturated: motors.iter().map(|m| m.saturated).sum(),
         error_trace,
+        pose_trace,
     })
 }
