@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use motion_hdl::export::{catalog, write_export, ExportDirs};
+use motion_hdl::host::gcode::{Ignored, Message};
 use motion_hdl::host::hexapod::simulate::{schedule_name, simulate_hexapod, HexapodOptions};
 use motion_hdl::host::hexapod::Geometry;
 use motion_hdl::host::simulation::{simulate, InputFormat, SimulationOptions, Trip};
@@ -207,6 +208,32 @@ fn main() -> ExitCode {
     }
 }
 
+/// Reads `file` and parses it with `parse`; either error names the file.
+fn read_parsed<T, E: std::fmt::Display>(
+    file: &std::path::Path,
+    parse: impl Fn(&str) -> Result<T, E>,
+) -> Result<T, String> {
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+    parse(&text).map_err(|e| format!("{}: {e}", file.display()))
+}
+
+/// Prints the words a G-code program ignored and its active comments.
+fn print_program_notes(ignored: &[Ignored], messages: &[Message]) {
+    for ignored in ignored {
+        println!(
+            "ignored    {} on line {} ({}: does not change the motion)",
+            ignored.word, ignored.line, ignored.what
+        );
+    }
+    for message in messages {
+        println!(
+            "message    line {} ({}): {}",
+            message.line, message.kind, message.text
+        );
+    }
+}
+
 /// `simulate --kinematics hexapod`'s own options.
 struct HexapodCli {
     geometry: Option<PathBuf>,
@@ -228,35 +255,26 @@ fn simulate_hexapod_cli(program: &std::path::Path, cli: HexapodCli) -> Result<()
     } = cli;
     let mut options = HexapodOptions::default();
     if let Some(ms) = drive_lag_ms {
-        if !(ms.is_finite() && ms > 0.0) {
-            return Err(format!("--drive-lag-ms must be above 0, not {ms}"));
+        // Below a tenth of a ms the plant's sub-steps per clock explode;
+        // above a second no drive is a velocity loop.
+        if !(0.1..=1000.0).contains(&ms) {
+            return Err(format!("--drive-lag-ms must be from 0.1 to 1000, not {ms}"));
         }
         options.card.plant.time_constant_s = ms / 1000.0;
         options.card.motor.time_constant_s = ms / 1000.0;
     }
     if let Some(file) = geometry {
-        let text = std::fs::read_to_string(&file)
-            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-        options.geometry =
-            Geometry::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+        options.geometry = read_parsed(&file, Geometry::parse)?;
     }
-    if let Some(file) = tools {
-        let text = std::fs::read_to_string(&file)
-            .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-        options.tools =
-            Some(ToolTable::parse(&text).map_err(|e| format!("{}: {e}", file.display()))?);
-    }
+    options.tools = tools
+        .map(|file| read_parsed(&file, ToolTable::parse))
+        .transpose()?;
     if let Some(name) = backend {
         options.card.backend = Backend::parse(&name).map_err(|e| e.to_string())?;
     }
     options.out_dir = Some(out_dir);
     let report = simulate_hexapod(program, &options)?;
-    for ignored in &report.ignored {
-        println!(
-            "ignored    {} on line {} ({}: does not change the motion)",
-            ignored.word, ignored.line, ignored.what
-        );
-    }
+    print_program_notes(&report.ignored, &report.messages);
     for line in report.summary() {
         println!("{line}");
     }
@@ -310,8 +328,21 @@ fn run(cli: Cli) -> Result<(), String> {
                         "{name} applies to the 3-axis controller, not to --kinematics hexapod"
                     ));
                 }
-                if format.is_some_and(|f| InputFormat::parse(&f) != Ok(InputFormat::Gcode)) {
-                    return Err("--kinematics hexapod runs G-code programs only".into());
+                let format = format.map(|f| InputFormat::parse(&f)).transpose()?;
+                match format.or_else(|| InputFormat::from_extension(&path_file)) {
+                    Some(InputFormat::Gcode) => {}
+                    Some(InputFormat::Path) => {
+                        return Err(format!(
+                            "{}: --kinematics hexapod runs G-code programs, not path files",
+                            path_file.display()
+                        ))
+                    }
+                    None => {
+                        return Err(format!(
+                            "{}: unknown file type: G-code ends in .nc, .ngc, .gcode or .tap (or give --format gcode)",
+                            path_file.display()
+                        ))
+                    }
                 }
                 let hexapod = HexapodCli {
                     geometry,
@@ -375,18 +406,10 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             let format = format.map(|f| InputFormat::parse(&f)).transpose()?;
             let machine = machine
-                .map(|file| {
-                    let text = std::fs::read_to_string(&file)
-                        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-                    MachineSettings::parse(&text).map_err(|e| format!("{}: {e}", file.display()))
-                })
+                .map(|file| read_parsed(&file, MachineSettings::parse))
                 .transpose()?;
             let tools = tools
-                .map(|file| {
-                    let text = std::fs::read_to_string(&file)
-                        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-                    ToolTable::parse(&text).map_err(|e| format!("{}: {e}", file.display()))
-                })
+                .map(|file| read_parsed(&file, ToolTable::parse))
                 .transpose()?;
             let options = SimulationOptions {
                 format,
@@ -404,18 +427,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 trips,
             };
             let r = simulate(&path_file, &options)?;
-            for ignored in &r.ignored {
-                println!(
-                    "ignored    {} on line {} ({}: does not change the motion)",
-                    ignored.word, ignored.line, ignored.what
-                );
-            }
-            for message in &r.messages {
-                println!(
-                    "message    line {} ({}): {}",
-                    message.line, message.kind, message.text
-                );
-            }
+            print_program_notes(&r.ignored, &r.messages);
             if let Some(ending) = &r.ending {
                 println!("end        {ending}");
             }

@@ -83,6 +83,18 @@ pub struct Move {
     pub line: usize,
 }
 
+/// X Y Z travel below this many machine units with a change of A, B or C
+/// is a move of the angles alone (its F is degrees per minute): a sum of
+/// incremental moves can leave 1e-17 mm where the program meant none.
+pub const ANGLES_ONLY_TRAVEL: f64 = 1e-7;
+
+/// Whether a move from `start` to `end` (X Y Z) moves the angles alone,
+/// its travel below [`ANGLES_ONLY_TRAVEL`].
+pub fn moves_angles_only(start: [f64; 3], end: [f64; 3]) -> bool {
+    let d: f64 = (0..3).map(|k| (end[k] - start[k]).powi(2)).sum();
+    d.sqrt() < ANGLES_ONLY_TRAVEL
+}
+
 /// One item of a toolpath.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Item {

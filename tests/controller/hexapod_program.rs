@@ -172,6 +172,39 @@ fn bad_input_is_named_before_any_motion() {
         e.contains("tight.hex") && e.contains("stroke 900 800"),
         "{e}"
     );
+    // A program too long, a path file, an unknown format, a drive lag out
+    // of range.
+    assert!(run("G0 X1\nG4 P20000").contains("job.ngc: line 2: the program would run 2.000e4 s"));
+    let path = dir.path().join("square.path");
+    std::fs::write(&path, "line 1 0 0\n").unwrap();
+    let e = cli(&[
+        "simulate",
+        path.to_str().unwrap(),
+        "--kinematics",
+        "hexapod",
+    ]);
+    assert!(e.contains("runs G-code programs, not path files"), "{e}");
+    let e = cli(&[
+        "simulate",
+        job.to_str().unwrap(),
+        "--kinematics",
+        "hexapod",
+        "--format",
+        "foo",
+    ]);
+    assert!(e.contains("unknown format `foo`"), "{e}");
+    let e = cli(&[
+        "simulate",
+        job.to_str().unwrap(),
+        "--kinematics",
+        "hexapod",
+        "--drive-lag-ms",
+        "0.000001",
+    ]);
+    assert!(
+        e.contains("--drive-lag-ms must be from 0.1 to 1000, not 0.000001"),
+        "{e}"
+    );
     // Options of the 3-axis controller, and a geometry without hexapod.
     let e = cli(&[
         "simulate",

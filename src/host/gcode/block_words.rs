@@ -388,9 +388,6 @@ pub(super) struct Words<'a> {
     /// A, B, C: the rotary axes, degrees (accepted by the interpreter only
     /// on a machine that has them, [`super::Setup::rotary_axes`]).
     pub(super) rotary: [Option<&'a Word>; 3],
-    /// U, V or W: an axis no machine here has (refused by the interpreter,
-    /// which knows which axes the machine has).
-    pub(super) missing_axis: Option<&'a Word>,
     /// `@` (distance) and `^` (angle, degrees): X and Y in polar
     /// coordinates about the work origin.
     pub(super) polar: [Option<&'a Word>; 2],
@@ -413,7 +410,9 @@ pub(super) struct Words<'a> {
 }
 
 impl<'a> Words<'a> {
-    pub(super) fn read(block: &'a Block) -> Result<Self, String> {
+    /// The block's words on a machine with X, Y, Z and, with
+    /// `rotary_axes`, A, B, C.
+    pub(super) fn read(block: &'a Block, rotary_axes: bool) -> Result<Self, String> {
         let mut words = Words::default();
         let mut groups: Vec<(&'static str, &Word)> = Vec::new();
         let mut letters = HashSet::new();
@@ -508,7 +507,9 @@ impl<'a> Words<'a> {
                     }
                     let slot = match letter {
                         'X' | 'Y' | 'Z' => &mut words.axes[axis_index(letter, 'X')],
-                        'A' | 'B' | 'C' => &mut words.rotary[axis_index(letter, 'A')],
+                        'A' | 'B' | 'C' if rotary_axes => {
+                            &mut words.rotary[axis_index(letter, 'A')]
+                        }
                         '@' => &mut words.polar[0],
                         '^' => &mut words.polar[1],
                         'I' | 'J' | 'K' => &mut words.offsets[axis_index(letter, 'I')],
@@ -526,7 +527,16 @@ impl<'a> Words<'a> {
                             words.ignored.push((word, "spindle speed", "S".to_string()));
                             continue;
                         }
-                        'U' | 'V' | 'W' => &mut words.missing_axis,
+                        'A' | 'B' | 'C' | 'U' | 'V' | 'W' => {
+                            let have = if rotary_axes {
+                                "X, Y, Z, A, B and C only"
+                            } else {
+                                "X, Y and Z only"
+                            };
+                            return Err(format!(
+                                "{name} moves an axis this machine does not have ({have})"
+                            ));
+                        }
                         'E' => {
                             return Err(format!(
                                 "{name} drives an extruder (RepRap), an axis this machine does not have"

@@ -18,7 +18,7 @@ use crate::host::tool_table::ToolTable;
 // An arc whose end is within SAME_POINT of its start, in its plane, is a
 // full circle (and its end is set to the start exactly).
 use crate::host::geometry::SAME_POINT;
-use crate::host::toolpath::{Arc, Item, Move, MoveKind, Plane, Toolpath};
+use crate::host::toolpath::{moves_angles_only, Arc, Item, Move, MoveKind, Plane, Toolpath};
 
 /// Positions (ends and arc centers) beyond this many mm from zero are
 /// refused: far outside any machine, and where f64 mm keep too few
@@ -342,7 +342,7 @@ impl State {
 
     /// One block, in RS-274's order of execution.
     fn apply(&mut self, block: &Block) -> Result<(), String> {
-        let mut words = Words::read(block)?;
+        let mut words = Words::read(block, self.rotary_axes)?;
         if let Some(number) = words.program_number {
             // A Fanuc- or Haas-style post's program number: accepted only
             // before the program has moved, where it can name nothing else.
@@ -353,7 +353,6 @@ impl State {
                 ));
             }
         }
-        self.check_axes(block, &words)?;
         let motion = self.motion_to_run(&words)?;
         self.check_rotary_motion(&words, motion)?;
         let g10 = matches!(words.non_modal, Some((_, NonModal::SetOrigin)));
@@ -426,8 +425,16 @@ impl State {
                     f.name()
                 ));
             }
-            self.feed = Some(f.value * self.units.mm_per_unit() / 60.0);
-            self.feed_degrees = Some(f.value / 60.0);
+            let (mm_per_s, degrees_per_s) =
+                (f.value * self.units.mm_per_unit() / 60.0, f.value / 60.0);
+            if !(mm_per_s > 0.0 && degrees_per_s > 0.0) {
+                return Err(format!(
+                    "{} is not a feed rate: it must be above zero",
+                    f.name()
+                ));
+            }
+            self.feed = Some(mm_per_s);
+            self.feed_degrees = Some(degrees_per_s);
         }
         if let Some(units) = words.units.filter(|u| *u != self.units) {
             self.units = units;
@@ -630,7 +637,7 @@ impl State {
         let start_mm = self.position_mm;
         let offset = if machine { [0.0; 3] } else { self.offset() };
         let (mut end, mut end_mm) = self.target(words, offset)?;
-        let angles = self.target_angles(words);
+        let angles = self.target_angles(words)?;
         if compensating {
             return match motion {
                 Motion::Rapid | Motion::Line => self.compensated_straight(end, end_mm, feed, line),
@@ -650,7 +657,7 @@ impl State {
             self.position = end;
             return Ok(());
         } else {
-            if end_mm == start_mm {
+            if moves_angles_only(start_mm, end_mm) && angles != self.angles {
                 // A and B and C alone: F is degrees per minute.
                 feed = feed.and(self.feed_degrees);
             }
@@ -707,40 +714,25 @@ impl State {
     /// The block's A, B, C as an end, degrees: absolute or added to the
     /// current angles, as G90 or G91 says; an axis not written keeps its
     /// angle.
-    fn target_angles(&self, words: &Words) -> [f64; 3] {
-        std::array::from_fn(|k| match words.rotary[k] {
-            Some(w) if self.incremental => self.angles[k] + w.value,
-            Some(w) => w.value,
-            None => self.angles[k],
-        })
-    }
-
-    /// U, V and W, and A, B and C on a machine without them, are refused,
-    /// naming the first as written.
-    fn check_axes(&self, block: &Block, words: &Words) -> Result<(), String> {
-        let rotary = words.rotary.iter().any(Option::is_some);
-        if words.missing_axis.is_none() && (self.rotary_axes || !rotary) {
-            return Ok(());
+    fn target_angles(&self, words: &Words) -> Result<[f64; 3], String> {
+        let mut angles = self.angles;
+        for (k, word) in words.rotary.iter().enumerate() {
+            if let Some(w) = word {
+                angles[k] = if self.incremental {
+                    angles[k] + w.value
+                } else {
+                    w.value
+                };
+                if angles[k].abs() > POSITION_LIMIT_MM {
+                    return Err(format!(
+                        "the {} axis would be at {:.4} degrees, beyond ±{POSITION_LIMIT_MM} degrees",
+                        ['A', 'B', 'C'][k],
+                        angles[k]
+                    ));
+                }
+            }
         }
-        let missing: &[char] = if self.rotary_axes {
-            &['U', 'V', 'W']
-        } else {
-            &['A', 'B', 'C', 'U', 'V', 'W']
-        };
-        let word = block
-            .words
-            .iter()
-            .find(|w| missing.contains(&w.letter))
-            .expect("a missing axis's word");
-        let have = if self.rotary_axes {
-            "X, Y, Z, A, B and C only"
-        } else {
-            "X, Y and Z only"
-        };
-        Err(format!(
-            "{} moves an axis this machine does not have ({have})",
-            word.name()
-        ))
+        Ok(angles)
     }
 
     /// A, B and C move with G0 to G3 only, and not while cutter
@@ -748,6 +740,13 @@ impl State {
     fn check_rotary_motion(&self, words: &Words, motion: Option<Motion>) -> Result<(), String> {
         let Some(word) = words.rotary.iter().flatten().next() else {
             return Ok(());
+        };
+        // Compensation is on for the block's motion when G41 or G42 turns
+        // it on, or it was on and no G40 turns it off.
+        let comp_after_block = match words.cutter_comp {
+            Some((_, CutterComp::Off)) => false,
+            Some(_) => true,
+            None => self.comp.is_some(),
         };
         let taker = words
             .non_modal
@@ -763,7 +762,7 @@ impl State {
                 word.name(),
                 c.name()
             )),
-            Some(_) if self.comp.is_some() || words.cutter_comp.is_some() => Err(format!(
+            Some(_) if comp_after_block => Err(format!(
                 "{}: the rotary axes cannot move while cutter radius compensation is on (G40 first)",
                 word.name()
             )),

@@ -85,7 +85,7 @@
 //! | G90, G91 | X, Y, Z absolute or incremental |
 //! | G90.1, G91.1 | I, J, K absolute positions or offsets from the arc's start |
 //! | X Y Z | the end, in the current units; an axis not written keeps its position |
-//! | A B C | only on a machine with rotary axes ([`Setup::rotary_axes`], the hexapod): the end angles in degrees (any units mode), absolute or G91 incremental, on G0 to G3 only (G53 too); they move linearly along the move ([`Move::angles`](crate::host::toolpath::Move::angles)); no offsets apply to them; a move of A B C alone runs at F degrees per minute |
+//! | A B C | only on a machine with rotary axes ([`Setup::rotary_axes`], the hexapod): the end angles in degrees (any units mode), absolute or G91 incremental, on G0 to G3 only (G53 too); they move linearly along the move ([`Move::angles`](crate::host::toolpath::Move::angles)); no offsets apply to them; a move of A B C alone (X Y Z travel below [`ANGLES_ONLY_TRAVEL`](crate::host::toolpath::ANGLES_ONLY_TRAVEL), 1e-7 mm) runs at F degrees per minute; an angle beyond ±10^6 degrees is an error |
 //! | F | feed, units per minute, > 0, modal; stored as mm/s (F600 in G21 is 10 mm/s) |
 //! | M2, M30 | end of program ([`Program::end`]) |
 //! | G54 to G59, G59.1 to G59.3 | select coordinate system 1 to 9; the active one at the start is #5220 (1, G54, by default) |

@@ -115,3 +115,40 @@ fn a_three_axis_machine_refuses_them_as_before() {
         );
     }
 }
+
+#[test]
+fn g40_beside_the_angles_turns_compensation_off_first() {
+    let m = moves("G40 G1 X1 A1 F600");
+    assert_eq!(m[0].angles, [1.0, 0.0, 0.0]);
+    let m = moves("G41.1 D2 G1 X10 F100\nG1 Y10\nG40 G1 X0 A5");
+    assert_eq!(m.last().unwrap().angles, [5.0, 0.0, 0.0]);
+}
+
+/// X Y Z travel left by a sum of increments (5.6e-17 mm) is no travel: the
+/// move is of the angles alone, its F degrees a minute.
+#[test]
+fn float_dust_in_x_y_z_does_not_change_the_feed_rule() {
+    let m = moves("G91 G1 X0.1 F100\nG1 X0.2\nG90 G1 X0.3 A15");
+    let last = m.last().unwrap();
+    // The dust is there: 0.1 + 0.2 is not 0.3.
+    assert!(last.end[0] != m[1].end[0] && (last.end[0] - m[1].end[0]).abs() < 1e-15);
+    assert_eq!(last.feed, Some(100.0 / 60.0));
+}
+
+#[test]
+fn angles_out_of_range_are_refused() {
+    assert_eq!(
+        error_with("G0 A10000000", &hexapod()),
+        "line 1: the A axis would be at 10000000.0000 degrees, beyond ±1000000 degrees"
+    );
+}
+
+/// On a 3-axis machine the rotary word is named before a later bad word,
+/// as when the reader refused it.
+#[test]
+fn a_three_axis_machine_names_the_rotary_word_first() {
+    assert_eq!(
+        error("G0 A5 E1"),
+        "line 1: A5 moves an axis this machine does not have (X, Y and Z only)"
+    );
+}

@@ -37,6 +37,14 @@ impl Pose {
         [x, y, z, a, b, c]
     }
 
+    /// The pose of [`Pose::coordinates_degrees`].
+    pub fn from_coordinates_degrees(q: [f64; 6]) -> Self {
+        Pose {
+            position: [q[0], q[1], q[2]],
+            angles: [q[3], q[4], q[5]],
+        }
+    }
+
     /// The pose of [`Pose::coordinates`].
     pub fn from_coordinates(q: [f64; 6]) -> Self {
         Pose {

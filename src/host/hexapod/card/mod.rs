@@ -49,7 +49,7 @@ mod trajectory;
 pub use bus::{Access, BusAgent, BusPins};
 pub use control_dsp::{ControlDsp, Underrun};
 pub use motor_dsp::{GainSchedule, MotorDsp, MotorDspError, MotorDspSettings};
-pub use program::{PlanError, PoseLimits, PosePlan};
+pub use program::{PlanError, PoseLimits, PosePlan, MAX_PROGRAM_SECONDS};
 pub use run::{run_card, CardError, CardRun, CardSettings, LegPlant};
 pub use trajectory::{CartesianMotion, Helix, MotionSample};
 

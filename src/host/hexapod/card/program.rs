@@ -21,18 +21,21 @@
 //!   speed, on an arc the centripetal acceleration (v²/r at most half the
 //!   acceleration limit), and every leg's speed to
 //!   [`PoseLimits::leg_speed_share`] of the geometry's `leg_speed`,
-//!   sampled at 33 points of the move.
+//!   sampled at 33 points of a line and 33 per half turn of an arc.
+//! - **Length.** A program of more than [`MAX_PROGRAM_SECONDS`] (a long
+//!   dwell, or a feed so low a move would take that long) is refused,
+//!   naming the line where it passes the limit.
 //!
 //! ## Checks before any motion ([`PosePlan::check`])
 //! Every period's pose is checked with [`check_pose`] (workspace, stroke,
 //! condition number) and every leg's speed against `leg_speed` (the full
-//! limit, so the 33-point sampling above has margin); a failure is a
+//! limit, so the sampling above has margin); a failure is a
 //! [`PlanError`] naming the program line.
 
 use std::f64::consts::PI;
 
 use crate::host::geometry::ArcGeometry;
-use crate::host::toolpath::{Item, MoveKind, Toolpath};
+use crate::host::toolpath::{moves_angles_only, Item, MoveKind, Toolpath};
 
 use super::super::{check_pose, pose_jacobian, Geometry, Pose, PoseError};
 use super::trajectory::{CartesianMotion, MotionSample};
@@ -116,10 +119,23 @@ pub enum PlanError {
         /// `leg_speed`, mm/s.
         limit: f64,
     },
+    /// A program longer than [`MAX_PROGRAM_SECONDS`] (a dwell, or a feed
+    /// so slow its move would take that long).
+    #[error("line {line}: the program would run {seconds:.3e} s by here, more than {MAX_PROGRAM_SECONDS} s (F too low, or a long dwell?)")]
+    TooLong {
+        /// The program line.
+        line: usize,
+        /// The program's time up to the end of that line.
+        seconds: f64,
+    },
     /// A [`PoseLimits`] value.
     #[error("planner limits: {0}")]
     Limits(String),
 }
+
+/// The longest program planned: 10^7 periods of 1 ms (the 3-axis
+/// simulation's [`MAX_PERIODS`](crate::host::simulation::MAX_PERIODS)).
+pub const MAX_PROGRAM_SECONDS: f64 = 10_000.0;
 
 /// The shape of one planned item, in pose coordinates (mm, degrees).
 #[derive(Clone, Copy, Debug)]
@@ -194,14 +210,16 @@ impl Planned {
             let (sin, cos) = (w * tau).sin_cos();
             (v * (tau - sin / w) / 2.0, v * (1.0 - cos) / 2.0, a * sin)
         };
-        let tau = tau.clamp(0.0, self.duration);
-        if tau < ramp {
-            up(tau)
-        } else if tau <= self.duration - ramp {
-            (v * ramp / 2.0 + v * (tau - ramp), v, 0.0)
-        } else {
-            let (s, ds, dds) = up(self.duration - tau);
+        let (tau, rest) = (tau.max(0.0), self.duration - tau);
+        if rest <= 0.0 {
+            (l, 0.0, 0.0)
+        } else if rest < ramp {
+            let (s, ds, dds) = up(rest);
             (l - s, ds, -dds)
+        } else if tau < ramp {
+            up(tau)
+        } else {
+            (v * ramp / 2.0 + v * (tau - ramp), v, 0.0)
         }
     }
 
@@ -211,10 +229,7 @@ impl Planned {
         let (u, du, ddu) = ((s / l).clamp(0.0, 1.0), ds / l, dds / l);
         let [q, d1, d2] = self.shape.at(u);
         MotionSample {
-            pose: Pose {
-                position: [q[0], q[1], q[2]],
-                angles: [q[3], q[4], q[5]],
-            },
+            pose: Pose::from_coordinates_degrees(q),
             velocity: std::array::from_fn(|k| d1[k] * du),
             acceleration: std::array::from_fn(|k| d2[k] * du * du + d1[k] * ddu),
         }
@@ -239,16 +254,9 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
-fn pose_of(q: &[f64; 6]) -> Pose {
-    Pose {
-        position: [q[0], q[1], q[2]],
-        angles: [q[3], q[4], q[5]],
-    }
-}
-
 /// Leg rates for pose-coordinate rates `dq` (mm/s, degrees/s) at `q`.
 fn leg_rates(geometry: &Geometry, q: &[f64; 6], dq: &[f64; 6]) -> [f64; 6] {
-    let j = pose_jacobian(geometry, &pose_of(q));
+    let j = pose_jacobian(geometry, &Pose::from_coordinates_degrees(*q));
     let rad: [f64; 6] = std::array::from_fn(|k| if k < 3 { dq[k] } else { dq[k] * PI / 180.0 });
     std::array::from_fn(|i| (0..6).map(|k| j[i][k] * rad[k]).sum())
 }
@@ -291,6 +299,12 @@ impl PosePlan {
             };
             let planned = Self::plan_item(line, shape, feed, seconds, time, geometry, limits)?;
             time += planned.duration;
+            if time.is_nan() || time > MAX_PROGRAM_SECONDS {
+                return Err(PlanError::TooLong {
+                    line,
+                    seconds: time,
+                });
+            }
             items.push(planned);
         }
         Ok(Self {
@@ -321,8 +335,23 @@ impl PosePlan {
         let [_, d0, _] = shape.at(0.0);
         let (travel, turn, min_radius) = match shape {
             Shape::Rest { .. } => return Ok(rest),
-            Shape::Line { .. } => (norm(&d0[..3]), norm(&d0[3..]), f64::INFINITY),
+            Shape::Line { start, end } => {
+                let travel = if moves_angles_only(
+                    [start[0], start[1], start[2]],
+                    [end[0], end[1], end[2]],
+                ) {
+                    0.0
+                } else {
+                    norm(&d0[..3])
+                };
+                (travel, norm(&d0[3..]), f64::INFINITY)
+            }
             Shape::Arc { arc, .. } => (arc.length(), norm(&d0[3..]), arc.min_radius()),
+        };
+        // The samples of the legs' speed: 33 a half turn of an arc.
+        let samples = match shape {
+            Shape::Arc { arc, .. } => 32 * (arc.sweep.abs() / PI).ceil().max(1.0) as usize,
+            _ => 32,
         };
         let (length, mut speed, mut acceleration) = if travel > 0.0 {
             let mut v = limits.max_velocity.min(feed.unwrap_or(f64::INFINITY));
@@ -353,10 +382,10 @@ impl PosePlan {
         let mut per_length: f64 = 0.0;
         // The end first: a programmed end the machine cannot take is named
         // as written, before any pose on the way to it.
-        for k in std::iter::once(32).chain(0..32) {
-            let u = k as f64 / 32.0;
+        for k in std::iter::once(samples).chain(0..samples) {
+            let u = k as f64 / samples as f64;
             let [q, d1, _] = shape.at(u);
-            check_pose(geometry, &pose_of(&q))
+            check_pose(geometry, &Pose::from_coordinates_degrees(q))
                 .map_err(|source| PlanError::Pose { line, source })?;
             let rates = leg_rates(geometry, &q, &d1);
             per_length = rates

@@ -20,15 +20,16 @@ fn plan(program: &str) -> PosePlan {
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
-const MIXED: &str = "G0 X20 Z520\nG1 X20 Y20 A3 F1200\nG3 X-20 Y20 I-20 J0 B-4\n\
+// The G3 is a spiral: 20 mm from its center at the start, 20.01 at the end.
+const MIXED: &str = "G0 X20 Z520\nG1 X20 Y20 A3 F1200\nG3 X-20.01 Y20 I-20 J0 B-4\n\
                      G1 A0 B0 C5 F600\nG4 P0.1\nG2 X20 Y20 Z530 I20 J0 C0 F900\nG0 X0 Y0 Z508";
 
 fn coords(s: &MotionSample) -> [f64; 6] {
     s.pose.coordinates_degrees()
 }
 
-/// The velocity is the pose's derivative everywhere; the acceleration the
-/// velocity's wherever the profile does not switch phase in between.
+/// The velocity is the pose's derivative everywhere, and the acceleration
+/// the velocity's (it is continuous: the ramps are sines).
 #[test]
 fn velocity_and_acceleration_are_the_derivatives_of_the_pose() {
     let p = plan(MIXED);
@@ -45,19 +46,19 @@ fn velocity_and_acceleration_are_the_derivatives_of_the_pose() {
                 "t {t} axis {k}: {v} against {}",
                 now.velocity[k]
             );
-            let jump = (after.acceleration[k] - before.acceleration[k]).abs();
-            if jump < 1e-3 {
-                let a = (after.velocity[k] - before.velocity[k]) / (2.0 * h);
-                assert!(
-                    (a - now.acceleration[k]).abs() < 1e-2 * (1.0 + a.abs()),
-                    "t {t} axis {k}: {a} against {}",
-                    now.acceleration[k]
-                );
+            let a = (after.velocity[k] - before.velocity[k]) / (2.0 * h);
+            assert!(
+                (a - now.acceleration[k]).abs() < 1e-2 * (1.0 + a.abs()),
+                "t {t} axis {k}: {a} against {}",
+                now.acceleration[k]
+            );
+            if now.acceleration[k].abs() > 1.0 {
                 checked += 1;
             }
         }
     }
-    assert!(checked > 20_000, "{checked}");
+    // The accelerating samples (ramps, arcs) are most of the checks.
+    assert!(checked > 5_000, "{checked}");
 }
 
 /// It starts at home at rest, stops at every move's end, and ends at the
@@ -71,9 +72,12 @@ fn it_stops_at_every_move_and_ends_at_the_program_end() {
     assert_eq!(p.at(0.0).pose, g.home);
     let mut t = 0.0;
     for item in &p.items {
+        assert!((item.start_time - t).abs() < 1e-12);
         t += item.duration;
-        let s = p.at(t);
+        // Each item's own end, not the next one's start.
+        let s = item.sample(t);
         assert!(s.velocity.iter().all(|v| v.abs() < 1e-9), "{t}: {s:?}");
+        assert!(s.acceleration.iter().all(|v| v.abs() < 1e-6), "{t}: {s:?}");
     }
     assert!((t - p.duration()).abs() < 1e-9);
     assert_eq!(p.end_pose().position, path.end());
@@ -192,6 +196,25 @@ fn a_pose_the_machine_cannot_take_names_its_line() {
         arc.starts_with("line 2: X -2") && arc.ends_with("is outside the workspace, -200 to 200"),
         "{arc}"
     );
+}
+
+/// A program that would run longer than the limit is refused naming the
+/// line, and so is a feed so low its move never ends; a crawl still ends at
+/// rest exactly.
+#[test]
+fn a_program_too_long_is_refused_naming_its_line() {
+    let g = Geometry::default();
+    let refused = |program: &str| {
+        PosePlan::plan(&toolpath(program, &g), &g, &PoseLimits::default())
+            .unwrap_err()
+            .to_string()
+    };
+    assert!(refused("G0 X1\nG4 P20000").starts_with("line 2: the program would run 2.000e4 s"));
+    assert!(refused("G1 X1 F0.000001").starts_with("line 1: the program would run"));
+    let p = plan("G1 X1 F0.01");
+    let end = p.at(p.duration());
+    assert!(end.velocity.iter().all(|v| *v == 0.0), "{end:?}");
+    assert_eq!(end.pose.position[0], 1.0);
 }
 
 /// The period check holds every leg to the geometry's speed, naming the
