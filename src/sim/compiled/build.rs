@@ -85,6 +85,12 @@ pub(super) fn library(
         return Ok(lib);
     }
     create_root(&root)?;
+    // One build per library: a test that needs it while another builds it
+    // waits, then loads it (two at once cost both cores the same g++ run).
+    let _building = lock(&root.join(format!("{key}.lock")))?;
+    if lib.exists() {
+        return Ok(lib);
+    }
     let runtime = runtime_objects(&root, &verilator, &compiler, trace)?;
     // Built in a private folder, then renamed into place: a test running
     // beside this one sees either no library or a whole one.
@@ -262,6 +268,19 @@ fn create_root(root: &Path) -> Result<(), CompiledError> {
         .map_err(|e| io(root, e))
 }
 
+/// An exclusive lock on `path` (created if missing), held until the file
+/// is dropped; the operating system releases it if the process dies.
+fn lock(path: &Path) -> Result<std::fs::File, CompiledError> {
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(path)
+        .map_err(|e| io(path, e))?;
+    file.lock().map_err(|e| io(path, e))?;
+    Ok(file)
+}
+
 /// Verilator's runtime (`verilated.cpp` and friends), compiled once per
 /// Verilator and compiler version.
 fn runtime_objects(
@@ -279,6 +298,7 @@ fn runtime_objects(
     CXX_FLAGS.hash(&mut hasher);
     let dir = root.join(format!("runtime-{:016x}", hasher.finish()));
     std::fs::create_dir_all(&dir).map_err(|e| io(&dir, e))?;
+    let _building = lock(&dir.join("build.lock"))?;
     let include = verilator_include()?;
     let mut objects = Vec::new();
     for name in names {
