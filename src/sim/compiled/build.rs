@@ -60,6 +60,9 @@ pub(super) fn library(
     layout: &Layout,
     trace: bool,
 ) -> Result<PathBuf, CompiledError> {
+    // The exported file and the Verilog generated now differ only in the
+    // export's header comment: one library serves both.
+    let verilog = without_header(verilog);
     let verilator = tool_version("verilator", &["--version"])?;
     let compiler = tool_version("g++", &["--version"])?;
     let wrapper = wrapper_verilog(layout);
@@ -266,6 +269,25 @@ fn create_root(root: &Path) -> Result<(), CompiledError> {
         .mode(0o700)
         .create(root)
         .map_err(|e| io(root, e))
+}
+
+/// `verilog` without the export's wrapping: its leading comment and blank
+/// lines, and the `` `default_nettype none `` ... `` `default_nettype wire ``
+/// pair around the modules (a design that elaborates with it elaborates
+/// the same without it).
+fn without_header(verilog: &str) -> &str {
+    let mut rest = verilog;
+    while let Some(line) = rest.lines().next() {
+        let trimmed = line.trim();
+        if !(trimmed.is_empty() || trimmed.starts_with("//") || trimmed == "`default_nettype none")
+        {
+            break;
+        }
+        rest = rest[line.len()..].trim_start_matches(['\r', '\n']);
+    }
+    let rest = rest.trim_end();
+    rest.strip_suffix("`default_nettype wire")
+        .map_or(rest, str::trim_end)
 }
 
 /// An exclusive lock on `path` (created if missing), held until the file
