@@ -2,10 +2,14 @@
 //! own (through [`Harness`]) and the exported Verilog compiled by Verilator
 //! (through [`CompiledModel`]), chosen at run time.
 
+use std::any::TypeId;
+use std::collections::HashMap;
 use std::path::Path;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use super::compiled::{CompiledError, CompiledModel};
 use super::{Harness, HarnessError, VectorPorts};
+use crate::export::{module_verilog, top_ports, Port};
 
 /// The environment variable that picks the backend of tests and tools that
 /// do not pick one themselves: `rust-hdl` or `verilator`.
@@ -141,10 +145,37 @@ pub struct CompiledStepper {
 }
 
 impl CompiledStepper {
-    /// The Verilog of `block` as generated now, compiled; ports ordered as
-    /// `B`'s vectors. `trace` builds in VCD support.
-    pub fn new<B: VectorPorts>(module: &str, mut block: B, trace: bool) -> Result<Self, SimError> {
-        let model = CompiledModel::from_block(module, &mut block, trace)?;
+    /// The Verilog of `block`, compiled; ports ordered as `B`'s vectors.
+    /// `trace` builds in VCD support.
+    ///
+    /// The Verilog is generated once per process for each block type and
+    /// `module` name, from the first block given: a block's Verilog is
+    /// fixed by its type (every block of this crate is built by `Default`
+    /// from its const parameters). Generating the controller's takes about
+    /// half a second, and a test may make dozens of benches of it.
+    pub fn new<B: VectorPorts + 'static>(
+        module: &str,
+        mut block: B,
+        trace: bool,
+    ) -> Result<Self, SimError> {
+        type Generated = Arc<(String, Vec<Port>)>;
+        static GENERATED: OnceLock<Mutex<HashMap<(TypeId, String), Generated>>> = OnceLock::new();
+        let key = (TypeId::of::<B>(), module.to_string());
+        let cache = GENERATED.get_or_init(Default::default);
+        let cached = cache.lock().map(|c| c.get(&key).cloned()).ok().flatten();
+        let generated = match cached {
+            Some(generated) => generated,
+            None => {
+                let verilog = module_verilog(module, &mut block).map_err(CompiledError::from)?;
+                let generated = Arc::new((verilog, top_ports(&block)));
+                if let Ok(mut c) = cache.lock() {
+                    c.insert(key, generated.clone());
+                }
+                generated
+            }
+        };
+        let (verilog, ports) = &*generated;
+        let model = CompiledModel::from_verilog(module, verilog, "clock", ports, trace)?;
         Self::ordered::<B>(model)
     }
 

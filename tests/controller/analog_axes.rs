@@ -389,6 +389,7 @@ fn exported_servo_verilog_matches_rust_in_icarus_and_verilator() {
     crate::motion_controller::cross_simulate_exported::<false, true>(
         "motion_controller_servo",
         crate::motion_controller::SUITE_CHAOS_CLOCKS,
+        crate::motion_controller::SUITE_ICARUS_CLOCKS,
     );
 }
 

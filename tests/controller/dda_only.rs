@@ -233,5 +233,6 @@ fn exported_dda_only_verilog_matches_rust_in_icarus_and_verilator() {
     cross_simulate_exported::<false, false>(
         "motion_controller_dda",
         crate::motion_controller::SUITE_CHAOS_CLOCKS,
+        crate::motion_controller::SUITE_ICARUS_CLOCKS,
     );
 }

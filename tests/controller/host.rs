@@ -41,7 +41,9 @@ fn a_closed_50_segment_polygon_through_the_rtl_ends_exactly_at_its_start() {
     let path = Path::new([0, 0, 0], &polygon(50, 400.0), 1e7, 2e10, 2.0, period).unwrap();
     let segments = plan(&path).unwrap();
     let interpolation = interpolate(path.start, &segments, path.period);
-    let bus = RtlBus::new(Backend::from_env_or(Backend::RustHdl).unwrap(), None).unwrap();
+    // The exported Verilog, compiled (25 s on rust-hdl, whose RTL the
+    // driver meets in `an_e_stop_in_the_middle_of_a_move...`).
+    let bus = RtlBus::new(Backend::from_env_or(Backend::Verilator).unwrap(), None).unwrap();
     let mut driver = Driver::new(bus, config).unwrap();
     let report = driver.run(&interpolation.counts, |_| {}).unwrap();
     assert_eq!(report.underruns, 0, "{report:?}");
