@@ -13,7 +13,7 @@ use motion_hdl::blocks::dda_interpolator::DdaInterpolator;
 use motion_hdl::blocks::freq_divider::FreqDivider;
 use motion_hdl::blocks::motion_controller::model::ControllerInputs;
 use motion_hdl::blocks::motion_controller::registers::register_map;
-use motion_hdl::blocks::motion_controller::MotionController;
+use motion_hdl::blocks::motion_controller::MotionController3;
 use motion_hdl::blocks::quadrature_decoder::QuadratureDecoder;
 use motion_hdl::blocks::step_channel::StepChannel;
 use motion_hdl::sim::compiled::plain_loop;
@@ -22,14 +22,19 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rust_hdl::prelude::*;
 
-type Controller = MotionController<3, 4, 5, true, false>;
+type Controller = MotionController3;
 
 /// `cycles` clocks of controller traffic: firmware set-up (base tick every
 /// clock, 100-tick periods, RUN), then random bus traffic (a third of it
 /// FIFO writes of small step counts, the rest any register, written or
 /// read) and random encoder movement, as in the controller's chaos test.
 fn controller_stimulus(cycles: usize) -> Vec<Vec<u64>> {
-    let map = register_map(3, 4, true, false).unwrap();
+    let map = register_map(
+        3,
+        4,
+        motion_hdl::blocks::motion_controller::registers::BuildOptions::MOTION_CONTROLLER,
+    )
+    .unwrap();
     let address = |name: &str, i: u32| map.register(name).unwrap().address_of(i).unwrap();
     let mut rng = StdRng::seed_from_u64(0x5eed);
     let mut phases = [0u8; 3];

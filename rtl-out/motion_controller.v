@@ -27,6 +27,7 @@
 //   drive_alarm     in         3  bit k: alarm output of axis k's drive, 1 = in alarm, asynchronous
 //   estop           in         1  emergency stop chain, 1 = stopped, asynchronous; no polarity setting
 //   gpio_in         in         8  general inputs, asynchronous
+//   probe           in         1  touch probe or tool setter, asynchronous: the first edge `PROBE_CONTROL.EDGE` selects after arming latches every axis's positions; ignored in a build without `PROBE` (`CONFIG.PROBE` = 0)
 //   bus_read_data   out       32  the addressed register, registered: valid in the clock after `bus_read`, held until the next read
 //   irq             out        1  level interrupt: an enabled `STATUS` bit is set; registered
 //   running         out        1  periods are running (`STATE.RUNNING`)
@@ -42,7 +43,7 @@
 // ============================================================================
 
 `default_nettype none
-module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
+module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
 
     // Module arguments
     input wire  clock;
@@ -60,6 +61,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     input wire  [2:0] drive_alarm;
     input wire  estop;
     input wire  [7:0] gpio_in;
+    input wire  probe;
     output reg  [31:0] bus_read_data;
     output reg  irq;
     output reg  running;
@@ -92,20 +94,22 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     localparam  shadow_bit__15 = 32'h8000;
     localparam  zero_code = 16'h0;
     localparam  has_uniform = 1'b1;
+    localparam  has_probe = 1'b1;
     localparam  zero32 = 32'h0;
-    localparam  ev_period_done = 12'h1;
-    localparam  ev_fifo_low = 12'h2;
-    localparam  ev_underrun = 12'h4;
-    localparam  ev_overflow = 12'h8;
-    localparam  ev_encoder_error = 12'h10;
-    localparam  ev_watchdog = 12'h20;
-    localparam  ev_axis_fault = 12'h40;
-    localparam  ev_limit = 12'h80;
-    localparam  ev_alarm = 12'h100;
-    localparam  ev_estop = 12'h200;
-    localparam  ev_home = 12'h400;
-    localparam  ev_gpio = 12'h800;
-    localparam  zero_ev = 12'h0;
+    localparam  ev_period_done = 13'b1;
+    localparam  ev_fifo_low = 13'b10;
+    localparam  ev_underrun = 13'b100;
+    localparam  ev_overflow = 13'b1000;
+    localparam  ev_encoder_error = 13'b10000;
+    localparam  ev_watchdog = 13'b100000;
+    localparam  ev_axis_fault = 13'b1000000;
+    localparam  ev_limit = 13'b10000000;
+    localparam  ev_alarm = 13'b100000000;
+    localparam  ev_estop = 13'b1000000000;
+    localparam  ev_home = 13'b10000000000;
+    localparam  ev_gpio = 13'b100000000000;
+    localparam  ev_probe = 13'b1000000000000;
+    localparam  zero_ev = 13'b0;
     localparam  m_status_watchdog = 32'h20;
     localparam  m_status_estop = 32'h200;
     localparam  axis_bit__0 = 3'b1;
@@ -147,6 +151,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__0__limit_backward;
     reg  axes__0__home;
     reg  axes__0__home_rise;
+    reg  axes__0__probe_latch;
     reg  axes__0__alarm;
     reg  axes__0__drive_allowed;
     wire  axes__0__drive_enable;
@@ -203,6 +208,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__1__limit_backward;
     reg  axes__1__home;
     reg  axes__1__home_rise;
+    reg  axes__1__probe_latch;
     reg  axes__1__alarm;
     reg  axes__1__drive_allowed;
     wire  axes__1__drive_enable;
@@ -259,6 +265,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  axes__2__limit_backward;
     reg  axes__2__home;
     reg  axes__2__home_rise;
+    reg  axes__2__probe_latch;
     reg  axes__2__alarm;
     reg  axes__2__drive_allowed;
     wire  axes__2__drive_enable;
@@ -288,7 +295,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  [31:0] registers__write_data;
     reg  registers__write;
     reg  registers__running;
-    reg  [11:0] registers__status;
+    reg  [12:0] registers__status;
     reg  registers__watchdog_armed;
     reg  registers__watchdog_expired;
     reg  registers__estop_input;
@@ -297,7 +304,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  registers__inputs_ready;
     reg  [31:0] registers__period_count;
     reg  [31:0] registers__stop_cause;
-    wire  [11:0] registers__irq_enable;
+    wire  [12:0] registers__irq_enable;
     wire  [31:0] registers__tick_divisor;
     wire  [15:0] registers__period_ticks;
     wire  [4:0] registers__low_water;
@@ -363,11 +370,11 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  watchdog__armed;
     reg  interrupts__clock;
     reg  interrupts__reset;
-    reg  [11:0] interrupts__events;
+    reg  [12:0] interrupts__events;
     reg  interrupts__clear;
-    reg  [11:0] interrupts__clear_bits;
-    reg  [11:0] interrupts__enable;
-    wire  [11:0] interrupts__status;
+    reg  [12:0] interrupts__clear_bits;
+    reg  [12:0] interrupts__enable;
+    wire  [12:0] interrupts__status;
     wire  interrupts__irq;
     reg  io__clock;
     reg  io__reset;
@@ -394,7 +401,19 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  io__gpio_event;
     wire  [7:0] io__gpio_out;
     wire  io__ready;
+    wire  io__filter_sample;
+    wire  [3:0] io__filter_length;
     wire  [31:0] io__read_data;
+    reg  probe_trigger__clock;
+    reg  probe_trigger__reset;
+    reg  probe_trigger__probe;
+    reg  probe_trigger__sample;
+    reg  [3:0] probe_trigger__length;
+    reg  [7:0] probe_trigger__address;
+    reg  probe_trigger__write;
+    reg  [1:0] probe_trigger__write_data;
+    wire  probe_trigger__latch;
+    wire  [31:0] probe_trigger__read_data;
     reg  analog__clock;
     reg  analog__reset;
     reg  [7:0] analog__bus_address;
@@ -464,7 +483,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  any_encoder_error;
     reg  any_busy;
     reg  [31:0] axes_read;
-    reg  [11:0] events;
+    reg  [12:0] events;
     reg  abort;
     reg  refuse_run;
     reg  [2:0] limit_held;
@@ -514,6 +533,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .limit_backward(axes__0__limit_backward),
         .home(axes__0__home),
         .home_rise(axes__0__home_rise),
+        .probe_latch(axes__0__probe_latch),
         .alarm(axes__0__alarm),
         .drive_allowed(axes__0__drive_allowed),
         .drive_enable(axes__0__drive_enable),
@@ -572,6 +592,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .limit_backward(axes__1__limit_backward),
         .home(axes__1__home),
         .home_rise(axes__1__home_rise),
+        .probe_latch(axes__1__probe_latch),
         .alarm(axes__1__alarm),
         .drive_allowed(axes__1__drive_allowed),
         .drive_enable(axes__1__drive_enable),
@@ -630,6 +651,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .limit_backward(axes__2__limit_backward),
         .home(axes__2__home),
         .home_rise(axes__2__home_rise),
+        .probe_latch(axes__2__probe_latch),
         .alarm(axes__2__alarm),
         .drive_allowed(axes__2__drive_allowed),
         .drive_enable(axes__2__drive_enable),
@@ -783,7 +805,21 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .gpio_event(io__gpio_event),
         .gpio_out(io__gpio_out),
         .ready(io__ready),
+        .filter_sample(io__filter_sample),
+        .filter_length(io__filter_length),
         .read_data(io__read_data)
+    );
+    motion_controller__probe_trigger probe_trigger(
+        .clock(probe_trigger__clock),
+        .reset(probe_trigger__reset),
+        .probe(probe_trigger__probe),
+        .sample(probe_trigger__sample),
+        .length(probe_trigger__length),
+        .address(probe_trigger__address),
+        .write(probe_trigger__write),
+        .write_data(probe_trigger__write_data),
+        .latch(probe_trigger__latch),
+        .read_data(probe_trigger__read_data)
     );
     motion_controller__analog analog(
         .clock(analog__clock),
@@ -867,6 +903,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         watchdog__clock = clock;
         interrupts__clock = clock;
         io__clock = clock;
+        probe_trigger__clock = clock;
         planner__clock = clock;
         analog__clock = clock;
         registers__reset = reset;
@@ -905,6 +942,13 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         io__watchdog_expired = watchdog__expired;
         gpio_out = io__gpio_out;
         drive_allowed = ~io__estop_latched_next & ~watchdog__expired;
+        probe_trigger__reset = reset;
+        probe_trigger__probe = probe;
+        probe_trigger__sample = io__filter_sample;
+        probe_trigger__length = io__filter_length;
+        probe_trigger__address = bus_address;
+        probe_trigger__write = bus_write;
+        probe_trigger__write_data = bus_write_data[(32'h0)+:(2)];
         limit_held = zero_k;
         alarm_held = zero_k;
         home_held = zero_k;
@@ -1086,6 +1130,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__0__home_rise = (io__home_rise & axis_bit__0) != zero_k;
         axes__0__alarm = (io__alarm_active & axis_bit__0) != zero_k;
         axes__0__drive_allowed = drive_allowed;
+        axes__0__probe_latch = probe_trigger__latch & has_probe;
         if (axes__0__out_a) begin
             steps_a = steps_a | axis_bit__0;
         end
@@ -1122,6 +1167,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__1__home_rise = (io__home_rise & axis_bit__1) != zero_k;
         axes__1__alarm = (io__alarm_active & axis_bit__1) != zero_k;
         axes__1__drive_allowed = drive_allowed;
+        axes__1__probe_latch = probe_trigger__latch & has_probe;
         if (axes__1__out_a) begin
             steps_a = steps_a | axis_bit__1;
         end
@@ -1158,6 +1204,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes__2__home_rise = (io__home_rise & axis_bit__2) != zero_k;
         axes__2__alarm = (io__alarm_active & axis_bit__2) != zero_k;
         axes__2__drive_allowed = drive_allowed;
+        axes__2__probe_latch = probe_trigger__latch & has_probe;
         if (axes__2__out_a) begin
             steps_a = steps_a | axis_bit__2;
         end
@@ -1254,14 +1301,22 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         if (io__gpio_event) begin
             events = events | ev_gpio;
         end
+        if (probe_trigger__latch & has_probe) begin
+            events = events | ev_probe;
+        end
         interrupts__reset = reset;
         interrupts__events = events;
         interrupts__clear = registers__status_write;
-        interrupts__clear_bits = bus_write_data[(32'h0)+:(12)];
+        interrupts__clear_bits = bus_write_data[(32'h0)+:(13)];
         interrupts__enable = registers__irq_enable;
         irq = interrupts__irq;
         if (bus_read) begin
-            read_data__d = registers__read_data | io__read_data | axes_read;
+            if (has_probe) begin
+                read_data__d = registers__read_data | io__read_data | probe_trigger__read_data | axes_read;
+            end
+            else begin
+                read_data__d = registers__read_data | io__read_data | axes_read;
+            end
         end
         read_out = read_data__q;
         if (analog__read_selected) begin
@@ -3314,7 +3369,7 @@ module motion_controller__any_low_prev_n(d,q,clock);
 endmodule // motion_controller__any_low_prev_n
 
 
-module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -3350,6 +3405,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  limit_backward;
     input wire  home;
     input wire  home_rise;
+    input wire  probe_latch;
     input wire  alarm;
     input wire  drive_allowed;
     output reg  drive_enable;
@@ -3497,6 +3553,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
     reg  io__home_rise;
     reg  io__alarm;
     reg  io__drive_allowed;
+    reg  io__probe_latch;
     reg  io__pending_forward;
     reg  io__pending_backward;
     reg  io__request;
@@ -3779,6 +3836,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         .home_rise(io__home_rise),
         .alarm(io__alarm),
         .drive_allowed(io__drive_allowed),
+        .probe_latch(io__probe_latch),
         .pending_forward(io__pending_forward),
         .pending_backward(io__pending_backward),
         .request(io__request),
@@ -4211,6 +4269,7 @@ module motion_controller__axes__0(clock,reset,tick,start,halt,pop,underrun,perio
         io__limit_backward = limit_backward;
         io__home = home;
         io__home_rise = home_rise;
+        io__probe_latch = probe_latch;
         io__alarm = alarm;
         io__drive_allowed = drive_allowed;
         io__pending_forward = stage__pending_forward;
@@ -6216,7 +6275,7 @@ module motion_controller__axes__0__integrand_nonzero(d,q,clock);
 endmodule // motion_controller__axes__0__integrand_nonzero
 
 
-module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
+module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,probe_latch,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
 
     // Module arguments
     input wire  clock;
@@ -6231,6 +6290,7 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
     input wire  home_rise;
     input wire  alarm;
     input wire  drive_allowed;
+    input wire  probe_latch;
     input wire  pending_forward;
     input wire  pending_backward;
     input wire  request;
@@ -6257,6 +6317,8 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
     localparam  off_command = 4'h2;
     localparam  off_home_cmd = 4'h3;
     localparam  off_home_act = 4'h4;
+    localparam  off_probe_cmd = 4'h6;
+    localparam  off_probe_act = 4'h7;
     localparam  config_reset = 32'h3;
     localparam  config_mask = 32'hf;
     localparam  zero32 = 32'h0;
@@ -6299,6 +6361,12 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
     reg  [31:0] home_act__d;
     wire  [31:0] home_act__q;
     reg  home_act__clock;
+    reg  [31:0] probe_cmd__d;
+    wire  [31:0] probe_cmd__q;
+    reg  probe_cmd__clock;
+    reg  [31:0] probe_act__d;
+    wire  [31:0] probe_act__q;
+    reg  probe_act__clock;
     reg  drive_enable_reg__d;
     wire  drive_enable_reg__q;
     reg  drive_enable_reg__clock;
@@ -6349,6 +6417,16 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
         .q(home_act__q),
         .clock(home_act__clock)
     );
+    motion_controller__axes__0__io__probe_cmd probe_cmd(
+        .d(probe_cmd__d),
+        .q(probe_cmd__q),
+        .clock(probe_cmd__clock)
+    );
+    motion_controller__axes__0__io__probe_act probe_act(
+        .d(probe_act__d),
+        .q(probe_act__q),
+        .clock(probe_act__clock)
+    );
     motion_controller__axes__0__io__drive_enable_reg drive_enable_reg(
         .d(drive_enable_reg__d),
         .q(drive_enable_reg__q),
@@ -6364,6 +6442,8 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
         home_seen__clock = clock;
         home_cmd__clock = clock;
         home_act__clock = clock;
+        probe_cmd__clock = clock;
+        probe_act__clock = clock;
         drive_enable_reg__clock = clock;
         io_config_x__d = io_config_x__q;
         limit_forward_tripped__d = limit_forward_tripped__q;
@@ -6372,6 +6452,8 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
         home_seen__d = home_seen__q;
         home_cmd__d = home_cmd__q;
         home_act__d = home_act__q;
+        probe_cmd__d = probe_cmd__q;
+        probe_act__d = probe_act__q;
         drive_enable_reg__d = drive_enable_reg__q;
         command = write & selected & (offset == off_command);
         io_config = io_config_x__q ^ config_reset;
@@ -6431,6 +6513,14 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
             home_cmd__d = zero32;
             home_act__d = zero32;
         end
+        if (probe_latch) begin
+            probe_cmd__d = cmd_position;
+            probe_act__d = act_position;
+        end
+        if (reset) begin
+            probe_cmd__d = zero32;
+            probe_act__d = zero32;
+        end
         home_held = home_seen__q & ((io_config & c_stop_on_home) != zero32);
         drive_enable_reg__d = ((io_config & c_drive_enable) != zero32) & drive_allowed & ~alarm_tripped_next;
         if (reset) begin
@@ -6478,6 +6568,12 @@ module motion_controller__axes__0__io(clock,reset,selected,offset,write,write_da
             end
             if (offset == off_home_act) begin
                 read_data = read_data | home_act__q;
+            end
+            if (offset == off_probe_cmd) begin
+                read_data = read_data | probe_cmd__q;
+            end
+            if (offset == off_probe_act) begin
+                read_data = read_data | probe_act__q;
             end
         end
     end
@@ -6635,6 +6731,44 @@ module motion_controller__axes__0__io__limit_forward_tripped(d,q,clock);
     end
 
 endmodule // motion_controller__axes__0__io__limit_forward_tripped
+
+
+module motion_controller__axes__0__io__probe_act(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__io__probe_act
+
+
+module motion_controller__axes__0__io__probe_cmd(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__0__io__probe_cmd
 
 
 module motion_controller__axes__0__overflow_flag(d,q,clock);
@@ -9556,7 +9690,7 @@ module motion_controller__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__0__uniform_running_forward
 
 
-module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -9592,6 +9726,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  limit_backward;
     input wire  home;
     input wire  home_rise;
+    input wire  probe_latch;
     input wire  alarm;
     input wire  drive_allowed;
     output reg  drive_enable;
@@ -9739,6 +9874,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
     reg  io__home_rise;
     reg  io__alarm;
     reg  io__drive_allowed;
+    reg  io__probe_latch;
     reg  io__pending_forward;
     reg  io__pending_backward;
     reg  io__request;
@@ -10021,6 +10157,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         .home_rise(io__home_rise),
         .alarm(io__alarm),
         .drive_allowed(io__drive_allowed),
+        .probe_latch(io__probe_latch),
         .pending_forward(io__pending_forward),
         .pending_backward(io__pending_backward),
         .request(io__request),
@@ -10453,6 +10590,7 @@ module motion_controller__axes__1(clock,reset,tick,start,halt,pop,underrun,perio
         io__limit_backward = limit_backward;
         io__home = home;
         io__home_rise = home_rise;
+        io__probe_latch = probe_latch;
         io__alarm = alarm;
         io__drive_allowed = drive_allowed;
         io__pending_forward = stage__pending_forward;
@@ -12458,7 +12596,7 @@ module motion_controller__axes__1__integrand_nonzero(d,q,clock);
 endmodule // motion_controller__axes__1__integrand_nonzero
 
 
-module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
+module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,probe_latch,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
 
     // Module arguments
     input wire  clock;
@@ -12473,6 +12611,7 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
     input wire  home_rise;
     input wire  alarm;
     input wire  drive_allowed;
+    input wire  probe_latch;
     input wire  pending_forward;
     input wire  pending_backward;
     input wire  request;
@@ -12499,6 +12638,8 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
     localparam  off_command = 4'h2;
     localparam  off_home_cmd = 4'h3;
     localparam  off_home_act = 4'h4;
+    localparam  off_probe_cmd = 4'h6;
+    localparam  off_probe_act = 4'h7;
     localparam  config_reset = 32'h3;
     localparam  config_mask = 32'hf;
     localparam  zero32 = 32'h0;
@@ -12541,6 +12682,12 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
     reg  [31:0] home_act__d;
     wire  [31:0] home_act__q;
     reg  home_act__clock;
+    reg  [31:0] probe_cmd__d;
+    wire  [31:0] probe_cmd__q;
+    reg  probe_cmd__clock;
+    reg  [31:0] probe_act__d;
+    wire  [31:0] probe_act__q;
+    reg  probe_act__clock;
     reg  drive_enable_reg__d;
     wire  drive_enable_reg__q;
     reg  drive_enable_reg__clock;
@@ -12591,6 +12738,16 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
         .q(home_act__q),
         .clock(home_act__clock)
     );
+    motion_controller__axes__1__io__probe_cmd probe_cmd(
+        .d(probe_cmd__d),
+        .q(probe_cmd__q),
+        .clock(probe_cmd__clock)
+    );
+    motion_controller__axes__1__io__probe_act probe_act(
+        .d(probe_act__d),
+        .q(probe_act__q),
+        .clock(probe_act__clock)
+    );
     motion_controller__axes__1__io__drive_enable_reg drive_enable_reg(
         .d(drive_enable_reg__d),
         .q(drive_enable_reg__q),
@@ -12606,6 +12763,8 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
         home_seen__clock = clock;
         home_cmd__clock = clock;
         home_act__clock = clock;
+        probe_cmd__clock = clock;
+        probe_act__clock = clock;
         drive_enable_reg__clock = clock;
         io_config_x__d = io_config_x__q;
         limit_forward_tripped__d = limit_forward_tripped__q;
@@ -12614,6 +12773,8 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
         home_seen__d = home_seen__q;
         home_cmd__d = home_cmd__q;
         home_act__d = home_act__q;
+        probe_cmd__d = probe_cmd__q;
+        probe_act__d = probe_act__q;
         drive_enable_reg__d = drive_enable_reg__q;
         command = write & selected & (offset == off_command);
         io_config = io_config_x__q ^ config_reset;
@@ -12673,6 +12834,14 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
             home_cmd__d = zero32;
             home_act__d = zero32;
         end
+        if (probe_latch) begin
+            probe_cmd__d = cmd_position;
+            probe_act__d = act_position;
+        end
+        if (reset) begin
+            probe_cmd__d = zero32;
+            probe_act__d = zero32;
+        end
         home_held = home_seen__q & ((io_config & c_stop_on_home) != zero32);
         drive_enable_reg__d = ((io_config & c_drive_enable) != zero32) & drive_allowed & ~alarm_tripped_next;
         if (reset) begin
@@ -12720,6 +12889,12 @@ module motion_controller__axes__1__io(clock,reset,selected,offset,write,write_da
             end
             if (offset == off_home_act) begin
                 read_data = read_data | home_act__q;
+            end
+            if (offset == off_probe_cmd) begin
+                read_data = read_data | probe_cmd__q;
+            end
+            if (offset == off_probe_act) begin
+                read_data = read_data | probe_act__q;
             end
         end
     end
@@ -12877,6 +13052,44 @@ module motion_controller__axes__1__io__limit_forward_tripped(d,q,clock);
     end
 
 endmodule // motion_controller__axes__1__io__limit_forward_tripped
+
+
+module motion_controller__axes__1__io__probe_act(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__io__probe_act
+
+
+module motion_controller__axes__1__io__probe_cmd(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__1__io__probe_cmd
 
 
 module motion_controller__axes__1__overflow_flag(d,q,clock);
@@ -15798,7 +16011,7 @@ module motion_controller__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller__axes__1__uniform_running_forward
 
 
-module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -15834,6 +16047,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     input wire  limit_backward;
     input wire  home;
     input wire  home_rise;
+    input wire  probe_latch;
     input wire  alarm;
     input wire  drive_allowed;
     output reg  drive_enable;
@@ -15981,6 +16195,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
     reg  io__home_rise;
     reg  io__alarm;
     reg  io__drive_allowed;
+    reg  io__probe_latch;
     reg  io__pending_forward;
     reg  io__pending_backward;
     reg  io__request;
@@ -16263,6 +16478,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         .home_rise(io__home_rise),
         .alarm(io__alarm),
         .drive_allowed(io__drive_allowed),
+        .probe_latch(io__probe_latch),
         .pending_forward(io__pending_forward),
         .pending_backward(io__pending_backward),
         .request(io__request),
@@ -16695,6 +16911,7 @@ module motion_controller__axes__2(clock,reset,tick,start,halt,pop,underrun,perio
         io__limit_backward = limit_backward;
         io__home = home;
         io__home_rise = home_rise;
+        io__probe_latch = probe_latch;
         io__alarm = alarm;
         io__drive_allowed = drive_allowed;
         io__pending_forward = stage__pending_forward;
@@ -18700,7 +18917,7 @@ module motion_controller__axes__2__integrand_nonzero(d,q,clock);
 endmodule // motion_controller__axes__2__integrand_nonzero
 
 
-module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
+module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,probe_latch,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
 
     // Module arguments
     input wire  clock;
@@ -18715,6 +18932,7 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
     input wire  home_rise;
     input wire  alarm;
     input wire  drive_allowed;
+    input wire  probe_latch;
     input wire  pending_forward;
     input wire  pending_backward;
     input wire  request;
@@ -18741,6 +18959,8 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
     localparam  off_command = 4'h2;
     localparam  off_home_cmd = 4'h3;
     localparam  off_home_act = 4'h4;
+    localparam  off_probe_cmd = 4'h6;
+    localparam  off_probe_act = 4'h7;
     localparam  config_reset = 32'h3;
     localparam  config_mask = 32'hf;
     localparam  zero32 = 32'h0;
@@ -18783,6 +19003,12 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
     reg  [31:0] home_act__d;
     wire  [31:0] home_act__q;
     reg  home_act__clock;
+    reg  [31:0] probe_cmd__d;
+    wire  [31:0] probe_cmd__q;
+    reg  probe_cmd__clock;
+    reg  [31:0] probe_act__d;
+    wire  [31:0] probe_act__q;
+    reg  probe_act__clock;
     reg  drive_enable_reg__d;
     wire  drive_enable_reg__q;
     reg  drive_enable_reg__clock;
@@ -18833,6 +19059,16 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
         .q(home_act__q),
         .clock(home_act__clock)
     );
+    motion_controller__axes__2__io__probe_cmd probe_cmd(
+        .d(probe_cmd__d),
+        .q(probe_cmd__q),
+        .clock(probe_cmd__clock)
+    );
+    motion_controller__axes__2__io__probe_act probe_act(
+        .d(probe_act__d),
+        .q(probe_act__q),
+        .clock(probe_act__clock)
+    );
     motion_controller__axes__2__io__drive_enable_reg drive_enable_reg(
         .d(drive_enable_reg__d),
         .q(drive_enable_reg__q),
@@ -18848,6 +19084,8 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
         home_seen__clock = clock;
         home_cmd__clock = clock;
         home_act__clock = clock;
+        probe_cmd__clock = clock;
+        probe_act__clock = clock;
         drive_enable_reg__clock = clock;
         io_config_x__d = io_config_x__q;
         limit_forward_tripped__d = limit_forward_tripped__q;
@@ -18856,6 +19094,8 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
         home_seen__d = home_seen__q;
         home_cmd__d = home_cmd__q;
         home_act__d = home_act__q;
+        probe_cmd__d = probe_cmd__q;
+        probe_act__d = probe_act__q;
         drive_enable_reg__d = drive_enable_reg__q;
         command = write & selected & (offset == off_command);
         io_config = io_config_x__q ^ config_reset;
@@ -18915,6 +19155,14 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
             home_cmd__d = zero32;
             home_act__d = zero32;
         end
+        if (probe_latch) begin
+            probe_cmd__d = cmd_position;
+            probe_act__d = act_position;
+        end
+        if (reset) begin
+            probe_cmd__d = zero32;
+            probe_act__d = zero32;
+        end
         home_held = home_seen__q & ((io_config & c_stop_on_home) != zero32);
         drive_enable_reg__d = ((io_config & c_drive_enable) != zero32) & drive_allowed & ~alarm_tripped_next;
         if (reset) begin
@@ -18962,6 +19210,12 @@ module motion_controller__axes__2__io(clock,reset,selected,offset,write,write_da
             end
             if (offset == off_home_act) begin
                 read_data = read_data | home_act__q;
+            end
+            if (offset == off_probe_cmd) begin
+                read_data = read_data | probe_cmd__q;
+            end
+            if (offset == off_probe_act) begin
+                read_data = read_data | probe_act__q;
             end
         end
     end
@@ -19119,6 +19373,44 @@ module motion_controller__axes__2__io__limit_forward_tripped(d,q,clock);
     end
 
 endmodule // motion_controller__axes__2__io__limit_forward_tripped
+
+
+module motion_controller__axes__2__io__probe_act(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__io__probe_act
+
+
+module motion_controller__axes__2__io__probe_cmd(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__axes__2__io__probe_cmd
 
 
 module motion_controller__axes__2__overflow_flag(d,q,clock);
@@ -22590,19 +22882,19 @@ module motion_controller__interrupts(clock,reset,events,clear,clear_bits,enable,
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [11:0] events;
+    input wire  [12:0] events;
     input wire  clear;
-    input wire  [11:0] clear_bits;
-    input wire  [11:0] enable;
-    output reg  [11:0] status;
+    input wire  [12:0] clear_bits;
+    input wire  [12:0] enable;
+    output reg  [12:0] status;
     output reg  irq;
 
     // Constant declarations
-    localparam  zero = 12'h0;
+    localparam  zero = 13'b0;
 
     // Stub signals
-    reg  [11:0] status_reg__d;
-    wire  [11:0] status_reg__q;
+    reg  [12:0] status_reg__d;
+    wire  [12:0] status_reg__q;
     reg  status_reg__clock;
     reg  irq_reg__d;
     wire  irq_reg__q;
@@ -22666,13 +22958,13 @@ endmodule // motion_controller__interrupts__irq_reg
 module motion_controller__interrupts__status_reg(d,q,clock);
 
     // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
+    input wire  [12:0] d;
+    output reg  [12:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 12'h0;
+       q = 13'h0;
     end
 
     always @(posedge clock) begin
@@ -22682,7 +22974,7 @@ module motion_controller__interrupts__status_reg(d,q,clock);
 endmodule // motion_controller__interrupts__status_reg
 
 
-module motion_controller__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,address,write,write_data,estop_clear,watchdog_expired,limit_pos_active,limit_neg_active,home_active,home_rise,alarm_active,estop_active,estop_latched,estop_latched_next,estop_event,gpio_event,gpio_out,ready,read_data);
+module motion_controller__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,address,write,write_data,estop_clear,watchdog_expired,limit_pos_active,limit_neg_active,home_active,home_rise,alarm_active,estop_active,estop_latched,estop_latched_next,estop_event,gpio_event,gpio_out,ready,filter_sample,filter_length,read_data);
 
     // Module arguments
     input wire  clock;
@@ -22710,6 +23002,8 @@ module motion_controller__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,es
     output reg  gpio_event;
     output reg  [7:0] gpio_out;
     output reg  ready;
+    output reg  filter_sample;
+    output reg  [3:0] filter_length;
     output reg  [31:0] read_data;
 
     // Constant declarations
@@ -23029,6 +23323,8 @@ module motion_controller__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,es
         if (reset) begin
             sample_count__d = zero8;
         end
+        filter_sample = sample;
+        filter_length = filter[(32'h0)+:(4)];
         invert_limit_pos = zero_k;
         if ((polarity__q & p_limit_pos) != zero32) begin
             invert_limit_pos = ones_k;
@@ -28835,6 +29131,522 @@ module motion_controller__planner__divider__subtractor(a,b,sum,carry_out);
 endmodule // motion_controller__planner__divider__subtractor
 
 
+module motion_controller__probe_trigger(clock,reset,probe,sample,length,address,write,write_data,latch,read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  probe;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [1:0] write_data;
+    output reg  latch;
+    output reg  [31:0] read_data;
+
+    // Constant declarations
+    localparam  a_control = 8'h19;
+    localparam  m_arm = 32'h1;
+    localparam  m_edge = 32'h2;
+    localparam  m_tripped = 32'h100;
+    localparam  m_level = 32'h200;
+    localparam  zero1 = 1'b0;
+    localparam  zero32 = 32'h0;
+
+    // Stub signals
+    reg  conditioner__clock;
+    reg  conditioner__reset;
+    reg  conditioner__raw;
+    reg  conditioner__invert;
+    reg  conditioner__sample;
+    reg  [3:0] conditioner__length;
+    wire  conditioner__active;
+    wire  conditioner__rise;
+    wire  conditioner__fall;
+    wire  conditioner__ready;
+    reg  armed__d;
+    wire  armed__q;
+    reg  armed__clock;
+    reg  falling__d;
+    wire  falling__q;
+    reg  falling__clock;
+    reg  tripped__d;
+    wire  tripped__q;
+    reg  tripped__clock;
+
+    // Local signals
+    reg  control_write;
+    reg  armed_now;
+    reg  falling_now;
+    reg  hit;
+    reg  trip;
+
+    // Sub module instances
+    motion_controller__probe_trigger__conditioner conditioner(
+        .clock(conditioner__clock),
+        .reset(conditioner__reset),
+        .raw(conditioner__raw),
+        .invert(conditioner__invert),
+        .sample(conditioner__sample),
+        .length(conditioner__length),
+        .active(conditioner__active),
+        .rise(conditioner__rise),
+        .fall(conditioner__fall),
+        .ready(conditioner__ready)
+    );
+    motion_controller__probe_trigger__armed armed(
+        .d(armed__d),
+        .q(armed__q),
+        .clock(armed__clock)
+    );
+    motion_controller__probe_trigger__falling falling(
+        .d(falling__d),
+        .q(falling__q),
+        .clock(falling__clock)
+    );
+    motion_controller__probe_trigger__tripped tripped(
+        .d(tripped__d),
+        .q(tripped__q),
+        .clock(tripped__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        armed__clock = clock;
+        falling__clock = clock;
+        tripped__clock = clock;
+        armed__d = armed__q;
+        falling__d = falling__q;
+        tripped__d = tripped__q;
+        conditioner__clock = clock;
+        conditioner__reset = reset;
+        conditioner__raw = zero1;
+        if (probe) begin
+            conditioner__raw = ~zero1;
+        end
+        conditioner__invert = zero1;
+        conditioner__sample = sample;
+        conditioner__length = length;
+        control_write = write & (address == a_control);
+        armed_now = armed__q;
+        falling_now = falling__q;
+        if (control_write) begin
+            armed_now = write_data[32'h0];
+            falling_now = write_data[32'h1];
+        end
+        hit = conditioner__rise != zero1;
+        if (falling_now) begin
+            hit = conditioner__fall != zero1;
+        end
+        trip = armed_now & hit;
+        latch = trip;
+        armed__d = armed_now & ~trip;
+        falling__d = falling_now;
+        if (control_write & write_data[32'h0]) begin
+            tripped__d = 1'b0;
+        end
+        if (trip) begin
+            tripped__d = 1'b1;
+        end
+        if (reset) begin
+            armed__d = 1'b0;
+            falling__d = 1'b0;
+            tripped__d = 1'b0;
+        end
+        read_data = zero32;
+        if (address == a_control) begin
+            if (armed__q) begin
+                read_data = read_data | m_arm;
+            end
+            if (falling__q) begin
+                read_data = read_data | m_edge;
+            end
+            if (tripped__q) begin
+                read_data = read_data | m_tripped;
+            end
+            if (conditioner__active != zero1) begin
+                read_data = read_data | m_level;
+            end
+        end
+    end
+
+endmodule // motion_controller__probe_trigger
+
+
+module motion_controller__probe_trigger__armed(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__armed
+
+
+module motion_controller__probe_trigger__conditioner(clock,reset,raw,invert,sample,length,active,rise,fall,ready);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  invert;
+    input wire  sample;
+    input wire  [3:0] length;
+    output reg  active;
+    output reg  rise;
+    output reg  fall;
+    output reg  ready;
+
+    // Constant declarations
+    localparam  bit_mask__0 = 1'b1;
+    localparam  zero_w = 1'b0;
+    localparam  zero_2 = 2'b0;
+    localparam  one_2 = 2'b1;
+    localparam  three_2 = 2'b11;
+
+    // Stub signals
+    reg  filters__0__clock;
+    reg  filters__0__reset;
+    reg  filters__0__raw;
+    reg  filters__0__sample;
+    reg  [3:0] filters__0__length;
+    reg  filters__0__prime;
+    wire  filters__0__filtered;
+    wire  filters__0__changed;
+    reg  sync_1__d;
+    wire  sync_1__q;
+    reg  sync_1__clock;
+    reg  sync_2__d;
+    wire  sync_2__q;
+    reg  sync_2__clock;
+    reg  [1:0] primed__d;
+    wire  [1:0] primed__q;
+    reg  primed__clock;
+
+    // Local signals
+    reg  filtered;
+    reg  changed;
+    reg  priming;
+
+    // Sub module instances
+    motion_controller__probe_trigger__conditioner__filters__0 filters__0(
+        .clock(filters__0__clock),
+        .reset(filters__0__reset),
+        .raw(filters__0__raw),
+        .sample(filters__0__sample),
+        .length(filters__0__length),
+        .prime(filters__0__prime),
+        .filtered(filters__0__filtered),
+        .changed(filters__0__changed)
+    );
+    motion_controller__probe_trigger__conditioner__sync_1 sync_1(
+        .d(sync_1__d),
+        .q(sync_1__q),
+        .clock(sync_1__clock)
+    );
+    motion_controller__probe_trigger__conditioner__sync_2 sync_2(
+        .d(sync_2__d),
+        .q(sync_2__q),
+        .clock(sync_2__clock)
+    );
+    motion_controller__probe_trigger__conditioner__primed primed(
+        .d(primed__d),
+        .q(primed__q),
+        .clock(primed__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        sync_1__clock = clock;
+        sync_2__clock = clock;
+        primed__clock = clock;
+        sync_1__d = sync_1__q;
+        sync_2__d = sync_2__q;
+        primed__d = primed__q;
+        sync_1__d = raw;
+        sync_2__d = sync_1__q;
+        priming = primed__q != three_2;
+        if (priming) begin
+            primed__d = primed__q + one_2;
+        end
+        if (reset) begin
+            primed__d = zero_2;
+        end
+        ready = ~priming;
+        filtered = zero_w;
+        changed = zero_w;
+        filters__0__clock = clock;
+        filters__0__reset = reset;
+        filters__0__raw = (sync_2__q & bit_mask__0) != zero_w;
+        filters__0__sample = sample;
+        filters__0__length = length;
+        filters__0__prime = priming;
+        if (filters__0__filtered) begin
+            filtered = filtered | bit_mask__0;
+        end
+        if (filters__0__changed) begin
+            changed = changed | bit_mask__0;
+        end
+        active = filtered ^ invert;
+        if (priming) begin
+            active = zero_w;
+        end
+        rise = changed & (filtered ^ invert);
+        fall = changed & ~(filtered ^ invert);
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner
+
+
+module motion_controller__probe_trigger__conditioner__filters__0(clock,reset,raw,sample,length,prime,filtered,changed);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  prime;
+    output reg  filtered;
+    output reg  changed;
+
+    // Constant declarations
+    localparam  zero = 4'h0;
+    localparam  one = 4'h1;
+    localparam  not_one = 4'he;
+
+    // Stub signals
+    reg  level__d;
+    wire  level__q;
+    reg  level__clock;
+    reg  changed_reg__d;
+    wire  changed_reg__q;
+    reg  changed_reg__clock;
+    reg  [3:0] left__d;
+    wire  [3:0] left__q;
+    reg  left__clock;
+
+    // Local signals
+    reg  differs;
+    reg  ready;
+    reg  accept;
+
+    // Sub module instances
+    motion_controller__probe_trigger__conditioner__filters__0__level level(
+        .d(level__d),
+        .q(level__q),
+        .clock(level__clock)
+    );
+    motion_controller__probe_trigger__conditioner__filters__0__changed_reg changed_reg(
+        .d(changed_reg__d),
+        .q(changed_reg__q),
+        .clock(changed_reg__clock)
+    );
+    motion_controller__probe_trigger__conditioner__filters__0__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        level__clock = clock;
+        left__clock = clock;
+        changed_reg__clock = clock;
+        level__d = level__q;
+        left__d = left__q;
+        changed_reg__d = changed_reg__q;
+        filtered = level__q;
+        changed = changed_reg__q;
+        differs = raw != level__q;
+        ready = (left__q & not_one) == zero;
+        accept = ~prime & sample & differs & ready;
+        changed_reg__d = accept;
+        if (sample) begin
+            if (~differs | ready) begin
+                left__d = length;
+                level__d = raw;
+            end
+            else begin
+                left__d = left__q - one;
+            end
+        end
+        if (prime) begin
+            left__d = length;
+            level__d = raw;
+        end
+        if (reset) begin
+            left__d = zero;
+            level__d = 1'b0;
+            changed_reg__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner__filters__0
+
+
+module motion_controller__probe_trigger__conditioner__filters__0__changed_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner__filters__0__changed_reg
+
+
+module motion_controller__probe_trigger__conditioner__filters__0__left(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner__filters__0__left
+
+
+module motion_controller__probe_trigger__conditioner__filters__0__level(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner__filters__0__level
+
+
+module motion_controller__probe_trigger__conditioner__primed(d,q,clock);
+
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner__primed
+
+
+module motion_controller__probe_trigger__conditioner__sync_1(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner__sync_1
+
+
+module motion_controller__probe_trigger__conditioner__sync_2(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__conditioner__sync_2
+
+
+module motion_controller__probe_trigger__falling(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__falling
+
+
+module motion_controller__probe_trigger__tripped(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__probe_trigger__tripped
+
+
 module motion_controller__read_data(d,q,clock);
 
     // Module arguments
@@ -28863,7 +29675,7 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
     input wire  [31:0] write_data;
     input wire  write;
     input wire  running;
-    input wire  [11:0] status;
+    input wire  [12:0] status;
     input wire  watchdog_armed;
     input wire  watchdog_expired;
     input wire  estop_input;
@@ -28872,7 +29684,7 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
     input wire  inputs_ready;
     input wire  [31:0] period_count;
     input wire  [31:0] stop_cause;
-    output reg  [11:0] irq_enable;
+    output reg  [12:0] irq_enable;
     output reg  [31:0] tick_divisor;
     output reg  [15:0] period_ticks;
     output reg  [4:0] low_water;
@@ -28900,8 +29712,8 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h400;
-    localparam  config_value = 32'h610403;
+    localparam  version_value = 32'h500;
+    localparam  config_value = 32'h4610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
     localparam  m_state_watchdog_expired = 32'h4;
@@ -28927,13 +29739,13 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
     localparam  bit_mask__14 = 32'h4000;
     localparam  bit_mask__15 = 32'h8000;
     localparam  zero32 = 32'h0;
-    localparam  zero_irq = 12'h0;
+    localparam  zero_irq = 13'b0;
     localparam  zero_p = 16'h0;
     localparam  zero_level = 5'b0;
 
     // Stub signals
-    reg  [11:0] irq_enable_reg__d;
-    wire  [11:0] irq_enable_reg__q;
+    reg  [12:0] irq_enable_reg__d;
+    wire  [12:0] irq_enable_reg__q;
     reg  irq_enable_reg__clock;
     reg  [31:0] tick_divisor_reg__d;
     wire  [31:0] tick_divisor_reg__q;
@@ -28997,7 +29809,7 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
         watchdog_timeout = watchdog_timeout_reg__q;
         if (write) begin
             if (address == a_irq_enable) begin
-                irq_enable_reg__d = write_data[(32'h0)+:(12)];
+                irq_enable_reg__d = write_data[(32'h0)+:(13)];
             end
             if (address == a_tick_divisor) begin
                 tick_divisor_reg__d = write_data;
@@ -29123,6 +29935,12 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
         if ((address == a_irq_enable) & irq_enable_reg__q[11]) begin
             read_data = read_data | bit_mask__11;
         end
+        if ((address == a_status) & status[12]) begin
+            read_data = read_data | bit_mask__12;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[12]) begin
+            read_data = read_data | bit_mask__12;
+        end
         if (address == a_tick_divisor) begin
             read_data = read_data | tick_divisor_reg__q;
         end
@@ -29216,13 +30034,13 @@ endmodule // motion_controller__registers
 module motion_controller__registers__irq_enable_reg(d,q,clock);
 
     // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
+    input wire  [12:0] d;
+    output reg  [12:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 12'h0;
+       q = 13'h0;
     end
 
     always @(posedge clock) begin

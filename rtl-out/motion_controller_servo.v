@@ -29,6 +29,7 @@
 //   drive_alarm     in         3  bit k: alarm output of axis k's drive, 1 = in alarm, asynchronous
 //   estop           in         1  emergency stop chain, 1 = stopped, asynchronous; no polarity setting
 //   gpio_in         in         8  general inputs, asynchronous
+//   probe           in         1  touch probe or tool setter, asynchronous: the first edge `PROBE_CONTROL.EDGE` selects after arming latches every axis's positions; ignored in a build without `PROBE` (`CONFIG.PROBE` = 0)
 //   bus_read_data   out       32  the addressed register, registered: valid in the clock after `bus_read`, held until the next read
 //   irq             out        1  level interrupt: an enabled `STATUS` bit is set; registered
 //   running         out        1  periods are running (`STATE.RUNNING`)
@@ -44,7 +45,7 @@
 // ============================================================================
 
 `default_nettype none
-module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
+module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
 
     // Module arguments
     input wire  clock;
@@ -62,6 +63,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     input wire  [2:0] drive_alarm;
     input wire  estop;
     input wire  [7:0] gpio_in;
+    input wire  probe;
     output reg  [31:0] bus_read_data;
     output reg  irq;
     output reg  running;
@@ -94,20 +96,22 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  shadow_bit__15 = 32'h8000;
     localparam  zero_code = 16'h0;
     localparam  has_uniform = 1'b0;
+    localparam  has_probe = 1'b1;
     localparam  zero32 = 32'h0;
-    localparam  ev_period_done = 12'h1;
-    localparam  ev_fifo_low = 12'h2;
-    localparam  ev_underrun = 12'h4;
-    localparam  ev_overflow = 12'h8;
-    localparam  ev_encoder_error = 12'h10;
-    localparam  ev_watchdog = 12'h20;
-    localparam  ev_axis_fault = 12'h40;
-    localparam  ev_limit = 12'h80;
-    localparam  ev_alarm = 12'h100;
-    localparam  ev_estop = 12'h200;
-    localparam  ev_home = 12'h400;
-    localparam  ev_gpio = 12'h800;
-    localparam  zero_ev = 12'h0;
+    localparam  ev_period_done = 13'b1;
+    localparam  ev_fifo_low = 13'b10;
+    localparam  ev_underrun = 13'b100;
+    localparam  ev_overflow = 13'b1000;
+    localparam  ev_encoder_error = 13'b10000;
+    localparam  ev_watchdog = 13'b100000;
+    localparam  ev_axis_fault = 13'b1000000;
+    localparam  ev_limit = 13'b10000000;
+    localparam  ev_alarm = 13'b100000000;
+    localparam  ev_estop = 13'b1000000000;
+    localparam  ev_home = 13'b10000000000;
+    localparam  ev_gpio = 13'b100000000000;
+    localparam  ev_probe = 13'b1000000000000;
+    localparam  zero_ev = 13'b0;
     localparam  m_status_watchdog = 32'h20;
     localparam  m_status_estop = 32'h200;
     localparam  axis_bit__0 = 3'b1;
@@ -149,6 +153,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  axes__0__limit_backward;
     reg  axes__0__home;
     reg  axes__0__home_rise;
+    reg  axes__0__probe_latch;
     reg  axes__0__alarm;
     reg  axes__0__drive_allowed;
     wire  axes__0__drive_enable;
@@ -205,6 +210,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  axes__1__limit_backward;
     reg  axes__1__home;
     reg  axes__1__home_rise;
+    reg  axes__1__probe_latch;
     reg  axes__1__alarm;
     reg  axes__1__drive_allowed;
     wire  axes__1__drive_enable;
@@ -261,6 +267,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  axes__2__limit_backward;
     reg  axes__2__home;
     reg  axes__2__home_rise;
+    reg  axes__2__probe_latch;
     reg  axes__2__alarm;
     reg  axes__2__drive_allowed;
     wire  axes__2__drive_enable;
@@ -290,7 +297,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [31:0] registers__write_data;
     reg  registers__write;
     reg  registers__running;
-    reg  [11:0] registers__status;
+    reg  [12:0] registers__status;
     reg  registers__watchdog_armed;
     reg  registers__watchdog_expired;
     reg  registers__estop_input;
@@ -299,7 +306,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  registers__inputs_ready;
     reg  [31:0] registers__period_count;
     reg  [31:0] registers__stop_cause;
-    wire  [11:0] registers__irq_enable;
+    wire  [12:0] registers__irq_enable;
     wire  [31:0] registers__tick_divisor;
     wire  [15:0] registers__period_ticks;
     wire  [4:0] registers__low_water;
@@ -365,11 +372,11 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  watchdog__armed;
     reg  interrupts__clock;
     reg  interrupts__reset;
-    reg  [11:0] interrupts__events;
+    reg  [12:0] interrupts__events;
     reg  interrupts__clear;
-    reg  [11:0] interrupts__clear_bits;
-    reg  [11:0] interrupts__enable;
-    wire  [11:0] interrupts__status;
+    reg  [12:0] interrupts__clear_bits;
+    reg  [12:0] interrupts__enable;
+    wire  [12:0] interrupts__status;
     wire  interrupts__irq;
     reg  io__clock;
     reg  io__reset;
@@ -396,7 +403,19 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  io__gpio_event;
     wire  [7:0] io__gpio_out;
     wire  io__ready;
+    wire  io__filter_sample;
+    wire  [3:0] io__filter_length;
     wire  [31:0] io__read_data;
+    reg  probe_trigger__clock;
+    reg  probe_trigger__reset;
+    reg  probe_trigger__probe;
+    reg  probe_trigger__sample;
+    reg  [3:0] probe_trigger__length;
+    reg  [7:0] probe_trigger__address;
+    reg  probe_trigger__write;
+    reg  [1:0] probe_trigger__write_data;
+    wire  probe_trigger__latch;
+    wire  [31:0] probe_trigger__read_data;
     reg  analog__clock;
     reg  analog__reset;
     reg  [7:0] analog__bus_address;
@@ -466,7 +485,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  any_encoder_error;
     reg  any_busy;
     reg  [31:0] axes_read;
-    reg  [11:0] events;
+    reg  [12:0] events;
     reg  abort;
     reg  refuse_run;
     reg  [2:0] limit_held;
@@ -516,6 +535,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .limit_backward(axes__0__limit_backward),
         .home(axes__0__home),
         .home_rise(axes__0__home_rise),
+        .probe_latch(axes__0__probe_latch),
         .alarm(axes__0__alarm),
         .drive_allowed(axes__0__drive_allowed),
         .drive_enable(axes__0__drive_enable),
@@ -574,6 +594,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .limit_backward(axes__1__limit_backward),
         .home(axes__1__home),
         .home_rise(axes__1__home_rise),
+        .probe_latch(axes__1__probe_latch),
         .alarm(axes__1__alarm),
         .drive_allowed(axes__1__drive_allowed),
         .drive_enable(axes__1__drive_enable),
@@ -632,6 +653,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .limit_backward(axes__2__limit_backward),
         .home(axes__2__home),
         .home_rise(axes__2__home_rise),
+        .probe_latch(axes__2__probe_latch),
         .alarm(axes__2__alarm),
         .drive_allowed(axes__2__drive_allowed),
         .drive_enable(axes__2__drive_enable),
@@ -785,7 +807,21 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .gpio_event(io__gpio_event),
         .gpio_out(io__gpio_out),
         .ready(io__ready),
+        .filter_sample(io__filter_sample),
+        .filter_length(io__filter_length),
         .read_data(io__read_data)
+    );
+    motion_controller_servo__probe_trigger probe_trigger(
+        .clock(probe_trigger__clock),
+        .reset(probe_trigger__reset),
+        .probe(probe_trigger__probe),
+        .sample(probe_trigger__sample),
+        .length(probe_trigger__length),
+        .address(probe_trigger__address),
+        .write(probe_trigger__write),
+        .write_data(probe_trigger__write_data),
+        .latch(probe_trigger__latch),
+        .read_data(probe_trigger__read_data)
     );
     motion_controller_servo__analog analog(
         .clock(analog__clock),
@@ -869,6 +905,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         watchdog__clock = clock;
         interrupts__clock = clock;
         io__clock = clock;
+        probe_trigger__clock = clock;
         planner__clock = clock;
         analog__clock = clock;
         registers__reset = reset;
@@ -907,6 +944,13 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         io__watchdog_expired = watchdog__expired;
         gpio_out = io__gpio_out;
         drive_allowed = ~io__estop_latched_next & ~watchdog__expired;
+        probe_trigger__reset = reset;
+        probe_trigger__probe = probe;
+        probe_trigger__sample = io__filter_sample;
+        probe_trigger__length = io__filter_length;
+        probe_trigger__address = bus_address;
+        probe_trigger__write = bus_write;
+        probe_trigger__write_data = bus_write_data[(32'h0)+:(2)];
         limit_held = zero_k;
         alarm_held = zero_k;
         home_held = zero_k;
@@ -1088,6 +1132,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__0__home_rise = (io__home_rise & axis_bit__0) != zero_k;
         axes__0__alarm = (io__alarm_active & axis_bit__0) != zero_k;
         axes__0__drive_allowed = drive_allowed;
+        axes__0__probe_latch = probe_trigger__latch & has_probe;
         if (axes__0__out_a) begin
             steps_a = steps_a | axis_bit__0;
         end
@@ -1124,6 +1169,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__1__home_rise = (io__home_rise & axis_bit__1) != zero_k;
         axes__1__alarm = (io__alarm_active & axis_bit__1) != zero_k;
         axes__1__drive_allowed = drive_allowed;
+        axes__1__probe_latch = probe_trigger__latch & has_probe;
         if (axes__1__out_a) begin
             steps_a = steps_a | axis_bit__1;
         end
@@ -1160,6 +1206,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__2__home_rise = (io__home_rise & axis_bit__2) != zero_k;
         axes__2__alarm = (io__alarm_active & axis_bit__2) != zero_k;
         axes__2__drive_allowed = drive_allowed;
+        axes__2__probe_latch = probe_trigger__latch & has_probe;
         if (axes__2__out_a) begin
             steps_a = steps_a | axis_bit__2;
         end
@@ -1256,14 +1303,22 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         if (io__gpio_event) begin
             events = events | ev_gpio;
         end
+        if (probe_trigger__latch & has_probe) begin
+            events = events | ev_probe;
+        end
         interrupts__reset = reset;
         interrupts__events = events;
         interrupts__clear = registers__status_write;
-        interrupts__clear_bits = bus_write_data[(32'h0)+:(12)];
+        interrupts__clear_bits = bus_write_data[(32'h0)+:(13)];
         interrupts__enable = registers__irq_enable;
         irq = interrupts__irq;
         if (bus_read) begin
-            read_data__d = registers__read_data | io__read_data | axes_read;
+            if (has_probe) begin
+                read_data__d = registers__read_data | io__read_data | probe_trigger__read_data | axes_read;
+            end
+            else begin
+                read_data__d = registers__read_data | io__read_data | axes_read;
+            end
         end
         read_out = read_data__q;
         if (analog__read_selected) begin
@@ -3316,7 +3371,7 @@ module motion_controller_servo__any_low_prev_n(d,q,clock);
 endmodule // motion_controller_servo__any_low_prev_n
 
 
-module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -3352,6 +3407,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     input wire  limit_backward;
     input wire  home;
     input wire  home_rise;
+    input wire  probe_latch;
     input wire  alarm;
     input wire  drive_allowed;
     output reg  drive_enable;
@@ -3499,6 +3555,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     reg  io__home_rise;
     reg  io__alarm;
     reg  io__drive_allowed;
+    reg  io__probe_latch;
     reg  io__pending_forward;
     reg  io__pending_backward;
     reg  io__request;
@@ -3781,6 +3838,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .home_rise(io__home_rise),
         .alarm(io__alarm),
         .drive_allowed(io__drive_allowed),
+        .probe_latch(io__probe_latch),
         .pending_forward(io__pending_forward),
         .pending_backward(io__pending_backward),
         .request(io__request),
@@ -4213,6 +4271,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         io__limit_backward = limit_backward;
         io__home = home;
         io__home_rise = home_rise;
+        io__probe_latch = probe_latch;
         io__alarm = alarm;
         io__drive_allowed = drive_allowed;
         io__pending_forward = stage__pending_forward;
@@ -6218,7 +6277,7 @@ module motion_controller_servo__axes__0__integrand_nonzero(d,q,clock);
 endmodule // motion_controller_servo__axes__0__integrand_nonzero
 
 
-module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
+module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,probe_latch,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
 
     // Module arguments
     input wire  clock;
@@ -6233,6 +6292,7 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
     input wire  home_rise;
     input wire  alarm;
     input wire  drive_allowed;
+    input wire  probe_latch;
     input wire  pending_forward;
     input wire  pending_backward;
     input wire  request;
@@ -6259,6 +6319,8 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
     localparam  off_command = 4'h2;
     localparam  off_home_cmd = 4'h3;
     localparam  off_home_act = 4'h4;
+    localparam  off_probe_cmd = 4'h6;
+    localparam  off_probe_act = 4'h7;
     localparam  config_reset = 32'h3;
     localparam  config_mask = 32'hf;
     localparam  zero32 = 32'h0;
@@ -6301,6 +6363,12 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
     reg  [31:0] home_act__d;
     wire  [31:0] home_act__q;
     reg  home_act__clock;
+    reg  [31:0] probe_cmd__d;
+    wire  [31:0] probe_cmd__q;
+    reg  probe_cmd__clock;
+    reg  [31:0] probe_act__d;
+    wire  [31:0] probe_act__q;
+    reg  probe_act__clock;
     reg  drive_enable_reg__d;
     wire  drive_enable_reg__q;
     reg  drive_enable_reg__clock;
@@ -6351,6 +6419,16 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
         .q(home_act__q),
         .clock(home_act__clock)
     );
+    motion_controller_servo__axes__0__io__probe_cmd probe_cmd(
+        .d(probe_cmd__d),
+        .q(probe_cmd__q),
+        .clock(probe_cmd__clock)
+    );
+    motion_controller_servo__axes__0__io__probe_act probe_act(
+        .d(probe_act__d),
+        .q(probe_act__q),
+        .clock(probe_act__clock)
+    );
     motion_controller_servo__axes__0__io__drive_enable_reg drive_enable_reg(
         .d(drive_enable_reg__d),
         .q(drive_enable_reg__q),
@@ -6366,6 +6444,8 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
         home_seen__clock = clock;
         home_cmd__clock = clock;
         home_act__clock = clock;
+        probe_cmd__clock = clock;
+        probe_act__clock = clock;
         drive_enable_reg__clock = clock;
         io_config_x__d = io_config_x__q;
         limit_forward_tripped__d = limit_forward_tripped__q;
@@ -6374,6 +6454,8 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
         home_seen__d = home_seen__q;
         home_cmd__d = home_cmd__q;
         home_act__d = home_act__q;
+        probe_cmd__d = probe_cmd__q;
+        probe_act__d = probe_act__q;
         drive_enable_reg__d = drive_enable_reg__q;
         command = write & selected & (offset == off_command);
         io_config = io_config_x__q ^ config_reset;
@@ -6433,6 +6515,14 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
             home_cmd__d = zero32;
             home_act__d = zero32;
         end
+        if (probe_latch) begin
+            probe_cmd__d = cmd_position;
+            probe_act__d = act_position;
+        end
+        if (reset) begin
+            probe_cmd__d = zero32;
+            probe_act__d = zero32;
+        end
         home_held = home_seen__q & ((io_config & c_stop_on_home) != zero32);
         drive_enable_reg__d = ((io_config & c_drive_enable) != zero32) & drive_allowed & ~alarm_tripped_next;
         if (reset) begin
@@ -6480,6 +6570,12 @@ module motion_controller_servo__axes__0__io(clock,reset,selected,offset,write,wr
             end
             if (offset == off_home_act) begin
                 read_data = read_data | home_act__q;
+            end
+            if (offset == off_probe_cmd) begin
+                read_data = read_data | probe_cmd__q;
+            end
+            if (offset == off_probe_act) begin
+                read_data = read_data | probe_act__q;
             end
         end
     end
@@ -6637,6 +6733,44 @@ module motion_controller_servo__axes__0__io__limit_forward_tripped(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__io__limit_forward_tripped
+
+
+module motion_controller_servo__axes__0__io__probe_act(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__io__probe_act
+
+
+module motion_controller_servo__axes__0__io__probe_cmd(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__io__probe_cmd
 
 
 module motion_controller_servo__axes__0__overflow_flag(d,q,clock);
@@ -9558,7 +9692,7 @@ module motion_controller_servo__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__0__uniform_running_forward
 
 
-module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -9594,6 +9728,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     input wire  limit_backward;
     input wire  home;
     input wire  home_rise;
+    input wire  probe_latch;
     input wire  alarm;
     input wire  drive_allowed;
     output reg  drive_enable;
@@ -9741,6 +9876,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     reg  io__home_rise;
     reg  io__alarm;
     reg  io__drive_allowed;
+    reg  io__probe_latch;
     reg  io__pending_forward;
     reg  io__pending_backward;
     reg  io__request;
@@ -10023,6 +10159,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .home_rise(io__home_rise),
         .alarm(io__alarm),
         .drive_allowed(io__drive_allowed),
+        .probe_latch(io__probe_latch),
         .pending_forward(io__pending_forward),
         .pending_backward(io__pending_backward),
         .request(io__request),
@@ -10455,6 +10592,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         io__limit_backward = limit_backward;
         io__home = home;
         io__home_rise = home_rise;
+        io__probe_latch = probe_latch;
         io__alarm = alarm;
         io__drive_allowed = drive_allowed;
         io__pending_forward = stage__pending_forward;
@@ -12460,7 +12598,7 @@ module motion_controller_servo__axes__1__integrand_nonzero(d,q,clock);
 endmodule // motion_controller_servo__axes__1__integrand_nonzero
 
 
-module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
+module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,probe_latch,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
 
     // Module arguments
     input wire  clock;
@@ -12475,6 +12613,7 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
     input wire  home_rise;
     input wire  alarm;
     input wire  drive_allowed;
+    input wire  probe_latch;
     input wire  pending_forward;
     input wire  pending_backward;
     input wire  request;
@@ -12501,6 +12640,8 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
     localparam  off_command = 4'h2;
     localparam  off_home_cmd = 4'h3;
     localparam  off_home_act = 4'h4;
+    localparam  off_probe_cmd = 4'h6;
+    localparam  off_probe_act = 4'h7;
     localparam  config_reset = 32'h3;
     localparam  config_mask = 32'hf;
     localparam  zero32 = 32'h0;
@@ -12543,6 +12684,12 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
     reg  [31:0] home_act__d;
     wire  [31:0] home_act__q;
     reg  home_act__clock;
+    reg  [31:0] probe_cmd__d;
+    wire  [31:0] probe_cmd__q;
+    reg  probe_cmd__clock;
+    reg  [31:0] probe_act__d;
+    wire  [31:0] probe_act__q;
+    reg  probe_act__clock;
     reg  drive_enable_reg__d;
     wire  drive_enable_reg__q;
     reg  drive_enable_reg__clock;
@@ -12593,6 +12740,16 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
         .q(home_act__q),
         .clock(home_act__clock)
     );
+    motion_controller_servo__axes__1__io__probe_cmd probe_cmd(
+        .d(probe_cmd__d),
+        .q(probe_cmd__q),
+        .clock(probe_cmd__clock)
+    );
+    motion_controller_servo__axes__1__io__probe_act probe_act(
+        .d(probe_act__d),
+        .q(probe_act__q),
+        .clock(probe_act__clock)
+    );
     motion_controller_servo__axes__1__io__drive_enable_reg drive_enable_reg(
         .d(drive_enable_reg__d),
         .q(drive_enable_reg__q),
@@ -12608,6 +12765,8 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
         home_seen__clock = clock;
         home_cmd__clock = clock;
         home_act__clock = clock;
+        probe_cmd__clock = clock;
+        probe_act__clock = clock;
         drive_enable_reg__clock = clock;
         io_config_x__d = io_config_x__q;
         limit_forward_tripped__d = limit_forward_tripped__q;
@@ -12616,6 +12775,8 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
         home_seen__d = home_seen__q;
         home_cmd__d = home_cmd__q;
         home_act__d = home_act__q;
+        probe_cmd__d = probe_cmd__q;
+        probe_act__d = probe_act__q;
         drive_enable_reg__d = drive_enable_reg__q;
         command = write & selected & (offset == off_command);
         io_config = io_config_x__q ^ config_reset;
@@ -12675,6 +12836,14 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
             home_cmd__d = zero32;
             home_act__d = zero32;
         end
+        if (probe_latch) begin
+            probe_cmd__d = cmd_position;
+            probe_act__d = act_position;
+        end
+        if (reset) begin
+            probe_cmd__d = zero32;
+            probe_act__d = zero32;
+        end
         home_held = home_seen__q & ((io_config & c_stop_on_home) != zero32);
         drive_enable_reg__d = ((io_config & c_drive_enable) != zero32) & drive_allowed & ~alarm_tripped_next;
         if (reset) begin
@@ -12722,6 +12891,12 @@ module motion_controller_servo__axes__1__io(clock,reset,selected,offset,write,wr
             end
             if (offset == off_home_act) begin
                 read_data = read_data | home_act__q;
+            end
+            if (offset == off_probe_cmd) begin
+                read_data = read_data | probe_cmd__q;
+            end
+            if (offset == off_probe_act) begin
+                read_data = read_data | probe_act__q;
             end
         end
     end
@@ -12879,6 +13054,44 @@ module motion_controller_servo__axes__1__io__limit_forward_tripped(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__io__limit_forward_tripped
+
+
+module motion_controller_servo__axes__1__io__probe_act(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__io__probe_act
+
+
+module motion_controller_servo__axes__1__io__probe_cmd(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__io__probe_cmd
 
 
 module motion_controller_servo__axes__1__overflow_flag(d,q,clock);
@@ -15800,7 +16013,7 @@ module motion_controller_servo__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__1__uniform_running_forward
 
 
-module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
 
     // Module arguments
     input wire  clock;
@@ -15836,6 +16049,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     input wire  limit_backward;
     input wire  home;
     input wire  home_rise;
+    input wire  probe_latch;
     input wire  alarm;
     input wire  drive_allowed;
     output reg  drive_enable;
@@ -15983,6 +16197,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     reg  io__home_rise;
     reg  io__alarm;
     reg  io__drive_allowed;
+    reg  io__probe_latch;
     reg  io__pending_forward;
     reg  io__pending_backward;
     reg  io__request;
@@ -16265,6 +16480,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .home_rise(io__home_rise),
         .alarm(io__alarm),
         .drive_allowed(io__drive_allowed),
+        .probe_latch(io__probe_latch),
         .pending_forward(io__pending_forward),
         .pending_backward(io__pending_backward),
         .request(io__request),
@@ -16697,6 +16913,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         io__limit_backward = limit_backward;
         io__home = home;
         io__home_rise = home_rise;
+        io__probe_latch = probe_latch;
         io__alarm = alarm;
         io__drive_allowed = drive_allowed;
         io__pending_forward = stage__pending_forward;
@@ -18702,7 +18919,7 @@ module motion_controller_servo__axes__2__integrand_nonzero(d,q,clock);
 endmodule // motion_controller_servo__axes__2__integrand_nonzero
 
 
-module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
+module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,write_data,limit_forward,limit_backward,home,home_rise,alarm,drive_allowed,probe_latch,pending_forward,pending_backward,request,request_forward,pulse,pulse_forward,cmd_position,act_position,read_data,block_forward,block_backward,cut,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,drive_enable);
 
     // Module arguments
     input wire  clock;
@@ -18717,6 +18934,7 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
     input wire  home_rise;
     input wire  alarm;
     input wire  drive_allowed;
+    input wire  probe_latch;
     input wire  pending_forward;
     input wire  pending_backward;
     input wire  request;
@@ -18743,6 +18961,8 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
     localparam  off_command = 4'h2;
     localparam  off_home_cmd = 4'h3;
     localparam  off_home_act = 4'h4;
+    localparam  off_probe_cmd = 4'h6;
+    localparam  off_probe_act = 4'h7;
     localparam  config_reset = 32'h3;
     localparam  config_mask = 32'hf;
     localparam  zero32 = 32'h0;
@@ -18785,6 +19005,12 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
     reg  [31:0] home_act__d;
     wire  [31:0] home_act__q;
     reg  home_act__clock;
+    reg  [31:0] probe_cmd__d;
+    wire  [31:0] probe_cmd__q;
+    reg  probe_cmd__clock;
+    reg  [31:0] probe_act__d;
+    wire  [31:0] probe_act__q;
+    reg  probe_act__clock;
     reg  drive_enable_reg__d;
     wire  drive_enable_reg__q;
     reg  drive_enable_reg__clock;
@@ -18835,6 +19061,16 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
         .q(home_act__q),
         .clock(home_act__clock)
     );
+    motion_controller_servo__axes__2__io__probe_cmd probe_cmd(
+        .d(probe_cmd__d),
+        .q(probe_cmd__q),
+        .clock(probe_cmd__clock)
+    );
+    motion_controller_servo__axes__2__io__probe_act probe_act(
+        .d(probe_act__d),
+        .q(probe_act__q),
+        .clock(probe_act__clock)
+    );
     motion_controller_servo__axes__2__io__drive_enable_reg drive_enable_reg(
         .d(drive_enable_reg__d),
         .q(drive_enable_reg__q),
@@ -18850,6 +19086,8 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
         home_seen__clock = clock;
         home_cmd__clock = clock;
         home_act__clock = clock;
+        probe_cmd__clock = clock;
+        probe_act__clock = clock;
         drive_enable_reg__clock = clock;
         io_config_x__d = io_config_x__q;
         limit_forward_tripped__d = limit_forward_tripped__q;
@@ -18858,6 +19096,8 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
         home_seen__d = home_seen__q;
         home_cmd__d = home_cmd__q;
         home_act__d = home_act__q;
+        probe_cmd__d = probe_cmd__q;
+        probe_act__d = probe_act__q;
         drive_enable_reg__d = drive_enable_reg__q;
         command = write & selected & (offset == off_command);
         io_config = io_config_x__q ^ config_reset;
@@ -18917,6 +19157,14 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
             home_cmd__d = zero32;
             home_act__d = zero32;
         end
+        if (probe_latch) begin
+            probe_cmd__d = cmd_position;
+            probe_act__d = act_position;
+        end
+        if (reset) begin
+            probe_cmd__d = zero32;
+            probe_act__d = zero32;
+        end
         home_held = home_seen__q & ((io_config & c_stop_on_home) != zero32);
         drive_enable_reg__d = ((io_config & c_drive_enable) != zero32) & drive_allowed & ~alarm_tripped_next;
         if (reset) begin
@@ -18964,6 +19212,12 @@ module motion_controller_servo__axes__2__io(clock,reset,selected,offset,write,wr
             end
             if (offset == off_home_act) begin
                 read_data = read_data | home_act__q;
+            end
+            if (offset == off_probe_cmd) begin
+                read_data = read_data | probe_cmd__q;
+            end
+            if (offset == off_probe_act) begin
+                read_data = read_data | probe_act__q;
             end
         end
     end
@@ -19121,6 +19375,44 @@ module motion_controller_servo__axes__2__io__limit_forward_tripped(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__io__limit_forward_tripped
+
+
+module motion_controller_servo__axes__2__io__probe_act(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__io__probe_act
+
+
+module motion_controller_servo__axes__2__io__probe_cmd(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__io__probe_cmd
 
 
 module motion_controller_servo__axes__2__overflow_flag(d,q,clock);
@@ -22592,19 +22884,19 @@ module motion_controller_servo__interrupts(clock,reset,events,clear,clear_bits,e
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [11:0] events;
+    input wire  [12:0] events;
     input wire  clear;
-    input wire  [11:0] clear_bits;
-    input wire  [11:0] enable;
-    output reg  [11:0] status;
+    input wire  [12:0] clear_bits;
+    input wire  [12:0] enable;
+    output reg  [12:0] status;
     output reg  irq;
 
     // Constant declarations
-    localparam  zero = 12'h0;
+    localparam  zero = 13'b0;
 
     // Stub signals
-    reg  [11:0] status_reg__d;
-    wire  [11:0] status_reg__q;
+    reg  [12:0] status_reg__d;
+    wire  [12:0] status_reg__q;
     reg  status_reg__clock;
     reg  irq_reg__d;
     wire  irq_reg__q;
@@ -22668,13 +22960,13 @@ endmodule // motion_controller_servo__interrupts__irq_reg
 module motion_controller_servo__interrupts__status_reg(d,q,clock);
 
     // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
+    input wire  [12:0] d;
+    output reg  [12:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 12'h0;
+       q = 13'h0;
     end
 
     always @(posedge clock) begin
@@ -22684,7 +22976,7 @@ module motion_controller_servo__interrupts__status_reg(d,q,clock);
 endmodule // motion_controller_servo__interrupts__status_reg
 
 
-module motion_controller_servo__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,address,write,write_data,estop_clear,watchdog_expired,limit_pos_active,limit_neg_active,home_active,home_rise,alarm_active,estop_active,estop_latched,estop_latched_next,estop_event,gpio_event,gpio_out,ready,read_data);
+module motion_controller_servo__io(clock,reset,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,address,write,write_data,estop_clear,watchdog_expired,limit_pos_active,limit_neg_active,home_active,home_rise,alarm_active,estop_active,estop_latched,estop_latched_next,estop_event,gpio_event,gpio_out,ready,filter_sample,filter_length,read_data);
 
     // Module arguments
     input wire  clock;
@@ -22712,6 +23004,8 @@ module motion_controller_servo__io(clock,reset,limit_pos,limit_neg,home,drive_al
     output reg  gpio_event;
     output reg  [7:0] gpio_out;
     output reg  ready;
+    output reg  filter_sample;
+    output reg  [3:0] filter_length;
     output reg  [31:0] read_data;
 
     // Constant declarations
@@ -23031,6 +23325,8 @@ module motion_controller_servo__io(clock,reset,limit_pos,limit_neg,home,drive_al
         if (reset) begin
             sample_count__d = zero8;
         end
+        filter_sample = sample;
+        filter_length = filter[(32'h0)+:(4)];
         invert_limit_pos = zero_k;
         if ((polarity__q & p_limit_pos) != zero32) begin
             invert_limit_pos = ones_k;
@@ -28837,6 +29133,522 @@ module motion_controller_servo__planner__divider__subtractor(a,b,sum,carry_out);
 endmodule // motion_controller_servo__planner__divider__subtractor
 
 
+module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,address,write,write_data,latch,read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  probe;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [1:0] write_data;
+    output reg  latch;
+    output reg  [31:0] read_data;
+
+    // Constant declarations
+    localparam  a_control = 8'h19;
+    localparam  m_arm = 32'h1;
+    localparam  m_edge = 32'h2;
+    localparam  m_tripped = 32'h100;
+    localparam  m_level = 32'h200;
+    localparam  zero1 = 1'b0;
+    localparam  zero32 = 32'h0;
+
+    // Stub signals
+    reg  conditioner__clock;
+    reg  conditioner__reset;
+    reg  conditioner__raw;
+    reg  conditioner__invert;
+    reg  conditioner__sample;
+    reg  [3:0] conditioner__length;
+    wire  conditioner__active;
+    wire  conditioner__rise;
+    wire  conditioner__fall;
+    wire  conditioner__ready;
+    reg  armed__d;
+    wire  armed__q;
+    reg  armed__clock;
+    reg  falling__d;
+    wire  falling__q;
+    reg  falling__clock;
+    reg  tripped__d;
+    wire  tripped__q;
+    reg  tripped__clock;
+
+    // Local signals
+    reg  control_write;
+    reg  armed_now;
+    reg  falling_now;
+    reg  hit;
+    reg  trip;
+
+    // Sub module instances
+    motion_controller_servo__probe_trigger__conditioner conditioner(
+        .clock(conditioner__clock),
+        .reset(conditioner__reset),
+        .raw(conditioner__raw),
+        .invert(conditioner__invert),
+        .sample(conditioner__sample),
+        .length(conditioner__length),
+        .active(conditioner__active),
+        .rise(conditioner__rise),
+        .fall(conditioner__fall),
+        .ready(conditioner__ready)
+    );
+    motion_controller_servo__probe_trigger__armed armed(
+        .d(armed__d),
+        .q(armed__q),
+        .clock(armed__clock)
+    );
+    motion_controller_servo__probe_trigger__falling falling(
+        .d(falling__d),
+        .q(falling__q),
+        .clock(falling__clock)
+    );
+    motion_controller_servo__probe_trigger__tripped tripped(
+        .d(tripped__d),
+        .q(tripped__q),
+        .clock(tripped__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        armed__clock = clock;
+        falling__clock = clock;
+        tripped__clock = clock;
+        armed__d = armed__q;
+        falling__d = falling__q;
+        tripped__d = tripped__q;
+        conditioner__clock = clock;
+        conditioner__reset = reset;
+        conditioner__raw = zero1;
+        if (probe) begin
+            conditioner__raw = ~zero1;
+        end
+        conditioner__invert = zero1;
+        conditioner__sample = sample;
+        conditioner__length = length;
+        control_write = write & (address == a_control);
+        armed_now = armed__q;
+        falling_now = falling__q;
+        if (control_write) begin
+            armed_now = write_data[32'h0];
+            falling_now = write_data[32'h1];
+        end
+        hit = conditioner__rise != zero1;
+        if (falling_now) begin
+            hit = conditioner__fall != zero1;
+        end
+        trip = armed_now & hit;
+        latch = trip;
+        armed__d = armed_now & ~trip;
+        falling__d = falling_now;
+        if (control_write & write_data[32'h0]) begin
+            tripped__d = 1'b0;
+        end
+        if (trip) begin
+            tripped__d = 1'b1;
+        end
+        if (reset) begin
+            armed__d = 1'b0;
+            falling__d = 1'b0;
+            tripped__d = 1'b0;
+        end
+        read_data = zero32;
+        if (address == a_control) begin
+            if (armed__q) begin
+                read_data = read_data | m_arm;
+            end
+            if (falling__q) begin
+                read_data = read_data | m_edge;
+            end
+            if (tripped__q) begin
+                read_data = read_data | m_tripped;
+            end
+            if (conditioner__active != zero1) begin
+                read_data = read_data | m_level;
+            end
+        end
+    end
+
+endmodule // motion_controller_servo__probe_trigger
+
+
+module motion_controller_servo__probe_trigger__armed(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__armed
+
+
+module motion_controller_servo__probe_trigger__conditioner(clock,reset,raw,invert,sample,length,active,rise,fall,ready);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  invert;
+    input wire  sample;
+    input wire  [3:0] length;
+    output reg  active;
+    output reg  rise;
+    output reg  fall;
+    output reg  ready;
+
+    // Constant declarations
+    localparam  bit_mask__0 = 1'b1;
+    localparam  zero_w = 1'b0;
+    localparam  zero_2 = 2'b0;
+    localparam  one_2 = 2'b1;
+    localparam  three_2 = 2'b11;
+
+    // Stub signals
+    reg  filters__0__clock;
+    reg  filters__0__reset;
+    reg  filters__0__raw;
+    reg  filters__0__sample;
+    reg  [3:0] filters__0__length;
+    reg  filters__0__prime;
+    wire  filters__0__filtered;
+    wire  filters__0__changed;
+    reg  sync_1__d;
+    wire  sync_1__q;
+    reg  sync_1__clock;
+    reg  sync_2__d;
+    wire  sync_2__q;
+    reg  sync_2__clock;
+    reg  [1:0] primed__d;
+    wire  [1:0] primed__q;
+    reg  primed__clock;
+
+    // Local signals
+    reg  filtered;
+    reg  changed;
+    reg  priming;
+
+    // Sub module instances
+    motion_controller_servo__probe_trigger__conditioner__filters__0 filters__0(
+        .clock(filters__0__clock),
+        .reset(filters__0__reset),
+        .raw(filters__0__raw),
+        .sample(filters__0__sample),
+        .length(filters__0__length),
+        .prime(filters__0__prime),
+        .filtered(filters__0__filtered),
+        .changed(filters__0__changed)
+    );
+    motion_controller_servo__probe_trigger__conditioner__sync_1 sync_1(
+        .d(sync_1__d),
+        .q(sync_1__q),
+        .clock(sync_1__clock)
+    );
+    motion_controller_servo__probe_trigger__conditioner__sync_2 sync_2(
+        .d(sync_2__d),
+        .q(sync_2__q),
+        .clock(sync_2__clock)
+    );
+    motion_controller_servo__probe_trigger__conditioner__primed primed(
+        .d(primed__d),
+        .q(primed__q),
+        .clock(primed__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        sync_1__clock = clock;
+        sync_2__clock = clock;
+        primed__clock = clock;
+        sync_1__d = sync_1__q;
+        sync_2__d = sync_2__q;
+        primed__d = primed__q;
+        sync_1__d = raw;
+        sync_2__d = sync_1__q;
+        priming = primed__q != three_2;
+        if (priming) begin
+            primed__d = primed__q + one_2;
+        end
+        if (reset) begin
+            primed__d = zero_2;
+        end
+        ready = ~priming;
+        filtered = zero_w;
+        changed = zero_w;
+        filters__0__clock = clock;
+        filters__0__reset = reset;
+        filters__0__raw = (sync_2__q & bit_mask__0) != zero_w;
+        filters__0__sample = sample;
+        filters__0__length = length;
+        filters__0__prime = priming;
+        if (filters__0__filtered) begin
+            filtered = filtered | bit_mask__0;
+        end
+        if (filters__0__changed) begin
+            changed = changed | bit_mask__0;
+        end
+        active = filtered ^ invert;
+        if (priming) begin
+            active = zero_w;
+        end
+        rise = changed & (filtered ^ invert);
+        fall = changed & ~(filtered ^ invert);
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner
+
+
+module motion_controller_servo__probe_trigger__conditioner__filters__0(clock,reset,raw,sample,length,prime,filtered,changed);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  prime;
+    output reg  filtered;
+    output reg  changed;
+
+    // Constant declarations
+    localparam  zero = 4'h0;
+    localparam  one = 4'h1;
+    localparam  not_one = 4'he;
+
+    // Stub signals
+    reg  level__d;
+    wire  level__q;
+    reg  level__clock;
+    reg  changed_reg__d;
+    wire  changed_reg__q;
+    reg  changed_reg__clock;
+    reg  [3:0] left__d;
+    wire  [3:0] left__q;
+    reg  left__clock;
+
+    // Local signals
+    reg  differs;
+    reg  ready;
+    reg  accept;
+
+    // Sub module instances
+    motion_controller_servo__probe_trigger__conditioner__filters__0__level level(
+        .d(level__d),
+        .q(level__q),
+        .clock(level__clock)
+    );
+    motion_controller_servo__probe_trigger__conditioner__filters__0__changed_reg changed_reg(
+        .d(changed_reg__d),
+        .q(changed_reg__q),
+        .clock(changed_reg__clock)
+    );
+    motion_controller_servo__probe_trigger__conditioner__filters__0__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        level__clock = clock;
+        left__clock = clock;
+        changed_reg__clock = clock;
+        level__d = level__q;
+        left__d = left__q;
+        changed_reg__d = changed_reg__q;
+        filtered = level__q;
+        changed = changed_reg__q;
+        differs = raw != level__q;
+        ready = (left__q & not_one) == zero;
+        accept = ~prime & sample & differs & ready;
+        changed_reg__d = accept;
+        if (sample) begin
+            if (~differs | ready) begin
+                left__d = length;
+                level__d = raw;
+            end
+            else begin
+                left__d = left__q - one;
+            end
+        end
+        if (prime) begin
+            left__d = length;
+            level__d = raw;
+        end
+        if (reset) begin
+            left__d = zero;
+            level__d = 1'b0;
+            changed_reg__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner__filters__0
+
+
+module motion_controller_servo__probe_trigger__conditioner__filters__0__changed_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner__filters__0__changed_reg
+
+
+module motion_controller_servo__probe_trigger__conditioner__filters__0__left(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner__filters__0__left
+
+
+module motion_controller_servo__probe_trigger__conditioner__filters__0__level(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner__filters__0__level
+
+
+module motion_controller_servo__probe_trigger__conditioner__primed(d,q,clock);
+
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner__primed
+
+
+module motion_controller_servo__probe_trigger__conditioner__sync_1(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner__sync_1
+
+
+module motion_controller_servo__probe_trigger__conditioner__sync_2(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__conditioner__sync_2
+
+
+module motion_controller_servo__probe_trigger__falling(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__falling
+
+
+module motion_controller_servo__probe_trigger__tripped(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__tripped
+
+
 module motion_controller_servo__read_data(d,q,clock);
 
     // Module arguments
@@ -28865,7 +29677,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     input wire  [31:0] write_data;
     input wire  write;
     input wire  running;
-    input wire  [11:0] status;
+    input wire  [12:0] status;
     input wire  watchdog_armed;
     input wire  watchdog_expired;
     input wire  estop_input;
@@ -28874,7 +29686,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     input wire  inputs_ready;
     input wire  [31:0] period_count;
     input wire  [31:0] stop_cause;
-    output reg  [11:0] irq_enable;
+    output reg  [12:0] irq_enable;
     output reg  [31:0] tick_divisor;
     output reg  [15:0] period_ticks;
     output reg  [4:0] low_water;
@@ -28902,8 +29714,8 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h400;
-    localparam  config_value = 32'h3610403;
+    localparam  version_value = 32'h500;
+    localparam  config_value = 32'h7610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
     localparam  m_state_watchdog_expired = 32'h4;
@@ -28929,13 +29741,13 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  bit_mask__14 = 32'h4000;
     localparam  bit_mask__15 = 32'h8000;
     localparam  zero32 = 32'h0;
-    localparam  zero_irq = 12'h0;
+    localparam  zero_irq = 13'b0;
     localparam  zero_p = 16'h0;
     localparam  zero_level = 5'b0;
 
     // Stub signals
-    reg  [11:0] irq_enable_reg__d;
-    wire  [11:0] irq_enable_reg__q;
+    reg  [12:0] irq_enable_reg__d;
+    wire  [12:0] irq_enable_reg__q;
     reg  irq_enable_reg__clock;
     reg  [31:0] tick_divisor_reg__d;
     wire  [31:0] tick_divisor_reg__q;
@@ -28999,7 +29811,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         watchdog_timeout = watchdog_timeout_reg__q;
         if (write) begin
             if (address == a_irq_enable) begin
-                irq_enable_reg__d = write_data[(32'h0)+:(12)];
+                irq_enable_reg__d = write_data[(32'h0)+:(13)];
             end
             if (address == a_tick_divisor) begin
                 tick_divisor_reg__d = write_data;
@@ -29125,6 +29937,12 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         if ((address == a_irq_enable) & irq_enable_reg__q[11]) begin
             read_data = read_data | bit_mask__11;
         end
+        if ((address == a_status) & status[12]) begin
+            read_data = read_data | bit_mask__12;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[12]) begin
+            read_data = read_data | bit_mask__12;
+        end
         if (address == a_tick_divisor) begin
             read_data = read_data | tick_divisor_reg__q;
         end
@@ -29218,13 +30036,13 @@ endmodule // motion_controller_servo__registers
 module motion_controller_servo__registers__irq_enable_reg(d,q,clock);
 
     // Module arguments
-    input wire  [11:0] d;
-    output reg  [11:0] q;
+    input wire  [12:0] d;
+    output reg  [12:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 12'h0;
+       q = 13'h0;
     end
 
     always @(posedge clock) begin

@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000400UL
+#define MC_VERSION_RESET 0x00000500UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
 #define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x4UL
+#define MC_VERSION_MINOR_RESET 0x5UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -43,7 +43,7 @@
 #define MC_CONFIG_OFFSET 0x0008UL
 #define MC_CONFIG_ADDR16 0x0004UL
 #define MC_CONFIG_ADDR8 0x0008UL
-#define MC_CONFIG_RESET 0x03610403UL
+#define MC_CONFIG_RESET 0x07610403UL
 #define MC_CONFIG_AXES_SHIFT 0UL /* RO number of axes K */
 #define MC_CONFIG_AXES_MASK 0x000000ffUL
 #define MC_CONFIG_AXES_RESET 0x3UL
@@ -62,6 +62,9 @@
 #define MC_CONFIG_ANALOG_SHIFT 25UL /* RO 1 = this build has the analog outputs (dac_* pins, AXIS_CONFIG.ANALOG, the DAC_* registers) */
 #define MC_CONFIG_ANALOG_MASK 0x02000000UL
 #define MC_CONFIG_ANALOG_RESET 0x1UL
+#define MC_CONFIG_PROBE_SHIFT 26UL /* RO 1 = this build has the probe latch (PROBE_CONTROL, PROBE_*_POSITION, STATUS.PROBE); 0: the probe pin is ignored */
+#define MC_CONFIG_PROBE_MASK 0x04000000UL
+#define MC_CONFIG_PROBE_RESET 0x1UL
 
 /* CONTROL: run control */
 #define MC_CONTROL_INDEX 0x0003UL
@@ -82,7 +85,7 @@
 #define MC_STATUS_ADDR16 0x0008UL
 #define MC_STATUS_ADDR8 0x0010UL
 #define MC_STATUS_RESET 0x00000000UL
-#define MC_STATUS_W1C_MASK 0x00000fffUL /* write 1 to clear; write 0 here in a read-modify-write */
+#define MC_STATUS_W1C_MASK 0x00001fffUL /* write 1 to clear; write 0 here in a read-modify-write */
 #define MC_STATUS_PERIOD_DONE_SHIFT 0UL /* W1C a period ended and the next began */
 #define MC_STATUS_PERIOD_DONE_MASK 0x00000001UL
 #define MC_STATUS_PERIOD_DONE_RESET 0x0UL
@@ -119,6 +122,9 @@
 #define MC_STATUS_GPIO_SHIFT 11UL /* W1C an enabled general-input edge; see GPIO_EDGES */
 #define MC_STATUS_GPIO_MASK 0x00000800UL
 #define MC_STATUS_GPIO_RESET 0x0UL
+#define MC_STATUS_PROBE_SHIFT 12UL /* W1C the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL */
+#define MC_STATUS_PROBE_MASK 0x00001000UL
+#define MC_STATUS_PROBE_RESET 0x0UL
 
 /* IRQ_ENABLE: interrupt enable mask: irq is high while an enabled STATUS bit is set */
 #define MC_IRQ_ENABLE_INDEX 0x0005UL
@@ -162,6 +168,9 @@
 #define MC_IRQ_ENABLE_GPIO_SHIFT 11UL /* RW an enabled general-input edge; see GPIO_EDGES */
 #define MC_IRQ_ENABLE_GPIO_MASK 0x00000800UL
 #define MC_IRQ_ENABLE_GPIO_RESET 0x0UL
+#define MC_IRQ_ENABLE_PROBE_SHIFT 12UL /* RW the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL */
+#define MC_IRQ_ENABLE_PROBE_MASK 0x00001000UL
+#define MC_IRQ_ENABLE_PROBE_RESET 0x0UL
 
 /* TICK_DIVISOR: base tick = one every n clocks; 0 stops the tick (pauses everything) */
 #define MC_TICK_DIVISOR_INDEX 0x0006UL
@@ -693,6 +702,47 @@
 #define MC_HOME_ACT_POSITION_VALUE_SHIFT 0UL /* RO ACT_POSITION on the clock of the home edge */
 #define MC_HOME_ACT_POSITION_VALUE_MASK 0xffffffffUL
 #define MC_HOME_ACT_POSITION_VALUE_RESET 0x0UL
+
+/* PROBE_CONTROL: the probe input: the first selected edge after arming latches every axis's positions on one clock */
+#define MC_PROBE_CONTROL_INDEX 0x0019UL
+#define MC_PROBE_CONTROL_OFFSET 0x0064UL
+#define MC_PROBE_CONTROL_ADDR16 0x0032UL
+#define MC_PROBE_CONTROL_ADDR8 0x0064UL
+#define MC_PROBE_CONTROL_RESET 0x00000000UL
+#define MC_PROBE_CONTROL_ARM_SHIFT 0UL /* RW write 1 to arm (clears TRIPPED), 0 to disarm; reads 1 while armed; the trip disarms */
+#define MC_PROBE_CONTROL_ARM_MASK 0x00000001UL
+#define MC_PROBE_CONTROL_ARM_RESET 0x0UL
+#define MC_PROBE_CONTROL_EDGE_SHIFT 1UL /* RW 0 = trip on a rising edge of probe (contact made, for a normally-open probe), 1 = on a falling edge */
+#define MC_PROBE_CONTROL_EDGE_MASK 0x00000002UL
+#define MC_PROBE_CONTROL_EDGE_RESET 0x0UL
+#define MC_PROBE_CONTROL_TRIPPED_SHIFT 8UL /* RO sticky: the armed probe tripped and PROBE_*_POSITION hold the positions of that clock; cleared by arming */
+#define MC_PROBE_CONTROL_TRIPPED_MASK 0x00000100UL
+#define MC_PROBE_CONTROL_TRIPPED_RESET 0x0UL
+#define MC_PROBE_CONTROL_LEVEL_SHIFT 9UL /* RO the probe input, filtered (1 = high; 0 until the inputs are ready) */
+#define MC_PROBE_CONTROL_LEVEL_MASK 0x00000200UL
+#define MC_PROBE_CONTROL_LEVEL_RESET 0x0UL
+
+/* PROBE_CMD_POSITION: CMD_POSITION on the clock of the probe's trip */
+#define MC_PROBE_CMD_POSITION_COUNT 3UL
+#define MC_PROBE_CMD_POSITION_INDEX(n) (0x0036UL + (unsigned long)(n) * 0x20UL)
+#define MC_PROBE_CMD_POSITION_OFFSET(n) (MC_PROBE_CMD_POSITION_INDEX(n) * 4UL)
+#define MC_PROBE_CMD_POSITION_ADDR16(n) (MC_PROBE_CMD_POSITION_INDEX(n) * 2UL)
+#define MC_PROBE_CMD_POSITION_ADDR8(n) (MC_PROBE_CMD_POSITION_INDEX(n) * 4UL)
+#define MC_PROBE_CMD_POSITION_RESET 0x00000000UL
+#define MC_PROBE_CMD_POSITION_VALUE_SHIFT 0UL /* RO CMD_POSITION on the clock of the probe's trip */
+#define MC_PROBE_CMD_POSITION_VALUE_MASK 0xffffffffUL
+#define MC_PROBE_CMD_POSITION_VALUE_RESET 0x0UL
+
+/* PROBE_ACT_POSITION: ACT_POSITION on the clock of the probe's trip */
+#define MC_PROBE_ACT_POSITION_COUNT 3UL
+#define MC_PROBE_ACT_POSITION_INDEX(n) (0x0037UL + (unsigned long)(n) * 0x20UL)
+#define MC_PROBE_ACT_POSITION_OFFSET(n) (MC_PROBE_ACT_POSITION_INDEX(n) * 4UL)
+#define MC_PROBE_ACT_POSITION_ADDR16(n) (MC_PROBE_ACT_POSITION_INDEX(n) * 2UL)
+#define MC_PROBE_ACT_POSITION_ADDR8(n) (MC_PROBE_ACT_POSITION_INDEX(n) * 4UL)
+#define MC_PROBE_ACT_POSITION_RESET 0x00000000UL
+#define MC_PROBE_ACT_POSITION_VALUE_SHIFT 0UL /* RO ACT_POSITION on the clock of the probe's trip */
+#define MC_PROBE_ACT_POSITION_VALUE_MASK 0xffffffffUL
+#define MC_PROBE_ACT_POSITION_VALUE_RESET 0x0UL
 
 /* DAC_CONTROL: code format */
 #define MC_DAC_CONTROL_INDEX 0x0016UL

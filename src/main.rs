@@ -82,7 +82,7 @@ enum Command {
         /// iCE40 HX8K and write rtl-out/scaling-report.md (or --out).
         #[arg(long, conflicts_with_all = ["families_only", "modules"])]
         scaling: bool,
-        /// With --scaling: place only the seed card (four builds, one seed
+        /// With --scaling: place only the seed card (five builds, one seed
         /// each); the configurations' table is kept from the existing file.
         #[arg(long, requires = "scaling")]
         seed_card_only: bool,

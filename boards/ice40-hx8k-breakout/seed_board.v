@@ -81,6 +81,9 @@ module seed_board (
     input  wire        Y_LIMIT_POS, Y_LIMIT_NEG, Y_HOME, Y_ALARM,
     input  wire        Z_LIMIT_POS, Z_LIMIT_NEG, Z_HOME, Z_ALARM,
     input  wire        ESTOP,
+    // Touch probe or tool setter (pulled up: a probe closing to ground
+    // trips on the falling edge, PROBE_CONTROL.EDGE = 1).
+    input  wire        PROBE,
     output wire        X_DRIVE_ENABLE, Y_DRIVE_ENABLE, Z_DRIVE_ENABLE,
     // AD669 DACs (analog axes)
     output wire [15:0] DAC_D,
@@ -170,6 +173,7 @@ module seed_board (
         .drive_alarm({Z_ALARM, Y_ALARM, X_ALARM}),
         .estop(ESTOP),
         .gpio_in(GPIO_IN),
+        .probe(PROBE),
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
         .gpio_out(GPIO_OUT),

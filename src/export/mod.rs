@@ -145,15 +145,27 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
         ),
         (
             "motion_controller_regs",
-            motion_controller::registers::register_map(3, 4, true, false)?,
+            motion_controller::registers::register_map(
+                3,
+                4,
+                motion_controller::registers::BuildOptions::MOTION_CONTROLLER,
+            )?,
         ),
         (
             "motion_controller_dda_regs",
-            motion_controller::registers::register_map(3, 4, false, false)?,
+            motion_controller::registers::register_map(
+                3,
+                4,
+                motion_controller::registers::BuildOptions::MOTION_CONTROLLER_DDA,
+            )?,
         ),
         (
             "motion_controller_servo_regs",
-            motion_controller::registers::register_map(3, 4, false, true)?,
+            motion_controller::registers::register_map(
+                3,
+                4,
+                motion_controller::registers::BuildOptions::MOTION_CONTROLLER_SERVO,
+            )?,
         ),
         (
             "sync_fifo_bridge_master_regs",

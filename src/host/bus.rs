@@ -303,7 +303,12 @@ impl ModelBus {
     /// A 3-axis, 16-entry model in its power-up state.
     pub fn new() -> Self {
         Self {
-            model: MotionControllerModel::new(3, 4, true, false).expect("3 axes fit"),
+            model: MotionControllerModel::new(
+                3,
+                4,
+                crate::blocks::motion_controller::registers::BuildOptions::MOTION_CONTROLLER,
+            )
+            .expect("3 axes fit"),
             irq: false,
             cycles: 0,
             pins: MachinePins::default(),

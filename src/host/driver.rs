@@ -17,7 +17,7 @@
 use thiserror::Error;
 
 use super::bus::ControllerBus;
-use crate::blocks::motion_controller::registers::{register_map, StopCause};
+use crate::blocks::motion_controller::registers::{register_map, BuildOptions, StopCause};
 use crate::regmap::{RegMapError, RegisterMap};
 
 /// The `IRQ_ENABLE` fields the driver turns on: FIFO_LOW for refills, every
@@ -185,7 +185,9 @@ pub struct Driver<B: ControllerBus> {
     position_bits: u32,
 }
 
+mod probe;
 mod servo_run;
+pub use probe::{ProbeEdge, ProbeTrip};
 pub use servo_run::{ServoRunReport, SERVO_LEAD, SETTLED_PERIODS, SETTLE_PERIODS};
 
 impl<B: ControllerBus> Driver<B> {
@@ -216,7 +218,7 @@ impl<B: ControllerBus> Driver<B> {
         }
         // CONFIG is at the same address in every build: read it with the
         // full build's map, then take the map of the build found.
-        let map = register_map(3, 4, true, false)?;
+        let map = register_map(3, 4, BuildOptions::MOTION_CONTROLLER)?;
         let mut driver = Self {
             bus,
             map,
@@ -245,7 +247,13 @@ impl<B: ControllerBus> Driver<B> {
         }
         let uniform = driver.field("CONFIG", "DDA_ONLY", build)? == 0;
         let analog = driver.field("CONFIG", "ANALOG", build)? == 1;
-        driver.map = register_map(3, driver.depth.trailing_zeros(), uniform, analog)?;
+        let probe = driver.field("CONFIG", "PROBE", build)? == 1;
+        let options = BuildOptions {
+            uniform,
+            analog,
+            probe,
+        };
+        driver.map = register_map(3, driver.depth.trailing_zeros(), options)?;
         if let Some(axis) = (0..3).find(|&k| config.analog[k] && (!analog || config.uniform[k])) {
             return Err(DriverError::Config(if analog {
                 format!("axis {axis} cannot be both uniform and analog")

@@ -11,7 +11,8 @@ use super::synth::{
     place_board_if_it_fits, synthesize_if_it_fits, SynthFigures, DEVICE, DEVICE_LOGIC_CELLS,
 };
 use super::{read_text, repo_root, work_dir, ToolError};
-use crate::blocks::motion_controller::MotionController3UniformServo;
+use crate::blocks::motion_controller::registers::BuildOptions;
+use crate::blocks::motion_controller::{MotionController3NoProbe, MotionController3UniformServo};
 use crate::export::catalog::controller_scaling;
 use crate::export::module_verilog;
 
@@ -29,10 +30,8 @@ pub const SEED_CARD_CONTROLLER: &str = "motion_controller_servo";
 pub struct SeedCardRow {
     /// The controller's module name.
     pub build: &'static str,
-    /// It has the uniform pulse generators.
-    pub uniform: bool,
-    /// It has the analog outputs.
-    pub analog: bool,
+    /// Its build options.
+    pub options: BuildOptions,
     /// It is exported (in `rtl-out`); else generated for this table.
     pub exported: bool,
     /// The whole card's figures (no Fmax when it does not fit).
@@ -102,7 +101,8 @@ pub fn exported_seed_card_digest(build: &str) -> Result<String, ToolError> {
 /// file and `host_links`) placed with each controller build in place of
 /// its own, at [`SEED_CARD_MHZ`] and [`SEED_CARD_SEED`]. The exported
 /// builds are read from `rtl-out` (run `export` first); the build with both
-/// options is generated here.
+/// uniform generators and analog outputs, and `motion_controller` without
+/// the probe, are generated here.
 pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
     let root = repo_root();
     let (pcf, links) = seed_card_fixed_sources();
@@ -113,15 +113,38 @@ pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
         "motion_controller_uniform_servo",
         &mut MotionController3UniformServo::default(),
     )?;
-    let builds: [(&'static str, bool, bool, Option<PathBuf>); 4] = [
-        ("motion_controller_dda", false, false, None),
-        ("motion_controller_servo", false, true, None),
-        ("motion_controller", true, false, None),
-        ("motion_controller_uniform_servo", true, true, Some(full)),
+    let no_probe = dir.path().join("motion_controller_no_probe.v");
+    write_verilog(
+        &no_probe,
+        "motion_controller_no_probe",
+        &mut MotionController3NoProbe::default(),
+    )?;
+    let builds: [(&'static str, BuildOptions, Option<PathBuf>); 5] = [
+        (
+            "motion_controller_dda",
+            BuildOptions::MOTION_CONTROLLER_DDA,
+            None,
+        ),
+        (
+            "motion_controller_servo",
+            BuildOptions::MOTION_CONTROLLER_SERVO,
+            None,
+        ),
+        ("motion_controller", BuildOptions::MOTION_CONTROLLER, None),
+        (
+            "motion_controller_no_probe",
+            MotionController3NoProbe::BUILD,
+            Some(no_probe),
+        ),
+        (
+            "motion_controller_uniform_servo",
+            MotionController3UniformServo::BUILD,
+            Some(full),
+        ),
     ];
     builds
         .into_iter()
-        .map(|(build, uniform, analog, generated)| {
+        .map(|(build, options, generated)| {
             let top = dir.path().join(format!("seed_board_{build}.v"));
             let top_text = seed_card_top(build)?;
             write_text(&top, &top_text)?;
@@ -137,8 +160,7 @@ pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
             )?;
             Ok(SeedCardRow {
                 build,
-                uniform,
-                analog,
+                options,
                 exported,
                 figures,
                 digest,
@@ -257,8 +279,8 @@ pub fn recorded_seed_card(report: &str, build: &str) -> Option<RecordedSeedCard>
     let line = module_row(report.split(SEED_CARD_HEADING).nth(1)?, build)?;
     let cells: Vec<&str> = line.split('|').map(str::trim).collect();
     Some(RecordedSeedCard {
-        logic_cells: cells.get(8)?.parse().ok()?,
-        digest: cells.get(12)?.trim_matches('`').to_string(),
+        logic_cells: cells.get(9)?.parse().ok()?,
+        digest: cells.get(13)?.trim_matches('`').to_string(),
     })
 }
 
@@ -274,14 +296,15 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
          DSP bus, the 8-bit PC bus and the mailbox) and each controller build in place of its \
          own (`{SEED_CARD_CONTROLLER}`), synthesized the same way and placed at the board's \
          {SEED_CARD_MHZ:.0} MHz, seed {SEED_CARD_SEED}. The card must stay within \
-         {SEED_CARD_BUDGET_PERCENT} % of the HX8K's logic cells. `motion_controller_uniform_servo` (both \
-         options) is not exported: it is generated for this table. A card that does not fit is \
+         {SEED_CARD_BUDGET_PERCENT} % of the HX8K's logic cells. `motion_controller_uniform_servo` (uniform \
+         generators and analog outputs) and `motion_controller_no_probe` (`motion_controller` \
+         without the probe latch) are not exported: they are generated for this table. A card that does not fit is \
          only packed. The last column is the digest of the sources placed (board top, pin file, \
          `host_links`, controller: `scaling::seed_card_digest`); the suite checks the card's own \
          row against today's files instead of placing it again.\n\n\
-         | controller build | uniform generators | analog outputs | LUT4 | DFF | carry | RAM | \
+         | controller build | uniform generators | analog outputs | probe | LUT4 | DFF | carry | RAM | \
          logic cells | of the HX8K | within {SEED_CARD_BUDGET_PERCENT} % | Fmax seed {SEED_CARD_SEED} (MHz) | sources |\n\
-         |---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---|\n"
+         |---|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---|\n"
     );
     for row in card {
         let f = &row.figures;
@@ -290,11 +313,12 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
             .first()
             .map_or("does not fit".to_string(), |x| format!("{x:.1}"));
         md.push_str(&format!(
-            "| `{}`{} | {} | {} | {} | {} | {} | {} | {} | {:.0} % | {} | {} | `{}` |\n",
+            "| `{}`{} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0} % | {} | {} | `{}` |\n",
             row.build,
             if row.exported { "" } else { " (not exported)" },
-            yes_no(row.uniform),
-            yes_no(row.analog),
+            yes_no(row.options.uniform),
+            yes_no(row.options.analog),
+            yes_no(row.options.probe),
             f.lut4,
             f.dff,
             f.carry,
@@ -311,7 +335,7 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{render, ScalingRow, SeedCardRow};
+    use super::{render, BuildOptions, ScalingRow, SeedCardRow};
     use crate::tools::synth::SynthFigures;
 
     #[test]
@@ -349,8 +373,11 @@ mod tests {
     fn the_seed_card_table_says_which_builds_fit_within_the_budget() {
         let row = |build, logic_cells, fmax_mhz: Vec<f64>| SeedCardRow {
             build,
-            uniform: true,
-            analog: true,
+            options: BuildOptions {
+                uniform: true,
+                analog: true,
+                probe: false,
+            },
             exported: build != "b",
             figures: SynthFigures {
                 lut4: 1,
@@ -369,18 +396,20 @@ mod tests {
         ];
         let md = render(&[], &card, &[1], 100.0);
         assert!(
-            md.contains("| `a` | yes | yes | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 | `da` |"),
-            "{md}"
-        );
-        assert!(
             md.contains(
-                "| `b` (not exported) | yes | yes | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
+                "| `a` | yes | yes | no | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 | `da` |"
             ),
             "{md}"
         );
         assert!(
             md.contains(
-                "| `c` | yes | yes | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
+                "| `b` (not exported) | yes | yes | no | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
+            ),
+            "{md}"
+        );
+        assert!(
+            md.contains(
+                "| `c` | yes | yes | no | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
             ),
             "{md}"
         );

@@ -11,6 +11,7 @@ mod dpram_mailbox;
 mod external_bus_adapter;
 mod freq_divider;
 mod glitch_filter;
+mod hold_ramp;
 mod holding_ram;
 mod host_links;
 mod input_conditioner;

@@ -14,7 +14,7 @@ use motion_hdl::blocks::motion_controller::registers::StopCause;
 use motion_hdl::sim::Ad669Bank;
 
 /// The exported analog build.
-type Analog3 = Bench<3, 4, 5, false, true>;
+type Analog3 = Bench<3, 4, 5, false, true, true>;
 
 /// DAC_TIMING at reset: S, Wd, H, L.
 const TIMING: (u64, u64, u64, u64) = (1, 5, 2, 5);
@@ -369,7 +369,7 @@ fn uniform_servo_build_matches_its_model_under_random_traffic() {
     let backend =
         motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator).unwrap();
     let run = crate::motion_controller::chaos_run_on(
-        crate::bench::Bench::<3, 4, 5, true, true>::on(backend),
+        crate::bench::Bench::<3, 4, 5, true, true, true>::on(backend),
         0x0f_0011,
         300_000,
     );
@@ -386,7 +386,7 @@ fn uniform_servo_build_matches_its_model_under_random_traffic() {
 /// for cycle against the Rust simulation.
 #[test]
 fn exported_servo_verilog_matches_rust_in_icarus_and_verilator() {
-    crate::motion_controller::cross_simulate_exported::<false, true>(
+    crate::motion_controller::cross_simulate_exported::<false, true, true>(
         "motion_controller_servo",
         crate::motion_controller::SUITE_CHAOS_CLOCKS,
         crate::motion_controller::SUITE_ICARUS_CLOCKS,

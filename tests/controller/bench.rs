@@ -21,6 +21,7 @@ pub struct Bench<
     const NP1: usize,
     const UNIFORM: bool,
     const ANALOG: bool,
+    const PROBE: bool,
 > {
     /// The RTL and the reference model.
     pair: Lockstep<MotionControllerModel>,
@@ -43,8 +44,14 @@ pub struct Bench<
     pub recording: Option<Vec<Vec<u64>>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
-    Bench<K, N, NP1, UNIFORM, ANALOG>
+impl<
+        const K: usize,
+        const N: usize,
+        const NP1: usize,
+        const UNIFORM: bool,
+        const ANALOG: bool,
+        const PROBE: bool,
+    > Bench<K, N, NP1, UNIFORM, ANALOG, PROBE>
 {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
@@ -55,18 +62,21 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
 
     /// A bench in the power-up state with the RTL on `backend`.
     pub fn on(backend: Backend) -> Self {
-        let map = register_map(K, N as u32, UNIFORM, ANALOG).unwrap();
-        let model = MotionControllerModel::new(K, N as u32, UNIFORM, ANALOG).unwrap();
-        let module = match (UNIFORM, ANALOG) {
-            (true, false) => "motion_controller",
-            (false, true) => "motion_controller_servo",
-            (true, true) => "motion_controller_uniform_servo",
-            (false, false) => "motion_controller_dda",
+        let build = MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE>::BUILD;
+        let map = register_map(K, N as u32, build).unwrap();
+        let model = MotionControllerModel::new(K, N as u32, build).unwrap();
+        let module = match (UNIFORM, ANALOG, PROBE) {
+            (true, false, true) => "motion_controller",
+            (false, true, true) => "motion_controller_servo",
+            (true, true, true) => "motion_controller_uniform_servo",
+            (false, false, true) => "motion_controller_dda",
+            (true, false, false) => "motion_controller_no_probe",
+            _ => "motion_controller_other_build",
         };
         let pair = Lockstep::on(
             backend,
             module,
-            MotionController::<K, N, NP1, UNIFORM, ANALOG>::default(),
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE>::default(),
             model,
         )
         .unwrap_or_else(|e| panic!("{e}"));
@@ -153,7 +163,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         let got = self.pair.step(&inputs).unwrap_or_else(|e| panic!("{e}"));
         debug_assert_eq!(
             self.pair.input_vector().len(),
-            MotionController::<K, N, NP1, UNIFORM, ANALOG>::input_names().len()
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE>::input_names().len()
         );
         if let Some(recording) = self.recording.as_mut() {
             recording.push(self.pair.input_vector().to_vec());
@@ -254,8 +264,14 @@ pub trait ControllerUnderTest {
     fn last(&self) -> &ControllerOutputs;
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
-    ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG>
+impl<
+        const K: usize,
+        const N: usize,
+        const NP1: usize,
+        const UNIFORM: bool,
+        const ANALOG: bool,
+        const PROBE: bool,
+    > ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG, PROBE>
 {
     fn axes(&self) -> usize {
         K

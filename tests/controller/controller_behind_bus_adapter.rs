@@ -21,7 +21,7 @@ use rand::{Rng, SeedableRng};
 struct Board {
     /// The adapter's RTL and model.
     adapter: Lockstep<ExternalBusModel>,
-    controller: Bench<3, 4, 5, true, false>,
+    controller: Bench<3, 4, 5, true, false, true>,
     /// What the DSP drives on the pins.
     pins: ExternalBusInputs,
     /// The adapter's outputs after the last clock.

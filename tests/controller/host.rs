@@ -5,6 +5,7 @@
 
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
 use motion_hdl::blocks::motion_controller::registers::{register_map, StopCause};
+use motion_hdl::host::driver::ProbeEdge;
 use motion_hdl::host::planner::junction_speed;
 use motion_hdl::host::{
     interpolate, plan, ControllerBus, Driver, DriverConfig, DriverError, ModelBus, Path, PathError,
@@ -295,8 +296,12 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
         error.to_string(),
         "invalid configuration: period_ticks 70000 is outside 1..=65535"
     );
-    let map =
-        motion_hdl::blocks::motion_controller::registers::register_map(3, 4, true, false).unwrap();
+    let map = motion_hdl::blocks::motion_controller::registers::register_map(
+        3,
+        4,
+        motion_hdl::blocks::motion_controller::registers::BuildOptions::MOTION_CONTROLLER,
+    )
+    .unwrap();
     let mut driver = Driver::new(
         RecordingBus::new(ModelBus::new(), &map),
         DriverConfig::default(),
@@ -335,7 +340,12 @@ fn the_driver_names_bad_settings_and_the_recorder_logs_writes() {
 
 /// Writes `fields` of register `name` (index `index`) through the map.
 fn write_fields(bus: &mut impl ControllerBus, name: &str, index: u32, fields: &[(&str, u64)]) {
-    let map = register_map(3, 4, true, false).unwrap();
+    let map = register_map(
+        3,
+        4,
+        motion_hdl::blocks::motion_controller::registers::BuildOptions::MOTION_CONTROLLER,
+    )
+    .unwrap();
     let register = map.register(name).unwrap();
     bus.write(
         register.address_of(index).unwrap(),
@@ -611,4 +621,64 @@ fn a_2000_segment_circle_through_the_rtl_ends_exactly() {
         (report.commanded, report.actual, report.underruns),
         ([0; 3], [0; 3], 0)
     );
+}
+
+/// The probe through the driver and the RTL: armed for contact before a
+/// move and touched part way (the pin rises at clock 2500), it latches
+/// every axis's positions of one clock a few clocks later: the steps at the
+/// pins then, and the encoder count a few clocks behind them (the
+/// loopback's and the decoder's lag). The move runs on to its end. The
+/// still-touching probe latches nothing more; armed for release, lifting
+/// it latches anew.
+#[test]
+fn the_driver_arms_the_probe_and_reads_the_positions_of_its_trip() {
+    let counts = vec![[20, -10, 5]; 30];
+    let mut bus = RtlBus::new(Backend::from_env_or(Backend::Verilator).unwrap(), None).unwrap();
+    bus.sample_positions(1);
+    let touching = MachinePins {
+        probe: true,
+        ..Default::default()
+    };
+    bus.set_pins_at(2500, touching);
+    let mut driver = Driver::new(bus, DriverConfig::default()).unwrap();
+    assert!(driver.has_probe());
+    driver.arm_probe(ProbeEdge::Contact).unwrap();
+    assert_eq!(driver.probe_trip().unwrap(), None, "armed, not tripped");
+    let report = driver.run(&counts, |_| {}).unwrap();
+    assert_eq!(
+        report.commanded,
+        [600, -300, 150],
+        "the move ran to its end"
+    );
+    let trip = driver.probe_trip().unwrap().expect("the probe tripped");
+    let samples = driver.bus().samples();
+    let at = |window: std::ops::Range<usize>, position: [i32; 3]| {
+        window
+            .clone()
+            .find(|&c| samples[c] == position.map(i64::from))
+    };
+    let pins_at = at(2500..2540, trip.commanded).unwrap_or_else(|| {
+        panic!("{trip:?}: no clock shortly after the touch had these steps at the pins")
+    });
+    assert!(
+        at(pins_at.saturating_sub(20)..pins_at + 1, trip.actual).is_some(),
+        "{trip:?}: the encoder count is not the pins' of a few clocks before"
+    );
+    assert!(
+        trip.commanded[0] > 0 && trip.commanded[0] < 600,
+        "part way: {trip:?}"
+    );
+
+    driver.run(&[[4, 0, 0], [0, 0, 0]], |_| {}).unwrap();
+    assert_eq!(
+        driver.probe_trip().unwrap(),
+        Some(trip),
+        "one trip per arming"
+    );
+    driver.arm_probe(ProbeEdge::Release).unwrap();
+    let lift = driver.bus().cycles() + 200;
+    driver.bus_mut().set_pins_at(lift, MachinePins::default());
+    driver.run(&[[6, 0, 0]; 4], |_| {}).unwrap();
+    let second = driver.probe_trip().unwrap().expect("lifting it tripped");
+    assert!(second.commanded[0] > trip.commanded[0], "{second:?}");
 }

@@ -14,12 +14,12 @@ use motion_hdl::blocks::motion_controller::registers::{global, StopCause};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-type Controller3 = Bench<3, 4, 5, true, false>;
+pub(crate) type Controller3 = Bench<3, 4, 5, true, false, true>;
 
 /// Step output modes.
-const STEP_DIR: u8 = 0;
-const UP_DOWN: u8 = 1;
-const QUADRATURE: u8 = 2;
+pub(crate) const STEP_DIR: u8 = 0;
+pub(crate) const UP_DOWN: u8 = 1;
+pub(crate) const QUADRATURE: u8 = 2;
 
 /// A step seen at the pins of one axis in one clock: +1 forward, -1
 /// backward, 0 none. Step/dir: a rise of A, direction B; up/down: a rise of
@@ -56,7 +56,13 @@ fn pin_step(mode: u8, before: (bool, bool), now: (bool, bool)) -> i64 {
 /// `period` ticks per period, DDA axes in `modes` with pulses `step_len`
 /// long, limits and alarms enabled, every drive enabled, the input filter
 /// at `filter` samples, every clock.
-fn setup(b: &mut Controller3, modes: [u8; 3], step_len: [u32; 3], filter: u64, period: u32) {
+pub(crate) fn setup(
+    b: &mut Controller3,
+    modes: [u8; 3],
+    step_len: [u32; 3],
+    filter: u64,
+    period: u32,
+) {
     b.write("TICK_DIVISOR", 0, 1);
     b.write("PERIOD_TICKS", 0, period);
     let f = b.pack("INPUT_FILTER", &[("LENGTH", filter), ("SAMPLE_RATE", 0)]);
@@ -82,7 +88,7 @@ fn setup(b: &mut Controller3, modes: [u8; 3], step_len: [u32; 3], filter: u64, p
 }
 
 /// Queues `periods` periods of `counts` steps and starts.
-fn queue_and_run(b: &mut Controller3, counts: [i32; 3], periods: usize) {
+pub(crate) fn queue_and_run(b: &mut Controller3, counts: [i32; 3], periods: usize) {
     for _ in 0..periods {
         for (axis, n) in counts.iter().enumerate() {
             b.write("FIFO_WRITE", axis as u32, *n as u32);
@@ -92,17 +98,18 @@ fn queue_and_run(b: &mut Controller3, counts: [i32; 3], periods: usize) {
 }
 
 /// Records the step pins of every clock and counts the steps per axis.
-struct PinLog {
+pub(crate) struct PinLog {
     modes: [u8; 3],
     last: Vec<(bool, bool)>,
     /// Net steps per axis since the log began.
     net: [i64; 3],
     /// (clock, axis, direction) of every step.
-    steps: Vec<(u64, usize, i64)>,
+    /// (clock, axis, step) of every step seen at the pins.
+    pub(crate) steps: Vec<(u64, usize, i64)>,
 }
 
 impl PinLog {
-    fn new(b: &Controller3, modes: [u8; 3]) -> Self {
+    pub(crate) fn new(b: &Controller3, modes: [u8; 3]) -> Self {
         Self {
             modes,
             last: b.last.steps.clone(),
@@ -111,7 +118,7 @@ impl PinLog {
         }
     }
 
-    fn clock(&mut self, b: &mut Controller3) -> ControllerOutputs {
+    pub(crate) fn clock(&mut self, b: &mut Controller3) -> ControllerOutputs {
         let out = b.clock(false, 0, 0, false, false).clone();
         self.see(b.cycles - 1, &out);
         out

@@ -21,3 +21,4 @@ mod machine_io;
 mod motion_controller;
 mod parallel_machine;
 mod position_range;
+mod probe;

@@ -4,7 +4,9 @@
 
 use crate::bench::{Bench, ControllerUnderTest};
 use motion_hdl::blocks::motion_controller::io_model::MachinePins;
-use motion_hdl::blocks::motion_controller::registers::{irq, register_map};
+use motion_hdl::blocks::motion_controller::registers::{
+    fields, global, irq, register_map, BuildOptions,
+};
 use motion_hdl::blocks::motion_controller::MotionController;
 use motion_hdl::export::generator;
 use motion_hdl::host::driver::SERVICED_INTERRUPTS;
@@ -15,7 +17,7 @@ use motion_hdl::tools::repo_root;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-type Controller3 = Bench<3, 4, 5, true, false>;
+type Controller3 = Bench<3, 4, 5, true, false, true>;
 
 /// Every STATUS bit.
 pub(crate) const ALL_STATUS: u32 = (1 << irq::COUNT) - 1;
@@ -91,6 +93,10 @@ impl ChaosDriver {
         // Bounce: a pin chatters for a few clocks.
         if rng.gen_ratio(1, 20_000) {
             self.pins.home ^= 1 << rng.gen_range(0..axes);
+        }
+        // The probe touches and lifts off, sometimes for one clock.
+        if rng.gen_ratio(1, 1_500) {
+            self.pins.probe = !self.pins.probe;
         }
         self.pins
     }
@@ -288,6 +294,17 @@ impl ChaosDriver {
                 false,
                 true,
             ),
+            // Arm (mostly) or disarm the probe, on either edge; by address,
+            // as a build without the probe (and so without the register in
+            // its map) must ignore it.
+            85..=86 => (
+                false,
+                global::PROBE_CONTROL,
+                (!rng.gen_ratio(1, 5) as u32) << fields::PROBE_ARM
+                    | (rng.gen_range(0..2u64) as u32) << fields::PROBE_EDGE,
+                true,
+                false,
+            ),
             _ => (false, rng.gen_range(0..256), 0, false, true),
         }
     }
@@ -354,17 +371,18 @@ pub(crate) fn chaos_run_on(mut b: impl ControllerUnderTest, seed: u64, cycles: u
     run
 }
 
-/// The STATUS bits the rust-hdl run below must see: the frequent events.
-/// The rare ones (watchdog, drive alarm, E-stop, home, general input) need more
-/// clocks than the Rust simulation runs in the suite; the compiled runs,
-/// the same RTL as Verilog, see every bit.
+/// The STATUS bits the rust-hdl run below must see: the frequent events
+/// and the probe. The rare ones (watchdog, drive alarm, E-stop, home,
+/// general input) need more clocks than the Rust simulation runs in the
+/// suite; the compiled runs, the same RTL as Verilog, see every bit.
 const RUST_HDL_STATUS: u32 = (1 << irq::PERIOD_DONE)
     | (1 << irq::FIFO_LOW)
     | (1 << irq::UNDERRUN)
     | (1 << irq::OVERFLOW)
     | (1 << irq::ENCODER_ERROR)
     | (1 << irq::AXIS_FAULT)
-    | (1 << irq::LIMIT);
+    | (1 << irq::LIMIT)
+    | (1 << irq::PROBE);
 
 #[test]
 fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
@@ -426,7 +444,7 @@ fn two_compiled_chaos_runs(seeds: [u64; 2], cycles: u64) {
 /// 10^6 until its time passed 15 minutes).
 #[test]
 fn compiled_controller_matches_model_for_two_million_cycles() {
-    two_compiled_chaos_runs([0x7e57_0003, 0x7e57_0009], 1_000_000);
+    two_compiled_chaos_runs([0x7e57_0001, 0x7e57_0007], 1_000_000);
 }
 
 /// The same for 10^7 clocks (86 s since the machine I/O doubled the model's
@@ -457,7 +475,7 @@ fn other_axis_counts_and_fifo_depths_match_the_model() {
         (
             "K=1, 256 entries",
             chaos_run_on(
-                Bench::<1, 8, 9, true, false>::on(backend),
+                Bench::<1, 8, 9, true, false, true>::on(backend),
                 0x1_a515,
                 400_000,
             ),
@@ -465,7 +483,7 @@ fn other_axis_counts_and_fifo_depths_match_the_model() {
         (
             "K=2, 32 entries",
             chaos_run_on(
-                Bench::<2, 5, 6, true, false>::on(backend),
+                Bench::<2, 5, 6, true, false, true>::on(backend),
                 0x2_a515,
                 400_000,
             ),
@@ -477,16 +495,16 @@ fn other_axis_counts_and_fifo_depths_match_the_model() {
 
 /// Firmware set-up: base tick every clock, `period` clocks per period,
 /// step/dir outputs with 1-clock timing, axis `i` uniform if `uniform[i]`.
-pub(crate) fn configure<const U: bool, const A: bool>(
-    b: &mut Bench<3, 4, 5, U, A>,
+pub(crate) fn configure<const U: bool, const A: bool, const P: bool>(
+    b: &mut Bench<3, 4, 5, U, A, P>,
     period: u32,
     uniform: [bool; 3],
 ) {
     configure_with_tick(b, 1, period, uniform);
 }
 
-fn configure_with_tick<const U: bool, const A: bool>(
-    b: &mut Bench<3, 4, 5, U, A>,
+fn configure_with_tick<const U: bool, const A: bool, const P: bool>(
+    b: &mut Bench<3, 4, 5, U, A, P>,
     tick_divisor: u32,
     period: u32,
     uniform: [bool; 3],
@@ -507,7 +525,7 @@ fn configure_with_tick<const U: bool, const A: bool>(
 }
 
 /// Idles until the controller has stopped and every output stage is idle.
-pub(crate) fn drain<const U: bool, const A: bool>(b: &mut Bench<3, 4, 5, U, A>) {
+pub(crate) fn drain<const U: bool, const A: bool, const P: bool>(b: &mut Bench<3, 4, 5, U, A, P>) {
     for _ in 0..200 {
         b.idle(50);
         let state = b.read("STATE", 0);
@@ -638,8 +656,8 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
     );
 }
 
-pub(crate) fn queue<const U: bool, const A: bool>(
-    b: &mut Bench<3, 4, 5, U, A>,
+pub(crate) fn queue<const U: bool, const A: bool, const P: bool>(
+    b: &mut Bench<3, 4, 5, U, A, P>,
     axis: u32,
     counts: &[i32],
 ) -> i64 {
@@ -949,7 +967,7 @@ fn power_up_reads_reset_values_and_every_rw_field_reads_back() {
 /// the Rust simulation, on a firmware run with hostile traffic mixed in.
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    cross_simulate_exported::<true, false>(
+    cross_simulate_exported::<true, false, true>(
         "motion_controller",
         SUITE_CHAOS_CLOCKS,
         SUITE_ICARUS_CLOCKS,
@@ -975,21 +993,21 @@ pub(crate) const SUITE_ICARUS_CLOCKS: usize = 2_000;
 #[test]
 #[ignore = "about 4 minutes of Icarus; the suite runs 4,000 clocks of chaos per build"]
 fn exported_builds_match_rust_over_12000_chaos_clocks() {
-    cross_simulate_exported::<true, false>("motion_controller", 12_000, ALL_CLOCKS);
-    cross_simulate_exported::<false, false>("motion_controller_dda", 12_000, ALL_CLOCKS);
-    cross_simulate_exported::<false, true>("motion_controller_servo", 12_000, ALL_CLOCKS);
+    cross_simulate_exported::<true, false, true>("motion_controller", 12_000, ALL_CLOCKS);
+    cross_simulate_exported::<false, false, true>("motion_controller_dda", 12_000, ALL_CLOCKS);
+    cross_simulate_exported::<false, true, true>("motion_controller_servo", 12_000, ALL_CLOCKS);
 }
 
 /// The exported controller `module` (built with `UNIFORM` = `U` and
 /// `ANALOG` = `A`) in Icarus (its first `icarus_clocks`) and Verilator
 /// against the Rust simulation: a firmware run with axis 1 uniform (asked
 /// for, in a DDA-only build), then `chaos_clocks` of chaos traffic.
-pub(crate) fn cross_simulate_exported<const U: bool, const A: bool>(
+pub(crate) fn cross_simulate_exported<const U: bool, const A: bool, const P: bool>(
     module: &str,
     chaos_clocks: usize,
     icarus_clocks: usize,
 ) {
-    let mut b = Bench::<3, 4, 5, U, A>::new().with_loopback();
+    let mut b = Bench::<3, 4, 5, U, A, P>::new().with_loopback();
     b.recording = Some(Vec::new());
     configure(&mut b, 60, [false, true, false]);
     for period in 0..12 {
@@ -1020,7 +1038,7 @@ pub(crate) fn cross_simulate_exported<const U: bool, const A: bool>(
         b.clock(reset, address, data, write, read);
     }
     let stimulus = b.recording.take().unwrap();
-    check_instance_with::<MotionController<3, 4, 5, U, A>>(
+    check_instance_with::<MotionController<3, 4, 5, U, A, P>>(
         Instance::Exported(module),
         stimulus,
         icarus_clocks,
@@ -1032,12 +1050,18 @@ pub(crate) fn cross_simulate_exported<const U: bool, const A: bool>(
 /// Rust map's numbers.
 #[test]
 fn the_committed_c_header_compiles_and_agrees_with_the_map() {
-    for (name, uniform, analog) in [
-        ("motion_controller_regs", true, false),
-        ("motion_controller_dda_regs", false, false),
-        ("motion_controller_servo_regs", false, true),
+    for (name, build) in [
+        ("motion_controller_regs", BuildOptions::MOTION_CONTROLLER),
+        (
+            "motion_controller_dda_regs",
+            BuildOptions::MOTION_CONTROLLER_DDA,
+        ),
+        (
+            "motion_controller_servo_regs",
+            BuildOptions::MOTION_CONTROLLER_SERVO,
+        ),
     ] {
-        let map = register_map(3, 4, uniform, analog).unwrap();
+        let map = register_map(3, 4, build).unwrap();
         let header = repo_root().join("rtl-out").join(format!("{name}.h"));
         assert_eq!(
             std::fs::read_to_string(&header).unwrap(),
@@ -1064,7 +1088,7 @@ int main(void) {{
             r("CONFIG").reset_value(),
             r("ACT_SNAPSHOT").address_of(1).unwrap() * 4,
             r("STATUS").w1c_mask(),
-            !uniform as u32,
+            !build.uniform as u32,
         );
         for standard in ["c89", "c99"] {
             let printed =

@@ -7,7 +7,7 @@ use crate::bench::Bench;
 use motion_hdl::blocks::motion_controller::model::position_word;
 use motion_hdl::blocks::motion_controller::POSITION_BITS;
 
-type Controller3 = Bench<3, 4, 5, true, false>;
+type Controller3 = Bench<3, 4, 5, true, false, true>;
 
 /// Quadrature states in forward order: (a, b) = 00 -> 10 -> 11 -> 01.
 const FORWARD: [(bool, bool); 4] = [(false, false), (true, false), (true, true), (false, true)];

@@ -258,6 +258,7 @@ fn the_field_constants_agree_with_the_maps() {
         ("STATE", "INPUTS_READY", f::STATE_INPUTS_READY, 1),
         ("CONFIG", "DDA_ONLY", f::CONFIG_DDA_ONLY, 1),
         ("CONFIG", "ANALOG", f::CONFIG_ANALOG, 1),
+        ("CONFIG", "PROBE", f::CONFIG_PROBE, 1),
         ("PERIOD_TICKS", "VALUE", f::VALUE, 0),
         ("FIFO_LOW_WATER", "LEVEL", f::FIFO_LEVEL, 0),
         (
@@ -389,6 +390,10 @@ fn the_field_constants_agree_with_the_maps() {
         ("IO_COMMAND", "CLEAR_LIMITS", f::CLEAR_LIMITS, 1),
         ("IO_COMMAND", "CLEAR_ALARM", f::CLEAR_ALARM, 1),
         ("IO_COMMAND", "CLEAR_HOME", f::CLEAR_HOME, 1),
+        ("PROBE_CONTROL", "ARM", f::PROBE_ARM, 1),
+        ("PROBE_CONTROL", "EDGE", f::PROBE_EDGE, 1),
+        ("PROBE_CONTROL", "TRIPPED", f::PROBE_TRIPPED, 1),
+        ("PROBE_CONTROL", "LEVEL", f::PROBE_LEVEL, 1),
     ];
     let check = |map: &RegisterMap, register: &str, field: &str, lsb: u32, width: u32| {
         let got = map
@@ -400,9 +405,35 @@ fn the_field_constants_agree_with_the_maps() {
         }
     };
     for (uniform, analog) in [(true, false), (false, true), (true, true), (false, false)] {
-        let map = mc::register_map(3, 4, uniform, analog).unwrap();
+        let build = mc::BuildOptions {
+            uniform,
+            analog,
+            probe: true,
+        };
+        let map = mc::register_map(3, 4, build).unwrap();
         for &(register, field, lsb, width) in controller {
             check(&map, register, field, lsb, width);
+        }
+        // Without the probe its registers are absent; the rest is the same.
+        let without = mc::register_map(
+            3,
+            4,
+            mc::BuildOptions {
+                probe: false,
+                ..build
+            },
+        )
+        .unwrap();
+        for &(register, field, lsb, width) in controller {
+            match register {
+                "PROBE_CONTROL" | "PROBE_CMD_POSITION" | "PROBE_ACT_POSITION" => {
+                    assert!(
+                        without.register(register).is_err(),
+                        "{register} without PROBE"
+                    )
+                }
+                _ => check(&without, register, field, lsb, width),
+            }
         }
         // The interrupt bits: STATUS and IRQ_ENABLE, in event order.
         for register in ["STATUS", "IRQ_ENABLE"] {

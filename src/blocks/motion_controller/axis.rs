@@ -105,6 +105,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub home: Signal<In, Bit>,
     /// home became active at the last edge.
     pub home_rise: Signal<In, Bit>,
+    /// The probe trips in this clock: latch both positions.
+    pub probe_latch: Signal<In, Bit>,
     /// drive_alarm of this axis, filtered, 1 = active.
     pub alarm: Signal<In, Bit>,
     /// No E-stop latched from the next edge on, no watchdog expiry.
@@ -314,6 +316,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             limit_backward: Default::default(),
             home: Default::default(),
             home_rise: Default::default(),
+            probe_latch: Default::default(),
             alarm: Default::default(),
             drive_allowed: Default::default(),
             drive_enable: Default::default(),
@@ -738,6 +741,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.io.limit_backward.next = self.limit_backward.val();
         self.io.home.next = self.home.val();
         self.io.home_rise.next = self.home_rise.val();
+        self.io.probe_latch.next = self.probe_latch.val();
         self.io.alarm.next = self.alarm.val();
         self.io.drive_allowed.next = self.drive_allowed.val();
         self.io.pending_forward.next = self.stage.pending_forward.val();

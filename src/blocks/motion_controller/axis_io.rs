@@ -1,6 +1,7 @@
 //! The machine I/O of one axis: its limit, alarm and home logic, its drive
-//! enable and the upper half of its register window (`IO_CONFIG` to
-//! `HOME_ACT_POSITION`).
+//! enable, its probe latches, and the upper half of its register window
+//! (`IO_CONFIG` to `HOME_ACT_POSITION`, `PROBE_CMD_POSITION` and
+//! `PROBE_ACT_POSITION`).
 //!
 //! Internal to [`super::axis::MotionAxis`]; the behavior is specified in
 //! [`super`] ("Machine I/O and safety") and modelled by
@@ -49,6 +50,8 @@ pub struct AxisIo {
     pub alarm: Signal<In, Bit>,
     /// No E-stop latched (from the next edge on) and no watchdog expiry.
     pub drive_allowed: Signal<In, Bit>,
+    /// The probe trips in this clock: latch both positions.
+    pub probe_latch: Signal<In, Bit>,
     /// The stage's next step is forward.
     pub pending_forward: Signal<In, Bit>,
     /// The stage's next step is backward.
@@ -99,6 +102,8 @@ pub struct AxisIo {
     home_seen: DFF<Bit>,
     home_cmd: DFF<Bits<32>>,
     home_act: DFF<Bits<32>>,
+    probe_cmd: DFF<Bits<32>>,
+    probe_act: DFF<Bits<32>>,
     drive_enable_reg: DFF<Bit>,
 
     command: Signal<Local, Bit>,
@@ -114,6 +119,8 @@ pub struct AxisIo {
     off_command: Constant<Bits<4>>,
     off_home_cmd: Constant<Bits<4>>,
     off_home_act: Constant<Bits<4>>,
+    off_probe_cmd: Constant<Bits<4>>,
+    off_probe_act: Constant<Bits<4>>,
     config_reset: Constant<Bits<32>>,
     config_mask: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
@@ -155,6 +162,7 @@ impl Default for AxisIo {
             home_rise: Default::default(),
             alarm: Default::default(),
             drive_allowed: Default::default(),
+            probe_latch: Default::default(),
             pending_forward: Default::default(),
             pending_backward: Default::default(),
             request: Default::default(),
@@ -182,6 +190,8 @@ impl Default for AxisIo {
             home_seen: Default::default(),
             home_cmd: Default::default(),
             home_act: Default::default(),
+            probe_cmd: Default::default(),
+            probe_act: Default::default(),
             drive_enable_reg: Default::default(),
             command: Default::default(),
             cut_forward: Default::default(),
@@ -195,6 +205,8 @@ impl Default for AxisIo {
             off_command: c4(axis::IO_COMMAND),
             off_home_cmd: c4(axis::HOME_CMD_POSITION),
             off_home_act: c4(axis::HOME_ACT_POSITION),
+            off_probe_cmd: c4(axis::PROBE_CMD_POSITION),
+            off_probe_act: c4(axis::PROBE_ACT_POSITION),
             config_reset: Constant::new((fields::IO_CONFIG_RESET as u64).into()),
             config_mask: Constant::new(
                 (m4u(fields::LIMIT_ENABLE)
@@ -237,6 +249,8 @@ impl Logic for AxisIo {
             home_seen,
             home_cmd,
             home_act,
+            probe_cmd,
+            probe_act,
             drive_enable_reg
         );
         self.command.next =
@@ -327,6 +341,15 @@ impl Logic for AxisIo {
             self.home_cmd.d.next = self.zero32.val();
             self.home_act.d.next = self.zero32.val();
         }
+        // Probe: the controller's trip strobe, on every axis at once.
+        if self.probe_latch.val() {
+            self.probe_cmd.d.next = self.cmd_position.val();
+            self.probe_act.d.next = self.act_position.val();
+        }
+        if self.reset.val() {
+            self.probe_cmd.d.next = self.zero32.val();
+            self.probe_act.d.next = self.zero32.val();
+        }
         self.home_held.next = self.home_seen.q.val()
             & ((self.io_config.val() & self.c_stop_on_home.val()) != self.zero32.val());
 
@@ -383,6 +406,12 @@ impl Logic for AxisIo {
             }
             if self.offset.val() == self.off_home_act.val() {
                 self.read_data.next = self.read_data.val() | self.home_act.q.val();
+            }
+            if self.offset.val() == self.off_probe_cmd.val() {
+                self.read_data.next = self.read_data.val() | self.probe_cmd.q.val();
+            }
+            if self.offset.val() == self.off_probe_act.val() {
+                self.read_data.next = self.read_data.val() | self.probe_act.q.val();
             }
         }
     }

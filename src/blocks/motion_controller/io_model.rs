@@ -1,5 +1,6 @@
 //! Reference models of the controller's machine I/O:
-//! [`super::machine_io::MachineIo`] ([`MachineIoModel`]) and
+//! [`super::machine_io::MachineIo`] ([`MachineIoModel`]),
+//! [`super::probe_trigger::ProbeTrigger`] ([`ProbeModel`]) and
 //! [`super::axis_io::AxisIo`] ([`AxisIoModel`]). Cycle-exact, two-phase
 //! like the rest of [`super::model`]: the combinational values of a clock
 //! from the registered state, then the edge.
@@ -22,6 +23,8 @@ pub struct MachinePins {
     pub estop: bool,
     /// gpio_in.
     pub gpio_in: u8,
+    /// probe.
+    pub probe: bool,
 }
 
 /// One axis's conditioned switch levels in one clock.
@@ -128,6 +131,12 @@ impl MachineIoModel {
 
     fn gpio_invert(&self) -> u32 {
         (self.polarity >> fields::POLARITY_GPIO) & ones(fields::GPIO_WIDTH)
+    }
+
+    /// This clock's filter sample strobe and `INPUT_FILTER.LENGTH`, which
+    /// the probe's conditioner shares.
+    pub fn filter_inputs(&self) -> (bool, u8) {
+        (self.sample_count == 0, self.length())
     }
 
     fn length(&self) -> u8 {
@@ -271,6 +280,101 @@ impl MachineIoModel {
     }
 }
 
+/// [`ProbeModel`]'s combinational values in one clock.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ProbeComb {
+    /// The probe trips in this clock: every axis latches its positions.
+    pub latch: bool,
+    /// `PROBE_CONTROL` when addressed, else 0.
+    pub read_data: u32,
+}
+
+/// Model of the probe trigger: its conditioner, `PROBE_CONTROL` and the
+/// trip.
+#[derive(Clone, Debug)]
+pub struct ProbeModel {
+    conditioner: InputConditionerModel,
+    armed: bool,
+    falling: bool,
+    tripped: bool,
+}
+
+impl Default for ProbeModel {
+    fn default() -> Self {
+        Self {
+            conditioner: InputConditionerModel::new(1),
+            armed: false,
+            falling: false,
+            tripped: false,
+        }
+    }
+}
+
+impl ProbeModel {
+    /// The armed state and edge of this clock: a `PROBE_CONTROL` write
+    /// decides them.
+    fn control_now(&self, write: Option<(u32, u32)>) -> (bool, bool) {
+        match write {
+            Some((global::PROBE_CONTROL, data)) => {
+                (bit(data, fields::PROBE_ARM), bit(data, fields::PROBE_EDGE))
+            }
+            _ => (self.armed, self.falling),
+        }
+    }
+
+    /// The combinational values of this clock; `write` is this clock's bus
+    /// write (address, data), if any.
+    pub fn comb(&self, address: u32, write: Option<(u32, u32)>) -> ProbeComb {
+        let out = self.conditioner.outputs(0);
+        let (armed, falling) = self.control_now(write);
+        let edge = if falling { out.fall } else { out.rise };
+        let flag = |on: bool, n: u32| (on as u32) << n;
+        ProbeComb {
+            latch: armed && edge & 1 != 0,
+            read_data: if address == global::PROBE_CONTROL {
+                flag(self.armed, fields::PROBE_ARM)
+                    | flag(self.falling, fields::PROBE_EDGE)
+                    | flag(self.tripped, fields::PROBE_TRIPPED)
+                    | flag(out.active & 1 != 0, fields::PROBE_LEVEL)
+            } else {
+                0
+            },
+        }
+    }
+
+    /// One edge. `comb` is this clock's [`ProbeModel::comb`] with the same
+    /// `write`; `filter` is [`MachineIoModel::filter_inputs`] of this clock.
+    pub fn edge(
+        &mut self,
+        reset: bool,
+        pin: bool,
+        write: Option<(u32, u32)>,
+        comb: &ProbeComb,
+        filter: (bool, u8),
+    ) {
+        let (armed, falling) = self.control_now(write);
+        self.conditioner.step(InputConditionerInputs {
+            reset,
+            raw: pin as u32,
+            invert: 0,
+            sample: filter.0,
+            length: filter.1,
+        });
+        if armed && matches!(write, Some((global::PROBE_CONTROL, _))) {
+            self.tripped = false;
+        }
+        self.tripped |= comb.latch;
+        self.armed = armed && !comb.latch;
+        self.falling = falling;
+        if reset {
+            *self = Self {
+                conditioner: self.conditioner.clone(),
+                ..Self::default()
+            };
+        }
+    }
+}
+
 /// The axis's step path as [`AxisIoModel`] sees it in one clock.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct StepPath {
@@ -326,6 +430,8 @@ pub struct AxisIoModel {
     home_seen: bool,
     home_cmd: u32,
     home_act: u32,
+    probe_cmd: u32,
+    probe_act: u32,
     drive_enable: bool,
 }
 
@@ -339,6 +445,8 @@ impl Default for AxisIoModel {
             home_seen: false,
             home_cmd: 0,
             home_act: 0,
+            probe_cmd: 0,
+            probe_act: 0,
             drive_enable: false,
         }
     }
@@ -422,13 +530,15 @@ impl AxisIoModel {
             }
             axis::HOME_CMD_POSITION => self.home_cmd,
             axis::HOME_ACT_POSITION => self.home_act,
+            axis::PROBE_CMD_POSITION => self.probe_cmd,
+            axis::PROBE_ACT_POSITION => self.probe_act,
             _ => 0,
         }
     }
 
     /// One edge. `write` is an I/O register write to this axis
-    /// (offset, data); `positions` are (commanded, actual) of this clock.
-    #[allow(clippy::too_many_arguments)]
+    /// (offset, data); `positions` are (commanded, actual) of this clock;
+    /// `probe_latch`, the probe's trip in this clock.
     pub fn edge(
         &mut self,
         reset: bool,
@@ -436,6 +546,7 @@ impl AxisIoModel {
         comb: &AxisIoComb,
         positions: (u32, u32),
         drive_allowed: bool,
+        probe_latch: bool,
     ) {
         let drive_enable = self.config(fields::DRIVE_ENABLE) && drive_allowed && !comb.alarm_next;
         let command = match write {
@@ -463,6 +574,9 @@ impl AxisIoModel {
         if comb.home_event {
             self.home_seen = true;
             (self.home_cmd, self.home_act) = positions;
+        }
+        if probe_latch {
+            (self.probe_cmd, self.probe_act) = positions;
         }
         self.drive_enable = drive_enable;
         if reset {

@@ -93,6 +93,10 @@ pub struct MachineIo<const K: usize> {
     pub gpio_out: Signal<Out, Bits<8>>,
     /// The conditioners are primed.
     pub ready: Signal<Out, Bit>,
+    /// This edge is a filter sample (for the probe's conditioner).
+    pub filter_sample: Signal<Out, Bit>,
+    /// `INPUT_FILTER.LENGTH` (for the probe's conditioner).
+    pub filter_length: Signal<Out, Bits<4>>,
     /// The addressed register of this block, 0 otherwise.
     pub read_data: Signal<Out, Bits<32>>,
 
@@ -194,6 +198,8 @@ impl<const K: usize> Default for MachineIo<K> {
             gpio_event: Default::default(),
             gpio_out: Default::default(),
             ready: Default::default(),
+            filter_sample: Default::default(),
+            filter_length: Default::default(),
             read_data: Default::default(),
             limit_pos_in: Default::default(),
             limit_neg_in: Default::default(),
@@ -319,6 +325,8 @@ impl<const K: usize> Logic for MachineIo<K> {
         if self.reset.val() {
             self.sample_count.d.next = self.zero8.val();
         }
+        self.filter_sample.next = self.sample.val();
+        self.filter_length.next = self.filter.val().get_value_filter_length();
 
         // Conditioners: one polarity bit per class.
         self.invert_limit_pos.next = self.zero_k.val();

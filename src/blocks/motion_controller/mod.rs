@@ -198,6 +198,26 @@
 //!   `STATUS.HOME`; later edges do not overwrite it. With
 //!   `IO_CONFIG.STOP_ON_HOME` the edge also aborts (homing moves) until
 //!   `CLEAR_HOME`.
+//! * **Probe** (VERSION 0.5.0; build option `PROBE`, on in every
+//!   exported build): the `probe` input passes a conditioner
+//!   like the switches' (same `INPUT_FILTER`, no polarity bit: `EDGE`
+//!   chooses). Writing `PROBE_CONTROL.ARM` = 1 arms it (and clears
+//!   `TRIPPED`); the first edge `PROBE_CONTROL.EDGE` selects (0 rising, 1
+//!   falling) after that trips it: in the clock the edge is acted on
+//!   (c + [`latency::switch`] for a pin changed at clock c, as for home),
+//!   every axis's `PROBE_CMD_POSITION` and `PROBE_ACT_POSITION` take that
+//!   clock's CMD_POSITION and ACT_POSITION (the steps whose first pin edge
+//!   came before it; the encoder count of that clock), on the same edge
+//!   for all axes. The trip sets `TRIPPED`, disarms, and raises
+//!   `STATUS.PROBE` (`irq` two clocks after the trip clock, if enabled).
+//!   Later edges are ignored until the next arming: the latch holds the
+//!   first contact. A `PROBE_CONTROL` write takes effect in its own clock:
+//!   an edge acted on in the clock of a write that arms (disarms) trips
+//!   (does not). The trip does not stop the motion; the firmware stops
+//!   it, and the latched positions are exact whatever the feed: the
+//!   error is that of the probe's own switching, not of a servo period.
+//!   `PROBE_CONTROL.LEVEL` reads the filtered input (0 until the inputs
+//!   are ready); reset disarms and zeroes the latches.
 //! * **General I/O**: `GPIO_IN` reads the 8 filtered inputs; every edge is
 //!   recorded in `GPIO_EDGES` (write 1 to clear) and the ones enabled in
 //!   `GPIO_IRQ_ENABLE` raise `STATUS.GPIO`. `gpio_out` is `GPIO_OUT`; the
@@ -354,6 +374,9 @@
 //! * [`analog_outputs`]: the DAC, its walk over the analog axes after each
 //!   pop, the 0 V update, and the DAC's registers on the bus;
 //! * [`machine_io`]: switch conditioning, the E-stop latch, general I/O;
+//! * [`probe_trigger`]: the probe's conditioner, `PROBE_CONTROL` and its trip;
+//! * [`hold_ramp`]: the feed hold's velocity factor and the tick gate it
+//!   drives (tested on its own; the controller does not use it yet);
 //! * [`axis`] (one per axis): FIFO, DDA, uniform generator, output stage,
 //!   position counter, encoder, the axis's I/O ([`axis_io`]) and its
 //!   register window ([`axis_registers`]: configuration, strobes,
@@ -407,7 +430,7 @@
 //! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
 //! the DAC and its walk) have their own rows in the synthesis report.
 //!
-//! ## Build options: DDA only, analog outputs
+//! ## Build options: DDA only, analog outputs, probe
 //! `ANALOG` = true builds the analog outputs (see "Analog axes"); without
 //! them `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0, the `DAC_*`
 //! registers are absent (read 0) and the DAC pins idle (every `dac_cs_n`
@@ -427,7 +450,17 @@
 //!   card's controller (`seed_board.v`, which its placement test keeps
 //!   within the 85 % of an iCE40 HX8K the card asks for).
 //!
-//! [`MotionController3UniformServo`], both options on, is not exported:
+//! `PROBE` = true builds the probe latch (see "Probe"); every exported
+//! build has it. Without it `CONFIG.PROBE` reads 0, the `probe` pin is
+//! ignored, `PROBE_CONTROL` and `PROBE_*_POSITION` are absent (read 0,
+//! writes ignored) and `STATUS.PROBE` is never set: synthesis removes the
+//! trigger and the 2K latches. The ports are the same. The scaling report
+//! places [`MotionController3NoProbe`] (`motion_controller` without it) on
+//! the seed card beside the exported builds: the row pair is the probe's
+//! cost.
+//!
+//! [`MotionController3UniformServo`], uniform generators and analog
+//! outputs, is not exported:
 //! with the host links it does not fit the seed card's HX8K. The scaling
 //! report places the seed card with it and with the three exported builds
 //! ("The seed card"); a lockstep test runs it against the model.
@@ -459,10 +492,12 @@ pub mod axis_registers;
 pub mod config_shadow;
 pub mod entry;
 pub mod global_registers;
+pub mod hold_ramp;
 pub mod io_model;
 pub mod machine_io;
 pub mod model;
 pub mod period_sequencer;
+pub mod probe_trigger;
 pub mod registers;
 pub mod stop_cause;
 
@@ -481,6 +516,7 @@ use entry::EntryConverter;
 use global_registers::{ControllerFields, GlobalRegisters};
 use machine_io::MachineIo;
 use period_sequencer::PeriodSequencer;
+use probe_trigger::ProbeTrigger;
 use registers::{fields, irq, DAC_BITS};
 use stop_cause::StopCauseRegister;
 
@@ -554,28 +590,33 @@ const IRQ_COUNT: usize = irq::COUNT;
 
 /// The exported configuration (`motion_controller`): 3 axes, 16-entry
 /// FIFOs, DDA and uniform pulse generator on every axis.
-pub type MotionController3 = MotionController<3, 4, 5, true, false>;
+pub type MotionController3 = MotionController<3, 4, 5, true, false, true>;
 
 /// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
 /// 16-entry FIFOs, no uniform pulse generators, no analog outputs (see
 /// "Build options").
-pub type MotionController3Dda = MotionController<3, 4, 5, false, false>;
+pub type MotionController3Dda = MotionController<3, 4, 5, false, false, true>;
 
 /// The exported servo configuration (`motion_controller_servo`): the
 /// DDA-only controller with the analog outputs (see "Build options").
-pub type MotionController3Servo = MotionController<3, 4, 5, false, true>;
+pub type MotionController3Servo = MotionController<3, 4, 5, false, true, true>;
+
+/// The exported `motion_controller` without the probe latch (`PROBE` =
+/// false): measured on the seed card in the scaling report, not exported
+/// (see "Build options").
+pub type MotionController3NoProbe = MotionController<3, 4, 5, true, false, false>;
 
 /// Both build options (uniform generators and analog outputs): measured on
 /// the seed card in the scaling report, not exported (see "Build options").
-pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true>;
+pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true, true>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
-pub type MotionController1 = MotionController<1, 4, 5, true, false>;
+pub type MotionController1 = MotionController<1, 4, 5, true, false, true>;
 
 /// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
 /// the synthesis report's scaling table, not exported.
-pub type MotionController6 = MotionController<6, 4, 5, true, false>;
+pub type MotionController6 = MotionController<6, 4, 5, true, false, true>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -641,6 +682,7 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("drive_alarm", "K", "bit k: alarm output of axis k's drive, 1 = in alarm, asynchronous"),
     port("estop", "1", "emergency stop chain, 1 = stopped, asynchronous; no polarity setting"),
     port("gpio_in", "8", "general inputs, asynchronous"),
+    port("probe", "1", "touch probe or tool setter, asynchronous: the first edge `PROBE_CONTROL.EDGE` selects after arming latches every axis's positions; ignored in a build without `PROBE` (`CONFIG.PROBE` = 0)"),
     port("drive_enable", "K", "bit k: enable (servo-on) of axis k's drive: `IO_CONFIG.DRIVE_ENABLE`, forced low by an E-stop, a watchdog expiry or that axis's alarm; registered"),
     port("gpio_out", "8", "general outputs (`GPIO_OUT`; the `GPIO_SAFE` ones drop on E-stop or watchdog expiry); registered"),
     port("dac_data", "16", "DAC data bus, shared by the analog channels (AD669 style; 0 in a build without them); registered"),
@@ -651,8 +693,8 @@ pub const PORT_DOCS: &[PortDoc] = &[
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
 /// N + 1), with a uniform pulse generator on every axis if `UNIFORM` (else
-/// DDA only) and the analog outputs if `ANALOG` (K <= 8): see "Build
-/// options". See the [module documentation](self).
+/// DDA only), the analog outputs if `ANALOG` (K <= 8) and the probe latch
+/// if `PROBE`: see "Build options". See the [module documentation](self).
 #[derive(LogicBlock)]
 pub struct MotionController<
     const K: usize,
@@ -660,6 +702,7 @@ pub struct MotionController<
     const NP1: usize,
     const UNIFORM: bool,
     const ANALOG: bool,
+    const PROBE: bool,
 > {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
@@ -691,6 +734,8 @@ pub struct MotionController<
     pub estop: Signal<In, Bit>,
     /// General inputs.
     pub gpio_in: Signal<In, Bits<8>>,
+    /// Pin: the probe.
+    pub probe: Signal<In, Bit>,
     /// Bus read data.
     pub bus_read_data: Signal<Out, Bits<32>>,
     /// Level interrupt.
@@ -733,6 +778,7 @@ pub struct MotionController<
     watchdog: Watchdog<32>,
     interrupts: InterruptController<IRQ_COUNT>,
     io: MachineIo<K>,
+    probe_trigger: ProbeTrigger,
     /// The analog outputs: the DAC, its walk and its registers.
     analog: AnalogOutputs<K>,
     analog_axes: Signal<Local, Bits<K>>,
@@ -751,6 +797,8 @@ pub struct MotionController<
     /// `UNIFORM`: the axes have uniform generators, and so the planner is
     /// used. (A const generic cannot appear in `#[hdl_gen]` code.)
     has_uniform: Constant<Bit>,
+    /// `PROBE`: the probe trigger's latch, event and read data are used.
+    has_probe: Constant<Bit>,
     /// A plan can start in this clock.
     div_idle: Signal<Local, Bit>,
     /// An axis was granted the planner in this clock.
@@ -809,6 +857,7 @@ pub struct MotionController<
     ev_estop: Constant<Bits<IRQ_COUNT>>,
     ev_home: Constant<Bits<IRQ_COUNT>>,
     ev_gpio: Constant<Bits<IRQ_COUNT>>,
+    ev_probe: Constant<Bits<IRQ_COUNT>>,
     zero_ev: Constant<Bits<IRQ_COUNT>>,
     /// STATUS.WATCHDOG and STATUS.ESTOP, for their clears.
     m_status_watchdog: Constant<Bits<32>>,
@@ -818,8 +867,31 @@ pub struct MotionController<
     zero_k: Constant<Bits<K>>,
 }
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
-    Default for MotionController<K, N, NP1, UNIFORM, ANALOG>
+impl<
+        const K: usize,
+        const N: usize,
+        const NP1: usize,
+        const UNIFORM: bool,
+        const ANALOG: bool,
+        const PROBE: bool,
+    > MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE>
+{
+    /// This build's options, as the register map and the model take them.
+    pub const BUILD: registers::BuildOptions = registers::BuildOptions {
+        uniform: UNIFORM,
+        analog: ANALOG,
+        probe: PROBE,
+    };
+}
+
+impl<
+        const K: usize,
+        const N: usize,
+        const NP1: usize,
+        const UNIFORM: bool,
+        const ANALOG: bool,
+        const PROBE: bool,
+    > Default for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE>
 {
     fn default() -> Self {
         assert!(
@@ -833,7 +905,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         );
         let ev = |bit: u32| Constant::new((1u64 << bit).into());
         let m32 = |bit: u32| Constant::new((1u64 << bit).into());
-        let map = registers::register_map(K, N as u32, UNIFORM, ANALOG)
+        let map = registers::register_map(K, N as u32, Self::BUILD)
             .expect("the controller's own register map validates");
         let reg = |name: &str| map.register(name).expect("the controller's own register");
         let config = reg("CONFIG").reset_value();
@@ -854,6 +926,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             drive_alarm: Default::default(),
             estop: Default::default(),
             gpio_in: Default::default(),
+            probe: Default::default(),
             bus_read_data: Default::default(),
             irq: Default::default(),
             running: Default::default(),
@@ -884,9 +957,11 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             watchdog: Default::default(),
             interrupts: Default::default(),
             io: Default::default(),
+            probe_trigger: Default::default(),
             planner: Default::default(),
             div_owner: Default::default(),
             has_uniform: Constant::new(UNIFORM),
+            has_probe: Constant::new(PROBE),
             div_idle: Default::default(),
             div_granted: Default::default(),
             abort_hold: Default::default(),
@@ -928,6 +1003,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             ev_estop: ev(irq::ESTOP),
             ev_home: ev(irq::HOME),
             ev_gpio: ev(irq::GPIO),
+            ev_probe: ev(irq::PROBE),
             zero_ev: Constant::new(0u64.into()),
             m_status_watchdog: m32(irq::WATCHDOG),
             m_status_estop: m32(irq::ESTOP),
@@ -948,8 +1024,14 @@ const _: () = {
     assert!(fields::CONTROL_FLUSH == 1);
 };
 
-impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool>
-    Logic for MotionController<K, N, NP1, UNIFORM, ANALOG>
+impl<
+        const K: usize,
+        const N: usize,
+        const NP1: usize,
+        const UNIFORM: bool,
+        const ANALOG: bool,
+        const PROBE: bool,
+    > Logic for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -972,6 +1054,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             watchdog,
             interrupts,
             io,
+            probe_trigger,
             planner,
             analog
         );
@@ -1022,6 +1105,13 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         self.io.watchdog_expired.next = self.watchdog.expired.val();
         self.gpio_out.next = self.io.gpio_out.val();
         self.drive_allowed.next = !self.io.estop_latched_next.val() & !self.watchdog.expired.val();
+        self.probe_trigger.reset.next = self.reset.val();
+        self.probe_trigger.probe.next = self.probe.val();
+        self.probe_trigger.sample.next = self.io.filter_sample.val();
+        self.probe_trigger.length.next = self.io.filter_length.val();
+        self.probe_trigger.address.next = self.bus_address.val();
+        self.probe_trigger.write.next = self.bus_write.val();
+        self.probe_trigger.write_data.next = self.bus_write_data.val().get_bits::<2>(0);
 
         // Stop causes held by the axes, and the axes' summaries. Bits of
         // the K-bit vectors by mask, not bit select: at K = 1 rust-hdl
@@ -1191,6 +1281,7 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
             self.axes[i].alarm.next =
                 (self.io.alarm_active.val() & self.axis_bit[i].val()) != self.zero_k.val();
             self.axes[i].drive_allowed.next = self.drive_allowed.val();
+            self.axes[i].probe_latch.next = self.probe_trigger.latch.val() & self.has_probe.val();
             if self.axes[i].out_a.val() {
                 self.steps_a.next = self.steps_a.val() | self.axis_bit[i].val();
             }
@@ -1283,6 +1374,9 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
         if self.io.gpio_event.val() {
             self.events.next = self.events.val() | self.ev_gpio.val();
         }
+        if self.probe_trigger.latch.val() & self.has_probe.val() {
+            self.events.next = self.events.val() | self.ev_probe.val();
+        }
         self.interrupts.reset.next = self.reset.val();
         self.interrupts.events.next = self.events.val();
         self.interrupts.clear.next = self.registers.status_write.val();
@@ -1292,8 +1386,17 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
 
         // Reads: the global registers, the machine I/O's and the axes'.
         if self.bus_read.val() {
-            self.read_data.d.next =
-                self.registers.read_data.val() | self.io.read_data.val() | self.axes_read.val();
+            // Without PROBE the trigger drives nothing, and synthesis
+            // removes it.
+            if self.has_probe.val() {
+                self.read_data.d.next = self.registers.read_data.val()
+                    | self.io.read_data.val()
+                    | self.probe_trigger.read_data.val()
+                    | self.axes_read.val();
+            } else {
+                self.read_data.d.next =
+                    self.registers.read_data.val() | self.io.read_data.val() | self.axes_read.val();
+            }
         }
         // The DAC's read data is registered like ours: the same clock.
         self.read_out.next = self.read_data.q.val();
@@ -1323,9 +1426,9 @@ impl<const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, cons
     }
 }
 
-crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool] MotionController<K, N, NP1, UNIFORM, ANALOG> {
+crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE> {
     inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
-        limit_pos, limit_neg, home, drive_alarm, estop, gpio_in],
+        limit_pos, limit_neg, home, drive_alarm, estop, gpio_in, probe],
     outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out,
         dac_data, dac_cs_n, dac_l1_n, dac_ldac],
 });

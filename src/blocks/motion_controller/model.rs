@@ -7,7 +7,8 @@
 //! values from the registered state of every part, then the edge.
 
 use super::io_model::{
-    AxisIoComb, AxisIoModel, AxisSwitches, MachineIoModel, MachinePins, StepPath,
+    AxisIoComb, AxisIoModel, AxisSwitches, MachineIoModel, MachinePins, ProbeComb, ProbeModel,
+    StepPath,
 };
 use super::registers::{
     self, axis, fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, ID_VALUE,
@@ -99,7 +100,7 @@ pub struct DacPins {
 impl ControllerInputs {
     /// The RTL's input vector, in its port order (`VectorPorts`).
     pub fn to_vector(&self) -> Vec<u64> {
-        let mut vector = Vec::with_capacity(14);
+        let mut vector = Vec::with_capacity(15);
         self.write_vector(&mut vector);
         vector
     }
@@ -129,6 +130,7 @@ impl ControllerInputs {
             self.pins.drive_alarm as u64,
             self.pins.estop as u64,
             self.pins.gpio_in as u64,
+            self.pins.probe as u64,
         ]);
     }
 }
@@ -176,6 +178,7 @@ struct AxisControl {
     write_data: u32,
     abort: bool,
     drive_allowed: bool,
+    probe_latch: bool,
 }
 
 /// Model of one axis ([`super::axis::MotionAxis`]).
@@ -705,6 +708,7 @@ impl AxisModel {
                 position_word(self.encoder_out.count),
             ),
             c.drive_allowed,
+            c.probe_latch,
         );
         if c.reset {
             next.glue = AxisGlue::default();
@@ -745,6 +749,10 @@ pub struct MotionControllerModel {
     any_low_prev_n: bool,
     expired_prev: bool,
     io: MachineIoModel,
+    probe: ProbeModel,
+    /// The build has the probe latch (`PROBE`): without it the trigger's
+    /// latch, event and read data are unused.
+    has_probe: bool,
     abort_hold: bool,
     stop_cause: u32,
     /// The uniform generators' shared period planner: only its timing matters
@@ -768,16 +776,16 @@ pub struct MotionControllerModel {
 }
 
 impl MotionControllerModel {
-    /// A controller in its power-up state, with the uniform generators if
-    /// `uniform` and the analog outputs if `analog`. Fails like
+    /// A controller in its power-up state, with the options `build` (see
+    /// the controller's "Build options"). Fails like
     /// [`registers::register_map`] for an unsupported axis count.
     pub fn new(
         axes: usize,
         fifo_log2: u32,
-        uniform: bool,
-        analog: bool,
+        build: registers::BuildOptions,
     ) -> Result<Self, crate::regmap::RegMapError> {
-        let map = registers::register_map(axes, fifo_log2, uniform, analog)?;
+        let map = registers::register_map(axes, fifo_log2, build)?;
+        let registers::BuildOptions { analog, probe, .. } = build;
         let dac_map =
             crate::blocks::dac_interface::registers::register_map(axes, registers::DAC_BITS)?;
         let mut dac_addresses = Vec::new();
@@ -823,6 +831,8 @@ impl MotionControllerModel {
             any_low_prev_n: false,
             expired_prev: false,
             io: MachineIoModel::new(axes),
+            probe: ProbeModel::default(),
+            has_probe: probe,
             abort_hold: false,
             stop_cause: 0,
             divider: SequentialDividerModel::new(
@@ -964,6 +974,11 @@ impl MotionControllerModel {
         let status_write = write(global::STATUS).then_some(i.write_data);
         let status_bit = |n: u32| status_write.is_some_and(|d| d >> n & 1 != 0);
         let io = self.io.comb(i.reset, address, status_bit(irq::ESTOP));
+        let bus_write = i.write.then_some((address, i.write_data));
+        let probe = match self.has_probe {
+            true => self.probe.comb(address, bus_write),
+            false => ProbeComb::default(),
+        };
         let drive_allowed = !io.estop_latched_next && !expired;
         let any_limit_held = self.axes.iter().any(|a| a.io.limit_held());
         let any_alarm_held = self.axes.iter().any(|a| a.io.alarm_held());
@@ -1020,9 +1035,12 @@ impl MotionControllerModel {
         set(irq::ESTOP, io.estop_event);
         set(irq::HOME, combs.iter().any(|c| c.io.home_event));
         set(irq::GPIO, io.gpio_event);
+        set(irq::PROBE, probe.latch);
         let read_word = combs
             .iter()
-            .fold(self.global_read(address, &io), |w, c| w | c.read_data);
+            .fold(self.global_read(address, &io) | probe.read_data, |w, c| {
+                w | c.read_data
+            });
         // STOP_CAUSE: the highest of this clock's causes, with the lowest
         // axis that holds it.
         let lowest = |held: fn(&AxisIoModel) -> bool| {
@@ -1097,12 +1115,13 @@ impl MotionControllerModel {
                 | cause_now.1 << fields::STOP_CAUSE_AXIS;
         }
         next.abort_hold = io.estop_latched || any_limit_held || any_alarm_held || any_home_held;
-        next.io.edge(
+        next.io.edge(i.reset, &i.pins, bus_write, &io, expired);
+        next.probe.edge(
             i.reset,
-            &i.pins,
-            i.write.then_some((address, i.write_data)),
-            &io,
-            expired,
+            i.pins.probe,
+            bus_write,
+            &probe,
+            self.io.filter_inputs(),
         );
         let control = AxisControl {
             reset: i.reset,
@@ -1121,6 +1140,7 @@ impl MotionControllerModel {
             write_data: i.write_data,
             abort,
             drive_allowed,
+            probe_latch: probe.latch,
         };
         // Analog outputs: after each pop a walk loads the analog axes' codes
         // one a clock, then one update; when RUN falls (not by an abort)

@@ -25,8 +25,9 @@ pub const ID_VALUE: u32 = 0x4d48_4443;
 /// when the axis's period plan arrives from the shared planner, not two
 /// clocks after the entry is taken). Minor 4: the position counters and
 /// their latches are `CONFIG.POSITION_BITS` = 24 bits wide, not 32; their
-/// words carry the sign up to bit 31 and wrap at 2^24.
-pub const VERSION_VALUE: u32 = 0x0000_0400;
+/// words carry the sign up to bit 31 and wrap at 2^24. Minor 5: the probe
+/// input (`PROBE_CONTROL`, `PROBE_*_POSITION`, `STATUS.PROBE`).
+pub const VERSION_VALUE: u32 = 0x0000_0500;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -74,6 +75,8 @@ pub mod global {
     pub const GPIO_IRQ_ENABLE: u32 = 0x14;
     /// General input edges seen (write 1 to clear).
     pub const GPIO_EDGES: u32 = 0x15;
+    /// The probe: arm, edge, and its state.
+    pub const PROBE_CONTROL: u32 = 0x19;
     /// The analog outputs' code format (`dac_interface` CONTROL; analog builds).
     pub const DAC_CONTROL: u32 = 0x16;
     /// The analog outputs' state and flags (`dac_interface` STATUS).
@@ -149,6 +152,8 @@ pub mod fields {
     pub const CONFIG_DDA_ONLY: u32 = 24;
     /// `CONFIG.ANALOG`: the build has the analog outputs.
     pub const CONFIG_ANALOG: u32 = 25;
+    /// `CONFIG.PROBE`: the build has the probe latch.
+    pub const CONFIG_PROBE: u32 = 26;
     /// `FIFO_STATUS.LEVEL` and `FIFO_LOW_WATER.LEVEL` (FIFO depth + 1 bits).
     pub const FIFO_LEVEL: u32 = 0;
     /// `FIFO_STATUS.EMPTY`.
@@ -256,6 +261,14 @@ pub mod fields {
     pub const IO_HOME_SEEN: u32 = 11;
     /// `IO_STATUS.DRIVE_ENABLE`: the pin.
     pub const IO_DRIVE_ENABLE: u32 = 16;
+    /// `PROBE_CONTROL.ARM`: write 1 to arm (clears TRIPPED), 0 to disarm.
+    pub const PROBE_ARM: u32 = 0;
+    /// `PROBE_CONTROL.EDGE`: 0 = the rising edge of `probe`, 1 = the falling.
+    pub const PROBE_EDGE: u32 = 1;
+    /// `PROBE_CONTROL.TRIPPED`: read-only, sticky until re-armed.
+    pub const PROBE_TRIPPED: u32 = 8;
+    /// `PROBE_CONTROL.LEVEL`: read-only, the filtered `probe` level.
+    pub const PROBE_LEVEL: u32 = 9;
     /// `IO_COMMAND.CLEAR_LIMITS`.
     pub const CLEAR_LIMITS: u32 = 0;
     /// `IO_COMMAND.CLEAR_ALARM`.
@@ -377,6 +390,10 @@ pub mod axis {
     pub const HOME_ACT_POSITION: u32 = 0x14;
     /// The code at the axis's DAC output (analog builds).
     pub const DAC_APPLIED: u32 = 0x15;
+    /// CMD_POSITION at the probe's trip.
+    pub const PROBE_CMD_POSITION: u32 = 0x16;
+    /// ACT_POSITION at the probe's trip.
+    pub const PROBE_ACT_POSITION: u32 = 0x17;
 }
 
 /// Bit numbers of `STATUS` and `IRQ_ENABLE`, which are also the
@@ -407,7 +424,10 @@ pub mod irq {
     /// An enabled general-input edge.
     pub const GPIO: u32 = 11;
     /// Number of interrupt sources.
-    pub const COUNT: usize = 12;
+    /// The armed probe tripped: every axis's positions latched.
+    pub const PROBE: u32 = 12;
+    /// Number of interrupt sources.
+    pub const COUNT: usize = 13;
 }
 
 /// A read-write register whose low `width` bits hold a number.
@@ -434,24 +454,63 @@ fn irq_fields(access: Access) -> Vec<Field> {
         field("ESTOP", irq::ESTOP, 1, access, "E-stop: all axes stopped, every drive disabled; clearing it (with estop released) clears STATE.ESTOP_LATCHED"),
         field("HOME", irq::HOME, 1, access, "a home switch edge latched the positions; see IO_STATUS.HOME_SEEN"),
         field("GPIO", irq::GPIO, 1, access, "an enabled general-input edge; see GPIO_EDGES"),
+        field("PROBE", irq::PROBE, 1, access, "the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL"),
     ]
 }
 
+/// A `motion_controller`'s build options: its `UNIFORM`, `ANALOG` and
+/// `PROBE` parameters (see the controller's "Build options"). Each is
+/// discoverable in `CONFIG`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BuildOptions {
+    /// The uniform pulse generators (`CONFIG.DDA_ONLY` reads 0).
+    pub uniform: bool,
+    /// The analog outputs (`CONFIG.ANALOG`).
+    pub analog: bool,
+    /// The probe latch (`CONFIG.PROBE`).
+    pub probe: bool,
+}
+
+impl BuildOptions {
+    /// `motion_controller`: uniform generators and the probe.
+    pub const MOTION_CONTROLLER: Self = Self {
+        uniform: true,
+        analog: false,
+        probe: true,
+    };
+    /// `motion_controller_dda`: DDA only, with the probe.
+    pub const MOTION_CONTROLLER_DDA: Self = Self {
+        uniform: false,
+        analog: false,
+        probe: true,
+    };
+    /// `motion_controller_servo`: DDA only, analog outputs and the probe.
+    pub const MOTION_CONTROLLER_SERVO: Self = Self {
+        uniform: false,
+        analog: true,
+        probe: true,
+    };
+}
+
 /// The register map of a `motion_controller` with `axes` axes, FIFOs of
-/// 2^`fifo_log2` entries, the uniform pulse generators if `uniform` (the
-/// controller's `UNIFORM` parameter) and the analog outputs if `analog`
-/// (`ANALOG`). Without the generators `CONFIG.DDA_ONLY` reads 1 and
-/// `AXIS_CONFIG.UNIFORM` and `INTERLEAVED` are read-only 0; without the
-/// analog outputs `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0 and the
-/// `DAC_*` registers are absent (read 0). Fails, naming the problem, for
-/// more axes than the address space holds or a map that does not
-/// validate.
+/// 2^`fifo_log2` entries and the options `build`. Without the uniform
+/// generators `CONFIG.DDA_ONLY` reads 1 and `AXIS_CONFIG.UNIFORM` and
+/// `INTERLEAVED` are read-only 0; without the analog outputs
+/// `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0 and the `DAC_*`
+/// registers are absent (read 0); without the probe `CONFIG.PROBE` reads
+/// 0, `PROBE_CONTROL` and `PROBE_*_POSITION` are absent (read 0) and
+/// `STATUS.PROBE` is never set. Fails, naming the problem, for more axes
+/// than the address space holds or a map that does not validate.
 pub fn register_map(
     axes: usize,
     fifo_log2: u32,
-    uniform: bool,
-    analog: bool,
+    build: BuildOptions,
 ) -> Result<RegisterMap, RegMapError> {
+    let BuildOptions {
+        uniform,
+        analog,
+        probe,
+    } = build;
     if axes == 0 || axes > MAX_AXES {
         return Err(RegMapError::NoCopies(format!(
             "motion_controller axes: {axes} (1 to {MAX_AXES} fit the 8-bit address space)"
@@ -486,6 +545,13 @@ pub fn register_map(
                 ReadOnly,
                 "1 = this build has the analog outputs (dac_* pins, AXIS_CONFIG.ANALOG, the DAC_* registers)",
             ),
+            field(
+                "PROBE",
+                fields::CONFIG_PROBE,
+                1,
+                ReadOnly,
+                "1 = this build has the probe latch (PROBE_CONTROL, PROBE_*_POSITION, STATUS.PROBE); 0: the probe pin is ignored",
+            ),
         ],
     );
     config.fields[0].reset = axes as u64;
@@ -494,6 +560,7 @@ pub fn register_map(
     config.fields[3].reset = super::POSITION_BITS as u64;
     config.fields[4].reset = !uniform as u64;
     config.fields[5].reset = analog as u64;
+    config.fields[6].reset = probe as u64;
     let analog_access = if analog { ReadWrite } else { ReadOnly };
     let analog_doc = if analog {
         "1 = analog axis, taken when RUN starts: each FIFO entry is the axis's signed 16-bit DAC code for the period (0 = 0 V), no steps; its channel goes to 0 when RUN falls"
@@ -744,6 +811,33 @@ pub fn register_map(
             per_axis(Register::word("HOME_ACT_POSITION", at(axis::HOME_ACT_POSITION), ReadOnly, 0, "ACT_POSITION on the clock of the home edge")),
         ],
     };
+    if probe {
+        map.registers.push(register(
+            "PROBE_CONTROL",
+            global::PROBE_CONTROL,
+            "the probe input: the first selected edge after arming latches every axis's positions on one clock",
+            vec![
+                field("ARM", fields::PROBE_ARM, 1, ReadWrite, "write 1 to arm (clears TRIPPED), 0 to disarm; reads 1 while armed; the trip disarms"),
+                field("EDGE", fields::PROBE_EDGE, 1, ReadWrite, "0 = trip on a rising edge of probe (contact made, for a normally-open probe), 1 = on a falling edge"),
+                field("TRIPPED", fields::PROBE_TRIPPED, 1, ReadOnly, "sticky: the armed probe tripped and PROBE_*_POSITION hold the positions of that clock; cleared by arming"),
+                field("LEVEL", fields::PROBE_LEVEL, 1, ReadOnly, "the probe input, filtered (1 = high; 0 until the inputs are ready)"),
+            ],
+        ));
+        map.registers.push(per_axis(Register::word(
+            "PROBE_CMD_POSITION",
+            at(axis::PROBE_CMD_POSITION),
+            ReadOnly,
+            0,
+            "CMD_POSITION on the clock of the probe's trip",
+        )));
+        map.registers.push(per_axis(Register::word(
+            "PROBE_ACT_POSITION",
+            at(axis::PROBE_ACT_POSITION),
+            ReadOnly,
+            0,
+            "ACT_POSITION on the clock of the probe's trip",
+        )));
+    }
     if analog {
         let dac = crate::blocks::dac_interface::registers::register_map(axes, DAC_BITS)?;
         for (name, address, dac_name) in DAC_GLOBAL {

@@ -20,7 +20,7 @@ use crate::blocks::step_output::StepOutput;
 /// Axis 0 of the exported `motion_controller` (uniform generators, no
 /// analog outputs), with the narrowest FIFO the controller takes (N = 2).
 fn exported_axis() -> MotionAxis<2, 3> {
-    let map = registers::register_map(1, 2, true, false)
+    let map = registers::register_map(1, 2, registers::BuildOptions::MOTION_CONTROLLER)
         .expect("the controller's own register map validates");
     let axis_config = map
         .register("AXIS_CONFIG")
