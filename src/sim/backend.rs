@@ -159,21 +159,28 @@ impl CompiledStepper {
         trace: bool,
     ) -> Result<Self, SimError> {
         type Generated = Arc<(String, Vec<Port>)>;
-        static GENERATED: OnceLock<Mutex<HashMap<(TypeId, String), Generated>>> = OnceLock::new();
+        // One slot per block type and module, locked while its Verilog is
+        // generated: a second thread asking for the same block waits for
+        // it instead of generating it again, and other blocks go on.
+        type Slot = Arc<Mutex<Option<Generated>>>;
+        static GENERATED: OnceLock<Mutex<HashMap<(TypeId, String), Slot>>> = OnceLock::new();
         let key = (TypeId::of::<B>(), module.to_string());
-        let cache = GENERATED.get_or_init(Default::default);
-        let cached = cache.lock().map(|c| c.get(&key).cloned()).ok().flatten();
-        let generated = match cached {
-            Some(generated) => generated,
+        let slot = {
+            let cache = GENERATED.get_or_init(Default::default);
+            let mut slots = cache.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+            slots.entry(key).or_default().clone()
+        };
+        let mut entry = slot.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let generated = match entry.as_ref() {
+            Some(generated) => generated.clone(),
             None => {
                 let verilog = module_verilog(module, &mut block).map_err(CompiledError::from)?;
-                let generated = Arc::new((verilog, top_ports(&block)));
-                if let Ok(mut c) = cache.lock() {
-                    c.insert(key, generated.clone());
-                }
+                let generated: Generated = Arc::new((verilog, top_ports(&block)));
+                *entry = Some(generated.clone());
                 generated
             }
         };
+        drop(entry);
         let (verilog, ports) = &*generated;
         let model = CompiledModel::from_verilog(module, verilog, "clock", ports, trace)?;
         Self::ordered::<B>(model)
