@@ -167,7 +167,9 @@ impl CompiledStepper {
         let key = (TypeId::of::<B>(), module.to_string());
         let slot = {
             let cache = GENERATED.get_or_init(Default::default);
-            let mut slots = cache.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+            let mut slots = cache
+                .lock()
+                .unwrap_or_else(|poisoned| poisoned.into_inner());
             slots.entry(key).or_default().clone()
         };
         let mut entry = slot.lock().unwrap_or_else(|poisoned| poisoned.into_inner());

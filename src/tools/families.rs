@@ -12,7 +12,7 @@ use std::path::Path;
 use std::process::Command;
 
 use super::synth::{final_stat, median, slowest_fmax};
-use super::{read_text, run, work_dir, ToolError};
+use super::{read_text, run, run_limited, work_dir, ToolError, FAMILY_MAPPING_TIME_LIMIT};
 use crate::export::ModuleSpec;
 
 /// What one mapped cell type is.
@@ -277,11 +277,12 @@ pub fn map_cells(
         .script
         .replace("{top}", top)
         .replace("{json}", &json_arg);
-    let log = run(
+    let log = run_limited(
         Command::new("yosys")
             .arg("-p")
             .arg(format!("read_verilog {}; {script}; stat", rtl.display())),
         false,
+        FAMILY_MAPPING_TIME_LIMIT,
     )?;
     let cells = final_stat(&log);
     if cells.is_empty() {

@@ -83,10 +83,24 @@ pub(crate) fn read_text(path: &std::path::Path) -> Result<String, ToolError> {
 /// hopeless design; a stuck tool fails its test instead of hanging CI.
 pub const TOOL_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(300);
 
+/// Longest one yosys mapping of a report's other families may take:
+/// `synth_xilinx` of a whole controller alone takes about 5 minutes here,
+/// over [`TOOL_TIME_LIMIT`]. Reports run outside the suite.
+pub const FAMILY_MAPPING_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(1800);
+
 /// Runs `command` and returns its stdout and stderr joined; fails on a
 /// non-zero exit unless `allow_failure` says so, and after
 /// [`TOOL_TIME_LIMIT`] kills the tool and fails.
 pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, ToolError> {
+    run_limited(command, allow_failure, TOOL_TIME_LIMIT)
+}
+
+/// [`run`] with the time limit `limit`.
+pub(crate) fn run_limited(
+    command: &mut Command,
+    allow_failure: bool,
+    limit: std::time::Duration,
+) -> Result<String, ToolError> {
     let program = command.get_program().to_string_lossy().into_owned();
     let line = format!(
         "{} {}",
@@ -134,7 +148,7 @@ pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, 
         if let Some(status) = child.try_wait().map_err(|e| io_error("waiting for", e))? {
             break Some(status);
         }
-        if started.elapsed() > TOOL_TIME_LIMIT {
+        if started.elapsed() > limit {
             let _ = Command::new("kill")
                 .args(["-KILL", "--", &format!("-{}", child.id())])
                 .status();
@@ -148,7 +162,7 @@ pub(crate) fn run(command: &mut Command, allow_failure: bool) -> Result<String, 
     match status {
         None => Err(ToolError::Failed {
             command: line,
-            status: format!("killed after {} s", TOOL_TIME_LIMIT.as_secs()),
+            status: format!("killed after {} s", limit.as_secs()),
             output: text,
         }),
         Some(status) if !status.success() && !allow_failure => Err(ToolError::Failed {
