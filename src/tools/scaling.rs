@@ -107,44 +107,31 @@ pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
     let root = repo_root();
     let (pcf, links) = seed_card_fixed_sources();
     let dir = work_dir("seed-card")?;
-    let full = dir.path().join("motion_controller_uniform_servo.v");
+    let full = MotionController3UniformServo::BUILD;
+    let full_path = dir.path().join(format!("{}.v", full.module_name()));
     write_verilog(
-        &full,
-        "motion_controller_uniform_servo",
+        &full_path,
+        full.module_name(),
         &mut MotionController3UniformServo::default(),
     )?;
-    let no_probe = dir.path().join("motion_controller_no_probe.v");
+    let no_probe = MotionController3NoProbe::BUILD;
+    let no_probe_path = dir.path().join(format!("{}.v", no_probe.module_name()));
     write_verilog(
-        &no_probe,
-        "motion_controller_no_probe",
+        &no_probe_path,
+        no_probe.module_name(),
         &mut MotionController3NoProbe::default(),
     )?;
-    let builds: [(&'static str, BuildOptions, Option<PathBuf>); 5] = [
-        (
-            "motion_controller_dda",
-            BuildOptions::MOTION_CONTROLLER_DDA,
-            None,
-        ),
-        (
-            "motion_controller_servo",
-            BuildOptions::MOTION_CONTROLLER_SERVO,
-            None,
-        ),
-        ("motion_controller", BuildOptions::MOTION_CONTROLLER, None),
-        (
-            "motion_controller_no_probe",
-            MotionController3NoProbe::BUILD,
-            Some(no_probe),
-        ),
-        (
-            "motion_controller_uniform_servo",
-            MotionController3UniformServo::BUILD,
-            Some(full),
-        ),
+    let builds: [(BuildOptions, Option<PathBuf>); 5] = [
+        (BuildOptions::MOTION_CONTROLLER_DDA, None),
+        (BuildOptions::MOTION_CONTROLLER_SERVO, None),
+        (BuildOptions::MOTION_CONTROLLER, None),
+        (no_probe, Some(no_probe_path)),
+        (full, Some(full_path)),
     ];
     builds
         .into_iter()
-        .map(|(build, options, generated)| {
+        .map(|(options, generated)| {
+            let build = options.module_name();
             let top = dir.path().join(format!("seed_board_{build}.v"));
             let top_text = seed_card_top(build)?;
             write_text(&top, &top_text)?;

@@ -65,14 +65,7 @@ impl<
         let build = MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE>::BUILD;
         let map = register_map(K, N as u32, build).unwrap();
         let model = MotionControllerModel::new(K, N as u32, build).unwrap();
-        let module = match (UNIFORM, ANALOG, PROBE) {
-            (true, false, true) => "motion_controller",
-            (false, true, true) => "motion_controller_servo",
-            (true, true, true) => "motion_controller_uniform_servo",
-            (false, false, true) => "motion_controller_dda",
-            (true, false, false) => "motion_controller_no_probe",
-            _ => "motion_controller_other_build",
-        };
+        let module = build.module_name();
         let pair = Lockstep::on(
             backend,
             module,

@@ -490,6 +490,21 @@ impl BuildOptions {
         analog: true,
         probe: true,
     };
+
+    /// The module name of this build (the exported ones' and the names
+    /// the scaling report and the test benches give the others).
+    pub fn module_name(&self) -> &'static str {
+        match (self.uniform, self.analog, self.probe) {
+            (true, false, true) => "motion_controller",
+            (false, false, true) => "motion_controller_dda",
+            (false, true, true) => "motion_controller_servo",
+            (true, true, true) => "motion_controller_uniform_servo",
+            (true, false, false) => "motion_controller_no_probe",
+            (false, false, false) => "motion_controller_dda_no_probe",
+            (false, true, false) => "motion_controller_servo_no_probe",
+            (true, true, false) => "motion_controller_uniform_servo_no_probe",
+        }
+    }
 }
 
 /// The register map of a `motion_controller` with `axes` axes, FIFOs of
