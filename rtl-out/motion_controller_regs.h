@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000500UL
+#define MC_VERSION_RESET 0x00000600UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
 #define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x5UL
+#define MC_VERSION_MINOR_RESET 0x6UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -85,7 +85,7 @@
 #define MC_STATUS_ADDR16 0x0008UL
 #define MC_STATUS_ADDR8 0x0010UL
 #define MC_STATUS_RESET 0x00000000UL
-#define MC_STATUS_W1C_MASK 0x00001fffUL /* write 1 to clear; write 0 here in a read-modify-write */
+#define MC_STATUS_W1C_MASK 0x00003fffUL /* write 1 to clear; write 0 here in a read-modify-write */
 #define MC_STATUS_PERIOD_DONE_SHIFT 0UL /* W1C a period ended and the next began */
 #define MC_STATUS_PERIOD_DONE_MASK 0x00000001UL
 #define MC_STATUS_PERIOD_DONE_RESET 0x0UL
@@ -125,6 +125,9 @@
 #define MC_STATUS_PROBE_SHIFT 12UL /* W1C the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL */
 #define MC_STATUS_PROBE_MASK 0x00001000UL
 #define MC_STATUS_PROBE_RESET 0x0UL
+#define MC_STATUS_HELD_SHIFT 13UL /* W1C the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL */
+#define MC_STATUS_HELD_MASK 0x00002000UL
+#define MC_STATUS_HELD_RESET 0x0UL
 
 /* IRQ_ENABLE: interrupt enable mask: irq is high while an enabled STATUS bit is set */
 #define MC_IRQ_ENABLE_INDEX 0x0005UL
@@ -171,6 +174,9 @@
 #define MC_IRQ_ENABLE_PROBE_SHIFT 12UL /* RW the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL */
 #define MC_IRQ_ENABLE_PROBE_MASK 0x00001000UL
 #define MC_IRQ_ENABLE_PROBE_RESET 0x0UL
+#define MC_IRQ_ENABLE_HELD_SHIFT 13UL /* RW the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL */
+#define MC_IRQ_ENABLE_HELD_MASK 0x00002000UL
+#define MC_IRQ_ENABLE_HELD_RESET 0x0UL
 
 /* TICK_DIVISOR: base tick = one every n clocks; 0 stops the tick (pauses everything) */
 #define MC_TICK_DIVISOR_INDEX 0x0006UL
@@ -259,6 +265,12 @@
 #define MC_STATE_INPUTS_READY_SHIFT 6UL /* RO the switch filters are primed: 0 for the 3 clocks after reset, in which RUN is refused */
 #define MC_STATE_INPUTS_READY_MASK 0x00000040UL
 #define MC_STATE_INPUTS_READY_RESET 0x1UL
+#define MC_STATE_HOLDING_SHIFT 7UL /* RO the feed hold's factor is below 1: the path is slowing, held, or ramping back to speed */
+#define MC_STATE_HOLDING_MASK 0x00000080UL
+#define MC_STATE_HOLDING_RESET 0x0UL
+#define MC_STATE_HELD_SHIFT 8UL /* RO the feed hold's factor is 0: no base tick reaches the periods or the axes */
+#define MC_STATE_HELD_MASK 0x00000100UL
+#define MC_STATE_HELD_RESET 0x0UL
 
 /* PERIOD_COUNT: periods started since reset, wrapping */
 #define MC_PERIOD_COUNT_INDEX 0x000dUL
@@ -374,6 +386,31 @@
 #define MC_GPIO_EDGES_FALL_SHIFT 8UL /* W1C per input: fell */
 #define MC_GPIO_EDGES_FALL_MASK 0x0000ff00UL
 #define MC_GPIO_EDGES_FALL_RESET 0x0UL
+
+/* HOLD_CONTROL: the feed hold: a controlled stop along the path that resumes where it left off (the FIFOs keep their entries) */
+#define MC_HOLD_CONTROL_INDEX 0x001aUL
+#define MC_HOLD_CONTROL_OFFSET 0x0068UL
+#define MC_HOLD_CONTROL_ADDR16 0x0034UL
+#define MC_HOLD_CONTROL_ADDR8 0x0068UL
+#define MC_HOLD_CONTROL_RESET 0x00000000UL
+#define MC_HOLD_CONTROL_HOLD_SHIFT 0UL /* WO write 1 to request the hold (0: no effect) */
+#define MC_HOLD_CONTROL_HOLD_MASK 0x00000001UL
+#define MC_HOLD_CONTROL_HOLD_RESET 0x0UL
+#define MC_HOLD_CONTROL_RELEASE_SHIFT 1UL /* WO write 1 to release the hold: the factor ramps back to 1 (refused while the feed_hold input is active, or with HOLD = 1 in the same write) */
+#define MC_HOLD_CONTROL_RELEASE_MASK 0x00000002UL
+#define MC_HOLD_CONTROL_RELEASE_RESET 0x0UL
+#define MC_HOLD_CONTROL_INVERT_SHIFT 2UL /* RW 1 = the feed_hold input is active low */
+#define MC_HOLD_CONTROL_INVERT_MASK 0x00000004UL
+#define MC_HOLD_CONTROL_INVERT_RESET 0x0UL
+#define MC_HOLD_CONTROL_REQUESTED_SHIFT 8UL /* RO the hold is requested (sticky until released): by HOLD, the feed_hold input, or a probe trip with PROBE_CONTROL.STOP */
+#define MC_HOLD_CONTROL_REQUESTED_MASK 0x00000100UL
+#define MC_HOLD_CONTROL_REQUESTED_RESET 0x0UL
+#define MC_HOLD_CONTROL_INPUT_SHIFT 9UL /* RO the feed_hold input, filtered, INVERT applied (0 until the inputs are ready) */
+#define MC_HOLD_CONTROL_INPUT_MASK 0x00000200UL
+#define MC_HOLD_CONTROL_INPUT_RESET 0x0UL
+#define MC_HOLD_CONTROL_RATE_SHIFT 16UL /* RW the factor's change per base tick in 1/65536 (a stop from full speed takes ceil(65536 / RATE) ticks); 0 acts as 65536: the factor goes to 0 or 1 at the next tick */
+#define MC_HOLD_CONTROL_RATE_MASK 0xffff0000UL
+#define MC_HOLD_CONTROL_RATE_RESET 0x0UL
 
 /* FIFO_WRITE: push one period's signed step count (refused when full); a magnitude above 65535 is saturated and flagged */
 #define MC_FIFO_WRITE_COUNT 3UL
@@ -718,6 +755,9 @@
 #define MC_PROBE_CONTROL_TRIPPED_SHIFT 8UL /* RO sticky: the armed probe tripped and PROBE_*_POSITION hold the positions of that clock; cleared by arming */
 #define MC_PROBE_CONTROL_TRIPPED_MASK 0x00000100UL
 #define MC_PROBE_CONTROL_TRIPPED_RESET 0x0UL
+#define MC_PROBE_CONTROL_STOP_SHIFT 2UL /* RW 1 = the trip also requests the feed hold (HOLD_CONTROL.HOLD): a controlled stop along the path, not an abort */
+#define MC_PROBE_CONTROL_STOP_MASK 0x00000004UL
+#define MC_PROBE_CONTROL_STOP_RESET 0x0UL
 #define MC_PROBE_CONTROL_LEVEL_SHIFT 9UL /* RO the probe input, filtered (1 = high; 0 until the inputs are ready) */
 #define MC_PROBE_CONTROL_LEVEL_MASK 0x00000200UL
 #define MC_PROBE_CONTROL_LEVEL_RESET 0x0UL

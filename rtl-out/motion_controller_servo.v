@@ -30,6 +30,7 @@
 //   estop           in         1  emergency stop chain, 1 = stopped, asynchronous; no polarity setting
 //   gpio_in         in         8  general inputs, asynchronous
 //   probe           in         1  touch probe or tool setter, asynchronous: the first edge `PROBE_CONTROL.EDGE` selects after arming latches every axis's positions; ignored in a build without `PROBE` (`CONFIG.PROBE` = 0)
+//   feed_hold       in         1  feed hold request, asynchronous, 1 = hold (`HOLD_CONTROL.INVERT` = 1: 0 = hold): while active the path decelerates along itself to a stop; it resumes on `HOLD_CONTROL.RELEASE` once the input is inactive
 //   bus_read_data   out       32  the addressed register, registered: valid in the clock after `bus_read`, held until the next read
 //   irq             out        1  level interrupt: an enabled `STATUS` bit is set; registered
 //   running         out        1  periods are running (`STATE.RUNNING`)
@@ -45,7 +46,7 @@
 // ============================================================================
 
 `default_nettype none
-module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
+module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,feed_hold,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
 
     // Module arguments
     input wire  clock;
@@ -64,6 +65,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     input wire  estop;
     input wire  [7:0] gpio_in;
     input wire  probe;
+    input wire  feed_hold;
     output reg  [31:0] bus_read_data;
     output reg  irq;
     output reg  running;
@@ -98,20 +100,21 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  has_uniform = 1'b0;
     localparam  has_probe = 1'b1;
     localparam  zero32 = 32'h0;
-    localparam  ev_period_done = 13'b1;
-    localparam  ev_fifo_low = 13'b10;
-    localparam  ev_underrun = 13'b100;
-    localparam  ev_overflow = 13'b1000;
-    localparam  ev_encoder_error = 13'b10000;
-    localparam  ev_watchdog = 13'b100000;
-    localparam  ev_axis_fault = 13'b1000000;
-    localparam  ev_limit = 13'b10000000;
-    localparam  ev_alarm = 13'b100000000;
-    localparam  ev_estop = 13'b1000000000;
-    localparam  ev_home = 13'b10000000000;
-    localparam  ev_gpio = 13'b100000000000;
-    localparam  ev_probe = 13'b1000000000000;
-    localparam  zero_ev = 13'b0;
+    localparam  ev_period_done = 14'b1;
+    localparam  ev_fifo_low = 14'b10;
+    localparam  ev_underrun = 14'b100;
+    localparam  ev_overflow = 14'b1000;
+    localparam  ev_encoder_error = 14'b10000;
+    localparam  ev_watchdog = 14'b100000;
+    localparam  ev_axis_fault = 14'b1000000;
+    localparam  ev_limit = 14'b10000000;
+    localparam  ev_alarm = 14'b100000000;
+    localparam  ev_estop = 14'b1000000000;
+    localparam  ev_home = 14'b10000000000;
+    localparam  ev_gpio = 14'b100000000000;
+    localparam  ev_probe = 14'b1000000000000;
+    localparam  ev_held = 14'b10000000000000;
+    localparam  zero_ev = 14'b0;
     localparam  m_status_watchdog = 32'h20;
     localparam  m_status_estop = 32'h200;
     localparam  axis_bit__0 = 3'b1;
@@ -297,16 +300,18 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [31:0] registers__write_data;
     reg  registers__write;
     reg  registers__running;
-    reg  [12:0] registers__status;
+    reg  [13:0] registers__status;
     reg  registers__watchdog_armed;
     reg  registers__watchdog_expired;
     reg  registers__estop_input;
     reg  registers__estop_latched;
     reg  registers__aborted;
     reg  registers__inputs_ready;
+    reg  registers__holding;
+    reg  registers__held;
     reg  [31:0] registers__period_count;
     reg  [31:0] registers__stop_cause;
-    wire  [12:0] registers__irq_enable;
+    wire  [13:0] registers__irq_enable;
     wire  [31:0] registers__tick_divisor;
     wire  [15:0] registers__period_ticks;
     wire  [4:0] registers__low_water;
@@ -372,11 +377,11 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  watchdog__armed;
     reg  interrupts__clock;
     reg  interrupts__reset;
-    reg  [12:0] interrupts__events;
+    reg  [13:0] interrupts__events;
     reg  interrupts__clear;
-    reg  [12:0] interrupts__clear_bits;
-    reg  [12:0] interrupts__enable;
-    wire  [12:0] interrupts__status;
+    reg  [13:0] interrupts__clear_bits;
+    reg  [13:0] interrupts__enable;
+    wire  [13:0] interrupts__status;
     wire  interrupts__irq;
     reg  io__clock;
     reg  io__reset;
@@ -413,9 +418,24 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [3:0] probe_trigger__length;
     reg  [7:0] probe_trigger__address;
     reg  probe_trigger__write;
-    reg  [1:0] probe_trigger__write_data;
+    reg  [2:0] probe_trigger__write_data;
     wire  probe_trigger__latch;
+    wire  probe_trigger__stop;
     wire  [31:0] probe_trigger__read_data;
+    reg  feed_hold_unit__clock;
+    reg  feed_hold_unit__reset;
+    reg  feed_hold_unit__feed_hold;
+    reg  feed_hold_unit__sample;
+    reg  [3:0] feed_hold_unit__length;
+    reg  [7:0] feed_hold_unit__address;
+    reg  feed_hold_unit__write;
+    reg  [31:0] feed_hold_unit__write_data;
+    reg  feed_hold_unit__probe_stop;
+    reg  feed_hold_unit__tick;
+    wire  feed_hold_unit__tick_out;
+    wire  feed_hold_unit__holding;
+    wire  feed_hold_unit__held;
+    wire  [31:0] feed_hold_unit__read_data;
     reg  analog__clock;
     reg  analog__reset;
     reg  [7:0] analog__bus_address;
@@ -464,8 +484,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  expired_prev__d;
     wire  expired_prev__q;
     reg  expired_prev__clock;
+    reg  held_prev__d;
+    wire  held_prev__q;
+    reg  held_prev__clock;
 
     // Local signals
+    reg  motion_tick;
     reg  [2:0] analog_axes;
     reg  [15:0] walk_magnitude;
     reg  walk_wide;
@@ -473,6 +497,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  [31:0] read_out;
     reg  div_idle;
     reg  div_granted;
+    reg  [31:0] probe_read;
     reg  tick;
     reg  start;
     reg  halt;
@@ -485,7 +510,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  any_encoder_error;
     reg  any_busy;
     reg  [31:0] axes_read;
-    reg  [12:0] events;
+    reg  [13:0] events;
     reg  abort;
     reg  refuse_run;
     reg  [2:0] limit_held;
@@ -692,6 +717,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .estop_latched(registers__estop_latched),
         .aborted(registers__aborted),
         .inputs_ready(registers__inputs_ready),
+        .holding(registers__holding),
+        .held(registers__held),
         .period_count(registers__period_count),
         .stop_cause(registers__stop_cause),
         .irq_enable(registers__irq_enable),
@@ -821,7 +848,24 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .write(probe_trigger__write),
         .write_data(probe_trigger__write_data),
         .latch(probe_trigger__latch),
+        .stop(probe_trigger__stop),
         .read_data(probe_trigger__read_data)
+    );
+    motion_controller_servo__feed_hold_unit feed_hold_unit(
+        .clock(feed_hold_unit__clock),
+        .reset(feed_hold_unit__reset),
+        .feed_hold(feed_hold_unit__feed_hold),
+        .sample(feed_hold_unit__sample),
+        .length(feed_hold_unit__length),
+        .address(feed_hold_unit__address),
+        .write(feed_hold_unit__write),
+        .write_data(feed_hold_unit__write_data),
+        .probe_stop(feed_hold_unit__probe_stop),
+        .tick(feed_hold_unit__tick),
+        .tick_out(feed_hold_unit__tick_out),
+        .holding(feed_hold_unit__holding),
+        .held(feed_hold_unit__held),
+        .read_data(feed_hold_unit__read_data)
     );
     motion_controller_servo__analog analog(
         .clock(analog__clock),
@@ -885,17 +929,24 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .q(expired_prev__q),
         .clock(expired_prev__clock)
     );
+    motion_controller_servo__held_prev held_prev(
+        .d(held_prev__d),
+        .q(held_prev__q),
+        .clock(held_prev__clock)
+    );
 
     // Update code
     always @(*) begin
         read_data__clock = clock;
         any_low_prev_n__clock = clock;
         expired_prev__clock = clock;
+        held_prev__clock = clock;
         abort_hold__clock = clock;
         div_owner__clock = clock;
         read_data__d = read_data__q;
         any_low_prev_n__d = any_low_prev_n__q;
         expired_prev__d = expired_prev__q;
+        held_prev__d = held_prev__q;
         abort_hold__d = abort_hold__q;
         div_owner__d = div_owner__q;
         registers__clock = clock;
@@ -906,6 +957,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         interrupts__clock = clock;
         io__clock = clock;
         probe_trigger__clock = clock;
+        feed_hold_unit__clock = clock;
         planner__clock = clock;
         analog__clock = clock;
         registers__reset = reset;
@@ -950,7 +1002,19 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         probe_trigger__length = io__filter_length;
         probe_trigger__address = bus_address;
         probe_trigger__write = bus_write;
-        probe_trigger__write_data = bus_write_data[(32'h0)+:(2)];
+        probe_trigger__write_data = bus_write_data[(32'h0)+:(3)];
+        feed_hold_unit__reset = reset;
+        feed_hold_unit__feed_hold = feed_hold;
+        feed_hold_unit__sample = io__filter_sample;
+        feed_hold_unit__length = io__filter_length;
+        feed_hold_unit__address = bus_address;
+        feed_hold_unit__write = bus_write;
+        feed_hold_unit__write_data = bus_write_data;
+        feed_hold_unit__probe_stop = probe_trigger__stop & has_probe;
+        feed_hold_unit__tick = tick;
+        motion_tick = feed_hold_unit__tick_out;
+        registers__holding = feed_hold_unit__holding;
+        registers__held = feed_hold_unit__held;
         limit_held = zero_k;
         alarm_held = zero_k;
         home_held = zero_k;
@@ -1026,7 +1090,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         registers__aborted = abort;
         refuse_run = period__running | watchdog__expired | io__estop_active | io__estop_latched | any_held | ~io__ready;
         period__reset = reset;
-        period__tick = tick;
+        period__tick = motion_tick;
         period__control_write = registers__control_write;
         period__run_bit = bus_write_data[32'h0];
         period__flush_bit = bus_write_data[32'h1];
@@ -1108,7 +1172,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         entry_converter__word = bus_write_data;
         axes__0__clock = clock;
         axes__0__reset = reset;
-        axes__0__tick = tick;
+        axes__0__tick = motion_tick;
         axes__0__start = start;
         axes__0__flush = period__flush;
         axes__0__halt = halt;
@@ -1145,7 +1209,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes_read = axes_read | axes__0__read_data;
         axes__1__clock = clock;
         axes__1__reset = reset;
-        axes__1__tick = tick;
+        axes__1__tick = motion_tick;
         axes__1__start = start;
         axes__1__flush = period__flush;
         axes__1__halt = halt;
@@ -1182,7 +1246,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes_read = axes_read | axes__1__read_data;
         axes__2__clock = clock;
         axes__2__reset = reset;
-        axes__2__tick = tick;
+        axes__2__tick = motion_tick;
         axes__2__start = start;
         axes__2__flush = period__flush;
         axes__2__halt = halt;
@@ -1266,6 +1330,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         dac_ldac = analog__dac_ldac;
         any_low_prev_n__d = ~any_low;
         expired_prev__d = watchdog__expired;
+        held_prev__d = feed_hold_unit__held;
         events = zero_ev;
         if (period__period_done) begin
             events = events | ev_period_done;
@@ -1306,19 +1371,21 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         if (probe_trigger__latch & has_probe) begin
             events = events | ev_probe;
         end
+        if (feed_hold_unit__held & ~held_prev__q) begin
+            events = events | ev_held;
+        end
         interrupts__reset = reset;
         interrupts__events = events;
         interrupts__clear = registers__status_write;
-        interrupts__clear_bits = bus_write_data[(32'h0)+:(13)];
+        interrupts__clear_bits = bus_write_data[(32'h0)+:(14)];
         interrupts__enable = registers__irq_enable;
         irq = interrupts__irq;
+        probe_read = zero32;
+        if (has_probe) begin
+            probe_read = probe_trigger__read_data;
+        end
         if (bus_read) begin
-            if (has_probe) begin
-                read_data__d = registers__read_data | io__read_data | probe_trigger__read_data | axes_read;
-            end
-            else begin
-                read_data__d = registers__read_data | io__read_data | axes_read;
-            end
+            read_data__d = registers__read_data | io__read_data | probe_read | feed_hold_unit__read_data | axes_read;
         end
         read_out = read_data__q;
         if (analog__read_selected) begin
@@ -1383,6 +1450,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
             read_data__d = zero32;
             any_low_prev_n__d = 1'b0;
             expired_prev__d = 1'b0;
+            held_prev__d = 1'b0;
         end
     end
 
@@ -22879,24 +22947,711 @@ module motion_controller_servo__expired_prev(d,q,clock);
 endmodule // motion_controller_servo__expired_prev
 
 
+module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,length,address,write,write_data,probe_stop,tick,tick_out,holding,held,read_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  feed_hold;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [31:0] write_data;
+    input wire  probe_stop;
+    input wire  tick;
+    output reg  tick_out;
+    output reg  holding;
+    output reg  held;
+    output reg  [31:0] read_data;
+
+    // Constant declarations
+    localparam  a_control = 8'h1a;
+    localparam  m_requested = 32'h100;
+    localparam  m_invert = 32'h4;
+    localparam  m_input = 32'h200;
+    localparam  zero1 = 1'b0;
+    localparam  zero16 = 16'h0;
+    localparam  zero32 = 32'h0;
+
+    // Stub signals
+    reg  conditioner__clock;
+    reg  conditioner__reset;
+    reg  conditioner__raw;
+    reg  conditioner__invert;
+    reg  conditioner__sample;
+    reg  [3:0] conditioner__length;
+    wire  conditioner__active;
+    wire  conditioner__rise;
+    wire  conditioner__fall;
+    wire  conditioner__ready;
+    reg  ramp__clock;
+    reg  ramp__reset;
+    reg  ramp__tick;
+    reg  ramp__hold;
+    reg  [15:0] ramp__rate;
+    wire  ramp__tick_out;
+    wire  [16:0] ramp__factor;
+    wire  [15:0] ramp__phase;
+    wire  ramp__slowed;
+    wire  ramp__stopped;
+    reg  requested__d;
+    wire  requested__q;
+    reg  requested__clock;
+    reg  invert__d;
+    wire  invert__q;
+    reg  invert__clock;
+    reg  [15:0] rate__d;
+    wire  [15:0] rate__q;
+    reg  rate__clock;
+
+    // Local signals
+    reg  control_write;
+    reg  input_active;
+    reg  set;
+    reg  request_now;
+    reg  [15:0] rate_now;
+
+    // Sub module instances
+    motion_controller_servo__feed_hold_unit__conditioner conditioner(
+        .clock(conditioner__clock),
+        .reset(conditioner__reset),
+        .raw(conditioner__raw),
+        .invert(conditioner__invert),
+        .sample(conditioner__sample),
+        .length(conditioner__length),
+        .active(conditioner__active),
+        .rise(conditioner__rise),
+        .fall(conditioner__fall),
+        .ready(conditioner__ready)
+    );
+    motion_controller_servo__feed_hold_unit__ramp ramp(
+        .clock(ramp__clock),
+        .reset(ramp__reset),
+        .tick(ramp__tick),
+        .hold(ramp__hold),
+        .rate(ramp__rate),
+        .tick_out(ramp__tick_out),
+        .factor(ramp__factor),
+        .phase(ramp__phase),
+        .slowed(ramp__slowed),
+        .stopped(ramp__stopped)
+    );
+    motion_controller_servo__feed_hold_unit__requested requested(
+        .d(requested__d),
+        .q(requested__q),
+        .clock(requested__clock)
+    );
+    motion_controller_servo__feed_hold_unit__invert invert(
+        .d(invert__d),
+        .q(invert__q),
+        .clock(invert__clock)
+    );
+    motion_controller_servo__feed_hold_unit__rate rate(
+        .d(rate__d),
+        .q(rate__q),
+        .clock(rate__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        requested__clock = clock;
+        invert__clock = clock;
+        rate__clock = clock;
+        requested__d = requested__q;
+        invert__d = invert__q;
+        rate__d = rate__q;
+        conditioner__clock = clock;
+        ramp__clock = clock;
+        conditioner__reset = reset;
+        conditioner__raw = zero1;
+        if (feed_hold) begin
+            conditioner__raw = ~zero1;
+        end
+        conditioner__invert = zero1;
+        if (invert__q) begin
+            conditioner__invert = ~zero1;
+        end
+        conditioner__sample = sample;
+        conditioner__length = length;
+        input_active = conditioner__active != zero1;
+        control_write = write & (address == a_control);
+        rate_now = rate__q;
+        if (control_write) begin
+            invert__d = write_data[32'h2];
+            rate_now = write_data[(32'h10)+:(16)];
+        end
+        rate__d = rate_now;
+        set = input_active | probe_stop | (control_write & write_data[32'h0]);
+        request_now = requested__q;
+        if (control_write & write_data[32'h1]) begin
+            request_now = 1'b0;
+        end
+        if (set) begin
+            request_now = 1'b1;
+        end
+        requested__d = request_now;
+        if (reset) begin
+            requested__d = 1'b0;
+            invert__d = 1'b0;
+            rate__d = zero16;
+        end
+        ramp__reset = reset;
+        ramp__tick = tick;
+        ramp__hold = request_now;
+        ramp__rate = rate_now;
+        tick_out = ramp__tick_out;
+        holding = ramp__slowed;
+        held = ramp__stopped;
+        read_data = zero32;
+        if (address == a_control) begin
+            read_data = ((rate__q) & 32'hffffffff) << 32'h10;
+            if (requested__q) begin
+                read_data = read_data | m_requested;
+            end
+            if (invert__q) begin
+                read_data = read_data | m_invert;
+            end
+            if (input_active) begin
+                read_data = read_data | m_input;
+            end
+        end
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit
+
+
+module motion_controller_servo__feed_hold_unit__conditioner(clock,reset,raw,invert,sample,length,active,rise,fall,ready);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  invert;
+    input wire  sample;
+    input wire  [3:0] length;
+    output reg  active;
+    output reg  rise;
+    output reg  fall;
+    output reg  ready;
+
+    // Constant declarations
+    localparam  bit_mask__0 = 1'b1;
+    localparam  zero_w = 1'b0;
+    localparam  zero_2 = 2'b0;
+    localparam  one_2 = 2'b1;
+    localparam  three_2 = 2'b11;
+
+    // Stub signals
+    reg  filters__0__clock;
+    reg  filters__0__reset;
+    reg  filters__0__raw;
+    reg  filters__0__sample;
+    reg  [3:0] filters__0__length;
+    reg  filters__0__prime;
+    wire  filters__0__filtered;
+    wire  filters__0__changed;
+    reg  sync_1__d;
+    wire  sync_1__q;
+    reg  sync_1__clock;
+    reg  sync_2__d;
+    wire  sync_2__q;
+    reg  sync_2__clock;
+    reg  [1:0] primed__d;
+    wire  [1:0] primed__q;
+    reg  primed__clock;
+
+    // Local signals
+    reg  filtered;
+    reg  changed;
+    reg  priming;
+
+    // Sub module instances
+    motion_controller_servo__feed_hold_unit__conditioner__filters__0 filters__0(
+        .clock(filters__0__clock),
+        .reset(filters__0__reset),
+        .raw(filters__0__raw),
+        .sample(filters__0__sample),
+        .length(filters__0__length),
+        .prime(filters__0__prime),
+        .filtered(filters__0__filtered),
+        .changed(filters__0__changed)
+    );
+    motion_controller_servo__feed_hold_unit__conditioner__sync_1 sync_1(
+        .d(sync_1__d),
+        .q(sync_1__q),
+        .clock(sync_1__clock)
+    );
+    motion_controller_servo__feed_hold_unit__conditioner__sync_2 sync_2(
+        .d(sync_2__d),
+        .q(sync_2__q),
+        .clock(sync_2__clock)
+    );
+    motion_controller_servo__feed_hold_unit__conditioner__primed primed(
+        .d(primed__d),
+        .q(primed__q),
+        .clock(primed__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        sync_1__clock = clock;
+        sync_2__clock = clock;
+        primed__clock = clock;
+        sync_1__d = sync_1__q;
+        sync_2__d = sync_2__q;
+        primed__d = primed__q;
+        sync_1__d = raw;
+        sync_2__d = sync_1__q;
+        priming = primed__q != three_2;
+        if (priming) begin
+            primed__d = primed__q + one_2;
+        end
+        if (reset) begin
+            primed__d = zero_2;
+        end
+        ready = ~priming;
+        filtered = zero_w;
+        changed = zero_w;
+        filters__0__clock = clock;
+        filters__0__reset = reset;
+        filters__0__raw = (sync_2__q & bit_mask__0) != zero_w;
+        filters__0__sample = sample;
+        filters__0__length = length;
+        filters__0__prime = priming;
+        if (filters__0__filtered) begin
+            filtered = filtered | bit_mask__0;
+        end
+        if (filters__0__changed) begin
+            changed = changed | bit_mask__0;
+        end
+        active = filtered ^ invert;
+        if (priming) begin
+            active = zero_w;
+        end
+        rise = changed & (filtered ^ invert);
+        fall = changed & ~(filtered ^ invert);
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner
+
+
+module motion_controller_servo__feed_hold_unit__conditioner__filters__0(clock,reset,raw,sample,length,prime,filtered,changed);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  prime;
+    output reg  filtered;
+    output reg  changed;
+
+    // Constant declarations
+    localparam  zero = 4'h0;
+    localparam  one = 4'h1;
+    localparam  not_one = 4'he;
+
+    // Stub signals
+    reg  level__d;
+    wire  level__q;
+    reg  level__clock;
+    reg  changed_reg__d;
+    wire  changed_reg__q;
+    reg  changed_reg__clock;
+    reg  [3:0] left__d;
+    wire  [3:0] left__q;
+    reg  left__clock;
+
+    // Local signals
+    reg  differs;
+    reg  ready;
+    reg  accept;
+
+    // Sub module instances
+    motion_controller_servo__feed_hold_unit__conditioner__filters__0__level level(
+        .d(level__d),
+        .q(level__q),
+        .clock(level__clock)
+    );
+    motion_controller_servo__feed_hold_unit__conditioner__filters__0__changed_reg changed_reg(
+        .d(changed_reg__d),
+        .q(changed_reg__q),
+        .clock(changed_reg__clock)
+    );
+    motion_controller_servo__feed_hold_unit__conditioner__filters__0__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        level__clock = clock;
+        left__clock = clock;
+        changed_reg__clock = clock;
+        level__d = level__q;
+        left__d = left__q;
+        changed_reg__d = changed_reg__q;
+        filtered = level__q;
+        changed = changed_reg__q;
+        differs = raw != level__q;
+        ready = (left__q & not_one) == zero;
+        accept = ~prime & sample & differs & ready;
+        changed_reg__d = accept;
+        if (sample) begin
+            if (~differs | ready) begin
+                left__d = length;
+                level__d = raw;
+            end
+            else begin
+                left__d = left__q - one;
+            end
+        end
+        if (prime) begin
+            left__d = length;
+            level__d = raw;
+        end
+        if (reset) begin
+            left__d = zero;
+            level__d = 1'b0;
+            changed_reg__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner__filters__0
+
+
+module motion_controller_servo__feed_hold_unit__conditioner__filters__0__changed_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner__filters__0__changed_reg
+
+
+module motion_controller_servo__feed_hold_unit__conditioner__filters__0__left(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner__filters__0__left
+
+
+module motion_controller_servo__feed_hold_unit__conditioner__filters__0__level(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner__filters__0__level
+
+
+module motion_controller_servo__feed_hold_unit__conditioner__primed(d,q,clock);
+
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner__primed
+
+
+module motion_controller_servo__feed_hold_unit__conditioner__sync_1(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner__sync_1
+
+
+module motion_controller_servo__feed_hold_unit__conditioner__sync_2(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__conditioner__sync_2
+
+
+module motion_controller_servo__feed_hold_unit__invert(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__invert
+
+
+module motion_controller_servo__feed_hold_unit__ramp(clock,reset,tick,hold,rate,tick_out,factor,phase,slowed,stopped);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  tick;
+    input wire  hold;
+    input wire  [15:0] rate;
+    output reg  tick_out;
+    output reg  [16:0] factor;
+    output reg  [15:0] phase;
+    output reg  slowed;
+    output reg  stopped;
+
+    // Constant declarations
+    localparam  unity = 17'b10000000000000000;
+    localparam  zero16 = 16'h0;
+    localparam  zero17 = 17'b0;
+
+    // Stub signals
+    reg  [16:0] deficit__d;
+    wire  [16:0] deficit__q;
+    reg  deficit__clock;
+    reg  [15:0] fraction__d;
+    wire  [15:0] fraction__q;
+    reg  fraction__clock;
+
+    // Local signals
+    reg  [16:0] step;
+
+    // Sub module instances
+    motion_controller_servo__feed_hold_unit__ramp__deficit deficit(
+        .d(deficit__d),
+        .q(deficit__q),
+        .clock(deficit__clock)
+    );
+    motion_controller_servo__feed_hold_unit__ramp__fraction fraction(
+        .d(fraction__d),
+        .q(fraction__q),
+        .clock(fraction__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        deficit__clock = clock;
+        fraction__clock = clock;
+        deficit__d = deficit__q;
+        fraction__d = fraction__q;
+        step = ((rate) & 17'h1ffff);
+        if (rate == zero16) begin
+            step = unity;
+        end
+        tick_out = tick & (((fraction__q) & 17'h1ffff) >= deficit__q);
+        if (tick) begin
+            fraction__d = fraction__q - deficit__q[(32'h0)+:(16)];
+            if (hold) begin
+                if (unity - deficit__q > step) begin
+                    deficit__d = deficit__q + step;
+                end
+                else begin
+                    deficit__d = unity;
+                end
+            end
+            else if (deficit__q > step) begin
+                deficit__d = deficit__q - step;
+            end
+            else begin
+                deficit__d = zero17;
+            end
+        end
+        if (reset) begin
+            deficit__d = zero17;
+            fraction__d = zero16;
+        end
+        factor = unity - deficit__q;
+        phase = fraction__q;
+        slowed = deficit__q != zero17;
+        stopped = deficit__q == unity;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__ramp
+
+
+module motion_controller_servo__feed_hold_unit__ramp__deficit(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__ramp__deficit
+
+
+module motion_controller_servo__feed_hold_unit__ramp__fraction(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__ramp__fraction
+
+
+module motion_controller_servo__feed_hold_unit__rate(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__rate
+
+
+module motion_controller_servo__feed_hold_unit__requested(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__feed_hold_unit__requested
+
+
+module motion_controller_servo__held_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__held_prev
+
+
 module motion_controller_servo__interrupts(clock,reset,events,clear,clear_bits,enable,status,irq);
 
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [12:0] events;
+    input wire  [13:0] events;
     input wire  clear;
-    input wire  [12:0] clear_bits;
-    input wire  [12:0] enable;
-    output reg  [12:0] status;
+    input wire  [13:0] clear_bits;
+    input wire  [13:0] enable;
+    output reg  [13:0] status;
     output reg  irq;
 
     // Constant declarations
-    localparam  zero = 13'b0;
+    localparam  zero = 14'b0;
 
     // Stub signals
-    reg  [12:0] status_reg__d;
-    wire  [12:0] status_reg__q;
+    reg  [13:0] status_reg__d;
+    wire  [13:0] status_reg__q;
     reg  status_reg__clock;
     reg  irq_reg__d;
     wire  irq_reg__q;
@@ -22960,13 +23715,13 @@ endmodule // motion_controller_servo__interrupts__irq_reg
 module motion_controller_servo__interrupts__status_reg(d,q,clock);
 
     // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
+    input wire  [13:0] d;
+    output reg  [13:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 13'h0;
+       q = 14'h0;
     end
 
     always @(posedge clock) begin
@@ -29133,7 +29888,7 @@ module motion_controller_servo__planner__divider__subtractor(a,b,sum,carry_out);
 endmodule // motion_controller_servo__planner__divider__subtractor
 
 
-module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,address,write,write_data,latch,read_data);
+module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,address,write,write_data,latch,stop,read_data);
 
     // Module arguments
     input wire  clock;
@@ -29143,14 +29898,16 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
     input wire  [3:0] length;
     input wire  [7:0] address;
     input wire  write;
-    input wire  [1:0] write_data;
+    input wire  [2:0] write_data;
     output reg  latch;
+    output reg  stop;
     output reg  [31:0] read_data;
 
     // Constant declarations
     localparam  a_control = 8'h19;
     localparam  m_arm = 32'h1;
     localparam  m_edge = 32'h2;
+    localparam  m_stop = 32'h4;
     localparam  m_tripped = 32'h100;
     localparam  m_level = 32'h200;
     localparam  zero1 = 1'b0;
@@ -29173,6 +29930,9 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
     reg  falling__d;
     wire  falling__q;
     reg  falling__clock;
+    reg  stop_on_trip__d;
+    wire  stop_on_trip__q;
+    reg  stop_on_trip__clock;
     reg  tripped__d;
     wire  tripped__q;
     reg  tripped__clock;
@@ -29181,6 +29941,7 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
     reg  control_write;
     reg  armed_now;
     reg  falling_now;
+    reg  stop_now;
     reg  hit;
     reg  trip;
 
@@ -29207,6 +29968,11 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
         .q(falling__q),
         .clock(falling__clock)
     );
+    motion_controller_servo__probe_trigger__stop_on_trip stop_on_trip(
+        .d(stop_on_trip__d),
+        .q(stop_on_trip__q),
+        .clock(stop_on_trip__clock)
+    );
     motion_controller_servo__probe_trigger__tripped tripped(
         .d(tripped__d),
         .q(tripped__q),
@@ -29217,9 +29983,11 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
     always @(*) begin
         armed__clock = clock;
         falling__clock = clock;
+        stop_on_trip__clock = clock;
         tripped__clock = clock;
         armed__d = armed__q;
         falling__d = falling__q;
+        stop_on_trip__d = stop_on_trip__q;
         tripped__d = tripped__q;
         conditioner__clock = clock;
         conditioner__reset = reset;
@@ -29233,9 +30001,11 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
         control_write = write & (address == a_control);
         armed_now = armed__q;
         falling_now = falling__q;
+        stop_now = stop_on_trip__q;
         if (control_write) begin
             armed_now = write_data[32'h0];
             falling_now = write_data[32'h1];
+            stop_now = write_data[32'h2];
         end
         hit = conditioner__rise != zero1;
         if (falling_now) begin
@@ -29243,8 +30013,10 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
         end
         trip = armed_now & hit;
         latch = trip;
+        stop = trip & stop_now;
         armed__d = armed_now & ~trip;
         falling__d = falling_now;
+        stop_on_trip__d = stop_now;
         if (control_write & write_data[32'h0]) begin
             tripped__d = 1'b0;
         end
@@ -29254,6 +30026,7 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
         if (reset) begin
             armed__d = 1'b0;
             falling__d = 1'b0;
+            stop_on_trip__d = 1'b0;
             tripped__d = 1'b0;
         end
         read_data = zero32;
@@ -29263,6 +30036,9 @@ module motion_controller_servo__probe_trigger(clock,reset,probe,sample,length,ad
             end
             if (falling__q) begin
                 read_data = read_data | m_edge;
+            end
+            if (stop_on_trip__q) begin
+                read_data = read_data | m_stop;
             end
             if (tripped__q) begin
                 read_data = read_data | m_tripped;
@@ -29630,6 +30406,25 @@ module motion_controller_servo__probe_trigger__falling(d,q,clock);
 endmodule // motion_controller_servo__probe_trigger__falling
 
 
+module motion_controller_servo__probe_trigger__stop_on_trip(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__probe_trigger__stop_on_trip
+
+
 module motion_controller_servo__probe_trigger__tripped(d,q,clock);
 
     // Module arguments
@@ -29668,7 +30463,7 @@ module motion_controller_servo__read_data(d,q,clock);
 endmodule // motion_controller_servo__read_data
 
 
-module motion_controller_servo__registers(clock,reset,address,write_data,write,running,status,watchdog_armed,watchdog_expired,estop_input,estop_latched,aborted,inputs_ready,period_count,stop_cause,irq_enable,tick_divisor,period_ticks,low_water,watchdog_timeout,control_write,status_write,kick,snapshot,read_data);
+module motion_controller_servo__registers(clock,reset,address,write_data,write,running,status,watchdog_armed,watchdog_expired,estop_input,estop_latched,aborted,inputs_ready,holding,held,period_count,stop_cause,irq_enable,tick_divisor,period_ticks,low_water,watchdog_timeout,control_write,status_write,kick,snapshot,read_data);
 
     // Module arguments
     input wire  clock;
@@ -29677,16 +30472,18 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     input wire  [31:0] write_data;
     input wire  write;
     input wire  running;
-    input wire  [12:0] status;
+    input wire  [13:0] status;
     input wire  watchdog_armed;
     input wire  watchdog_expired;
     input wire  estop_input;
     input wire  estop_latched;
     input wire  aborted;
     input wire  inputs_ready;
+    input wire  holding;
+    input wire  held;
     input wire  [31:0] period_count;
     input wire  [31:0] stop_cause;
-    output reg  [12:0] irq_enable;
+    output reg  [13:0] irq_enable;
     output reg  [31:0] tick_divisor;
     output reg  [15:0] period_ticks;
     output reg  [4:0] low_water;
@@ -29714,7 +30511,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h500;
+    localparam  version_value = 32'h600;
     localparam  config_value = 32'h7610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
@@ -29723,6 +30520,8 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  m_state_estop_latched = 32'h10;
     localparam  m_state_aborted = 32'h20;
     localparam  m_state_inputs_ready = 32'h40;
+    localparam  m_state_holding = 32'h80;
+    localparam  m_state_held = 32'h100;
     localparam  m_control_run = 32'h1;
     localparam  bit_mask__0 = 32'h1;
     localparam  bit_mask__1 = 32'h2;
@@ -29741,13 +30540,13 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  bit_mask__14 = 32'h4000;
     localparam  bit_mask__15 = 32'h8000;
     localparam  zero32 = 32'h0;
-    localparam  zero_irq = 13'b0;
+    localparam  zero_irq = 14'b0;
     localparam  zero_p = 16'h0;
     localparam  zero_level = 5'b0;
 
     // Stub signals
-    reg  [12:0] irq_enable_reg__d;
-    wire  [12:0] irq_enable_reg__q;
+    reg  [13:0] irq_enable_reg__d;
+    wire  [13:0] irq_enable_reg__q;
     reg  irq_enable_reg__clock;
     reg  [31:0] tick_divisor_reg__d;
     wire  [31:0] tick_divisor_reg__q;
@@ -29811,7 +30610,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         watchdog_timeout = watchdog_timeout_reg__q;
         if (write) begin
             if (address == a_irq_enable) begin
-                irq_enable_reg__d = write_data[(32'h0)+:(13)];
+                irq_enable_reg__d = write_data[(32'h0)+:(14)];
             end
             if (address == a_tick_divisor) begin
                 tick_divisor_reg__d = write_data;
@@ -29851,6 +30650,12 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         end
         if (inputs_ready) begin
             state_word = state_word | m_state_inputs_ready;
+        end
+        if (holding) begin
+            state_word = state_word | m_state_holding;
+        end
+        if (held) begin
+            state_word = state_word | m_state_held;
         end
         read_data = zero32;
         if (address == a_id) begin
@@ -29942,6 +30747,12 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         end
         if ((address == a_irq_enable) & irq_enable_reg__q[12]) begin
             read_data = read_data | bit_mask__12;
+        end
+        if ((address == a_status) & status[13]) begin
+            read_data = read_data | bit_mask__13;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[13]) begin
+            read_data = read_data | bit_mask__13;
         end
         if (address == a_tick_divisor) begin
             read_data = read_data | tick_divisor_reg__q;
@@ -30036,13 +30847,13 @@ endmodule // motion_controller_servo__registers
 module motion_controller_servo__registers__irq_enable_reg(d,q,clock);
 
     // Module arguments
-    input wire  [12:0] d;
-    output reg  [12:0] q;
+    input wire  [13:0] d;
+    output reg  [13:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 13'h0;
+       q = 14'h0;
     end
 
     always @(posedge clock) begin

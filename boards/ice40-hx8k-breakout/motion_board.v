@@ -61,6 +61,9 @@ module motion_board (
     // Touch probe or tool setter (pulled up: a probe closing to ground
     // trips on the falling edge, PROBE_CONTROL.EDGE = 1).
     input  wire        PROBE,
+    // Feed hold (pulled up: a normally-closed button to ground holds when
+    // pressed or when its wire breaks; HOLD_CONTROL.INVERT = 0).
+    input  wire        FEED_HOLD,
     output wire        X_DRIVE_ENABLE, Y_DRIVE_ENABLE, Z_DRIVE_ENABLE,
     // General I/O (spindle, coolant, probe, ...)
     input  wire [7:0]  GPIO_IN,
@@ -134,6 +137,7 @@ module motion_board (
         .estop(ESTOP),
         .gpio_in(GPIO_IN),
         .probe(PROBE),
+        .feed_hold(FEED_HOLD),
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
         .gpio_out(GPIO_OUT),

@@ -84,6 +84,9 @@ module seed_board (
     // Touch probe or tool setter (pulled up: a probe closing to ground
     // trips on the falling edge, PROBE_CONTROL.EDGE = 1).
     input  wire        PROBE,
+    // Feed hold (pulled up: a normally-closed button to ground holds when
+    // pressed or when its wire breaks; HOLD_CONTROL.INVERT = 0).
+    input  wire        FEED_HOLD,
     output wire        X_DRIVE_ENABLE, Y_DRIVE_ENABLE, Z_DRIVE_ENABLE,
     // AD669 DACs (analog axes)
     output wire [15:0] DAC_D,
@@ -174,6 +177,7 @@ module seed_board (
         .estop(ESTOP),
         .gpio_in(GPIO_IN),
         .probe(PROBE),
+        .feed_hold(FEED_HOLD),
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
         .gpio_out(GPIO_OUT),

@@ -124,7 +124,7 @@ impl PinLog {
         out
     }
 
-    fn see(&mut self, clock: u64, out: &ControllerOutputs) {
+    pub(crate) fn see(&mut self, clock: u64, out: &ControllerOutputs) {
         for axis in 0..3 {
             let step = pin_step(self.modes[axis], self.last[axis], out.steps[axis]);
             if step != 0 {

@@ -13,6 +13,7 @@ mod compiled_backend;
 mod controller_behind_bus_adapter;
 mod dda_only;
 mod entry_converter;
+mod feed_hold;
 mod gcode;
 mod gcode_corpus;
 mod hexapod_program;

@@ -98,6 +98,11 @@ impl ChaosDriver {
         if rng.gen_ratio(1, 1_500) {
             self.pins.probe = !self.pins.probe;
         }
+        // The operator holds the feed, briefly, now and then.
+        let hold_rate = if self.pins.feed_hold { 3_000 } else { 100_000 };
+        if rng.gen_ratio(1, hold_rate) {
+            self.pins.feed_hold = !self.pins.feed_hold;
+        }
         self.pins
     }
 
@@ -305,6 +310,38 @@ impl ChaosDriver {
                 true,
                 false,
             ),
+            // Hold (with a probe stop now and then) and release the feed
+            // at ramp rates from one tick to thousands; by address, like
+            // the probe.
+            87 => {
+                let rate: u32 = match rng.gen_range(0..20) {
+                    0 => 1,
+                    1 => 0,
+                    2 => rng.gen::<u16>() as u32,
+                    _ => [300, 1000, 4096, 65535][rng.gen_range(0..4)],
+                };
+                let data = (rng.gen_ratio(1, 5) as u32) << fields::HOLD_HOLD
+                    | (rng.gen_ratio(4, 5) as u32) << fields::HOLD_RELEASE
+                    | (rng.gen_ratio(1, 50) as u32) << fields::HOLD_INVERT
+                    | rate << fields::HOLD_RATE;
+                (false, global::HOLD_CONTROL, data, true, false)
+            }
+            88 if rng.gen_ratio(1, 20) => (
+                false,
+                global::PROBE_CONTROL,
+                1 << fields::PROBE_ARM | 1 << fields::PROBE_STOP,
+                true,
+                false,
+            ),
+            // STATUS reads, so that a rare event is seen before a random
+            // write-1-to-clear wipes it.
+            90..=92 => (
+                false,
+                register("STATUS").address_of(0).unwrap(),
+                0,
+                false,
+                true,
+            ),
             _ => (false, rng.gen_range(0..256), 0, false, true),
         }
     }
@@ -382,7 +419,8 @@ const RUST_HDL_STATUS: u32 = (1 << irq::PERIOD_DONE)
     | (1 << irq::ENCODER_ERROR)
     | (1 << irq::AXIS_FAULT)
     | (1 << irq::LIMIT)
-    | (1 << irq::PROBE);
+    | (1 << irq::PROBE)
+    | (1 << irq::HELD);
 
 #[test]
 fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {

@@ -47,7 +47,7 @@ const _: () = {
     assert!(fields::CONTROL_RUN == 0);
     assert!(fields::FIFO_LEVEL == 0);
     // The interrupt bits are 0..IRQ_COUNT, in event order.
-    assert!(irq::PERIOD_DONE == 0 && irq::PROBE as usize == IRQ_COUNT - 1);
+    assert!(irq::PERIOD_DONE == 0 && irq::HELD as usize == IRQ_COUNT - 1);
 };
 
 /// The global registers of a controller with FIFO levels of `NP1` bits.
@@ -80,6 +80,10 @@ pub struct GlobalRegisters<const NP1: usize> {
     pub aborted: Signal<In, Bit>,
     /// STATE.INPUTS_READY.
     pub inputs_ready: Signal<In, Bit>,
+    /// STATE.HOLDING.
+    pub holding: Signal<In, Bit>,
+    /// STATE.HELD.
+    pub held: Signal<In, Bit>,
     /// PERIOD_COUNT.
     pub period_count: Signal<In, Bits<32>>,
     /// STOP_CAUSE.
@@ -138,6 +142,8 @@ pub struct GlobalRegisters<const NP1: usize> {
     m_state_estop_latched: Constant<Bits<32>>,
     m_state_aborted: Constant<Bits<32>>,
     m_state_inputs_ready: Constant<Bits<32>>,
+    m_state_holding: Constant<Bits<32>>,
+    m_state_held: Constant<Bits<32>>,
     /// CONTROL.RUN, in place.
     m_control_run: Constant<Bits<32>>,
     /// `bit_mask[i]` = 1 << i, to zero-extend the narrow registers.
@@ -171,6 +177,8 @@ impl<const NP1: usize> GlobalRegisters<NP1> {
             estop_latched: Default::default(),
             aborted: Default::default(),
             inputs_ready: Default::default(),
+            holding: Default::default(),
+            held: Default::default(),
             period_count: Default::default(),
             stop_cause: Default::default(),
             irq_enable: Default::default(),
@@ -214,6 +222,8 @@ impl<const NP1: usize> GlobalRegisters<NP1> {
             m_state_estop_latched: m32(fields::STATE_ESTOP_LATCHED),
             m_state_aborted: m32(fields::STATE_ABORTED),
             m_state_inputs_ready: m32(fields::STATE_INPUTS_READY),
+            m_state_holding: m32(fields::STATE_HOLDING),
+            m_state_held: m32(fields::STATE_HELD),
             m_control_run: m32(fields::CONTROL_RUN),
             bit_mask: array_init::array_init(|i| Constant::new((1u64 << i).into())),
             zero32: Constant::new(0u64.into()),
@@ -288,6 +298,12 @@ impl<const NP1: usize> Logic for GlobalRegisters<NP1> {
         }
         if self.inputs_ready.val() {
             self.state_word.next = self.state_word.val() | self.m_state_inputs_ready.val();
+        }
+        if self.holding.val() {
+            self.state_word.next = self.state_word.val() | self.m_state_holding.val();
+        }
+        if self.held.val() {
+            self.state_word.next = self.state_word.val() | self.m_state_held.val();
         }
 
         // Reads: one-hot AND-OR over exclusive addresses (see the axis read

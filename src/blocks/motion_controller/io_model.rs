@@ -1,10 +1,12 @@
 //! Reference models of the controller's machine I/O:
 //! [`super::machine_io::MachineIo`] ([`MachineIoModel`]),
-//! [`super::probe_trigger::ProbeTrigger`] ([`ProbeModel`]) and
+//! [`super::probe_trigger::ProbeTrigger`] ([`ProbeModel`]),
+//! [`super::feed_hold::FeedHold`] ([`FeedHoldModel`]) and
 //! [`super::axis_io::AxisIo`] ([`AxisIoModel`]). Cycle-exact, two-phase
 //! like the rest of [`super::model`]: the combinational values of a clock
 //! from the registered state, then the edge.
 
+use super::hold_ramp::{HoldRampInputs, HoldRampModel};
 use super::registers::{axis, fields, global};
 use crate::blocks::input_conditioner::model::{InputConditionerInputs, InputConditionerModel};
 
@@ -25,6 +27,8 @@ pub struct MachinePins {
     pub gpio_in: u8,
     /// probe.
     pub probe: bool,
+    /// feed_hold.
+    pub feed_hold: bool,
 }
 
 /// One axis's conditioned switch levels in one clock.
@@ -285,6 +289,8 @@ impl MachineIoModel {
 pub struct ProbeComb {
     /// The probe trips in this clock: every axis latches its positions.
     pub latch: bool,
+    /// The trip requests the feed hold (`PROBE_CONTROL.STOP`).
+    pub stop: bool,
     /// `PROBE_CONTROL` when addressed, else 0.
     pub read_data: u32,
 }
@@ -296,6 +302,7 @@ pub struct ProbeModel {
     conditioner: InputConditionerModel,
     armed: bool,
     falling: bool,
+    stop: bool,
     tripped: bool,
 }
 
@@ -305,20 +312,23 @@ impl Default for ProbeModel {
             conditioner: InputConditionerModel::new(1),
             armed: false,
             falling: false,
+            stop: false,
             tripped: false,
         }
     }
 }
 
 impl ProbeModel {
-    /// The armed state and edge of this clock: a `PROBE_CONTROL` write
-    /// decides them.
-    fn control_now(&self, write: Option<(u32, u32)>) -> (bool, bool) {
+    /// The armed state, edge and stop of this clock: a `PROBE_CONTROL`
+    /// write decides them.
+    fn control_now(&self, write: Option<(u32, u32)>) -> (bool, bool, bool) {
         match write {
-            Some((global::PROBE_CONTROL, data)) => {
-                (bit(data, fields::PROBE_ARM), bit(data, fields::PROBE_EDGE))
-            }
-            _ => (self.armed, self.falling),
+            Some((global::PROBE_CONTROL, data)) => (
+                bit(data, fields::PROBE_ARM),
+                bit(data, fields::PROBE_EDGE),
+                bit(data, fields::PROBE_STOP),
+            ),
+            _ => (self.armed, self.falling, self.stop),
         }
     }
 
@@ -326,14 +336,17 @@ impl ProbeModel {
     /// write (address, data), if any.
     pub fn comb(&self, address: u32, write: Option<(u32, u32)>) -> ProbeComb {
         let out = self.conditioner.outputs(0);
-        let (armed, falling) = self.control_now(write);
+        let (armed, falling, stop) = self.control_now(write);
         let edge = if falling { out.fall } else { out.rise };
         let flag = |on: bool, n: u32| (on as u32) << n;
+        let latch = armed && edge & 1 != 0;
         ProbeComb {
-            latch: armed && edge & 1 != 0,
+            latch,
+            stop: latch && stop,
             read_data: if address == global::PROBE_CONTROL {
                 flag(self.armed, fields::PROBE_ARM)
                     | flag(self.falling, fields::PROBE_EDGE)
+                    | flag(self.stop, fields::PROBE_STOP)
                     | flag(self.tripped, fields::PROBE_TRIPPED)
                     | flag(out.active & 1 != 0, fields::PROBE_LEVEL)
             } else {
@@ -352,7 +365,7 @@ impl ProbeModel {
         comb: &ProbeComb,
         filter: (bool, u8),
     ) {
-        let (armed, falling) = self.control_now(write);
+        let (armed, falling, stop) = self.control_now(write);
         self.conditioner.step(InputConditionerInputs {
             reset,
             raw: pin as u32,
@@ -366,6 +379,133 @@ impl ProbeModel {
         self.tripped |= comb.latch;
         self.armed = armed && !comb.latch;
         self.falling = falling;
+        self.stop = stop;
+        if reset {
+            *self = Self {
+                conditioner: self.conditioner.clone(),
+                ..Self::default()
+            };
+        }
+    }
+}
+
+/// [`FeedHoldModel`]'s combinational values in one clock.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FeedHoldComb {
+    /// The gated tick: the periods and the axes see this tick.
+    pub tick: bool,
+    /// The hold request of this clock (what the ramp sees).
+    pub request: bool,
+    /// `HOLD_CONTROL` when addressed, else 0.
+    pub read_data: u32,
+}
+
+/// Model of the feed hold: its conditioner, `HOLD_CONTROL`, the sticky
+/// request and the [`HoldRampModel`].
+#[derive(Clone, Debug)]
+pub struct FeedHoldModel {
+    conditioner: InputConditionerModel,
+    requested: bool,
+    invert: bool,
+    rate: u16,
+    ramp: HoldRampModel,
+}
+
+impl Default for FeedHoldModel {
+    fn default() -> Self {
+        Self {
+            conditioner: InputConditionerModel::new(1),
+            requested: false,
+            invert: false,
+            rate: 0,
+            ramp: HoldRampModel::default(),
+        }
+    }
+}
+
+impl FeedHoldModel {
+    /// The ramp: its factor and phase.
+    pub fn ramp(&self) -> &HoldRampModel {
+        &self.ramp
+    }
+
+    /// The hold is requested (`HOLD_CONTROL.REQUESTED`).
+    pub fn requested(&self) -> bool {
+        self.requested
+    }
+
+    /// `STATE.HOLDING`: the factor is below 1.
+    pub fn holding(&self) -> bool {
+        self.ramp.factor() != super::hold_ramp::UNITY
+    }
+
+    /// `STATE.HELD`: the factor is 0.
+    pub fn held(&self) -> bool {
+        self.ramp.factor() == 0
+    }
+
+    /// The combinational values of this clock: `write` is this clock's
+    /// bus write (address, data), `probe_stop` a probe trip with
+    /// `PROBE_CONTROL.STOP`, `tick` the base tick.
+    pub fn comb(
+        &self,
+        address: u32,
+        write: Option<(u32, u32)>,
+        probe_stop: bool,
+        tick: bool,
+    ) -> FeedHoldComb {
+        let input = self.conditioner.outputs(self.invert as u32).active & 1 != 0;
+        let control = match write {
+            Some((global::HOLD_CONTROL, data)) => Some(data),
+            _ => None,
+        };
+        let set = input || probe_stop || control.is_some_and(|d| bit(d, fields::HOLD_HOLD));
+        let clear = control.is_some_and(|d| bit(d, fields::HOLD_RELEASE));
+        let flag = |on: bool, n: u32| (on as u32) << n;
+        FeedHoldComb {
+            tick: self.ramp.gate(tick),
+            request: set || (self.requested && !clear),
+            read_data: if address == global::HOLD_CONTROL {
+                (self.rate as u32) << fields::HOLD_RATE
+                    | flag(self.requested, fields::HOLD_REQUESTED)
+                    | flag(self.invert, fields::HOLD_INVERT)
+                    | flag(input, fields::HOLD_INPUT)
+            } else {
+                0
+            },
+        }
+    }
+
+    /// One edge. `comb` is this clock's [`FeedHoldModel::comb`] with the
+    /// same `write` and `tick`; `filter` is
+    /// [`MachineIoModel::filter_inputs`] of this clock.
+    pub fn edge(
+        &mut self,
+        reset: bool,
+        pin: bool,
+        write: Option<(u32, u32)>,
+        comb: &FeedHoldComb,
+        filter: (bool, u8),
+        tick: bool,
+    ) {
+        self.conditioner.step(InputConditionerInputs {
+            reset,
+            raw: pin as u32,
+            invert: self.invert as u32,
+            sample: filter.0,
+            length: filter.1,
+        });
+        if let Some((global::HOLD_CONTROL, data)) = write {
+            self.invert = bit(data, fields::HOLD_INVERT);
+            self.rate = (data >> fields::HOLD_RATE) as u16;
+        }
+        self.ramp.step(HoldRampInputs {
+            reset,
+            tick,
+            hold: comb.request,
+            rate: self.rate,
+        });
+        self.requested = comb.request;
         if reset {
             *self = Self {
                 conditioner: self.conditioner.clone(),

@@ -213,11 +213,66 @@
 //!   Later edges are ignored until the next arming: the latch holds the
 //!   first contact. A `PROBE_CONTROL` write takes effect in its own clock:
 //!   an edge acted on in the clock of a write that arms (disarms) trips
-//!   (does not). The trip does not stop the motion; the firmware stops
-//!   it, and the latched positions are exact whatever the feed: the
-//!   error is that of the probe's own switching, not of a servo period.
+//!   (does not). With `PROBE_CONTROL.STOP` the trip also requests the
+//!   feed hold (below) in its own clock: a controlled stop along the
+//!   path, not an abort; else the firmware stops the motion. The latched
+//!   positions are exact whatever the feed: the error is that of the
+//!   probe's own switching, not of a servo period.
 //!   `PROBE_CONTROL.LEVEL` reads the filtered input (0 until the inputs
 //!   are ready); reset disarms and zeroes the latches.
+//! * **Feed hold** (VERSION 0.6.0; [`feed_hold`], [`hold_ramp`]): a
+//!   controlled stop along the path that resumes exactly where it left
+//!   off. It scales time, not steps: the periods and the axes run on the
+//!   base tick through a gate that passes a fraction f of the ticks (the
+//!   watchdog keeps the base tick). Every interpolator still emits exactly
+//!   its entry's steps per period, so the path slows along itself, the
+//!   FIFOs are not flushed, and the end position equals that of the same
+//!   run without the hold on every axis; no step interval becomes shorter
+//!   than it was at f = 1, and no step pulse is cut.
+//!   - The request is sticky. It is set by the `feed_hold` input while
+//!     it is active (conditioned like the switches, `INPUT_FILTER`, with
+//!     its own polarity `HOLD_CONTROL.INVERT`), by writing
+//!     `HOLD_CONTROL.HOLD` = 1 (`REQUESTED` reads it), or by a probe trip with
+//!     `PROBE_CONTROL.STOP`. Only a write of `HOLD_CONTROL.RELEASE` = 1
+//!     clears it, and not in a clock where one of those sets it: a release
+//!     while the input is still active is refused.
+//!   - The factor f (17 bits, 0 to 1 in 1/65536) moves by
+//!     `HOLD_CONTROL.RATE`/65536 at each base tick, toward 0 while the
+//!     request is set and back to 1 after: a deceleration per base tick,
+//!     chosen over one per period so that the ramp does not depend on the
+//!     period length. From full speed the stop and the return take
+//!     ceil(65536 / RATE) base ticks; RATE 0 (its reset value) acts as
+//!     65536, an immediate stop at the next tick, which stops the axes as
+//!     RUN = 0 would but keeps every count and entry. A `HOLD_CONTROL`
+//!     write's RATE applies from its own clock, so `HOLD` and `RATE`
+//!     written together ramp at that rate from the first tick.
+//!   - The fraction of a gated tick is carried (`phase`), so after any
+//!     hold 65536 x the gated ticks + phase = the sum of f over the base
+//!     ticks, exactly: no tick, and so no step, is lost or invented.
+//!   - Latency: a request decided in clock d lowers f at the first base
+//!     tick from d on; the next base tick is the first that may be
+//!     withheld ([`latency::HOLD_FIRST_REDUCED_TICK`]). d is the clock of
+//!     a `HOLD_CONTROL` write or of the probe's trip; for the input,
+//!     d = c + [`latency::switch`] + 1 after a pin change at clock c (its
+//!     filtered level is set at c + `switch`, the request follows in the
+//!     next clock). `STATUS.HELD` is set, and `irq` rises, two clocks
+//!     after the clock whose tick brings f to 0.
+//!   - Held time and the FIFOs: a period lasts `PERIOD_TICKS` *gated*
+//!     ticks, so it lasts 1/f as many base ticks while slowed and never
+//!     ends while held (f = 0): the FIFOs are consumed more slowly, no
+//!     boundary comes while held, so there is no underrun and no
+//!     `STATUS.PERIOD_DONE` then, and the host may keep filling them.
+//!   - `STATE.HOLDING` is set while f < 1 (slowing, held, or ramping
+//!     back), `STATE.HELD` while f = 0; `STATUS.HELD` is raised when f
+//!     reaches 0.
+//!   - A hold and a stop are independent: RUN = 0, an underrun or an abort
+//!     during a hold stops as without it (the abort flushes the stages);
+//!     the request and f stay as they are. RUN = 1 while held starts, and
+//!     the first boundary comes with the first gated tick.
+//!   - **Not yet:** on analog axes (`AXIS_CONFIG.ANALOG`) the hold
+//!     stretches the periods but does not scale the velocity codes: an
+//!     analog axis keeps its period's code while held. Do not hold a build
+//!     with analog axes until the codes scale (issue #37).
 //! * **General I/O**: `GPIO_IN` reads the 8 filtered inputs; every edge is
 //!   recorded in `GPIO_EDGES` (write 1 to clear) and the ones enabled in
 //!   `GPIO_IRQ_ENABLE` raise `STATUS.GPIO`. `gpio_out` is `GPIO_OUT`; the
@@ -375,8 +430,9 @@
 //!   pop, the 0 V update, and the DAC's registers on the bus;
 //! * [`machine_io`]: switch conditioning, the E-stop latch, general I/O;
 //! * [`probe_trigger`]: the probe's conditioner, `PROBE_CONTROL` and its trip;
-//! * [`hold_ramp`]: the feed hold's velocity factor and the tick gate it
-//!   drives (tested on its own; the controller does not use it yet);
+//! * [`feed_hold`]: the feed hold's input, `HOLD_CONTROL`, its sticky
+//!   request, and the [`hold_ramp`] (the velocity factor and the tick gate
+//!   it drives) whose gated tick paces the periods and the axes;
 //! * [`axis`] (one per axis): FIFO, DDA, uniform generator, output stage,
 //!   position counter, encoder, the axis's I/O ([`axis_io`]) and its
 //!   register window ([`axis_registers`]: configuration, strobes,
@@ -491,6 +547,7 @@ pub mod axis_io;
 pub mod axis_registers;
 pub mod config_shadow;
 pub mod entry;
+pub mod feed_hold;
 pub mod global_registers;
 pub mod hold_ramp;
 pub mod io_model;
@@ -513,6 +570,7 @@ use analog_outputs::AnalogOutputs;
 use axis::MotionAxis;
 use config_shadow::{ConfigShadow, SHADOW_BITS};
 use entry::EntryConverter;
+use feed_hold::FeedHold;
 use global_registers::{ControllerFields, GlobalRegisters};
 use machine_io::MachineIo;
 use period_sequencer::PeriodSequencer;
@@ -545,6 +603,12 @@ pub mod latency {
     /// E-stop or enabled alarm level at s, and from the clock after the
     /// watchdog expires.
     pub const DRIVE_ENABLE: u64 = 1;
+    /// A feed-hold request decided in clock d (the `feed_hold` input:
+    /// d = c + `switch` + 1 after a pin change at c) lowers the factor at
+    /// the first base tick t >= d; the first base tick the gate may
+    /// withhold is the next one after t: `HOLD_FIRST_REDUCED_TICK` ticks
+    /// after t.
+    pub const HOLD_FIRST_REDUCED_TICK: u64 = 1;
     /// After the watchdog expires (STATE.WATCHDOG_EXPIRED set at x), the
     /// last step of any axis can rise at x + `WATCHDOG_ALL_AXES`.
     pub const WATCHDOG_ALL_AXES: u64 = 1;
@@ -683,6 +747,7 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("estop", "1", "emergency stop chain, 1 = stopped, asynchronous; no polarity setting"),
     port("gpio_in", "8", "general inputs, asynchronous"),
     port("probe", "1", "touch probe or tool setter, asynchronous: the first edge `PROBE_CONTROL.EDGE` selects after arming latches every axis's positions; ignored in a build without `PROBE` (`CONFIG.PROBE` = 0)"),
+    port("feed_hold", "1", "feed hold request, asynchronous, 1 = hold (`HOLD_CONTROL.INVERT` = 1: 0 = hold): while active the path decelerates along itself to a stop; it resumes on `HOLD_CONTROL.RELEASE` once the input is inactive"),
     port("drive_enable", "K", "bit k: enable (servo-on) of axis k's drive: `IO_CONFIG.DRIVE_ENABLE`, forced low by an E-stop, a watchdog expiry or that axis's alarm; registered"),
     port("gpio_out", "8", "general outputs (`GPIO_OUT`; the `GPIO_SAFE` ones drop on E-stop or watchdog expiry); registered"),
     port("dac_data", "16", "DAC data bus, shared by the analog channels (AD669 style; 0 in a build without them); registered"),
@@ -736,6 +801,8 @@ pub struct MotionController<
     pub gpio_in: Signal<In, Bits<8>>,
     /// Pin: the probe.
     pub probe: Signal<In, Bit>,
+    /// Pin: the feed hold request.
+    pub feed_hold: Signal<In, Bit>,
     /// Bus read data.
     pub bus_read_data: Signal<Out, Bits<32>>,
     /// Level interrupt.
@@ -779,6 +846,11 @@ pub struct MotionController<
     interrupts: InterruptController<IRQ_COUNT>,
     io: MachineIo<K>,
     probe_trigger: ProbeTrigger,
+    /// The feed hold: its input, `HOLD_CONTROL` and the gated tick.
+    feed_hold_unit: FeedHold,
+    /// The base tick through the feed hold's gate: the periods and the
+    /// axes run on it.
+    motion_tick: Signal<Local, Bit>,
     /// The analog outputs: the DAC, its walk and its registers.
     analog: AnalogOutputs<K>,
     analog_axes: Signal<Local, Bits<K>>,
@@ -813,6 +885,9 @@ pub struct MotionController<
     /// the empty FIFOs after reset.
     any_low_prev_n: DFF<Bit>,
     expired_prev: DFF<Bit>,
+    held_prev: DFF<Bit>,
+    /// The probe trigger's read data, 0 without `PROBE`.
+    probe_read: Signal<Local, Bits<32>>,
 
     tick: Signal<Local, Bit>,
     start: Signal<Local, Bit>,
@@ -858,6 +933,7 @@ pub struct MotionController<
     ev_home: Constant<Bits<IRQ_COUNT>>,
     ev_gpio: Constant<Bits<IRQ_COUNT>>,
     ev_probe: Constant<Bits<IRQ_COUNT>>,
+    ev_held: Constant<Bits<IRQ_COUNT>>,
     zero_ev: Constant<Bits<IRQ_COUNT>>,
     /// STATUS.WATCHDOG and STATUS.ESTOP, for their clears.
     m_status_watchdog: Constant<Bits<32>>,
@@ -927,6 +1003,7 @@ impl<
             estop: Default::default(),
             gpio_in: Default::default(),
             probe: Default::default(),
+            feed_hold: Default::default(),
             bus_read_data: Default::default(),
             irq: Default::default(),
             running: Default::default(),
@@ -958,6 +1035,8 @@ impl<
             interrupts: Default::default(),
             io: Default::default(),
             probe_trigger: Default::default(),
+            feed_hold_unit: Default::default(),
+            motion_tick: Default::default(),
             planner: Default::default(),
             div_owner: Default::default(),
             has_uniform: Constant::new(UNIFORM),
@@ -968,6 +1047,8 @@ impl<
             read_data: Default::default(),
             any_low_prev_n: Default::default(),
             expired_prev: Default::default(),
+            held_prev: Default::default(),
+            probe_read: Default::default(),
             tick: Default::default(),
             start: Default::default(),
             halt: Default::default(),
@@ -1004,6 +1085,7 @@ impl<
             ev_home: ev(irq::HOME),
             ev_gpio: ev(irq::GPIO),
             ev_probe: ev(irq::PROBE),
+            ev_held: ev(irq::HELD),
             zero_ev: Constant::new(0u64.into()),
             m_status_watchdog: m32(irq::WATCHDOG),
             m_status_estop: m32(irq::ESTOP),
@@ -1041,6 +1123,7 @@ impl<
             read_data,
             any_low_prev_n,
             expired_prev,
+            held_prev,
             abort_hold,
             div_owner
         );
@@ -1055,6 +1138,7 @@ impl<
             interrupts,
             io,
             probe_trigger,
+            feed_hold_unit,
             planner,
             analog
         );
@@ -1111,7 +1195,22 @@ impl<
         self.probe_trigger.length.next = self.io.filter_length.val();
         self.probe_trigger.address.next = self.bus_address.val();
         self.probe_trigger.write.next = self.bus_write.val();
-        self.probe_trigger.write_data.next = self.bus_write_data.val().get_bits::<2>(0);
+        self.probe_trigger.write_data.next = self.bus_write_data.val().get_bits::<3>(0);
+
+        // The feed hold gates the base tick of the periods and the axes
+        // (the watchdog keeps the base tick: a hold does not stretch it).
+        self.feed_hold_unit.reset.next = self.reset.val();
+        self.feed_hold_unit.feed_hold.next = self.feed_hold.val();
+        self.feed_hold_unit.sample.next = self.io.filter_sample.val();
+        self.feed_hold_unit.length.next = self.io.filter_length.val();
+        self.feed_hold_unit.address.next = self.bus_address.val();
+        self.feed_hold_unit.write.next = self.bus_write.val();
+        self.feed_hold_unit.write_data.next = self.bus_write_data.val();
+        self.feed_hold_unit.probe_stop.next = self.probe_trigger.stop.val() & self.has_probe.val();
+        self.feed_hold_unit.tick.next = self.tick.val();
+        self.motion_tick.next = self.feed_hold_unit.tick_out.val();
+        self.registers.holding.next = self.feed_hold_unit.holding.val();
+        self.registers.held.next = self.feed_hold_unit.held.val();
 
         // Stop causes held by the axes, and the axes' summaries. Bits of
         // the K-bit vectors by mask, not bit select: at K = 1 rust-hdl
@@ -1172,7 +1271,7 @@ impl<
         // Run control and the period boundary. CONTROL.RUN, CONTROL.FLUSH:
         // literal bits, asserted above.
         self.period.reset.next = self.reset.val();
-        self.period.tick.next = self.tick.val();
+        self.period.tick.next = self.motion_tick.val();
         self.period.control_write.next = self.registers.control_write.val();
         self.period.run_bit.next = self.bus_write_data.val().get_bit(0);
         self.period.flush_bit.next = self.bus_write_data.val().get_bit(1);
@@ -1249,7 +1348,7 @@ impl<
         for i in 0..K {
             self.axes[i].clock.next = self.clock.val();
             self.axes[i].reset.next = self.reset.val();
-            self.axes[i].tick.next = self.tick.val();
+            self.axes[i].tick.next = self.motion_tick.val();
             self.axes[i].start.next = self.start.val();
             self.axes[i].flush.next = self.period.flush.val();
             self.axes[i].halt.next = self.halt.val();
@@ -1337,6 +1436,7 @@ impl<
         // Interrupts: pulses, so that a write-1-to-clear always clears.
         self.any_low_prev_n.d.next = !self.any_low.val();
         self.expired_prev.d.next = self.watchdog.expired.val();
+        self.held_prev.d.next = self.feed_hold_unit.held.val();
         self.events.next = self.zero_ev.val();
         if self.period.period_done.val() {
             self.events.next = self.events.val() | self.ev_period_done.val();
@@ -1377,6 +1477,9 @@ impl<
         if self.probe_trigger.latch.val() & self.has_probe.val() {
             self.events.next = self.events.val() | self.ev_probe.val();
         }
+        if self.feed_hold_unit.held.val() & !self.held_prev.q.val() {
+            self.events.next = self.events.val() | self.ev_held.val();
+        }
         self.interrupts.reset.next = self.reset.val();
         self.interrupts.events.next = self.events.val();
         self.interrupts.clear.next = self.registers.status_write.val();
@@ -1384,19 +1487,19 @@ impl<
         self.interrupts.enable.next = self.registers.irq_enable.val();
         self.irq.next = self.interrupts.irq.val();
 
-        // Reads: the global registers, the machine I/O's and the axes'.
+        // Reads: the global registers, the machine I/O's, the feed hold's
+        // and the axes'. Without PROBE the trigger drives nothing, and
+        // synthesis removes it.
+        self.probe_read.next = self.zero32.val();
+        if self.has_probe.val() {
+            self.probe_read.next = self.probe_trigger.read_data.val();
+        }
         if self.bus_read.val() {
-            // Without PROBE the trigger drives nothing, and synthesis
-            // removes it.
-            if self.has_probe.val() {
-                self.read_data.d.next = self.registers.read_data.val()
-                    | self.io.read_data.val()
-                    | self.probe_trigger.read_data.val()
-                    | self.axes_read.val();
-            } else {
-                self.read_data.d.next =
-                    self.registers.read_data.val() | self.io.read_data.val() | self.axes_read.val();
-            }
+            self.read_data.d.next = self.registers.read_data.val()
+                | self.io.read_data.val()
+                | self.probe_read.val()
+                | self.feed_hold_unit.read_data.val()
+                | self.axes_read.val();
         }
         // The DAC's read data is registered like ours: the same clock.
         self.read_out.next = self.read_data.q.val();
@@ -1422,13 +1525,14 @@ impl<
             self.read_data.d.next = self.zero32.val();
             self.any_low_prev_n.d.next = false;
             self.expired_prev.d.next = false;
+            self.held_prev.d.next = false;
         }
     }
 }
 
 crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE> {
     inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
-        limit_pos, limit_neg, home, drive_alarm, estop, gpio_in, probe],
+        limit_pos, limit_neg, home, drive_alarm, estop, gpio_in, probe, feed_hold],
     outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out,
         dac_data, dac_cs_n, dac_l1_n, dac_ldac],
 });

@@ -7,8 +7,8 @@
 //! values from the registered state of every part, then the edge.
 
 use super::io_model::{
-    AxisIoComb, AxisIoModel, AxisSwitches, MachineIoModel, MachinePins, ProbeComb, ProbeModel,
-    StepPath,
+    AxisIoComb, AxisIoModel, AxisSwitches, FeedHoldModel, MachineIoModel, MachinePins, ProbeComb,
+    ProbeModel, StepPath,
 };
 use super::registers::{
     self, axis, fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, ID_VALUE,
@@ -131,6 +131,7 @@ impl ControllerInputs {
             self.pins.estop as u64,
             self.pins.gpio_in as u64,
             self.pins.probe as u64,
+            self.pins.feed_hold as u64,
         ]);
     }
 }
@@ -750,6 +751,8 @@ pub struct MotionControllerModel {
     expired_prev: bool,
     io: MachineIoModel,
     probe: ProbeModel,
+    feed_hold: FeedHoldModel,
+    held_prev: bool,
     /// The build has the probe latch (`PROBE`): without it the trigger's
     /// latch, event and read data are unused.
     has_probe: bool,
@@ -832,6 +835,8 @@ impl MotionControllerModel {
             expired_prev: false,
             io: MachineIoModel::new(axes),
             probe: ProbeModel::default(),
+            feed_hold: FeedHoldModel::default(),
+            held_prev: false,
             has_probe: probe,
             abort_hold: false,
             stop_cause: 0,
@@ -886,6 +891,11 @@ impl MotionControllerModel {
     /// Periods are running.
     pub fn running(&self) -> bool {
         self.run
+    }
+
+    /// The feed hold: its request and ramp.
+    pub fn feed_hold(&self) -> &FeedHoldModel {
+        &self.feed_hold
     }
 
     fn outputs(&self) -> ControllerOutputs {
@@ -950,6 +960,8 @@ impl MotionControllerModel {
                     | flag(io.estop_latched, fields::STATE_ESTOP_LATCHED)
                     | flag(self.abort_hold || expired, fields::STATE_ABORTED)
                     | flag(io.ready, fields::STATE_INPUTS_READY)
+                    | flag(self.feed_hold.holding(), fields::STATE_HOLDING)
+                    | flag(self.feed_hold.held(), fields::STATE_HELD)
             }
             global::PERIOD_COUNT => self.period_count,
             global::STOP_CAUSE => self.stop_cause,
@@ -968,7 +980,6 @@ impl MotionControllerModel {
         let address = i.address & 0xff;
         let write = |a: u32| i.write && address == a;
         let (expired, _) = self.watchdog_out;
-        let tick = self.tick;
 
         // Combinational phase.
         let status_write = write(global::STATUS).then_some(i.write_data);
@@ -979,6 +990,11 @@ impl MotionControllerModel {
             true => self.probe.comb(address, bus_write),
             false => ProbeComb::default(),
         };
+        let hold = self
+            .feed_hold
+            .comb(address, bus_write, probe.stop, self.tick);
+        // The periods and the axes run on the gated tick.
+        let tick = hold.tick;
         let drive_allowed = !io.estop_latched_next && !expired;
         let any_limit_held = self.axes.iter().any(|a| a.io.limit_held());
         let any_alarm_held = self.axes.iter().any(|a| a.io.alarm_held());
@@ -1036,11 +1052,11 @@ impl MotionControllerModel {
         set(irq::HOME, combs.iter().any(|c| c.io.home_event));
         set(irq::GPIO, io.gpio_event);
         set(irq::PROBE, probe.latch);
-        let read_word = combs
-            .iter()
-            .fold(self.global_read(address, &io) | probe.read_data, |w, c| {
-                w | c.read_data
-            });
+        set(irq::HELD, self.feed_hold.held() && !self.held_prev);
+        let read_word = combs.iter().fold(
+            self.global_read(address, &io) | probe.read_data | hold.read_data,
+            |w, c| w | c.read_data,
+        );
         // STOP_CAUSE: the highest of this clock's causes, with the lowest
         // axis that holds it.
         let lowest = |held: fn(&AxisIoModel) -> bool| {
@@ -1081,7 +1097,7 @@ impl MotionControllerModel {
         });
         next.watchdog_out = next.watchdog.step(
             i.reset,
-            tick,
+            self.tick,
             self.watchdog_timeout as u64,
             write(global::WATCHDOG_KICK),
             status_bit(irq::WATCHDOG),
@@ -1123,6 +1139,15 @@ impl MotionControllerModel {
             &probe,
             self.io.filter_inputs(),
         );
+        next.feed_hold.edge(
+            i.reset,
+            i.pins.feed_hold,
+            bus_write,
+            &hold,
+            self.io.filter_inputs(),
+            self.tick,
+        );
+        next.held_prev = self.feed_hold.held();
         let control = AxisControl {
             reset: i.reset,
             tick,
@@ -1221,6 +1246,7 @@ impl MotionControllerModel {
             next.read_data = 0;
             next.any_low_prev_n = false;
             next.expired_prev = false;
+            next.held_prev = false;
             next.abort_hold = false;
             next.stop_cause = 0;
             next.pop_d = false;

@@ -16,9 +16,9 @@ use rust_hdl::prelude::*;
 use super::registers::{fields, global};
 use crate::blocks::input_conditioner::InputConditioner;
 
-// PROBE_CONTROL's writable bits are the written word's low two, taken by
-// literal index.
-const _: () = assert!(fields::PROBE_ARM == 0 && fields::PROBE_EDGE == 1);
+// PROBE_CONTROL's writable bits are the written word's low three, taken
+// by literal index.
+const _: () = assert!(fields::PROBE_ARM == 0 && fields::PROBE_EDGE == 1 && fields::PROBE_STOP == 2);
 
 /// The probe trigger. See the [module documentation](self).
 #[derive(LogicBlock)]
@@ -37,27 +37,32 @@ pub struct ProbeTrigger {
     pub address: Signal<In, Bits<8>>,
     /// Bus write strobe.
     pub write: Signal<In, Bit>,
-    /// Bus write data, bits 1..0: `PROBE_CONTROL.EDGE` and `ARM`.
-    pub write_data: Signal<In, Bits<2>>,
+    /// Bus write data, bits 2..0: `PROBE_CONTROL.STOP`, `EDGE` and `ARM`.
+    pub write_data: Signal<In, Bits<3>>,
     /// The probe trips in this clock: every axis latches its positions.
     pub latch: Signal<Out, Bit>,
+    /// The trip requests the feed hold (`PROBE_CONTROL.STOP`).
+    pub stop: Signal<Out, Bit>,
     /// `PROBE_CONTROL` when addressed, else 0.
     pub read_data: Signal<Out, Bits<32>>,
 
     conditioner: InputConditioner<1>,
     armed: DFF<Bit>,
     falling: DFF<Bit>,
+    stop_on_trip: DFF<Bit>,
     tripped: DFF<Bit>,
 
     control_write: Signal<Local, Bit>,
     armed_now: Signal<Local, Bit>,
     falling_now: Signal<Local, Bit>,
+    stop_now: Signal<Local, Bit>,
     hit: Signal<Local, Bit>,
     trip: Signal<Local, Bit>,
 
     a_control: Constant<Bits<8>>,
     m_arm: Constant<Bits<32>>,
     m_edge: Constant<Bits<32>>,
+    m_stop: Constant<Bits<32>>,
     m_tripped: Constant<Bits<32>>,
     m_level: Constant<Bits<32>>,
     zero1: Constant<Bits<1>>,
@@ -77,19 +82,23 @@ impl Default for ProbeTrigger {
             write: Default::default(),
             write_data: Default::default(),
             latch: Default::default(),
+            stop: Default::default(),
             read_data: Default::default(),
             conditioner: Default::default(),
             armed: Default::default(),
             falling: Default::default(),
+            stop_on_trip: Default::default(),
             tripped: Default::default(),
             control_write: Default::default(),
             armed_now: Default::default(),
             falling_now: Default::default(),
+            stop_now: Default::default(),
             hit: Default::default(),
             trip: Default::default(),
             a_control: Constant::new((global::PROBE_CONTROL as u64).into()),
             m_arm: m32(fields::PROBE_ARM),
             m_edge: m32(fields::PROBE_EDGE),
+            m_stop: m32(fields::PROBE_STOP),
             m_tripped: m32(fields::PROBE_TRIPPED),
             m_level: m32(fields::PROBE_LEVEL),
             zero1: Constant::new(0u64.into()),
@@ -101,7 +110,7 @@ impl Default for ProbeTrigger {
 impl Logic for ProbeTrigger {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, armed, falling, tripped);
+        dff_setup!(self, clock, armed, falling, stop_on_trip, tripped);
         clock!(self, clock, conditioner);
 
         self.conditioner.reset.next = self.reset.val();
@@ -117,9 +126,11 @@ impl Logic for ProbeTrigger {
         self.control_write.next = self.write.val() & (self.address.val() == self.a_control.val());
         self.armed_now.next = self.armed.q.val();
         self.falling_now.next = self.falling.q.val();
+        self.stop_now.next = self.stop_on_trip.q.val();
         if self.control_write.val() {
             self.armed_now.next = self.write_data.val().get_bit(0);
             self.falling_now.next = self.write_data.val().get_bit(1);
+            self.stop_now.next = self.write_data.val().get_bit(2);
         }
         self.hit.next = self.conditioner.rise.val() != self.zero1.val();
         if self.falling_now.val() {
@@ -128,8 +139,10 @@ impl Logic for ProbeTrigger {
         // The first edge after arming trips, and the trip disarms.
         self.trip.next = self.armed_now.val() & self.hit.val();
         self.latch.next = self.trip.val();
+        self.stop.next = self.trip.val() & self.stop_now.val();
         self.armed.d.next = self.armed_now.val() & !self.trip.val();
         self.falling.d.next = self.falling_now.val();
+        self.stop_on_trip.d.next = self.stop_now.val();
         if self.control_write.val() & self.write_data.val().get_bit(0) {
             self.tripped.d.next = false;
         }
@@ -139,6 +152,7 @@ impl Logic for ProbeTrigger {
         if self.reset.val() {
             self.armed.d.next = false;
             self.falling.d.next = false;
+            self.stop_on_trip.d.next = false;
             self.tripped.d.next = false;
         }
 
@@ -149,6 +163,9 @@ impl Logic for ProbeTrigger {
             }
             if self.falling.q.val() {
                 self.read_data.next = self.read_data.val() | self.m_edge.val();
+            }
+            if self.stop_on_trip.q.val() {
+                self.read_data.next = self.read_data.val() | self.m_stop.val();
             }
             if self.tripped.q.val() {
                 self.read_data.next = self.read_data.val() | self.m_tripped.val();

@@ -19,15 +19,17 @@ use crate::regmap::{field, register, Access, Field, RegMapError, Register, Regis
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
-/// `VERSION` register value: major 0, minor 4, patch 0 (minor 2: machine
+/// `VERSION` register value: major 0, minor 6, patch 0 (minor 2: machine
 /// I/O, 32-word axis windows; minor 3: analog axes, `CONFIG.ANALOG`;
 /// patch 1: on a uniform axis, `INTERP_OVERRANGE` for |n| > P/2 is set
 /// when the axis's period plan arrives from the shared planner, not two
 /// clocks after the entry is taken). Minor 4: the position counters and
 /// their latches are `CONFIG.POSITION_BITS` = 24 bits wide, not 32; their
 /// words carry the sign up to bit 31 and wrap at 2^24. Minor 5: the probe
-/// input (`PROBE_CONTROL`, `PROBE_*_POSITION`, `STATUS.PROBE`).
-pub const VERSION_VALUE: u32 = 0x0000_0500;
+/// input (`PROBE_CONTROL`, `PROBE_*_POSITION`, `STATUS.PROBE`). Minor 6:
+/// the feed hold (`feed_hold`, `HOLD_CONTROL`, `STATE.HOLDING`/`HELD`,
+/// `STATUS.HELD`, `PROBE_CONTROL.STOP`).
+pub const VERSION_VALUE: u32 = 0x0000_0600;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -77,6 +79,8 @@ pub mod global {
     pub const GPIO_EDGES: u32 = 0x15;
     /// The probe: arm, edge, and its state.
     pub const PROBE_CONTROL: u32 = 0x19;
+    /// The feed hold: request, release, ramp rate, and the input's level.
+    pub const HOLD_CONTROL: u32 = 0x1a;
     /// The analog outputs' code format (`dac_interface` CONTROL; analog builds).
     pub const DAC_CONTROL: u32 = 0x16;
     /// The analog outputs' state and flags (`dac_interface` STATUS).
@@ -269,6 +273,26 @@ pub mod fields {
     pub const PROBE_TRIPPED: u32 = 8;
     /// `PROBE_CONTROL.LEVEL`: read-only, the filtered `probe` level.
     pub const PROBE_LEVEL: u32 = 9;
+    /// `PROBE_CONTROL.STOP`: a trip also requests the feed hold.
+    pub const PROBE_STOP: u32 = 2;
+    /// `HOLD_CONTROL.HOLD`: write 1 to request the hold.
+    pub const HOLD_HOLD: u32 = 0;
+    /// `HOLD_CONTROL.RELEASE`: write 1 to release the hold.
+    pub const HOLD_RELEASE: u32 = 1;
+    /// `HOLD_CONTROL.INVERT`: the `feed_hold` input is active low.
+    pub const HOLD_INVERT: u32 = 2;
+    /// `HOLD_CONTROL.REQUESTED`: read-only, the hold is requested.
+    pub const HOLD_REQUESTED: u32 = 8;
+    /// `HOLD_CONTROL.INPUT`: read-only, the filtered `feed_hold` input.
+    pub const HOLD_INPUT: u32 = 9;
+    /// `HOLD_CONTROL.RATE`: the factor's change per base tick.
+    pub const HOLD_RATE: u32 = 16;
+    /// Width of `HOLD_CONTROL.RATE`.
+    pub const HOLD_RATE_WIDTH: u32 = 16;
+    /// `STATE.HOLDING`: the hold's factor is below 1.
+    pub const STATE_HOLDING: u32 = 7;
+    /// `STATE.HELD`: the hold's factor is 0.
+    pub const STATE_HELD: u32 = 8;
     /// `IO_COMMAND.CLEAR_LIMITS`.
     pub const CLEAR_LIMITS: u32 = 0;
     /// `IO_COMMAND.CLEAR_ALARM`.
@@ -426,8 +450,10 @@ pub mod irq {
     /// Number of interrupt sources.
     /// The armed probe tripped: every axis's positions latched.
     pub const PROBE: u32 = 12;
+    /// The feed hold brought the path to a stop (`STATE.HELD` rose).
+    pub const HELD: u32 = 13;
     /// Number of interrupt sources.
-    pub const COUNT: usize = 13;
+    pub const COUNT: usize = 14;
 }
 
 /// A read-write register whose low `width` bits hold a number.
@@ -455,6 +481,7 @@ fn irq_fields(access: Access) -> Vec<Field> {
         field("HOME", irq::HOME, 1, access, "a home switch edge latched the positions; see IO_STATUS.HOME_SEEN"),
         field("GPIO", irq::GPIO, 1, access, "an enabled general-input edge; see GPIO_EDGES"),
         field("PROBE", irq::PROBE, 1, access, "the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL"),
+        field("HELD", irq::HELD, 1, access, "the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL"),
     ]
 }
 
@@ -665,6 +692,8 @@ pub fn register_map(
                     field("ESTOP_LATCHED", fields::STATE_ESTOP_LATCHED, 1, ReadOnly, "E-stop latched; cleared with STATUS.ESTOP once the input is released"),
                     field("ABORTED", fields::STATE_ABORTED, 1, ReadOnly, "a stop cause is held (E-stop, watchdog, alarm, limit or home trip): every output stage flushed (the FIFOs keep their entries), RUN refused"),
                     Field { reset: 1, ..field("INPUTS_READY", fields::STATE_INPUTS_READY, 1, ReadOnly, "the switch filters are primed: 0 for the 3 clocks after reset, in which RUN is refused") },
+                    field("HOLDING", fields::STATE_HOLDING, 1, ReadOnly, "the feed hold's factor is below 1: the path is slowing, held, or ramping back to speed"),
+                    field("HELD", fields::STATE_HELD, 1, ReadOnly, "the feed hold's factor is 0: no base tick reaches the periods or the axes"),
                 ],
             ),
             Register::word("PERIOD_COUNT", global::PERIOD_COUNT, ReadOnly, 0, "periods started since reset, wrapping"),
@@ -717,6 +746,19 @@ pub fn register_map(
                 vec![
                     field("RISE", fields::GPIO_RISE, fields::GPIO_WIDTH, WriteOneToClear, "per input: rose"),
                     field("FALL", fields::GPIO_FALL, fields::GPIO_WIDTH, WriteOneToClear, "per input: fell"),
+                ],
+            ),
+            register(
+                "HOLD_CONTROL",
+                global::HOLD_CONTROL,
+                "the feed hold: a controlled stop along the path that resumes where it left off (the FIFOs keep their entries)",
+                vec![
+                    field("HOLD", fields::HOLD_HOLD, 1, WriteOnly, "write 1 to request the hold (0: no effect)"),
+                    field("RELEASE", fields::HOLD_RELEASE, 1, WriteOnly, "write 1 to release the hold: the factor ramps back to 1 (refused while the feed_hold input is active, or with HOLD = 1 in the same write)"),
+                    field("INVERT", fields::HOLD_INVERT, 1, ReadWrite, "1 = the feed_hold input is active low"),
+                    field("REQUESTED", fields::HOLD_REQUESTED, 1, ReadOnly, "the hold is requested (sticky until released): by HOLD, the feed_hold input, or a probe trip with PROBE_CONTROL.STOP"),
+                    field("INPUT", fields::HOLD_INPUT, 1, ReadOnly, "the feed_hold input, filtered, INVERT applied (0 until the inputs are ready)"),
+                    field("RATE", fields::HOLD_RATE, fields::HOLD_RATE_WIDTH, ReadWrite, "the factor's change per base tick in 1/65536 (a stop from full speed takes ceil(65536 / RATE) ticks); 0 acts as 65536: the factor goes to 0 or 1 at the next tick"),
                 ],
             ),
             per_axis(Register::word("FIFO_WRITE", at(axis::FIFO_WRITE), WriteOnly, 0, "push one period's signed step count (refused when full); a magnitude above 65535 is saturated and flagged")),
@@ -835,6 +877,7 @@ pub fn register_map(
                 field("ARM", fields::PROBE_ARM, 1, ReadWrite, "write 1 to arm (clears TRIPPED), 0 to disarm; reads 1 while armed; the trip disarms"),
                 field("EDGE", fields::PROBE_EDGE, 1, ReadWrite, "0 = trip on a rising edge of probe (contact made, for a normally-open probe), 1 = on a falling edge"),
                 field("TRIPPED", fields::PROBE_TRIPPED, 1, ReadOnly, "sticky: the armed probe tripped and PROBE_*_POSITION hold the positions of that clock; cleared by arming"),
+                field("STOP", fields::PROBE_STOP, 1, ReadWrite, "1 = the trip also requests the feed hold (HOLD_CONTROL.HOLD): a controlled stop along the path, not an abort"),
                 field("LEVEL", fields::PROBE_LEVEL, 1, ReadOnly, "the probe input, filtered (1 = high; 0 until the inputs are ready)"),
             ],
         ));
