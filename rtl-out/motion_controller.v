@@ -434,6 +434,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  feed_hold_unit__holding;
     wire  feed_hold_unit__held;
     wire  [31:0] feed_hold_unit__read_data;
+    reg  motion_tick__d;
+    wire  motion_tick__q;
+    reg  motion_tick__clock;
     reg  analog__clock;
     reg  analog__reset;
     reg  [7:0] analog__bus_address;
@@ -487,7 +490,6 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     reg  held_prev__clock;
 
     // Local signals
-    reg  motion_tick;
     reg  [2:0] analog_axes;
     reg  [15:0] walk_magnitude;
     reg  walk_wide;
@@ -865,6 +867,11 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .held(feed_hold_unit__held),
         .read_data(feed_hold_unit__read_data)
     );
+    motion_controller__motion_tick motion_tick(
+        .d(motion_tick__d),
+        .q(motion_tick__q),
+        .clock(motion_tick__clock)
+    );
     motion_controller__analog analog(
         .clock(analog__clock),
         .reset(analog__reset),
@@ -939,12 +946,14 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         any_low_prev_n__clock = clock;
         expired_prev__clock = clock;
         held_prev__clock = clock;
+        motion_tick__clock = clock;
         abort_hold__clock = clock;
         div_owner__clock = clock;
         read_data__d = read_data__q;
         any_low_prev_n__d = any_low_prev_n__q;
         expired_prev__d = expired_prev__q;
         held_prev__d = held_prev__q;
+        motion_tick__d = motion_tick__q;
         abort_hold__d = abort_hold__q;
         div_owner__d = div_owner__q;
         registers__clock = clock;
@@ -1010,7 +1019,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         feed_hold_unit__write_data = bus_write_data;
         feed_hold_unit__probe_stop = probe_trigger__stop & has_probe;
         feed_hold_unit__tick = tick;
-        motion_tick = feed_hold_unit__tick_out;
+        motion_tick__d = feed_hold_unit__tick_out;
         registers__holding = feed_hold_unit__holding;
         registers__held = feed_hold_unit__held;
         limit_held = zero_k;
@@ -1088,7 +1097,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         registers__aborted = abort;
         refuse_run = period__running | watchdog__expired | io__estop_active | io__estop_latched | any_held | ~io__ready;
         period__reset = reset;
-        period__tick = motion_tick;
+        period__tick = motion_tick__q;
         period__control_write = registers__control_write;
         period__run_bit = bus_write_data[32'h0];
         period__flush_bit = bus_write_data[32'h1];
@@ -1170,7 +1179,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         entry_converter__word = bus_write_data;
         axes__0__clock = clock;
         axes__0__reset = reset;
-        axes__0__tick = motion_tick;
+        axes__0__tick = motion_tick__q;
         axes__0__start = start;
         axes__0__flush = period__flush;
         axes__0__halt = halt;
@@ -1207,7 +1216,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes_read = axes_read | axes__0__read_data;
         axes__1__clock = clock;
         axes__1__reset = reset;
-        axes__1__tick = motion_tick;
+        axes__1__tick = motion_tick__q;
         axes__1__start = start;
         axes__1__flush = period__flush;
         axes__1__halt = halt;
@@ -1244,7 +1253,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         axes_read = axes_read | axes__1__read_data;
         axes__2__clock = clock;
         axes__2__reset = reset;
-        axes__2__tick = motion_tick;
+        axes__2__tick = motion_tick__q;
         axes__2__start = start;
         axes__2__flush = period__flush;
         axes__2__halt = halt;
@@ -1449,6 +1458,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
             any_low_prev_n__d = 1'b0;
             expired_prev__d = 1'b0;
             held_prev__d = 1'b0;
+            motion_tick__d = 1'b0;
         end
     end
 
@@ -29100,6 +29110,25 @@ module motion_controller__io__sample_count(d,q,clock);
     end
 
 endmodule // motion_controller__io__sample_count
+
+
+module motion_controller__motion_tick(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__motion_tick
 
 
 module motion_controller__period(clock,reset,tick,control_write,run_bit,flush_bit,refuse_run,abort,all_ready,period_ticks,start,halt,flush,pop,underrun,period_done,running,period_active,modulus_negated,period_count);

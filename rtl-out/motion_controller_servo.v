@@ -436,6 +436,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  feed_hold_unit__holding;
     wire  feed_hold_unit__held;
     wire  [31:0] feed_hold_unit__read_data;
+    reg  motion_tick__d;
+    wire  motion_tick__q;
+    reg  motion_tick__clock;
     reg  analog__clock;
     reg  analog__reset;
     reg  [7:0] analog__bus_address;
@@ -489,7 +492,6 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  held_prev__clock;
 
     // Local signals
-    reg  motion_tick;
     reg  [2:0] analog_axes;
     reg  [15:0] walk_magnitude;
     reg  walk_wide;
@@ -867,6 +869,11 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .held(feed_hold_unit__held),
         .read_data(feed_hold_unit__read_data)
     );
+    motion_controller_servo__motion_tick motion_tick(
+        .d(motion_tick__d),
+        .q(motion_tick__q),
+        .clock(motion_tick__clock)
+    );
     motion_controller_servo__analog analog(
         .clock(analog__clock),
         .reset(analog__reset),
@@ -941,12 +948,14 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         any_low_prev_n__clock = clock;
         expired_prev__clock = clock;
         held_prev__clock = clock;
+        motion_tick__clock = clock;
         abort_hold__clock = clock;
         div_owner__clock = clock;
         read_data__d = read_data__q;
         any_low_prev_n__d = any_low_prev_n__q;
         expired_prev__d = expired_prev__q;
         held_prev__d = held_prev__q;
+        motion_tick__d = motion_tick__q;
         abort_hold__d = abort_hold__q;
         div_owner__d = div_owner__q;
         registers__clock = clock;
@@ -1012,7 +1021,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         feed_hold_unit__write_data = bus_write_data;
         feed_hold_unit__probe_stop = probe_trigger__stop & has_probe;
         feed_hold_unit__tick = tick;
-        motion_tick = feed_hold_unit__tick_out;
+        motion_tick__d = feed_hold_unit__tick_out;
         registers__holding = feed_hold_unit__holding;
         registers__held = feed_hold_unit__held;
         limit_held = zero_k;
@@ -1090,7 +1099,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         registers__aborted = abort;
         refuse_run = period__running | watchdog__expired | io__estop_active | io__estop_latched | any_held | ~io__ready;
         period__reset = reset;
-        period__tick = motion_tick;
+        period__tick = motion_tick__q;
         period__control_write = registers__control_write;
         period__run_bit = bus_write_data[32'h0];
         period__flush_bit = bus_write_data[32'h1];
@@ -1172,7 +1181,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         entry_converter__word = bus_write_data;
         axes__0__clock = clock;
         axes__0__reset = reset;
-        axes__0__tick = motion_tick;
+        axes__0__tick = motion_tick__q;
         axes__0__start = start;
         axes__0__flush = period__flush;
         axes__0__halt = halt;
@@ -1209,7 +1218,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes_read = axes_read | axes__0__read_data;
         axes__1__clock = clock;
         axes__1__reset = reset;
-        axes__1__tick = motion_tick;
+        axes__1__tick = motion_tick__q;
         axes__1__start = start;
         axes__1__flush = period__flush;
         axes__1__halt = halt;
@@ -1246,7 +1255,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes_read = axes_read | axes__1__read_data;
         axes__2__clock = clock;
         axes__2__reset = reset;
-        axes__2__tick = motion_tick;
+        axes__2__tick = motion_tick__q;
         axes__2__start = start;
         axes__2__flush = period__flush;
         axes__2__halt = halt;
@@ -1451,6 +1460,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
             any_low_prev_n__d = 1'b0;
             expired_prev__d = 1'b0;
             held_prev__d = 1'b0;
+            motion_tick__d = 1'b0;
         end
     end
 
@@ -29102,6 +29112,25 @@ module motion_controller_servo__io__sample_count(d,q,clock);
     end
 
 endmodule // motion_controller_servo__io__sample_count
+
+
+module motion_controller_servo__motion_tick(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__motion_tick
 
 
 module motion_controller_servo__period(clock,reset,tick,control_write,run_bit,flush_bit,refuse_run,abort,all_ready,period_ticks,start,halt,flush,pop,underrun,period_done,running,period_active,modulus_negated,period_count);

@@ -332,9 +332,12 @@
 //! either format.
 //!
 //! ## Latency
-//! A DDA step reaches the pins at the earliest 5 clocks after the base tick
-//! that produced it (1 tick delay, 2 in the DDA, 1 request register, 1 in
-//! the stage); the stage's timing settings may delay it further. A uniform
+//! A DDA step reaches the pins at the earliest 6 clocks after the base tick
+//! that produced it (1 in the feed hold's gate register, 1 tick delay, 2
+//! in the DDA, 1 request register, 1 in the stage); the stage's timing
+//! settings may delay it further. The periods and the axes see each base
+//! tick one clock late, through the gate register: a boundary comes one
+//! clock after its base tick. A uniform
 //! axis runs each period 24 + 18 j clocks or more behind the boundary (j:
 //! the uniform axes before it, see [`latency::UNIFORM_LAG`]). `irq` follows a `STATUS` bit by
 //! one clock. `CMD_POSITION` counts a step one clock after its first pin
@@ -848,9 +851,10 @@ pub struct MotionController<
     probe_trigger: ProbeTrigger,
     /// The feed hold: its input, `HOLD_CONTROL` and the gated tick.
     feed_hold_unit: FeedHold,
-    /// The base tick through the feed hold's gate: the periods and the
-    /// axes run on it.
-    motion_tick: Signal<Local, Bit>,
+    /// The base tick through the feed hold's gate, registered (the gate's
+    /// comparator stays out of the path from the tick to every axis): the
+    /// periods and the axes run on it, one clock after the base tick.
+    motion_tick: DFF<Bit>,
     /// The analog outputs: the DAC, its walk and its registers.
     analog: AnalogOutputs<K>,
     analog_axes: Signal<Local, Bits<K>>,
@@ -1124,6 +1128,7 @@ impl<
             any_low_prev_n,
             expired_prev,
             held_prev,
+            motion_tick,
             abort_hold,
             div_owner
         );
@@ -1208,7 +1213,7 @@ impl<
         self.feed_hold_unit.write_data.next = self.bus_write_data.val();
         self.feed_hold_unit.probe_stop.next = self.probe_trigger.stop.val() & self.has_probe.val();
         self.feed_hold_unit.tick.next = self.tick.val();
-        self.motion_tick.next = self.feed_hold_unit.tick_out.val();
+        self.motion_tick.d.next = self.feed_hold_unit.tick_out.val();
         self.registers.holding.next = self.feed_hold_unit.holding.val();
         self.registers.held.next = self.feed_hold_unit.held.val();
 
@@ -1271,7 +1276,7 @@ impl<
         // Run control and the period boundary. CONTROL.RUN, CONTROL.FLUSH:
         // literal bits, asserted above.
         self.period.reset.next = self.reset.val();
-        self.period.tick.next = self.motion_tick.val();
+        self.period.tick.next = self.motion_tick.q.val();
         self.period.control_write.next = self.registers.control_write.val();
         self.period.run_bit.next = self.bus_write_data.val().get_bit(0);
         self.period.flush_bit.next = self.bus_write_data.val().get_bit(1);
@@ -1348,7 +1353,7 @@ impl<
         for i in 0..K {
             self.axes[i].clock.next = self.clock.val();
             self.axes[i].reset.next = self.reset.val();
-            self.axes[i].tick.next = self.motion_tick.val();
+            self.axes[i].tick.next = self.motion_tick.q.val();
             self.axes[i].start.next = self.start.val();
             self.axes[i].flush.next = self.period.flush.val();
             self.axes[i].halt.next = self.halt.val();
@@ -1526,6 +1531,7 @@ impl<
             self.any_low_prev_n.d.next = false;
             self.expired_prev.d.next = false;
             self.held_prev.d.next = false;
+            self.motion_tick.d.next = false;
         }
     }
 }

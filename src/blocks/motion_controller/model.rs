@@ -753,6 +753,8 @@ pub struct MotionControllerModel {
     probe: ProbeModel,
     feed_hold: FeedHoldModel,
     held_prev: bool,
+    /// The gated tick, registered: the periods and the axes see it.
+    motion_tick: bool,
     /// The build has the probe latch (`PROBE`): without it the trigger's
     /// latch, event and read data are unused.
     has_probe: bool,
@@ -837,6 +839,7 @@ impl MotionControllerModel {
             probe: ProbeModel::default(),
             feed_hold: FeedHoldModel::default(),
             held_prev: false,
+            motion_tick: false,
             has_probe: probe,
             abort_hold: false,
             stop_cause: 0,
@@ -993,8 +996,8 @@ impl MotionControllerModel {
         let hold = self
             .feed_hold
             .comb(address, bus_write, probe.stop, self.tick);
-        // The periods and the axes run on the gated tick.
-        let tick = hold.tick;
+        // The periods and the axes run on the gated tick, registered.
+        let tick = self.motion_tick;
         let drive_allowed = !io.estop_latched_next && !expired;
         let any_limit_held = self.axes.iter().any(|a| a.io.limit_held());
         let any_alarm_held = self.axes.iter().any(|a| a.io.alarm_held());
@@ -1148,6 +1151,7 @@ impl MotionControllerModel {
             self.tick,
         );
         next.held_prev = self.feed_hold.held();
+        next.motion_tick = hold.tick && !i.reset;
         let control = AxisControl {
             reset: i.reset,
             tick,
