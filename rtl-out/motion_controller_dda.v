@@ -5871,7 +5871,7 @@ module motion_controller_dda__axes__0__fifo(clock,reset,write,write_data,pop,hea
     localparam  zero_n = 4'h0;
     localparam  one_c = 5'b1;
     localparam  zero_c = 5'b0;
-    localparam  capacity = 5'b10000;
+    localparam  almost_full = 5'b1111;
 
     // Stub signals
     reg  ram__clock;
@@ -5910,6 +5910,10 @@ module motion_controller_dda__axes__0__fifo(clock,reset,write,write_data,pop,hea
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -6032,11 +6036,19 @@ module motion_controller_dda__axes__0__fifo(clock,reset,write,write_data,pop,hea
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -6045,9 +6057,9 @@ module motion_controller_dda__axes__0__fifo(clock,reset,write,write_data,pop,hea
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller_dda__axes__0__fifo
@@ -12192,7 +12204,7 @@ module motion_controller_dda__axes__1__fifo(clock,reset,write,write_data,pop,hea
     localparam  zero_n = 4'h0;
     localparam  one_c = 5'b1;
     localparam  zero_c = 5'b0;
-    localparam  capacity = 5'b10000;
+    localparam  almost_full = 5'b1111;
 
     // Stub signals
     reg  ram__clock;
@@ -12231,6 +12243,10 @@ module motion_controller_dda__axes__1__fifo(clock,reset,write,write_data,pop,hea
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -12353,11 +12369,19 @@ module motion_controller_dda__axes__1__fifo(clock,reset,write,write_data,pop,hea
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -12366,9 +12390,9 @@ module motion_controller_dda__axes__1__fifo(clock,reset,write,write_data,pop,hea
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller_dda__axes__1__fifo
@@ -18513,7 +18537,7 @@ module motion_controller_dda__axes__2__fifo(clock,reset,write,write_data,pop,hea
     localparam  zero_n = 4'h0;
     localparam  one_c = 5'b1;
     localparam  zero_c = 5'b0;
-    localparam  capacity = 5'b10000;
+    localparam  almost_full = 5'b1111;
 
     // Stub signals
     reg  ram__clock;
@@ -18552,6 +18576,10 @@ module motion_controller_dda__axes__2__fifo(clock,reset,write,write_data,pop,hea
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -18674,11 +18702,19 @@ module motion_controller_dda__axes__2__fifo(clock,reset,write,write_data,pop,hea
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -18687,9 +18723,9 @@ module motion_controller_dda__axes__2__fifo(clock,reset,write,write_data,pop,hea
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller_dda__axes__2__fifo
@@ -23019,7 +23055,6 @@ module motion_controller_dda__feed_hold_unit(clock,reset,feed_hold,sample,length
     reg  input_active;
     reg  set;
     reg  request_now;
-    reg  [15:0] rate_now;
 
     // Sub module instances
     motion_controller_dda__feed_hold_unit__conditioner conditioner(
@@ -23085,12 +23120,10 @@ module motion_controller_dda__feed_hold_unit(clock,reset,feed_hold,sample,length
         conditioner__length = length;
         input_active = conditioner__active != zero1;
         control_write = write & (address == a_control);
-        rate_now = rate__q;
         if (control_write) begin
             invert__d = write_data[32'h2];
-            rate_now = write_data[(32'h10)+:(16)];
+            rate__d = write_data[(32'h10)+:(16)];
         end
-        rate__d = rate_now;
         set = input_active | probe_stop | (control_write & write_data[32'h0]);
         request_now = requested__q;
         if (control_write & write_data[32'h1]) begin
@@ -23107,8 +23140,8 @@ module motion_controller_dda__feed_hold_unit(clock,reset,feed_hold,sample,length
         end
         ramp__reset = reset;
         ramp__tick = tick;
-        ramp__hold = request_now;
-        ramp__rate = rate_now;
+        ramp__hold = requested__q;
+        ramp__rate = rate__q;
         tick_out = ramp__tick_out;
         holding = ramp__slowed;
         held = ramp__stopped;
@@ -23493,7 +23526,9 @@ module motion_controller_dda__feed_hold_unit__ramp(clock,reset,tick,hold,rate,ti
     reg  fraction__clock;
 
     // Local signals
-    reg  [16:0] step;
+    reg  rate_is_zero;
+    reg  [16:0] rate17;
+    reg  [16:0] sum;
 
     // Sub module instances
     motion_controller_dda__feed_hold_unit__ramp__deficit deficit(
@@ -23513,23 +23548,22 @@ module motion_controller_dda__feed_hold_unit__ramp(clock,reset,tick,hold,rate,ti
         fraction__clock = clock;
         deficit__d = deficit__q;
         fraction__d = fraction__q;
-        step = ((rate) & 17'h1ffff);
-        if (rate == zero16) begin
-            step = unity;
-        end
+        rate_is_zero = rate == zero16;
+        rate17 = ((rate) & 17'h1ffff);
+        sum = deficit__q + rate17;
         tick_out = tick & (((fraction__q) & 17'h1ffff) >= deficit__q);
         if (tick) begin
             fraction__d = fraction__q - deficit__q[(32'h0)+:(16)];
             if (hold) begin
-                if (unity - deficit__q > step) begin
-                    deficit__d = deficit__q + step;
-                end
-                else begin
+                if (sum[32'h10] | rate_is_zero) begin
                     deficit__d = unity;
                 end
+                else begin
+                    deficit__d = sum;
+                end
             end
-            else if (deficit__q > step) begin
-                deficit__d = deficit__q - step;
+            else if ((deficit__q > rate17) & ~rate_is_zero) begin
+                deficit__d = deficit__q - rate17;
             end
             else begin
                 deficit__d = zero17;

@@ -5872,7 +5872,7 @@ module motion_controller_servo__axes__0__fifo(clock,reset,write,write_data,pop,h
     localparam  zero_n = 4'h0;
     localparam  one_c = 5'b1;
     localparam  zero_c = 5'b0;
-    localparam  capacity = 5'b10000;
+    localparam  almost_full = 5'b1111;
 
     // Stub signals
     reg  ram__clock;
@@ -5911,6 +5911,10 @@ module motion_controller_servo__axes__0__fifo(clock,reset,write,write_data,pop,h
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -6033,11 +6037,19 @@ module motion_controller_servo__axes__0__fifo(clock,reset,write,write_data,pop,h
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -6046,9 +6058,9 @@ module motion_controller_servo__axes__0__fifo(clock,reset,write,write_data,pop,h
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller_servo__axes__0__fifo
@@ -12193,7 +12205,7 @@ module motion_controller_servo__axes__1__fifo(clock,reset,write,write_data,pop,h
     localparam  zero_n = 4'h0;
     localparam  one_c = 5'b1;
     localparam  zero_c = 5'b0;
-    localparam  capacity = 5'b10000;
+    localparam  almost_full = 5'b1111;
 
     // Stub signals
     reg  ram__clock;
@@ -12232,6 +12244,10 @@ module motion_controller_servo__axes__1__fifo(clock,reset,write,write_data,pop,h
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -12354,11 +12370,19 @@ module motion_controller_servo__axes__1__fifo(clock,reset,write,write_data,pop,h
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -12367,9 +12391,9 @@ module motion_controller_servo__axes__1__fifo(clock,reset,write,write_data,pop,h
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller_servo__axes__1__fifo
@@ -18514,7 +18538,7 @@ module motion_controller_servo__axes__2__fifo(clock,reset,write,write_data,pop,h
     localparam  zero_n = 4'h0;
     localparam  one_c = 5'b1;
     localparam  zero_c = 5'b0;
-    localparam  capacity = 5'b10000;
+    localparam  almost_full = 5'b1111;
 
     // Stub signals
     reg  ram__clock;
@@ -18553,6 +18577,10 @@ module motion_controller_servo__axes__2__fifo(clock,reset,write,write_data,pop,h
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -18675,11 +18703,19 @@ module motion_controller_servo__axes__2__fifo(clock,reset,write,write_data,pop,h
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -18688,9 +18724,9 @@ module motion_controller_servo__axes__2__fifo(clock,reset,write,write_data,pop,h
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // motion_controller_servo__axes__2__fifo
@@ -23020,7 +23056,6 @@ module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,leng
     reg  input_active;
     reg  set;
     reg  request_now;
-    reg  [15:0] rate_now;
 
     // Sub module instances
     motion_controller_servo__feed_hold_unit__conditioner conditioner(
@@ -23086,12 +23121,10 @@ module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,leng
         conditioner__length = length;
         input_active = conditioner__active != zero1;
         control_write = write & (address == a_control);
-        rate_now = rate__q;
         if (control_write) begin
             invert__d = write_data[32'h2];
-            rate_now = write_data[(32'h10)+:(16)];
+            rate__d = write_data[(32'h10)+:(16)];
         end
-        rate__d = rate_now;
         set = input_active | probe_stop | (control_write & write_data[32'h0]);
         request_now = requested__q;
         if (control_write & write_data[32'h1]) begin
@@ -23108,8 +23141,8 @@ module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,leng
         end
         ramp__reset = reset;
         ramp__tick = tick;
-        ramp__hold = request_now;
-        ramp__rate = rate_now;
+        ramp__hold = requested__q;
+        ramp__rate = rate__q;
         tick_out = ramp__tick_out;
         holding = ramp__slowed;
         held = ramp__stopped;
@@ -23494,7 +23527,9 @@ module motion_controller_servo__feed_hold_unit__ramp(clock,reset,tick,hold,rate,
     reg  fraction__clock;
 
     // Local signals
-    reg  [16:0] step;
+    reg  rate_is_zero;
+    reg  [16:0] rate17;
+    reg  [16:0] sum;
 
     // Sub module instances
     motion_controller_servo__feed_hold_unit__ramp__deficit deficit(
@@ -23514,23 +23549,22 @@ module motion_controller_servo__feed_hold_unit__ramp(clock,reset,tick,hold,rate,
         fraction__clock = clock;
         deficit__d = deficit__q;
         fraction__d = fraction__q;
-        step = ((rate) & 17'h1ffff);
-        if (rate == zero16) begin
-            step = unity;
-        end
+        rate_is_zero = rate == zero16;
+        rate17 = ((rate) & 17'h1ffff);
+        sum = deficit__q + rate17;
         tick_out = tick & (((fraction__q) & 17'h1ffff) >= deficit__q);
         if (tick) begin
             fraction__d = fraction__q - deficit__q[(32'h0)+:(16)];
             if (hold) begin
-                if (unity - deficit__q > step) begin
-                    deficit__d = deficit__q + step;
-                end
-                else begin
+                if (sum[32'h10] | rate_is_zero) begin
                     deficit__d = unity;
                 end
+                else begin
+                    deficit__d = sum;
+                end
             end
-            else if (deficit__q > step) begin
-                deficit__d = deficit__q - step;
+            else if ((deficit__q > rate17) & ~rate_is_zero) begin
+                deficit__d = deficit__q - rate17;
             end
             else begin
                 deficit__d = zero17;

@@ -2370,7 +2370,7 @@ module parallel_card__bridge__channels__0__cmd(clock,reset,write,write_data,pop,
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -2409,6 +2409,10 @@ module parallel_card__bridge__channels__0__cmd(clock,reset,write,write_data,pop,
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -2531,11 +2535,19 @@ module parallel_card__bridge__channels__0__cmd(clock,reset,write,write_data,pop,
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -2544,9 +2556,9 @@ module parallel_card__bridge__channels__0__cmd(clock,reset,write,write_data,pop,
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // parallel_card__bridge__channels__0__cmd
@@ -2857,7 +2869,7 @@ module parallel_card__bridge__channels__0__status(clock,reset,write,write_data,p
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -2896,6 +2908,10 @@ module parallel_card__bridge__channels__0__status(clock,reset,write,write_data,p
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -3018,11 +3034,19 @@ module parallel_card__bridge__channels__0__status(clock,reset,write,write_data,p
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -3031,9 +3055,9 @@ module parallel_card__bridge__channels__0__status(clock,reset,write,write_data,p
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // parallel_card__bridge__channels__0__status
@@ -3717,7 +3741,7 @@ module parallel_card__bridge__channels__1__cmd(clock,reset,write,write_data,pop,
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -3756,6 +3780,10 @@ module parallel_card__bridge__channels__1__cmd(clock,reset,write,write_data,pop,
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -3878,11 +3906,19 @@ module parallel_card__bridge__channels__1__cmd(clock,reset,write,write_data,pop,
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -3891,9 +3927,9 @@ module parallel_card__bridge__channels__1__cmd(clock,reset,write,write_data,pop,
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // parallel_card__bridge__channels__1__cmd
@@ -4204,7 +4240,7 @@ module parallel_card__bridge__channels__1__status(clock,reset,write,write_data,p
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -4243,6 +4279,10 @@ module parallel_card__bridge__channels__1__status(clock,reset,write,write_data,p
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -4365,11 +4405,19 @@ module parallel_card__bridge__channels__1__status(clock,reset,write,write_data,p
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -4378,9 +4426,9 @@ module parallel_card__bridge__channels__1__status(clock,reset,write,write_data,p
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // parallel_card__bridge__channels__1__status
@@ -5064,7 +5112,7 @@ module parallel_card__bridge__channels__2__cmd(clock,reset,write,write_data,pop,
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -5103,6 +5151,10 @@ module parallel_card__bridge__channels__2__cmd(clock,reset,write,write_data,pop,
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -5225,11 +5277,19 @@ module parallel_card__bridge__channels__2__cmd(clock,reset,write,write_data,pop,
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -5238,9 +5298,9 @@ module parallel_card__bridge__channels__2__cmd(clock,reset,write,write_data,pop,
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // parallel_card__bridge__channels__2__cmd
@@ -5551,7 +5611,7 @@ module parallel_card__bridge__channels__2__status(clock,reset,write,write_data,p
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -5590,6 +5650,10 @@ module parallel_card__bridge__channels__2__status(clock,reset,write,write_data,p
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -5712,11 +5776,19 @@ module parallel_card__bridge__channels__2__status(clock,reset,write,write_data,p
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -5725,9 +5797,9 @@ module parallel_card__bridge__channels__2__status(clock,reset,write,write_data,p
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // parallel_card__bridge__channels__2__status

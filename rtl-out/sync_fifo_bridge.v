@@ -1196,7 +1196,7 @@ module sync_fifo_bridge__channels__0__cmd(clock,reset,write,write_data,pop,head,
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -1235,6 +1235,10 @@ module sync_fifo_bridge__channels__0__cmd(clock,reset,write,write_data,pop,head,
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -1357,11 +1361,19 @@ module sync_fifo_bridge__channels__0__cmd(clock,reset,write,write_data,pop,head,
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -1370,9 +1382,9 @@ module sync_fifo_bridge__channels__0__cmd(clock,reset,write,write_data,pop,head,
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // sync_fifo_bridge__channels__0__cmd
@@ -1683,7 +1695,7 @@ module sync_fifo_bridge__channels__0__status(clock,reset,write,write_data,pop,he
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -1722,6 +1734,10 @@ module sync_fifo_bridge__channels__0__status(clock,reset,write,write_data,pop,he
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -1844,11 +1860,19 @@ module sync_fifo_bridge__channels__0__status(clock,reset,write,write_data,pop,he
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -1857,9 +1881,9 @@ module sync_fifo_bridge__channels__0__status(clock,reset,write,write_data,pop,he
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // sync_fifo_bridge__channels__0__status
@@ -2543,7 +2567,7 @@ module sync_fifo_bridge__channels__1__cmd(clock,reset,write,write_data,pop,head,
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -2582,6 +2606,10 @@ module sync_fifo_bridge__channels__1__cmd(clock,reset,write,write_data,pop,head,
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -2704,11 +2732,19 @@ module sync_fifo_bridge__channels__1__cmd(clock,reset,write,write_data,pop,head,
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -2717,9 +2753,9 @@ module sync_fifo_bridge__channels__1__cmd(clock,reset,write,write_data,pop,head,
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // sync_fifo_bridge__channels__1__cmd
@@ -3030,7 +3066,7 @@ module sync_fifo_bridge__channels__1__status(clock,reset,write,write_data,pop,he
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -3069,6 +3105,10 @@ module sync_fifo_bridge__channels__1__status(clock,reset,write,write_data,pop,he
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -3191,11 +3231,19 @@ module sync_fifo_bridge__channels__1__status(clock,reset,write,write_data,pop,he
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -3204,9 +3252,9 @@ module sync_fifo_bridge__channels__1__status(clock,reset,write,write_data,pop,he
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // sync_fifo_bridge__channels__1__status
@@ -3890,7 +3938,7 @@ module sync_fifo_bridge__channels__2__cmd(clock,reset,write,write_data,pop,head,
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -3929,6 +3977,10 @@ module sync_fifo_bridge__channels__2__cmd(clock,reset,write,write_data,pop,head,
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -4051,11 +4103,19 @@ module sync_fifo_bridge__channels__2__cmd(clock,reset,write,write_data,pop,head,
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -4064,9 +4124,9 @@ module sync_fifo_bridge__channels__2__cmd(clock,reset,write,write_data,pop,head,
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // sync_fifo_bridge__channels__2__cmd
@@ -4377,7 +4437,7 @@ module sync_fifo_bridge__channels__2__status(clock,reset,write,write_data,pop,he
     localparam  zero_n = 6'b0;
     localparam  one_c = 7'b1;
     localparam  zero_c = 7'b0;
-    localparam  capacity = 7'b1000000;
+    localparam  almost_full = 7'b111111;
 
     // Stub signals
     reg  ram__clock;
@@ -4416,6 +4476,10 @@ module sync_fifo_bridge__channels__2__status(clock,reset,write,write_data,pop,he
     reg  full_reg__clock;
 
     // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
     reg  is_empty;
     reg  is_full;
     reg  write_taken;
@@ -4538,11 +4602,19 @@ module sync_fifo_bridge__channels__2__status(clock,reset,write,write_data,pop,he
         end
         bypass__d = write_taken & (write_pointer__q == next_read);
         bypass_data__d = write_data;
-        if (write_taken & ~pop_taken) begin
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
             count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
         end
-        if (pop_taken & ~write_taken) begin
+        if (shrinks) begin
             count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
         end
         if (reset) begin
             read_pointer__d = zero_n;
@@ -4551,9 +4623,9 @@ module sync_fifo_bridge__channels__2__status(clock,reset,write,write_data,pop,he
             bypass__d = 1'b0;
             overflow_reg__d = 1'b0;
             underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
         end
-        not_empty_reg__d = count__d != zero_c;
-        full_reg__d = count__d == capacity;
     end
 
 endmodule // sync_fifo_bridge__channels__2__status

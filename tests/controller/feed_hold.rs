@@ -74,6 +74,17 @@ fn hold_word(b: &Controller3, hold: bool, release: bool, rate: u32) -> u32 {
     )
 }
 
+/// Queues `path`, one entry per period on every axis, then (with
+/// `closing`) a last period of no steps.
+fn queue(b: &mut Controller3, path: &[[i32; 3]], closing: bool) {
+    let close: &[[i32; 3]] = if closing { &[[0; 3]] } else { &[] };
+    for entry in path.iter().chain(close) {
+        for (axis, n) in entry.iter().enumerate() {
+            b.write("FIFO_WRITE", axis as u32, *n as u32);
+        }
+    }
+}
+
 /// Resets `b`, queues `path`, starts, applies `hold`, and runs until the
 /// path has ended (an underrun at its end) and the last step left.
 fn run_path(b: &mut Controller3, path: &[[i32; 3]], hold: Option<Hold>) -> Run {
@@ -82,11 +93,7 @@ fn run_path(b: &mut Controller3, path: &[[i32; 3]], hold: Option<Hold>) -> Run {
     // A last period of no steps: an underrun ends the path at the
     // boundary after it, so that the path's last step (which the DDA
     // makes on the boundary tick) is not cut by the underrun itself.
-    for entry in path.iter().chain([&[0; 3]]) {
-        for (axis, n) in entry.iter().enumerate() {
-            b.write("FIFO_WRITE", axis as u32, *n as u32);
-        }
-    }
+    queue(b, path, true);
     let mut log = PinLog::new(b, [STEP_DIR; 3]);
     b.write("CONTROL", 0, 1);
     let start = b.cycles;
@@ -187,8 +194,8 @@ fn a_hold_and_release_at_1000_random_points_end_where_the_unheld_run_ends() {
 
 /// The `feed_hold` pin: its filtered level is set `latency::switch`
 /// clocks after it changes, the request follows in the next clock, and the
-/// ramp lowers the factor at the first base tick from then on
-/// (`TICK_DIVISOR` 1: that clock); the request is sticky after the
+/// ramp lowers the factor at the first base tick `HOLD_REQUEST_TO_RAMP`
+/// clocks after that (`TICK_DIVISOR` 1: that clock); the request is sticky after the
 /// pin is released, `RELEASE` is refused while the pin is active, and a
 /// release brings the factor back to 1, raising `STATE.HELD` and
 /// `STATUS.HELD` on the way down.
@@ -215,12 +222,14 @@ fn the_feed_hold_pin_holds_after_its_latency_and_release_waits_for_it() {
         }
     }
     // The filtered level is set at c + seen; the request follows it in
-    // the next clock, and the factor falls at that clock's tick.
+    // the next clock, and the factor falls at the tick of the clock the
+    // ramp sees it.
     let decided = c + seen + 1;
-    assert_eq!(lowered_at, Some(decided), "the first reduced factor");
-    // 16 ticks from 1 to 0 at 4096 per tick, the last at decided + 15;
+    let lowered = decided + latency::HOLD_REQUEST_TO_RAMP;
+    assert_eq!(lowered_at, Some(lowered), "the first reduced factor");
+    // 16 ticks from 1 to 0 at 4096 per tick, the last at lowered + 15;
     // irq two clocks after the clock that brings the factor to 0.
-    assert_eq!(irq_at, Some(decided + 15 + 2), "the HELD interrupt");
+    assert_eq!(irq_at, Some(lowered + 15 + 2), "the HELD interrupt");
     let state = b.read("STATE", 0);
     assert_eq!(b.field("STATE", "HELD", state), 1);
     assert_eq!(b.field("STATE", "HOLDING", state), 1);
@@ -273,11 +282,7 @@ fn a_hold_meets_an_underrun_an_abort_and_a_start() {
     // An E-stop while held.
     b.reset();
     setup(&mut b, [STEP_DIR; 3], [2, 2, 2], FILTER, PERIOD);
-    for entry in path {
-        for (axis, n) in entry.iter().enumerate() {
-            b.write("FIFO_WRITE", axis as u32, *n as u32);
-        }
-    }
+    queue(&mut b, &path, false);
     b.write("CONTROL", 0, 1);
     b.idle(30);
     b.write("HOLD_CONTROL", 0, hold_word(&b, true, false, 0));
@@ -302,11 +307,7 @@ fn a_hold_meets_an_underrun_an_abort_and_a_start() {
     b.reset();
     setup(&mut b, [STEP_DIR; 3], [2, 2, 2], FILTER, PERIOD);
     b.write("HOLD_CONTROL", 0, hold_word(&b, true, false, 0));
-    for entry in path.iter().chain([&[0; 3]]) {
-        for (axis, n) in entry.iter().enumerate() {
-            b.write("FIFO_WRITE", axis as u32, *n as u32);
-        }
-    }
+    queue(&mut b, &path, true);
     b.idle(3);
     b.write("CONTROL", 0, 1);
     let mut log = PinLog::new(&b, [STEP_DIR; 3]);

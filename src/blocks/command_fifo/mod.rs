@@ -122,12 +122,21 @@ pub struct CommandFifo<const N: usize, const NP1: usize, const W: usize> {
     bypass_data: DFF<Bits<W>>,
     overflow_reg: DFF<Bit>,
     underflow_reg: DFF<Bit>,
-    /// `count != 0` and `count == 2^N`, registered from the next count, so
-    /// that `empty` and `full` come straight from flip-flops: in a top they
+    /// `count != 0` and `count == 2^N`, kept beside the count so that
+    /// `empty` and `full` come straight from flip-flops: in a top they
     /// feed decisions (all FIFOs ready to pop) that fan back into every
     /// FIFO's write. Stored as non-empty so power-up (all 0) means empty.
+    /// Each is set or cleared by the clock's net change and a compare of
+    /// the *registered* count (`count_is_one`, `count_is_almost_full`), not
+    /// by comparing the next count: the pop that arrives late in the clock
+    /// then passes two LUTs to these flip-flops, not the count's carry
+    /// chain and a wide compare (the controller's critical path).
     not_empty_reg: DFF<Bit>,
     full_reg: DFF<Bit>,
+    count_is_one: Signal<Local, Bit>,
+    count_is_almost_full: Signal<Local, Bit>,
+    grows: Signal<Local, Bit>,
+    shrinks: Signal<Local, Bit>,
     is_empty: Signal<Local, Bit>,
     is_full: Signal<Local, Bit>,
     write_taken: Signal<Local, Bit>,
@@ -137,7 +146,7 @@ pub struct CommandFifo<const N: usize, const NP1: usize, const W: usize> {
     zero_n: Constant<Bits<N>>,
     one_c: Constant<Bits<NP1>>,
     zero_c: Constant<Bits<NP1>>,
-    capacity: Constant<Bits<NP1>>,
+    almost_full: Constant<Bits<NP1>>,
 }
 
 impl<const N: usize, const NP1: usize, const W: usize> Default for CommandFifo<N, NP1, W> {
@@ -172,6 +181,10 @@ impl<const N: usize, const NP1: usize, const W: usize> Default for CommandFifo<N
             underflow_reg: Default::default(),
             not_empty_reg: Default::default(),
             full_reg: Default::default(),
+            count_is_one: Default::default(),
+            count_is_almost_full: Default::default(),
+            grows: Default::default(),
+            shrinks: Default::default(),
             is_empty: Default::default(),
             is_full: Default::default(),
             write_taken: Default::default(),
@@ -181,7 +194,7 @@ impl<const N: usize, const NP1: usize, const W: usize> Default for CommandFifo<N
             zero_n: Constant::new(0u64.into()),
             one_c: Constant::new(1u64.into()),
             zero_c: Constant::new(0u64.into()),
-            capacity: Constant::new((1u64 << N).into()),
+            almost_full: Constant::new(((1u64 << N) - 1).into()),
         }
     }
 }
@@ -248,11 +261,19 @@ impl<const N: usize, const NP1: usize, const W: usize> Logic for CommandFifo<N, 
             self.write_taken.val() & (self.write_pointer.q.val() == self.next_read.val());
         self.bypass_data.d.next = self.write_data.val();
 
-        if self.write_taken.val() & !self.pop_taken.val() {
+        self.grows.next = self.write_taken.val() & !self.pop_taken.val();
+        self.shrinks.next = self.pop_taken.val() & !self.write_taken.val();
+        self.count_is_one.next = self.count.q.val() == self.one_c.val();
+        self.count_is_almost_full.next = self.count.q.val() == self.almost_full.val();
+        if self.grows.val() {
             self.count.d.next = self.count.q.val() + self.one_c.val();
+            self.not_empty_reg.d.next = true;
+            self.full_reg.d.next = self.count_is_almost_full.val();
         }
-        if self.pop_taken.val() & !self.write_taken.val() {
+        if self.shrinks.val() {
             self.count.d.next = self.count.q.val() - self.one_c.val();
+            self.not_empty_reg.d.next = !self.count_is_one.val();
+            self.full_reg.d.next = false;
         }
         if self.reset.val() {
             self.read_pointer.d.next = self.zero_n.val();
@@ -261,10 +282,9 @@ impl<const N: usize, const NP1: usize, const W: usize> Logic for CommandFifo<N, 
             self.bypass.d.next = false;
             self.overflow_reg.d.next = false;
             self.underflow_reg.d.next = false;
+            self.not_empty_reg.d.next = false;
+            self.full_reg.d.next = false;
         }
-        // Last: they follow every assignment of the count above.
-        self.not_empty_reg.d.next = self.count.d.val() != self.zero_c.val();
-        self.full_reg.d.next = self.count.d.val() == self.capacity.val();
     }
 }
 

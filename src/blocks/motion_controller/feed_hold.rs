@@ -10,10 +10,12 @@
 //! a `HOLD_CONTROL` write with `HOLD` = 1, or a probe trip with
 //! `PROBE_CONTROL.STOP` set it; only a write with `RELEASE` = 1 (and
 //! `HOLD` = 0) clears it, and not while one of the others sets it in the
-//! same clock. The ramp sees the request and the rate of the clock in
-//! which they are decided (a `HOLD_CONTROL` write's own), so a hold
-//! requested in clock c lowers the factor at the first base tick from c
-//! on, at the rate written with it.
+//! same clock. The ramp follows the registered request and rate (what
+//! `HOLD_CONTROL.REQUESTED` and `RATE` read), so a hold requested in
+//! clock c lowers the factor at the first base tick from c + 1 on, at the
+//! rate written with it. The register between them keeps the bus decode
+//! and the pin's conditioner out of the ramp's adders (on the iCE40 this
+//! path, unregistered, set the controller's Fmax).
 
 use rust_hdl::prelude::*;
 
@@ -73,7 +75,6 @@ pub struct FeedHold {
     input_active: Signal<Local, Bit>,
     set: Signal<Local, Bit>,
     request_now: Signal<Local, Bit>,
-    rate_now: Signal<Local, Bits<16>>,
 
     a_control: Constant<Bits<8>>,
     m_requested: Constant<Bits<32>>,
@@ -111,7 +112,6 @@ impl Default for FeedHold {
             input_active: Default::default(),
             set: Default::default(),
             request_now: Default::default(),
-            rate_now: Default::default(),
             a_control: Constant::new((global::HOLD_CONTROL as u64).into()),
             m_requested: m32(fields::HOLD_REQUESTED),
             m_invert: m32(fields::HOLD_INVERT),
@@ -143,14 +143,10 @@ impl Logic for FeedHold {
         self.input_active.next = self.conditioner.active.val() != self.zero1.val();
 
         self.control_write.next = self.write.val() & (self.address.val() == self.a_control.val());
-        // A write's RATE paces the ramp from its own clock: a HOLD written
-        // with its rate ramps at that rate from the first tick.
-        self.rate_now.next = self.rate.q.val();
         if self.control_write.val() {
             self.invert.d.next = self.write_data.val().get_bit(2);
-            self.rate_now.next = self.write_data.val().get_bits::<16>(16);
+            self.rate.d.next = self.write_data.val().get_bits::<16>(16);
         }
-        self.rate.d.next = self.rate_now.val();
         // The request of this clock: set by the input, HOLD or a probe
         // stop; cleared by RELEASE unless one of them sets it.
         self.set.next = self.input_active.val()
@@ -172,8 +168,8 @@ impl Logic for FeedHold {
 
         self.ramp.reset.next = self.reset.val();
         self.ramp.tick.next = self.tick.val();
-        self.ramp.hold.next = self.request_now.val();
-        self.ramp.rate.next = self.rate_now.val();
+        self.ramp.hold.next = self.requested.q.val();
+        self.ramp.rate.next = self.rate.q.val();
         self.tick_out.next = self.ramp.tick_out.val();
         self.holding.next = self.ramp.slowed.val();
         self.held.next = self.ramp.stopped.val();

@@ -54,6 +54,9 @@ pub const FACTOR_FRACTION_BITS: usize = 16;
 /// The factor 1: every tick passes.
 pub const UNITY: u32 = 1 << FACTOR_FRACTION_BITS;
 
+// The RTL takes the sum's bit 16 as "reached UNITY", and RATE is 16 bits.
+const _: () = assert!(FACTOR_FRACTION_BITS == 16);
+
 /// The hold ramp. See the [module documentation](self).
 #[derive(LogicBlock)]
 pub struct HoldRamp {
@@ -80,7 +83,9 @@ pub struct HoldRamp {
 
     deficit: DFF<Bits<17>>,
     fraction: DFF<Bits<16>>,
-    step: Signal<Local, Bits<17>>,
+    rate_is_zero: Signal<Local, Bit>,
+    rate17: Signal<Local, Bits<17>>,
+    sum: Signal<Local, Bits<17>>,
     unity: Constant<Bits<17>>,
     zero16: Constant<Bits<16>>,
     zero17: Constant<Bits<17>>,
@@ -101,7 +106,9 @@ impl Default for HoldRamp {
             stopped: Default::default(),
             deficit: Default::default(),
             fraction: Default::default(),
-            step: Default::default(),
+            rate_is_zero: Default::default(),
+            rate17: Default::default(),
+            sum: Default::default(),
             unity: Constant::new((UNITY as u64).into()),
             zero16: Constant::new(0u64.into()),
             zero17: Constant::new(0u64.into()),
@@ -114,22 +121,25 @@ impl Logic for HoldRamp {
     fn update(&mut self) {
         dff_setup!(self, clock, deficit, fraction);
 
-        self.step.next = bit_cast::<17, 16>(self.rate.val());
-        if self.rate.val() == self.zero16.val() {
-            self.step.next = self.unity.val();
-        }
+        // RATE 0 (a full step) is decided beside the adders, not by muxing
+        // 65536 into them: the deficit goes to its bound whatever the sums.
+        self.rate_is_zero.next = self.rate.val() == self.zero16.val();
+        self.rate17.next = bit_cast::<17, 16>(self.rate.val());
+        // deficit <= 65536 and rate < 65536: the sum fits 17 bits, and it
+        // reaches 65536 (the full deficit) exactly when its bit 16 is set.
+        self.sum.next = self.deficit.q.val() + self.rate17.val();
         self.tick_out.next =
             self.tick.val() & (bit_cast::<17, 16>(self.fraction.q.val()) >= self.deficit.q.val());
         if self.tick.val() {
             self.fraction.d.next = self.fraction.q.val() - self.deficit.q.val().get_bits::<16>(0);
             if self.hold.val() {
-                if self.unity.val() - self.deficit.q.val() > self.step.val() {
-                    self.deficit.d.next = self.deficit.q.val() + self.step.val();
-                } else {
+                if self.sum.val().get_bit(16) | self.rate_is_zero.val() {
                     self.deficit.d.next = self.unity.val();
+                } else {
+                    self.deficit.d.next = self.sum.val();
                 }
-            } else if self.deficit.q.val() > self.step.val() {
-                self.deficit.d.next = self.deficit.q.val() - self.step.val();
+            } else if (self.deficit.q.val() > self.rate17.val()) & !self.rate_is_zero.val() {
+                self.deficit.d.next = self.deficit.q.val() - self.rate17.val();
             } else {
                 self.deficit.d.next = self.zero17.val();
             }

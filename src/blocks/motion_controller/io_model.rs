@@ -495,16 +495,18 @@ impl FeedHoldModel {
             sample: filter.0,
             length: filter.1,
         });
+        // The ramp follows the registered request and rate: this edge's
+        // ramp step sees them as they were before it.
+        self.ramp.step(HoldRampInputs {
+            reset,
+            tick,
+            hold: self.requested,
+            rate: self.rate,
+        });
         if let Some((global::HOLD_CONTROL, data)) = write {
             self.invert = bit(data, fields::HOLD_INVERT);
             self.rate = (data >> fields::HOLD_RATE) as u16;
         }
-        self.ramp.step(HoldRampInputs {
-            reset,
-            tick,
-            hold: comb.request,
-            rate: self.rate,
-        });
         self.requested = comb.request;
         if reset {
             *self = Self {

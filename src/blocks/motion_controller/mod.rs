@@ -244,14 +244,16 @@
 //!     ceil(65536 / RATE) base ticks; RATE 0 (its reset value) acts as
 //!     65536, an immediate stop at the next tick, which stops the axes as
 //!     RUN = 0 would but keeps every count and entry. A `HOLD_CONTROL`
-//!     write's RATE applies from its own clock, so `HOLD` and `RATE`
-//!     written together ramp at that rate from the first tick.
+//!     write's RATE applies from the next clock, as the request does (the
+//!     ramp follows `REQUESTED` and `RATE` as they read), so `HOLD` and
+//!     `RATE` written together ramp at that rate from the first tick.
 //!   - The fraction of a gated tick is carried (`phase`), so after any
 //!     hold 65536 x the gated ticks + phase = the sum of f over the base
 //!     ticks, exactly: no tick, and so no step, is lost or invented.
-//!   - Latency: a request decided in clock d lowers f at the first base
-//!     tick from d on; the next base tick is the first that may be
-//!     withheld ([`latency::HOLD_FIRST_REDUCED_TICK`]). d is the clock of
+//!   - Latency: a request decided in clock d (`REQUESTED` reads it from
+//!     d + 1) lowers f at the first base tick from d +
+//!     [`latency::HOLD_REQUEST_TO_RAMP`] on; the next base tick is the
+//!     first that may be withheld ([`latency::HOLD_FIRST_REDUCED_TICK`]). d is the clock of
 //!     a `HOLD_CONTROL` write or of the probe's trip; for the input,
 //!     d = c + [`latency::switch`] + 1 after a pin change at clock c (its
 //!     filtered level is set at c + `switch`, the request follows in the
@@ -606,11 +608,14 @@ pub mod latency {
     /// E-stop or enabled alarm level at s, and from the clock after the
     /// watchdog expires.
     pub const DRIVE_ENABLE: u64 = 1;
-    /// A feed-hold request decided in clock d (the `feed_hold` input:
-    /// d = c + `switch` + 1 after a pin change at c) lowers the factor at
-    /// the first base tick t >= d; the first base tick the gate may
-    /// withhold is the next one after t: `HOLD_FIRST_REDUCED_TICK` ticks
-    /// after t.
+    /// A feed-hold request (or release) decided in clock d (the
+    /// `feed_hold` input: d = c + `switch` + 1 after a pin change at c)
+    /// moves the factor from the first base tick t >= d +
+    /// `HOLD_REQUEST_TO_RAMP`: the ramp follows the registered request.
+    pub const HOLD_REQUEST_TO_RAMP: u64 = 1;
+    /// The first base tick the gate may withhold is the next one after
+    /// the tick t that first lowers the factor: `HOLD_FIRST_REDUCED_TICK`
+    /// ticks after t.
     pub const HOLD_FIRST_REDUCED_TICK: u64 = 1;
     /// After the watchdog expires (STATE.WATCHDOG_EXPIRED set at x), the
     /// last step of any axis can rise at x + `WATCHDOG_ALL_AXES`.
