@@ -187,30 +187,35 @@ pub fn synthesize_if_it_fits(
     seeds: &[u64],
     target_mhz: f64,
 ) -> Result<SynthFigures, ToolError> {
-    place_if_it_fits(&[rtl], top, None, seeds, target_mhz)
+    place_if_it_fits(&[rtl], top, None, seeds, target_mhz, DEVICE_LOGIC_CELLS)
 }
 
 /// A board design (`sources`, top module `top`) placed with its pin file
-/// `pcf` at `target_mhz` and `seed`, after the packer says it fits; like
-/// [`synthesize_if_it_fits`] otherwise (one that does not fit has no Fmax).
-pub fn place_board_if_it_fits(
+/// `pcf` at `target_mhz` and `seed`, after the packer says it needs at
+/// most `place_up_to` logic cells; like [`synthesize_if_it_fits`]
+/// otherwise (one only packed has no Fmax). A nearly full HX8K can take
+/// nextpnr longer than [`super::TOOL_TIME_LIMIT`] to place.
+pub fn place_board_up_to(
     sources: &[&Path],
     top: &str,
     pcf: &Path,
     seed: u64,
     target_mhz: f64,
+    place_up_to: u32,
 ) -> Result<SynthFigures, ToolError> {
-    place_if_it_fits(sources, top, Some(pcf), &[seed], target_mhz)
+    place_if_it_fits(sources, top, Some(pcf), &[seed], target_mhz, place_up_to)
 }
 
-/// One yosys run, nextpnr's packer, then (if it fits) one placement per
-/// seed, with the pin file `pcf` if there is one.
+/// One yosys run, nextpnr's packer, then (if it needs at most
+/// `place_up_to` logic cells) one placement per seed, with the pin file
+/// `pcf` if there is one.
 fn place_if_it_fits(
     sources: &[&Path],
     top: &str,
     pcf: Option<&Path>,
     seeds: &[u64],
     target_mhz: f64,
+    place_up_to: u32,
 ) -> Result<SynthFigures, ToolError> {
     let dir = work_dir("synth")?;
     let netlist = dir.path().join("netlist.json");
@@ -218,7 +223,7 @@ fn place_if_it_fits(
     let mut figures = map_ice40_sources(sources, top, &netlist)?;
     run(nextpnr(&netlist, &report, pcf).arg("--pack-only"), false)?;
     figures.logic_cells = read_nextpnr_utilization(&report)?;
-    if figures.logic_cells <= DEVICE_LOGIC_CELLS {
+    if figures.logic_cells <= place_up_to.min(DEVICE_LOGIC_CELLS) {
         place(dir.path(), &netlist, pcf, seeds, target_mhz, &mut figures)?;
     }
     Ok(figures)
