@@ -8,7 +8,8 @@ use motion_hdl::export::{catalog, write_export, ExportDirs};
 use motion_hdl::host::gcode::{Ignored, Message};
 use motion_hdl::host::hexapod::simulate::{schedule_name, simulate_hexapod, HexapodOptions};
 use motion_hdl::host::hexapod::Geometry;
-use motion_hdl::host::simulation::{simulate, InputFormat, SimulationOptions, Trip};
+use motion_hdl::host::hold_window::{parse_seconds, HoldWindow};
+use motion_hdl::host::simulation::{simulate, HoldReport, InputFormat, SimulationOptions, Trip};
 use motion_hdl::host::{MachineSettings, ToolTable};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
@@ -151,6 +152,22 @@ enum Command {
         /// from power-up. Repeatable.
         #[arg(long, value_name = "INPUT@MS")]
         trip: Vec<String>,
+        /// Request the feed hold (HOLD_CONTROL.HOLD) at this time of
+        /// simulated time from power-up, as 0.35s, 0.35 or 350ms: the path
+        /// slows along itself to a stop. Needs --resume-at. Plots the speed
+        /// at the pins through the hold.
+        #[arg(long, value_name = "TIME")]
+        hold_at: Option<String>,
+        /// Release the feed hold (HOLD_CONTROL.RELEASE) at this time: the
+        /// path ramps back to speed and runs to its end.
+        #[arg(long, value_name = "TIME")]
+        resume_at: Option<String>,
+        /// HOLD_CONTROL.RATE, the hold's factor change per base tick in
+        /// 1/65536 (0 to 65535; 0 stops at the next tick). Default: the
+        /// rate that stops every axis from its maximum velocity within its
+        /// maximum acceleration, with TICK_DIVISOR raised as that needs.
+        #[arg(long, value_name = "RATE")]
+        hold_rate: Option<u32>,
         /// The machine: cartesian (the 3-axis controller) or hexapod (the
         /// parallel-machine card: a G-code program in X Y Z mm and A B C
         /// degrees on a Stewart platform, its legs driven by three motor
@@ -294,6 +311,27 @@ fn simulate_hexapod_cli(program: &std::path::Path, cli: HexapodCli) -> Result<()
     Ok(())
 }
 
+/// The feed hold's lines of `simulate`.
+fn print_hold(h: &HoldReport) {
+    let time = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.4} s"));
+    println!(
+        "feed hold  RATE {} (a stop from full speed in {:.4} s, TICK_DIVISOR {}): requested {}, standing {}, released {}",
+        h.rate,
+        h.full_stop_s,
+        h.tick_divisor,
+        time(h.requested_s),
+        time(h.stood_s),
+        time(h.released_s)
+    );
+    if h.requested_s.is_none() {
+        println!("feed hold  the run had ended before --hold-at");
+    }
+    println!(
+        "feed hold  peak path speed after the release {:.3}/s, planned {:.3}/s",
+        h.peak_speed_after, h.planned_peak_speed
+    );
+}
+
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Simulate {
@@ -310,6 +348,9 @@ fn run(cli: Cli) -> Result<(), String> {
             vcd,
             backend,
             trip,
+            hold_at,
+            resume_at,
+            hold_rate,
             kinematics,
             geometry,
             drive_lag_ms,
@@ -322,6 +363,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     ("--servo", !servo.is_empty()),
                     ("--vcd", vcd.is_some()),
                     ("--trip", !trip.is_empty()),
+                    ("--hold-at", hold_at.is_some()),
+                    ("--resume-at", resume_at.is_some()),
+                    ("--hold-rate", hold_rate.is_some()),
                 ];
                 if let Some((name, _)) = unused.iter().find(|(_, given)| *given) {
                     return Err(format!(
@@ -363,6 +407,22 @@ fn run(cli: Cli) -> Result<(), String> {
                 .iter()
                 .map(|t| Trip::parse(t))
                 .collect::<Result<Vec<_>, _>>()?;
+            let hold = match (hold_at, resume_at) {
+                (Some(hold), Some(resume)) => Some(HoldWindow::new(
+                    parse_seconds("--hold-at", &hold)?,
+                    parse_seconds("--resume-at", &resume)?,
+                    hold_rate,
+                )?),
+                (Some(_), None) => return Err(
+                    "--hold-at needs --resume-at: a hold never released would never end the run"
+                        .into(),
+                ),
+                (None, Some(_)) => return Err("--resume-at needs --hold-at".into()),
+                (None, None) if hold_rate.is_some() => {
+                    return Err("--hold-rate needs --hold-at and --resume-at".into())
+                }
+                (None, None) => None,
+            };
             let backend = match backend {
                 Some(name) => Backend::parse(&name).map_err(|e| e.to_string())?,
                 None if Backend::Verilator.available() => Backend::Verilator,
@@ -425,6 +485,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 progress: true,
                 backend,
                 trips,
+                hold,
             };
             let r = simulate(&path_file, &options)?;
             print_program_notes(&r.ignored, &r.messages);
@@ -450,6 +511,9 @@ fn run(cli: Cli) -> Result<(), String> {
                 r.peak_rate[0], r.peak_rate[1], r.peak_rate[2]
             );
             println!("periods {}, underruns {}", r.periods, r.underruns);
+            if let Some(h) = &r.hold {
+                print_hold(h);
+            }
             for (k, f) in r.following.iter().enumerate() {
                 if let Some(f) = f {
                     println!(

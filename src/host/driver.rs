@@ -21,8 +21,9 @@ use crate::blocks::motion_controller::registers::{register_map, BuildOptions, St
 use crate::regmap::{RegMapError, RegisterMap};
 
 /// The `IRQ_ENABLE` fields the driver turns on: FIFO_LOW for refills, every
-/// fault source and every abort (limit, drive alarm, E-stop); PERIOD_DONE,
-/// HOME (any home edge) and GPIO stay off.
+/// fault source, every abort (limit, drive alarm, E-stop) and the feed
+/// hold's stop (HELD); PERIOD_DONE, HOME (any home edge), PROBE and GPIO
+/// stay off.
 pub const SERVICED_INTERRUPTS: &[(&str, u64)] = &[
     ("FIFO_LOW", 1),
     ("UNDERRUN", 1),
@@ -33,6 +34,7 @@ pub const SERVICED_INTERRUPTS: &[(&str, u64)] = &[
     ("LIMIT", 1),
     ("ALARM", 1),
     ("ESTOP", 1),
+    ("HELD", 1),
 ];
 
 /// Clocks between two reads of `STATE` while no interrupt comes: a stop
@@ -97,6 +99,9 @@ pub struct RunReport {
     pub interrupts: usize,
     /// Clocks simulated.
     pub cycles: u64,
+    /// The clocks at which the driver saw `STATUS.HELD` (the feed hold
+    /// brought the path to a stop), within 8 clocks of its interrupt.
+    pub held: Vec<u64>,
 }
 
 /// Why a run could not be done.
@@ -173,6 +178,19 @@ pub enum DriverError {
     /// The controller would refuse `RUN`: why.
     #[error("RUN refused: {0}")]
     Refused(String),
+    /// The feed hold stopped the path and nothing scheduled releases it:
+    /// the run cannot end.
+    #[error("motion held (HOLD_CONTROL.REQUESTED{}) with no release to come; commanded position {commanded:?}, {periods_queued} of {periods} periods queued", if *.input { ", the feed_hold input active" } else { "" })]
+    Held {
+        /// The `feed_hold` input is what holds it.
+        input: bool,
+        /// Each axis's `CMD_POSITION`.
+        commanded: [i32; 3],
+        /// Periods written to the FIFOs.
+        periods_queued: usize,
+        /// Periods of the path.
+        periods: usize,
+    },
 }
 
 /// The driver for a 3-axis `motion_controller`.
@@ -185,8 +203,10 @@ pub struct Driver<B: ControllerBus> {
     position_bits: u32,
 }
 
+mod feed_hold;
 mod probe;
 mod servo_run;
+pub use feed_hold::{HoldAction, HoldEvent, HoldState};
 pub use probe::{ProbeEdge, ProbeTrip};
 pub use servo_run::{ServoRunReport, SERVO_LEAD, SETTLED_PERIODS, SETTLE_PERIODS};
 
@@ -559,8 +579,28 @@ impl<B: ControllerBus> Driver<B> {
     pub fn run(
         &mut self,
         counts: &[[i32; 3]],
+        progress: impl FnMut(usize),
+    ) -> Result<RunReport, DriverError> {
+        self.run_with_holds(counts, &[], progress)
+    }
+
+    /// [`Driver::run`] with the feed hold requested and released at the
+    /// clocks of `holds` (in clock order): the path slows along itself to
+    /// a stop and resumes, and ends where it would without them. Fails
+    /// with [`DriverError::Held`] when the path stands held and no event
+    /// is left to release it. Events due after the run has ended are not
+    /// made.
+    pub fn run_with_holds(
+        &mut self,
+        counts: &[[i32; 3]],
+        holds: &[HoldEvent],
         mut progress: impl FnMut(usize),
     ) -> Result<RunReport, DriverError> {
+        if holds.windows(2).any(|w| w[1].clock < w[0].clock) {
+            return Err(DriverError::Config(
+                "the hold events are not in clock order".into(),
+            ));
+        }
         if let Some(axis) = (0..3).find(|&k| self.config.analog[k]) {
             return Err(DriverError::Config(format!(
                 "axis {axis} is analog: its entries are codes from a servo loop (Driver::run_servo), not step counts"
@@ -580,11 +620,14 @@ impl<B: ControllerBus> Driver<B> {
             &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("AXIS_FAULT", 1)],
         )?;
         let mut quiet = 0;
+        let mut next_hold = 0;
         loop {
-            if self.bus.wait(8) {
+            let until_hold = self.apply_due_holds(holds, &mut next_hold)?;
+            let step = until_hold.map_or(8, |c| c.min(8));
+            if self.bus.wait(step) {
                 report.interrupts += 1;
             } else {
-                quiet += 8;
+                quiet += step;
                 if quiet < POLL_CLOCKS {
                     continue;
                 }
@@ -614,6 +657,25 @@ impl<B: ControllerBus> Driver<B> {
             }
             if status & faults != 0 {
                 return Err(self.fault(status)?);
+            }
+            if self.field("STATUS", "HELD", status)? == 1 {
+                report.held.push(self.bus.cycles());
+            }
+            let release_to_come = holds[next_hold..]
+                .iter()
+                .any(|e| e.action == HoldAction::Release);
+            if running && self.field("STATE", "HELD", state)? == 1 && !release_to_come {
+                let hold = self.hold_state()?;
+                let mut commanded = [0; 3];
+                for (k, c) in commanded.iter_mut().enumerate() {
+                    *c = self.read("CMD_POSITION", k as u32)? as i32;
+                }
+                return Err(DriverError::Held {
+                    input: hold.input,
+                    commanded,
+                    periods_queued: next,
+                    periods: counts.len(),
+                });
             }
             self.queue(counts, &mut next)?;
             progress(next);

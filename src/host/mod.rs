@@ -9,6 +9,7 @@ pub mod driver;
 pub mod gcode;
 pub mod geometry;
 pub mod hexapod;
+pub mod hold_window;
 pub mod interpolator;
 pub mod machine;
 pub mod path;

@@ -3,15 +3,19 @@
 //! axis run as an analog servo: its DAC drives a simulated drive and motor
 //! whose encoder closes the host's position loop), with
 //! optional machine-input events ([`Trip`]: an E-stop, a limit switch or a
-//! drive alarm at a given time). A run the controller aborts fails with the
-//! cause, as the driver reports it ("motion stopped: E-stop ...").
+//! drive alarm at a given time) and an optional feed hold ([`HoldWindow`]:
+//! requested and released at given times). A run the controller aborts
+//! fails with the cause, as the driver reports it ("motion stopped:
+//! E-stop ...").
 
 use std::path::{Path as FsPath, PathBuf};
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::driver::HoldEvent;
 use super::gcode::{interpret_with, program_text, Ignored, Message, Program, Setup, Units};
+use super::hold_window::{speeds_at_the_pins, stop_time_s, stop_within_limits_s, HoldWindow};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::tool_table::ToolTable;
@@ -223,6 +227,9 @@ pub struct SimulationOptions {
     pub backend: Backend,
     /// Machine inputs that go active during the run.
     pub trips: Vec<Trip>,
+    /// A feed hold the driver requests and releases during the run (step
+    /// axes only: the hold does not yet scale an analog axis's codes).
+    pub hold: Option<HoldWindow>,
 }
 
 /// A machine input the simulation drives active (high: tripped, in alarm,
@@ -337,12 +344,48 @@ pub struct SimulationReport {
     pub seconds: f64,
     /// Figures written.
     pub figures: Vec<PathBuf>,
+    /// With a feed hold: what it did.
+    pub hold: Option<HoldReport>,
+}
+
+/// What a simulated feed hold did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HoldReport {
+    /// `HOLD_CONTROL.RATE` programmed.
+    pub rate: u32,
+    /// `TICK_DIVISOR` of the run (raised for a slow stop; see
+    /// [`HoldWindow`]).
+    pub tick_divisor: u32,
+    /// A stop from full speed at that rate, seconds.
+    pub full_stop_s: f64,
+    /// When `HOLD` was written, seconds from power-up; `None` when the run
+    /// had ended before.
+    pub requested_s: Option<f64>,
+    /// When the driver saw the path stand (`STATUS.HELD`); `None` when the
+    /// release came first or the path ended before the stop.
+    pub stood_s: Option<f64>,
+    /// When `RELEASE` was written; `None` when the run had ended before.
+    pub released_s: Option<f64>,
+    /// The highest path speed at the pins after the release (10 ms
+    /// windows), in the plan's units per second.
+    pub peak_speed_after: f64,
+    /// The plan's highest path speed, in its units per second.
+    pub planned_peak_speed: f64,
 }
 
 /// Clocks per base tick and base ticks per period for `period_s` at
 /// `clock_hz`: the smallest divisor that fits the 16-bit period register
 /// and divides the period exactly.
 pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), String> {
+    period_settings_from(period_s, clock_hz, 1)
+}
+
+/// [`period_settings`] with a tick divisor of at least `min_divisor`.
+pub fn period_settings_from(
+    period_s: f64,
+    clock_hz: f64,
+    min_divisor: u64,
+) -> Result<(u32, u32), String> {
     let clocks = (period_s * clock_hz).round();
     if !(2.0..=4e9).contains(&clocks) {
         return Err(format!(
@@ -350,7 +393,7 @@ pub fn period_settings(period_s: f64, clock_hz: f64) -> Result<(u32, u32), Strin
         ));
     }
     let clocks = clocks as u64;
-    let first = clocks.div_ceil(65_535).max(1);
+    let first = clocks.div_ceil(65_535).max(min_divisor).max(1);
     (first..=clocks)
         .find(|d| clocks.is_multiple_of(*d) && clocks / d <= 65_535)
         .map(|d| (d as u32, (clocks / d) as u32))
@@ -425,7 +468,6 @@ pub fn simulate(
     let machine = job.machine;
     let start = to_steps(job.toolpath.start, machine.steps_per_mm);
     let target = to_steps(job.toolpath.end(), machine.steps_per_mm);
-    let (tick_divisor, period_ticks) = period_settings(machine.period, options.clock_hz)?;
     let segments = plan_toolpath(&job.toolpath, &machine)
         .map_err(|e| format!("{}: {e}", path_file.display()))?;
     let seconds: f64 = segments.iter().map(|s| s.duration()).sum();
@@ -438,6 +480,21 @@ pub fn simulate(
         ));
     }
     let interpolation = interpolate(start, &segments, machine.period);
+    let planned_peak_speed = interpolation.speeds.iter().copied().fold(0.0, f64::max);
+    let peak_axis_speed: [f64; 3] = std::array::from_fn(|k| {
+        let steps = interpolation
+            .counts
+            .iter()
+            .map(|c| c[k].unsigned_abs())
+            .max();
+        steps.unwrap_or(0) as f64 / machine.steps_per_mm[k] / machine.period
+    });
+    let stop_s = stop_within_limits_s(&machine, planned_peak_speed, peak_axis_speed);
+    let min_divisor = options
+        .hold
+        .map_or(1, |h| h.min_tick_divisor(stop_s, options.clock_hz));
+    let (tick_divisor, period_ticks) =
+        period_settings_from(machine.period, options.clock_hz, min_divisor)?;
     if options.progress {
         if let Some(hint) = slow_run_hint(&interpolation.counts, machine.period, options) {
             eprintln!("motion-hdl: {hint}");
@@ -458,6 +515,9 @@ pub fn simulate(
             "axis {} cannot be both uniform and an analog servo",
             ["x", "y", "z"][axis]
         ));
+    }
+    if servo && options.hold.is_some() {
+        return Err("--hold-at: the feed hold does not yet scale an analog axis's velocity codes (issue #37); hold a run without --servo".into());
     }
     if servo && options.uniform.iter().any(|&u| u) {
         return Err("--uniform needs the motion_controller build, --servo the motion_controller_servo build (DDA only): use one of them".into());
@@ -483,6 +543,14 @@ pub fn simulate(
         bus.set_pins_at((at_s * options.clock_hz).round() as u64, pins);
     }
     let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
+    let tick_hz = options.clock_hz / tick_divisor as f64;
+    let hold_rate = options.hold.map(|h| h.rate(stop_s, tick_hz));
+    let hold_events: Vec<HoldEvent> = options
+        .hold
+        .map_or(Vec::new(), |h| h.events(options.clock_hz).to_vec());
+    if let Some(rate) = hold_rate {
+        driver.set_hold_rate(rate).map_err(|e| e.to_string())?;
+    }
     // The controller starts at 0: the counts move it by (end - start).
     let bar = if options.progress {
         let bar = ProgressBar::new(interpolation.counts.len() as u64);
@@ -524,7 +592,7 @@ pub fn simulate(
                 r.run
             })
     } else {
-        driver.run(&interpolation.counts, show)
+        driver.run_with_holds(&interpolation.counts, &hold_events, show)
     };
     if let Some(bar) = &bar {
         if report.is_err() {
@@ -564,8 +632,15 @@ pub fn simulate(
             .collect();
         plot_path_xy(&planned, &measured, unit, &xy).map_err(|e| e.to_string())?;
         let speed = dir.join(format!("{stem}-speed.svg"));
+        let measured = options.hold.map(|_| {
+            let window = (0.01 / period_s).round() as usize;
+            speeds_at_the_pins(bus.samples(), machine.steps_per_mm, period_s, window)
+        });
         plot_speed(
             &interpolation.speeds,
+            measured
+                .as_deref()
+                .map(|m| ("at the pins, through the feed hold (10 ms windows)", m)),
             machine.period,
             &format!("{unit}/s"),
             &speed,
@@ -590,6 +665,29 @@ pub fn simulate(
             figures.push(fe);
         }
     }
+    let hold = options.hold.map(|h| {
+        let rate = hold_rate.unwrap_or(0);
+        let at =
+            |e: &HoldEvent| (e.clock <= report.cycles).then_some(e.clock as f64 / options.clock_hz);
+        let released_s = at(&hold_events[1]);
+        let speeds = speeds_at_the_pins(
+            bus.samples(),
+            machine.steps_per_mm,
+            period_s,
+            (0.01 / period_s).round() as usize,
+        );
+        let after = (h.resume_at_s / period_s) as usize;
+        HoldReport {
+            rate,
+            tick_divisor,
+            full_stop_s: stop_time_s(rate, tick_hz),
+            requested_s: at(&hold_events[0]),
+            stood_s: report.held.first().map(|&c| c as f64 / options.clock_hz),
+            released_s,
+            peak_speed_after: speeds.iter().skip(after).copied().fold(0.0, f64::max),
+            planned_peak_speed,
+        }
+    });
     let to_path = |p: [i32; 3]| offset(p.map(i64::from));
     let commanded = to_path(report.commanded);
     let actual = to_path(report.actual);
@@ -609,5 +707,6 @@ pub fn simulate(
         cycles: report.cycles,
         seconds,
         figures,
+        hold,
     })
 }

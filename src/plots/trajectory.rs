@@ -69,11 +69,22 @@ pub fn plot_path_xy(
     root.present().map_err(|e| err(e.to_string()))
 }
 
-/// Draws the planned path speed (in `unit`, e.g. "mm/s") at the end of each period.
-pub fn plot_speed(speeds: &[f64], period_s: f64, unit: &str, path: &Path) -> Result<(), PlotError> {
+/// Draws the planned path speed (in `unit`, e.g. "mm/s") at the end of
+/// each period of `period_s`, and with `measured` the speed at the pins
+/// (one value per period from power-up, labelled `measured.0`): a run
+/// through a feed hold, whose time the plan does not know.
+pub fn plot_speed(
+    speeds: &[f64],
+    measured: Option<(&str, &[f64])>,
+    period_s: f64,
+    unit: &str,
+    path: &Path,
+) -> Result<(), PlotError> {
     let err = draw_error(path);
-    let end = (speeds.len() as f64 * period_s).max(period_s);
-    let (_, top) = bounds(speeds.iter().copied().chain([0.0]));
+    let periods = speeds.len().max(measured.map_or(0, |m| m.1.len()));
+    let end = (periods as f64 * period_s).max(period_s);
+    let all = speeds.iter().chain(measured.map_or(&[][..], |m| m.1));
+    let (_, top) = bounds(all.copied().chain([0.0]));
     let root = SVGBackend::new(path, (1000, 450)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
     let mut chart = ChartBuilder::on(&root)
@@ -92,15 +103,30 @@ pub fn plot_speed(speeds: &[f64], period_s: f64, unit: &str, path: &Path) -> Res
         .y_desc(unit)
         .draw()
         .map_err(|e| err(e.to_string()))?;
+    let at_period = |k: usize, v: &f64| ((k + 1) as f64 * period_s, *v);
     chart
         .draw_series(LineSeries::new(
-            speeds
-                .iter()
-                .enumerate()
-                .map(|(k, v)| ((k + 1) as f64 * period_s, *v)),
+            speeds.iter().enumerate().map(|(k, v)| at_period(k, v)),
             BLUE.stroke_width(1),
         ))
-        .map_err(|e| err(e.to_string()))?;
+        .map_err(|e| err(e.to_string()))?
+        .label("planned")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE));
+    if let Some((label, measured)) = measured {
+        chart
+            .draw_series(LineSeries::new(
+                measured.iter().enumerate().map(|(k, v)| at_period(k, v)),
+                RED.stroke_width(1),
+            ))
+            .map_err(|e| err(e.to_string()))?
+            .label(label)
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED));
+        chart
+            .configure_series_labels()
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+    }
     root.present().map_err(|e| err(e.to_string()))
 }
 

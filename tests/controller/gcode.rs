@@ -324,6 +324,7 @@ pub(crate) fn options(out_dir: &std::path::Path) -> SimulationOptions {
         progress: false,
         backend: Backend::from_env_or(Backend::Verilator).unwrap(),
         trips: Vec::new(),
+        hold: None,
     }
 }
 

@@ -18,6 +18,7 @@ mod gcode;
 mod gcode_corpus;
 mod hexapod_program;
 mod host;
+mod host_feed_hold;
 mod machine_io;
 mod motion_controller;
 mod parallel_machine;
