@@ -9,6 +9,7 @@ use motion_hdl::host::gcode::{Ignored, Message};
 use motion_hdl::host::hexapod::simulate::{schedule_name, simulate_hexapod, HexapodOptions};
 use motion_hdl::host::hexapod::Geometry;
 use motion_hdl::host::hold_window::{parse_seconds, HoldWindow};
+use motion_hdl::host::simulated_probe::{ProbePlane, ProbeResult};
 use motion_hdl::host::simulation::{simulate, HoldReport, InputFormat, SimulationOptions, Trip};
 use motion_hdl::host::{MachineSettings, ToolTable};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
@@ -168,6 +169,14 @@ enum Command {
         /// maximum acceleration, with TICK_DIVISOR raised as that needs.
         #[arg(long, value_name = "RATE")]
         hold_rate: Option<u32>,
+        /// A simulated probe for the program's probe moves (G38.2 to
+        /// G38.5): a plane across an axis at a machine position in mm, as
+        /// AXIS=HEIGHT (z=-1.234); the probe touches at the plane and
+        /// beyond it, seen from the program's start. Prints a line per
+        /// probe move with its trip position and its distance past the
+        /// plane.
+        #[arg(long, value_name = "AXIS=HEIGHT")]
+        probe_plane: Option<String>,
         /// The machine: cartesian (the 3-axis controller) or hexapod (the
         /// parallel-machine card: a G-code program in X Y Z mm and A B C
         /// degrees on a Stewart platform, its legs driven by three motor
@@ -311,6 +320,35 @@ fn simulate_hexapod_cli(program: &std::path::Path, cli: HexapodCli) -> Result<()
     Ok(())
 }
 
+/// A probe move's line of `simulate`: the trip position, its distance
+/// past the plane, and where the machine stopped.
+fn print_probe(p: &ProbeResult, plane: ProbePlane, steps_per_mm: [f64; 3]) {
+    let xyz = |v: [f64; 3]| format!("X {:.4} Y {:.4} Z {:.4}", v[0], v[1], v[2]);
+    let k = plane.axis;
+    match p.trip_mm {
+        Some(trip) => {
+            let past = (trip[k] - plane.height_mm).abs();
+            println!(
+                "probe      line {} {}: tripped at {} mm, {:.4} mm ({:.2} steps) past the plane {}={}; stopped at {} mm",
+                p.line,
+                p.code.name(),
+                xyz(trip),
+                past,
+                past * steps_per_mm[k],
+                plane.axis_name().to_ascii_lowercase(),
+                plane.height_mm,
+                xyz(p.stop_mm)
+            );
+        }
+        None => println!(
+            "probe      line {} {}: no trip; the move ended at {} mm",
+            p.line,
+            p.code.name(),
+            xyz(p.stop_mm)
+        ),
+    }
+}
+
 /// The feed hold's lines of `simulate`.
 fn print_hold(h: &HoldReport) {
     let time = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.4} s"));
@@ -351,6 +389,7 @@ fn run(cli: Cli) -> Result<(), String> {
             hold_at,
             resume_at,
             hold_rate,
+            probe_plane,
             kinematics,
             geometry,
             drive_lag_ms,
@@ -366,6 +405,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     ("--hold-at", hold_at.is_some()),
                     ("--resume-at", resume_at.is_some()),
                     ("--hold-rate", hold_rate.is_some()),
+                    ("--probe-plane", probe_plane.is_some()),
                 ];
                 if let Some((name, _)) = unused.iter().find(|(_, given)| *given) {
                     return Err(format!(
@@ -423,6 +463,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 }
                 (None, None) => None,
             };
+            let probe_plane = probe_plane.map(|p| ProbePlane::parse(&p)).transpose()?;
             let backend = match backend {
                 Some(name) => Backend::parse(&name).map_err(|e| e.to_string())?,
                 None if Backend::Verilator.available() => Backend::Verilator,
@@ -486,6 +527,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 backend,
                 trips,
                 hold,
+                probe_plane,
             };
             let r = simulate(&path_file, &options)?;
             print_program_notes(&r.ignored, &r.messages);
@@ -513,6 +555,11 @@ fn run(cli: Cli) -> Result<(), String> {
             println!("periods {}, underruns {}", r.periods, r.underruns);
             if let Some(h) = &r.hold {
                 print_hold(h);
+            }
+            if let Some(plane) = r.probe_plane {
+                for probe in &r.probes {
+                    print_probe(probe, plane, r.steps_per_mm);
+                }
             }
             for (k, f) in r.following.iter().enumerate() {
                 if let Some(f) = f {

@@ -100,6 +100,31 @@ pub struct RtlBus {
     dacs: Ad669Bank,
     /// Seconds per clock (for the servo motors).
     clock_s: f64,
+    /// A simulated probe that drives the `probe` pin from the position.
+    probe_surface: Option<ProbeSurface>,
+}
+
+/// A simulated probe against a flat surface across one axis: the `probe`
+/// pin is high (contact) in every clock whose position at the pins, before
+/// the clock's steps, is at or beyond `contact_at` on that axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProbeSurface {
+    /// The axis, 0 to 2.
+    pub axis: usize,
+    /// The first position in contact, steps (the controller's count).
+    pub contact_at: i64,
+    /// Contact at and below `contact_at` (else at and above).
+    pub contact_below: bool,
+}
+
+impl ProbeSurface {
+    /// Whether the probe touches at `position` (the axis's steps).
+    pub fn touches(&self, position: i64) -> bool {
+        match self.contact_below {
+            true => position <= self.contact_at,
+            false => position >= self.contact_at,
+        }
+    }
 }
 
 /// An analog axis's plant: the drive and motor its DAC commands, and the
@@ -139,6 +164,7 @@ impl RtlBus {
             servos: [None, None, None],
             dacs: Ad669Bank::new(3),
             clock_s: 0.0,
+            probe_surface: None,
         })
     }
 
@@ -187,6 +213,12 @@ impl RtlBus {
     /// in the middle of a move.
     pub fn set_pins_at(&mut self, clock: u64, pins: MachinePins) {
         self.schedule.add(clock, pins);
+    }
+
+    /// Drives the `probe` pin from the position at the pins from the next
+    /// clock on (`None`: the pin as [`RtlBus::set_pins`] leaves it).
+    pub fn set_probe_surface(&mut self, surface: Option<ProbeSurface>) {
+        self.probe_surface = surface;
     }
 
     /// The machine-I/O pins driven now.
@@ -247,6 +279,9 @@ impl ControllerBus for RtlBus {
         }
         self.schedule
             .apply(self.rtl.cycles(), &mut self.inputs.pins);
+        if let Some(surface) = self.probe_surface {
+            self.inputs.pins.probe = surface.touches(self.positions()[surface.axis]);
+        }
         self.inputs.write_vector(&mut self.vector);
         self.rtl
             .step_into(&self.vector, &mut self.outputs)

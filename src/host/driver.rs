@@ -285,6 +285,16 @@ impl<B: ControllerBus> Driver<B> {
         Ok(driver)
     }
 
+    /// Clocks per interpolation period: `TICK_DIVISOR` x `PERIOD_TICKS`.
+    pub fn period_clocks(&self) -> u64 {
+        self.config.tick_divisor as u64 * self.config.period_ticks as u64
+    }
+
+    /// Clocks per base tick (`TICK_DIVISOR`).
+    pub fn tick_divisor(&self) -> u32 {
+        self.config.tick_divisor
+    }
+
     /// The bus (for its statistics).
     pub fn bus(&self) -> &B {
         &self.bus

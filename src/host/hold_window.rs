@@ -68,28 +68,10 @@ impl HoldWindow {
         })
     }
 
-    /// The smallest `TICK_DIVISOR` whose base tick lets a stop of
-    /// `stop_s` (see [`stop_within_limits_s`]) take at most 65536 ticks
-    /// (1 with an explicit rate).
-    pub fn min_tick_divisor(&self, stop_s: f64, clock_hz: f64) -> u64 {
-        match self.rate {
-            Some(_) => 1,
-            None => (clock_hz * stop_s / SLOWEST_STOP_TICKS).ceil().max(1.0) as u64,
-        }
-    }
-
     /// `HOLD_CONTROL.RATE` on a base tick of `tick_hz`: the explicit one,
-    /// or the largest whose stop from full speed takes `stop_s` or longer
-    /// (0, an immediate stop, when nothing limits the deceleration).
+    /// or [`rate_for_stop`].
     pub fn rate(&self, stop_s: f64, tick_hz: f64) -> u32 {
-        self.rate.unwrap_or_else(|| {
-            if stop_s == 0.0 {
-                return 0;
-            }
-            (SLOWEST_STOP_TICKS / (stop_s * tick_hz))
-                .floor()
-                .clamp(1.0, 65535.0) as u32
-        })
+        self.rate.unwrap_or_else(|| rate_for_stop(stop_s, tick_hz))
     }
 
     /// The driver's two events at `clock_hz`.
@@ -106,6 +88,28 @@ impl HoldWindow {
             },
         ]
     }
+}
+
+/// The smallest `TICK_DIVISOR` whose base tick lets a stop of `stop_s`
+/// (see [`stop_within_limits_s`]) take at most 65536 ticks; 1 with an
+/// explicit `rate`.
+pub fn min_tick_divisor(rate: Option<u32>, stop_s: f64, clock_hz: f64) -> u64 {
+    match rate {
+        Some(_) => 1,
+        None => (clock_hz * stop_s / SLOWEST_STOP_TICKS).ceil().max(1.0) as u64,
+    }
+}
+
+/// The largest `HOLD_CONTROL.RATE` whose stop from full speed on a base
+/// tick of `tick_hz` takes `stop_s` or longer (0, an immediate stop, when
+/// `stop_s` is 0: nothing limits the deceleration).
+pub fn rate_for_stop(stop_s: f64, tick_hz: f64) -> u32 {
+    if stop_s == 0.0 {
+        return 0;
+    }
+    (SLOWEST_STOP_TICKS / (stop_s * tick_hz))
+        .floor()
+        .clamp(1.0, 65535.0) as u32
 }
 
 /// The shortest stop of a path from its peak speeds within the machine's

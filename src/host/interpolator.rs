@@ -21,7 +21,7 @@ use super::planner::{to_steps, PlannedSegment, Shape};
 const ONE: i128 = 1 << 32;
 
 /// The per-period step counts of a planned path.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Interpolation {
     /// Step counts, one entry per period, per axis.
     pub counts: Vec<[i32; 3]>,

@@ -15,12 +15,13 @@ pub mod machine;
 pub mod path;
 pub mod planner;
 pub mod servo;
+pub mod simulated_probe;
 pub mod simulation;
 mod statements;
 pub mod tool_table;
 pub mod toolpath;
 
-pub use bus::{ControllerBus, ModelBus, RecordingBus, RtlBus};
+pub use bus::{ControllerBus, ModelBus, ProbeSurface, RecordingBus, RtlBus};
 pub use driver::{Driver, DriverConfig, DriverError, RunReport};
 pub use interpolator::{interpolate, Interpolation};
 pub use machine::MachineSettings;

@@ -14,11 +14,18 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::driver::HoldEvent;
-use super::gcode::{interpret_with, program_text, Ignored, Message, Program, Setup, Units};
-use super::hold_window::{speeds_at_the_pins, stop_time_s, stop_within_limits_s, HoldWindow};
+use super::gcode::Prober;
+use super::gcode::{
+    interpret_probing, interpret_with, program_text, Ignored, Message, Program, Setup, Units,
+};
+use super::hold_window::{
+    min_tick_divisor, speeds_at_the_pins, stop_time_s, stop_within_limits_s, HoldWindow,
+};
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
+use super::simulated_probe::{ProbePlane, ProbeResult, ProbingRun, ProbingSession};
 use super::tool_table::ToolTable;
+use super::ProbeSurface;
 use super::{
     interpolate, plan_toolpath, Driver, DriverConfig, MachineSettings, Path, RtlBus, Toolpath,
 };
@@ -88,6 +95,11 @@ pub struct Job {
     pub ending: Option<String>,
     /// G-code only: the active comments (MSG, DEBUG, PRINT) as they ran.
     pub messages: Vec<Message>,
+    /// The items of `toolpath` its probe moves have run already (see
+    /// [`Program::items_run`]); 0 without them.
+    pub items_run: usize,
+    /// Where the items not yet run start, mm.
+    pub pending_start: [f64; 3],
 }
 
 impl Job {
@@ -99,6 +111,18 @@ impl Job {
         format: Option<InputFormat>,
         machine: Option<MachineSettings>,
         tools: Option<ToolTable>,
+    ) -> Result<Job, String> {
+        Self::read_with(file, format, machine, tools, None)
+    }
+
+    /// [`Job::read`], a G-code program's probe moves run by `prober` as
+    /// they come (without one, a probe move is an error).
+    pub fn read_with(
+        file: &FsPath,
+        format: Option<InputFormat>,
+        machine: Option<MachineSettings>,
+        tools: Option<ToolTable>,
+        prober: Option<Box<dyn Prober>>,
     ) -> Result<Job, String> {
         let format = format.or_else(|| InputFormat::from_extension(file)).ok_or_else(|| {
             format!(
@@ -130,8 +154,11 @@ impl Job {
                     ));
                 }
                 let path = Path::parse(&text).map_err(|e| located(&e))?;
+                let toolpath = path.toolpath();
                 Ok(Job {
-                    toolpath: path.toolpath(),
+                    pending_start: toolpath.start,
+                    items_run: 0,
+                    toolpath,
                     machine: path.machine(),
                     program_end: None,
                     ignored: Vec::new(),
@@ -148,8 +175,10 @@ impl Job {
                     tools,
                     ..Setup::default()
                 };
-                let (program, ending) = run_gcode(file, &text, &setup)?;
+                let (program, ending) = run_gcode_with(file, &text, &setup, prober)?;
                 Ok(Job {
+                    items_run: program.items_run,
+                    pending_start: program.pending_start,
                     toolpath: program.toolpath,
                     machine,
                     program_end: Some(ProgramEnd {
@@ -171,7 +200,21 @@ impl Job {
 /// and how it ended, as a sentence. A program without motion is an error;
 /// every error names the file.
 pub fn run_gcode(file: &FsPath, text: &str, setup: &Setup) -> Result<(Program, String), String> {
-    let program = interpret_with(text, setup).map_err(|e| format!("{}: {e}", file.display()))?;
+    run_gcode_with(file, text, setup, None)
+}
+
+/// [`run_gcode`] with a [`Prober`] for the probe moves.
+pub fn run_gcode_with(
+    file: &FsPath,
+    text: &str,
+    setup: &Setup,
+    prober: Option<Box<dyn Prober>>,
+) -> Result<(Program, String), String> {
+    let program = match prober {
+        Some(prober) => interpret_probing(text, setup, prober),
+        None => interpret_with(text, setup),
+    }
+    .map_err(|e| format!("{}: {e}", file.display()))?;
     if program.toolpath.items.is_empty() {
         return Err(format!("{}: the program has no motion", file.display()));
     }
@@ -230,6 +273,9 @@ pub struct SimulationOptions {
     /// A feed hold the driver requests and releases during the run (step
     /// axes only: the hold does not yet scale an analog axis's codes).
     pub hold: Option<HoldWindow>,
+    /// A simulated probe against a plane, for a G-code program's probe
+    /// moves (G38.2 to G38.5; step axes only, without a hold).
+    pub probe_plane: Option<ProbePlane>,
 }
 
 /// A machine input the simulation drives active (high: tripped, in alarm,
@@ -346,6 +392,12 @@ pub struct SimulationReport {
     pub figures: Vec<PathBuf>,
     /// With a feed hold: what it did.
     pub hold: Option<HoldReport>,
+    /// With `probe_plane`: each probe move (G38.2 to G38.5) as it ran.
+    pub probes: Vec<ProbeResult>,
+    /// The simulated probe's plane, if any.
+    pub probe_plane: Option<ProbePlane>,
+    /// The machine's steps per mm.
+    pub steps_per_mm: [f64; 3],
 }
 
 /// What a simulated feed hold did.
@@ -454,61 +506,8 @@ pub fn slow_run_hint(
     })
 }
 
-/// Runs `path_file` (G-code or a path file) through the RTL controller.
-pub fn simulate(
-    path_file: &FsPath,
-    options: &SimulationOptions,
-) -> Result<SimulationReport, String> {
-    let job = Job::read(
-        path_file,
-        options.format,
-        options.machine,
-        options.tools.clone(),
-    )?;
-    let machine = job.machine;
-    let start = to_steps(job.toolpath.start, machine.steps_per_mm);
-    let target = to_steps(job.toolpath.end(), machine.steps_per_mm);
-    let segments = plan_toolpath(&job.toolpath, &machine)
-        .map_err(|e| format!("{}: {e}", path_file.display()))?;
-    let seconds: f64 = segments.iter().map(|s| s.duration()).sum();
-    let periods = seconds / machine.period;
-    if periods.is_nan() || periods > MAX_PERIODS as f64 {
-        return Err(format!(
-            "{}: the program takes {seconds:.0} s, more than {MAX_PERIODS} periods of {} s",
-            path_file.display(),
-            machine.period
-        ));
-    }
-    let interpolation = interpolate(start, &segments, machine.period);
-    let planned_peak_speed = interpolation.speeds.iter().copied().fold(0.0, f64::max);
-    let peak_axis_speed: [f64; 3] = std::array::from_fn(|k| {
-        let steps = interpolation
-            .counts
-            .iter()
-            .map(|c| c[k].unsigned_abs())
-            .max();
-        steps.unwrap_or(0) as f64 / machine.steps_per_mm[k] / machine.period
-    });
-    let stop_s = stop_within_limits_s(&machine, planned_peak_speed, peak_axis_speed);
-    let min_divisor = options
-        .hold
-        .map_or(1, |h| h.min_tick_divisor(stop_s, options.clock_hz));
-    let (tick_divisor, period_ticks) =
-        period_settings_from(machine.period, options.clock_hz, min_divisor)?;
-    if options.progress {
-        if let Some(hint) = slow_run_hint(&interpolation.counts, machine.period, options) {
-            eprintln!("motion-hdl: {hint}");
-        }
-    }
-    let config = DriverConfig {
-        tick_divisor,
-        period_ticks,
-        step_len: options.step_len,
-        step_space: options.step_space,
-        dir_time: options.step_len.max(1),
-        uniform: options.uniform,
-        analog: options.servo,
-    };
+/// Refuses the combinations of options the simulation does not run.
+fn check_options(options: &SimulationOptions) -> Result<(), String> {
     let servo = options.servo.iter().any(|&s| s);
     if let Some(axis) = (0..3).find(|&k| options.servo[k] && options.uniform[k]) {
         return Err(format!(
@@ -519,11 +518,38 @@ pub fn simulate(
     if servo && options.hold.is_some() {
         return Err("--hold-at: the feed hold does not yet scale an analog axis's velocity codes (issue #37); hold a run without --servo".into());
     }
+    if servo && options.probe_plane.is_some() {
+        return Err("--probe-plane: probe moves stop with the feed hold, which does not yet scale an analog axis's codes (issue #37); probe without --servo".into());
+    }
+    if options.hold.is_some() && options.probe_plane.is_some() {
+        return Err(
+            "--probe-plane and --hold-at: both program the feed hold; give one of them".into(),
+        );
+    }
     if servo && options.uniform.iter().any(|&u| u) {
         return Err("--uniform needs the motion_controller build, --servo the motion_controller_servo build (DDA only): use one of them".into());
     }
-    let period_s = tick_divisor as f64 * period_ticks as f64 / options.clock_hz;
-    let mut bus = if servo {
+    Ok(())
+}
+
+/// The driver of a simulated controller for `options`, at these tick
+/// settings, programmed; with `surface`, the probe pin follows it.
+fn controller_driver(
+    options: &SimulationOptions,
+    tick_divisor: u32,
+    period_ticks: u32,
+    surface: Option<ProbeSurface>,
+) -> Result<Driver<RtlBus>, String> {
+    let config = DriverConfig {
+        tick_divisor,
+        period_ticks,
+        step_len: options.step_len,
+        step_space: options.step_space,
+        dir_time: options.step_len.max(1),
+        uniform: options.uniform,
+        analog: options.servo,
+    };
+    let mut bus = if options.servo.iter().any(|&s| s) {
         let motors = options.servo.map(|s| s.then(ServoMotor::default));
         RtlBus::with_servos(
             options.backend,
@@ -542,7 +568,128 @@ pub fn simulate(
     for (at_s, pins) in trip_schedule(&options.trips) {
         bus.set_pins_at((at_s * options.clock_hz).round() as u64, pins);
     }
-    let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
+    bus.set_probe_surface(surface);
+    Driver::new(bus, config).map_err(|e| e.to_string())
+}
+
+/// Interprets a G-code program whose probe moves run on the simulated
+/// controller as they come, against `plane` (see [`simulated_probe`]
+/// (super::simulated_probe)); the probe moves stop at the rate that
+/// stops every axis from its maximum velocity within its maximum
+/// acceleration. Returns the job and the run so far.
+fn run_probe_moves(
+    path_file: &FsPath,
+    options: &SimulationOptions,
+    plane: ProbePlane,
+) -> Result<(Job, ProbingRun), String> {
+    let format = options
+        .format
+        .or_else(|| InputFormat::from_extension(path_file));
+    if format == Some(InputFormat::Path) {
+        return Err(format!(
+            "{}: --probe-plane runs a G-code program's probe moves (G38.2 to G38.5); a path file has none",
+            path_file.display()
+        ));
+    }
+    let machine = options.machine.unwrap_or_default();
+    let stop_s = stop_within_limits_s(&machine, 0.0, machine.max_velocity);
+    let min_divisor = min_tick_divisor(None, stop_s, options.clock_hz);
+    let (tick_divisor, period_ticks) =
+        period_settings_from(machine.period, options.clock_hz, min_divisor)?;
+    let surface = plane.surface([0.0; 3], machine.steps_per_mm);
+    let driver = controller_driver(options, tick_divisor, period_ticks, Some(surface))?;
+    let session = ProbingSession::new(driver, machine, options.clock_hz, [0.0; 3]);
+    let job = Job::read_with(
+        path_file,
+        options.format,
+        options.machine,
+        options.tools.clone(),
+        Some(session.prober()),
+    )?;
+    Ok((job, session.finish()))
+}
+
+/// Runs `path_file` (G-code or a path file) through the RTL controller.
+pub fn simulate(
+    path_file: &FsPath,
+    options: &SimulationOptions,
+) -> Result<SimulationReport, String> {
+    check_options(options)?;
+    let started = Instant::now();
+    let (job, probed) = match options.probe_plane {
+        None => {
+            let job = Job::read(
+                path_file,
+                options.format,
+                options.machine,
+                options.tools.clone(),
+            )?;
+            (job, None)
+        }
+        Some(plane) => {
+            let (job, probed) = run_probe_moves(path_file, options, plane)?;
+            (job, Some(probed))
+        }
+    };
+    let machine = job.machine;
+    let start = to_steps(job.toolpath.start, machine.steps_per_mm);
+    let target = to_steps(job.toolpath.end(), machine.steps_per_mm);
+    // What the probe moves have not run yet: the whole program without.
+    let rest = Toolpath {
+        start: job.pending_start,
+        items: job.toolpath.items[job.items_run..].to_vec(),
+        ..job.toolpath.clone()
+    };
+    let segments =
+        plan_toolpath(&rest, &machine).map_err(|e| format!("{}: {e}", path_file.display()))?;
+    let seconds: f64 = segments.iter().map(|s| s.duration()).sum();
+    let periods = seconds / machine.period;
+    if periods.is_nan() || periods > MAX_PERIODS as f64 {
+        return Err(format!(
+            "{}: the program takes {seconds:.0} s, more than {MAX_PERIODS} periods of {} s",
+            path_file.display(),
+            machine.period
+        ));
+    }
+    let rest_start = to_steps(rest.start, machine.steps_per_mm);
+    let interpolation = interpolate(rest_start, &segments, machine.period);
+    let planned_peak_speed = interpolation.speeds.iter().copied().fold(0.0, f64::max);
+    let peak_axis_speed: [f64; 3] = std::array::from_fn(|k| {
+        let steps = interpolation
+            .counts
+            .iter()
+            .map(|c| c[k].unsigned_abs())
+            .max();
+        steps.unwrap_or(0) as f64 / machine.steps_per_mm[k] / machine.period
+    });
+    let stop_s = stop_within_limits_s(&machine, planned_peak_speed, peak_axis_speed);
+    if options.progress {
+        if let Some(hint) = slow_run_hint(&interpolation.counts, machine.period, options) {
+            eprintln!("motion-hdl: {hint}");
+        }
+    }
+    let servo = options.servo.iter().any(|&s| s);
+    let (mut driver, prior) = match probed {
+        Some(probed) => (
+            probed.driver,
+            Some((probed.run, probed.underruns, probed.probes)),
+        ),
+        None => {
+            let min_divisor = options
+                .hold
+                .map_or(1, |h| min_tick_divisor(h.rate, stop_s, options.clock_hz));
+            let (tick_divisor, period_ticks) =
+                period_settings_from(machine.period, options.clock_hz, min_divisor)?;
+            (
+                controller_driver(options, tick_divisor, period_ticks, None)?,
+                None,
+            )
+        }
+    };
+    let (prior, prior_underruns, probes) = prior.unwrap_or_default();
+    let period_clocks = driver.period_clocks();
+    let tick_divisor = driver.tick_divisor();
+    let period_s = period_clocks as f64 / options.clock_hz;
     let tick_hz = options.clock_hz / tick_divisor as f64;
     let hold_rate = options.hold.map(|h| h.rate(stop_s, tick_hz));
     let hold_events: Vec<HoldEvent> = options
@@ -564,7 +711,6 @@ pub fn simulate(
     } else {
         None
     };
-    let started = Instant::now();
     let show = |queued: usize| {
         if let Some(bar) = &bar {
             bar.set_position(queued as u64);
@@ -606,6 +752,12 @@ pub fn simulate(
         bar.finish();
     }
     let bus = driver.bus();
+    // The probe moves' periods, then the rest's.
+    let mut planned_run = prior;
+    planned_run
+        .positions
+        .extend_from_slice(&interpolation.positions);
+    planned_run.speeds.extend_from_slice(&interpolation.speeds);
     let offset = |p: [i64; 3]| [p[0] + start[0], p[1] + start[1], p[2] + start[2]];
     let mut figures = Vec::new();
     if let Some(dir) = &options.out_dir {
@@ -627,7 +779,7 @@ pub fn simulate(
         };
         let measured: Vec<[f64; 3]> = bus.samples().iter().map(|&p| units(offset(p))).collect();
         let planned: Vec<[f64; 3]> = std::iter::once(start)
-            .chain(interpolation.positions.iter().copied())
+            .chain(planned_run.positions.iter().copied())
             .map(units)
             .collect();
         plot_path_xy(&planned, &measured, unit, &xy).map_err(|e| e.to_string())?;
@@ -637,7 +789,7 @@ pub fn simulate(
             speeds_at_the_pins(bus.samples(), machine.steps_per_mm, period_s, window)
         });
         plot_speed(
-            &interpolation.speeds,
+            &planned_run.speeds,
             measured
                 .as_deref()
                 .map(|m| ("at the pins, through the feed hold (10 ms windows)", m)),
@@ -702,11 +854,14 @@ pub fn simulate(
         peak_rate: bus.peak_steps_per_clock().map(|r| r * options.clock_hz),
         following,
         settle_periods,
-        underruns: report.underruns,
-        periods: report.periods,
+        underruns: report.underruns + prior_underruns,
+        periods: report.periods + planned_run.counts.len(),
         cycles: report.cycles,
         seconds,
         figures,
         hold,
+        probes,
+        probe_plane: options.probe_plane,
+        steps_per_mm: machine.steps_per_mm,
     })
 }

@@ -140,6 +140,7 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
             .unwrap(),
         trips: Vec::new(),
         hold: None,
+        probe_plane: None,
     };
     let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
     let fe = r.following[0].expect("X's following error");

@@ -325,6 +325,7 @@ pub(crate) fn options(out_dir: &std::path::Path) -> SimulationOptions {
         backend: Backend::from_env_or(Backend::Verilator).unwrap(),
         trips: Vec::new(),
         hold: None,
+        probe_plane: None,
     }
 }
 

@@ -19,6 +19,7 @@ mod gcode_corpus;
 mod hexapod_program;
 mod host;
 mod host_feed_hold;
+mod host_probing;
 mod machine_io;
 mod motion_controller;
 mod parallel_machine;

@@ -90,6 +90,22 @@ impl<B: ControllerBus> Driver<B> {
         self.write("HOLD_CONTROL", 0, word)
     }
 
+    /// Ends a path the feed hold has stopped, where it stands: `RUN` 0 and
+    /// `FLUSH` (the periods not taken are dropped), then the hold
+    /// released; waits for the output stages and returns each axis's
+    /// `CMD_POSITION`. What follows a probe move that tripped.
+    pub fn abandon_held_path(&mut self) -> Result<[i32; 3], DriverError> {
+        let stop = self.pack("CONTROL", &[("RUN", 0), ("FLUSH", 1)])?;
+        self.write("CONTROL", 0, stop)?;
+        self.release()?;
+        self.settle()?;
+        let mut commanded = [0; 3];
+        for (k, c) in commanded.iter_mut().enumerate() {
+            *c = self.read("CMD_POSITION", k as u32)? as i32;
+        }
+        Ok(commanded)
+    }
+
     /// The feed hold's state.
     pub fn hold_state(&mut self) -> Result<HoldState, DriverError> {
         let control = self.read("HOLD_CONTROL", 0)?;

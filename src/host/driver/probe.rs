@@ -46,6 +46,27 @@ impl<B: ControllerBus> Driver<B> {
         self.write("PROBE_CONTROL", 0, word)
     }
 
+    /// Arms the probe on `edge` with `PROBE_CONTROL.STOP`: its trip also
+    /// requests the feed hold, a controlled stop along the path (a run
+    /// then fails with [`DriverError::Held`]; see
+    /// [`Driver::abandon_held_path`]).
+    pub fn arm_probe_to_stop(&mut self, edge: ProbeEdge) -> Result<(), DriverError> {
+        self.require_probe()?;
+        let falling = (edge == ProbeEdge::Release) as u64;
+        let word = self.pack(
+            "PROBE_CONTROL",
+            &[("ARM", 1), ("EDGE", falling), ("STOP", 1)],
+        )?;
+        self.write("PROBE_CONTROL", 0, word)
+    }
+
+    /// The filtered `probe` input (`PROBE_CONTROL.LEVEL`): 1 = contact.
+    pub fn probe_level(&mut self) -> Result<bool, DriverError> {
+        self.require_probe()?;
+        let control = self.read("PROBE_CONTROL", 0)?;
+        Ok(self.field("PROBE_CONTROL", "LEVEL", control)? == 1)
+    }
+
     /// Disarms the probe; a trip already latched stays readable.
     pub fn disarm_probe(&mut self) -> Result<(), DriverError> {
         self.require_probe()?;

@@ -6,6 +6,7 @@ use std::collections::HashSet;
 
 use super::interpreter::Units;
 use super::lexer::{Block, Word};
+use super::probing::ProbeCode;
 use crate::host::toolpath::Plane;
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -15,6 +16,8 @@ pub(super) enum Motion {
     Clockwise,
     CounterClockwise,
     Cycle(Cycle),
+    /// G38.2 to G38.5.
+    Probe(ProbeCode),
 }
 
 /// The canned cycles that run here (G74, G84 and G33.1 need spindle
@@ -65,6 +68,7 @@ impl Motion {
             Motion::Clockwise => "G2",
             Motion::CounterClockwise => "G3",
             Motion::Cycle(c) => c.name(),
+            Motion::Probe(p) => p.name(),
         }
     }
 
@@ -191,6 +195,22 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
             "one motion per block",
         ),
         800 => (CancelMotion, "one motion per block"),
+        382 => (
+            Motion(self::Motion::Probe(ProbeCode::G38_2)),
+            "one motion per block",
+        ),
+        383 => (
+            Motion(self::Motion::Probe(ProbeCode::G38_3)),
+            "one motion per block",
+        ),
+        384 => (
+            Motion(self::Motion::Probe(ProbeCode::G38_4)),
+            "one motion per block",
+        ),
+        385 => (
+            Motion(self::Motion::Probe(ProbeCode::G38_5)),
+            "one motion per block",
+        ),
         730 => (
             Motion(self::Motion::Cycle(self::Cycle::G73)),
             "one motion per block",
@@ -320,7 +340,6 @@ fn g_refused(code: u32) -> Option<&'static str> {
         331 => "rigid tapping: it needs spindle synchronisation",
         740 | 840 => "tapping: it needs spindle synchronisation",
         760 => "lathe threading cycle",
-        382..=385 => "probing",
         520 => "local coordinate offset",
         930 => "inverse-time feed",
         950 => "feed per revolution",

@@ -14,6 +14,7 @@ use super::lexer::{lex_program, Block, LexError};
 use super::messages::Message;
 use super::param_store::ParamStore;
 use super::parameters::{system_name, PersistentParameters};
+use super::probing::Prober;
 use crate::host::tool_table::ToolTable;
 // An arc whose end is within SAME_POINT of its start, in its plane, is a
 // full circle (and its end is set to the start exactly).
@@ -124,6 +125,13 @@ pub struct Program {
     /// `%` too): the end of the program, as in LinuxCNC, when no M2 or M30
     /// came before it. Nothing after it is read.
     pub closing_percent: Option<usize>,
+    /// The items of `toolpath` a [`Prober`] has run (every one up to the
+    /// last probe move, which ends where the machine stopped); 0 without
+    /// probe moves.
+    pub items_run: usize,
+    /// Where the items not yet run start, machine mm: the toolpath's
+    /// start, or where the last probe move stopped.
+    pub pending_start: [f64; 3],
 }
 
 /// Interprets `program` from the machine's origin with the default
@@ -167,7 +175,26 @@ pub struct Setup {
 
 /// Interprets `program` from `setup`.
 pub fn interpret_with(program: &str, setup: &Setup) -> Result<Program, GcodeError> {
+    interpret_inner(program, setup, None)
+}
+
+/// Interprets `program` from `setup`, its probe moves (G38.2 to G38.5)
+/// run by `prober` as they come (see [`probing`](super::probing)).
+pub fn interpret_probing(
+    program: &str,
+    setup: &Setup,
+    prober: Box<dyn Prober>,
+) -> Result<Program, GcodeError> {
+    interpret_inner(program, setup, Some(prober))
+}
+
+fn interpret_inner(
+    program: &str,
+    setup: &Setup,
+    prober: Option<Box<dyn Prober>>,
+) -> Result<Program, GcodeError> {
     let mut state = State::new(setup.start, setup.parameters, setup.tools.clone());
+    state.prober = prober;
     state.rotary_axes = setup.rotary_axes;
     state.angles = setup.start_angles;
     state.toolpath.start_angles = setup.start_angles;
@@ -250,6 +277,12 @@ pub(super) struct State {
     pub(super) ignored: Vec<Ignored>,
     pub(super) reported: HashSet<String>,
     pub(super) end: Option<usize>,
+    /// Runs the probe moves, if the run has a probe.
+    pub(super) prober: Option<Box<dyn Prober>>,
+    /// The toolpath's items the prober has run.
+    pub(super) items_run: usize,
+    /// Where the items not yet run start, machine mm.
+    pub(super) pending_start: [f64; 3],
 }
 
 impl State {
@@ -286,6 +319,9 @@ impl State {
             ignored: Vec::new(),
             reported: HashSet::new(),
             end: None,
+            prober: None,
+            items_run: 0,
+            pending_start: start,
         };
         state.sync_work_position();
         state
@@ -320,6 +356,8 @@ impl State {
             end: self.end,
             blocks_after_end,
             closing_percent,
+            items_run: self.items_run,
+            pending_start: self.pending_start,
         }
     }
 
@@ -638,6 +676,10 @@ impl State {
         let offset = if machine { [0.0; 3] } else { self.offset() };
         let (mut end, mut end_mm) = self.target(words, offset)?;
         let angles = self.target_angles(words)?;
+        if let (Motion::Probe(code), Some(feed)) = (motion, feed) {
+            self.position = end;
+            return self.probe_move(code, end_mm, feed, line);
+        }
         if compensating {
             return match motion {
                 Motion::Rapid | Motion::Line => self.compensated_straight(end, end_mm, feed, line),
@@ -761,6 +803,11 @@ impl State {
                 "{} with {}: the rotary axes move with G0, G1, G2 and G3 only, not in canned cycles",
                 word.name(),
                 c.name()
+            )),
+            Some(Motion::Probe(p)) => Err(format!(
+                "{} with {}: the rotary axes move with G0, G1, G2 and G3 only, not in probe moves",
+                word.name(),
+                p.name()
             )),
             Some(_) if comp_after_block => Err(format!(
                 "{}: the rotary axes cannot move while cutter radius compensation is on (G40 first)",

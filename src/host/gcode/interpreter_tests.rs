@@ -508,8 +508,6 @@ fn refused_g_codes_name_what_they_do() {
         ("G52", "local coordinate offset"),
         ("G33", "spindle-synchronized motion"),
         ("G33.1", "rigid tapping: it needs spindle synchronisation"),
-        ("G38.2", "probing"),
-        ("G38.5", "probing"),
         ("G76", "lathe threading cycle"),
         ("G74", "tapping: it needs spindle synchronisation"),
         ("G84", "tapping: it needs spindle synchronisation"),

@@ -107,6 +107,7 @@
 //! | G41.1 D, G42.1 D | the same with D the diameter, in program units |
 //! | G40 | compensation off: the held-back move ends where it was going; the next move must be straight |
 //! | G94 | accepted, no effect: the only feed mode |
+//! | G38.2 to G38.5 | straight probe toward the axis words at the feed, until contact (.2, .3) or its loss (.4, .5); run by a [`Prober`] ([`interpret_probing`]), the trip in #5061 to #5063 and #5070; see [`probing`] |
 //!
 //! Coordinates: the toolpath is in machine mm; a program's X Y Z are work
 //! coordinates, machine = work + the active system's origin + the G92
@@ -183,7 +184,7 @@
 //!   supported`; likewise G33
 //!   (spindle-synchronized motion); G33.1 (rigid tapping: it needs spindle
 //!   synchronisation); G74, G84 (tapping: it needs spindle synchronisation);
-//!   G76 (lathe threading cycle); G38.2 to G38.5 (probing); G93
+//!   G76 (lathe threading cycle); G93
 //!   (inverse-time feed); G95 (feed per revolution); G5 to G5.3 (spline);
 //!   G7, G8 (lathe diameter, radius mode).
 //! * Cutter compensation: `G1: the cutter compensation entry move, 2.0000
@@ -311,15 +312,18 @@ mod non_modal;
 pub mod param_store;
 pub mod parameters;
 mod polar;
+pub mod probing;
 mod text;
 mod tools;
 
 pub use interpreter::{
-    interpret, interpret_from, interpret_with, GcodeError, Ignored, Program, Setup, Units,
+    interpret, interpret_from, interpret_probing, interpret_with, GcodeError, Ignored, Program,
+    Setup, Units,
 };
 pub use lexer::{lex_line, lex_program, Block, LexError, Lexed, Word};
 pub use messages::Message;
 pub use parameters::PersistentParameters;
+pub use probing::{ProbeCode, ProbeOutcome, ProbeRequest, Prober};
 pub use text::program_text;
 
 #[cfg(test)]

@@ -38,6 +38,12 @@ pub(super) struct Saved {
 }
 
 impl ParamStore {
+    /// Sets numbered parameter `n` (one the program may set itself, such
+    /// as the probe's #5061 to #5070).
+    pub(super) fn set_numbered(&mut self, n: u32, value: f64) {
+        self.numbered.insert(n, value);
+    }
+
     /// A call's entry: #1 to #30 are the arguments (0 past them) and no
     /// local name is set; the caller's are kept for [`leave`](Self::leave).
     pub(super) fn enter(&mut self, arguments: &[f64]) -> Saved {
