@@ -142,3 +142,41 @@ fn motion_controller_proofs_use_the_stated_latencies() {
     // after it.
     assert_eq!(latency::LIMIT_OWN_AXIS, 1);
 }
+
+#[test]
+fn motion_controller_hold_ramp_gate_and_ramp_are_proved() {
+    assert_proved("motion_controller_hold_ramp");
+}
+
+/// The gate passes a tick in a clock without one: a hold would create
+/// steps.
+#[test]
+fn hold_ramp_proof_catches_a_gate_that_creates_a_tick() {
+    assert_mutation_caught(
+        "motion_controller_hold_ramp",
+        "tick_out = tick & (((fraction__q) & 17'h1ffff) >= deficit__q);",
+        "tick_out = tick | (((fraction__q) & 17'h1ffff) >= deficit__q);",
+    );
+}
+
+/// The fraction of a gated tick is dropped instead of carried: a hold
+/// would lose steps' time (the path would end late, not where it should).
+#[test]
+fn hold_ramp_proof_catches_a_lost_fraction() {
+    assert_mutation_caught(
+        "motion_controller_hold_ramp",
+        "fraction__d = fraction__q - deficit__q[(32'h0)+:(16)];",
+        "fraction__d = (fraction__q >= deficit__q) ? 16'h0 : fraction__q;",
+    );
+}
+
+/// The factor falls by twice RATE per tick: a ramp steeper than the
+/// programmed deceleration.
+#[test]
+fn hold_ramp_proof_catches_a_ramp_too_steep() {
+    assert_mutation_caught(
+        "motion_controller_hold_ramp",
+        "deficit__d = sum;",
+        "deficit__d = (sum + rate17 > unity) ? unity : sum + rate17;",
+    );
+}

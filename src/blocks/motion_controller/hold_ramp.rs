@@ -41,6 +41,16 @@
 //! `rate` / [`UNITY`] of the programmed speed per tick; from full speed
 //! the stop takes ceil([`UNITY`] / `rate`) ticks, and so does the return.
 //!
+//! ## Formal proof
+//! `formal/motion_controller_hold_ramp.sv` (`motion-hdl prove --proof
+//! motion_controller_hold_ramp`), with every input free: `tick_out` only
+//! with `tick`, so the gate never creates a tick, and so never a step;
+//! none at f = 0, every tick at f = [`UNITY`]; the carried fraction
+//! p' + [`UNITY`] x `tick_out` = p + f at every tick; the factor's exact
+//! step of `rate` per tick, clamped, and nothing between ticks. The
+//! mutations of a gate that creates a tick, a lost fraction and a ramp
+//! twice too steep each fail it (`tests/formal/motion_controller.rs`).
+//!
 //! Inside, the register is the deficit d = [`UNITY`] - f, so that the
 //! power-up state (all zero) is full speed: the tick passes iff p >= d,
 //! and the phase becomes p - d modulo 2^16.

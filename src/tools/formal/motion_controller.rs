@@ -13,6 +13,7 @@
 use super::FormalSpec;
 use crate::blocks::motion_controller::axis::MotionAxis;
 use crate::blocks::motion_controller::axis_io::AxisIo;
+use crate::blocks::motion_controller::hold_ramp::HoldRamp;
 use crate::blocks::motion_controller::machine_io::MachineIo;
 use crate::blocks::motion_controller::{registers, STAGE_PENDING_BITS};
 use crate::blocks::step_output::StepOutput;
@@ -31,6 +32,17 @@ fn exported_axis() -> MotionAxis<2, 3> {
 
 pub(super) fn specs() -> Vec<FormalSpec> {
     vec![
+        FormalSpec {
+            name: "motion_controller_hold_ramp",
+            block: "motion_controller",
+            module: "hold_ramp",
+            property_file: "motion_controller_hold_ramp.sv",
+            instance: "HoldRamp (the feed hold's factor and tick gate; no generics)",
+            properties: "the gate never creates a tick: tick_out only with tick, none at factor 0, every tick at UNITY; the factor within 0 to UNITY; the fraction carried at every tick (phase' + UNITY x tick_out = phase + factor); the factor moves exactly one step of RATE (0: UNITY) per tick toward 0 under hold and toward UNITY without, clamped, and not between ticks; reset and power-up at UNITY",
+            bmc_depth: 6,
+            induction_depth: 2,
+            build: || Box::new(HoldRamp::default()),
+        },
         FormalSpec {
             name: "motion_controller_axis_io",
             block: "motion_controller",
