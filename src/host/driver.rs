@@ -13,6 +13,16 @@
 //! [`POLL_CLOCKS`] clocks. A run the controller would refuse (E-stop
 //! active or latched, a trip held) fails at once with
 //! [`DriverError::Refused`], naming what holds it.
+//!
+//! The feed hold ([`Driver::hold`], [`Driver::release`],
+//! [`Driver::set_hold_rate`], [`Driver::hold_state`]) stops the path along
+//! itself without ending the run: [`Driver::run_with_holds`] requests and
+//! releases it at given clocks, and the run ends where it would without
+//! them. While held no period ends, so the FIFOs are not drained and no
+//! underrun comes; a run that stands held with no release to come fails
+//! with [`DriverError::Held`] (a `feed_hold` input still pressed, a probe
+//! trip with `PROBE_CONTROL.STOP`); [`Driver::abandon_held_path`] then
+//! ends it where it stands.
 
 use thiserror::Error;
 
