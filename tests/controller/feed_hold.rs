@@ -88,12 +88,23 @@ fn queue(b: &mut Controller3, path: &[[i32; 3]], closing: bool) {
 /// Resets `b`, queues `path`, starts, applies `hold`, and runs until the
 /// path has ended (an underrun at its end) and the last step left.
 fn run_path(b: &mut Controller3, path: &[[i32; 3]], hold: Option<Hold>) -> Run {
-    b.reset();
-    setup(b, [STEP_DIR; 3], [2, 2, 2], FILTER, PERIOD);
     // A last period of no steps: an underrun ends the path at the
     // boundary after it, so that the path's last step (which the DDA
-    // makes on the boundary tick) is not cut by the underrun itself.
-    queue(b, path, true);
+    // makes on the boundary tick) is not cut by the underrun itself
+    // (see `a_path_ending_by_an_underrun_keeps_its_last_step`).
+    run_path_closed(b, path, hold, true)
+}
+
+/// [`run_path`], with or without the closing period of no steps.
+fn run_path_closed(
+    b: &mut Controller3,
+    path: &[[i32; 3]],
+    hold: Option<Hold>,
+    closing: bool,
+) -> Run {
+    b.reset();
+    setup(b, [STEP_DIR; 3], [2, 2, 2], FILTER, PERIOD);
+    queue(b, path, closing);
     let mut log = PinLog::new(b, [STEP_DIR; 3]);
     b.write("CONTROL", 0, 1);
     let start = b.cycles;
@@ -321,4 +332,31 @@ fn a_hold_meets_an_underrun_an_abort_and_a_start() {
     while b.clock(false, 0, 0, false, false).active {}
     let positions = [0, 1, 2].map(|k| b.read("CMD_POSITION", k) as i32 as i64);
     assert_eq!(positions, free.positions);
+}
+
+/// A known bug on main, not yet fixed: a path whose last period has
+/// steps, ended by the underrun at the boundary after it, loses that
+/// period's last step on an axis whose DDA makes it on the boundary tick
+/// (PERIOD 24: axis 1 ends at 9, one of the final period's two steps
+/// short of 8). `CMD_POSITION` agrees with the pins, so no count is
+/// wrong, but the path ends a step short. The driver's paths (200-tick
+/// periods) did not show it in 100 random runs; the block tests here
+/// close every path with a period of no steps. Run with `--run-ignored
+/// only` to see it fail until the gateware lets the boundary tick's step
+/// out before the underrun stops the axes.
+#[test]
+#[ignore = "known bug on main: an underrun at a path's end cuts the step the DDA makes on the boundary tick"]
+fn a_path_ending_by_an_underrun_keeps_its_last_step() {
+    let mut path = vec![[1, 3, -5]; 5];
+    path.extend([
+        [-2, -1, 0],
+        [-2, -1, 0],
+        [-1, -1, 0],
+        [-1, -2, 0],
+        [0, -2, 0],
+    ]);
+    let expected: [i64; 3] = [0, 1, 2].map(|k| path.iter().map(|e| e[k] as i64).sum());
+    let mut b = Controller3::new();
+    let run = run_path_closed(&mut b, &path, None, false);
+    assert_eq!(run.positions, expected);
 }
