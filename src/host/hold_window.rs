@@ -9,7 +9,8 @@
 //! stop of T seconds, the longest of the path's peak speed over its
 //! acceleration limit and each axis's peak velocity over its own.
 //! On a base tick faster than 65536 / T, `simulate` raises `TICK_DIVISOR`
-//! (the same period, fewer and longer ticks) so that such a stop fits.
+//! (the same period, fewer and longer ticks) so that such a stop fits,
+//! choosing the divisor whose rate stops closest to T ([`hold_tick_settings`]).
 
 use super::driver::{HoldAction, HoldEvent};
 use super::MachineSettings;
@@ -100,6 +101,35 @@ pub fn min_tick_divisor(rate: Option<u32>, stop_s: f64, clock_hz: f64) -> u64 {
     }
 }
 
+/// Clocks per base tick and base ticks per period for a hold whose stop
+/// should take `stop_s`: among the tick divisors that split the period
+/// into at most 65535 ticks, at least `min_period_ticks` of them (an
+/// axis's steps need them), from the smallest that fits the stop in 65536
+/// ticks ([`min_tick_divisor`]) to 16 times it, the one whose
+/// [`rate_for_stop`] stops closest to `stop_s` (never sooner: the rate
+/// is rounded down), the smaller divisor on a tie. Without one, the
+/// smallest that fits the stop.
+pub fn hold_tick_settings(
+    period_s: f64,
+    clock_hz: f64,
+    stop_s: f64,
+    min_period_ticks: u64,
+) -> Result<(u32, u32), String> {
+    let clocks = (period_s * clock_hz).round() as u64;
+    let first = min_tick_divisor(None, stop_s, clock_hz).max(clocks.div_ceil(65_535));
+    let best = (first..=first.saturating_mul(16).min(clocks))
+        .filter(|d| clocks.is_multiple_of(*d) && clocks / d >= min_period_ticks.max(1))
+        .map(|d| {
+            let tick_hz = clock_hz / d as f64;
+            (stop_time_s(rate_for_stop(stop_s, tick_hz), tick_hz), d)
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    match best {
+        Some((_, d)) if stop_s > 0.0 => Ok((d as u32, (clocks / d) as u32)),
+        _ => super::simulation::period_settings_from(period_s, clock_hz, first),
+    }
+}
+
 /// The largest `HOLD_CONTROL.RATE` whose stop from full speed on a base
 /// tick of `tick_hz` takes `stop_s` or longer (0, an immediate stop, when
 /// `stop_s` is 0: nothing limits the deceleration).
@@ -165,4 +195,32 @@ pub fn speeds_at_the_pins(
             distance[start..=end].iter().sum::<f64>() / (span as f64 * period_s)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The square's stop (40 mm/s at 1000 mm/s^2: 40 ms) at 2 MHz and
+    /// 200 us periods (400 clocks): the smallest divisor that fits, 2,
+    /// would take RATE 1, a 65.5 ms stop; divisor 16 takes RATE 13, 40.3
+    /// ms, never shorter than asked.
+    #[test]
+    fn the_tick_whose_rate_stops_closest_is_chosen() {
+        let (d, ticks) = hold_tick_settings(200e-6, 2e6, 0.04, 1).unwrap();
+        assert_eq!((d, ticks), (16, 25));
+        let tick_hz = 2e6 / d as f64;
+        let rate = rate_for_stop(0.04, tick_hz);
+        assert_eq!(rate, 13);
+        let stop = stop_time_s(rate, tick_hz);
+        assert!((0.04..0.0405).contains(&stop), "{stop}");
+        // An axis needing 100 ticks a period keeps the divisor at 4 or
+        // less: 2 and 4 both stop in over 40 ms, 4 closer (RATE 3).
+        assert_eq!(
+            hold_tick_settings(200e-6, 2e6, 0.04, 100).unwrap(),
+            (4, 100)
+        );
+        // No stop to make: the plain settings.
+        assert_eq!(hold_tick_settings(1e-3, 1e6, 0.0, 1).unwrap(), (1, 1000));
+    }
 }

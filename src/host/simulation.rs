@@ -19,7 +19,8 @@ use super::gcode::{
     interpret_probing, interpret_with, program_text, Ignored, Message, Program, Setup, Units,
 };
 use super::hold_window::{
-    min_tick_divisor, speeds_at_the_pins, stop_time_s, stop_within_limits_s, HoldWindow,
+    hold_tick_settings, min_tick_divisor, speeds_at_the_pins, stop_time_s, stop_within_limits_s,
+    HoldWindow,
 };
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
@@ -675,11 +676,21 @@ pub fn simulate(
             Some((probed.run, probed.underruns, probed.probes)),
         ),
         None => {
-            let min_divisor = options
-                .hold
-                .map_or(1, |h| min_tick_divisor(h.rate, stop_s, options.clock_hz));
-            let (tick_divisor, period_ticks) =
-                period_settings_from(machine.period, options.clock_hz, min_divisor)?;
+            let (tick_divisor, period_ticks) = match options.hold {
+                // The machine's stop: the tick whose RATE comes closest.
+                Some(h) if h.rate.is_none() => {
+                    let needed = (0..3)
+                        .map(|k| {
+                            let peak = interpolation.counts.iter().map(|c| c[k].unsigned_abs());
+                            let per_step = if options.uniform[k] { 2 } else { 1 };
+                            peak.max().unwrap_or(0) as u64 * per_step
+                        })
+                        .max()
+                        .unwrap_or(0);
+                    hold_tick_settings(machine.period, options.clock_hz, stop_s, needed)?
+                }
+                _ => period_settings(machine.period, options.clock_hz)?,
+            };
             (
                 controller_driver(options, tick_divisor, period_ticks, None)?,
                 None,
