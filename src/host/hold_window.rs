@@ -92,13 +92,9 @@ impl HoldWindow {
 }
 
 /// The smallest `TICK_DIVISOR` whose base tick lets a stop of `stop_s`
-/// (see [`stop_within_limits_s`]) take at most 65536 ticks; 1 with an
-/// explicit `rate`.
-pub fn min_tick_divisor(rate: Option<u32>, stop_s: f64, clock_hz: f64) -> u64 {
-    match rate {
-        Some(_) => 1,
-        None => (clock_hz * stop_s / SLOWEST_STOP_TICKS).ceil().max(1.0) as u64,
-    }
+/// (see [`stop_within_limits_s`]) take at most 65536 ticks.
+pub fn min_tick_divisor(stop_s: f64, clock_hz: f64) -> u64 {
+    (clock_hz * stop_s / SLOWEST_STOP_TICKS).ceil().max(1.0) as u64
 }
 
 /// Clocks per base tick and base ticks per period for a hold whose stop
@@ -116,7 +112,7 @@ pub fn hold_tick_settings(
     min_period_ticks: u64,
 ) -> Result<(u32, u32), String> {
     let clocks = (period_s * clock_hz).round() as u64;
-    let first = min_tick_divisor(None, stop_s, clock_hz).max(clocks.div_ceil(65_535));
+    let first = min_tick_divisor(stop_s, clock_hz).max(clocks.div_ceil(65_535));
     let best = (first..=first.saturating_mul(16).min(clocks))
         .filter(|d| clocks.is_multiple_of(*d) && clocks / d >= min_period_ticks.max(1))
         .map(|d| {

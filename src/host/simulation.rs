@@ -594,7 +594,7 @@ fn run_probe_moves(
     }
     let machine = options.machine.unwrap_or_default();
     let stop_s = stop_within_limits_s(&machine, 0.0, machine.max_velocity);
-    let min_divisor = min_tick_divisor(None, stop_s, options.clock_hz);
+    let min_divisor = min_tick_divisor(stop_s, options.clock_hz);
     let (tick_divisor, period_ticks) =
         period_settings_from(machine.period, options.clock_hz, min_divisor)?;
     let surface = plane.surface([0.0; 3], machine.steps_per_mm);
@@ -770,6 +770,11 @@ pub fn simulate(
         .extend_from_slice(&interpolation.positions);
     planned_run.speeds.extend_from_slice(&interpolation.speeds);
     let offset = |p: [i64; 3]| [p[0] + start[0], p[1] + start[1], p[2] + start[2]];
+    // Through a hold: the path speed at the pins, 10 ms windows.
+    let pin_speeds = options.hold.map(|_| {
+        let window = (0.01 / period_s).round() as usize;
+        speeds_at_the_pins(bus.samples(), machine.steps_per_mm, period_s, window)
+    });
     let mut figures = Vec::new();
     if let Some(dir) = &options.out_dir {
         std::fs::create_dir_all(dir)
@@ -795,13 +800,9 @@ pub fn simulate(
             .collect();
         plot_path_xy(&planned, &measured, unit, &xy).map_err(|e| e.to_string())?;
         let speed = dir.join(format!("{stem}-speed.svg"));
-        let measured = options.hold.map(|_| {
-            let window = (0.01 / period_s).round() as usize;
-            speeds_at_the_pins(bus.samples(), machine.steps_per_mm, period_s, window)
-        });
         plot_speed(
             &planned_run.speeds,
-            measured
+            pin_speeds
                 .as_deref()
                 .map(|m| ("at the pins, through the feed hold (10 ms windows)", m)),
             machine.period,
@@ -828,17 +829,11 @@ pub fn simulate(
             figures.push(fe);
         }
     }
-    let hold = options.hold.map(|h| {
+    let hold = options.hold.zip(pin_speeds).map(|(h, speeds)| {
         let rate = hold_rate.unwrap_or(0);
         let at =
             |e: &HoldEvent| (e.clock <= report.cycles).then_some(e.clock as f64 / options.clock_hz);
         let released_s = at(&hold_events[1]);
-        let speeds = speeds_at_the_pins(
-            bus.samples(),
-            machine.steps_per_mm,
-            period_s,
-            (0.01 / period_s).round() as usize,
-        );
         let after = (h.resume_at_s / period_s) as usize;
         HoldReport {
             rate,

@@ -682,3 +682,23 @@ fn the_driver_arms_the_probe_and_reads_the_positions_of_its_trip() {
     let second = driver.probe_trip().unwrap().expect("lifting it tripped");
     assert!(second.commanded[0] > trip.commanded[0], "{second:?}");
 }
+
+/// `motion-hdl simulate FILE --clock-mhz MHZ --out-dir OUT ARGS...`: its
+/// success, stdout and stderr.
+pub(crate) fn run_simulate(
+    file: &std::path::Path,
+    clock_mhz: &str,
+    out_dir: &std::path::Path,
+    args: &[&str],
+) -> (bool, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
+        .arg("simulate")
+        .arg(file)
+        .args(["--clock-mhz", clock_mhz, "--out-dir"])
+        .arg(out_dir)
+        .args(args)
+        .output()
+        .unwrap();
+    let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
+    (out.status.success(), text(&out.stdout), text(&out.stderr))
+}

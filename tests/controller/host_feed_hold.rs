@@ -165,18 +165,7 @@ fn a_hold_with_no_release_fails_the_run_and_names_the_position() {
 fn simulate_holds_and_resumes_the_square_and_names_bad_hold_options() {
     let square = motion_hdl::tools::repo_root().join("examples/square.path");
     let dir = tempfile::tempdir().unwrap();
-    let run = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
-            .arg("simulate")
-            .arg(&square)
-            .args(["--clock-mhz", "2", "--out-dir"])
-            .arg(dir.path())
-            .args(args)
-            .output()
-            .unwrap();
-        let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
-        (out.status.success(), text(&out.stdout), text(&out.stderr))
-    };
+    let run = |args: &[&str]| crate::host::run_simulate(&square, "2", dir.path(), args);
     let (ok, stdout, stderr) = run(&["--hold-at", "0.2s", "--resume-at", "350ms"]);
     assert!(ok, "{stdout}{stderr}");
     assert!(stdout.contains("commanded  [0, 0, 0]"), "{stdout}");

@@ -5,27 +5,13 @@
 
 use motion_hdl::host::simulated_probe::ProbePlane;
 use motion_hdl::host::simulation::{simulate, SimulationOptions};
-use motion_hdl::sim::Backend;
 
-/// 50 kHz, as `gcode.rs`: 50 clocks per 1 ms period, Z's 20 mm/s (8
-/// steps a period) in 32 of them.
+/// `gcode.rs`'s options (50 kHz, step axes, the compiled backend) with
+/// the probe against `plane`.
 fn options(out_dir: &std::path::Path, plane: &str) -> SimulationOptions {
     SimulationOptions {
-        format: None,
-        machine: None,
-        tools: None,
-        clock_hz: 5e4,
-        uniform: [false; 3],
-        servo: [false; 3],
-        step_len: 2,
-        step_space: 2,
-        out_dir: Some(out_dir.to_path_buf()),
-        vcd: None,
-        progress: false,
-        backend: Backend::from_env_or(Backend::Verilator).unwrap(),
-        trips: Vec::new(),
-        hold: None,
         probe_plane: Some(ProbePlane::parse(plane).unwrap()),
+        ..crate::gcode::options(out_dir)
     }
 }
 
@@ -93,16 +79,7 @@ fn simulate_probe_plane_runs_the_example_and_names_bad_probing() {
     let example = root.join("examples/probe-touch-off.ngc");
     let dir = tempfile::tempdir().unwrap();
     let run = |file: &std::path::Path, args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
-            .arg("simulate")
-            .arg(file)
-            .args(["--clock-mhz", "0.05", "--out-dir"])
-            .arg(dir.path())
-            .args(args)
-            .output()
-            .unwrap();
-        let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
-        (out.status.success(), text(&out.stdout), text(&out.stderr))
+        crate::host::run_simulate(file, "0.05", dir.path(), args)
     };
     let (ok, stdout, stderr) = run(&example, &["--probe-plane", "z=-1.234"]);
     assert!(ok, "{stdout}{stderr}");
