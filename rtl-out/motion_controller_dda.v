@@ -33,7 +33,7 @@
 //   bus_read_data   out       32  the addressed register, registered: valid in the clock after `bus_read`, held until the next read
 //   irq             out        1  level interrupt: an enabled `STATUS` bit is set; registered
 //   running         out        1  periods are running (`STATE.RUNNING`)
-//   active          out        1  `running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls (the drives' enables are `drive_enable`)
+//   active          out        1  `running`, a motion tick while running in the last 4 clocks (its step is still on its way to the output stage), or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls, and once `active` has fallen no step of the run is left (the drives' enables are `drive_enable`)
 //   step_a          out        3  bit k: axis k's step (step/dir), up (up/down) or A (quadrature); registered
 //   step_b          out        3  bit k: axis k's dir, down or B; registered
 //   drive_enable    out        3  bit k: enable (servo-on) of axis k's drive: `IO_CONFIG.DRIVE_ENABLE`, forced low by an E-stop, a watchdog expiry or that axis's alarm; registered
@@ -120,6 +120,8 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
     localparam  axis_bit__1 = 3'b10;
     localparam  axis_bit__2 = 3'b100;
     localparam  zero_k = 3'b0;
+    localparam  zero_trail = 4'h0;
+    localparam  one_trail = 4'h1;
 
     // Stub signals
     reg  axes__0__clock;
@@ -434,10 +436,14 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
     wire  feed_hold_unit__tick_out;
     wire  feed_hold_unit__holding;
     wire  feed_hold_unit__held;
+    wire  [15:0] feed_hold_unit__factor_fraction;
     wire  [31:0] feed_hold_unit__read_data;
     reg  motion_tick__d;
     wire  motion_tick__q;
     reg  motion_tick__clock;
+    reg  [3:0] tick_trail__d;
+    wire  [3:0] tick_trail__q;
+    reg  tick_trail__clock;
     reg  analog__clock;
     reg  analog__reset;
     reg  [7:0] analog__bus_address;
@@ -447,6 +453,9 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
     reg  analog__pop;
     reg  analog__stop_zero;
     reg  analog__abort;
+    reg  analog__running;
+    reg  analog__slowed_in;
+    reg  [15:0] analog__factor;
     reg  [2:0] analog__analog_axes;
     reg  [15:0] analog__code_magnitude;
     reg  analog__code_negative;
@@ -866,12 +875,18 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
         .tick_out(feed_hold_unit__tick_out),
         .holding(feed_hold_unit__holding),
         .held(feed_hold_unit__held),
+        .factor_fraction(feed_hold_unit__factor_fraction),
         .read_data(feed_hold_unit__read_data)
     );
     motion_controller_dda__motion_tick motion_tick(
         .d(motion_tick__d),
         .q(motion_tick__q),
         .clock(motion_tick__clock)
+    );
+    motion_controller_dda__tick_trail tick_trail(
+        .d(tick_trail__d),
+        .q(tick_trail__q),
+        .clock(tick_trail__clock)
     );
     motion_controller_dda__analog analog(
         .clock(analog__clock),
@@ -883,6 +898,9 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
         .pop(analog__pop),
         .stop_zero(analog__stop_zero),
         .abort(analog__abort),
+        .running(analog__running),
+        .slowed_in(analog__slowed_in),
+        .factor(analog__factor),
         .analog_axes(analog__analog_axes),
         .code_magnitude(analog__code_magnitude),
         .code_negative(analog__code_negative),
@@ -948,6 +966,7 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
         expired_prev__clock = clock;
         held_prev__clock = clock;
         motion_tick__clock = clock;
+        tick_trail__clock = clock;
         abort_hold__clock = clock;
         div_owner__clock = clock;
         read_data__d = read_data__q;
@@ -955,6 +974,7 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
         expired_prev__d = expired_prev__q;
         held_prev__d = held_prev__q;
         motion_tick__d = motion_tick__q;
+        tick_trail__d = tick_trail__q;
         abort_hold__d = abort_hold__q;
         div_owner__d = div_owner__q;
         registers__clock = clock;
@@ -1111,7 +1131,11 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
         pop = period__pop;
         underrun = period__underrun;
         running = period__running;
-        active = period__running | any_busy;
+        tick_trail__d = tick_trail__q << 32'h1;
+        if (motion_tick__q & period__running) begin
+            tick_trail__d = (tick_trail__q << 32'h1) | one_trail;
+        end
+        active = period__running | any_busy | (tick_trail__q != zero_trail);
         cause_register__reset = reset;
         cause_register__limit_held = limit_held;
         cause_register__alarm_held = alarm_held;
@@ -1328,6 +1352,9 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
         analog__pop = pop;
         analog__stop_zero = period__running & (underrun | halt) & ~abort;
         analog__abort = abort;
+        analog__running = period__running;
+        analog__slowed_in = feed_hold_unit__holding;
+        analog__factor = feed_hold_unit__factor_fraction;
         analog__analog_axes = analog_axes;
         analog__code_magnitude = walk_magnitude;
         analog__code_negative = walk_negative;
@@ -1460,6 +1487,7 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
             expired_prev__d = 1'b0;
             held_prev__d = 1'b0;
             motion_tick__d = 1'b0;
+            tick_trail__d = zero_trail;
         end
     end
 
@@ -1485,7 +1513,7 @@ module motion_controller_dda__abort_hold(d,q,clock);
 endmodule // motion_controller_dda__abort_hold
 
 
-module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_write,bus_read,pop,stop_zero,abort,analog_axes,code_magnitude,code_negative,code_wide,walk,read_data,read_selected,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
+module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_write,bus_read,pop,stop_zero,abort,running,slowed_in,factor,analog_axes,code_magnitude,code_negative,code_wide,walk,read_data,read_selected,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
 
     // Module arguments
     input wire  clock;
@@ -1497,6 +1525,9 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
     input wire  pop;
     input wire  stop_zero;
     input wire  abort;
+    input wire  running;
+    input wire  slowed_in;
+    input wire  [15:0] factor;
     input wire  [2:0] analog_axes;
     input wire  [15:0] code_magnitude;
     input wire  code_negative;
@@ -1511,6 +1542,11 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
 
     // Constant declarations
     localparam  has_analog = 1'b0;
+    localparam  load_clock = 5'b10001;
+    localparam  zero5b = 5'b0;
+    localparam  one5 = 5'b1;
+    localparam  zero16 = 16'h0;
+    localparam  zero17 = 17'b0;
     localparam  code_max = 16'h7fff;
     localparam  code_min = 16'h8000;
     localparam  applied_bits = 5'b11000;
@@ -1552,9 +1588,6 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
     wire  dac__dac_ldac;
     wire  dac__busy;
     wire  dac__safe;
-    reg  pop_d__d;
-    wire  pop_d__q;
-    reg  pop_d__clock;
     reg  [2:0] walk_next__d;
     wire  [2:0] walk_next__q;
     reg  walk_next__clock;
@@ -1567,8 +1600,42 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
     reg  stop_zero_d__d;
     wire  stop_zero_d__q;
     reg  stop_zero_d__clock;
+    reg  scaled__d;
+    wire  scaled__q;
+    reg  scaled__clock;
+    reg  [15:0] factor_bits__d;
+    wire  [15:0] factor_bits__q;
+    reg  factor_bits__clock;
+    reg  [4:0] step_count__d;
+    wire  [4:0] step_count__q;
+    reg  step_count__clock;
+    reg  [15:0] magnitude_q__d;
+    wire  [15:0] magnitude_q__q;
+    reg  magnitude_q__clock;
+    reg  negative_q__d;
+    wire  negative_q__q;
+    reg  negative_q__clock;
+    reg  [15:0] product__d;
+    wire  [15:0] product__q;
+    reg  product__clock;
+    reg  owed__d;
+    wire  owed__q;
+    reg  owed__clock;
+    reg  update_wait__d;
+    wire  update_wait__q;
+    reg  update_wait__clock;
 
     // Local signals
+    reg  slowed;
+    reg  walking;
+    reg  rewalk;
+    reg  start;
+    reg  scaled_now;
+    reg  [4:0] count_now;
+    reg  last_load;
+    reg  [15:0] saturated;
+    reg  [16:0] addend;
+    reg  [16:0] sum;
     reg  [2:0] walk_now;
     reg  [2:0] load;
     reg  [15:0] code;
@@ -1597,11 +1664,6 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
         .busy(dac__busy),
         .safe(dac__safe)
     );
-    motion_controller_dda__analog__pop_d pop_d(
-        .d(pop_d__d),
-        .q(pop_d__q),
-        .clock(pop_d__clock)
-    );
     motion_controller_dda__analog__walk_next walk_next(
         .d(walk_next__d),
         .q(walk_next__q),
@@ -1622,27 +1684,126 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
         .q(stop_zero_d__q),
         .clock(stop_zero_d__clock)
     );
+    motion_controller_dda__analog__scaled scaled(
+        .d(scaled__d),
+        .q(scaled__q),
+        .clock(scaled__clock)
+    );
+    motion_controller_dda__analog__factor_bits factor_bits(
+        .d(factor_bits__d),
+        .q(factor_bits__q),
+        .clock(factor_bits__clock)
+    );
+    motion_controller_dda__analog__step_count step_count(
+        .d(step_count__d),
+        .q(step_count__q),
+        .clock(step_count__clock)
+    );
+    motion_controller_dda__analog__magnitude_q magnitude_q(
+        .d(magnitude_q__d),
+        .q(magnitude_q__q),
+        .clock(magnitude_q__clock)
+    );
+    motion_controller_dda__analog__negative_q negative_q(
+        .d(negative_q__d),
+        .q(negative_q__q),
+        .clock(negative_q__clock)
+    );
+    motion_controller_dda__analog__product product(
+        .d(product__d),
+        .q(product__q),
+        .clock(product__clock)
+    );
+    motion_controller_dda__analog__owed owed(
+        .d(owed__d),
+        .q(owed__q),
+        .clock(owed__clock)
+    );
+    motion_controller_dda__analog__update_wait update_wait(
+        .d(update_wait__d),
+        .q(update_wait__q),
+        .clock(update_wait__clock)
+    );
 
     // Update code
     always @(*) begin
-        pop_d__clock = clock;
         walk_next__clock = clock;
         update_request__clock = clock;
         read_sel__clock = clock;
         stop_zero_d__clock = clock;
-        pop_d__d = pop_d__q;
+        scaled__clock = clock;
+        factor_bits__clock = clock;
+        step_count__clock = clock;
+        magnitude_q__clock = clock;
+        negative_q__clock = clock;
+        product__clock = clock;
+        owed__clock = clock;
+        update_wait__clock = clock;
         walk_next__d = walk_next__q;
         update_request__d = update_request__q;
         read_sel__d = read_sel__q;
         stop_zero_d__d = stop_zero_d__q;
+        scaled__d = scaled__q;
+        factor_bits__d = factor_bits__q;
+        step_count__d = step_count__q;
+        magnitude_q__d = magnitude_q__q;
+        negative_q__d = negative_q__q;
+        product__d = product__q;
+        owed__d = owed__q;
+        update_wait__d = update_wait__q;
         dac__clock = clock;
-        pop_d__d = pop;
+        slowed = slowed_in;
+        walking = walk_next__q != zero_k;
+        rewalk = (slowed | owed__q) & running & ~abort & ~walking & ~update_wait__q & ~update_request__q & ~dac__busy & (analog_axes != zero_k) & has_analog;
+        start = pop | rewalk;
         walk_now = walk_next__q;
-        if (pop_d__q) begin
-            walk_now = first_axis;
-        end
+        scaled_now = scaled__q;
+        count_now = step_count__q;
         walk = walk_now;
+        saturated = code_magnitude;
+        if (code_wide) begin
+            if (code_negative) begin
+                saturated = code_min;
+            end
+            else begin
+                saturated = code_max;
+            end
+        end
+        addend = zero17;
+        if (factor_bits__q[32'h0]) begin
+            addend = ((magnitude_q__q) & 17'h1ffff);
+        end
+        sum = ((product__q) & 17'h1ffff) + addend;
+        last_load = 1'b0;
         load = walk_now & analog_axes;
+        walk_next__d = walk_now << 32'h1;
+        step_count__d = zero5b;
+        if (scaled_now & (walk_now != zero_k)) begin
+            if (count_now == load_clock) begin
+                last_load = (walk_now & last_axis) != zero_k;
+            end
+            else begin
+                load = zero_k;
+                walk_next__d = walk_now;
+                step_count__d = count_now + one5;
+                if (count_now == zero5b) begin
+                    magnitude_q__d = saturated;
+                    negative_q__d = code_negative;
+                    product__d = zero16;
+                end
+                else begin
+                    product__d = sum[(32'h1)+:(16)];
+                    factor_bits__d = (factor_bits__q >> 32'h1) | (factor_bits__q << 32'hf);
+                end
+            end
+        end
+        if (start) begin
+            walk_next__d = first_axis;
+            scaled__d = slowed;
+            step_count__d = zero5b;
+            factor_bits__d = factor;
+            owed__d = slowed;
+        end
         code = code_magnitude;
         if (code_negative) begin
             code = zero_code - code_magnitude;
@@ -1655,14 +1816,41 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
                 code = code_max;
             end
         end
-        walk_next__d = walk_now << 32'h1;
-        update_request__d = ((walk_now & last_axis) != zero_k) & (analog_axes != zero_k);
+        if (scaled_now) begin
+            code = product__q;
+            if (negative_q__q) begin
+                code = zero_code - product__q;
+            end
+        end
+        update_request__d = ((walk_now & last_axis) != zero_k) & (analog_axes != zero_k) & ~scaled_now;
+        if (update_wait__q & ~start) begin
+            if (~dac__busy) begin
+                update_request__d = 1'b1;
+                update_wait__d = 1'b0;
+            end
+            else begin
+                update_wait__d = 1'b1;
+            end
+        end
+        else begin
+            update_wait__d = 1'b0;
+        end
+        if (last_load & (analog_axes != zero_k)) begin
+            update_wait__d = 1'b1;
+        end
         stop_zero_d__d = stop_zero & has_analog;
         if (stop_zero_d__q) begin
             load = analog_axes;
             code = zero_code;
             walk_next__d = zero_k;
             update_request__d = analog_axes != zero_k;
+            update_wait__d = 1'b0;
+            owed__d = 1'b0;
+        end
+        if (abort) begin
+            walk_next__d = zero_k;
+            update_wait__d = 1'b0;
+            owed__d = 1'b0;
         end
         hit = 1'b0;
         applied_hit = 1'b0;
@@ -1717,11 +1905,12 @@ module motion_controller_dda__analog(clock,reset,bus_address,bus_write_data,bus_
         dac_l1_n = dac__dac_l1_n | ~has_analog;
         dac_ldac = dac__dac_ldac & has_analog;
         if (reset) begin
-            pop_d__d = 1'b0;
             walk_next__d = zero_k;
             update_request__d = 1'b0;
             read_sel__d = 1'b0;
             stop_zero_d__d = 1'b0;
+            owed__d = 1'b0;
+            update_wait__d = 1'b0;
         end
     end
 
@@ -3334,7 +3523,45 @@ module motion_controller_dda__analog__dac__timing_word(d,q,clock);
 endmodule // motion_controller_dda__analog__dac__timing_word
 
 
-module motion_controller_dda__analog__pop_d(d,q,clock);
+module motion_controller_dda__analog__factor_bits(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__analog__factor_bits
+
+
+module motion_controller_dda__analog__magnitude_q(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__analog__magnitude_q
+
+
+module motion_controller_dda__analog__negative_q(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -3350,7 +3577,45 @@ module motion_controller_dda__analog__pop_d(d,q,clock);
        q <= d;
     end
 
-endmodule // motion_controller_dda__analog__pop_d
+endmodule // motion_controller_dda__analog__negative_q
+
+
+module motion_controller_dda__analog__owed(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__analog__owed
+
+
+module motion_controller_dda__analog__product(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__analog__product
 
 
 module motion_controller_dda__analog__read_sel(d,q,clock);
@@ -3370,6 +3635,44 @@ module motion_controller_dda__analog__read_sel(d,q,clock);
     end
 
 endmodule // motion_controller_dda__analog__read_sel
+
+
+module motion_controller_dda__analog__scaled(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__analog__scaled
+
+
+module motion_controller_dda__analog__step_count(d,q,clock);
+
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__analog__step_count
 
 
 module motion_controller_dda__analog__stop_zero_d(d,q,clock);
@@ -3408,6 +3711,25 @@ module motion_controller_dda__analog__update_request(d,q,clock);
     end
 
 endmodule // motion_controller_dda__analog__update_request
+
+
+module motion_controller_dda__analog__update_wait(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__analog__update_wait
 
 
 module motion_controller_dda__analog__walk_next(d,q,clock);
@@ -22992,7 +23314,7 @@ module motion_controller_dda__expired_prev(d,q,clock);
 endmodule // motion_controller_dda__expired_prev
 
 
-module motion_controller_dda__feed_hold_unit(clock,reset,feed_hold,sample,length,address,write,write_data,probe_stop,tick,tick_out,holding,held,read_data);
+module motion_controller_dda__feed_hold_unit(clock,reset,feed_hold,sample,length,address,write,write_data,probe_stop,tick,tick_out,holding,held,factor_fraction,read_data);
 
     // Module arguments
     input wire  clock;
@@ -23008,6 +23330,7 @@ module motion_controller_dda__feed_hold_unit(clock,reset,feed_hold,sample,length
     output reg  tick_out;
     output reg  holding;
     output reg  held;
+    output reg  [15:0] factor_fraction;
     output reg  [31:0] read_data;
 
     // Constant declarations
@@ -23145,6 +23468,7 @@ module motion_controller_dda__feed_hold_unit(clock,reset,feed_hold,sample,length
         tick_out = ramp__tick_out;
         holding = ramp__slowed;
         held = ramp__stopped;
+        factor_fraction = ramp__factor[(32'h0)+:(16)];
         read_data = zero32;
         if (address == a_control) begin
             read_data = ((rate__q) & 32'hffffffff) << 32'h10;
@@ -30573,7 +30897,7 @@ module motion_controller_dda__registers(clock,reset,address,write_data,write,run
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h600;
+    localparam  version_value = 32'h601;
     localparam  config_value = 32'h5610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
@@ -31163,6 +31487,25 @@ module motion_controller_dda__tick_divider__strobe_reg(d,q,clock);
     end
 
 endmodule // motion_controller_dda__tick_divider__strobe_reg
+
+
+module motion_controller_dda__tick_trail(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_dda__tick_trail
 
 
 module motion_controller_dda__watchdog(clock,reset,tick,timeout,kick,clear,expired,armed);

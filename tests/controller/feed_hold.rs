@@ -88,10 +88,8 @@ fn queue(b: &mut Controller3, path: &[[i32; 3]], closing: bool) {
 /// Resets `b`, queues `path`, starts, applies `hold`, and runs until the
 /// path has ended (an underrun at its end) and the last step left.
 fn run_path(b: &mut Controller3, path: &[[i32; 3]], hold: Option<Hold>) -> Run {
-    // A last period of no steps: an underrun ends the path at the
-    // boundary after it, so that the path's last step (which the DDA
-    // makes on the boundary tick) is not cut by the underrun itself
-    // (see `a_path_ending_by_an_underrun_keeps_its_last_step`).
+    // A last period of no steps, as the driver closes a path (the path
+    // without one: `a_path_ending_by_an_underrun_keeps_its_last_step`).
     run_path_closed(b, path, hold, true)
 }
 
@@ -135,6 +133,11 @@ fn run_path_closed(
             break;
         }
         assert!(t < limit, "the run did not end: {hold:?}");
+    }
+    // Once `active` has fallen, no step of the run is left to come.
+    for _ in 0..64 {
+        let out = b.clock(false, 0, 0, false, false).clone();
+        assert!(!out.active, "active rose again after the run ended");
     }
     let mut steps: [Vec<u64>; 3] = Default::default();
     for &(clock, axis, _) in &log.steps {
@@ -334,18 +337,14 @@ fn a_hold_meets_an_underrun_an_abort_and_a_start() {
     assert_eq!(positions, free.positions);
 }
 
-/// A known bug on main, not yet fixed: a path whose last period has
-/// steps, ended by the underrun at the boundary after it, loses that
-/// period's last step on an axis whose DDA makes it on the boundary tick
-/// (PERIOD 24: axis 1 ends at 9, one of the final period's two steps
-/// short of 8). `CMD_POSITION` agrees with the pins, so no count is
-/// wrong, but the path ends a step short. The driver's paths (200-tick
-/// periods) did not show it in 100 random runs; the block tests here
-/// close every path with a period of no steps. Run with `--run-ignored
-/// only` to see it fail until the gateware lets the boundary tick's step
-/// out before the underrun stops the axes.
+/// A path whose last period has steps, ended by the underrun at the
+/// boundary after it, keeps the step its DDA makes on that boundary tick
+/// (PERIOD 24: axis 1 ends at 8). Until VERSION 0.6.1 `active` fell with
+/// RUN for the 4 clocks that step took to reach its output stage, and then
+/// rose again: a host waiting for `active` to fall read the position a
+/// step short (axis 1 at 9). `run_path_closed` checks that `active` stays
+/// low once it has fallen.
 #[test]
-#[ignore = "known bug on main: an underrun at a path's end cuts the step the DDA makes on the boundary tick"]
 fn a_path_ending_by_an_underrun_keeps_its_last_step() {
     let mut path = vec![[1, 3, -5]; 5];
     path.extend([

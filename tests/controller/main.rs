@@ -5,6 +5,7 @@
 //! monomorphized) once.
 
 mod analog_axes;
+mod analog_hold;
 mod analog_servo;
 mod arcs;
 #[allow(dead_code)] // each test module uses part of the bench

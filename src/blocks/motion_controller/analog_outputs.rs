@@ -15,6 +15,20 @@
 //!   the last axis one update writes every channel and pulses LDAC once.
 //! * The code is the magnitude with its sign put back; an entry that does
 //!   not fit 16 bits signed saturates to the code's end of its sign.
+//! * **Scaled walks.** A walk takes `factor` at its start. Below 1.0
+//!   (`slowed_in`) each axis takes [`SCALE_STEPS`] + 2 clocks: the first
+//!   registers the saturated |code| and its sign, 16 shift-add steps on
+//!   registers, from the factor's LSB, form floor(|code| x factor / 2^16)
+//!   exactly, and the 18th loads it with the sign; `walk` stays on the
+//!   axis meanwhile. Its update request waits until the DAC is idle (never
+//!   deferred). While the factor is below 1, or the last walk was scaled
+//!   (`owed`), a re-walk is decided in any clock with RUN, no abort, no
+//!   walk or request under way, the DAC idle and an analog axis, and
+//!   starts in the next: the outputs follow the factor, and return to the
+//!   full codes after the release. A pop restarts the walk at axis 0 with the
+//!   factor of that clock.
+//! * An abort ends any walk (the DAC refuses loads while it forces the
+//!   safe code).
 //! * RUN falling by an underrun or a stop (`stop_zero`) loads code 0 into
 //!   every analog channel and updates them, one clock later, and ends any
 //!   walk. An abort forces the DAC's safe code itself (`abort`).
@@ -31,6 +45,11 @@ use rust_hdl::prelude::*;
 
 use super::registers::{self, AXIS_BASE, AXIS_STRIDE, DAC_BITS};
 use crate::blocks::dac_interface::DacInterface;
+
+/// The shift-add steps of a scaled walk's multiply: the factor's 16
+/// fraction bits. An axis of a scaled walk takes `SCALE_STEPS + 2` clocks
+/// (one registers its code, one loads it).
+pub const SCALE_STEPS: u32 = 16;
 
 /// The analog outputs of `K` axes. See the [module documentation](self).
 #[derive(LogicBlock)]
@@ -51,8 +70,16 @@ pub struct AnalogOutputs<const K: usize> {
     pub pop: Signal<In, Bit>,
     /// RUN falls in this clock, not by an abort: every analog channel to 0.
     pub stop_zero: Signal<In, Bit>,
-    /// Force the DAC's safe code.
+    /// Force the DAC's safe code; ends any walk.
     pub abort: Signal<In, Bit>,
+    /// Periods are running: re-walks while slowed only then.
+    pub running: Signal<In, Bit>,
+    /// The feed hold's factor is below 1.0 (`STATE.HOLDING`): a shallow
+    /// test of the ramp's register, kept off the factor's subtractor.
+    pub slowed_in: Signal<In, Bit>,
+    /// The feed hold's velocity factor's fraction bits (the factor below
+    /// 1.0; taken only while `slowed_in`).
+    pub factor: Signal<In, Bits<16>>,
     /// Per axis: the axis is in analog mode.
     pub analog_axes: Signal<In, Bits<K>>,
     /// |entry| of the walked axis, saturated to 16 bits.
@@ -80,9 +107,8 @@ pub struct AnalogOutputs<const K: usize> {
     /// The analog outputs are built (else the DAC drives nothing and
     /// synthesis removes it).
     has_analog: Constant<Bit>,
-    /// The pop one clock late: the axes' codes are valid.
-    pop_d: DFF<Bit>,
-    /// The walk's next axis (one-hot).
+    /// The walk's axis in the next clock (one-hot; 0: none). A pop sets
+    /// axis 0: the axes' codes are valid from the clock after it.
     walk_next: DFF<Bits<K>>,
     /// The DAC's update request, the clock after the walk's last load.
     update_request: DFF<Bit>,
@@ -90,6 +116,39 @@ pub struct AnalogOutputs<const K: usize> {
     read_sel: DFF<Bit>,
     /// `stop_zero` one clock late (registered: the underrun decode is long).
     stop_zero_d: DFF<Bit>,
+    /// The running walk scales its codes (the factor was below 1 at its
+    /// start): 17 clocks an axis.
+    scaled: DFF<Bit>,
+    /// The walk's factor (below 1: 16 bits), rotated one bit a clock so
+    /// that bit 0 is the multiplier's bit; 16 rotations bring it back.
+    factor_bits: DFF<Bits<16>>,
+    /// The scaled walk's clock within its axis: 0 registers the axis's
+    /// magnitude and sign, 1 to 16 multiply, 17 loads.
+    step_count: DFF<Bits<5>>,
+    /// The walked axis's saturated |entry|, and its sign.
+    magnitude_q: DFF<Bits<DAC_BITS>>,
+    negative_q: DFF<Bit>,
+    /// The shift-add product: after 16 steps, floor(magnitude x factor / 2^16).
+    product: DFF<Bits<16>>,
+    /// The outputs carry scaled codes: walk again (at 1.0, a last plain walk).
+    owed: DFF<Bit>,
+    /// A scaled walk has loaded its last axis and waits for the DAC to be idle.
+    update_wait: DFF<Bit>,
+    slowed: Signal<Local, Bit>,
+    walking: Signal<Local, Bit>,
+    rewalk: Signal<Local, Bit>,
+    start: Signal<Local, Bit>,
+    scaled_now: Signal<Local, Bit>,
+    count_now: Signal<Local, Bits<5>>,
+    last_load: Signal<Local, Bit>,
+    saturated: Signal<Local, Bits<DAC_BITS>>,
+    addend: Signal<Local, Bits<17>>,
+    sum: Signal<Local, Bits<17>>,
+    load_clock: Constant<Bits<5>>,
+    zero5b: Constant<Bits<5>>,
+    one5: Constant<Bits<5>>,
+    zero16: Constant<Bits<16>>,
+    zero17: Constant<Bits<17>>,
     walk_now: Signal<Local, Bits<K>>,
     load: Signal<Local, Bits<K>>,
     code: Signal<Local, Bits<DAC_BITS>>,
@@ -158,6 +217,9 @@ impl<const K: usize> AnalogOutputs<K> {
             pop: Default::default(),
             stop_zero: Default::default(),
             abort: Default::default(),
+            running: Default::default(),
+            slowed_in: Default::default(),
+            factor: Default::default(),
             analog_axes: Default::default(),
             code_magnitude: Default::default(),
             code_negative: Default::default(),
@@ -171,11 +233,33 @@ impl<const K: usize> AnalogOutputs<K> {
             dac_ldac: Default::default(),
             dac: Default::default(),
             has_analog: Constant::new(analog),
-            pop_d: Default::default(),
             walk_next: Default::default(),
             update_request: Default::default(),
             read_sel: Default::default(),
             stop_zero_d: Default::default(),
+            scaled: Default::default(),
+            factor_bits: Default::default(),
+            step_count: Default::default(),
+            magnitude_q: Default::default(),
+            negative_q: Default::default(),
+            product: Default::default(),
+            owed: Default::default(),
+            update_wait: Default::default(),
+            slowed: Default::default(),
+            walking: Default::default(),
+            rewalk: Default::default(),
+            start: Default::default(),
+            scaled_now: Default::default(),
+            count_now: Default::default(),
+            last_load: Default::default(),
+            saturated: Default::default(),
+            addend: Default::default(),
+            sum: Default::default(),
+            load_clock: Constant::new((SCALE_STEPS as u64 + 1).into()),
+            zero5b: Constant::new(0u64.into()),
+            one5: Constant::new(1u64.into()),
+            zero16: Constant::new(0u64.into()),
+            zero17: Constant::new(0u64.into()),
             walk_now: Default::default(),
             load: Default::default(),
             code: Default::default(),
@@ -231,25 +315,100 @@ impl<const K: usize> Logic for AnalogOutputs<K> {
         dff_setup!(
             self,
             clock,
-            pop_d,
             walk_next,
             update_request,
             read_sel,
-            stop_zero_d
+            stop_zero_d,
+            scaled,
+            factor_bits,
+            step_count,
+            magnitude_q,
+            negative_q,
+            product,
+            owed,
+            update_wait
         );
         clock!(self, clock, dac);
 
-        // The walk: one axis a clock after each pop, then one update.
-        self.pop_d.d.next = self.pop.val();
+        // The walk. A pop starts one; while the feed hold's factor is below
+        // 1 (or the outputs still carry scaled codes) a re-walk starts
+        // whenever none runs and the DAC is idle. Both are decided a clock
+        // ahead (`start`), so that the walk, its mode and its factor come
+        // from registers: at 1.0 it loads one axis a clock (the plain walk);
+        // below, each axis takes SCALE_STEPS + 2 clocks: the walked axis's
+        // magnitude and sign are registered, a shift-add multiply runs on
+        // registers only, and the last clock loads. After the last axis,
+        // one update.
+        self.slowed.next = self.slowed_in.val();
+        self.walking.next = self.walk_next.q.val() != self.zero_k.val();
+        self.rewalk.next = (self.slowed.val() | self.owed.q.val())
+            & self.running.val()
+            & !self.abort.val()
+            & !self.walking.val()
+            & !self.update_wait.q.val()
+            & !self.update_request.q.val()
+            & !self.dac.busy.val()
+            & (self.analog_axes.val() != self.zero_k.val())
+            & self.has_analog.val();
+        self.start.next = self.pop.val() | self.rewalk.val();
         self.walk_now.next = self.walk_next.q.val();
-        if self.pop_d.q.val() {
-            self.walk_now.next = self.first_axis.val();
-        }
+        self.scaled_now.next = self.scaled.q.val();
+        self.count_now.next = self.step_count.q.val();
         self.walk.next = self.walk_now.val();
+
+        // The walked axis's |entry| saturated (32767 or 32768 with the sign).
+        self.saturated.next = self.code_magnitude.val();
+        if self.code_wide.val() {
+            if self.code_negative.val() {
+                self.saturated.next = self.code_min.val();
+            } else {
+                self.saturated.next = self.code_max.val();
+            }
+        }
+        // The multiply: the factor bit by bit from its LSB, halving each
+        // step: after 16 steps floor(magnitude x factor / 2^16), exactly
+        // (each halving drops only bits below the result's LSB).
+        self.addend.next = self.zero17.val();
+        if self.factor_bits.q.val().get_bit(0) {
+            self.addend.next = bit_cast::<17, DAC_BITS>(self.magnitude_q.q.val());
+        }
+        self.sum.next = bit_cast::<17, 16>(self.product.q.val()) + self.addend.val();
+        self.last_load.next = false;
         self.load.next = self.walk_now.val() & self.analog_axes.val();
-        // The axes hold |entry|: the code is it with its sign put back
-        // (exact for every entry that fits 16 bits signed, -2^15 included),
-        // and an entry beyond 16 bits signed saturates.
+        self.walk_next.d.next = self.walk_now.val() << 1;
+        self.step_count.d.next = self.zero5b.val();
+        if self.scaled_now.val() & (self.walk_now.val() != self.zero_k.val()) {
+            if self.count_now.val() == self.load_clock.val() {
+                self.last_load.next =
+                    (self.walk_now.val() & self.last_axis.val()) != self.zero_k.val();
+            } else {
+                self.load.next = self.zero_k.val();
+                self.walk_next.d.next = self.walk_now.val();
+                self.step_count.d.next = self.count_now.val() + self.one5.val();
+                if self.count_now.val() == self.zero5b.val() {
+                    self.magnitude_q.d.next = self.saturated.val();
+                    self.negative_q.d.next = self.code_negative.val();
+                    self.product.d.next = self.zero16.val();
+                } else {
+                    self.product.d.next = self.sum.val().get_bits::<16>(1);
+                    self.factor_bits.d.next =
+                        (self.factor_bits.q.val() >> 1) | (self.factor_bits.q.val() << 15);
+                }
+            }
+        }
+        // A decided walk starts at axis 0 in the next clock, replacing any
+        // walk under way.
+        if self.start.val() {
+            self.walk_next.d.next = self.first_axis.val();
+            self.scaled.d.next = self.slowed.val();
+            self.step_count.d.next = self.zero5b.val();
+            self.factor_bits.d.next = self.factor.val();
+            self.owed.d.next = self.slowed.val();
+        }
+        // The code: the magnitude with its sign put back (exact for every
+        // entry that fits 16 bits signed, -2^15 included); an entry beyond
+        // 16 bits signed saturates (a scaled code was saturated before its
+        // multiply).
         self.code.next = self.code_magnitude.val();
         if self.code_negative.val() {
             self.code.next = self.zero_code.val() - self.code_magnitude.val();
@@ -261,16 +420,47 @@ impl<const K: usize> Logic for AnalogOutputs<K> {
                 self.code.next = self.code_max.val();
             }
         }
-        self.walk_next.d.next = self.walk_now.val() << 1;
+        if self.scaled_now.val() {
+            self.code.next = self.product.q.val();
+            if self.negative_q.q.val() {
+                self.code.next = self.zero_code.val() - self.product.q.val();
+            }
+        }
+        // A plain walk requests its update at once (a busy DAC defers it
+        // and flags DEFERRED: the period is too short); a scaled walk's
+        // request waits for the DAC to be idle, so re-walks never defer.
         self.update_request.d.next = ((self.walk_now.val() & self.last_axis.val())
             != self.zero_k.val())
-            & (self.analog_axes.val() != self.zero_k.val());
+            & (self.analog_axes.val() != self.zero_k.val())
+            & !self.scaled_now.val();
+        if self.update_wait.q.val() & !self.start.val() {
+            if !self.dac.busy.val() {
+                self.update_request.d.next = true;
+                self.update_wait.d.next = false;
+            } else {
+                self.update_wait.d.next = true;
+            }
+        } else {
+            self.update_wait.d.next = false;
+        }
+        if self.last_load.val() & (self.analog_axes.val() != self.zero_k.val()) {
+            self.update_wait.d.next = true;
+        }
         self.stop_zero_d.d.next = self.stop_zero.val() & self.has_analog.val();
         if self.stop_zero_d.q.val() {
             self.load.next = self.analog_axes.val();
             self.code.next = self.zero_code.val();
             self.walk_next.d.next = self.zero_k.val();
             self.update_request.d.next = self.analog_axes.val() != self.zero_k.val();
+            self.update_wait.d.next = false;
+            self.owed.d.next = false;
+        }
+        // An abort ends any walk: the DAC refuses loads and updates while
+        // it forces the safe code.
+        if self.abort.val() {
+            self.walk_next.d.next = self.zero_k.val();
+            self.update_wait.d.next = false;
+            self.owed.d.next = false;
         }
 
         // The DAC's registers on our bus.
@@ -315,11 +505,12 @@ impl<const K: usize> Logic for AnalogOutputs<K> {
         self.dac_ldac.next = self.dac.dac_ldac.val() & self.has_analog.val();
 
         if self.reset.val() {
-            self.pop_d.d.next = false;
             self.walk_next.d.next = self.zero_k.val();
             self.update_request.d.next = false;
             self.read_sel.d.next = false;
             self.stop_zero_d.d.next = false;
+            self.owed.d.next = false;
+            self.update_wait.d.next = false;
         }
     }
 }

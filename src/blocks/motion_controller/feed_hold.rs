@@ -62,6 +62,9 @@ pub struct FeedHold {
     pub holding: Signal<Out, Bit>,
     /// `STATE.HELD`: the factor is 0.
     pub held: Signal<Out, Bit>,
+    /// The velocity factor's 16 fraction bits (the factor itself while
+    /// `holding`; 0 at 1.0).
+    pub factor_fraction: Signal<Out, Bits<16>>,
     /// `HOLD_CONTROL` when addressed, else 0.
     pub read_data: Signal<Out, Bits<32>>,
 
@@ -102,6 +105,7 @@ impl Default for FeedHold {
             tick_out: Default::default(),
             holding: Default::default(),
             held: Default::default(),
+            factor_fraction: Default::default(),
             read_data: Default::default(),
             conditioner: Default::default(),
             ramp: Default::default(),
@@ -173,6 +177,7 @@ impl Logic for FeedHold {
         self.tick_out.next = self.ramp.tick_out.val();
         self.holding.next = self.ramp.slowed.val();
         self.held.next = self.ramp.stopped.val();
+        self.factor_fraction.next = self.ramp.factor.val().get_bits::<16>(0);
 
         self.read_data.next = self.zero32.val();
         if self.address.val() == self.a_control.val() {

@@ -220,7 +220,8 @@
 //!   probe's own switching, not of a servo period.
 //!   `PROBE_CONTROL.LEVEL` reads the filtered input (0 until the inputs
 //!   are ready); reset disarms and zeroes the latches.
-//! * **Feed hold** (VERSION 0.6.0; [`feed_hold`], [`hold_ramp`]): a
+//! * **Feed hold** (VERSION 0.6.0; analog axes scaled from 0.6.1;
+//!   [`feed_hold`], [`hold_ramp`]): a
 //!   controlled stop along the path that resumes exactly where it left
 //!   off. It scales time, not steps: the periods and the axes run on the
 //!   base tick through a gate that passes a fraction f of the ticks (the
@@ -271,10 +272,8 @@
 //!     during a hold stops as without it (the abort flushes the stages);
 //!     the request and f stay as they are. RUN = 1 while held starts, and
 //!     the first boundary comes with the first gated tick.
-//!   - **Not yet:** on analog axes (`AXIS_CONFIG.ANALOG`) the hold
-//!     stretches the periods but does not scale the velocity codes: an
-//!     analog axis keeps its period's code while held. Do not hold a build
-//!     with analog axes until the codes scale (issue #37).
+//!   - Analog axes slow with the same factor: see "Analog axes", "The
+//!     feed hold scales the codes".
 //! * **General I/O**: `GPIO_IN` reads the 8 filtered inputs; every edge is
 //!   recorded in `GPIO_EDGES` (write 1 to clear) and the ones enabled in
 //!   `GPIO_IRQ_ENABLE` raise `STATUS.GPIO`. `gpio_out` is `GPIO_OUT`; the
@@ -304,6 +303,27 @@
 //!   lasts 1 + K (S + Wd + H) + L clocks (`DAC_TIMING`; 30 at reset): a
 //!   period must be longer than the lag plus that, or updates are deferred
 //!   (`DAC_STATUS.DEFERRED`) and the outputs lag further.
+//! * **The feed hold scales the codes.** A period's code is a velocity,
+//!   and a hold stretches the period by 1/f, so the code is scaled by the
+//!   hold's factor f: while f < 1 every walk loads floor(|code| x f /
+//!   2^16) with the code's sign (an entry beyond 16 bits is saturated
+//!   first), all axes of one update at one f, taken at the walk's start.
+//!   The multiply is one shift-add a clock on registered operands, so a
+//!   scaled walk takes [`SCALE_STEPS`](analog_outputs::SCALE_STEPS) + 2 =
+//!   18 clocks an axis (a period's codes change
+//!   [`latency::analog_scaled_ldac`] clocks after its boundary, 81 at K = 3
+//!   and the reset timing, where the plain walk takes 29), and its update
+//!   request waits for the DAC to be idle, so it never defers an update
+//!   nor sets `DAC_STATUS.DEFERRED`. Between pops the outputs are
+//!   re-walked at the factor of the moment whenever the DAC is idle, one
+//!   update every [`latency::analog_rewalk`] clocks (87),
+//!   and once more at f = 1 after the release: a hold ramps every velocity
+//!   code down with the factor to 0 V and back to its full code, never
+//!   stepping it. A ramp step lasts a base tick, so with `TICK_DIVISOR`
+//!   below 87 (at K = 3) an update may skip factors: the codes then
+//!   follow the ramp at the updates' pace. Re-walks run only while RUN is
+//!   set and no abort is active; an abort ends any walk (the DAC forces
+//!   the safe code).
 //! * **Stop and underrun set 0 V.** When RUN falls by an underrun or a RUN
 //!   = 0 write, every analog channel gets code 0 and an update (its LDAC
 //!   3 + K (S + Wd + H) clocks later, after the running update if one
@@ -546,6 +566,7 @@
 //! and the planner's, is gated by a constant: in the DDA-only build they
 //! drive nothing, and synthesis removes them.
 
+pub mod analog_model;
 pub mod analog_outputs;
 pub mod axis;
 pub mod axis_io;
@@ -642,6 +663,28 @@ pub mod latency {
         axes + 2 + axes * (at_least_1(setup) + at_least_1(width) + at_least_1(hold))
     }
 
+    /// While the feed hold's factor is below 1 a walk scales each code
+    /// (`SCALE_STEPS` + 2 clocks an axis, see "Analog axes"): a period's
+    /// codes then change `analog_scaled_ldac(K, S, Wd, H)` clocks after
+    /// its boundary if the DAC is idle (81 at K = 3 and the reset
+    /// timing), later if an update runs (the scaled walk's request waits
+    /// for it, so it never defers one).
+    pub const fn analog_scaled_ldac(axes: u64, setup: u64, width: u64, hold: u64) -> u64 {
+        analog_ldac(axes, setup, width, hold)
+            + axes * (super::analog_outputs::SCALE_STEPS as u64 + 1)
+            + 1
+    }
+
+    /// While the factor is below 1 (and once more after it returns to 1)
+    /// the analog outputs are re-walked at the factor of the moment: with
+    /// no pop between, one update's `dac_ldac` rise follows the last's by
+    /// `analog_rewalk(K, S, Wd, H, L)` clocks (87 at K = 3 and the reset
+    /// timing): a re-walk is decided in the first clock the DAC is idle
+    /// and starts in the next.
+    pub const fn analog_rewalk(axes: u64, setup: u64, width: u64, hold: u64, ldac: u64) -> u64 {
+        analog_scaled_ldac(axes, setup, width, hold) + at_least_1(ldac) + 1
+    }
+
     const fn at_least_1(v: u64) -> u64 {
         if v > 1 {
             v
@@ -656,6 +699,11 @@ pub mod latency {
         UNIFORM_LAG + axes.saturating_sub(1) * UNIFORM_TURN
     }
 }
+
+/// Clocks from a motion tick until the step the DDA makes on it makes its
+/// output stage busy (the tick delay, 2 in the DDA, the request register):
+/// `active` stays high that long after the last tick of a run.
+pub const TICK_TRAIL: usize = 4;
 
 /// Number of interrupt sources (`STATUS` bits).
 const IRQ_COUNT: usize = irq::COUNT;
@@ -742,7 +790,7 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("bus_read_data", "32", "the addressed register, registered: valid in the clock after `bus_read`, held until the next read"),
     port("irq", "1", "level interrupt: an enabled `STATUS` bit is set; registered"),
     port("running", "1", "periods are running (`STATE.RUNNING`)"),
-    port("active", "1", "`running`, or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls (the drives' enables are `drive_enable`)"),
+    port("active", "1", "`running`, a motion tick while running in the last 4 clocks (its step is still on its way to the output stage), or an output stage or uniform generator still busy: the last steps of a move leave after `running` falls, and once `active` has fallen no step of the run is left (the drives' enables are `drive_enable`)"),
     port("step_a", "K", "bit k: axis k's step (step/dir), up (up/down) or A (quadrature); registered"),
     port("step_b", "K", "bit k: axis k's dir, down or B; registered"),
     port("enc_a", "K", "bit k: axis k's encoder A, asynchronous (synchronized and filtered inside)"),
@@ -860,6 +908,10 @@ pub struct MotionController<
     /// comparator stays out of the path from the tick to every axis): the
     /// periods and the axes run on it, one clock after the base tick.
     motion_tick: DFF<Bit>,
+    /// The motion ticks of the last `TICK_TRAIL` clocks while running: a
+    /// step the DDA makes on a tick is still on its way to the output
+    /// stage for that long, so `active` covers it.
+    tick_trail: DFF<Bits<TICK_TRAIL>>,
     /// The analog outputs: the DAC, its walk and its registers.
     analog: AnalogOutputs<K>,
     analog_axes: Signal<Local, Bits<K>>,
@@ -950,6 +1002,8 @@ pub struct MotionController<
     /// Bit k of a K-bit vector.
     axis_bit: [Constant<Bits<K>>; K],
     zero_k: Constant<Bits<K>>,
+    zero_trail: Constant<Bits<TICK_TRAIL>>,
+    one_trail: Constant<Bits<TICK_TRAIL>>,
 }
 
 impl<
@@ -1046,6 +1100,7 @@ impl<
             probe_trigger: Default::default(),
             feed_hold_unit: Default::default(),
             motion_tick: Default::default(),
+            tick_trail: Default::default(),
             planner: Default::default(),
             div_owner: Default::default(),
             has_uniform: Constant::new(UNIFORM),
@@ -1104,6 +1159,8 @@ impl<
             any_held: Default::default(),
             axis_bit: array_init::array_init(|k| Constant::new((1u64 << k).into())),
             zero_k: Constant::new(0u64.into()),
+            zero_trail: Constant::new(0u64.into()),
+            one_trail: Constant::new(1u64.into()),
         }
     }
 }
@@ -1134,6 +1191,7 @@ impl<
             expired_prev,
             held_prev,
             motion_tick,
+            tick_trail,
             abort_hold,
             div_owner
         );
@@ -1294,7 +1352,13 @@ impl<
         self.pop.next = self.period.pop.val();
         self.underrun.next = self.period.underrun.val();
         self.running.next = self.period.running.val();
-        self.active.next = self.period.running.val() | self.any_busy.val();
+        self.tick_trail.d.next = self.tick_trail.q.val() << 1;
+        if self.motion_tick.q.val() & self.period.running.val() {
+            self.tick_trail.d.next = (self.tick_trail.q.val() << 1) | self.one_trail.val();
+        }
+        self.active.next = self.period.running.val()
+            | self.any_busy.val()
+            | (self.tick_trail.q.val() != self.zero_trail.val());
 
         // STOP_CAUSE: taken when RUN falls.
         self.cause_register.reset.next = self.reset.val();
@@ -1434,6 +1498,9 @@ impl<
         self.analog.stop_zero.next =
             self.period.running.val() & (self.underrun.val() | self.halt.val()) & !self.abort.val();
         self.analog.abort.next = self.abort.val();
+        self.analog.running.next = self.period.running.val();
+        self.analog.slowed_in.next = self.feed_hold_unit.holding.val();
+        self.analog.factor.next = self.feed_hold_unit.factor_fraction.val();
         self.analog.analog_axes.next = self.analog_axes.val();
         self.analog.code_magnitude.next = self.walk_magnitude.val();
         self.analog.code_negative.next = self.walk_negative.val();
@@ -1537,6 +1604,7 @@ impl<
             self.expired_prev.d.next = false;
             self.held_prev.d.next = false;
             self.motion_tick.d.next = false;
+            self.tick_trail.d.next = self.zero_trail.val();
         }
     }
 }

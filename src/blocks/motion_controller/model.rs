@@ -6,6 +6,7 @@
 //! is computed in two phases, like the hardware: first the combinational
 //! values from the registered state of every part, then the edge.
 
+use super::analog_model::{AnalogWalkModel, WalkInputs};
 use super::io_model::{
     AxisIoComb, AxisIoModel, AxisSwitches, FeedHoldModel, MachineIoModel, MachinePins, ProbeComb,
     ProbeModel, StepPath,
@@ -755,6 +756,8 @@ pub struct MotionControllerModel {
     held_prev: bool,
     /// The gated tick, registered: the periods and the axes see it.
     motion_tick: bool,
+    /// Bit j: a motion tick while running j + 1 clocks ago (`TICK_TRAIL` bits).
+    tick_trail: u32,
     /// The build has the probe latch (`PROBE`): without it the trigger's
     /// latch, event and read data are unused.
     has_probe: bool,
@@ -767,15 +770,10 @@ pub struct MotionControllerModel {
     analog: bool,
     dac: DacModel,
     dac_out: DacOutputs,
-    /// The pop one clock late, the walk loading the axes' codes (bit k:
-    /// axis k's turn), the DAC's update request and its read select.
-    pop_d: bool,
-    dac_walk: u64,
-    dac_update: bool,
+    /// The walk loading the axes' codes into the DAC.
+    walk: AnalogWalkModel,
+    /// The last read addressed a DAC register.
     dac_read_sel: bool,
-    /// RUN fell (not by an abort) in the last clock: the analog channels
-    /// go to 0 now.
-    stop_zero_d: bool,
     /// The controller's and the DAC's address of each forwarded register.
     dac_addresses: Vec<(u32, u64)>,
 }
@@ -840,6 +838,7 @@ impl MotionControllerModel {
             feed_hold: FeedHoldModel::default(),
             held_prev: false,
             motion_tick: false,
+            tick_trail: 0,
             has_probe: probe,
             abort_hold: false,
             stop_cause: 0,
@@ -850,11 +849,8 @@ impl MotionControllerModel {
             analog,
             dac,
             dac_out,
-            pop_d: false,
-            dac_walk: 0,
-            dac_update: false,
+            walk: AnalogWalkModel::default(),
             dac_read_sel: false,
-            stop_zero_d: false,
             dac_addresses,
         })
     }
@@ -927,7 +923,7 @@ impl MotionControllerModel {
             },
             irq: self.irq,
             running: self.run,
-            active: self.run || self.axes.iter().any(AxisModel::busy),
+            active: self.run || self.axes.iter().any(AxisModel::busy) || self.tick_trail != 0,
             steps: self
                 .axes
                 .iter()
@@ -1152,6 +1148,8 @@ impl MotionControllerModel {
         );
         next.held_prev = self.feed_hold.held();
         next.motion_tick = hold.tick && !i.reset;
+        next.tick_trail = (self.tick_trail << 1 | (self.motion_tick && self.run) as u32)
+            & crate::blocks::width_mask(super::TICK_TRAIL as u32) as u32;
         let control = AxisControl {
             reset: i.reset,
             tick,
@@ -1174,27 +1172,28 @@ impl MotionControllerModel {
         // Analog outputs: after each pop a walk loads the analog axes' codes
         // one a clock, then one update; when RUN falls (not by an abort)
         // every analog channel gets 0.
-        let axes = self.axes.len();
         let analog_axes = self
             .axes
             .iter()
             .enumerate()
             .fold(0u64, |w, (k, a)| w | (a.analog() as u64) << k);
-        let walk_now = if self.pop_d { 1 } else { self.dac_walk };
-        let mut load = walk_now & analog_axes;
-        let mut load_code = (0..axes)
-            .find(|k| walk_now >> k & 1 == 1)
-            .map_or(0, |k| self.axes[k].dac_code());
-        next.dac_walk = (walk_now << 1) & crate::blocks::width_mask(axes as u32);
-        next.dac_update = walk_now >> (axes - 1) & 1 == 1 && analog_axes != 0;
-        next.stop_zero_d = self.analog && self.run && (underrun || halt) && !abort;
-        if self.stop_zero_d {
-            load = analog_axes;
-            load_code = 0;
-            next.dac_walk = 0;
-            next.dac_update = analog_axes != 0;
-        }
-        next.pop_d = pop;
+        let codes: Vec<i16> = self
+            .axes
+            .iter()
+            .map(|a| a.dac_code() as u16 as i16)
+            .collect();
+        let walk = next.walk.step(&WalkInputs {
+            reset: i.reset,
+            pop,
+            stop_zero: self.analog && self.run && (underrun || halt) && !abort,
+            abort,
+            running: self.run,
+            factor: self.feed_hold.ramp().factor(),
+            analog_axes,
+            has_analog: self.analog,
+            dac_busy: self.dac_out.busy,
+            codes: &codes,
+        });
         let dac_target = self
             .dac_addresses
             .iter()
@@ -1207,10 +1206,10 @@ impl MotionControllerModel {
             bus_write_data: i.write_data as u64,
             bus_write: i.write && dac_target.is_some(),
             bus_read: i.read && dac_target.is_some(),
-            update: self.dac_update,
+            update: walk.update,
             force_safe: abort,
-            load,
-            load_code,
+            load: walk.load,
+            load_code: walk.load_code,
         });
         if i.read {
             next.dac_read_sel = dac_target.is_some();
@@ -1235,6 +1234,7 @@ impl MotionControllerModel {
             next.read_data = read_word;
         }
         if i.reset {
+            next.tick_trail = 0;
             next.run = false;
             next.irq_enable = 0;
             next.tick_divisor = 0;
@@ -1253,11 +1253,7 @@ impl MotionControllerModel {
             next.held_prev = false;
             next.abort_hold = false;
             next.stop_cause = 0;
-            next.pop_d = false;
-            next.dac_walk = 0;
-            next.dac_update = false;
             next.dac_read_sel = false;
-            next.stop_zero_d = false;
         }
         *self = next;
         self.outputs()

@@ -19,7 +19,7 @@ use crate::regmap::{field, register, Access, Field, RegMapError, Register, Regis
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
-/// `VERSION` register value: major 0, minor 6, patch 0 (minor 2: machine
+/// `VERSION` register value: major 0, minor 6, patch 1 (minor 2: machine
 /// I/O, 32-word axis windows; minor 3: analog axes, `CONFIG.ANALOG`;
 /// patch 1: on a uniform axis, `INTERP_OVERRANGE` for |n| > P/2 is set
 /// when the axis's period plan arrives from the shared planner, not two
@@ -28,8 +28,9 @@ pub const ID_VALUE: u32 = 0x4d48_4443;
 /// words carry the sign up to bit 31 and wrap at 2^24. Minor 5: the probe
 /// input (`PROBE_CONTROL`, `PROBE_*_POSITION`, `STATUS.PROBE`). Minor 6:
 /// the feed hold (`feed_hold`, `HOLD_CONTROL`, `STATE.HOLDING`/`HELD`,
-/// `STATUS.HELD`, `PROBE_CONTROL.STOP`).
-pub const VERSION_VALUE: u32 = 0x0000_0600;
+/// `STATUS.HELD`, `PROBE_CONTROL.STOP`); its patch 1: the hold scales the
+/// analog axes' codes by its factor.
+pub const VERSION_VALUE: u32 = 0x0000_0601;
 
 /// Word addresses of the global registers.
 pub mod global {
