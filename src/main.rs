@@ -489,14 +489,13 @@ fn run(cli: Cli) -> Result<(), String> {
             let axes = |option: &str, names: &[String]| -> Result<[bool; 3], String> {
                 let mut chosen = [false; 3];
                 for axis in names {
-                    match axis.to_ascii_lowercase().as_str() {
-                        "x" => chosen[0] = true,
-                        "y" => chosen[1] = true,
-                        "z" => chosen[2] = true,
-                        other => {
-                            return Err(format!("--{option}: unknown axis `{other}` (x, y or z)"))
-                        }
-                    }
+                    let k = motion_hdl::host::machine::axis_index(axis).ok_or_else(|| {
+                        format!(
+                            "--{option}: unknown axis `{}` (x, y or z)",
+                            axis.to_ascii_lowercase()
+                        )
+                    })?;
+                    chosen[k] = true;
                 }
                 Ok(chosen)
             };

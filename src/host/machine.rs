@@ -26,6 +26,19 @@
 //! The defaults are a small stepper mill: 1.8 degree motors at 1/8
 //! microstep on 16 mm-lead (X, Y) and 4 mm-lead (Z) screws.
 
+/// The machine's axis letters: axis k is `AXIS_LETTERS[k]`.
+pub const AXIS_LETTERS: [char; 3] = ['X', 'Y', 'Z'];
+
+/// The index of the axis named `name` (`x`, `y` or `z`, either case), as
+/// command-line options name them; `None` for any other name.
+pub fn axis_index(name: &str) -> Option<usize> {
+    let mut chars = name.chars();
+    match (chars.next(), chars.next()) {
+        (Some(c), None) => AXIS_LETTERS.iter().position(|l| l.eq_ignore_ascii_case(&c)),
+        _ => None,
+    }
+}
+
 use super::gcode::PersistentParameters;
 use super::path::PathError;
 use super::statements::statements;

@@ -25,6 +25,7 @@ use std::rc::Rc;
 use super::driver::{DriverError, ProbeEdge};
 use super::gcode::{ProbeCode, ProbeOutcome, ProbeRequest, Prober};
 use super::hold_window::{rate_for_stop, stop_within_limits_s};
+use super::machine::{axis_index, AXIS_LETTERS};
 use super::planner::to_steps;
 use super::toolpath::{Item, Move, MoveKind};
 use super::{
@@ -48,16 +49,12 @@ impl ProbePlane {
         let (axis, height) = text
             .split_once('=')
             .ok_or_else(|| format!("--probe-plane `{text}`: expected {usage}"))?;
-        let axis = match axis.trim().to_ascii_lowercase().as_str() {
-            "x" => 0,
-            "y" => 1,
-            "z" => 2,
-            other => {
-                return Err(format!(
-                    "--probe-plane `{text}`: unknown axis `{other}` (x, y or z)"
-                ))
-            }
-        };
+        let axis = axis_index(axis.trim()).ok_or_else(|| {
+            format!(
+                "--probe-plane `{text}`: unknown axis `{}` (x, y or z)",
+                axis.trim().to_ascii_lowercase()
+            )
+        })?;
         let height_mm = height
             .trim()
             .parse::<f64>()
@@ -69,7 +66,7 @@ impl ProbePlane {
 
     /// The axis's letter.
     pub fn axis_name(&self) -> char {
-        ['X', 'Y', 'Z'][self.axis]
+        AXIS_LETTERS[self.axis]
     }
 
     /// The surface on the controller's steps, for a program starting at

@@ -22,6 +22,7 @@ use super::hold_window::{
     hold_tick_settings, min_tick_divisor, speeds_at_the_pins, stop_time_s, stop_within_limits_s,
     HoldWindow,
 };
+use super::machine::axis_index;
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::simulated_probe::{ProbePlane, ProbeResult, ProbingRun, ProbingSession};
@@ -271,8 +272,8 @@ pub struct SimulationOptions {
     pub backend: Backend,
     /// Machine inputs that go active during the run.
     pub trips: Vec<Trip>,
-    /// A feed hold the driver requests and releases during the run (step
-    /// axes only: the hold does not yet scale an analog axis's codes).
+    /// A feed hold the driver requests and releases during the run (the
+    /// controller scales the analog axes' codes with it).
     pub hold: Option<HoldWindow>,
     /// A simulated probe against a plane, for a G-code program's probe
     /// moves (G38.2 to G38.5; step axes only, without a hold).
@@ -313,16 +314,9 @@ impl Trip {
             let (axis, what) = input
                 .split_once('-')
                 .ok_or_else(|| format!("--trip `{text}`: unknown input `{input}`: {usage}"))?;
-            let bit = match axis {
-                "x" => 1,
-                "y" => 2,
-                "z" => 4,
-                _ => {
-                    return Err(format!(
-                        "--trip `{text}`: unknown axis `{axis}` (x, y or z)"
-                    ))
-                }
-            };
+            let bit = 1
+                << axis_index(axis)
+                    .ok_or_else(|| format!("--trip `{text}`: unknown axis `{axis}` (x, y or z)"))?;
             match what {
                 "limit-pos" => pins.limit_pos = bit,
                 "limit-neg" => pins.limit_neg = bit,
@@ -516,11 +510,8 @@ fn check_options(options: &SimulationOptions) -> Result<(), String> {
             ["x", "y", "z"][axis]
         ));
     }
-    if servo && options.hold.is_some() {
-        return Err("--hold-at: the feed hold does not yet scale an analog axis's velocity codes (issue #37); hold a run without --servo".into());
-    }
     if servo && options.probe_plane.is_some() {
-        return Err("--probe-plane: probe moves stop with the feed hold, which does not yet scale an analog axis's codes (issue #37); probe without --servo".into());
+        return Err("--probe-plane: the probe moves run as step paths, not through the servo loops of --servo; probe without --servo".into());
     }
     if options.hold.is_some() && options.probe_plane.is_some() {
         return Err(
@@ -741,7 +732,13 @@ pub fn simulate(
             }
         }
         driver
-            .run_servo(&interpolation.counts, &mut loops, period_s, show)
+            .run_servo_with_holds(
+                &interpolation.counts,
+                &mut loops,
+                period_s,
+                &hold_events,
+                show,
+            )
             .map(|r| {
                 following = r.following;
                 errors = r.errors;

@@ -167,6 +167,54 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
         .any(|f| f.ends_with("square-following-error.svg")));
 }
 
+/// The same run held at 0.3 s and released at 0.6 s: the controller
+/// scales X's velocity codes with the hold's factor, so X slows along the
+/// path with Y and stands while held; the run still ends with X within a
+/// count of the end, and Y and Z exactly.
+#[test]
+fn square_path_with_an_analog_x_holds_and_resumes_and_ends_within_a_count() {
+    use motion_hdl::host::hold_window::HoldWindow;
+    use motion_hdl::host::simulation::{simulate, SimulationOptions};
+    let square = motion_hdl::tools::repo_root().join("examples/square.path");
+    let options = SimulationOptions {
+        format: None,
+        machine: None,
+        tools: None,
+        clock_hz: 4e6,
+        uniform: [false; 3],
+        servo: [true, false, false],
+        step_len: 2,
+        step_space: 2,
+        out_dir: None,
+        vcd: None,
+        progress: false,
+        backend: motion_hdl::sim::Backend::from_env_or(motion_hdl::sim::Backend::Verilator)
+            .unwrap(),
+        trips: Vec::new(),
+        hold: Some(HoldWindow {
+            hold_at_s: 0.3,
+            resume_at_s: 0.6,
+            rate: None,
+        }),
+        probe_plane: None,
+    };
+    let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
+    let hold = r.hold.as_ref().expect("the hold's report");
+    println!("{hold:?}; ended at {:?} for {:?}", r.actual, r.target);
+    assert!(hold.stood_s.is_some(), "the path never stood: {hold:?}");
+    assert!(
+        (r.actual[0] as i64 - r.target[0]).abs() <= 1,
+        "X ended at {}, target {}",
+        r.actual[0],
+        r.target[0]
+    );
+    for k in 1..3 {
+        assert_eq!(r.commanded[k] as i64, r.target[k], "axis {k} commanded");
+        assert_eq!(r.actual[k] as i64, r.target[k], "axis {k} actual");
+    }
+    assert_eq!(r.underruns, 0);
+}
+
 /// The CLI names a bad `--servo` axis and a servo axis asked for the
 /// uniform generator (which the analog build does not have), and exits
 /// non-zero.

@@ -210,10 +210,6 @@ fn simulate_holds_and_resumes_the_square_and_names_bad_hold_options() {
             ][..],
             "--hold-rate 70000 does not fit HOLD_CONTROL.RATE",
         ),
-        (
-            &["--hold-at", "0.1", "--resume-at", "0.2", "--servo", "x"][..],
-            "does not yet scale an analog axis",
-        ),
     ] {
         let (ok, stdout, stderr) = run(args);
         assert!(!ok, "{args:?}: {stdout}");

@@ -4,6 +4,7 @@
 //! entries ahead of the running one: the FIFO is the loop's delay, so it is
 //! kept short. The step axes take their counts from the same periods.
 
+use super::feed_hold::{HoldAction, HoldEvent};
 use super::{ControllerBus, Driver, DriverError, RunReport, StopCause};
 use crate::host::servo::{FollowingError, PositionLoop};
 
@@ -44,8 +45,31 @@ impl<B: ControllerBus> Driver<B> {
         counts: &[[i32; 3]],
         loops: &mut [Option<PositionLoop>; 3],
         period_s: f64,
+        progress: impl FnMut(usize),
+    ) -> Result<ServoRunReport, DriverError> {
+        self.run_servo_with_holds(counts, loops, period_s, &[], progress)
+    }
+
+    /// [`Driver::run_servo`] with the feed hold requested and released at
+    /// the clocks of `holds`, as [`Driver::run_with_holds`] does. The hold
+    /// stretches the periods and the controller scales the analog codes by
+    /// its factor (VERSION 0.6.1), so each loop still runs once a period
+    /// and no period ends while the path stands. Fails with
+    /// [`DriverError::Held`] when the path stands held with no release to
+    /// come, and with [`DriverError::Config`] for events out of clock order.
+    pub fn run_servo_with_holds(
+        &mut self,
+        counts: &[[i32; 3]],
+        loops: &mut [Option<PositionLoop>; 3],
+        period_s: f64,
+        holds: &[HoldEvent],
         mut progress: impl FnMut(usize),
     ) -> Result<ServoRunReport, DriverError> {
+        if holds.windows(2).any(|w| w[1].clock < w[0].clock) {
+            return Err(DriverError::Config(
+                "the hold events are not in clock order".into(),
+            ));
+        }
         if let Some(axis) = (0..3).find(|&k| loops[k].is_some() != self.config.analog[k]) {
             return Err(DriverError::Config(format!(
                 "axis {axis}: a servo loop is needed for each analog axis, and for no other"
@@ -103,16 +127,40 @@ impl<B: ControllerBus> Driver<B> {
         self.write("CONTROL", 0, 1)?;
         let mut popped = 0usize;
         let mut settled = 0;
+        let mut next_hold = 0;
+        let mut was_held = false;
         loop {
             // The next pop.
             loop {
-                self.bus.wait(16);
+                let until_hold = self.apply_due_holds(holds, &mut next_hold)?;
+                self.bus.wait(until_hold.map_or(16, |c| c.min(16)));
                 let count = self.read("PERIOD_COUNT", 0)?.wrapping_sub(base) as usize;
                 if count > popped {
                     popped = count;
                     break;
                 }
                 let state = self.read("STATE", 0)?;
+                let held = self.field("STATE", "HELD", state)? == 1;
+                if held && !was_held {
+                    report.run.held.push(self.bus.cycles());
+                }
+                was_held = held;
+                let release_to_come = holds[next_hold..]
+                    .iter()
+                    .any(|e| e.action == HoldAction::Release);
+                if held && !release_to_come {
+                    let hold = self.hold_state()?;
+                    let mut commanded = [0; 3];
+                    for (k, c) in commanded.iter_mut().enumerate() {
+                        *c = self.read("CMD_POSITION", k as u32)? as i32;
+                    }
+                    return Err(DriverError::Held {
+                        input: hold.input,
+                        commanded,
+                        periods_queued: queued.min(counts.len()),
+                        periods: counts.len(),
+                    });
+                }
                 if self.field("STATE", "RUNNING", state)? == 0 {
                     let (cause, axis) = self.stop_cause()?;
                     let cause = if cause == StopCause::None {
