@@ -616,11 +616,7 @@ impl<B: ControllerBus> Driver<B> {
         holds: &[HoldEvent],
         mut progress: impl FnMut(usize),
     ) -> Result<RunReport, DriverError> {
-        if holds.windows(2).any(|w| w[1].clock < w[0].clock) {
-            return Err(DriverError::Config(
-                "the hold events are not in clock order".into(),
-            ));
-        }
+        Self::check_hold_order(holds)?;
         if let Some(axis) = (0..3).find(|&k| self.config.analog[k]) {
             return Err(DriverError::Config(format!(
                 "axis {axis} is analog: its entries are codes from a servo loop (Driver::run_servo), not step counts"
@@ -681,21 +677,8 @@ impl<B: ControllerBus> Driver<B> {
             if self.field("STATUS", "HELD", status)? == 1 {
                 report.held.push(self.bus.cycles());
             }
-            let release_to_come = holds[next_hold..]
-                .iter()
-                .any(|e| e.action == HoldAction::Release);
-            if running && self.field("STATE", "HELD", state)? == 1 && !release_to_come {
-                let hold = self.hold_state()?;
-                let mut commanded = [0; 3];
-                for (k, c) in commanded.iter_mut().enumerate() {
-                    *c = self.read("CMD_POSITION", k as u32)? as i32;
-                }
-                return Err(DriverError::Held {
-                    input: hold.input,
-                    commanded,
-                    periods_queued: next,
-                    periods: counts.len(),
-                });
+            if running && self.field("STATE", "HELD", state)? == 1 {
+                self.fail_if_held_for_good(holds, next_hold, next, counts.len())?;
             }
             self.queue(counts, &mut next)?;
             progress(next);

@@ -8,7 +8,7 @@ use super::hold_ramp::UNITY;
 
 /// The walk's inputs in one clock.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct WalkInputs<'a> {
+pub struct WalkInputs {
     /// Synchronous reset.
     pub reset: bool,
     /// Every FIFO pops in this clock.
@@ -27,8 +27,12 @@ pub struct WalkInputs<'a> {
     pub has_analog: bool,
     /// The DAC's `busy` in this clock.
     pub dac_busy: bool,
-    /// Each axis's code of its running period, saturated to 16 bits signed.
-    pub codes: &'a [i16],
+    /// The number of axes.
+    pub axes: usize,
+    /// The code of the axis [`AnalogWalkModel::walked_axis`] names (its
+    /// running period's, saturated to 16 bits signed; 0 for none), as the
+    /// controller's mux answers the RTL's `walk`.
+    pub code: i16,
 }
 
 /// What the walk drives into the DAC in one clock.
@@ -68,9 +72,14 @@ pub struct AnalogWalkModel {
 }
 
 impl AnalogWalkModel {
+    /// The axis the walk reads in this clock, if any.
+    pub fn walked_axis(&self) -> Option<usize> {
+        (self.walk != 0).then(|| self.walk.trailing_zeros() as usize)
+    }
+
     /// One clock: the loads and the request of this clock, then the edge.
     pub fn step(&mut self, i: &WalkInputs) -> WalkOutputs {
-        let axes = i.codes.len();
+        let axes = i.axes;
         let mask = crate::blocks::width_mask(axes as u32);
         let last_axis = 1u64 << (axes - 1);
         let any_analog = i.analog_axes != 0;
@@ -88,9 +97,7 @@ impl AnalogWalkModel {
         let start = i.pop || rewalk;
         let mut next = self.clone();
         let (walk_now, scaled_now, count_now) = (self.walk, self.scaled, self.step_count);
-        let code = (0..axes)
-            .find(|k| walk_now >> k & 1 == 1)
-            .map_or(0, |k| i.codes[k]);
+        let code = i.code;
         let mut load = walk_now & i.analog_axes;
         next.walk = (walk_now << 1) & mask;
         next.step_count = 0;

@@ -116,8 +116,8 @@ pub struct AnalogOutputs<const K: usize> {
     read_sel: DFF<Bit>,
     /// `stop_zero` one clock late (registered: the underrun decode is long).
     stop_zero_d: DFF<Bit>,
-    /// The running walk scales its codes (the factor was below 1 at its
-    /// start): 17 clocks an axis.
+    /// The running walk scales its codes (the factor was below 1 when it
+    /// was decided): `SCALE_STEPS` + 2 clocks an axis.
     scaled: DFF<Bit>,
     /// The walk's factor (below 1: 16 bits), rotated one bit a clock so
     /// that bit 0 is the multiplier's bit; 16 rotations bring it back.

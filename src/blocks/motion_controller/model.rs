@@ -1177,11 +1177,10 @@ impl MotionControllerModel {
             .iter()
             .enumerate()
             .fold(0u64, |w, (k, a)| w | (a.analog() as u64) << k);
-        let codes: Vec<i16> = self
-            .axes
-            .iter()
-            .map(|a| a.dac_code() as u16 as i16)
-            .collect();
+        let code = self
+            .walk
+            .walked_axis()
+            .map_or(0, |k| self.axes[k].dac_code() as u16 as i16);
         let walk = next.walk.step(&WalkInputs {
             reset: i.reset,
             pop,
@@ -1192,7 +1191,8 @@ impl MotionControllerModel {
             analog_axes,
             has_analog: self.analog,
             dac_busy: self.dac_out.busy,
-            codes: &codes,
+            axes: self.axes.len(),
+            code,
         });
         let dac_target = self
             .dac_addresses

@@ -118,6 +118,44 @@ impl<B: ControllerBus> Driver<B> {
         })
     }
 
+    /// Refuses hold events out of clock order.
+    pub(super) fn check_hold_order(holds: &[HoldEvent]) -> Result<(), DriverError> {
+        if holds.windows(2).any(|w| w[1].clock < w[0].clock) {
+            return Err(DriverError::Config(
+                "the hold events are not in clock order".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// For a path that stands held: [`DriverError::Held`] with its
+    /// position when no release is left in `holds[next..]`, else `Ok`.
+    pub(super) fn fail_if_held_for_good(
+        &mut self,
+        holds: &[HoldEvent],
+        next: usize,
+        periods_queued: usize,
+        periods: usize,
+    ) -> Result<(), DriverError> {
+        if holds[next..]
+            .iter()
+            .any(|e| e.action == HoldAction::Release)
+        {
+            return Ok(());
+        }
+        let hold = self.hold_state()?;
+        let mut commanded = [0; 3];
+        for (k, c) in commanded.iter_mut().enumerate() {
+            *c = self.read("CMD_POSITION", k as u32)? as i32;
+        }
+        Err(DriverError::Held {
+            input: hold.input,
+            commanded,
+            periods_queued,
+            periods,
+        })
+    }
+
     /// Applies every event of `events` due by now (the bus's clock), from
     /// `*next` on; returns the clocks between now and the next one.
     pub(super) fn apply_due_holds(

@@ -4,7 +4,7 @@
 //! entries ahead of the running one: the FIFO is the loop's delay, so it is
 //! kept short. The step axes take their counts from the same periods.
 
-use super::feed_hold::{HoldAction, HoldEvent};
+use super::feed_hold::HoldEvent;
 use super::{ControllerBus, Driver, DriverError, RunReport, StopCause};
 use crate::host::servo::{FollowingError, PositionLoop};
 
@@ -65,11 +65,7 @@ impl<B: ControllerBus> Driver<B> {
         holds: &[HoldEvent],
         mut progress: impl FnMut(usize),
     ) -> Result<ServoRunReport, DriverError> {
-        if holds.windows(2).any(|w| w[1].clock < w[0].clock) {
-            return Err(DriverError::Config(
-                "the hold events are not in clock order".into(),
-            ));
-        }
+        Self::check_hold_order(holds)?;
         if let Some(axis) = (0..3).find(|&k| loops[k].is_some() != self.config.analog[k]) {
             return Err(DriverError::Config(format!(
                 "axis {axis}: a servo loop is needed for each analog axis, and for no other"
@@ -145,21 +141,13 @@ impl<B: ControllerBus> Driver<B> {
                     report.run.held.push(self.bus.cycles());
                 }
                 was_held = held;
-                let release_to_come = holds[next_hold..]
-                    .iter()
-                    .any(|e| e.action == HoldAction::Release);
-                if held && !release_to_come {
-                    let hold = self.hold_state()?;
-                    let mut commanded = [0; 3];
-                    for (k, c) in commanded.iter_mut().enumerate() {
-                        *c = self.read("CMD_POSITION", k as u32)? as i32;
-                    }
-                    return Err(DriverError::Held {
-                        input: hold.input,
-                        commanded,
-                        periods_queued: queued.min(counts.len()),
-                        periods: counts.len(),
-                    });
+                if held {
+                    self.fail_if_held_for_good(
+                        holds,
+                        next_hold,
+                        queued.min(counts.len()),
+                        counts.len(),
+                    )?;
                 }
                 if self.field("STATE", "RUNNING", state)? == 0 {
                     let (cause, axis) = self.stop_cause()?;
