@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000601UL
+#define MC_VERSION_RESET 0x00000700UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
-#define MC_VERSION_PATCH_RESET 0x1UL
+#define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x6UL
+#define MC_VERSION_MINOR_RESET 0x7UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -43,7 +43,7 @@
 #define MC_CONFIG_OFFSET 0x0008UL
 #define MC_CONFIG_ADDR16 0x0004UL
 #define MC_CONFIG_ADDR8 0x0008UL
-#define MC_CONFIG_RESET 0x04610403UL
+#define MC_CONFIG_RESET 0x0c610403UL
 #define MC_CONFIG_AXES_SHIFT 0UL /* RO number of axes K */
 #define MC_CONFIG_AXES_MASK 0x000000ffUL
 #define MC_CONFIG_AXES_RESET 0x3UL
@@ -65,6 +65,9 @@
 #define MC_CONFIG_PROBE_SHIFT 26UL /* RO 1 = this build has the probe latch (PROBE_CONTROL, PROBE_*_POSITION, STATUS.PROBE); 0: the probe pin is ignored */
 #define MC_CONFIG_PROBE_MASK 0x04000000UL
 #define MC_CONFIG_PROBE_RESET 0x1UL
+#define MC_CONFIG_SOFT_LIMITS_SHIFT 27UL /* RO 1 = this build has the soft limits (SOFT_LIMIT, SOFT_MIN, SOFT_MAX, STATUS.SOFT_LIMIT) */
+#define MC_CONFIG_SOFT_LIMITS_MASK 0x08000000UL
+#define MC_CONFIG_SOFT_LIMITS_RESET 0x1UL
 
 /* CONTROL: run control */
 #define MC_CONTROL_INDEX 0x0003UL
@@ -85,7 +88,7 @@
 #define MC_STATUS_ADDR16 0x0008UL
 #define MC_STATUS_ADDR8 0x0010UL
 #define MC_STATUS_RESET 0x00000000UL
-#define MC_STATUS_W1C_MASK 0x00003fffUL /* write 1 to clear; write 0 here in a read-modify-write */
+#define MC_STATUS_W1C_MASK 0x00007fffUL /* write 1 to clear; write 0 here in a read-modify-write */
 #define MC_STATUS_PERIOD_DONE_SHIFT 0UL /* W1C a period ended and the next began */
 #define MC_STATUS_PERIOD_DONE_MASK 0x00000001UL
 #define MC_STATUS_PERIOD_DONE_RESET 0x0UL
@@ -128,6 +131,9 @@
 #define MC_STATUS_HELD_SHIFT 13UL /* W1C the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL */
 #define MC_STATUS_HELD_MASK 0x00002000UL
 #define MC_STATUS_HELD_RESET 0x0UL
+#define MC_STATUS_SOFT_LIMIT_SHIFT 14UL /* W1C an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS */
+#define MC_STATUS_SOFT_LIMIT_MASK 0x00004000UL
+#define MC_STATUS_SOFT_LIMIT_RESET 0x0UL
 
 /* IRQ_ENABLE: interrupt enable mask: irq is high while an enabled STATUS bit is set */
 #define MC_IRQ_ENABLE_INDEX 0x0005UL
@@ -177,6 +183,9 @@
 #define MC_IRQ_ENABLE_HELD_SHIFT 13UL /* RW the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL */
 #define MC_IRQ_ENABLE_HELD_MASK 0x00002000UL
 #define MC_IRQ_ENABLE_HELD_RESET 0x0UL
+#define MC_IRQ_ENABLE_SOFT_LIMIT_SHIFT 14UL /* RW an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS */
+#define MC_IRQ_ENABLE_SOFT_LIMIT_MASK 0x00004000UL
+#define MC_IRQ_ENABLE_SOFT_LIMIT_RESET 0x0UL
 
 /* TICK_DIVISOR: base tick = one every n clocks; 0 stops the tick (pauses everything) */
 #define MC_TICK_DIVISOR_INDEX 0x0006UL
@@ -783,5 +792,55 @@
 #define MC_PROBE_ACT_POSITION_VALUE_SHIFT 0UL /* RO ACT_POSITION on the clock of the probe's trip */
 #define MC_PROBE_ACT_POSITION_VALUE_MASK 0xffffffffUL
 #define MC_PROBE_ACT_POSITION_VALUE_RESET 0x0UL
+
+/* SOFT_LIMIT: soft limits: a position window per axis, checked against the feed hold's stopping distance, that requests the hold early enough to stop inside it */
+#define MC_SOFT_LIMIT_INDEX 0x001bUL
+#define MC_SOFT_LIMIT_OFFSET 0x006cUL
+#define MC_SOFT_LIMIT_ADDR16 0x0036UL
+#define MC_SOFT_LIMIT_ADDR8 0x006cUL
+#define MC_SOFT_LIMIT_RESET 0x00100000UL
+#define MC_SOFT_LIMIT_ENABLE_SHIFT 0UL /* RW bit k: axis k's window (SOFT_MIN, SOFT_MAX) is checked */
+#define MC_SOFT_LIMIT_ENABLE_MASK 0x00000007UL
+#define MC_SOFT_LIMIT_ENABLE_RESET 0x0UL
+#define MC_SOFT_LIMIT_BEYOND_SHIFT 8UL /* RO bit k: axis k's last verdict: its stop's reach meets the bound it heads for (requests the hold, refuses RELEASE); cleared when RUN falls or the axis is disabled */
+#define MC_SOFT_LIMIT_BEYOND_MASK 0x00000700UL
+#define MC_SOFT_LIMIT_BEYOND_RESET 0x0UL
+#define MC_SOFT_LIMIT_AXIS_SHIFT 16UL /* RO the axis of the last verdict that turned beyond (STATUS.SOFT_LIMIT) */
+#define MC_SOFT_LIMIT_AXIS_MASK 0x00070000UL
+#define MC_SOFT_LIMIT_AXIS_RESET 0x0UL
+#define MC_SOFT_LIMIT_NEGATIVE_SHIFT 19UL /* RO that axis was moving down, toward SOFT_MIN (0: up, toward SOFT_MAX) */
+#define MC_SOFT_LIMIT_NEGATIVE_MASK 0x00080000UL
+#define MC_SOFT_LIMIT_NEGATIVE_RESET 0x0UL
+#define MC_SOFT_LIMIT_MEASURED_SHIFT 20UL /* RO the stop's reach at the present HOLD_CONTROL.RATE is measured: 0 for the 3 clocks after reset and for ceil(65536 / RATE) + 3 clocks after RATE changes, while every moving axis is judged with the longest reach (start motion once it reads 1) */
+#define MC_SOFT_LIMIT_MEASURED_MASK 0x00100000UL
+#define MC_SOFT_LIMIT_MEASURED_RESET 0x1UL
+
+/* SOFT_MIN: the soft window's lower end in steps, signed, POSITION_BITS wide */
+#define MC_SOFT_MIN_COUNT 3UL
+#define MC_SOFT_MIN_INDEX(n) (0x0038UL + (unsigned long)(n) * 0x20UL)
+#define MC_SOFT_MIN_OFFSET(n) (MC_SOFT_MIN_INDEX(n) * 4UL)
+#define MC_SOFT_MIN_ADDR16(n) (MC_SOFT_MIN_INDEX(n) * 2UL)
+#define MC_SOFT_MIN_ADDR8(n) (MC_SOFT_MIN_INDEX(n) * 4UL)
+#define MC_SOFT_MIN_RESET 0x00000000UL
+#define MC_SOFT_MIN_VALUE_SHIFT 0UL /* RW the lower end, signed */
+#define MC_SOFT_MIN_VALUE_MASK 0x00ffffffUL
+#define MC_SOFT_MIN_VALUE_RESET 0x0UL
+#define MC_SOFT_MIN_SIGN_SHIFT 24UL /* RO copies of VALUE's sign bit (writes ignored) */
+#define MC_SOFT_MIN_SIGN_MASK 0xff000000UL
+#define MC_SOFT_MIN_SIGN_RESET 0x0UL
+
+/* SOFT_MAX: the soft window's upper end in steps, signed, POSITION_BITS wide */
+#define MC_SOFT_MAX_COUNT 3UL
+#define MC_SOFT_MAX_INDEX(n) (0x0039UL + (unsigned long)(n) * 0x20UL)
+#define MC_SOFT_MAX_OFFSET(n) (MC_SOFT_MAX_INDEX(n) * 4UL)
+#define MC_SOFT_MAX_ADDR16(n) (MC_SOFT_MAX_INDEX(n) * 2UL)
+#define MC_SOFT_MAX_ADDR8(n) (MC_SOFT_MAX_INDEX(n) * 4UL)
+#define MC_SOFT_MAX_RESET 0x00000000UL
+#define MC_SOFT_MAX_VALUE_SHIFT 0UL /* RW the upper end, signed */
+#define MC_SOFT_MAX_VALUE_MASK 0x00ffffffUL
+#define MC_SOFT_MAX_VALUE_RESET 0x0UL
+#define MC_SOFT_MAX_SIGN_SHIFT 24UL /* RO copies of VALUE's sign bit (writes ignored) */
+#define MC_SOFT_MAX_SIGN_MASK 0xff000000UL
+#define MC_SOFT_MAX_SIGN_RESET 0x0UL
 
 #endif /* MC_REGS_H */

@@ -96,25 +96,31 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  shadow_bit__13 = 32'h2000;
     localparam  shadow_bit__14 = 32'h4000;
     localparam  shadow_bit__15 = 32'h8000;
+    localparam  has_soft = 1'b0;
+    localparam  soft_axis__0 = 3'b0;
+    localparam  soft_axis__1 = 3'b1;
+    localparam  soft_axis__2 = 3'b10;
+    localparam  zero_position = 24'h0;
     localparam  zero_code = 16'h0;
     localparam  has_uniform = 1'b0;
     localparam  has_probe = 1'b1;
     localparam  zero32 = 32'h0;
-    localparam  ev_period_done = 14'b1;
-    localparam  ev_fifo_low = 14'b10;
-    localparam  ev_underrun = 14'b100;
-    localparam  ev_overflow = 14'b1000;
-    localparam  ev_encoder_error = 14'b10000;
-    localparam  ev_watchdog = 14'b100000;
-    localparam  ev_axis_fault = 14'b1000000;
-    localparam  ev_limit = 14'b10000000;
-    localparam  ev_alarm = 14'b100000000;
-    localparam  ev_estop = 14'b1000000000;
-    localparam  ev_home = 14'b10000000000;
-    localparam  ev_gpio = 14'b100000000000;
-    localparam  ev_probe = 14'b1000000000000;
-    localparam  ev_held = 14'b10000000000000;
-    localparam  zero_ev = 14'b0;
+    localparam  ev_period_done = 15'b1;
+    localparam  ev_fifo_low = 15'b10;
+    localparam  ev_underrun = 15'b100;
+    localparam  ev_overflow = 15'b1000;
+    localparam  ev_encoder_error = 15'b10000;
+    localparam  ev_watchdog = 15'b100000;
+    localparam  ev_axis_fault = 15'b1000000;
+    localparam  ev_limit = 15'b10000000;
+    localparam  ev_alarm = 15'b100000000;
+    localparam  ev_estop = 15'b1000000000;
+    localparam  ev_home = 15'b10000000000;
+    localparam  ev_gpio = 15'b100000000000;
+    localparam  ev_probe = 15'b1000000000000;
+    localparam  ev_held = 15'b10000000000000;
+    localparam  ev_soft_limit = 15'b100000000000000;
+    localparam  zero_ev = 15'b0;
     localparam  m_status_watchdog = 32'h20;
     localparam  m_status_estop = 32'h200;
     localparam  axis_bit__0 = 3'b1;
@@ -182,6 +188,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [15:0] axes__0__dac_code;
     wire  axes__0__code_out_of_range;
     wire  axes__0__code_negative;
+    wire  [23:0] axes__0__cmd_position;
     reg  axes__1__clock;
     reg  axes__1__reset;
     reg  axes__1__tick;
@@ -239,6 +246,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [15:0] axes__1__dac_code;
     wire  axes__1__code_out_of_range;
     wire  axes__1__code_negative;
+    wire  [23:0] axes__1__cmd_position;
     reg  axes__2__clock;
     reg  axes__2__reset;
     reg  axes__2__tick;
@@ -296,13 +304,14 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [15:0] axes__2__dac_code;
     wire  axes__2__code_out_of_range;
     wire  axes__2__code_negative;
+    wire  [23:0] axes__2__cmd_position;
     reg  registers__clock;
     reg  registers__reset;
     reg  [7:0] registers__address;
     reg  [31:0] registers__write_data;
     reg  registers__write;
     reg  registers__running;
-    reg  [13:0] registers__status;
+    reg  [14:0] registers__status;
     reg  registers__watchdog_armed;
     reg  registers__watchdog_expired;
     reg  registers__estop_input;
@@ -313,7 +322,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  registers__held;
     reg  [31:0] registers__period_count;
     reg  [31:0] registers__stop_cause;
-    wire  [13:0] registers__irq_enable;
+    wire  [14:0] registers__irq_enable;
     wire  [31:0] registers__tick_divisor;
     wire  [15:0] registers__period_ticks;
     wire  [4:0] registers__low_water;
@@ -379,11 +388,11 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  watchdog__armed;
     reg  interrupts__clock;
     reg  interrupts__reset;
-    reg  [13:0] interrupts__events;
+    reg  [14:0] interrupts__events;
     reg  interrupts__clear;
-    reg  [13:0] interrupts__clear_bits;
-    reg  [13:0] interrupts__enable;
-    wire  [13:0] interrupts__status;
+    reg  [14:0] interrupts__clear_bits;
+    reg  [14:0] interrupts__enable;
+    wire  [14:0] interrupts__status;
     wire  interrupts__irq;
     reg  io__clock;
     reg  io__reset;
@@ -424,6 +433,24 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  probe_trigger__latch;
     wire  probe_trigger__stop;
     wire  [31:0] probe_trigger__read_data;
+    reg  soft_limits__clock;
+    reg  soft_limits__reset;
+    reg  [7:0] soft_limits__address;
+    reg  soft_limits__write;
+    reg  [23:0] soft_limits__write_data;
+    reg  soft_limits__running;
+    reg  [15:0] soft_limits__rate;
+    reg  [15:0] soft_limits__period;
+    reg  [23:0] soft_limits__position;
+    reg  [15:0] soft_limits__magnitude;
+    reg  soft_limits__negative;
+    reg  soft_limits__step_axis;
+    wire  [2:0] soft_limits__select;
+    wire  soft_limits__stop;
+    wire  soft_limits__tripped;
+    wire  [31:0] soft_limits__read_data;
+    reg  soft_limits__read;
+    wire  [31:0] soft_limits__window_data;
     reg  feed_hold_unit__clock;
     reg  feed_hold_unit__reset;
     reg  feed_hold_unit__feed_hold;
@@ -433,12 +460,14 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  feed_hold_unit__write;
     reg  [31:0] feed_hold_unit__write_data;
     reg  feed_hold_unit__probe_stop;
+    reg  feed_hold_unit__soft_stop;
     reg  feed_hold_unit__tick;
     wire  feed_hold_unit__tick_out;
     wire  feed_hold_unit__holding;
     wire  feed_hold_unit__held;
     wire  [15:0] feed_hold_unit__factor_fraction;
     wire  [31:0] feed_hold_unit__read_data;
+    wire  [15:0] feed_hold_unit__rate_out;
     reg  motion_tick__d;
     wire  motion_tick__q;
     reg  motion_tick__clock;
@@ -501,6 +530,11 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  held_prev__clock;
 
     // Local signals
+    reg  [31:0] soft_read;
+    reg  [23:0] soft_position;
+    reg  [15:0] soft_magnitude;
+    reg  soft_negative;
+    reg  soft_step_axis;
     reg  [2:0] analog_axes;
     reg  [15:0] walk_magnitude;
     reg  walk_wide;
@@ -521,7 +555,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  any_encoder_error;
     reg  any_busy;
     reg  [31:0] axes_read;
-    reg  [13:0] events;
+    reg  [14:0] events;
     reg  abort;
     reg  refuse_run;
     reg  [2:0] limit_held;
@@ -594,7 +628,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .analog(axes__0__analog),
         .dac_code(axes__0__dac_code),
         .code_out_of_range(axes__0__code_out_of_range),
-        .code_negative(axes__0__code_negative)
+        .code_negative(axes__0__code_negative),
+        .cmd_position(axes__0__cmd_position)
     );
     motion_controller_servo__axes__1 axes__1(
         .clock(axes__1__clock),
@@ -653,7 +688,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .analog(axes__1__analog),
         .dac_code(axes__1__dac_code),
         .code_out_of_range(axes__1__code_out_of_range),
-        .code_negative(axes__1__code_negative)
+        .code_negative(axes__1__code_negative),
+        .cmd_position(axes__1__cmd_position)
     );
     motion_controller_servo__axes__2 axes__2(
         .clock(axes__2__clock),
@@ -712,7 +748,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .analog(axes__2__analog),
         .dac_code(axes__2__dac_code),
         .code_out_of_range(axes__2__code_out_of_range),
-        .code_negative(axes__2__code_negative)
+        .code_negative(axes__2__code_negative),
+        .cmd_position(axes__2__cmd_position)
     );
     motion_controller_servo__registers registers(
         .clock(registers__clock),
@@ -862,6 +899,26 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .stop(probe_trigger__stop),
         .read_data(probe_trigger__read_data)
     );
+    motion_controller_servo__soft_limits soft_limits(
+        .clock(soft_limits__clock),
+        .reset(soft_limits__reset),
+        .address(soft_limits__address),
+        .write(soft_limits__write),
+        .write_data(soft_limits__write_data),
+        .running(soft_limits__running),
+        .rate(soft_limits__rate),
+        .period(soft_limits__period),
+        .position(soft_limits__position),
+        .magnitude(soft_limits__magnitude),
+        .negative(soft_limits__negative),
+        .step_axis(soft_limits__step_axis),
+        .select(soft_limits__select),
+        .stop(soft_limits__stop),
+        .tripped(soft_limits__tripped),
+        .read_data(soft_limits__read_data),
+        .read(soft_limits__read),
+        .window_data(soft_limits__window_data)
+    );
     motion_controller_servo__feed_hold_unit feed_hold_unit(
         .clock(feed_hold_unit__clock),
         .reset(feed_hold_unit__reset),
@@ -872,12 +929,14 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .write(feed_hold_unit__write),
         .write_data(feed_hold_unit__write_data),
         .probe_stop(feed_hold_unit__probe_stop),
+        .soft_stop(feed_hold_unit__soft_stop),
         .tick(feed_hold_unit__tick),
         .tick_out(feed_hold_unit__tick_out),
         .holding(feed_hold_unit__holding),
         .held(feed_hold_unit__held),
         .factor_fraction(feed_hold_unit__factor_fraction),
-        .read_data(feed_hold_unit__read_data)
+        .read_data(feed_hold_unit__read_data),
+        .rate_out(feed_hold_unit__rate_out)
     );
     motion_controller_servo__motion_tick motion_tick(
         .d(motion_tick__d),
@@ -986,6 +1045,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         interrupts__clock = clock;
         io__clock = clock;
         probe_trigger__clock = clock;
+        soft_limits__clock = clock;
         feed_hold_unit__clock = clock;
         planner__clock = clock;
         analog__clock = clock;
@@ -1040,6 +1100,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         feed_hold_unit__write = bus_write;
         feed_hold_unit__write_data = bus_write_data;
         feed_hold_unit__probe_stop = probe_trigger__stop & has_probe;
+        feed_hold_unit__soft_stop = soft_limits__stop & has_soft;
         feed_hold_unit__tick = tick;
         motion_tick__d = feed_hold_unit__tick_out;
         registers__holding = feed_hold_unit__holding;
@@ -1317,6 +1378,40 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         step_a = steps_a;
         step_b = steps_b;
         drive_enable = enables;
+        soft_position = zero_position;
+        soft_magnitude = zero_code;
+        soft_negative = 1'b0;
+        soft_step_axis = 1'b0;
+        if (soft_limits__select == soft_axis__0) begin
+            soft_position = axes__0__cmd_position;
+            soft_magnitude = axes__0__dac_code;
+            soft_negative = axes__0__code_negative;
+            soft_step_axis = ~axes__0__analog;
+        end
+        if (soft_limits__select == soft_axis__1) begin
+            soft_position = axes__1__cmd_position;
+            soft_magnitude = axes__1__dac_code;
+            soft_negative = axes__1__code_negative;
+            soft_step_axis = ~axes__1__analog;
+        end
+        if (soft_limits__select == soft_axis__2) begin
+            soft_position = axes__2__cmd_position;
+            soft_magnitude = axes__2__dac_code;
+            soft_negative = axes__2__code_negative;
+            soft_step_axis = ~axes__2__analog;
+        end
+        soft_limits__reset = reset;
+        soft_limits__address = bus_address;
+        soft_limits__write = bus_write & has_soft;
+        soft_limits__read = bus_read & has_soft;
+        soft_limits__write_data = bus_write_data[(32'h0)+:(24)];
+        soft_limits__running = period__running;
+        soft_limits__rate = feed_hold_unit__rate_out;
+        soft_limits__period = registers__period_ticks;
+        soft_limits__position = soft_position;
+        soft_limits__magnitude = soft_magnitude;
+        soft_limits__negative = soft_negative;
+        soft_limits__step_axis = soft_step_axis;
         analog_axes = zero_k;
         walk_magnitude = zero_code;
         walk_wide = 1'b0;
@@ -1410,22 +1505,32 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         if (feed_hold_unit__held & ~held_prev__q) begin
             events = events | ev_held;
         end
+        if (soft_limits__tripped & has_soft) begin
+            events = events | ev_soft_limit;
+        end
         interrupts__reset = reset;
         interrupts__events = events;
         interrupts__clear = registers__status_write;
-        interrupts__clear_bits = bus_write_data[(32'h0)+:(14)];
+        interrupts__clear_bits = bus_write_data[(32'h0)+:(15)];
         interrupts__enable = registers__irq_enable;
         irq = interrupts__irq;
         probe_read = zero32;
         if (has_probe) begin
             probe_read = probe_trigger__read_data;
         end
+        soft_read = zero32;
+        if (has_soft) begin
+            soft_read = soft_limits__read_data;
+        end
         if (bus_read) begin
-            read_data__d = registers__read_data | io__read_data | probe_read | feed_hold_unit__read_data | axes_read;
+            read_data__d = registers__read_data | io__read_data | probe_read | soft_read | feed_hold_unit__read_data | axes_read;
         end
         read_out = read_data__q;
         if (analog__read_selected) begin
             read_out = analog__read_data;
+        end
+        if (has_soft) begin
+            read_out = read_out | soft_limits__window_data;
         end
         config_shadow__clock = clock;
         config_shadow__reset = reset;
@@ -3771,7 +3876,7 @@ module motion_controller_servo__any_low_prev_n(d,q,clock);
 endmodule // motion_controller_servo__any_low_prev_n
 
 
-module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position);
 
     // Module arguments
     input wire  clock;
@@ -3831,6 +3936,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     output reg  [15:0] dac_code;
     output reg  code_out_of_range;
     output reg  code_negative;
+    output reg  [23:0] cmd_position;
 
     // Constant declarations
     localparam  window = 3'b1;
@@ -4529,6 +4635,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         dac_code = popped__q[(32'h0)+:(16)];
         code_out_of_range = popped__q[32'h12];
         code_negative = popped__q[32'h11];
+        cmd_position = position__count;
         code_nonzero = popped__q[32'h13];
         analog = analog_active__q;
         too_large = popped__q[32'h10];
@@ -10104,7 +10211,7 @@ module motion_controller_servo__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__0__uniform_running_forward
 
 
-module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position);
 
     // Module arguments
     input wire  clock;
@@ -10164,6 +10271,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     output reg  [15:0] dac_code;
     output reg  code_out_of_range;
     output reg  code_negative;
+    output reg  [23:0] cmd_position;
 
     // Constant declarations
     localparam  window = 3'b10;
@@ -10862,6 +10970,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         dac_code = popped__q[(32'h0)+:(16)];
         code_out_of_range = popped__q[32'h12];
         code_negative = popped__q[32'h11];
+        cmd_position = position__count;
         code_nonzero = popped__q[32'h13];
         analog = analog_active__q;
         too_large = popped__q[32'h10];
@@ -16437,7 +16546,7 @@ module motion_controller_servo__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__1__uniform_running_forward
 
 
-module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative);
+module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position);
 
     // Module arguments
     input wire  clock;
@@ -16497,6 +16606,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     output reg  [15:0] dac_code;
     output reg  code_out_of_range;
     output reg  code_negative;
+    output reg  [23:0] cmd_position;
 
     // Constant declarations
     localparam  window = 3'b11;
@@ -17195,6 +17305,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         dac_code = popped__q[(32'h0)+:(16)];
         code_out_of_range = popped__q[32'h12];
         code_negative = popped__q[32'h11];
+        cmd_position = position__count;
         code_nonzero = popped__q[32'h13];
         analog = analog_active__q;
         too_large = popped__q[32'h10];
@@ -23315,7 +23426,7 @@ module motion_controller_servo__expired_prev(d,q,clock);
 endmodule // motion_controller_servo__expired_prev
 
 
-module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,length,address,write,write_data,probe_stop,tick,tick_out,holding,held,factor_fraction,read_data);
+module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,length,address,write,write_data,probe_stop,soft_stop,tick,tick_out,holding,held,factor_fraction,read_data,rate_out);
 
     // Module arguments
     input wire  clock;
@@ -23327,12 +23438,14 @@ module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,leng
     input wire  write;
     input wire  [31:0] write_data;
     input wire  probe_stop;
+    input wire  soft_stop;
     input wire  tick;
     output reg  tick_out;
     output reg  holding;
     output reg  held;
     output reg  [15:0] factor_fraction;
     output reg  [31:0] read_data;
+    output reg  [15:0] rate_out;
 
     // Constant declarations
     localparam  a_control = 8'h1a;
@@ -23448,7 +23561,7 @@ module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,leng
             invert__d = write_data[32'h2];
             rate__d = write_data[(32'h10)+:(16)];
         end
-        set = input_active | probe_stop | (control_write & write_data[32'h0]);
+        set = input_active | probe_stop | soft_stop | (control_write & write_data[32'h0]);
         request_now = requested__q;
         if (control_write & write_data[32'h1]) begin
             request_now = 1'b0;
@@ -23466,6 +23579,7 @@ module motion_controller_servo__feed_hold_unit(clock,reset,feed_hold,sample,leng
         ramp__tick = tick;
         ramp__hold = requested__q;
         ramp__rate = rate__q;
+        rate_out = rate__q;
         tick_out = ramp__tick_out;
         holding = ramp__slowed;
         held = ramp__stopped;
@@ -24007,19 +24121,19 @@ module motion_controller_servo__interrupts(clock,reset,events,clear,clear_bits,e
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [13:0] events;
+    input wire  [14:0] events;
     input wire  clear;
-    input wire  [13:0] clear_bits;
-    input wire  [13:0] enable;
-    output reg  [13:0] status;
+    input wire  [14:0] clear_bits;
+    input wire  [14:0] enable;
+    output reg  [14:0] status;
     output reg  irq;
 
     // Constant declarations
-    localparam  zero = 14'b0;
+    localparam  zero = 15'b0;
 
     // Stub signals
-    reg  [13:0] status_reg__d;
-    wire  [13:0] status_reg__q;
+    reg  [14:0] status_reg__d;
+    wire  [14:0] status_reg__q;
     reg  status_reg__clock;
     reg  irq_reg__d;
     wire  irq_reg__q;
@@ -24083,13 +24197,13 @@ endmodule // motion_controller_servo__interrupts__irq_reg
 module motion_controller_servo__interrupts__status_reg(d,q,clock);
 
     // Module arguments
-    input wire  [13:0] d;
-    output reg  [13:0] q;
+    input wire  [14:0] d;
+    output reg  [14:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 14'h0;
+       q = 15'h0;
     end
 
     always @(posedge clock) begin
@@ -30859,7 +30973,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     input wire  [31:0] write_data;
     input wire  write;
     input wire  running;
-    input wire  [13:0] status;
+    input wire  [14:0] status;
     input wire  watchdog_armed;
     input wire  watchdog_expired;
     input wire  estop_input;
@@ -30870,7 +30984,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     input wire  held;
     input wire  [31:0] period_count;
     input wire  [31:0] stop_cause;
-    output reg  [13:0] irq_enable;
+    output reg  [14:0] irq_enable;
     output reg  [31:0] tick_divisor;
     output reg  [15:0] period_ticks;
     output reg  [4:0] low_water;
@@ -30898,7 +31012,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h601;
+    localparam  version_value = 32'h700;
     localparam  config_value = 32'h7610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
@@ -30927,13 +31041,13 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  bit_mask__14 = 32'h4000;
     localparam  bit_mask__15 = 32'h8000;
     localparam  zero32 = 32'h0;
-    localparam  zero_irq = 14'b0;
+    localparam  zero_irq = 15'b0;
     localparam  zero_p = 16'h0;
     localparam  zero_level = 5'b0;
 
     // Stub signals
-    reg  [13:0] irq_enable_reg__d;
-    wire  [13:0] irq_enable_reg__q;
+    reg  [14:0] irq_enable_reg__d;
+    wire  [14:0] irq_enable_reg__q;
     reg  irq_enable_reg__clock;
     reg  [31:0] tick_divisor_reg__d;
     wire  [31:0] tick_divisor_reg__q;
@@ -30997,7 +31111,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         watchdog_timeout = watchdog_timeout_reg__q;
         if (write) begin
             if (address == a_irq_enable) begin
-                irq_enable_reg__d = write_data[(32'h0)+:(14)];
+                irq_enable_reg__d = write_data[(32'h0)+:(15)];
             end
             if (address == a_tick_divisor) begin
                 tick_divisor_reg__d = write_data;
@@ -31141,6 +31255,12 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         if ((address == a_irq_enable) & irq_enable_reg__q[13]) begin
             read_data = read_data | bit_mask__13;
         end
+        if ((address == a_status) & status[14]) begin
+            read_data = read_data | bit_mask__14;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[14]) begin
+            read_data = read_data | bit_mask__14;
+        end
         if (address == a_tick_divisor) begin
             read_data = read_data | tick_divisor_reg__q;
         end
@@ -31234,13 +31354,13 @@ endmodule // motion_controller_servo__registers
 module motion_controller_servo__registers__irq_enable_reg(d,q,clock);
 
     // Module arguments
-    input wire  [13:0] d;
-    output reg  [13:0] q;
+    input wire  [14:0] d;
+    output reg  [14:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 14'h0;
+       q = 15'h0;
     end
 
     always @(posedge clock) begin
@@ -31324,6 +31444,1390 @@ module motion_controller_servo__registers__watchdog_timeout_reg(d,q,clock);
     end
 
 endmodule // motion_controller_servo__registers__watchdog_timeout_reg
+
+
+module motion_controller_servo__soft_limits(clock,reset,address,write,write_data,running,rate,period,position,magnitude,negative,step_axis,select,stop,tripped,read_data,read,window_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [23:0] write_data;
+    input wire  running;
+    input wire  [15:0] rate;
+    input wire  [15:0] period;
+    input wire  [23:0] position;
+    input wire  [15:0] magnitude;
+    input wire  negative;
+    input wire  step_axis;
+    output reg  [2:0] select;
+    output reg  stop;
+    output reg  tripped;
+    output reg  [31:0] read_data;
+    input wire  read;
+    output reg  [31:0] window_data;
+
+    // Constant declarations
+    localparam  a_control = 8'h1b;
+    localparam  a_min__0 = 8'h38;
+    localparam  a_min__1 = 8'h58;
+    localparam  a_min__2 = 8'h78;
+    localparam  a_max__0 = 8'h39;
+    localparam  a_max__1 = 8'h59;
+    localparam  a_max__2 = 8'h79;
+    localparam  axis_id__0 = 3'b0;
+    localparam  axis_id__1 = 3'b1;
+    localparam  axis_id__2 = 3'b10;
+    localparam  axis_bit__0 = 8'h1;
+    localparam  axis_bit__1 = 8'h2;
+    localparam  axis_bit__2 = 8'h4;
+    localparam  last_turn = 3'b10;
+    localparam  enable_mask = 8'h7;
+    localparam  latency_plus_one = 17'b1100001;
+    localparam  reach_max = 17'b11111111111111111;
+    localparam  margin = 26'h2;
+    localparam  sat_high = 20'h7ffff;
+    localparam  sat_low = 20'h80000;
+    localparam  ext21 = 21'h100000;
+    localparam  ext26 = 26'h3000000;
+    localparam  ext32 = 32'hff000000;
+    localparam  ext_both = 23'h600000;
+    localparam  ext_delta = 23'h700000;
+    localparam  acc_sign = 23'h400000;
+    localparam  m_negative = 32'h80000;
+    localparam  m_measured = 32'h100000;
+    localparam  s_load = 5'b0;
+    localparam  s_distance = 5'b1;
+    localparam  s_margin = 5'b10;
+    localparam  s_both = 5'b11;
+    localparam  s_first = 5'b100;
+    localparam  s_last = 5'b10100;
+    localparam  s_verdict = 5'b10101;
+    localparam  one3 = 3'b1;
+    localparam  one5 = 5'b1;
+    localparam  zero3 = 3'b0;
+    localparam  zero17 = 17'b0;
+    localparam  zero24 = 24'h0;
+    localparam  measure_limit = 17'b11111111110011110;
+    localparam  zero7 = 7'b0;
+    localparam  ones7 = 7'b1111111;
+    localparam  zero8 = 8'h0;
+    localparam  zero16 = 16'h0;
+    localparam  one17 = 17'b1;
+    localparam  zero_acc = 23'h0;
+    localparam  zero32 = 32'h0;
+
+    // Stub signals
+    reg  check_ram__clock;
+    reg  check_ram__read_enable;
+    reg  [7:0] check_ram__read_address;
+    wire  [23:0] check_ram__read_data;
+    reg  check_ram__write_enable;
+    reg  [7:0] check_ram__write_address;
+    reg  [23:0] check_ram__write_data;
+    reg  bus_ram__clock;
+    reg  bus_ram__read_enable;
+    reg  [7:0] bus_ram__read_address;
+    wire  [23:0] bus_ram__read_data;
+    reg  bus_ram__write_enable;
+    reg  [7:0] bus_ram__write_address;
+    reg  [23:0] bus_ram__write_data;
+    reg  [7:0] min_valid__d;
+    wire  [7:0] min_valid__q;
+    reg  min_valid__clock;
+    reg  [7:0] max_valid__d;
+    wire  [7:0] max_valid__q;
+    reg  max_valid__clock;
+    reg  bound_valid__d;
+    wire  bound_valid__q;
+    reg  bound_valid__clock;
+    reg  window_selected__d;
+    wire  window_selected__q;
+    reg  window_selected__clock;
+    reg  [7:0] enable__d;
+    wire  [7:0] enable__q;
+    reg  enable__clock;
+    reg  [7:0] beyond__d;
+    wire  [7:0] beyond__q;
+    reg  beyond__clock;
+    reg  event_q__d;
+    wire  event_q__q;
+    reg  event_q__clock;
+    reg  [2:0] last_axis__d;
+    wire  [2:0] last_axis__q;
+    reg  last_axis__clock;
+    reg  last_negative__d;
+    wire  last_negative__q;
+    reg  last_negative__clock;
+    reg  [2:0] turn_axis__d;
+    wire  [2:0] turn_axis__q;
+    reg  turn_axis__clock;
+    reg  [4:0] turn_step__d;
+    wire  [4:0] turn_step__q;
+    reg  turn_step__clock;
+    reg  [23:0] position_q__d;
+    wire  [23:0] position_q__q;
+    reg  position_q__clock;
+    reg  [15:0] magnitude_q__d;
+    wire  [15:0] magnitude_q__q;
+    reg  magnitude_q__clock;
+    reg  negative_q__d;
+    wire  negative_q__q;
+    reg  negative_q__clock;
+    reg  live_q__d;
+    wire  live_q__q;
+    reg  live_q__clock;
+    reg  [25:0] distance__d;
+    wire  [25:0] distance__q;
+    reg  distance__clock;
+    reg  [19:0] neg_delta__d;
+    wire  [19:0] neg_delta__q;
+    reg  neg_delta__clock;
+    reg  [20:0] both__d;
+    wire  [20:0] both__q;
+    reg  both__clock;
+    reg  [16:0] period_bits__d;
+    wire  [16:0] period_bits__q;
+    reg  period_bits__clock;
+    reg  [16:0] reach_bits__d;
+    wire  [16:0] reach_bits__q;
+    reg  reach_bits__clock;
+    reg  [22:0] acc__d;
+    wire  [22:0] acc__q;
+    reg  acc__clock;
+    reg  gauge__clock;
+    reg  gauge__reset;
+    reg  gauge__tick;
+    reg  gauge__hold;
+    reg  [15:0] gauge__rate;
+    wire  gauge__tick_out;
+    wire  [16:0] gauge__factor;
+    wire  [15:0] gauge__phase;
+    wire  gauge__slowed;
+    wire  gauge__stopped;
+    reg  [15:0] gauge_rate__d;
+    wire  [15:0] gauge_rate__q;
+    reg  gauge_rate__clock;
+    reg  [16:0] gauge_count__d;
+    wire  [16:0] gauge_count__q;
+    reg  gauge_count__clock;
+    reg  gauge_restart__d;
+    wire  gauge_restart__q;
+    reg  gauge_restart__clock;
+    reg  [16:0] reach__d;
+    wire  [16:0] reach__q;
+    reg  reach__clock;
+    reg  reach_valid__d;
+    wire  reach_valid__q;
+    reg  reach_valid__clock;
+
+    // Local signals
+    reg  [25:0] upper;
+    reg  [25:0] lower;
+    reg  [25:0] with_margin;
+    reg  [22:0] term;
+    reg  [22:0] sum;
+    reg  verdict;
+    reg  [16:0] reach_now;
+    reg  [16:0] measured;
+    reg  [7:0] enable_now;
+    reg  [31:0] word24;
+    reg  [20:0] delta21;
+    reg  [23:0] bound;
+    reg  window_hit;
+    reg  window_valid;
+
+    // Sub module instances
+    motion_controller_servo__soft_limits__check_ram check_ram(
+        .clock(check_ram__clock),
+        .read_enable(check_ram__read_enable),
+        .read_address(check_ram__read_address),
+        .read_data(check_ram__read_data),
+        .write_enable(check_ram__write_enable),
+        .write_address(check_ram__write_address),
+        .write_data(check_ram__write_data)
+    );
+    motion_controller_servo__soft_limits__bus_ram bus_ram(
+        .clock(bus_ram__clock),
+        .read_enable(bus_ram__read_enable),
+        .read_address(bus_ram__read_address),
+        .read_data(bus_ram__read_data),
+        .write_enable(bus_ram__write_enable),
+        .write_address(bus_ram__write_address),
+        .write_data(bus_ram__write_data)
+    );
+    motion_controller_servo__soft_limits__min_valid min_valid(
+        .d(min_valid__d),
+        .q(min_valid__q),
+        .clock(min_valid__clock)
+    );
+    motion_controller_servo__soft_limits__max_valid max_valid(
+        .d(max_valid__d),
+        .q(max_valid__q),
+        .clock(max_valid__clock)
+    );
+    motion_controller_servo__soft_limits__bound_valid bound_valid(
+        .d(bound_valid__d),
+        .q(bound_valid__q),
+        .clock(bound_valid__clock)
+    );
+    motion_controller_servo__soft_limits__window_selected window_selected(
+        .d(window_selected__d),
+        .q(window_selected__q),
+        .clock(window_selected__clock)
+    );
+    motion_controller_servo__soft_limits__enable enable(
+        .d(enable__d),
+        .q(enable__q),
+        .clock(enable__clock)
+    );
+    motion_controller_servo__soft_limits__beyond beyond(
+        .d(beyond__d),
+        .q(beyond__q),
+        .clock(beyond__clock)
+    );
+    motion_controller_servo__soft_limits__event_q event_q(
+        .d(event_q__d),
+        .q(event_q__q),
+        .clock(event_q__clock)
+    );
+    motion_controller_servo__soft_limits__last_axis last_axis(
+        .d(last_axis__d),
+        .q(last_axis__q),
+        .clock(last_axis__clock)
+    );
+    motion_controller_servo__soft_limits__last_negative last_negative(
+        .d(last_negative__d),
+        .q(last_negative__q),
+        .clock(last_negative__clock)
+    );
+    motion_controller_servo__soft_limits__turn_axis turn_axis(
+        .d(turn_axis__d),
+        .q(turn_axis__q),
+        .clock(turn_axis__clock)
+    );
+    motion_controller_servo__soft_limits__turn_step turn_step(
+        .d(turn_step__d),
+        .q(turn_step__q),
+        .clock(turn_step__clock)
+    );
+    motion_controller_servo__soft_limits__position_q position_q(
+        .d(position_q__d),
+        .q(position_q__q),
+        .clock(position_q__clock)
+    );
+    motion_controller_servo__soft_limits__magnitude_q magnitude_q(
+        .d(magnitude_q__d),
+        .q(magnitude_q__q),
+        .clock(magnitude_q__clock)
+    );
+    motion_controller_servo__soft_limits__negative_q negative_q(
+        .d(negative_q__d),
+        .q(negative_q__q),
+        .clock(negative_q__clock)
+    );
+    motion_controller_servo__soft_limits__live_q live_q(
+        .d(live_q__d),
+        .q(live_q__q),
+        .clock(live_q__clock)
+    );
+    motion_controller_servo__soft_limits__distance distance(
+        .d(distance__d),
+        .q(distance__q),
+        .clock(distance__clock)
+    );
+    motion_controller_servo__soft_limits__neg_delta neg_delta(
+        .d(neg_delta__d),
+        .q(neg_delta__q),
+        .clock(neg_delta__clock)
+    );
+    motion_controller_servo__soft_limits__both both(
+        .d(both__d),
+        .q(both__q),
+        .clock(both__clock)
+    );
+    motion_controller_servo__soft_limits__period_bits period_bits(
+        .d(period_bits__d),
+        .q(period_bits__q),
+        .clock(period_bits__clock)
+    );
+    motion_controller_servo__soft_limits__reach_bits reach_bits(
+        .d(reach_bits__d),
+        .q(reach_bits__q),
+        .clock(reach_bits__clock)
+    );
+    motion_controller_servo__soft_limits__acc acc(
+        .d(acc__d),
+        .q(acc__q),
+        .clock(acc__clock)
+    );
+    motion_controller_servo__soft_limits__gauge gauge(
+        .clock(gauge__clock),
+        .reset(gauge__reset),
+        .tick(gauge__tick),
+        .hold(gauge__hold),
+        .rate(gauge__rate),
+        .tick_out(gauge__tick_out),
+        .factor(gauge__factor),
+        .phase(gauge__phase),
+        .slowed(gauge__slowed),
+        .stopped(gauge__stopped)
+    );
+    motion_controller_servo__soft_limits__gauge_rate gauge_rate(
+        .d(gauge_rate__d),
+        .q(gauge_rate__q),
+        .clock(gauge_rate__clock)
+    );
+    motion_controller_servo__soft_limits__gauge_count gauge_count(
+        .d(gauge_count__d),
+        .q(gauge_count__q),
+        .clock(gauge_count__clock)
+    );
+    motion_controller_servo__soft_limits__gauge_restart gauge_restart(
+        .d(gauge_restart__d),
+        .q(gauge_restart__q),
+        .clock(gauge_restart__clock)
+    );
+    motion_controller_servo__soft_limits__reach reach(
+        .d(reach__d),
+        .q(reach__q),
+        .clock(reach__clock)
+    );
+    motion_controller_servo__soft_limits__reach_valid reach_valid(
+        .d(reach_valid__d),
+        .q(reach_valid__q),
+        .clock(reach_valid__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        enable__clock = clock;
+        beyond__clock = clock;
+        event_q__clock = clock;
+        last_axis__clock = clock;
+        last_negative__clock = clock;
+        turn_axis__clock = clock;
+        turn_step__clock = clock;
+        position_q__clock = clock;
+        magnitude_q__clock = clock;
+        negative_q__clock = clock;
+        live_q__clock = clock;
+        distance__clock = clock;
+        neg_delta__clock = clock;
+        both__clock = clock;
+        period_bits__clock = clock;
+        reach_bits__clock = clock;
+        acc__clock = clock;
+        gauge_rate__clock = clock;
+        gauge_count__clock = clock;
+        gauge_restart__clock = clock;
+        reach__clock = clock;
+        reach_valid__clock = clock;
+        min_valid__clock = clock;
+        max_valid__clock = clock;
+        bound_valid__clock = clock;
+        window_selected__clock = clock;
+        enable__d = enable__q;
+        beyond__d = beyond__q;
+        event_q__d = event_q__q;
+        last_axis__d = last_axis__q;
+        last_negative__d = last_negative__q;
+        turn_axis__d = turn_axis__q;
+        turn_step__d = turn_step__q;
+        position_q__d = position_q__q;
+        magnitude_q__d = magnitude_q__q;
+        negative_q__d = negative_q__q;
+        live_q__d = live_q__q;
+        distance__d = distance__q;
+        neg_delta__d = neg_delta__q;
+        both__d = both__q;
+        period_bits__d = period_bits__q;
+        reach_bits__d = reach_bits__q;
+        acc__d = acc__q;
+        gauge_rate__d = gauge_rate__q;
+        gauge_count__d = gauge_count__q;
+        gauge_restart__d = gauge_restart__q;
+        reach__d = reach__q;
+        reach_valid__d = reach_valid__q;
+        min_valid__d = min_valid__q;
+        max_valid__d = max_valid__q;
+        bound_valid__d = bound_valid__q;
+        window_selected__d = window_selected__q;
+        gauge__clock = clock;
+        check_ram__clock = clock;
+        bus_ram__clock = clock;
+        window_hit = 1'b0;
+        window_valid = 1'b0;
+        if (address == a_min__0) begin
+            window_hit = 1'b1;
+            window_valid = (min_valid__q & axis_bit__0) != zero8;
+            if (write) begin
+                min_valid__d = min_valid__q | axis_bit__0;
+            end
+        end
+        if (address == a_max__0) begin
+            window_hit = 1'b1;
+            window_valid = (max_valid__q & axis_bit__0) != zero8;
+            if (write) begin
+                max_valid__d = max_valid__q | axis_bit__0;
+            end
+        end
+        if (address == a_min__1) begin
+            window_hit = 1'b1;
+            window_valid = (min_valid__q & axis_bit__1) != zero8;
+            if (write) begin
+                min_valid__d = min_valid__q | axis_bit__1;
+            end
+        end
+        if (address == a_max__1) begin
+            window_hit = 1'b1;
+            window_valid = (max_valid__q & axis_bit__1) != zero8;
+            if (write) begin
+                max_valid__d = max_valid__q | axis_bit__1;
+            end
+        end
+        if (address == a_min__2) begin
+            window_hit = 1'b1;
+            window_valid = (min_valid__q & axis_bit__2) != zero8;
+            if (write) begin
+                min_valid__d = min_valid__q | axis_bit__2;
+            end
+        end
+        if (address == a_max__2) begin
+            window_hit = 1'b1;
+            window_valid = (max_valid__q & axis_bit__2) != zero8;
+            if (write) begin
+                max_valid__d = max_valid__q | axis_bit__2;
+            end
+        end
+        check_ram__write_enable = write & window_hit;
+        check_ram__write_address = address;
+        check_ram__write_data = write_data;
+        bus_ram__write_enable = write & window_hit;
+        bus_ram__write_address = address;
+        bus_ram__write_data = write_data;
+        bus_ram__read_enable = read;
+        bus_ram__read_address = address;
+        if (read) begin
+            window_selected__d = window_hit & window_valid;
+        end
+        enable_now = enable__q;
+        if (write & (address == a_control)) begin
+            enable_now = write_data[(32'h0)+:(8)] & enable_mask;
+        end
+        enable__d = enable_now;
+        gauge__reset = reset | gauge_restart__q;
+        gauge__tick = 1'b1;
+        gauge__hold = 1'b1;
+        gauge__rate = gauge_rate__q;
+        gauge_restart__d = 1'b0;
+        if (gauge_restart__q) begin
+            gauge_count__d = zero17;
+            gauge_rate__d = rate;
+            if (rate != gauge_rate__q) begin
+                reach_valid__d = 1'b0;
+            end
+        end
+        else if (gauge__tick_out & (gauge_count__q != reach_max)) begin
+            gauge_count__d = gauge_count__q + one17;
+        end
+        measured = gauge_count__q + latency_plus_one;
+        if (gauge_count__q > measure_limit) begin
+            measured = reach_max;
+        end
+        if (~gauge_restart__q) begin
+            if (rate != gauge_rate__q) begin
+                reach_valid__d = 1'b0;
+                gauge_restart__d = 1'b1;
+            end
+            else if (gauge__stopped) begin
+                reach__d = measured;
+                reach_valid__d = 1'b1;
+                gauge_restart__d = 1'b1;
+            end
+        end
+        reach_now = reach_max;
+        if (reach_valid__q) begin
+            reach_now = reach__q;
+        end
+        turn_step__d = turn_step__q + one5;
+        check_ram__read_enable = turn_step__q == s_load;
+        check_ram__read_address = a_max__0;
+        if (turn_step__q == s_load) begin
+            position_q__d = position;
+            magnitude_q__d = magnitude;
+            negative_q__d = negative;
+            live_q__d = 1'b0;
+            if (turn_axis__q == axis_id__0) begin
+                check_ram__read_address = a_max__0;
+                bound_valid__d = (max_valid__q & axis_bit__0) != zero8;
+                if (negative) begin
+                    check_ram__read_address = a_min__0;
+                    bound_valid__d = (min_valid__q & axis_bit__0) != zero8;
+                end
+                live_q__d = running & ((enable__q & axis_bit__0) != zero8) & step_axis & (magnitude != zero16);
+            end
+            if (turn_axis__q == axis_id__1) begin
+                check_ram__read_address = a_max__1;
+                bound_valid__d = (max_valid__q & axis_bit__1) != zero8;
+                if (negative) begin
+                    check_ram__read_address = a_min__1;
+                    bound_valid__d = (min_valid__q & axis_bit__1) != zero8;
+                end
+                live_q__d = running & ((enable__q & axis_bit__1) != zero8) & step_axis & (magnitude != zero16);
+            end
+            if (turn_axis__q == axis_id__2) begin
+                check_ram__read_address = a_max__2;
+                bound_valid__d = (max_valid__q & axis_bit__2) != zero8;
+                if (negative) begin
+                    check_ram__read_address = a_min__2;
+                    bound_valid__d = (min_valid__q & axis_bit__2) != zero8;
+                end
+                live_q__d = running & ((enable__q & axis_bit__2) != zero8) & step_axis & (magnitude != zero16);
+            end
+        end
+        upper = ((position_q__q) & 26'h3ffffff);
+        if (position_q__q[32'h17]) begin
+            upper = upper | ext26;
+        end
+        bound = zero24;
+        if (bound_valid__q) begin
+            bound = check_ram__read_data;
+        end
+        lower = ((bound) & 26'h3ffffff);
+        if (bound[32'h17]) begin
+            lower = lower | ext26;
+        end
+        if (turn_step__q == s_distance) begin
+            distance__d = upper - lower;
+            if (negative_q__q) begin
+                distance__d = lower - upper;
+            end
+        end
+        with_margin = distance__q + margin;
+        if (turn_step__q == s_margin) begin
+            neg_delta__d = with_margin[(32'h0)+:(20)];
+            if ((with_margin[(32'h13)+:(7)] != zero7) & (with_margin[(32'h13)+:(7)] != ones7)) begin
+                neg_delta__d = sat_high;
+                if (with_margin[32'h19]) begin
+                    neg_delta__d = sat_low;
+                end
+            end
+            period_bits__d = ((period) & 17'h1ffff);
+            if (period == zero16) begin
+                period_bits__d = one17;
+            end
+            reach_bits__d = reach_now;
+        end
+        delta21 = ((neg_delta__q) & 21'h1fffff);
+        if (neg_delta__q[32'h13]) begin
+            delta21 = delta21 | ext21;
+        end
+        if (turn_step__q == s_both) begin
+            both__d = ((magnitude_q__q) & 21'h1fffff) + delta21;
+            acc__d = zero_acc;
+        end
+        term = zero_acc;
+        if (reach_bits__q[32'h0]) begin
+            if (period_bits__q[32'h0]) begin
+                term = ((both__q) & 23'h7fffff);
+                if (both__q[32'h14]) begin
+                    term = term | ext_both;
+                end
+            end
+            else begin
+                term = ((magnitude_q__q) & 23'h7fffff);
+            end
+        end
+        else if (period_bits__q[32'h0]) begin
+            term = ((neg_delta__q) & 23'h7fffff);
+            if (neg_delta__q[32'h13]) begin
+                term = term | ext_delta;
+            end
+        end
+        sum = acc__q + term;
+        if ((turn_step__q >= s_first) & (turn_step__q <= s_last)) begin
+            acc__d = sum >> 32'h1;
+            if (sum[32'h16]) begin
+                acc__d = (sum >> 32'h1) | acc_sign;
+            end
+            period_bits__d = period_bits__q >> 32'h1;
+            reach_bits__d = reach_bits__q >> 32'h1;
+        end
+        verdict = live_q__q & ~acc__q[32'h16];
+        beyond__d = beyond__q & enable_now;
+        event_q__d = 1'b0;
+        if (turn_step__q == s_verdict) begin
+            turn_step__d = s_load;
+            turn_axis__d = turn_axis__q + one3;
+            if (turn_axis__q == last_turn) begin
+                turn_axis__d = zero3;
+            end
+            if (turn_axis__q == axis_id__0) begin
+                beyond__d = beyond__q & ~axis_bit__0 & enable_now;
+                if (verdict & running & ((enable_now & axis_bit__0) != zero8)) begin
+                    beyond__d = (beyond__q | axis_bit__0) & enable_now;
+                    if ((beyond__q & axis_bit__0) == zero8) begin
+                        event_q__d = 1'b1;
+                        last_axis__d = turn_axis__q;
+                        last_negative__d = negative_q__q;
+                    end
+                end
+            end
+            if (turn_axis__q == axis_id__1) begin
+                beyond__d = beyond__q & ~axis_bit__1 & enable_now;
+                if (verdict & running & ((enable_now & axis_bit__1) != zero8)) begin
+                    beyond__d = (beyond__q | axis_bit__1) & enable_now;
+                    if ((beyond__q & axis_bit__1) == zero8) begin
+                        event_q__d = 1'b1;
+                        last_axis__d = turn_axis__q;
+                        last_negative__d = negative_q__q;
+                    end
+                end
+            end
+            if (turn_axis__q == axis_id__2) begin
+                beyond__d = beyond__q & ~axis_bit__2 & enable_now;
+                if (verdict & running & ((enable_now & axis_bit__2) != zero8)) begin
+                    beyond__d = (beyond__q | axis_bit__2) & enable_now;
+                    if ((beyond__q & axis_bit__2) == zero8) begin
+                        event_q__d = 1'b1;
+                        last_axis__d = turn_axis__q;
+                        last_negative__d = negative_q__q;
+                    end
+                end
+            end
+        end
+        if (~running) begin
+            beyond__d = zero8;
+        end
+        if (reset) begin
+            min_valid__d = zero8;
+            max_valid__d = zero8;
+            window_selected__d = 1'b0;
+            enable__d = zero8;
+            beyond__d = zero8;
+            event_q__d = 1'b0;
+            last_axis__d = zero3;
+            last_negative__d = 1'b0;
+            turn_axis__d = zero3;
+            turn_step__d = s_load;
+            live_q__d = 1'b0;
+            gauge_rate__d = zero16;
+            gauge_count__d = zero17;
+            gauge_restart__d = 1'b0;
+            reach_valid__d = 1'b0;
+        end
+        select = turn_axis__q;
+        stop = beyond__q != zero8;
+        tripped = event_q__q;
+        read_data = zero32;
+        if (address == a_control) begin
+            read_data = ((enable__q) & 32'hffffffff) | (((beyond__q) & 32'hffffffff) << 32'h8) | (((last_axis__q) & 32'hffffffff) << 32'h10);
+            if (last_negative__q) begin
+                read_data = read_data | m_negative;
+            end
+            if (reach_valid__q) begin
+                read_data = read_data | m_measured;
+            end
+        end
+        word24 = ((bus_ram__read_data) & 32'hffffffff);
+        if (bus_ram__read_data[32'h17]) begin
+            word24 = word24 | ext32;
+        end
+        window_data = zero32;
+        if (window_selected__q) begin
+            window_data = word24;
+        end
+    end
+
+endmodule // motion_controller_servo__soft_limits
+
+
+module motion_controller_servo__soft_limits__acc(d,q,clock);
+
+    // Module arguments
+    input wire  [22:0] d;
+    output reg  [22:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 23'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__acc
+
+
+module motion_controller_servo__soft_limits__beyond(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__beyond
+
+
+module motion_controller_servo__soft_limits__both(d,q,clock);
+
+    // Module arguments
+    input wire  [20:0] d;
+    output reg  [20:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 21'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__both
+
+
+module motion_controller_servo__soft_limits__bound_valid(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__bound_valid
+
+
+module motion_controller_servo__soft_limits__bus_ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  read_enable;
+    input wire  [7:0] read_address;
+    output reg  [23:0] read_data;
+    input wire  write_enable;
+    input wire  [7:0] write_address;
+    input wire  [23:0] write_data;
+
+    // Update code (custom)
+    reg [23:0] mem [0:255];
+    integer i;
+
+    // Block RAM powers up 0, and so do the words and the read register here.
+    initial begin
+       for (i = 0; i <= 255; i = i + 1) mem[i] = 0;
+       read_data = 0;
+    end
+
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
+    end
+
+    always @(posedge clock) begin
+       if (write_enable) begin
+          mem[write_address] <= write_data;
+       end
+    end
+endmodule // motion_controller_servo__soft_limits__bus_ram
+
+
+module motion_controller_servo__soft_limits__check_ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  read_enable;
+    input wire  [7:0] read_address;
+    output reg  [23:0] read_data;
+    input wire  write_enable;
+    input wire  [7:0] write_address;
+    input wire  [23:0] write_data;
+
+    // Update code (custom)
+    reg [23:0] mem [0:255];
+    integer i;
+
+    // Block RAM powers up 0, and so do the words and the read register here.
+    initial begin
+       for (i = 0; i <= 255; i = i + 1) mem[i] = 0;
+       read_data = 0;
+    end
+
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
+    end
+
+    always @(posedge clock) begin
+       if (write_enable) begin
+          mem[write_address] <= write_data;
+       end
+    end
+endmodule // motion_controller_servo__soft_limits__check_ram
+
+
+module motion_controller_servo__soft_limits__distance(d,q,clock);
+
+    // Module arguments
+    input wire  [25:0] d;
+    output reg  [25:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 26'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__distance
+
+
+module motion_controller_servo__soft_limits__enable(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__enable
+
+
+module motion_controller_servo__soft_limits__event_q(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__event_q
+
+
+module motion_controller_servo__soft_limits__gauge(clock,reset,tick,hold,rate,tick_out,factor,phase,slowed,stopped);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  tick;
+    input wire  hold;
+    input wire  [15:0] rate;
+    output reg  tick_out;
+    output reg  [16:0] factor;
+    output reg  [15:0] phase;
+    output reg  slowed;
+    output reg  stopped;
+
+    // Constant declarations
+    localparam  unity = 17'b10000000000000000;
+    localparam  zero16 = 16'h0;
+    localparam  zero17 = 17'b0;
+
+    // Stub signals
+    reg  [16:0] deficit__d;
+    wire  [16:0] deficit__q;
+    reg  deficit__clock;
+    reg  [15:0] fraction__d;
+    wire  [15:0] fraction__q;
+    reg  fraction__clock;
+
+    // Local signals
+    reg  rate_is_zero;
+    reg  [16:0] rate17;
+    reg  [16:0] sum;
+
+    // Sub module instances
+    motion_controller_servo__soft_limits__gauge__deficit deficit(
+        .d(deficit__d),
+        .q(deficit__q),
+        .clock(deficit__clock)
+    );
+    motion_controller_servo__soft_limits__gauge__fraction fraction(
+        .d(fraction__d),
+        .q(fraction__q),
+        .clock(fraction__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        deficit__clock = clock;
+        fraction__clock = clock;
+        deficit__d = deficit__q;
+        fraction__d = fraction__q;
+        rate_is_zero = rate == zero16;
+        rate17 = ((rate) & 17'h1ffff);
+        sum = deficit__q + rate17;
+        tick_out = tick & (((fraction__q) & 17'h1ffff) >= deficit__q);
+        if (tick) begin
+            fraction__d = fraction__q - deficit__q[(32'h0)+:(16)];
+            if (hold) begin
+                if (sum[32'h10] | rate_is_zero) begin
+                    deficit__d = unity;
+                end
+                else begin
+                    deficit__d = sum;
+                end
+            end
+            else if ((deficit__q > rate17) & ~rate_is_zero) begin
+                deficit__d = deficit__q - rate17;
+            end
+            else begin
+                deficit__d = zero17;
+            end
+        end
+        if (reset) begin
+            deficit__d = zero17;
+            fraction__d = zero16;
+        end
+        factor = unity - deficit__q;
+        phase = fraction__q;
+        slowed = deficit__q != zero17;
+        stopped = deficit__q == unity;
+    end
+
+endmodule // motion_controller_servo__soft_limits__gauge
+
+
+module motion_controller_servo__soft_limits__gauge__deficit(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__gauge__deficit
+
+
+module motion_controller_servo__soft_limits__gauge__fraction(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__gauge__fraction
+
+
+module motion_controller_servo__soft_limits__gauge_count(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__gauge_count
+
+
+module motion_controller_servo__soft_limits__gauge_rate(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__gauge_rate
+
+
+module motion_controller_servo__soft_limits__gauge_restart(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__gauge_restart
+
+
+module motion_controller_servo__soft_limits__last_axis(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__last_axis
+
+
+module motion_controller_servo__soft_limits__last_negative(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__last_negative
+
+
+module motion_controller_servo__soft_limits__live_q(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__live_q
+
+
+module motion_controller_servo__soft_limits__magnitude_q(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__magnitude_q
+
+
+module motion_controller_servo__soft_limits__max_valid(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__max_valid
+
+
+module motion_controller_servo__soft_limits__min_valid(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__min_valid
+
+
+module motion_controller_servo__soft_limits__neg_delta(d,q,clock);
+
+    // Module arguments
+    input wire  [19:0] d;
+    output reg  [19:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 20'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__neg_delta
+
+
+module motion_controller_servo__soft_limits__negative_q(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__negative_q
+
+
+module motion_controller_servo__soft_limits__period_bits(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__period_bits
+
+
+module motion_controller_servo__soft_limits__position_q(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__position_q
+
+
+module motion_controller_servo__soft_limits__reach(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__reach
+
+
+module motion_controller_servo__soft_limits__reach_bits(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__reach_bits
+
+
+module motion_controller_servo__soft_limits__reach_valid(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__reach_valid
+
+
+module motion_controller_servo__soft_limits__turn_axis(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__turn_axis
+
+
+module motion_controller_servo__soft_limits__turn_step(d,q,clock);
+
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__turn_step
+
+
+module motion_controller_servo__soft_limits__window_selected(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__soft_limits__window_selected
 
 
 module motion_controller_servo__tick_divider(clock,reset,enable,divisor,strobe);

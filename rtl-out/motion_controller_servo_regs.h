@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000601UL
+#define MC_VERSION_RESET 0x00000700UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
-#define MC_VERSION_PATCH_RESET 0x1UL
+#define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x6UL
+#define MC_VERSION_MINOR_RESET 0x7UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -65,6 +65,9 @@
 #define MC_CONFIG_PROBE_SHIFT 26UL /* RO 1 = this build has the probe latch (PROBE_CONTROL, PROBE_*_POSITION, STATUS.PROBE); 0: the probe pin is ignored */
 #define MC_CONFIG_PROBE_MASK 0x04000000UL
 #define MC_CONFIG_PROBE_RESET 0x1UL
+#define MC_CONFIG_SOFT_LIMITS_SHIFT 27UL /* RO 1 = this build has the soft limits (SOFT_LIMIT, SOFT_MIN, SOFT_MAX, STATUS.SOFT_LIMIT) */
+#define MC_CONFIG_SOFT_LIMITS_MASK 0x08000000UL
+#define MC_CONFIG_SOFT_LIMITS_RESET 0x0UL
 
 /* CONTROL: run control */
 #define MC_CONTROL_INDEX 0x0003UL
@@ -85,7 +88,7 @@
 #define MC_STATUS_ADDR16 0x0008UL
 #define MC_STATUS_ADDR8 0x0010UL
 #define MC_STATUS_RESET 0x00000000UL
-#define MC_STATUS_W1C_MASK 0x00003fffUL /* write 1 to clear; write 0 here in a read-modify-write */
+#define MC_STATUS_W1C_MASK 0x00007fffUL /* write 1 to clear; write 0 here in a read-modify-write */
 #define MC_STATUS_PERIOD_DONE_SHIFT 0UL /* W1C a period ended and the next began */
 #define MC_STATUS_PERIOD_DONE_MASK 0x00000001UL
 #define MC_STATUS_PERIOD_DONE_RESET 0x0UL
@@ -128,6 +131,9 @@
 #define MC_STATUS_HELD_SHIFT 13UL /* W1C the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL */
 #define MC_STATUS_HELD_MASK 0x00002000UL
 #define MC_STATUS_HELD_RESET 0x0UL
+#define MC_STATUS_SOFT_LIMIT_SHIFT 14UL /* W1C an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS */
+#define MC_STATUS_SOFT_LIMIT_MASK 0x00004000UL
+#define MC_STATUS_SOFT_LIMIT_RESET 0x0UL
 
 /* IRQ_ENABLE: interrupt enable mask: irq is high while an enabled STATUS bit is set */
 #define MC_IRQ_ENABLE_INDEX 0x0005UL
@@ -177,6 +183,9 @@
 #define MC_IRQ_ENABLE_HELD_SHIFT 13UL /* RW the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL */
 #define MC_IRQ_ENABLE_HELD_MASK 0x00002000UL
 #define MC_IRQ_ENABLE_HELD_RESET 0x0UL
+#define MC_IRQ_ENABLE_SOFT_LIMIT_SHIFT 14UL /* RW an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS */
+#define MC_IRQ_ENABLE_SOFT_LIMIT_MASK 0x00004000UL
+#define MC_IRQ_ENABLE_SOFT_LIMIT_RESET 0x0UL
 
 /* TICK_DIVISOR: base tick = one every n clocks; 0 stops the tick (pauses everything) */
 #define MC_TICK_DIVISOR_INDEX 0x0006UL

@@ -23,6 +23,14 @@
 //! with [`DriverError::Held`] (a `feed_hold` input still pressed, a probe
 //! trip with `PROBE_CONTROL.STOP`); [`Driver::abandon_held_path`] then
 //! ends it where it stands.
+//!
+//! Soft limits ([`DriverConfig::soft_limits`], a build with
+//! `CONFIG.SOFT_LIMITS`): the driver programs each axis's window, starts
+//! a run only once `SOFT_LIMIT.MEASURED` reads 1, and a path that would
+//! leave a window stops along itself inside it; the run then fails with
+//! [`DriverError::SoftLimit`] naming the axis, after the driver stopped
+//! the controller, flushed the periods not taken and released the hold,
+//! so the next run (back into the window) starts from where it stood.
 
 use thiserror::Error;
 
@@ -78,6 +86,11 @@ pub struct DriverConfig {
     /// Per axis: an analog (DAC) axis, its FIFO entries velocity codes
     /// (needs a build with the analog outputs; see [`Driver::run_servo`]).
     pub analog: [bool; 3],
+    /// Per axis: the soft-limit window (`SOFT_MIN`, `SOFT_MAX`) in steps,
+    /// or none (needs a build with the soft limits, `CONFIG.SOFT_LIMITS`).
+    /// A path that would leave a window stops inside it and the run
+    /// fails with [`DriverError::SoftLimit`].
+    pub soft_limits: [Option<(i32, i32)>; 3],
 }
 
 impl Default for DriverConfig {
@@ -90,6 +103,7 @@ impl Default for DriverConfig {
             dir_time: 2,
             uniform: [false, true, false],
             analog: [false; 3],
+            soft_limits: [None; 3],
         }
     }
 }
@@ -188,6 +202,21 @@ pub enum DriverError {
     /// The controller would refuse `RUN`: why.
     #[error("RUN refused: {0}")]
     Refused(String),
+    /// A soft limit stopped the path: the driver stopped the controller,
+    /// flushed the periods not taken and released the hold.
+    #[error("soft limit: axis {axis} would leave its window moving {}; stopped at commanded position {commanded:?}, {periods_queued} of {periods} periods queued", if *.negative { "down (SOFT_MIN)" } else { "up (SOFT_MAX)" })]
+    SoftLimit {
+        /// The axis (`SOFT_LIMIT.AXIS`).
+        axis: usize,
+        /// It moved down, toward `SOFT_MIN`.
+        negative: bool,
+        /// Each axis's `CMD_POSITION` where the path stood.
+        commanded: [i32; 3],
+        /// Periods written to the FIFOs.
+        periods_queued: usize,
+        /// Periods of the path.
+        periods: usize,
+    },
     /// The feed hold stopped the path and nothing scheduled releases it:
     /// the run cannot end.
     #[error("motion held (HOLD_CONTROL.REQUESTED{}) with no release to come; commanded position {commanded:?}, {periods_queued} of {periods} periods queued", if *.input { ", the feed_hold input active" } else { "" })]
@@ -216,6 +245,7 @@ pub struct Driver<B: ControllerBus> {
 mod feed_hold;
 mod probe;
 mod servo_run;
+mod soft_limits;
 pub use feed_hold::{HoldAction, HoldEvent, HoldState};
 pub use probe::{ProbeEdge, ProbeTrip};
 pub use servo_run::{ServoRunReport, SERVO_LEAD, SETTLED_PERIODS, SETTLE_PERIODS};
@@ -278,10 +308,27 @@ impl<B: ControllerBus> Driver<B> {
         let uniform = driver.field("CONFIG", "DDA_ONLY", build)? == 0;
         let analog = driver.field("CONFIG", "ANALOG", build)? == 1;
         let probe = driver.field("CONFIG", "PROBE", build)? == 1;
+        let soft_limits = driver.field("CONFIG", "SOFT_LIMITS", build)? == 1;
+        for (axis, window) in config.soft_limits.iter().enumerate() {
+            match window {
+                Some(_) if !soft_limits => {
+                    return Err(DriverError::Config(format!(
+                        "axis {axis} has a soft-limit window, and this controller has no soft limits (CONFIG.SOFT_LIMITS reads 0; motion_controller has them)"
+                    )))
+                }
+                Some((min, max)) if min > max => {
+                    return Err(DriverError::Config(format!(
+                        "axis {axis}'s soft-limit window {min}..{max} is empty"
+                    )))
+                }
+                _ => {}
+            }
+        }
         let options = BuildOptions {
             uniform,
             analog,
             probe,
+            soft_limits,
         };
         driver.map = register_map(3, driver.depth.trailing_zeros(), options)?;
         if let Some(axis) = (0..3).find(|&k| config.analog[k] && (!analog || config.uniform[k])) {
@@ -372,6 +419,7 @@ impl<B: ControllerBus> Driver<B> {
             )?;
             self.write("IO_CONFIG", axis, io)?;
         }
+        self.configure_soft_limits()?;
         let enable = self.pack("IRQ_ENABLE", SERVICED_INTERRUPTS)?;
         self.write("IRQ_ENABLE", 0, enable)?;
         let status = self.read("STATUS", 0)?;
@@ -630,7 +678,9 @@ impl<B: ControllerBus> Driver<B> {
         };
         let mut next = 0;
         self.queue(counts, &mut next)?;
+        self.await_soft_limit_reach()?;
         self.write("CONTROL", 0, 1)?;
+        let mut soft_trip = false;
         let faults = self.pack(
             "STATUS",
             &[("OVERFLOW", 1), ("ENCODER_ERROR", 1), ("AXIS_FAULT", 1)],
@@ -677,7 +727,11 @@ impl<B: ControllerBus> Driver<B> {
             if self.field("STATUS", "HELD", status)? == 1 {
                 report.held.push(self.bus.cycles());
             }
+            soft_trip |= self.soft_limit_tripped(status)?;
             if running && self.field("STATE", "HELD", state)? == 1 {
+                if soft_trip {
+                    return Err(self.stop_at_soft_limit(next, counts.len())?);
+                }
                 self.fail_if_held_for_good(holds, next_hold, next, counts.len())?;
             }
             self.queue(counts, &mut next)?;

@@ -540,6 +540,7 @@ fn controller_driver(
         dir_time: options.step_len.max(1),
         uniform: options.uniform,
         analog: options.servo,
+        soft_limits: [None; 3],
     };
     let mut bus = if options.servo.iter().any(|&s| s) {
         let motors = options.servo.map(|s| s.then(ServoMotor::default));

@@ -12,7 +12,9 @@ use super::synth::{
 };
 use super::{read_text, repo_root, work_dir, ToolError};
 use crate::blocks::motion_controller::registers::BuildOptions;
-use crate::blocks::motion_controller::{MotionController3NoProbe, MotionController3UniformServo};
+use crate::blocks::motion_controller::{
+    MotionController3NoProbe, MotionController3NoSoftLimits, MotionController3UniformServo,
+};
 use crate::export::catalog::controller_scaling;
 use crate::export::module_verilog;
 
@@ -102,7 +104,7 @@ pub fn exported_seed_card_digest(build: &str) -> Result<String, ToolError> {
 /// its own, at [`SEED_CARD_MHZ`] and [`SEED_CARD_SEED`]. The exported
 /// builds are read from `rtl-out` (run `export` first); the build with both
 /// uniform generators and analog outputs, and `motion_controller` without
-/// the probe, are generated here.
+/// the probe and without the soft limits, are generated here.
 pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
     let root = repo_root();
     let (pcf, links) = seed_card_fixed_sources();
@@ -121,11 +123,19 @@ pub fn measure_seed_card() -> Result<Vec<SeedCardRow>, ToolError> {
         no_probe.module_name(),
         &mut MotionController3NoProbe::default(),
     )?;
-    let builds: [(BuildOptions, Option<PathBuf>); 5] = [
+    let no_soft = MotionController3NoSoftLimits::BUILD;
+    let no_soft_path = dir.path().join(format!("{}.v", no_soft.module_name()));
+    write_verilog(
+        &no_soft_path,
+        no_soft.module_name(),
+        &mut MotionController3NoSoftLimits::default(),
+    )?;
+    let builds: [(BuildOptions, Option<PathBuf>); 6] = [
         (BuildOptions::MOTION_CONTROLLER_DDA, None),
         (BuildOptions::MOTION_CONTROLLER_SERVO, None),
         (BuildOptions::MOTION_CONTROLLER, None),
         (no_probe, Some(no_probe_path)),
+        (no_soft, Some(no_soft_path)),
         (full, Some(full_path)),
     ];
     builds
@@ -270,8 +280,8 @@ pub fn recorded_seed_card(report: &str, build: &str) -> Option<RecordedSeedCard>
     let line = module_row(report.split(SEED_CARD_HEADING).nth(1)?, build)?;
     let cells: Vec<&str> = line.split('|').map(str::trim).collect();
     Some(RecordedSeedCard {
-        logic_cells: cells.get(9)?.parse().ok()?,
-        digest: cells.get(13)?.trim_matches('`').to_string(),
+        logic_cells: cells.get(10)?.parse().ok()?,
+        digest: cells.get(14)?.trim_matches('`').to_string(),
     })
 }
 
@@ -288,15 +298,16 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
          own (`{SEED_CARD_CONTROLLER}`), synthesized the same way and placed at the board's \
          {SEED_CARD_MHZ:.0} MHz, seed {SEED_CARD_SEED}. The card must stay within \
          {SEED_CARD_BUDGET_PERCENT} % of the HX8K's logic cells. `motion_controller_uniform_servo` (uniform \
-         generators and analog outputs) and `motion_controller_no_probe` (`motion_controller` \
-         without the probe latch) are not exported: they are generated for this table. A card over the \
+         generators and analog outputs), `motion_controller_no_probe` (`motion_controller` \
+         without the probe latch) and `motion_controller_no_soft_limits` (`motion_controller` \
+         without the soft limits) are not exported: they are generated for this table. A card over the \
          {SEED_CARD_BUDGET_PERCENT} % budget is only packed (no Fmax: placing a nearly full HX8K can \
          outlast the tools' time limit). The last column is the digest of the sources placed (board top, pin file, \
          `host_links`, controller: `scaling::seed_card_digest`); the suite checks the card's own \
          row against today's files instead of placing it again.\n\n\
-         | controller build | uniform generators | analog outputs | probe | LUT4 | DFF | carry | RAM | \
+         | controller build | uniform generators | analog outputs | probe | soft limits | LUT4 | DFF | carry | RAM | \
          logic cells | of the HX8K | within {SEED_CARD_BUDGET_PERCENT} % | Fmax seed {SEED_CARD_SEED} (MHz) | sources |\n\
-         |---|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---|\n"
+         |---|---|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---|\n"
     );
     for row in card {
         let f = &row.figures;
@@ -310,12 +321,13 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
             .first()
             .map_or(unplaced.to_string(), |x| format!("{x:.1}"));
         md.push_str(&format!(
-            "| `{}`{} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0} % | {} | {} | `{}` |\n",
+            "| `{}`{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.0} % | {} | {} | `{}` |\n",
             row.build,
             if row.exported { "" } else { " (not exported)" },
             yes_no(row.options.uniform),
             yes_no(row.options.analog),
             yes_no(row.options.probe),
+            yes_no(row.options.soft_limits),
             f.lut4,
             f.dff,
             f.carry,
@@ -374,6 +386,7 @@ mod tests {
                 uniform: true,
                 analog: true,
                 probe: false,
+                soft_limits: false,
             },
             exported: build != "b",
             figures: SynthFigures {
@@ -394,19 +407,19 @@ mod tests {
         let md = render(&[], &card, &[1], 100.0);
         assert!(
             md.contains(
-                "| `a` | yes | yes | no | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 | `da` |"
+                "| `a` | yes | yes | no | no | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 | `da` |"
             ),
             "{md}"
         );
         assert!(
             md.contains(
-                "| `b` (not exported) | yes | yes | no | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
+                "| `b` (not exported) | yes | yes | no | no | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
             ),
             "{md}"
         );
         assert!(
             md.contains(
-                "| `c` | yes | yes | no | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
+                "| `c` | yes | yes | no | no | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
             ),
             "{md}"
         );

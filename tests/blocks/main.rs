@@ -21,6 +21,7 @@ mod parallel_card;
 mod pulse_counter;
 mod quadrature_decoder;
 mod sequential_divider;
+mod soft_limits;
 mod step_channel;
 mod step_output;
 mod support;

@@ -12,7 +12,7 @@ use motion_hdl::blocks::motion_controller::hold_ramp::UNITY;
 use motion_hdl::blocks::motion_controller::latency;
 use motion_hdl::sim::Ad669Bank;
 
-type Analog3 = Bench<3, 4, 5, false, true, true>;
+type Analog3 = Bench<3, 4, 5, false, true, true, false>;
 
 /// The analog axes' codes (axis 1 steps).
 const CODES: [i16; 2] = [20_000, -12_345];

@@ -22,6 +22,7 @@ pub struct Bench<
     const UNIFORM: bool,
     const ANALOG: bool,
     const PROBE: bool,
+    const SOFT: bool = true,
 > {
     /// The RTL and the reference model.
     pair: Lockstep<MotionControllerModel>,
@@ -51,7 +52,8 @@ impl<
         const UNIFORM: bool,
         const ANALOG: bool,
         const PROBE: bool,
-    > Bench<K, N, NP1, UNIFORM, ANALOG, PROBE>
+        const SOFT: bool,
+    > Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
 {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
@@ -62,14 +64,14 @@ impl<
 
     /// A bench in the power-up state with the RTL on `backend`.
     pub fn on(backend: Backend) -> Self {
-        let build = MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE>::BUILD;
+        let build = MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>::BUILD;
         let map = register_map(K, N as u32, build).unwrap();
         let model = MotionControllerModel::new(K, N as u32, build).unwrap();
         let module = build.module_name();
         let pair = Lockstep::on(
             backend,
             module,
-            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE>::default(),
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>::default(),
             model,
         )
         .unwrap_or_else(|e| panic!("{e}"));
@@ -156,7 +158,7 @@ impl<
         let got = self.pair.step(&inputs).unwrap_or_else(|e| panic!("{e}"));
         debug_assert_eq!(
             self.pair.input_vector().len(),
-            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE>::input_names().len()
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>::input_names().len()
         );
         if let Some(recording) = self.recording.as_mut() {
             recording.push(self.pair.input_vector().to_vec());
@@ -264,7 +266,8 @@ impl<
         const UNIFORM: bool,
         const ANALOG: bool,
         const PROBE: bool,
-    > ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG, PROBE>
+        const SOFT: bool,
+    > ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
 {
     fn axes(&self) -> usize {
         K

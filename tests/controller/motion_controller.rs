@@ -17,7 +17,7 @@ use motion_hdl::tools::repo_root;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-type Controller3 = Bench<3, 4, 5, true, false, true>;
+pub(crate) type Controller3 = Bench<3, 4, 5, true, false, true>;
 
 /// Every STATUS bit.
 pub(crate) const ALL_STATUS: u32 = (1 << irq::COUNT) - 1;
@@ -533,16 +533,16 @@ fn other_axis_counts_and_fifo_depths_match_the_model() {
 
 /// Firmware set-up: base tick every clock, `period` clocks per period,
 /// step/dir outputs with 1-clock timing, axis `i` uniform if `uniform[i]`.
-pub(crate) fn configure<const U: bool, const A: bool, const P: bool>(
-    b: &mut Bench<3, 4, 5, U, A, P>,
+pub(crate) fn configure<const U: bool, const A: bool, const P: bool, const S: bool>(
+    b: &mut Bench<3, 4, 5, U, A, P, S>,
     period: u32,
     uniform: [bool; 3],
 ) {
     configure_with_tick(b, 1, period, uniform);
 }
 
-fn configure_with_tick<const U: bool, const A: bool, const P: bool>(
-    b: &mut Bench<3, 4, 5, U, A, P>,
+fn configure_with_tick<const U: bool, const A: bool, const P: bool, const S: bool>(
+    b: &mut Bench<3, 4, 5, U, A, P, S>,
     tick_divisor: u32,
     period: u32,
     uniform: [bool; 3],
@@ -563,7 +563,9 @@ fn configure_with_tick<const U: bool, const A: bool, const P: bool>(
 }
 
 /// Idles until the controller has stopped and every output stage is idle.
-pub(crate) fn drain<const U: bool, const A: bool, const P: bool>(b: &mut Bench<3, 4, 5, U, A, P>) {
+pub(crate) fn drain<const U: bool, const A: bool, const P: bool, const S: bool>(
+    b: &mut Bench<3, 4, 5, U, A, P, S>,
+) {
     for _ in 0..200 {
         b.idle(50);
         let state = b.read("STATE", 0);
@@ -694,8 +696,8 @@ fn firmware_loop_thousands_of_periods_end_exactly_where_commanded() {
     );
 }
 
-pub(crate) fn queue<const U: bool, const A: bool, const P: bool>(
-    b: &mut Bench<3, 4, 5, U, A, P>,
+pub(crate) fn queue<const U: bool, const A: bool, const P: bool, const S: bool>(
+    b: &mut Bench<3, 4, 5, U, A, P, S>,
     axis: u32,
     counts: &[i32],
 ) -> i64 {
@@ -1005,7 +1007,7 @@ fn power_up_reads_reset_values_and_every_rw_field_reads_back() {
 /// the Rust simulation, on a firmware run with hostile traffic mixed in.
 #[test]
 fn exported_verilog_matches_rust_in_icarus_and_verilator() {
-    cross_simulate_exported::<true, false, true>(
+    cross_simulate_exported::<true, false, true, true>(
         "motion_controller",
         SUITE_CHAOS_CLOCKS,
         SUITE_ICARUS_CLOCKS,
@@ -1031,21 +1033,34 @@ pub(crate) const SUITE_ICARUS_CLOCKS: usize = 2_000;
 #[test]
 #[ignore = "about 4 minutes of Icarus; the suite runs 4,000 clocks of chaos per build"]
 fn exported_builds_match_rust_over_12000_chaos_clocks() {
-    cross_simulate_exported::<true, false, true>("motion_controller", 12_000, ALL_CLOCKS);
-    cross_simulate_exported::<false, false, true>("motion_controller_dda", 12_000, ALL_CLOCKS);
-    cross_simulate_exported::<false, true, true>("motion_controller_servo", 12_000, ALL_CLOCKS);
+    cross_simulate_exported::<true, false, true, true>("motion_controller", 12_000, ALL_CLOCKS);
+    cross_simulate_exported::<false, false, true, false>(
+        "motion_controller_dda",
+        12_000,
+        ALL_CLOCKS,
+    );
+    cross_simulate_exported::<false, true, true, false>(
+        "motion_controller_servo",
+        12_000,
+        ALL_CLOCKS,
+    );
 }
 
 /// The exported controller `module` (built with `UNIFORM` = `U` and
 /// `ANALOG` = `A`) in Icarus (its first `icarus_clocks`) and Verilator
 /// against the Rust simulation: a firmware run with axis 1 uniform (asked
 /// for, in a DDA-only build), then `chaos_clocks` of chaos traffic.
-pub(crate) fn cross_simulate_exported<const U: bool, const A: bool, const P: bool>(
+pub(crate) fn cross_simulate_exported<
+    const U: bool,
+    const A: bool,
+    const P: bool,
+    const S: bool,
+>(
     module: &str,
     chaos_clocks: usize,
     icarus_clocks: usize,
 ) {
-    let mut b = Bench::<3, 4, 5, U, A, P>::new().with_loopback();
+    let mut b = Bench::<3, 4, 5, U, A, P, S>::new().with_loopback();
     b.recording = Some(Vec::new());
     configure(&mut b, 60, [false, true, false]);
     for period in 0..12 {
@@ -1076,7 +1091,7 @@ pub(crate) fn cross_simulate_exported<const U: bool, const A: bool, const P: boo
         b.clock(reset, address, data, write, read);
     }
     let stimulus = b.recording.take().unwrap();
-    check_instance_with::<MotionController<3, 4, 5, U, A, P>>(
+    check_instance_with::<MotionController<3, 4, 5, U, A, P, S>>(
         Instance::Exported(module),
         stimulus,
         icarus_clocks,

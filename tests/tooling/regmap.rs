@@ -394,6 +394,11 @@ fn the_field_constants_agree_with_the_maps() {
         ("PROBE_CONTROL", "EDGE", f::PROBE_EDGE, 1),
         ("PROBE_CONTROL", "TRIPPED", f::PROBE_TRIPPED, 1),
         ("PROBE_CONTROL", "LEVEL", f::PROBE_LEVEL, 1),
+        ("SOFT_LIMIT", "ENABLE", f::SOFT_ENABLE, 3),
+        ("SOFT_LIMIT", "BEYOND", f::SOFT_BEYOND, 3),
+        ("SOFT_LIMIT", "AXIS", f::SOFT_AXIS, f::SOFT_AXIS_WIDTH),
+        ("SOFT_LIMIT", "NEGATIVE", f::SOFT_NEGATIVE, 1),
+        ("CONFIG", "SOFT_LIMITS", f::CONFIG_SOFT_LIMITS, 1),
     ];
     let check = |map: &RegisterMap, register: &str, field: &str, lsb: u32, width: u32| {
         let got = map
@@ -409,17 +414,28 @@ fn the_field_constants_agree_with_the_maps() {
             uniform,
             analog,
             probe: true,
+            soft_limits: true,
         };
         let map = mc::register_map(3, 4, build).unwrap();
         for &(register, field, lsb, width) in controller {
             check(&map, register, field, lsb, width);
         }
-        // Without the probe its registers are absent; the rest is the same.
+        // Without the probe (the soft limits) their registers are absent;
+        // the rest is the same.
         let without = mc::register_map(
             3,
             4,
             mc::BuildOptions {
                 probe: false,
+                ..build
+            },
+        )
+        .unwrap();
+        let without_soft = mc::register_map(
+            3,
+            4,
+            mc::BuildOptions {
+                soft_limits: false,
                 ..build
             },
         )
@@ -433,6 +449,13 @@ fn the_field_constants_agree_with_the_maps() {
                     )
                 }
                 _ => check(&without, register, field, lsb, width),
+            }
+            match register {
+                "SOFT_LIMIT" | "SOFT_MIN" | "SOFT_MAX" => assert!(
+                    without_soft.register(register).is_err(),
+                    "{register} without SOFT_LIMITS"
+                ),
+                _ => check(&without_soft, register, field, lsb, width),
             }
         }
         // The interrupt bits: STATUS and IRQ_ENABLE, in event order.

@@ -158,6 +158,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub code_out_of_range: Signal<Out, Bit>,
     /// The popped entry is negative.
     pub code_negative: Signal<Out, Bit>,
+    /// `CMD_POSITION`, the count (for the soft limits).
+    pub cmd_position: Signal<Out, Bits<POSITION_BITS>>,
 
     fifo: CommandFifo<N, NP1, ENTRY_BITS>,
     /// The uniform generator, whose engine also runs the DDA (its DDA
@@ -340,6 +342,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             dac_code: Default::default(),
             code_out_of_range: Default::default(),
             code_negative: Default::default(),
+            cmd_position: Default::default(),
             fifo: Default::default(),
             uniform: if uniform {
                 UniformPulseCore::default()
@@ -526,6 +529,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.dac_code.next = self.popped.q.val().get_bits::<DAC_BITS>(0);
         self.code_out_of_range.next = self.popped.q.val().get_bit(18);
         self.code_negative.next = self.popped.q.val().get_bit(17);
+        self.cmd_position.next = self.position.count.val();
         self.code_nonzero.next = self.popped.q.val().get_bit(19);
         self.analog.next = self.analog_active.q.val();
         self.too_large.next = self.popped.q.val().get_bit(16);

@@ -7,8 +7,8 @@
 //! [`super::io_model::FeedHoldModel`].
 //!
 //! The request is sticky: the filtered `feed_hold` input (while active),
-//! a `HOLD_CONTROL` write with `HOLD` = 1, or a probe trip with
-//! `PROBE_CONTROL.STOP` set it; only a write with `RELEASE` = 1 (and
+//! a `HOLD_CONTROL` write with `HOLD` = 1, a probe trip with
+//! `PROBE_CONTROL.STOP`, or a soft-limit verdict (while beyond) set it; only a write with `RELEASE` = 1 (and
 //! `HOLD` = 0) clears it, and not while one of the others sets it in the
 //! same clock. The ramp follows the registered request and rate (what
 //! `HOLD_CONTROL.REQUESTED` and `RATE` read), so a hold requested in
@@ -54,6 +54,9 @@ pub struct FeedHold {
     pub write_data: Signal<In, Bits<32>>,
     /// A probe trip with `PROBE_CONTROL.STOP`: request the hold.
     pub probe_stop: Signal<In, Bit>,
+    /// A soft-limit verdict is beyond: request the hold (a level: a
+    /// release is refused while it lasts).
+    pub soft_stop: Signal<In, Bit>,
     /// The base tick.
     pub tick: Signal<In, Bit>,
     /// The gated tick (combinational from `tick`).
@@ -67,6 +70,8 @@ pub struct FeedHold {
     pub factor_fraction: Signal<Out, Bits<16>>,
     /// `HOLD_CONTROL` when addressed, else 0.
     pub read_data: Signal<Out, Bits<32>>,
+    /// `HOLD_CONTROL.RATE` as the ramp uses it (registered).
+    pub rate_out: Signal<Out, Bits<16>>,
 
     conditioner: InputConditioner<1>,
     ramp: HoldRamp,
@@ -101,12 +106,14 @@ impl Default for FeedHold {
             write: Default::default(),
             write_data: Default::default(),
             probe_stop: Default::default(),
+            soft_stop: Default::default(),
             tick: Default::default(),
             tick_out: Default::default(),
             holding: Default::default(),
             held: Default::default(),
             factor_fraction: Default::default(),
             read_data: Default::default(),
+            rate_out: Default::default(),
             conditioner: Default::default(),
             ramp: Default::default(),
             requested: Default::default(),
@@ -155,6 +162,7 @@ impl Logic for FeedHold {
         // stop; cleared by RELEASE unless one of them sets it.
         self.set.next = self.input_active.val()
             | self.probe_stop.val()
+            | self.soft_stop.val()
             | (self.control_write.val() & self.write_data.val().get_bit(0));
         self.request_now.next = self.requested.q.val();
         if self.control_write.val() & self.write_data.val().get_bit(1) {
@@ -174,6 +182,7 @@ impl Logic for FeedHold {
         self.ramp.tick.next = self.tick.val();
         self.ramp.hold.next = self.requested.q.val();
         self.ramp.rate.next = self.rate.q.val();
+        self.rate_out.next = self.rate.q.val();
         self.tick_out.next = self.ramp.tick_out.val();
         self.holding.next = self.ramp.slowed.val();
         self.held.next = self.ramp.stopped.val();

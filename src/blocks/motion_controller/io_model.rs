@@ -429,6 +429,11 @@ impl FeedHoldModel {
         &self.ramp
     }
 
+    /// `HOLD_CONTROL.RATE` as the ramp uses it.
+    pub fn rate(&self) -> u16 {
+        self.rate
+    }
+
     /// The hold is requested (`HOLD_CONTROL.REQUESTED`).
     pub fn requested(&self) -> bool {
         self.requested
@@ -445,13 +450,14 @@ impl FeedHoldModel {
     }
 
     /// The combinational values of this clock: `write` is this clock's
-    /// bus write (address, data), `probe_stop` a probe trip with
-    /// `PROBE_CONTROL.STOP`, `tick` the base tick.
+    /// bus write (address, data), `stop` a probe trip with
+    /// `PROBE_CONTROL.STOP` or a soft-limit verdict beyond, `tick` the
+    /// base tick.
     pub fn comb(
         &self,
         address: u32,
         write: Option<(u32, u32)>,
-        probe_stop: bool,
+        stop: bool,
         tick: bool,
     ) -> FeedHoldComb {
         let input = self.conditioner.outputs(self.invert as u32).active & 1 != 0;
@@ -459,7 +465,7 @@ impl FeedHoldModel {
             Some((global::HOLD_CONTROL, data)) => Some(data),
             _ => None,
         };
-        let set = input || probe_stop || control.is_some_and(|d| bit(d, fields::HOLD_HOLD));
+        let set = input || stop || control.is_some_and(|d| bit(d, fields::HOLD_HOLD));
         let clear = control.is_some_and(|d| bit(d, fields::HOLD_RELEASE));
         let flag = |on: bool, n: u32| (on as u32) << n;
         FeedHoldComb {

@@ -274,6 +274,56 @@
 //!     the first boundary comes with the first gated tick.
 //!   - Analog axes slow with the same factor: see "Analog axes", "The
 //!     feed hold scales the codes".
+//!   - A soft-limit verdict (below) also sets the request, and while it
+//!     stands a release is refused.
+//! * **Soft limits** (VERSION 0.7.0; build option `SOFT_LIMITS`, on in
+//!   `motion_controller`, off in `motion_controller_dda` and
+//!   `motion_controller_servo`; [`soft_limits`]): a position window per
+//!   axis, `SOFT_MIN` to `SOFT_MAX` (24-bit signed steps, read back
+//!   sign-extended; 0 after reset), checked against the feed hold's
+//!   stopping distance, so that an axis whose path would leave its window
+//!   starts the controlled stop early enough to stop inside it. The hard
+//!   limits and the E-stop keep their hard stops.
+//!   - `SOFT_LIMIT.ENABLE` (bit k) enables axis k's window (reset 0). The
+//!     axes are checked in turn while RUN is set, one every
+//!     [`soft_limits::CHECK_CLOCKS`] = 22 clocks. A moving step axis is
+//!     *beyond* when (Δ − 2) × P <= |J| × G': Δ the steps left to the
+//!     bound it heads for (`SOFT_MAX` moving up, `SOFT_MIN` down) from its
+//!     CMD_POSITION, |J| its steps in the running period, P =
+//!     `PERIOD_TICKS`, and G' the base ticks a stop from full speed at
+//!     `HOLD_CONTROL.RATE` lets through plus the check's own latency
+//!     ([`soft_limits::check_latency`]`(K)` = 96 at K = 3) and 1. So the
+//!     axis is stopped where its present rate, continued over the stop's
+//!     reach, would still leave 2 steps of the window. G' is measured by a
+//!     second hold ramp in the block, not computed; `SOFT_LIMIT.MEASURED`
+//!     reads 0 after reset and for ceil(65536 / RATE) + 3 clocks after
+//!     RATE changes, while every moving axis is judged with the longest
+//!     reach (2^17 − 1 ticks) and so trips at once: write RATE, wait for
+//!     MEASURED, then start.
+//!   - A verdict that turns beyond raises `STATUS.SOFT_LIMIT` and records
+//!     the axis and its direction in `SOFT_LIMIT.AXIS` and `NEGATIVE`;
+//!     `BEYOND` (bit k) is each axis's live verdict. Any verdict beyond
+//!     sets the hold's request in every clock it stands (the path stops
+//!     along itself, on every axis, at `RATE`; the FIFOs keep their
+//!     entries), and a `RELEASE` is refused while it stands. It stands
+//!     while the held axis's entry still heads out: the host stops (RUN
+//!     = 0 clears every verdict at the next edge), releases, flushes, and
+//!     backs the axis in with new entries (a move back into the window is
+//!     never beyond), or clears the axis's ENABLE to run on past it.
+//!   - Latency: a verdict follows its axis's load by 22 clocks; the stop's
+//!     request follows it by one clock, as a probe stop's does.
+//!   - The guarantee: the axis stops inside its window when its rate
+//!     toward the bound does not grow during the stop's reach (the check
+//!     judges the running period's rate; an entry that speeds up toward
+//!     the bound within G' ticks of it can carry the axis past by the
+//!     extra steps). Steps still queued in an output stage (a stage whose
+//!     timing is slower than the entries ask) are not in CMD_POSITION and
+//!     not counted. A move that ends at a bound at speed trips within
+//!     its reach of the bound: set the window outside the planner's
+//!     travel by the reach at the final approach speed (a backstop, as
+//!     LinuxCNC's joint limits beyond its soft limits).
+//!   - Analog axes and standing axes are never beyond; an axis outside
+//!     its window heading further out is beyond at once.
 //! * **General I/O**: `GPIO_IN` reads the 8 filtered inputs; every edge is
 //!   recorded in `GPIO_EDGES` (write 1 to clear) and the ones enabled in
 //!   `GPIO_IRQ_ENABLE` raise `STATUS.GPIO`. `gpio_out` is `GPIO_OUT`; the
@@ -455,6 +505,8 @@
 //!   pop, the 0 V update, and the DAC's registers on the bus;
 //! * [`machine_io`]: switch conditioning, the E-stop latch, general I/O;
 //! * [`probe_trigger`]: the probe's conditioner, `PROBE_CONTROL` and its trip;
+//! * [`soft_limits`]: the windows, `SOFT_LIMIT`, the check of each axis in
+//!   turn and the gauge of the stop's reach;
 //! * [`feed_hold`]: the feed hold's input, `HOLD_CONTROL`, its sticky
 //!   request, and the [`hold_ramp`] (the velocity factor and the tick gate
 //!   it drives) whose gated tick paces the periods and the axes;
@@ -511,7 +563,7 @@
 //! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
 //! the DAC and its walk) have their own rows in the synthesis report.
 //!
-//! ## Build options: DDA only, analog outputs, probe
+//! ## Build options: DDA only, analog outputs, probe, soft limits
 //! `ANALOG` = true builds the analog outputs (see "Analog axes"); without
 //! them `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0, the `DAC_*`
 //! registers are absent (read 0) and the DAC pins idle (every `dac_cs_n`
@@ -530,6 +582,15 @@
 //!   with the analog outputs (step and AD669 servo drives): the seed
 //!   card's controller (`seed_board.v`, which its placement test keeps
 //!   within the 85 % of an iCE40 HX8K the card asks for).
+//!
+//! `SOFT_LIMITS` = true builds the soft limits (see "Soft limits"):
+//! `motion_controller` has them; the two builds of the seed card
+//! (`motion_controller_dda`, `motion_controller_servo`) do not, for the
+//! card's 85 % budget. Without them `CONFIG.SOFT_LIMITS` reads 0,
+//! `SOFT_LIMIT`, `SOFT_MIN` and `SOFT_MAX` are absent (read 0, writes
+//! ignored) and `STATUS.SOFT_LIMIT` is never set; the ports are the same.
+//! The scaling report places [`MotionController3NoSoftLimits`] beside
+//! `motion_controller`: the row pair is their cost.
 //!
 //! `PROBE` = true builds the probe latch (see "Probe"); every exported
 //! build has it. Without it `CONFIG.PROBE` reads 0, the `probe` pin is
@@ -558,7 +619,9 @@
 //! * `AXIS_STATUS.UNIFORM_RUNNING` and `INTERP_OVERFLOW` stay 0; `active`
 //!   is `running` or an output stage busy.
 //! * Everything else, pin for pin and clock for clock, is the full build
-//!   with no axis uniform (`tests/controller/dda_only.rs` checks it).
+//!   with no axis uniform and the same `SOFT_LIMITS` option
+//!   (`tests/controller/dda_only.rs` checks it against the full build
+//!   without soft limits).
 //!
 //! Its register map is `rtl-out/motion_controller_dda_regs.h` and `.md`
 //! (same names as the full build's, with UNIFORM and INTERLEAVED read-only).
@@ -582,6 +645,7 @@ pub mod model;
 pub mod period_sequencer;
 pub mod probe_trigger;
 pub mod registers;
+pub mod soft_limits;
 pub mod stop_cause;
 
 use rust_hdl::prelude::*;
@@ -602,6 +666,7 @@ use machine_io::MachineIo;
 use period_sequencer::PeriodSequencer;
 use probe_trigger::ProbeTrigger;
 use registers::{fields, irq, DAC_BITS};
+use soft_limits::SoftLimits;
 use stop_cause::StopCauseRegister;
 
 /// The machine-I/O latencies in clocks, as the tests measure them. Clock
@@ -709,34 +774,39 @@ pub const TICK_TRAIL: usize = 4;
 const IRQ_COUNT: usize = irq::COUNT;
 
 /// The exported configuration (`motion_controller`): 3 axes, 16-entry
-/// FIFOs, DDA and uniform pulse generator on every axis.
-pub type MotionController3 = MotionController<3, 4, 5, true, false, true>;
+/// FIFOs, DDA and uniform pulse generator on every axis, the probe and the
+/// soft limits.
+pub type MotionController3 = MotionController<3, 4, 5, true, false, true, true>;
 
 /// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
-/// 16-entry FIFOs, no uniform pulse generators, no analog outputs (see
-/// "Build options").
-pub type MotionController3Dda = MotionController<3, 4, 5, false, false, true>;
+/// 16-entry FIFOs, no uniform pulse generators, no analog outputs, no soft
+/// limits (see "Build options").
+pub type MotionController3Dda = MotionController<3, 4, 5, false, false, true, false>;
 
 /// The exported servo configuration (`motion_controller_servo`): the
 /// DDA-only controller with the analog outputs (see "Build options").
-pub type MotionController3Servo = MotionController<3, 4, 5, false, true, true>;
+pub type MotionController3Servo = MotionController<3, 4, 5, false, true, true, false>;
 
 /// The exported `motion_controller` without the probe latch (`PROBE` =
 /// false): measured on the seed card in the scaling report, not exported
 /// (see "Build options").
-pub type MotionController3NoProbe = MotionController<3, 4, 5, true, false, false>;
+pub type MotionController3NoProbe = MotionController<3, 4, 5, true, false, false, true>;
 
 /// Both build options (uniform generators and analog outputs): measured on
 /// the seed card in the scaling report, not exported (see "Build options").
-pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true, true>;
+pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true, true, false>;
+
+/// The exported `motion_controller` without the soft limits (`SOFT_LIMITS`
+/// = false): measured beside it, not exported (see "Build options").
+pub type MotionController3NoSoftLimits = MotionController<3, 4, 5, true, false, true, false>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
-pub type MotionController1 = MotionController<1, 4, 5, true, false, true>;
+pub type MotionController1 = MotionController<1, 4, 5, true, false, true, true>;
 
 /// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
 /// the synthesis report's scaling table, not exported.
-pub type MotionController6 = MotionController<6, 4, 5, true, false, true>;
+pub type MotionController6 = MotionController<6, 4, 5, true, false, true, true>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -814,8 +884,8 @@ pub const PORT_DOCS: &[PortDoc] = &[
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
 /// N + 1), with a uniform pulse generator on every axis if `UNIFORM` (else
-/// DDA only), the analog outputs if `ANALOG` (K <= 8) and the probe latch
-/// if `PROBE`: see "Build options". See the [module documentation](self).
+/// DDA only), the analog outputs if `ANALOG` (K <= 8), the probe latch
+/// if `PROBE` and the soft limits if `SOFT`: see "Build options". See the [module documentation](self).
 #[derive(LogicBlock)]
 pub struct MotionController<
     const K: usize,
@@ -824,6 +894,7 @@ pub struct MotionController<
     const UNIFORM: bool,
     const ANALOG: bool,
     const PROBE: bool,
+    const SOFT: bool,
 > {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
@@ -902,6 +973,19 @@ pub struct MotionController<
     interrupts: InterruptController<IRQ_COUNT>,
     io: MachineIo<K>,
     probe_trigger: ProbeTrigger,
+    /// The soft limits (build option `SOFT_LIMITS`).
+    soft_limits: SoftLimits<K>,
+    /// `SOFT`: the soft limits' stop, event and read data are used.
+    has_soft: Constant<Bit>,
+    /// The soft limits' read data, 0 without `SOFT`.
+    soft_read: Signal<Local, Bits<32>>,
+    /// The axis the soft limits take, its values.
+    soft_position: Signal<Local, Bits<POSITION_BITS>>,
+    soft_magnitude: Signal<Local, Bits<DAC_BITS>>,
+    soft_negative: Signal<Local, Bit>,
+    soft_step_axis: Signal<Local, Bit>,
+    soft_axis: [Constant<Bits<3>>; K],
+    zero_position: Constant<Bits<POSITION_BITS>>,
     /// The feed hold: its input, `HOLD_CONTROL` and the gated tick.
     feed_hold_unit: FeedHold,
     /// The base tick through the feed hold's gate, registered (the gate's
@@ -995,6 +1079,7 @@ pub struct MotionController<
     ev_gpio: Constant<Bits<IRQ_COUNT>>,
     ev_probe: Constant<Bits<IRQ_COUNT>>,
     ev_held: Constant<Bits<IRQ_COUNT>>,
+    ev_soft_limit: Constant<Bits<IRQ_COUNT>>,
     zero_ev: Constant<Bits<IRQ_COUNT>>,
     /// STATUS.WATCHDOG and STATUS.ESTOP, for their clears.
     m_status_watchdog: Constant<Bits<32>>,
@@ -1013,13 +1098,15 @@ impl<
         const UNIFORM: bool,
         const ANALOG: bool,
         const PROBE: bool,
-    > MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE>
+        const SOFT: bool,
+    > MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
 {
     /// This build's options, as the register map and the model take them.
     pub const BUILD: registers::BuildOptions = registers::BuildOptions {
         uniform: UNIFORM,
         analog: ANALOG,
         probe: PROBE,
+        soft_limits: SOFT,
     };
 }
 
@@ -1030,7 +1117,8 @@ impl<
         const UNIFORM: bool,
         const ANALOG: bool,
         const PROBE: bool,
-    > Default for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE>
+        const SOFT: bool,
+    > Default for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
 {
     fn default() -> Self {
         assert!(
@@ -1098,6 +1186,15 @@ impl<
             interrupts: Default::default(),
             io: Default::default(),
             probe_trigger: Default::default(),
+            soft_limits: Default::default(),
+            has_soft: Constant::new(SOFT),
+            soft_read: Default::default(),
+            soft_position: Default::default(),
+            soft_magnitude: Default::default(),
+            soft_negative: Default::default(),
+            soft_step_axis: Default::default(),
+            soft_axis: array_init::array_init(|k| Constant::new((k as u64).into())),
+            zero_position: Constant::new(0u64.into()),
             feed_hold_unit: Default::default(),
             motion_tick: Default::default(),
             tick_trail: Default::default(),
@@ -1150,6 +1247,7 @@ impl<
             ev_gpio: ev(irq::GPIO),
             ev_probe: ev(irq::PROBE),
             ev_held: ev(irq::HELD),
+            ev_soft_limit: ev(irq::SOFT_LIMIT),
             zero_ev: Constant::new(0u64.into()),
             m_status_watchdog: m32(irq::WATCHDOG),
             m_status_estop: m32(irq::ESTOP),
@@ -1179,7 +1277,8 @@ impl<
         const UNIFORM: bool,
         const ANALOG: bool,
         const PROBE: bool,
-    > Logic for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE>
+        const SOFT: bool,
+    > Logic for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -1206,6 +1305,7 @@ impl<
             interrupts,
             io,
             probe_trigger,
+            soft_limits,
             feed_hold_unit,
             planner,
             analog
@@ -1275,6 +1375,7 @@ impl<
         self.feed_hold_unit.write.next = self.bus_write.val();
         self.feed_hold_unit.write_data.next = self.bus_write_data.val();
         self.feed_hold_unit.probe_stop.next = self.probe_trigger.stop.val() & self.has_probe.val();
+        self.feed_hold_unit.soft_stop.next = self.soft_limits.stop.val() & self.has_soft.val();
         self.feed_hold_unit.tick.next = self.tick.val();
         self.motion_tick.d.next = self.feed_hold_unit.tick_out.val();
         self.registers.holding.next = self.feed_hold_unit.holding.val();
@@ -1470,6 +1571,32 @@ impl<
         self.step_b.next = self.steps_b.val();
         self.drive_enable.next = self.enables.val();
 
+        // Soft limits: the axis they take in turn, its position and entry.
+        self.soft_position.next = self.zero_position.val();
+        self.soft_magnitude.next = self.zero_code.val();
+        self.soft_negative.next = false;
+        self.soft_step_axis.next = false;
+        for i in 0..K {
+            if self.soft_limits.select.val() == self.soft_axis[i].val() {
+                self.soft_position.next = self.axes[i].cmd_position.val();
+                self.soft_magnitude.next = self.axes[i].dac_code.val();
+                self.soft_negative.next = self.axes[i].code_negative.val();
+                self.soft_step_axis.next = !self.axes[i].analog.val();
+            }
+        }
+        self.soft_limits.reset.next = self.reset.val();
+        self.soft_limits.address.next = self.bus_address.val();
+        self.soft_limits.write.next = self.bus_write.val() & self.has_soft.val();
+        self.soft_limits.read.next = self.bus_read.val() & self.has_soft.val();
+        self.soft_limits.write_data.next = self.bus_write_data.val().get_bits::<POSITION_BITS>(0);
+        self.soft_limits.running.next = self.period.running.val();
+        self.soft_limits.rate.next = self.feed_hold_unit.rate_out.val();
+        self.soft_limits.period.next = self.registers.period_ticks.val();
+        self.soft_limits.position.next = self.soft_position.val();
+        self.soft_limits.magnitude.next = self.soft_magnitude.val();
+        self.soft_limits.negative.next = self.soft_negative.val();
+        self.soft_limits.step_axis.next = self.soft_step_axis.val();
+
         // Analog outputs. After each pop the analog axes' codes are loaded
         // into the DAC one axis a clock, then one update writes every
         // channel and pulses LDAC once. When RUN falls, not by an abort,
@@ -1557,6 +1684,9 @@ impl<
         if self.feed_hold_unit.held.val() & !self.held_prev.q.val() {
             self.events.next = self.events.val() | self.ev_held.val();
         }
+        if self.soft_limits.tripped.val() & self.has_soft.val() {
+            self.events.next = self.events.val() | self.ev_soft_limit.val();
+        }
         self.interrupts.reset.next = self.reset.val();
         self.interrupts.events.next = self.events.val();
         self.interrupts.clear.next = self.registers.status_write.val();
@@ -1571,10 +1701,15 @@ impl<
         if self.has_probe.val() {
             self.probe_read.next = self.probe_trigger.read_data.val();
         }
+        self.soft_read.next = self.zero32.val();
+        if self.has_soft.val() {
+            self.soft_read.next = self.soft_limits.read_data.val();
+        }
         if self.bus_read.val() {
             self.read_data.d.next = self.registers.read_data.val()
                 | self.io.read_data.val()
                 | self.probe_read.val()
+                | self.soft_read.val()
                 | self.feed_hold_unit.read_data.val()
                 | self.axes_read.val();
         }
@@ -1582,6 +1717,11 @@ impl<
         self.read_out.next = self.read_data.q.val();
         if self.analog.read_selected.val() {
             self.read_out.next = self.analog.read_data.val();
+        }
+        // The soft-limit windows come from block RAM too (0 unless the
+        // last read addressed one).
+        if self.has_soft.val() {
+            self.read_out.next = self.read_out.val() | self.soft_limits.window_data.val();
         }
         // The axes' configuration registers come from the shadow RAM, whose
         // word is 0 for every other read (also registered at the read).
@@ -1609,7 +1749,7 @@ impl<
     }
 }
 
-crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE> {
+crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool, const SOFT: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT> {
     inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
         limit_pos, limit_neg, home, drive_alarm, estop, gpio_in, probe, feed_hold],
     outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out,

@@ -15,6 +15,7 @@ use super::registers::{
     self, axis, fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, ID_VALUE,
     VERSION_VALUE,
 };
+use super::soft_limits::{SoftLimitsInputs, SoftLimitsModel};
 use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
 use crate::blocks::dac_interface::model::{DacInputs, DacModel, DacOutputs};
 use crate::blocks::dda_integrator::model::{
@@ -406,6 +407,15 @@ impl AxisModel {
         code as u16 as u64
     }
 
+    /// The running period's |entry|, saturated to 16 bits, and its sign,
+    /// as the axis offers them to the soft limits.
+    pub fn entry_steps(&self) -> (u16, bool) {
+        (
+            self.popped_magnitude().min(COUNT_MAX) as u16,
+            self.glue.popped & (1 << 31) != 0,
+        )
+    }
+
     fn popped_magnitude(&self) -> u64 {
         (self.glue.popped as i32).unsigned_abs() as u64
     }
@@ -753,6 +763,11 @@ pub struct MotionControllerModel {
     io: MachineIoModel,
     probe: ProbeModel,
     feed_hold: FeedHoldModel,
+    /// The soft limits (`SOFT_LIMITS`; without them never stepped).
+    soft: SoftLimitsModel,
+    has_soft: bool,
+    /// The soft limits' `event` output (registered in the block).
+    soft_event: bool,
     held_prev: bool,
     /// The gated tick, registered: the periods and the axes see it.
     motion_tick: bool,
@@ -788,7 +803,12 @@ impl MotionControllerModel {
         build: registers::BuildOptions,
     ) -> Result<Self, crate::regmap::RegMapError> {
         let map = registers::register_map(axes, fifo_log2, build)?;
-        let registers::BuildOptions { analog, probe, .. } = build;
+        let registers::BuildOptions {
+            analog,
+            probe,
+            soft_limits,
+            ..
+        } = build;
         let dac_map =
             crate::blocks::dac_interface::registers::register_map(axes, registers::DAC_BITS)?;
         let mut dac_addresses = Vec::new();
@@ -836,6 +856,9 @@ impl MotionControllerModel {
             io: MachineIoModel::new(axes),
             probe: ProbeModel::default(),
             feed_hold: FeedHoldModel::default(),
+            soft: SoftLimitsModel::new(axes),
+            has_soft: soft_limits,
+            soft_event: false,
             held_prev: false,
             motion_tick: false,
             tick_trail: 0,
@@ -989,9 +1012,10 @@ impl MotionControllerModel {
             true => self.probe.comb(address, bus_write),
             false => ProbeComb::default(),
         };
+        let soft_stop = self.has_soft && self.soft.stop();
         let hold = self
             .feed_hold
-            .comb(address, bus_write, probe.stop, self.tick);
+            .comb(address, bus_write, probe.stop || soft_stop, self.tick);
         // The periods and the axes run on the gated tick, registered.
         let tick = self.motion_tick;
         let drive_allowed = !io.estop_latched_next && !expired;
@@ -1052,8 +1076,13 @@ impl MotionControllerModel {
         set(irq::GPIO, io.gpio_event);
         set(irq::PROBE, probe.latch);
         set(irq::HELD, self.feed_hold.held() && !self.held_prev);
+        set(irq::SOFT_LIMIT, self.has_soft && self.soft_event);
+        let soft_read = match self.has_soft {
+            true => self.soft.read(address),
+            false => 0,
+        };
         let read_word = combs.iter().fold(
-            self.global_read(address, &io) | probe.read_data | hold.read_data,
+            self.global_read(address, &io) | probe.read_data | hold.read_data | soft_read,
             |w, c| w | c.read_data,
         );
         // STOP_CAUSE: the highest of this clock's causes, with the lowest
@@ -1147,6 +1176,22 @@ impl MotionControllerModel {
             self.tick,
         );
         next.held_prev = self.feed_hold.held();
+        let picked = &self.axes[self.soft.select()];
+        let soft_out = next.soft.step(&SoftLimitsInputs {
+            reset: i.reset,
+            address,
+            write: i.write && self.has_soft,
+            write_data: i.write_data,
+            running: self.run,
+            rate: self.feed_hold.rate(),
+            period: self.period_ticks as u16,
+            position: picked.position_out.count as u32,
+            magnitude: picked.entry_steps().0,
+            negative: picked.entry_steps().1,
+            step_axis: !picked.analog(),
+            read: i.read && self.has_soft,
+        });
+        next.soft_event = soft_out.tripped;
         next.motion_tick = hold.tick && !i.reset;
         next.tick_trail = (self.tick_trail << 1 | (self.motion_tick && self.run) as u32)
             & crate::blocks::width_mask(super::TICK_TRAIL as u32) as u32;

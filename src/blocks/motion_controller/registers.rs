@@ -29,8 +29,10 @@ pub const ID_VALUE: u32 = 0x4d48_4443;
 /// input (`PROBE_CONTROL`, `PROBE_*_POSITION`, `STATUS.PROBE`). Minor 6:
 /// the feed hold (`feed_hold`, `HOLD_CONTROL`, `STATE.HOLDING`/`HELD`,
 /// `STATUS.HELD`, `PROBE_CONTROL.STOP`); its patch 1: the hold scales the
-/// analog axes' codes by its factor.
-pub const VERSION_VALUE: u32 = 0x0000_0601;
+/// analog axes' codes by its factor. Minor 7: the soft limits
+/// (`SOFT_LIMIT`, `SOFT_MIN`, `SOFT_MAX`, `STATUS.SOFT_LIMIT`,
+/// `CONFIG.SOFT_LIMITS`).
+pub const VERSION_VALUE: u32 = 0x0000_0700;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -82,6 +84,8 @@ pub mod global {
     pub const PROBE_CONTROL: u32 = 0x19;
     /// The feed hold: request, release, ramp rate, and the input's level.
     pub const HOLD_CONTROL: u32 = 0x1a;
+    /// Soft limits: enables, verdicts, the last axis tripped.
+    pub const SOFT_LIMIT: u32 = 0x1b;
     /// The analog outputs' code format (`dac_interface` CONTROL; analog builds).
     pub const DAC_CONTROL: u32 = 0x16;
     /// The analog outputs' state and flags (`dac_interface` STATUS).
@@ -290,6 +294,23 @@ pub mod fields {
     pub const HOLD_RATE: u32 = 16;
     /// Width of `HOLD_CONTROL.RATE`.
     pub const HOLD_RATE_WIDTH: u32 = 16;
+    /// `SOFT_LIMIT.ENABLE`: one bit per axis.
+    pub const SOFT_ENABLE: u32 = 0;
+    /// Room of `SOFT_LIMIT.ENABLE` and `BEYOND`: 8 axes (each field is
+    /// K bits wide, K axes).
+    pub const SOFT_ENABLE_WIDTH: u32 = 8;
+    /// `SOFT_LIMIT.BEYOND`: one bit per axis, the live verdicts.
+    pub const SOFT_BEYOND: u32 = 8;
+    /// `SOFT_LIMIT.AXIS`: the axis of the last verdict that turned beyond.
+    pub const SOFT_AXIS: u32 = 16;
+    /// Width of `SOFT_LIMIT.AXIS`.
+    pub const SOFT_AXIS_WIDTH: u32 = 3;
+    /// `SOFT_LIMIT.NEGATIVE`: that axis was moving down (toward SOFT_MIN).
+    pub const SOFT_NEGATIVE: u32 = 19;
+    /// `SOFT_LIMIT.MEASURED`: the stop's reach at the present RATE is measured.
+    pub const SOFT_MEASURED: u32 = 20;
+    /// `CONFIG.SOFT_LIMITS`: the build has the soft limits.
+    pub const CONFIG_SOFT_LIMITS: u32 = 27;
     /// `STATE.HOLDING`: the hold's factor is below 1.
     pub const STATE_HOLDING: u32 = 7;
     /// `STATE.HELD`: the hold's factor is 0.
@@ -419,6 +440,10 @@ pub mod axis {
     pub const PROBE_CMD_POSITION: u32 = 0x16;
     /// ACT_POSITION at the probe's trip.
     pub const PROBE_ACT_POSITION: u32 = 0x17;
+    /// The soft window's lower end.
+    pub const SOFT_MIN: u32 = 0x18;
+    /// The soft window's upper end.
+    pub const SOFT_MAX: u32 = 0x19;
 }
 
 /// Bit numbers of `STATUS` and `IRQ_ENABLE`, which are also the
@@ -448,13 +473,14 @@ pub mod irq {
     pub const HOME: u32 = 10;
     /// An enabled general-input edge.
     pub const GPIO: u32 = 11;
-    /// Number of interrupt sources.
     /// The armed probe tripped: every axis's positions latched.
     pub const PROBE: u32 = 12;
     /// The feed hold brought the path to a stop (`STATE.HELD` rose).
     pub const HELD: u32 = 13;
+    /// A soft-limit verdict turned beyond: the hold is requested.
+    pub const SOFT_LIMIT: u32 = 14;
     /// Number of interrupt sources.
-    pub const COUNT: usize = 14;
+    pub const COUNT: usize = 15;
 }
 
 /// A read-write register whose low `width` bits hold a number.
@@ -483,6 +509,7 @@ fn irq_fields(access: Access) -> Vec<Field> {
         field("GPIO", irq::GPIO, 1, access, "an enabled general-input edge; see GPIO_EDGES"),
         field("PROBE", irq::PROBE, 1, access, "the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL"),
         field("HELD", irq::HELD, 1, access, "the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL"),
+        field("SOFT_LIMIT", irq::SOFT_LIMIT, 1, access, "an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS"),
     ]
 }
 
@@ -497,40 +524,73 @@ pub struct BuildOptions {
     pub analog: bool,
     /// The probe latch (`CONFIG.PROBE`).
     pub probe: bool,
+    /// The soft limits (`CONFIG.SOFT_LIMITS`).
+    pub soft_limits: bool,
 }
 
 impl BuildOptions {
-    /// `motion_controller`: uniform generators and the probe.
+    /// `motion_controller`: uniform generators, the probe and the soft limits.
     pub const MOTION_CONTROLLER: Self = Self {
         uniform: true,
         analog: false,
         probe: true,
+        soft_limits: true,
     };
-    /// `motion_controller_dda`: DDA only, with the probe.
+    /// `motion_controller_dda`: DDA only, with the probe, no soft limits
+    /// (the seed card's budget).
     pub const MOTION_CONTROLLER_DDA: Self = Self {
         uniform: false,
         analog: false,
         probe: true,
+        soft_limits: false,
     };
-    /// `motion_controller_servo`: DDA only, analog outputs and the probe.
+    /// `motion_controller_servo`: DDA only, analog outputs and the probe, no
+    /// soft limits (the seed card's budget).
     pub const MOTION_CONTROLLER_SERVO: Self = Self {
         uniform: false,
         analog: true,
         probe: true,
+        soft_limits: false,
     };
 
     /// The module name of this build (the exported ones' and the names
-    /// the scaling report and the test benches give the others).
+    /// the scaling report and the test benches give the others). The
+    /// soft limits are the default of the full build (uniform generators,
+    /// no `ANALOG`) only: a build that differs says so in its name.
     pub fn module_name(&self) -> &'static str {
-        match (self.uniform, self.analog, self.probe) {
-            (true, false, true) => "motion_controller",
-            (false, false, true) => "motion_controller_dda",
-            (false, true, true) => "motion_controller_servo",
-            (true, true, true) => "motion_controller_uniform_servo",
-            (true, false, false) => "motion_controller_no_probe",
-            (false, false, false) => "motion_controller_dda_no_probe",
-            (false, true, false) => "motion_controller_servo_no_probe",
-            (true, true, false) => "motion_controller_uniform_servo_no_probe",
+        let base = match (self.uniform, self.analog, self.probe) {
+            (true, false, true) => 0,
+            (false, false, true) => 1,
+            (false, true, true) => 2,
+            (true, true, true) => 3,
+            (true, false, false) => 4,
+            (false, false, false) => 5,
+            (false, true, false) => 6,
+            (true, true, false) => 7,
+        };
+        const DEFAULT: [&str; 8] = [
+            "motion_controller",
+            "motion_controller_dda",
+            "motion_controller_servo",
+            "motion_controller_uniform_servo",
+            "motion_controller_no_probe",
+            "motion_controller_dda_no_probe",
+            "motion_controller_servo_no_probe",
+            "motion_controller_uniform_servo_no_probe",
+        ];
+        const OTHER: [&str; 8] = [
+            "motion_controller_no_soft_limits",
+            "motion_controller_dda_soft_limits",
+            "motion_controller_servo_soft_limits",
+            "motion_controller_uniform_servo_soft_limits",
+            "motion_controller_no_probe_no_soft_limits",
+            "motion_controller_dda_no_probe_soft_limits",
+            "motion_controller_servo_no_probe_soft_limits",
+            "motion_controller_uniform_servo_no_probe_soft_limits",
+        ];
+        match self.soft_limits == (self.uniform && !self.analog) {
+            true => DEFAULT[base],
+            false => OTHER[base],
         }
     }
 }
@@ -553,6 +613,7 @@ pub fn register_map(
         uniform,
         analog,
         probe,
+        soft_limits,
     } = build;
     if axes == 0 || axes > MAX_AXES {
         return Err(RegMapError::NoCopies(format!(
@@ -595,6 +656,13 @@ pub fn register_map(
                 ReadOnly,
                 "1 = this build has the probe latch (PROBE_CONTROL, PROBE_*_POSITION, STATUS.PROBE); 0: the probe pin is ignored",
             ),
+            field(
+                "SOFT_LIMITS",
+                fields::CONFIG_SOFT_LIMITS,
+                1,
+                ReadOnly,
+                "1 = this build has the soft limits (SOFT_LIMIT, SOFT_MIN, SOFT_MAX, STATUS.SOFT_LIMIT)",
+            ),
         ],
     );
     config.fields[0].reset = axes as u64;
@@ -604,6 +672,7 @@ pub fn register_map(
     config.fields[4].reset = !uniform as u64;
     config.fields[5].reset = analog as u64;
     config.fields[6].reset = probe as u64;
+    config.fields[7].reset = soft_limits as u64;
     let analog_access = if analog { ReadWrite } else { ReadOnly };
     let analog_doc = if analog {
         "1 = analog axis, taken when RUN starts: each FIFO entry is the axis's signed 16-bit DAC code for the period (0 = 0 V), no steps; its channel goes to 0 when RUN falls"
@@ -896,6 +965,56 @@ pub fn register_map(
             0,
             "ACT_POSITION on the clock of the probe's trip",
         )));
+    }
+    if soft_limits {
+        map.registers.push(register(
+            "SOFT_LIMIT",
+            global::SOFT_LIMIT,
+            "soft limits: a position window per axis, checked against the feed hold's stopping distance, that requests the hold early enough to stop inside it",
+            vec![
+                field("ENABLE", fields::SOFT_ENABLE, axes as u32, ReadWrite, "bit k: axis k's window (SOFT_MIN, SOFT_MAX) is checked"),
+                field("BEYOND", fields::SOFT_BEYOND, axes as u32, ReadOnly, "bit k: axis k's last verdict: its stop's reach meets the bound it heads for (requests the hold, refuses RELEASE); cleared when RUN falls or the axis is disabled"),
+                field("AXIS", fields::SOFT_AXIS, fields::SOFT_AXIS_WIDTH, ReadOnly, "the axis of the last verdict that turned beyond (STATUS.SOFT_LIMIT)"),
+                field("NEGATIVE", fields::SOFT_NEGATIVE, 1, ReadOnly, "that axis was moving down, toward SOFT_MIN (0: up, toward SOFT_MAX)"),
+                Field { reset: 1, ..field("MEASURED", fields::SOFT_MEASURED, 1, ReadOnly, "the stop's reach at the present HOLD_CONTROL.RATE is measured: 0 for the 3 clocks after reset and for ceil(65536 / RATE) + 3 clocks after RATE changes, while every moving axis is judged with the longest reach (start motion once it reads 1)") },
+            ],
+        ));
+        for (name, offset, doc, value_doc) in [
+            (
+                "SOFT_MIN",
+                axis::SOFT_MIN,
+                "the soft window's lower end in steps, signed, POSITION_BITS wide",
+                "the lower end, signed",
+            ),
+            (
+                "SOFT_MAX",
+                axis::SOFT_MAX,
+                "the soft window's upper end in steps, signed, POSITION_BITS wide",
+                "the upper end, signed",
+            ),
+        ] {
+            map.registers.push(per_axis(register(
+                name,
+                at(offset),
+                doc,
+                vec![
+                    field(
+                        "VALUE",
+                        fields::VALUE,
+                        super::POSITION_BITS as u32,
+                        ReadWrite,
+                        value_doc,
+                    ),
+                    field(
+                        "SIGN",
+                        super::POSITION_BITS as u32,
+                        32 - super::POSITION_BITS as u32,
+                        ReadOnly,
+                        "copies of VALUE's sign bit (writes ignored)",
+                    ),
+                ],
+            )));
+        }
     }
     if analog {
         let dac = crate::blocks::dac_interface::registers::register_map(axes, DAC_BITS)?;
