@@ -625,10 +625,7 @@ impl<B: ControllerBus> Driver<B> {
                 "the FIFOs keep the periods not taken; CONTROL.FLUSH empties them".to_string(),
             );
         }
-        let mut commanded = [0; 3];
-        for (k, c) in commanded.iter_mut().enumerate() {
-            *c = self.read("CMD_POSITION", k as u32)? as i32;
-        }
+        let commanded = self.commanded_positions()?;
         Ok(DriverError::Stopped {
             cause,
             axis,
@@ -755,6 +752,15 @@ impl<B: ControllerBus> Driver<B> {
         }
         report.cycles = self.bus.cycles();
         Ok(report)
+    }
+
+    /// Each axis's `CMD_POSITION` now.
+    fn commanded_positions(&mut self) -> Result<[i32; 3], DriverError> {
+        let mut commanded = [0; 3];
+        for (k, c) in commanded.iter_mut().enumerate() {
+            *c = self.read("CMD_POSITION", k as u32)? as i32;
+        }
+        Ok(commanded)
     }
 
     /// Waits until no output stage is busy, then for the encoder latency.

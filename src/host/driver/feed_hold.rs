@@ -99,11 +99,7 @@ impl<B: ControllerBus> Driver<B> {
         self.write("CONTROL", 0, stop)?;
         self.release()?;
         self.settle()?;
-        let mut commanded = [0; 3];
-        for (k, c) in commanded.iter_mut().enumerate() {
-            *c = self.read("CMD_POSITION", k as u32)? as i32;
-        }
-        Ok(commanded)
+        self.commanded_positions()
     }
 
     /// The feed hold's state.
@@ -144,10 +140,7 @@ impl<B: ControllerBus> Driver<B> {
             return Ok(());
         }
         let hold = self.hold_state()?;
-        let mut commanded = [0; 3];
-        for (k, c) in commanded.iter_mut().enumerate() {
-            *c = self.read("CMD_POSITION", k as u32)? as i32;
-        }
+        let commanded = self.commanded_positions()?;
         Err(DriverError::Held {
             input: hold.input,
             commanded,

@@ -64,9 +64,10 @@ impl<B: ControllerBus> Driver<B> {
         Ok(self.has_windows() && self.field("STATUS", "SOFT_LIMIT", status)? == 1)
     }
 
-    /// The path stands held by a soft limit: stops the controller (which
-    /// clears the verdict), releases the hold, flushes the periods not
-    /// taken, and returns the error naming the axis.
+    /// The path stands held by a soft limit: ends it where it stands
+    /// ([`Driver::abandon_held_path`]: RUN 0, which clears the verdict,
+    /// the periods not taken flushed, the hold released) and returns the
+    /// error naming the axis.
     pub(super) fn stop_at_soft_limit(
         &mut self,
         periods_queued: usize,
@@ -75,16 +76,7 @@ impl<B: ControllerBus> Driver<B> {
         let word = self.read("SOFT_LIMIT", 0)?;
         let axis = self.field("SOFT_LIMIT", "AXIS", word)? as usize;
         let negative = self.field("SOFT_LIMIT", "NEGATIVE", word)? == 1;
-        let stop = self.pack("CONTROL", &[("RUN", 0), ("FLUSH", 1)])?;
-        self.write("CONTROL", 0, stop)?;
-        let control = self.read("HOLD_CONTROL", 0)?;
-        let rate = self.field("HOLD_CONTROL", "RATE", control)?;
-        let release = self.pack("HOLD_CONTROL", &[("RELEASE", 1), ("RATE", rate)])?;
-        self.write("HOLD_CONTROL", 0, release)?;
-        let mut commanded = [0; 3];
-        for (k, c) in commanded.iter_mut().enumerate() {
-            *c = self.read("CMD_POSITION", k as u32)? as i32;
-        }
+        let commanded = self.abandon_held_path()?;
         Ok(DriverError::SoftLimit {
             axis,
             negative,
