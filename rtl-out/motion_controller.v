@@ -31010,7 +31010,7 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h700;
+    localparam  version_value = 32'h701;
     localparam  config_value = 32'hc610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
@@ -31482,8 +31482,7 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
     localparam  axis_bit__2 = 8'h4;
     localparam  last_turn = 3'b10;
     localparam  enable_mask = 8'h7;
-    localparam  latency_plus_one = 17'b1100001;
-    localparam  reach_max = 17'b11111111111111111;
+    localparam  count_start = 17'b11001010;
     localparam  margin = 26'h2;
     localparam  sat_high = 20'h7ffff;
     localparam  sat_low = 20'h80000;
@@ -31496,18 +31495,19 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
     localparam  m_negative = 32'h80000;
     localparam  m_measured = 32'h100000;
     localparam  s_load = 5'b0;
-    localparam  s_distance = 5'b1;
-    localparam  s_margin = 5'b10;
-    localparam  s_both = 5'b11;
-    localparam  s_first = 5'b100;
-    localparam  s_last = 5'b10100;
-    localparam  s_verdict = 5'b10101;
+    localparam  s_bound = 5'b1;
+    localparam  s_distance = 5'b10;
+    localparam  s_margin = 5'b11;
+    localparam  s_both = 5'b100;
+    localparam  s_first = 5'b101;
+    localparam  s_last = 5'b10101;
+    localparam  s_verdict = 5'b10110;
     localparam  one3 = 3'b1;
     localparam  one5 = 5'b1;
     localparam  zero3 = 3'b0;
     localparam  zero17 = 17'b0;
     localparam  zero24 = 24'h0;
-    localparam  measure_limit = 17'b11111111110011110;
+    localparam  ones24 = 24'hffffff;
     localparam  zero7 = 7'b0;
     localparam  ones7 = 7'b1111111;
     localparam  zero8 = 8'h0;
@@ -31540,6 +31540,12 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
     reg  bound_valid__d;
     wire  bound_valid__q;
     reg  bound_valid__clock;
+    reg  [23:0] bound_q__d;
+    wire  [23:0] bound_q__q;
+    reg  bound_q__clock;
+    reg  bound_taken__d;
+    wire  bound_taken__q;
+    reg  bound_taken__clock;
     reg  window_selected__d;
     wire  window_selected__q;
     reg  window_selected__clock;
@@ -31610,12 +31616,12 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
     reg  [16:0] gauge_count__d;
     wire  [16:0] gauge_count__q;
     reg  gauge_count__clock;
-    reg  gauge_restart__d;
-    wire  gauge_restart__q;
-    reg  gauge_restart__clock;
-    reg  [16:0] reach__d;
-    wire  [16:0] reach__q;
-    reg  reach__clock;
+    reg  gauge_measuring__d;
+    wire  gauge_measuring__q;
+    reg  gauge_measuring__clock;
+    reg  [16:0] reach_n__d;
+    wire  [16:0] reach_n__q;
+    reg  reach_n__clock;
     reg  reach_valid__d;
     wire  reach_valid__q;
     reg  reach_valid__clock;
@@ -31627,12 +31633,14 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
     reg  [22:0] term;
     reg  [22:0] sum;
     reg  verdict;
-    reg  [16:0] reach_now;
-    reg  [16:0] measured;
     reg  [7:0] enable_now;
     reg  [31:0] word24;
     reg  [20:0] delta21;
     reg  [23:0] bound;
+    reg  [23:0] load_mask;
+    reg  [23:0] loaded_mask;
+    reg  [7:0] check_address;
+    reg  window_write;
     reg  window_hit;
     reg  window_valid;
 
@@ -31669,6 +31677,16 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
         .d(bound_valid__d),
         .q(bound_valid__q),
         .clock(bound_valid__clock)
+    );
+    motion_controller__soft_limits__bound_q bound_q(
+        .d(bound_q__d),
+        .q(bound_q__q),
+        .clock(bound_q__clock)
+    );
+    motion_controller__soft_limits__bound_taken bound_taken(
+        .d(bound_taken__d),
+        .q(bound_taken__q),
+        .clock(bound_taken__clock)
     );
     motion_controller__soft_limits__window_selected window_selected(
         .d(window_selected__d),
@@ -31782,15 +31800,15 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
         .q(gauge_count__q),
         .clock(gauge_count__clock)
     );
-    motion_controller__soft_limits__gauge_restart gauge_restart(
-        .d(gauge_restart__d),
-        .q(gauge_restart__q),
-        .clock(gauge_restart__clock)
+    motion_controller__soft_limits__gauge_measuring gauge_measuring(
+        .d(gauge_measuring__d),
+        .q(gauge_measuring__q),
+        .clock(gauge_measuring__clock)
     );
-    motion_controller__soft_limits__reach reach(
-        .d(reach__d),
-        .q(reach__q),
-        .clock(reach__clock)
+    motion_controller__soft_limits__reach_n reach_n(
+        .d(reach_n__d),
+        .q(reach_n__q),
+        .clock(reach_n__clock)
     );
     motion_controller__soft_limits__reach_valid reach_valid(
         .d(reach_valid__d),
@@ -31819,12 +31837,14 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
         acc__clock = clock;
         gauge_rate__clock = clock;
         gauge_count__clock = clock;
-        gauge_restart__clock = clock;
-        reach__clock = clock;
+        gauge_measuring__clock = clock;
+        reach_n__clock = clock;
         reach_valid__clock = clock;
         min_valid__clock = clock;
         max_valid__clock = clock;
         bound_valid__clock = clock;
+        bound_q__clock = clock;
+        bound_taken__clock = clock;
         window_selected__clock = clock;
         enable__d = enable__q;
         beyond__d = beyond__q;
@@ -31845,12 +31865,14 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
         acc__d = acc__q;
         gauge_rate__d = gauge_rate__q;
         gauge_count__d = gauge_count__q;
-        gauge_restart__d = gauge_restart__q;
-        reach__d = reach__q;
+        gauge_measuring__d = gauge_measuring__q;
+        reach_n__d = reach_n__q;
         reach_valid__d = reach_valid__q;
         min_valid__d = min_valid__q;
         max_valid__d = max_valid__q;
         bound_valid__d = bound_valid__q;
+        bound_q__d = bound_q__q;
+        bound_taken__d = bound_taken__q;
         window_selected__d = window_selected__q;
         gauge__clock = clock;
         check_ram__clock = clock;
@@ -31899,109 +31921,116 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
                 max_valid__d = max_valid__q | axis_bit__2;
             end
         end
-        check_ram__write_enable = write & window_hit;
+        window_write = write & window_hit;
+        check_ram__write_enable = window_write;
         check_ram__write_address = address;
         check_ram__write_data = write_data;
-        bus_ram__write_enable = write & window_hit;
+        bus_ram__write_enable = window_write;
         bus_ram__write_address = address;
         bus_ram__write_data = write_data;
         bus_ram__read_enable = read;
         bus_ram__read_address = address;
         if (read) begin
-            window_selected__d = window_hit & window_valid;
+            window_selected__d = window_hit & window_valid & ~write;
         end
         enable_now = enable__q;
         if (write & (address == a_control)) begin
             enable_now = write_data[(32'h0)+:(8)] & enable_mask;
         end
         enable__d = enable_now;
-        gauge__reset = reset | gauge_restart__q;
+        gauge__reset = reset | ~gauge_measuring__q;
         gauge__tick = 1'b1;
         gauge__hold = 1'b1;
         gauge__rate = gauge_rate__q;
-        gauge_restart__d = 1'b0;
-        if (gauge_restart__q) begin
-            gauge_count__d = zero17;
+        gauge_measuring__d = 1'b1;
+        if (~gauge_measuring__q) begin
+            gauge_count__d = count_start;
             gauge_rate__d = rate;
             if (rate != gauge_rate__q) begin
                 reach_valid__d = 1'b0;
+                reach_n__d = zero17;
             end
         end
-        else if (gauge__tick_out & (gauge_count__q != reach_max)) begin
+        else if (rate != gauge_rate__q) begin
+            reach_valid__d = 1'b0;
+            reach_n__d = zero17;
+            gauge_measuring__d = 1'b0;
+        end
+        else if (gauge__stopped) begin
+            reach_n__d = ~(gauge_count__q >> 32'h1);
+            reach_valid__d = 1'b1;
+            gauge_measuring__d = 1'b0;
+        end
+        else begin
             gauge_count__d = gauge_count__q + one17;
-        end
-        measured = gauge_count__q + latency_plus_one;
-        if (gauge_count__q > measure_limit) begin
-            measured = reach_max;
-        end
-        if (~gauge_restart__q) begin
-            if (rate != gauge_rate__q) begin
-                reach_valid__d = 1'b0;
-                gauge_restart__d = 1'b1;
-            end
-            else if (gauge__stopped) begin
-                reach__d = measured;
-                reach_valid__d = 1'b1;
-                gauge_restart__d = 1'b1;
-            end
-        end
-        reach_now = reach_max;
-        if (reach_valid__q) begin
-            reach_now = reach__q;
         end
         turn_step__d = turn_step__q + one5;
         check_ram__read_enable = turn_step__q == s_load;
-        check_ram__read_address = a_max__0;
+        load_mask = zero24;
+        if (negative) begin
+            load_mask = ones24;
+        end
+        check_address = a_max__0;
         if (turn_step__q == s_load) begin
-            position_q__d = position;
+            position_q__d = position ^ load_mask;
             magnitude_q__d = magnitude;
             negative_q__d = negative;
             live_q__d = 1'b0;
             if (turn_axis__q == axis_id__0) begin
-                check_ram__read_address = a_max__0;
+                check_address = a_max__0;
                 bound_valid__d = (max_valid__q & axis_bit__0) != zero8;
                 if (negative) begin
-                    check_ram__read_address = a_min__0;
+                    check_address = a_min__0;
                     bound_valid__d = (min_valid__q & axis_bit__0) != zero8;
                 end
                 live_q__d = running & ((enable__q & axis_bit__0) != zero8) & step_axis & (magnitude != zero16);
             end
             if (turn_axis__q == axis_id__1) begin
-                check_ram__read_address = a_max__1;
+                check_address = a_max__1;
                 bound_valid__d = (max_valid__q & axis_bit__1) != zero8;
                 if (negative) begin
-                    check_ram__read_address = a_min__1;
+                    check_address = a_min__1;
                     bound_valid__d = (min_valid__q & axis_bit__1) != zero8;
                 end
                 live_q__d = running & ((enable__q & axis_bit__1) != zero8) & step_axis & (magnitude != zero16);
             end
             if (turn_axis__q == axis_id__2) begin
-                check_ram__read_address = a_max__2;
+                check_address = a_max__2;
                 bound_valid__d = (max_valid__q & axis_bit__2) != zero8;
                 if (negative) begin
-                    check_ram__read_address = a_min__2;
+                    check_address = a_min__2;
                     bound_valid__d = (min_valid__q & axis_bit__2) != zero8;
                 end
                 live_q__d = running & ((enable__q & axis_bit__2) != zero8) & step_axis & (magnitude != zero16);
             end
+            bound_taken__d = 1'b0;
+            if (window_write & (address == check_address)) begin
+                bound_q__d = write_data ^ load_mask;
+                bound_taken__d = 1'b1;
+            end
         end
+        check_ram__read_address = check_address;
         upper = ((position_q__q) & 26'h3ffffff);
         if (position_q__q[32'h17]) begin
             upper = upper | ext26;
+        end
+        loaded_mask = zero24;
+        if (negative_q__q) begin
+            loaded_mask = ones24;
         end
         bound = zero24;
         if (bound_valid__q) begin
             bound = check_ram__read_data;
         end
-        lower = ((bound) & 26'h3ffffff);
-        if (bound[32'h17]) begin
+        if ((turn_step__q == s_bound) & ~bound_taken__q) begin
+            bound_q__d = bound ^ loaded_mask;
+        end
+        lower = ((bound_q__q) & 26'h3ffffff);
+        if (bound_q__q[32'h17]) begin
             lower = lower | ext26;
         end
         if (turn_step__q == s_distance) begin
             distance__d = upper - lower;
-            if (negative_q__q) begin
-                distance__d = lower - upper;
-            end
         end
         with_margin = distance__q + margin;
         if (turn_step__q == s_margin) begin
@@ -32016,7 +32045,7 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
             if (period == zero16) begin
                 period_bits__d = one17;
             end
-            reach_bits__d = reach_now;
+            reach_bits__d = ~reach_n__q;
         end
         delta21 = ((neg_delta__q) & 21'h1fffff);
         if (neg_delta__q[32'h13]) begin
@@ -32113,8 +32142,9 @@ module motion_controller__soft_limits(clock,reset,address,write,write_data,runni
             live_q__d = 1'b0;
             gauge_rate__d = zero16;
             gauge_count__d = zero17;
-            gauge_restart__d = 1'b0;
+            gauge_measuring__d = 1'b0;
             reach_valid__d = 1'b0;
+            reach_n__d = zero17;
         end
         select = turn_axis__q;
         stop = beyond__q != zero8;
@@ -32199,6 +32229,44 @@ module motion_controller__soft_limits__both(d,q,clock);
 endmodule // motion_controller__soft_limits__both
 
 
+module motion_controller__soft_limits__bound_q(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__soft_limits__bound_q
+
+
+module motion_controller__soft_limits__bound_taken(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__soft_limits__bound_taken
+
+
 module motion_controller__soft_limits__bound_valid(d,q,clock);
 
     // Module arguments
@@ -32230,13 +32298,13 @@ module motion_controller__soft_limits__bus_ram(clock,read_enable,read_address,re
     input wire  [23:0] write_data;
 
     // Update code (custom)
-    reg [23:0] mem [0:255];
+    (* no_rw_check *) reg [23:0] mem [0:255];
     integer i;
 
-    // Block RAM powers up 0, and so do the words and the read register here.
+    // Block RAM powers up 0, and so do the words here (the read register
+    // has no power-up value: its user gates it).
     initial begin
        for (i = 0; i <= 255; i = i + 1) mem[i] = 0;
-       read_data = 0;
     end
 
     always @(posedge clock) begin
@@ -32265,13 +32333,13 @@ module motion_controller__soft_limits__check_ram(clock,read_enable,read_address,
     input wire  [23:0] write_data;
 
     // Update code (custom)
-    reg [23:0] mem [0:255];
+    (* no_rw_check *) reg [23:0] mem [0:255];
     integer i;
 
-    // Block RAM powers up 0, and so do the words and the read register here.
+    // Block RAM powers up 0, and so do the words here (the read register
+    // has no power-up value: its user gates it).
     initial begin
        for (i = 0; i <= 255; i = i + 1) mem[i] = 0;
-       read_data = 0;
     end
 
     always @(posedge clock) begin
@@ -32486,6 +32554,25 @@ module motion_controller__soft_limits__gauge_count(d,q,clock);
 endmodule // motion_controller__soft_limits__gauge_count
 
 
+module motion_controller__soft_limits__gauge_measuring(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__soft_limits__gauge_measuring
+
+
 module motion_controller__soft_limits__gauge_rate(d,q,clock);
 
     // Module arguments
@@ -32503,25 +32590,6 @@ module motion_controller__soft_limits__gauge_rate(d,q,clock);
     end
 
 endmodule // motion_controller__soft_limits__gauge_rate
-
-
-module motion_controller__soft_limits__gauge_restart(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__soft_limits__gauge_restart
 
 
 module motion_controller__soft_limits__last_axis(d,q,clock);
@@ -32714,25 +32782,6 @@ module motion_controller__soft_limits__position_q(d,q,clock);
 endmodule // motion_controller__soft_limits__position_q
 
 
-module motion_controller__soft_limits__reach(d,q,clock);
-
-    // Module arguments
-    input wire  [16:0] d;
-    output reg  [16:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 17'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller__soft_limits__reach
-
-
 module motion_controller__soft_limits__reach_bits(d,q,clock);
 
     // Module arguments
@@ -32750,6 +32799,25 @@ module motion_controller__soft_limits__reach_bits(d,q,clock);
     end
 
 endmodule // motion_controller__soft_limits__reach_bits
+
+
+module motion_controller__soft_limits__reach_n(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__soft_limits__reach_n
 
 
 module motion_controller__soft_limits__reach_valid(d,q,clock);

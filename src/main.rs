@@ -11,6 +11,7 @@ use motion_hdl::host::hexapod::Geometry;
 use motion_hdl::host::hold_window::{parse_seconds, HoldWindow};
 use motion_hdl::host::simulated_probe::{ProbePlane, ProbeResult};
 use motion_hdl::host::simulation::{simulate, HoldReport, InputFormat, SimulationOptions, Trip};
+use motion_hdl::host::soft_window::{self, SoftWindow};
 use motion_hdl::host::{MachineSettings, ToolTable};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
@@ -177,6 +178,14 @@ enum Command {
         /// plane.
         #[arg(long, value_name = "AXIS=HEIGHT")]
         probe_plane: Option<String>,
+        /// A soft-limit window for a step axis in machine mm, as
+        /// AXIS=MIN:MAX (x=-1:4.5); repeatable, one per axis. The
+        /// controller stops the path along itself inside the window, at
+        /// the machine's stop (the rate a feed hold without --hold-rate
+        /// gets); a run that trips fails, printing where it stood and how
+        /// far inside the bound.
+        #[arg(long, value_name = "AXIS=MIN:MAX")]
+        soft_limit: Vec<String>,
         /// The machine: cartesian (the 3-axis controller) or hexapod (the
         /// parallel-machine card: a G-code program in X Y Z mm and A B C
         /// degrees on a Stewart platform, its legs driven by three motor
@@ -390,6 +399,7 @@ fn run(cli: Cli) -> Result<(), String> {
             resume_at,
             hold_rate,
             probe_plane,
+            soft_limit,
             kinematics,
             geometry,
             drive_lag_ms,
@@ -406,6 +416,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     ("--resume-at", resume_at.is_some()),
                     ("--hold-rate", hold_rate.is_some()),
                     ("--probe-plane", probe_plane.is_some()),
+                    ("--soft-limit", !soft_limit.is_empty()),
                 ];
                 if let Some((name, _)) = unused.iter().find(|(_, given)| *given) {
                     return Err(format!(
@@ -464,6 +475,11 @@ fn run(cli: Cli) -> Result<(), String> {
                 (None, None) => None,
             };
             let probe_plane = probe_plane.map(|p| ProbePlane::parse(&p)).transpose()?;
+            let soft_limits = soft_limit
+                .iter()
+                .map(|w| SoftWindow::parse(w))
+                .collect::<Result<Vec<_>, _>>()?;
+            let soft_limits = soft_window::by_axis(&soft_limits)?;
             let backend = match backend {
                 Some(name) => Backend::parse(&name).map_err(|e| e.to_string())?,
                 None if Backend::Verilator.available() => Backend::Verilator,
@@ -527,6 +543,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 trips,
                 hold,
                 probe_plane,
+                soft_limits,
             };
             let r = simulate(&path_file, &options)?;
             print_program_notes(&r.ignored, &r.messages);

@@ -17,6 +17,7 @@ pub mod planner;
 pub mod servo;
 pub mod simulated_probe;
 pub mod simulation;
+pub mod soft_window;
 mod statements;
 pub mod tool_table;
 pub mod toolpath;

@@ -13,19 +13,20 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::driver::HoldEvent;
+use super::driver::{DriverError, HoldEvent};
 use super::gcode::Prober;
 use super::gcode::{
     interpret_probing, interpret_with, program_text, Ignored, Message, Program, Setup, Units,
 };
 use super::hold_window::{
-    hold_tick_settings, min_tick_divisor, speeds_at_the_pins, stop_time_s, stop_within_limits_s,
-    HoldWindow,
+    hold_tick_settings, min_tick_divisor, rate_for_stop, speeds_at_the_pins, stop_time_s,
+    stop_within_limits_s, HoldWindow,
 };
 use super::machine::axis_index;
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::simulated_probe::{ProbePlane, ProbeResult, ProbingRun, ProbingSession};
+use super::soft_window::{self, SoftWindow};
 use super::tool_table::ToolTable;
 use super::ProbeSurface;
 use super::{
@@ -278,6 +279,10 @@ pub struct SimulationOptions {
     /// A simulated probe against a plane, for a G-code program's probe
     /// moves (G38.2 to G38.5; step axes only, without a hold).
     pub probe_plane: Option<ProbePlane>,
+    /// Per axis: a soft-limit window (step axes only; the controller stops
+    /// the path inside it at the hold's rate, and the run fails naming
+    /// where it stood).
+    pub soft_limits: [Option<SoftWindow>; 3],
 }
 
 /// A machine input the simulation drives active (high: tripped, in alarm,
@@ -518,6 +523,20 @@ fn check_options(options: &SimulationOptions) -> Result<(), String> {
             "--probe-plane and --hold-at: both program the feed hold; give one of them".into(),
         );
     }
+    if let Some(w) = options
+        .soft_limits
+        .iter()
+        .flatten()
+        .find(|w| options.servo[w.axis])
+    {
+        return Err(format!(
+            "--soft-limit {}: an analog servo axis (--servo) is never checked; soft limits are for step axes",
+            ["x", "y", "z"][w.axis]
+        ));
+    }
+    if options.soft_limits.iter().any(Option::is_some) && options.probe_plane.is_some() {
+        return Err("--soft-limit and --probe-plane: the probe moves program the feed hold's rate move by move; give one of them".into());
+    }
     if servo && options.uniform.iter().any(|&u| u) {
         return Err("--uniform needs the motion_controller build, --servo the motion_controller_servo build (DDA only): use one of them".into());
     }
@@ -531,6 +550,7 @@ fn controller_driver(
     tick_divisor: u32,
     period_ticks: u32,
     surface: Option<ProbeSurface>,
+    soft_limits: [Option<(i32, i32)>; 3],
 ) -> Result<Driver<RtlBus>, String> {
     let config = DriverConfig {
         tick_divisor,
@@ -540,7 +560,7 @@ fn controller_driver(
         dir_time: options.step_len.max(1),
         uniform: options.uniform,
         analog: options.servo,
-        soft_limits: [None; 3],
+        soft_limits,
     };
     let mut bus = if options.servo.iter().any(|&s| s) {
         let motors = options.servo.map(|s| s.then(ServoMotor::default));
@@ -590,7 +610,13 @@ fn run_probe_moves(
     let (tick_divisor, period_ticks) =
         period_settings_from(machine.period, options.clock_hz, min_divisor)?;
     let surface = plane.surface([0.0; 3], machine.steps_per_mm);
-    let driver = controller_driver(options, tick_divisor, period_ticks, Some(surface))?;
+    let driver = controller_driver(
+        options,
+        tick_divisor,
+        period_ticks,
+        Some(surface),
+        [None; 3],
+    )?;
     let session = ProbingSession::new(driver, machine, options.clock_hz, [0.0; 3]);
     let job = Job::read_with(
         path_file,
@@ -662,15 +688,26 @@ pub fn simulate(
         }
     }
     let servo = options.servo.iter().any(|&s| s);
+    let soft = options.soft_limits.iter().any(Option::is_some);
+    let mut windows = [None; 3];
+    for (k, window) in options.soft_limits.iter().enumerate() {
+        if let Some(w) = window {
+            windows[k] = Some(w.steps(machine.steps_per_mm[k], start[k])?);
+        }
+    }
     let (mut driver, prior) = match probed {
         Some(probed) => (
             probed.driver,
             Some((probed.run, probed.underruns, probed.probes)),
         ),
         None => {
-            let (tick_divisor, period_ticks) = match options.hold {
+            let machine_rate = match options.hold {
+                Some(h) => h.rate.is_none(),
+                None => soft,
+            };
+            let (tick_divisor, period_ticks) = match machine_rate {
                 // The machine's stop: the tick whose RATE comes closest.
-                Some(h) if h.rate.is_none() => {
+                true => {
                     let needed = (0..3)
                         .map(|k| {
                             let peak = interpolation.counts.iter().map(|c| c[k].unsigned_abs());
@@ -681,10 +718,10 @@ pub fn simulate(
                         .unwrap_or(0);
                     hold_tick_settings(machine.period, options.clock_hz, stop_s, needed)?
                 }
-                _ => period_settings(machine.period, options.clock_hz)?,
+                false => period_settings(machine.period, options.clock_hz)?,
             };
             (
-                controller_driver(options, tick_divisor, period_ticks, None)?,
+                controller_driver(options, tick_divisor, period_ticks, None, windows)?,
                 None,
             )
         }
@@ -694,7 +731,12 @@ pub fn simulate(
     let tick_divisor = driver.tick_divisor();
     let period_s = period_clocks as f64 / options.clock_hz;
     let tick_hz = options.clock_hz / tick_divisor as f64;
-    let hold_rate = options.hold.map(|h| h.rate(stop_s, tick_hz));
+    // The soft limits stop at the hold's rate, or the machine's stop.
+    let hold_rate = match options.hold {
+        Some(h) => Some(h.rate(stop_s, tick_hz)),
+        None if soft => Some(rate_for_stop(stop_s, tick_hz)),
+        None => None,
+    };
     let hold_events: Vec<HoldEvent> = options
         .hold
         .map_or(Vec::new(), |h| h.events(options.clock_hz).to_vec());
@@ -754,8 +796,26 @@ pub fn simulate(
             bar.abandon();
         }
     }
-    // An abort: the driver names the cause ("motion stopped: E-stop ...").
-    let report = report.map_err(|e| e.to_string())?;
+    // An abort: the driver names the cause ("motion stopped: E-stop ...");
+    // a soft limit: where the path stood, in mm.
+    let report = report.map_err(|e| match e {
+        DriverError::SoftLimit {
+            axis,
+            negative,
+            commanded,
+            periods_queued,
+            periods,
+        } => match &options.soft_limits[axis] {
+            Some(window) => {
+                let stood_mm = std::array::from_fn(|k| {
+                    (commanded[k] as i64 + start[k]) as f64 / machine.steps_per_mm[k]
+                });
+                soft_window::tripped_line(window, negative, stood_mm, periods_queued, periods)
+            }
+            None => e.to_string(),
+        },
+        e => e.to_string(),
+    })?;
     let seconds = started.elapsed().as_secs_f64();
     if let Some(bar) = bar {
         bar.finish();

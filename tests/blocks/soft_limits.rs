@@ -1,16 +1,16 @@
 //! `SoftLimits` (the controller's soft-limit check): RTL against the
 //! model, and a monitor of the contract from the ports alone: at the end
 //! of every turn the axis's `BEYOND` bit is (Δ − MARGIN) × P <= |J| × G'
-//! for the values taken at its load, with G' from the stop a ramp at the
-//! present RATE lets through (computed here by counting, not by the
+//! for the values taken at its load, with G' from the length of a stop
+//! at the present RATE (computed here by running a plain ramp, not by the
 //! block's gauge), and 0 for an axis that stands, is disabled, analog, or
 //! when the controller is not running.
 
 use motion_hdl::blocks::motion_controller::hold_ramp::UNITY;
 use motion_hdl::blocks::motion_controller::registers::{axis, global, AXIS_BASE, AXIS_STRIDE};
 use motion_hdl::blocks::motion_controller::soft_limits::{
-    check_latency, SoftLimits, SoftLimitsInputs, SoftLimitsModel, SoftLimitsOutputs, CHECK_CLOCKS,
-    MARGIN, REACH_MAX,
+    check_latency, reach_ticks, stop_length, SoftLimits, SoftLimitsInputs, SoftLimitsModel,
+    SoftLimitsOutputs, CHECK_CLOCKS, MARGIN, REACH_MAX,
 };
 use motion_hdl::sim::{Backend, Lockstep};
 use rand::rngs::StdRng;
@@ -18,23 +18,26 @@ use rand::{Rng, SeedableRng};
 
 const K: usize = 3;
 
-/// Gated ticks of a stop from full speed at `rate` (0 as UNITY), phase 0.
-fn stop_ticks(rate: u16) -> u64 {
+/// A stop from full speed at `rate` (0 as UNITY) starting at `phase`:
+/// its length in ticks and the ticks it lets through the gate.
+fn stop(rate: u16, phase: u32) -> (u64, u64) {
     let step = if rate == 0 { UNITY } else { rate as u32 };
-    let (mut factor, mut phase, mut ticks) = (UNITY, 0u32, 0u64);
+    let (mut factor, mut phase, mut length, mut ticks) = (UNITY, phase, 0u64, 0u64);
     while factor > 0 {
+        length += 1;
         if phase + factor >= UNITY {
             ticks += 1;
         }
         phase = (phase + factor) % UNITY;
         factor = factor.saturating_sub(step);
     }
-    ticks
+    (length, ticks)
 }
 
-/// The stop's reach the contract gives once `rate` is measured.
+/// The stop's reach the contract gives once `rate` is measured, from a
+/// plain ramp's length.
 fn reach(rate: u16) -> u64 {
-    (stop_ticks(rate) + 1 + check_latency(K as u32) as u64).min(REACH_MAX as u64)
+    stop(rate, 0).0 / 2 + 1 + check_latency(K as u32) as u64
 }
 
 fn min_address(k: usize) -> u32 {
@@ -112,16 +115,69 @@ fn random_inputs(seed: u64, cycles: usize) -> Vec<SoftLimitsInputs> {
                 pending.push((global::SOFT_LIMIT, rng.gen_range(0..16)));
             }
         }
-        let write = match step {
+        let mut write = match step {
             5..=15 => pending.pop(),
             _ => None,
         };
+        // A window rewritten a step or two off in the turn's first clocks:
+        // mostly the bound the load reads, in the load's own clock (the
+        // check must take the word written), else the other bound or
+        // another axis's window (the check must not take those), and
+        // later in the turn (the check keeps the word of its load).
+        if step <= 4 && rng.gen_ratio(1, 10) {
+            let nudge = rng.gen_range(-2..=2);
+            let (j, minimum) = match rng.gen_range(0..4) {
+                0 | 1 => (k, load.negative),
+                2 => (k, !load.negative),
+                _ => ((k + rng.gen_range(1..K)) % K, rng.gen_bool(0.5)),
+            };
+            write = Some(match minimum {
+                true => {
+                    window[j].0 += nudge;
+                    (min_address(j), sign24(window[j].0))
+                }
+                false => {
+                    window[j].1 += nudge;
+                    (max_address(j), sign24(window[j].1))
+                }
+            });
+        } else if step <= 4 && rng.gen_ratio(1, 200) {
+            // ENABLE written at a load or in the clocks after it.
+            write = Some((global::SOFT_LIMIT, rng.gen_range(0..8)));
+        }
+        // Window reads, some in the clock of a write (to the same word:
+        // the bus has one address), none in a verdict's clock.
+        let read = match step {
+            5..=21 => rng.gen_ratio(1, 4),
+            _ => false,
+        };
+        let j = rng.gen_range(0..K);
+        let (read_address, word) = match rng.gen_range(0..3) {
+            0 => (min_address(j), Some(window[j].0)),
+            1 => (max_address(j), Some(window[j].1)),
+            _ => (rng.gen_range(0..256), None),
+        };
+        // Some of them rewrite the word (with its own value: the verdicts'
+        // stimulus stays as planned).
+        if let (true, None, Some(word)) = (read, write, word) {
+            if rng.gen_ratio(1, 4) {
+                write = Some((read_address, sign24(word)));
+            }
+        }
         let reset = rng.gen_ratio(1, 100_000);
         out.push(SoftLimitsInputs {
             reset,
-            address: write.map_or(global::SOFT_LIMIT, |w| w.0),
+            address: write.map_or(
+                if read {
+                    read_address
+                } else {
+                    global::SOFT_LIMIT
+                },
+                |w| w.0,
+            ),
             write: write.is_some(),
             write_data: write.map_or(rng.gen(), |w| w.1),
+            read,
             running: !rng.gen_ratio(1, 2000),
             rate,
             period,
@@ -141,15 +197,20 @@ struct Monitor {
     /// The rate and the clocks it has been steady for.
     rate: u16,
     steady: u64,
-    /// The load of the turn in progress, and G' candidates at s = 2.
+    /// The load of the turn in progress, and G' candidates at s = 3.
     load: SoftLimitsInputs,
     /// The bound the load heads for, as it was then.
     bound: u32,
     live: bool,
     reaches: Vec<u64>,
     period: u64,
+    /// `window_data` as the last read leaves it.
+    window_data: u32,
     verdicts: u64,
     beyond: u64,
+    /// Window reads checked, and those in the clock of a write.
+    window_reads: u64,
+    colliding_reads: u64,
 }
 
 impl Monitor {
@@ -166,8 +227,11 @@ impl Monitor {
             live: false,
             reaches: vec![],
             period: 1,
+            window_data: 0,
             verdicts: 0,
             beyond: 0,
+            window_reads: 0,
+            colliding_reads: 0,
         }
     }
 
@@ -190,13 +254,18 @@ impl Monitor {
         }
         if step == 0 {
             self.load = *i;
-            self.bound = match i.negative {
-                true => self.minimum[k],
-                false => self.maximum[k],
+            let address = match i.negative {
+                true => min_address(k),
+                false => max_address(k),
+            };
+            self.bound = match (i.negative, i.write && i.address == address) {
+                (_, true) => i.write_data & 0xff_ffff,
+                (true, false) => self.minimum[k],
+                (false, false) => self.maximum[k],
             };
             self.live = i.running && self.enable >> k & 1 != 0 && i.step_axis && i.magnitude != 0;
         }
-        if step == 2 {
+        if step == 3 {
             // Measured once the gauge has seen the rate through two stops.
             let settle = 2 * (UNITY.div_ceil(self.rate.max(1) as u32) as u64 + 3);
             self.reaches = match self.steady > settle {
@@ -238,6 +307,27 @@ impl Monitor {
             self.verdicts += 1;
             self.beyond += bit as u64;
         }
+        if i.read {
+            self.window_data = 0;
+            for k in 0..K {
+                let word = match i.address {
+                    a if a == min_address(k) => self.minimum[k],
+                    a if a == max_address(k) => self.maximum[k],
+                    _ => continue,
+                };
+                self.window_reads += 1;
+                self.colliding_reads += i.write as u64;
+                if !i.write {
+                    self.window_data = signed(word) as u32;
+                }
+            }
+        }
+        if o.window_data != self.window_data && !i.reset {
+            return Err(format!(
+                "window_data {:#x}, expected {:#x}",
+                o.window_data, self.window_data
+            ));
+        }
         if i.write {
             for k in 0..K {
                 if i.address == min_address(k) {
@@ -254,6 +344,8 @@ impl Monitor {
             *self = Self {
                 verdicts: self.verdicts,
                 beyond: self.beyond,
+                window_reads: self.window_reads,
+                colliding_reads: self.colliding_reads,
                 ..Self::new()
             };
         }
@@ -299,6 +391,32 @@ fn rtl_matches_model_and_every_verdict_keeps_the_rule() {
         verdicts > 10_000 && beyond > 2_000 && verdicts - beyond > 2_000 && events > 500,
         "{verdicts} verdicts, {beyond} beyond, {events} events"
     );
+    let (reads, colliding) = (monitor.window_reads, monitor.colliding_reads);
+    assert!(
+        reads > 20_000 && colliding > 1_000,
+        "{reads} window reads, {colliding} in a write's clock"
+    );
+}
+
+/// Delays every write that `collides` says collides to the next clock,
+/// in place of that clock's own write if it has one.
+fn delaying_collisions(
+    collides: impl Fn(u64, &SoftLimitsInputs) -> bool,
+) -> impl FnMut(&SoftLimitsInputs) -> SoftLimitsInputs {
+    let mut clock = 0u64;
+    let mut delayed: Option<SoftLimitsInputs> = None;
+    move |i| {
+        let mut fed = *i;
+        if let Some(w) = delayed.take() {
+            (fed.address, fed.write, fed.write_data) = (w.address, true, w.write_data);
+        }
+        if i.write && collides(clock % CHECK_CLOCKS as u64, i) {
+            delayed = Some(*i);
+            fed.write = false;
+        }
+        clock = if i.reset { 0 } else { clock + 1 };
+        fed
+    }
 }
 
 #[test]
@@ -361,6 +479,24 @@ fn the_monitor_catches_an_off_by_one_distance_and_a_short_reach() {
         o
     });
     assert!(flip.is_err(), "{flip:?}");
+
+    // The check taking the old word when its load's clock writes it.
+    let mut model = SoftLimitsModel::new(K);
+    let mut feed = delaying_collisions(|step, _| step == 0);
+    let old_bound = monitor_run(&stimulus, |i| model.step(&feed(i)));
+    assert!(
+        old_bound.as_ref().is_err_and(|e| e.contains("BEYOND")),
+        "{old_bound:?}"
+    );
+
+    // A window read in the clock of its write giving the old word.
+    let mut model = SoftLimitsModel::new(K);
+    let mut feed = delaying_collisions(|_, i| i.read);
+    let old_word = monitor_run(&stimulus, |i| model.step(&feed(i)));
+    assert!(
+        old_word.as_ref().is_err_and(|e| e.contains("window_data")),
+        "{old_word:?}"
+    );
 }
 
 /// Every rate's gauge: the reach the block uses, read back through the
@@ -380,8 +516,32 @@ fn the_gauge_measures_every_swept_rate() {
         }
         assert_eq!(
             model.reach() as u64,
-            (stop_ticks(rate) + 1 + check_latency(1) as u64).min(REACH_MAX as u64),
+            stop(rate, 0).0 / 2 + 1 + check_latency(1) as u64,
             "rate {rate}"
         );
+        assert_eq!(model.reach(), reach_ticks(rate, 1), "rate {rate}");
+    }
+}
+
+/// The reach's floor(N / 2) + 1 covers the ticks a stop lets through at
+/// every rate, from the phase that lets the most through (the gate passes
+/// floor((phase + sum of the factors) / UNITY) ticks, so the largest phase
+/// passes the most), and it is never more than one tick above the ticks
+/// of a stop from phase 0 plus 1 (the first version's measured reach).
+#[test]
+fn the_reach_covers_every_rate_from_any_phase() {
+    for rate in 0..=u16::MAX {
+        let (length, from_zero) = stop(rate, 0);
+        let (_, most) = stop(rate, UNITY - 1);
+        let covered = length / 2 + 1;
+        assert!(
+            most <= covered,
+            "rate {rate}: {most} ticks through, {covered} covered"
+        );
+        assert!(
+            covered <= from_zero + 1,
+            "rate {rate}: {covered} against {from_zero} + 1"
+        );
+        assert_eq!(length, stop_length(rate) as u64, "rate {rate}");
     }
 }

@@ -326,6 +326,7 @@ pub(crate) fn options(out_dir: &std::path::Path) -> SimulationOptions {
         trips: Vec::new(),
         hold: None,
         probe_plane: None,
+        soft_limits: [None; 3],
     }
 }
 

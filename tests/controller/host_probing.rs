@@ -11,6 +11,7 @@ use motion_hdl::host::simulation::{simulate, SimulationOptions};
 fn options(out_dir: &std::path::Path, plane: &str) -> SimulationOptions {
     SimulationOptions {
         probe_plane: Some(ProbePlane::parse(plane).unwrap()),
+        soft_limits: [None; 3],
         ..crate::gcode::options(out_dir)
     }
 }

@@ -58,3 +58,69 @@ fn an_empty_window_is_refused_naming_the_axis() {
         "{empty}"
     );
 }
+
+/// `simulate --soft-limit` on the square (2 MHz, the exported Verilog):
+/// a window that ends inside the path stops X inside it and fails the run
+/// naming where it stood; a window around the path runs it to its end.
+/// Bad windows are named, with a non-zero exit.
+#[test]
+fn simulate_stops_the_square_inside_a_soft_limit_and_names_bad_windows() {
+    let square = motion_hdl::tools::repo_root().join("examples/square.path");
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| crate::host::run_simulate(&square, "2", dir.path(), args);
+
+    let (ok, stdout, stderr) = run(&["--soft-limit", "x=-1:4"]);
+    assert!(!ok, "{stdout}");
+    let line = stderr
+        .lines()
+        .find(|l| l.contains("soft limit: X would pass its maximum 4.0000 mm"))
+        .unwrap_or_else(|| panic!("no soft-limit line: {stderr}"));
+    let after = |word: &str| -> f64 {
+        let rest = &line[line.find(word).unwrap() + word.len()..];
+        rest.trim().split(' ').next().unwrap().parse().unwrap()
+    };
+    let (held, inside) = (after("held it at"), after("mm,"));
+    assert!(held > 3.0 && held <= 4.0, "{line}");
+    assert!((4.0 - held - inside).abs() < 1e-9, "{line}");
+
+    let (ok, stdout, stderr) = run(&["--soft-limit", "x=-2:8", "--soft-limit", "z=-1:2"]);
+    assert!(ok, "{stdout}{stderr}");
+    assert!(stdout.contains("commanded  [0, 0, 0]"), "{stdout}");
+
+    for (args, message) in [
+        (&["--soft-limit", "w=0:1"][..], "unknown axis `w`"),
+        (&["--soft-limit", "x=2:1"][..], "the window is empty"),
+        (
+            &["--soft-limit", "x=0:5", "--soft-limit", "x=0:6"][..],
+            "--soft-limit x given twice",
+        ),
+        (
+            &["--soft-limit", "y=0.001:0.002"][..],
+            "holds no step at 80 steps/mm",
+        ),
+        (
+            &["--soft-limit", "x=-1:6", "--servo", "x"][..],
+            "--soft-limit x: an analog servo axis (--servo) is never checked",
+        ),
+        (
+            &["--soft-limit", "x=-1:6", "--probe-plane", "z=-1"][..],
+            "--soft-limit and --probe-plane",
+        ),
+    ] {
+        let (ok, stdout, stderr) = run(args);
+        assert!(!ok, "{args:?}: {stdout}");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+    }
+    let hexapod = std::process::Command::new(env!("CARGO_BIN_EXE_motion-hdl"))
+        .arg("simulate")
+        .arg(&square)
+        .args(["--soft-limit", "x=0:5", "--kinematics", "hexapod"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&hexapod.stderr);
+    assert!(!hexapod.status.success());
+    assert!(
+        stderr.contains("--soft-limit applies to the 3-axis controller"),
+        "{stderr}"
+    );
+}

@@ -7,28 +7,15 @@
 //! and the model run in lockstep in every clock.
 
 use crate::motion_controller::{configure, Controller3};
-use motion_hdl::blocks::motion_controller::hold_ramp::UNITY;
 use motion_hdl::blocks::motion_controller::registers::irq;
-use motion_hdl::blocks::motion_controller::soft_limits::{check_latency, MARGIN};
+use motion_hdl::blocks::motion_controller::soft_limits::{reach_ticks, MARGIN};
 
 const PERIOD: u32 = 40;
 const WINDOW: i64 = 100;
 
-/// Gated ticks of a stop from full speed at `rate`.
-fn stop_ticks(rate: u32) -> i64 {
-    let step = if rate == 0 { UNITY } else { rate };
-    let (mut factor, mut phase, mut ticks) = (UNITY, 0u32, 0i64);
-    while factor > 0 {
-        ticks += (phase + factor >= UNITY) as i64;
-        phase = (phase + factor) % UNITY;
-        factor = factor.saturating_sub(step);
-    }
-    ticks
-}
-
 /// The window's reach at `steps` per period: what the check keeps free.
 fn reach_steps(rate: u32, steps: i64) -> i64 {
-    let ticks = stop_ticks(rate) + 1 + check_latency(3) as i64;
+    let ticks = reach_ticks(rate as u16, 3) as i64;
     steps * ticks / PERIOD as i64 + MARGIN as i64
 }
 

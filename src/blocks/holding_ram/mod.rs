@@ -24,6 +24,13 @@
 //!   adds no bypass, and the collision's word is then undefined on the
 //!   hardware (the simulations still read the old word). The user states
 //!   why the word is never observed, and proves it where it can.
+//! * [`HoldingRam::power_up_unobserved`] drops the read register's
+//!   power-up 0 from the Verilog, for a user that never looks at
+//!   `read_data` before its first enabled read (it gates the word with a
+//!   valid bit of its own, say). An iCE40 block RAM's output register has
+//!   no initial value, so yosys otherwise gates the output with a
+//!   flip-flop and a LUT a bit. Before the first read the word is then
+//!   undefined on the hardware (0 in the simulations).
 //! * Every word is 0 at power-up (block-RAM initialization in the Verilog;
 //!   the simulation starts empty, which reads as 0). Nothing resets the
 //!   words or the read register: a user who needs a 0 after reset reads an
@@ -75,6 +82,8 @@ pub struct HoldingRam<D: Synth, const N: usize> {
     _memory: BTreeMap<Bits<N>, D>,
     /// The Verilog has no read-during-write guarantee (`no_rw_check`).
     _collisions_unobserved: bool,
+    /// The Verilog gives the read register no power-up value.
+    _power_up_unobserved: bool,
 }
 
 impl<D: Synth, const N: usize> HoldingRam<D, N> {
@@ -85,6 +94,16 @@ impl<D: Synth, const N: usize> HoldingRam<D, N> {
         Self {
             _collisions_unobserved: true,
             ..Default::default()
+        }
+    }
+
+    /// This RAM, its read register without a power-up value: its user
+    /// never looks at `read_data` before the first enabled read. See the
+    /// [module documentation](self).
+    pub fn power_up_unobserved(self) -> Self {
+        Self {
+            _power_up_unobserved: true,
+            ..self
         }
     }
 }
@@ -123,11 +142,10 @@ impl<D: Synth, const N: usize> Logic for HoldingRam<D, N> {
 {attribute}reg [{msb}:0] mem [0:{last}];
 integer i;
 
-// Block RAM powers up 0, and so do the words and the read register here.
+{power_up_comment}
 initial begin
    for (i = 0; i <= {last}; i = i + 1) mem[i] = 0;
-   read_data = 0;
-end
+{power_up}end
 
 always @(posedge clock) begin
    if (read_enable) begin
@@ -141,6 +159,17 @@ always @(posedge clock) begin
    end
 end
 ",
+            power_up_comment = if self._power_up_unobserved {
+                "// Block RAM powers up 0, and so do the words here (the read register\n\
+                 // has no power-up value: its user gates it)."
+            } else {
+                "// Block RAM powers up 0, and so do the words and the read register here."
+            },
+            power_up = if self._power_up_unobserved {
+                ""
+            } else {
+                "   read_data = 0;\n"
+            },
             msb = D::BITS - 1,
             last = (1usize << N) - 1,
         ))

@@ -248,6 +248,14 @@
 //!     write's RATE applies from the next clock, as the request does (the
 //!     ramp follows `REQUESTED` and `RATE` as they read), so `HOLD` and
 //!     `RATE` written together ramp at that rate from the first tick.
+//!   - Range: the slowest stop is 65536 base ticks (RATE 1), 1.4 ms on a
+//!     48 MHz base tick. A longer stop takes a longer base tick: raise
+//!     `TICK_DIVISOR` and lower `PERIOD_TICKS` to keep the period, as
+//!     long as each period still has a tick for every step it asks
+//!     (`simulate` chooses the divisor whose RATE stops closest to the
+//!     machine's stop, `host::hold_window::hold_tick_settings`). A finer
+//!     RATE would widen the ramp, its gate and the soft limits' reach by
+//!     the bits it adds.
 //!   - The fraction of a gated tick is carried (`phase`), so after any
 //!     hold 65536 x the gated ticks + phase = the sum of f over the base
 //!     ticks, exactly: no tick, and so no step, is lost or invented.
@@ -276,7 +284,7 @@
 //!     feed hold scales the codes".
 //!   - A soft-limit verdict (below) also sets the request, and while it
 //!     stands a release is refused.
-//! * **Soft limits** (VERSION 0.7.0; build option `SOFT_LIMITS`, on in
+//! * **Soft limits** (VERSION 0.7.0, revised in 0.7.1; build option `SOFT_LIMITS`, on in
 //!   `motion_controller`, off in `motion_controller_dda` and
 //!   `motion_controller_servo`; [`soft_limits`]): a position window per
 //!   axis, `SOFT_MIN` to `SOFT_MAX` (24-bit signed steps, read back
@@ -284,17 +292,24 @@
 //!   stopping distance, so that an axis whose path would leave its window
 //!   starts the controlled stop early enough to stop inside it. The hard
 //!   limits and the E-stop keep their hard stops.
+//!   - The windows are block RAM: a bus read of `SOFT_MIN` or `SOFT_MAX`
+//!     in the clock of a write to it reads 0, where every other register
+//!     reads its old value (no adapter of this crate reads and writes in
+//!     one clock); a window written in the clock its axis is loaded is
+//!     checked as written.
 //!   - `SOFT_LIMIT.ENABLE` (bit k) enables axis k's window (reset 0). The
 //!     axes are checked in turn while RUN is set, one every
-//!     [`soft_limits::CHECK_CLOCKS`] = 22 clocks. A moving step axis is
+//!     [`soft_limits::CHECK_CLOCKS`] = 23 clocks. A moving step axis is
 //!     *beyond* when (Δ − 2) × P <= |J| × G': Δ the steps left to the
 //!     bound it heads for (`SOFT_MAX` moving up, `SOFT_MIN` down) from its
 //!     CMD_POSITION, |J| its steps in the running period, P =
-//!     `PERIOD_TICKS`, and G' the base ticks a stop from full speed at
-//!     `HOLD_CONTROL.RATE` lets through plus the check's own latency
-//!     ([`soft_limits::check_latency`]`(K)` = 96 at K = 3) and 1. So the
+//!     `PERIOD_TICKS`, and G' ([`soft_limits::reach_ticks`]) the most
+//!     base ticks a stop from full speed at `HOLD_CONTROL.RATE` lets
+//!     through, floor(N / 2) + 1 for a stop of N = ceil(65536 / RATE)
+//!     ticks, plus the check's own latency
+//!     ([`soft_limits::check_latency`]`(K)` = 100 at K = 3). So the
 //!     axis is stopped where its present rate, continued over the stop's
-//!     reach, would still leave 2 steps of the window. G' is measured by a
+//!     reach, would still leave 2 steps of the window. N is measured by a
 //!     second hold ramp in the block, not computed; `SOFT_LIMIT.MEASURED`
 //!     reads 0 after reset and for ceil(65536 / RATE) + 3 clocks after
 //!     RATE changes, while every moving axis is judged with the longest
@@ -310,7 +325,7 @@
 //!     = 0 clears every verdict at the next edge), releases, flushes, and
 //!     backs the axis in with new entries (a move back into the window is
 //!     never beyond), or clears the axis's ENABLE to run on past it.
-//!   - Latency: a verdict follows its axis's load by 22 clocks; the stop's
+//!   - Latency: a verdict follows its axis's load by 23 clocks; the stop's
 //!     request follows it by one clock, as a probe stop's does.
 //!   - The guarantee: the axis stops inside its window when its rate
 //!     toward the bound does not grow during the stop's reach (the check

@@ -1078,7 +1078,7 @@ impl MotionControllerModel {
         set(irq::HELD, self.feed_hold.held() && !self.held_prev);
         set(irq::SOFT_LIMIT, self.has_soft && self.soft_event);
         let soft_read = match self.has_soft {
-            true => self.soft.read(address),
+            true => self.soft.read(address, i.write),
             false => 0,
         };
         let read_word = combs.iter().fold(

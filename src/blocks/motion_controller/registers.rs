@@ -31,8 +31,11 @@ pub const ID_VALUE: u32 = 0x4d48_4443;
 /// `STATUS.HELD`, `PROBE_CONTROL.STOP`); its patch 1: the hold scales the
 /// analog axes' codes by its factor. Minor 7: the soft limits
 /// (`SOFT_LIMIT`, `SOFT_MIN`, `SOFT_MAX`, `STATUS.SOFT_LIMIT`,
-/// `CONFIG.SOFT_LIMITS`).
-pub const VERSION_VALUE: u32 = 0x0000_0700;
+/// `CONFIG.SOFT_LIMITS`); its patch 1: the check's latency 100 clocks at
+/// K = 3 (was 96), the reach floor(N/2) + 1 + latency from the stop's
+/// length, a window written in an axis's load clock checked as written,
+/// and a window read in the clock of a write to it reading 0.
+pub const VERSION_VALUE: u32 = 0x0000_0701;
 
 /// Word addresses of the global registers.
 pub mod global {

@@ -25,12 +25,23 @@
 //! | `tripped` | out | 1 | a verdict turned "beyond" at the last edge (`STATUS.SOFT_LIMIT`) |
 //! | `read_data` | out | 32 | `SOFT_LIMIT` when addressed, else 0 (combinational, for the controller's read register) |
 //! | `read` | in | 1 | bus read strobe |
-//! | `window_data` | out | 32 | the `SOFT_MIN` / `SOFT_MAX` the last `read` addressed, sign-extended, registered at that read and held; 0 for any other register or a window not written since reset |
+//! | `window_data` | out | 32 | the `SOFT_MIN` / `SOFT_MAX` the last `read` addressed, sign-extended, registered at that read and held; 0 for any other register, a window not written since reset, or a read in the clock of a write (see below) |
 //!
 //! The windows live in block RAM, addressed by their bus address: one copy
 //! the check reads at each load, one the bus reads (a block RAM has one
 //! read port). A block RAM cannot be reset, so a valid bit per window
 //! (cleared by reset, set by a write) makes an unwritten window 0.
+//!
+//! A block RAM's read of the word it writes in the same clock is
+//! undefined (the iCE40's is), and neither RAM carries yosys's read-first
+//! bypass (a delayed write and a compare, in flip-flops and LUTs). The
+//! block defines both collisions itself instead:
+//! * the check's read at an axis's load takes the word being written in
+//!   that clock from the bus, so a window written in the load's clock is
+//!   checked as written;
+//! * a bus read in the clock of a bus write (one address, so the same
+//!   window) reads 0. Every adapter of this crate reads and writes in
+//!   separate clocks; a bus master that does both reads the window again.
 //!
 //! ## The check
 //! The axes are checked in turn, one every [`CHECK_CLOCKS`] clocks, so
@@ -46,17 +57,27 @@
 //!
 //! that is, Δ − [`MARGIN`] is at most the steps the axis makes at its
 //! rate |J|/P per tick over G' ticks, the stop's reach:
-//! * G' = G + 1 + [`check_latency`]`(K)`, where G is the number of ticks a
-//!   stop from full speed at the present `RATE` lets through the gate.
-//!   G is measured, not computed: a second [`HoldRamp`], the *gauge*, ramps
-//!   down from 1 at `RATE` with a tick every clock, and its gated ticks
-//!   are counted. The gauge restarts as soon as it stops, so G is
-//!   re-measured every ceil(65536 / RATE) + 2 clocks. A `RATE` that
-//!   differs from the one measured restarts the gauge, and until the
-//!   next measurement ends G' is the maximum, 2^17 − 1: a new rate is
-//!   never judged with the old one's reach. After reset G' is the maximum
-//!   too.
-//! * The 1 is the fraction of a tick the real ramp may carry (its phase).
+//! * G' = floor(N / 2) + 1 + [`check_latency`]`(K)` ([`reach_ticks`]),
+//!   where N = ceil(65536 / RATE) ([`stop_length`]; 1 at RATE 0) is the
+//!   length in ticks of a stop from full speed at the present `RATE`.
+//! * floor(N / 2) + 1 bounds the ticks such a stop lets through the gate,
+//!   whatever the phase the ramp carries: the gate passes a tick whenever
+//!   the phase accumulator of the factor carries, so a stop whose factors
+//!   in its N ticks are f_k = 1 − k·RATE/65536 passes
+//!   floor(phase + Σ f_k) ticks, and as N·RATE lies in
+//!   [65536, 65536 + RATE), Σ f_k = N − RATE·N(N − 1)/131072 lies in
+//!   (N/2, (N + 1)/2]; with the phase below 1 at most floor(N / 2) + 1
+//!   pass. (The tests check it at every rate from the phase that passes
+//!   the most.)
+//! * N is measured, not computed (no divider): a second [`HoldRamp`], the
+//!   *gauge*, ramps down from 1 at `RATE` with a tick every clock, and
+//!   its ticks until it stands are counted, from 2·(1 + latency), so
+//!   half the count is G'. The gauge restarts as soon as it stops, so N
+//!   is re-measured every N + 2 clocks. A `RATE` that differs from the
+//!   one measured restarts the gauge, and until the next measurement
+//!   ends G' is the maximum, [`REACH_MAX`] = 2^17 − 1: a new rate is
+//!   never judged with the old one's reach. After reset (and at power-up)
+//!   G' is the maximum too.
 //! * [`check_latency`] bounds, in base ticks (one per clock at most), the
 //!   time from a position to the ramp's response: up to a turn until the
 //!   axis's next load, its own turn, the verdict and hold request
@@ -78,30 +99,33 @@
 //! is beyond at once; one moving back in is not.
 //!
 //! ## Timing
-//! A turn lasts [`CHECK_CLOCKS`] = 22 clocks (s = 0 to 21): s = 0 loads
-//! the axis (`select` = k in that clock); s = 1 forms −Δ; s = 2 adds the
+//! A turn lasts [`CHECK_CLOCKS`] = 23 clocks (s = 0 to 22): s = 0 loads
+//! the axis (`select` = k in that clock) and reads its bound from block
+//! RAM; s = 1 registers the bound; s = 2 forms −Δ (moving down the
+//! position and the bound are taken complemented, so one subtractor
+//! serves both directions: ~p − ~b = b − p); s = 3 adds the
 //! margin and saturates −Δ to 20 bits signed (a distance of more than
 //! 2^19 steps either way is judged as 2^19: still beyond any stop's
 //! reach in, since |J| <= P and G' < 2^17, and beyond at once out), and
-//! takes P and G'; s = 3 forms |J| − Δ;
-//! s = 4 to 20 accumulate |J|·G' − Δ·P one bit of P and G' a clock, least
+//! takes P and G'; s = 4 forms |J| − Δ;
+//! s = 5 to 21 accumulate |J|·G' − Δ·P one bit of P and G' a clock, least
 //! significant first, halving as they go (so the adder is 23 bits, not
-//! the product's 38: only the sign is kept); at the edge that ends s = 21 the verdict is
+//! the product's 38: only the sign is kept); at the edge that ends s = 22 the verdict is
 //! registered: `stop` and `BEYOND` show it after that edge, and
 //! `tripped` is high for the one clock after it if it turned beyond.
 //!
 //! The verdict of an axis thus reflects its position and |J| at its last
-//! load, `RATE` (through G') and `PERIOD_TICKS` as they were at s = 2.
+//! load, `RATE` (through G') and `PERIOD_TICKS` as they were at s = 3.
 
 use rust_hdl::prelude::*;
 
-use super::hold_ramp::{HoldRamp, HoldRampInputs, HoldRampModel};
+use super::hold_ramp::{HoldRamp, HoldRampInputs, HoldRampModel, UNITY};
 use super::registers::{axis, fields, global, AXIS_BASE, AXIS_STRIDE};
 use super::POSITION_BITS;
 use crate::blocks::holding_ram::HoldingRam;
 
 /// Clocks of one axis's turn.
-pub const CHECK_CLOCKS: u32 = 22;
+pub const CHECK_CLOCKS: u32 = 23;
 
 /// Steps subtracted from the distance left: a DDA's rounding.
 pub const MARGIN: u32 = 2;
@@ -114,6 +138,23 @@ pub const MARGIN: u32 = 2;
 /// clock, so clocks bound ticks.
 pub const fn check_latency(axes: u32) -> u32 {
     (axes + 1) * CHECK_CLOCKS + 3 + super::TICK_TRAIL as u32 + 1
+}
+
+/// Base ticks of a stop from full speed at `rate` (`HOLD_CONTROL.RATE`, 0
+/// as [`UNITY`]), until the factor is 0: N = ceil(65536 / RATE).
+pub const fn stop_length(rate: u16) -> u32 {
+    match rate {
+        0 => 1,
+        r => UNITY.div_ceil(r as u32),
+    }
+}
+
+/// The stop's reach G' in base ticks at `rate`, with `axes` axes, once
+/// measured: floor(N / 2) + 1 + [`check_latency`], N = [`stop_length`].
+/// floor(N / 2) + 1 is the most ticks a stop of N ticks lets through the
+/// gate, from any phase (see the module documentation).
+pub const fn reach_ticks(rate: u16, axes: u32) -> u32 {
+    stop_length(rate) / 2 + 1 + check_latency(axes)
 }
 
 /// Width of the stop's reach G' in ticks.
@@ -138,7 +179,7 @@ const _: () = assert!(
         && fields::SOFT_AXIS == 16
         && fields::SOFT_AXIS_WIDTH == 3
 );
-const _: () = assert!(POSITION_BITS == 24 && REACH_BITS == 17 && CHECK_CLOCKS == 22);
+const _: () = assert!(POSITION_BITS == 24 && REACH_BITS == 17 && CHECK_CLOCKS == 23);
 
 /// A constant of any width.
 fn konst<const N: usize>(value: u64) -> Constant<Bits<N>> {
@@ -196,6 +237,11 @@ pub struct SoftLimits<const K: usize> {
     max_valid: DFF<Bits<8>>,
     /// The checked bound's word is valid (taken with the RAM's read).
     bound_valid: DFF<Bit>,
+    /// The bound, registered from the check RAM's word (or from the bus
+    /// write that collided with its read), complemented moving down.
+    bound_q: DFF<Bits<POSITION_BITS>>,
+    /// The bound was taken from a bus write at the load.
+    bound_taken: DFF<Bit>,
     /// The last bus read addressed a valid window.
     window_selected: DFF<Bit>,
     enable: DFF<Bits<8>>,
@@ -205,6 +251,7 @@ pub struct SoftLimits<const K: usize> {
     last_negative: DFF<Bit>,
     turn_axis: DFF<Bits<3>>,
     turn_step: DFF<Bits<5>>,
+    /// The position, complemented moving down.
     position_q: DFF<Bits<POSITION_BITS>>,
     magnitude_q: DFF<Bits<16>>,
     negative_q: DFF<Bit>,
@@ -221,8 +268,10 @@ pub struct SoftLimits<const K: usize> {
     gauge: HoldRamp,
     gauge_rate: DFF<Bits<16>>,
     gauge_count: DFF<Bits<REACH_BITS>>,
-    gauge_restart: DFF<Bit>,
-    reach: DFF<Bits<REACH_BITS>>,
+    /// Low for the clock that restarts the gauge (so at power-up too).
+    gauge_measuring: DFF<Bit>,
+    /// G', complemented: power-up's 0 is [`REACH_MAX`].
+    reach_n: DFF<Bits<REACH_BITS>>,
     reach_valid: DFF<Bit>,
 
     upper: Signal<Local, Bits<26>>,
@@ -231,12 +280,14 @@ pub struct SoftLimits<const K: usize> {
     term: Signal<Local, Bits<ACC_BITS>>,
     sum: Signal<Local, Bits<ACC_BITS>>,
     verdict: Signal<Local, Bit>,
-    reach_now: Signal<Local, Bits<REACH_BITS>>,
-    measured: Signal<Local, Bits<REACH_BITS>>,
     enable_now: Signal<Local, Bits<8>>,
     word24: Signal<Local, Bits<32>>,
     delta21: Signal<Local, Bits<21>>,
     bound: Signal<Local, Bits<POSITION_BITS>>,
+    load_mask: Signal<Local, Bits<POSITION_BITS>>,
+    loaded_mask: Signal<Local, Bits<POSITION_BITS>>,
+    check_address: Signal<Local, Bits<8>>,
+    window_write: Signal<Local, Bit>,
     window_hit: Signal<Local, Bit>,
     window_valid: Signal<Local, Bit>,
 
@@ -247,8 +298,7 @@ pub struct SoftLimits<const K: usize> {
     axis_bit: [Constant<Bits<8>>; K],
     last_turn: Constant<Bits<3>>,
     enable_mask: Constant<Bits<8>>,
-    latency_plus_one: Constant<Bits<REACH_BITS>>,
-    reach_max: Constant<Bits<REACH_BITS>>,
+    count_start: Constant<Bits<REACH_BITS>>,
     margin: Constant<Bits<26>>,
     sat_high: Constant<Bits<DELTA_BITS>>,
     sat_low: Constant<Bits<DELTA_BITS>>,
@@ -261,6 +311,7 @@ pub struct SoftLimits<const K: usize> {
     m_negative: Constant<Bits<32>>,
     m_measured: Constant<Bits<32>>,
     s_load: Constant<Bits<5>>,
+    s_bound: Constant<Bits<5>>,
     s_distance: Constant<Bits<5>>,
     s_margin: Constant<Bits<5>>,
     s_both: Constant<Bits<5>>,
@@ -272,7 +323,7 @@ pub struct SoftLimits<const K: usize> {
     zero3: Constant<Bits<3>>,
     zero17: Constant<Bits<REACH_BITS>>,
     zero24: Constant<Bits<POSITION_BITS>>,
-    measure_limit: Constant<Bits<REACH_BITS>>,
+    ones24: Constant<Bits<POSITION_BITS>>,
     zero7: Constant<Bits<7>>,
     ones7: Constant<Bits<7>>,
     zero8: Constant<Bits<8>>,
@@ -304,11 +355,13 @@ impl<const K: usize> Default for SoftLimits<K> {
             read_data: Default::default(),
             read: Default::default(),
             window_data: Default::default(),
-            check_ram: Default::default(),
-            bus_ram: Default::default(),
+            check_ram: HoldingRam::collisions_unobserved().power_up_unobserved(),
+            bus_ram: HoldingRam::collisions_unobserved().power_up_unobserved(),
             min_valid: Default::default(),
             max_valid: Default::default(),
             bound_valid: Default::default(),
+            bound_q: Default::default(),
+            bound_taken: Default::default(),
             window_selected: Default::default(),
             enable: Default::default(),
             beyond: Default::default(),
@@ -330,8 +383,8 @@ impl<const K: usize> Default for SoftLimits<K> {
             gauge: Default::default(),
             gauge_rate: Default::default(),
             gauge_count: Default::default(),
-            gauge_restart: Default::default(),
-            reach: Default::default(),
+            gauge_measuring: Default::default(),
+            reach_n: Default::default(),
             reach_valid: Default::default(),
             upper: Default::default(),
             lower: Default::default(),
@@ -339,12 +392,14 @@ impl<const K: usize> Default for SoftLimits<K> {
             term: Default::default(),
             sum: Default::default(),
             verdict: Default::default(),
-            reach_now: Default::default(),
-            measured: Default::default(),
             enable_now: Default::default(),
             word24: Default::default(),
             delta21: Default::default(),
             bound: Default::default(),
+            load_mask: Default::default(),
+            loaded_mask: Default::default(),
+            check_address: Default::default(),
+            window_write: Default::default(),
             window_hit: Default::default(),
             window_valid: Default::default(),
             a_control: konst(global::SOFT_LIMIT as u64),
@@ -358,8 +413,7 @@ impl<const K: usize> Default for SoftLimits<K> {
             axis_bit: array_init::array_init(|k| konst(1 << k)),
             last_turn: konst(K as u64 - 1),
             enable_mask: konst((1 << K) - 1),
-            latency_plus_one: konst(check_latency(K as u32) as u64 + 1),
-            reach_max: konst(REACH_MAX as u64),
+            count_start: konst(2 * (check_latency(K as u32) as u64 + 1)),
             margin: konst(MARGIN as u64),
             sat_high: konst((1 << (DELTA_BITS - 1)) - 1),
             sat_low: konst(1 << (DELTA_BITS - 1)),
@@ -372,18 +426,19 @@ impl<const K: usize> Default for SoftLimits<K> {
             m_negative: konst(1 << fields::SOFT_NEGATIVE),
             m_measured: konst(1 << fields::SOFT_MEASURED),
             s_load: konst(0),
-            s_distance: konst(1),
-            s_margin: konst(2),
-            s_both: konst(3),
-            s_first: konst(4),
-            s_last: konst(20),
+            s_bound: konst(1),
+            s_distance: konst(2),
+            s_margin: konst(3),
+            s_both: konst(4),
+            s_first: konst(5),
+            s_last: konst(21),
             s_verdict: konst(CHECK_CLOCKS as u64 - 1),
             one3: konst(1),
             one5: konst(1),
             zero3: konst(0),
             zero17: konst(0),
             zero24: konst(0),
-            measure_limit: konst((REACH_MAX - check_latency(K as u32) - 1) as u64),
+            ones24: konst(0xff_ffff),
             zero7: konst(0),
             ones7: konst(0x7f),
             zero8: konst(0),
@@ -420,17 +475,22 @@ impl<const K: usize> Logic for SoftLimits<K> {
             acc,
             gauge_rate,
             gauge_count,
-            gauge_restart,
-            reach,
+            gauge_measuring,
+            reach_n,
             reach_valid,
             min_valid,
             max_valid,
             bound_valid,
+            bound_q,
+            bound_taken,
             window_selected
         );
         clock!(self, clock, gauge, check_ram, bus_ram);
         // The windows: both RAMs take every write of one; a read of a word
-        // not written since reset gives 0.
+        // not written since reset gives 0. Neither RAM's word is used when
+        // it was read in the clock of a write to it (a block RAM's is
+        // undefined then): the bus read gives 0, and the check takes the
+        // written word from the bus.
         self.window_hit.next = false;
         self.window_valid.next = false;
         for k in 0..K {
@@ -451,16 +511,18 @@ impl<const K: usize> Logic for SoftLimits<K> {
                 }
             }
         }
-        self.check_ram.write_enable.next = self.write.val() & self.window_hit.val();
+        self.window_write.next = self.write.val() & self.window_hit.val();
+        self.check_ram.write_enable.next = self.window_write.val();
         self.check_ram.write_address.next = self.address.val();
         self.check_ram.write_data.next = self.write_data.val();
-        self.bus_ram.write_enable.next = self.write.val() & self.window_hit.val();
+        self.bus_ram.write_enable.next = self.window_write.val();
         self.bus_ram.write_address.next = self.address.val();
         self.bus_ram.write_data.next = self.write_data.val();
         self.bus_ram.read_enable.next = self.read.val();
         self.bus_ram.read_address.next = self.address.val();
         if self.read.val() {
-            self.window_selected.d.next = self.window_hit.val() & self.window_valid.val();
+            self.window_selected.d.next =
+                self.window_hit.val() & self.window_valid.val() & !self.write.val();
         }
         self.enable_now.next = self.enable.q.val();
         if self.write.val() & (self.address.val() == self.a_control.val()) {
@@ -469,58 +531,56 @@ impl<const K: usize> Logic for SoftLimits<K> {
         self.enable.d.next = self.enable_now.val();
 
         // The gauge: a stop from full speed at the present RATE, a tick a
-        // clock; its gated ticks are G.
-        self.gauge.reset.next = self.reset.val() | self.gauge_restart.q.val();
+        // clock. Its length N in ticks is counted from 2·(1 + latency), so
+        // half the count is G' = floor(N / 2) + 1 + latency.
+        self.gauge.reset.next = self.reset.val() | !self.gauge_measuring.q.val();
         self.gauge.tick.next = true;
         self.gauge.hold.next = true;
         self.gauge.rate.next = self.gauge_rate.q.val();
-        self.gauge_restart.d.next = false;
-        if self.gauge_restart.q.val() {
-            self.gauge_count.d.next = self.zero17.val();
+        self.gauge_measuring.d.next = true;
+        if !self.gauge_measuring.q.val() {
+            self.gauge_count.d.next = self.count_start.val();
             self.gauge_rate.d.next = self.rate.val();
             // The reach is that of the rate just measured.
             if self.rate.val() != self.gauge_rate.q.val() {
                 self.reach_valid.d.next = false;
+                self.reach_n.d.next = self.zero17.val();
             }
-        } else if self.gauge.tick_out.val() & (self.gauge_count.q.val() != self.reach_max.val()) {
+        } else if self.rate.val() != self.gauge_rate.q.val() {
+            self.reach_valid.d.next = false;
+            self.reach_n.d.next = self.zero17.val();
+            self.gauge_measuring.d.next = false;
+        } else if self.gauge.stopped.val() {
+            self.reach_n.d.next = !(self.gauge_count.q.val() >> 1);
+            self.reach_valid.d.next = true;
+            self.gauge_measuring.d.next = false;
+        } else {
             self.gauge_count.d.next = self.gauge_count.q.val() + self.one17.val();
-        }
-        self.measured.next = self.gauge_count.q.val() + self.latency_plus_one.val();
-        if self.gauge_count.q.val() > self.measure_limit.val() {
-            self.measured.next = self.reach_max.val();
-        }
-        if !self.gauge_restart.q.val() {
-            if self.rate.val() != self.gauge_rate.q.val() {
-                self.reach_valid.d.next = false;
-                self.gauge_restart.d.next = true;
-            } else if self.gauge.stopped.val() {
-                self.reach.d.next = self.measured.val();
-                self.reach_valid.d.next = true;
-                self.gauge_restart.d.next = true;
-            }
-        }
-        self.reach_now.next = self.reach_max.val();
-        if self.reach_valid.q.val() {
-            self.reach_now.next = self.reach.q.val();
         }
 
         // The turns: s = 0 loads the selected axis (its bound is the check
         // RAM's read register from s = 1 on).
         self.turn_step.d.next = self.turn_step.q.val() + self.one5.val();
         self.check_ram.read_enable.next = self.turn_step.q.val() == self.s_load.val();
-        self.check_ram.read_address.next = self.a_max[0].val();
+        // Moving down, the position and the bound are complemented: then
+        // one subtractor gives -delta both ways (~p - ~b = b - p).
+        self.load_mask.next = self.zero24.val();
+        if self.negative.val() {
+            self.load_mask.next = self.ones24.val();
+        }
+        self.check_address.next = self.a_max[0].val();
         if self.turn_step.q.val() == self.s_load.val() {
-            self.position_q.d.next = self.position.val();
+            self.position_q.d.next = self.position.val() ^ self.load_mask.val();
             self.magnitude_q.d.next = self.magnitude.val();
             self.negative_q.d.next = self.negative.val();
             self.live_q.d.next = false;
             for k in 0..K {
                 if self.turn_axis.q.val() == self.axis_id[k].val() {
-                    self.check_ram.read_address.next = self.a_max[k].val();
+                    self.check_address.next = self.a_max[k].val();
                     self.bound_valid.d.next =
                         (self.max_valid.q.val() & self.axis_bit[k].val()) != self.zero8.val();
                     if self.negative.val() {
-                        self.check_ram.read_address.next = self.a_min[k].val();
+                        self.check_address.next = self.a_min[k].val();
                         self.bound_valid.d.next =
                             (self.min_valid.q.val() & self.axis_bit[k].val()) != self.zero8.val();
                     }
@@ -530,27 +590,39 @@ impl<const K: usize> Logic for SoftLimits<K> {
                         & (self.magnitude.val() != self.zero16.val());
                 }
             }
+            self.bound_taken.d.next = false;
+            if self.window_write.val() & (self.address.val() == self.check_address.val()) {
+                self.bound_q.d.next = self.write_data.val() ^ self.load_mask.val();
+                self.bound_taken.d.next = true;
+            }
         }
-        // s = 1: -delta = p - b moving up, b - p moving down (26 bits, signed).
+        self.check_ram.read_address.next = self.check_address.val();
+        // s = 2: -delta = p - b moving up, b - p moving down (26 bits, signed).
         self.upper.next = bit_cast::<26, 24>(self.position_q.q.val());
         if self.position_q.q.val().get_bit(23) {
             self.upper.next = self.upper.val() | self.ext26.val();
+        }
+        // s = 1: the bound registered (a block RAM's clock-to-out is slow:
+        // straight into the subtractor it set ECP5's Fmax).
+        self.loaded_mask.next = self.zero24.val();
+        if self.negative_q.q.val() {
+            self.loaded_mask.next = self.ones24.val();
         }
         self.bound.next = self.zero24.val();
         if self.bound_valid.q.val() {
             self.bound.next = self.check_ram.read_data.val();
         }
-        self.lower.next = bit_cast::<26, 24>(self.bound.val());
-        if self.bound.val().get_bit(23) {
+        if (self.turn_step.q.val() == self.s_bound.val()) & !self.bound_taken.q.val() {
+            self.bound_q.d.next = self.bound.val() ^ self.loaded_mask.val();
+        }
+        self.lower.next = bit_cast::<26, 24>(self.bound_q.q.val());
+        if self.bound_q.q.val().get_bit(23) {
             self.lower.next = self.lower.val() | self.ext26.val();
         }
         if self.turn_step.q.val() == self.s_distance.val() {
             self.distance.d.next = self.upper.val() - self.lower.val();
-            if self.negative_q.q.val() {
-                self.distance.d.next = self.lower.val() - self.upper.val();
-            }
         }
-        // s = 2: the margin, saturation to 20 bits; P (0 as 1) and G'.
+        // s = 3: the margin, saturation to 20 bits; P (0 as 1) and G'.
         self.with_margin.next = self.distance.q.val() + self.margin.val();
         if self.turn_step.q.val() == self.s_margin.val() {
             self.neg_delta.d.next = self.with_margin.val().get_bits::<20>(0);
@@ -566,9 +638,9 @@ impl<const K: usize> Logic for SoftLimits<K> {
             if self.period.val() == self.zero16.val() {
                 self.period_bits.d.next = self.one17.val();
             }
-            self.reach_bits.d.next = self.reach_now.val();
+            self.reach_bits.d.next = !self.reach_n.q.val();
         }
-        // s = 3: |J| - delta, and the accumulator cleared.
+        // s = 4: |J| - delta, and the accumulator cleared.
         self.delta21.next = bit_cast::<21, 20>(self.neg_delta.q.val());
         if self.neg_delta.q.val().get_bit(19) {
             self.delta21.next = self.delta21.val() | self.ext21.val();
@@ -577,7 +649,7 @@ impl<const K: usize> Logic for SoftLimits<K> {
             self.both.d.next = bit_cast::<21, 16>(self.magnitude_q.q.val()) + self.delta21.val();
             self.acc.d.next = self.zero_acc.val();
         }
-        // s = 4..20: acc = floor((acc + |J| g - delta p) / 2), bits of P and
+        // s = 5..21: acc = floor((acc + |J| g - delta p) / 2), bits of P and
         // G' from the bottom: after the 17th, acc = floor(T / 2^17) for
         // T = |J| G' - delta P, whose sign it keeps. (Most significant bit
         // first would need T's full 38 bits in the adder.)
@@ -608,7 +680,7 @@ impl<const K: usize> Logic for SoftLimits<K> {
             self.period_bits.d.next = self.period_bits.q.val() >> 1;
             self.reach_bits.d.next = self.reach_bits.q.val() >> 1;
         }
-        // s = 21: the verdict; the next axis.
+        // s = 22: the verdict; the next axis.
         self.verdict.next = self.live_q.q.val() & !self.acc.q.val().get_bit(22);
         self.beyond.d.next = self.beyond.q.val() & self.enable_now.val();
         self.event_q.d.next = false;
@@ -654,8 +726,9 @@ impl<const K: usize> Logic for SoftLimits<K> {
             self.live_q.d.next = false;
             self.gauge_rate.d.next = self.zero16.val();
             self.gauge_count.d.next = self.zero17.val();
-            self.gauge_restart.d.next = false;
+            self.gauge_measuring.d.next = false;
             self.reach_valid.d.next = false;
+            self.reach_n.d.next = self.zero17.val();
         }
 
         self.select.next = self.turn_axis.q.val();
@@ -729,7 +802,7 @@ pub struct SoftLimitsOutputs {
     pub window_data: u32,
 }
 
-/// What the verdict of a turn compares, as taken at its load and at s = 2:
+/// What the verdict of a turn compares, as taken at its load and at s = 3:
 /// the contract's rule in plain integers, for the model and the tests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Check {
@@ -784,7 +857,7 @@ pub struct SoftLimitsModel {
     gauge: HoldRampModel,
     gauge_rate: u16,
     gauge_count: u32,
-    gauge_restart: bool,
+    gauge_measuring: bool,
     reach: u32,
     reach_valid: bool,
     window_data: u32,
@@ -821,8 +894,8 @@ impl SoftLimitsModel {
             gauge: HoldRampModel::default(),
             gauge_rate: 0,
             gauge_count: 0,
-            gauge_restart: false,
-            reach: 0,
+            gauge_measuring: false,
+            reach: REACH_MAX,
             reach_valid: false,
             window_data: 0,
         }
@@ -839,18 +912,17 @@ impl SoftLimitsModel {
         self.beyond != 0
     }
 
-    /// The stop's reach G' the next s = 2 takes.
+    /// The stop's reach G' the next s = 3 takes.
     pub fn reach(&self) -> u32 {
-        match self.reach_valid {
-            true => self.reach,
-            false => REACH_MAX,
-        }
+        self.reach
     }
 
     /// The register at `address` as a bus read at this clock's edge
     /// returns it (`SOFT_LIMIT` or a window), or 0.
-    pub fn read(&self, address: u32) -> u32 {
-        self.control_read(address) | self.window_read(address)
+    /// A read in the clock of a `write` (to the same address: the bus has
+    /// one) reads a window as 0.
+    pub fn read(&self, address: u32, write: bool) -> u32 {
+        self.control_read(address) | self.window_read(address, write)
     }
 
     /// `SOFT_LIMIT` at `address`, or 0.
@@ -865,8 +937,12 @@ impl SoftLimitsModel {
         0
     }
 
-    /// A window at `address`, sign-extended, or 0.
-    fn window_read(&self, address: u32) -> u32 {
+    /// A window at `address`, sign-extended, or 0 (also in the clock of
+    /// a `write`).
+    fn window_read(&self, address: u32, write: bool) -> u32 {
+        if write {
+            return 0;
+        }
         for k in 0..self.axes {
             let base = AXIS_BASE + k as u32 * AXIS_STRIDE;
             if address == base + axis::SOFT_MIN {
@@ -899,36 +975,29 @@ impl SoftLimitsModel {
         };
         n.enable = enable_now;
 
-        // The gauge.
-        let tick_out = s.gauge.gate(true);
+        // The gauge: its length counted from 2·(1 + latency); G' is half.
         let stopped = s.gauge.factor() == 0;
-        n.gauge_restart = false;
-        if s.gauge_restart {
-            n.gauge_count = 0;
+        n.gauge_measuring = true;
+        if !s.gauge_measuring {
+            n.gauge_count = 2 * (check_latency(s.axes as u32) + 1);
             n.gauge_rate = i.rate;
             if i.rate != s.gauge_rate {
                 n.reach_valid = false;
+                n.reach = REACH_MAX;
             }
-        } else if tick_out && s.gauge_count != REACH_MAX {
+        } else if i.rate != s.gauge_rate {
+            n.reach_valid = false;
+            n.reach = REACH_MAX;
+            n.gauge_measuring = false;
+        } else if stopped {
+            n.reach = s.gauge_count / 2;
+            n.reach_valid = true;
+            n.gauge_measuring = false;
+        } else {
             n.gauge_count = s.gauge_count + 1;
         }
-        let latency = check_latency(s.axes as u32) + 1;
-        let measured = match s.gauge_count > REACH_MAX - latency {
-            true => REACH_MAX,
-            false => s.gauge_count + latency,
-        };
-        if !s.gauge_restart {
-            if i.rate != s.gauge_rate {
-                n.reach_valid = false;
-                n.gauge_restart = true;
-            } else if stopped {
-                n.reach = measured;
-                n.reach_valid = true;
-                n.gauge_restart = true;
-            }
-        }
         n.gauge.step(HoldRampInputs {
-            reset: i.reset || s.gauge_restart,
+            reset: i.reset || !s.gauge_measuring,
             tick: true,
             hold: true,
             rate: s.gauge_rate,
@@ -943,21 +1012,22 @@ impl SoftLimitsModel {
                 n.loaded.position = signed24(i.position & 0xff_ffff);
                 n.loaded.magnitude = i.magnitude as u64;
                 n.loaded.negative = i.negative;
+                // A window written in this clock is checked as written.
                 n.loaded.bound = signed24(match i.negative {
-                    true => s.minimum[k],
-                    false => s.maximum[k],
+                    true => n.minimum[k],
+                    false => n.maximum[k],
                 });
                 n.live =
                     i.running && s.enable & axis_bit(a) != 0 && i.step_axis && i.magnitude != 0;
             }
-            2 => {
+            3 => {
                 n.loaded.period = (i.period as u64).max(1);
                 n.loaded.reach = s.reach() as u64;
             }
             _ => {}
         }
         if i.read {
-            n.window_data = s.window_read(i.address);
+            n.window_data = s.window_read(i.address, i.write);
         }
         n.beyond = s.beyond & enable_now;
         n.event = false;
@@ -991,8 +1061,9 @@ impl SoftLimitsModel {
             n.live = false;
             n.gauge_rate = 0;
             n.gauge_count = 0;
-            n.gauge_restart = false;
+            n.gauge_measuring = false;
             n.reach_valid = false;
+            n.reach = REACH_MAX;
             n.window_data = 0;
         }
         SoftLimitsOutputs {

@@ -1,0 +1,189 @@
+//! Soft-limit windows in `simulate` (`--soft-limit AXIS=MIN:MAX`): a
+//! window per axis in machine millimetres, turned into the controller's
+//! `SOFT_MIN`/`SOFT_MAX` steps, and the line that reports where a tripped
+//! run stood.
+//!
+//! The controller checks each axis against its window and stops the path
+//! along itself inside it, at the feed hold's rate (the controller's "Soft
+//! limits"). `simulate` programs that rate as for a feed hold without
+//! `--hold-rate`: the stop from the path's peak speed within the machine's
+//! limits ([`super::hold_window`]).
+
+use super::machine::axis_index;
+
+/// The bounds `SOFT_MIN` and `SOFT_MAX` hold: 24-bit signed steps.
+const BOUND_RANGE: std::ops::RangeInclusive<i64> = -(1 << 23)..=(1 << 23) - 1;
+
+/// One axis's window in machine millimetres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SoftWindow {
+    /// The axis, 0 to 2 (x, y, z).
+    pub axis: usize,
+    /// The lowest position allowed, mm.
+    pub min_mm: f64,
+    /// The highest position allowed, mm.
+    pub max_mm: f64,
+}
+
+/// Axis names as the option takes them, and as positions print.
+const OPTION_AXES: [&str; 3] = ["x", "y", "z"];
+const AXES: [&str; 3] = ["X", "Y", "Z"];
+
+impl SoftWindow {
+    /// Reads `AXIS=MIN:MAX` (as `x=-10:250.5`): a known axis, two finite
+    /// numbers, MIN <= MAX.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let bad = |why: &str| format!("--soft-limit `{text}`: {why}");
+        let (name, range) = text
+            .split_once('=')
+            .ok_or_else(|| bad("not AXIS=MIN:MAX (as x=-10:250)"))?;
+        let axis = axis_index(name.trim())
+            .ok_or_else(|| bad(&format!("unknown axis `{}` (x, y or z)", name.trim())))?;
+        let (min, max) = range
+            .split_once(':')
+            .ok_or_else(|| bad("not AXIS=MIN:MAX (as x=-10:250)"))?;
+        let number = |s: &str| -> Result<f64, String> {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| bad(&format!("`{}` is not a number of mm", s.trim())))
+        };
+        let (min_mm, max_mm) = (number(min)?, number(max)?);
+        if min_mm > max_mm {
+            return Err(bad(&format!(
+                "the window is empty: {min_mm} mm is above {max_mm} mm"
+            )));
+        }
+        Ok(Self {
+            axis,
+            min_mm,
+            max_mm,
+        })
+    }
+
+    /// The window as the controller's bounds in steps, for an axis of
+    /// `steps_per_mm` whose step position 0 is machine step `origin`
+    /// (the run's start): rounded inward to whole steps (a bound within
+    /// a millionth of a step of one, as 2.01 mm x 100, is that step), so
+    /// the controller allows no more than the window.
+    pub fn steps(&self, steps_per_mm: f64, origin: i64) -> Result<(i32, i32), String> {
+        const SLACK: f64 = 1e-6;
+        let name = OPTION_AXES[self.axis];
+        // In f64 until the range is known: a far bound must not saturate.
+        let min = (self.min_mm * steps_per_mm - SLACK).ceil() - origin as f64;
+        let max = (self.max_mm * steps_per_mm + SLACK).floor() - origin as f64;
+        if min > max {
+            return Err(format!(
+                "--soft-limit {name}: the window {}..{} mm holds no step at {steps_per_mm} steps/mm",
+                self.min_mm, self.max_mm
+            ));
+        }
+        let (low, high) = (*BOUND_RANGE.start(), *BOUND_RANGE.end());
+        for bound in [min, max] {
+            if !(low as f64..=high as f64).contains(&bound) {
+                return Err(format!(
+                    "--soft-limit {name}: a bound {bound} steps from the start does not fit SOFT_MIN/SOFT_MAX (24-bit signed, {low} to {high})"
+                ));
+            }
+        }
+        Ok((min as i32, max as i32))
+    }
+}
+
+/// The windows given, one per axis at most.
+pub fn by_axis(windows: &[SoftWindow]) -> Result<[Option<SoftWindow>; 3], String> {
+    let mut out = [None; 3];
+    for w in windows {
+        if out[w.axis].replace(*w).is_some() {
+            return Err(format!(
+                "--soft-limit {} given twice: one window per axis",
+                OPTION_AXES[w.axis]
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// Where a run a soft limit stopped stood: the tripped axis, the bound it
+/// headed for and how far inside it stopped (or past it: the datasheet's
+/// guarantee holds only while the axis's rate does not grow), and every
+/// axis's position (machine mm).
+pub fn tripped_line(
+    window: &SoftWindow,
+    negative: bool,
+    stood_mm: [f64; 3],
+    periods_queued: usize,
+    periods: usize,
+) -> String {
+    let name = AXES[window.axis];
+    let at = stood_mm[window.axis];
+    let (side, bound, inside) = match negative {
+        true => ("minimum", window.min_mm, at - window.min_mm),
+        false => ("maximum", window.max_mm, window.max_mm - at),
+    };
+    let (distance, place) = match inside >= 0.0 {
+        true => (inside, "inside"),
+        false => (-inside, "PAST it"),
+    };
+    format!(
+        "soft limit: {name} would pass its {side} {bound:.4} mm; the controlled stop held it at {at:.4} mm, {distance:.4} mm {place} (X {:.4}  Y {:.4}  Z {:.4} mm), after {periods_queued} of {periods} periods were queued; the rest of the path did not run",
+        stood_mm[0], stood_mm[1], stood_mm[2]
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_a_window_and_names_bad_ones() {
+        assert_eq!(
+            SoftWindow::parse("y=-1.5:20").unwrap(),
+            SoftWindow {
+                axis: 1,
+                min_mm: -1.5,
+                max_mm: 20.0
+            }
+        );
+        for (text, message) in [
+            ("y", "not AXIS=MIN:MAX"),
+            ("y=3", "not AXIS=MIN:MAX"),
+            ("w=0:1", "unknown axis `w`"),
+            ("x=a:1", "`a` is not a number"),
+            ("x=0:inf", "`inf` is not a number"),
+            ("x=2:1", "the window is empty"),
+        ] {
+            let e = SoftWindow::parse(text).unwrap_err();
+            assert!(e.contains(message), "{text}: {e}");
+        }
+        let x = SoftWindow::parse("x=0:1").unwrap();
+        assert!(by_axis(&[x, x]).unwrap_err().contains("x given twice"));
+    }
+
+    #[test]
+    fn rounds_the_bounds_inward_from_the_start() {
+        let w = SoftWindow::parse("x=-1.01:2.01").unwrap();
+        assert_eq!(w.steps(100.0, 0), Ok((-101, 201)));
+        assert_eq!(w.steps(100.0, 50), Ok((-151, 151)));
+        assert_eq!(w.steps(10.0, 0), Ok((-10, 20)));
+        let narrow = SoftWindow::parse("x=0.01:0.02").unwrap();
+        assert!(narrow.steps(10.0, 0).unwrap_err().contains("holds no step"));
+        let far = SoftWindow::parse("x=0:1000").unwrap();
+        assert!(far.steps(10_000.0, 0).unwrap_err().contains("24-bit"));
+        // Far enough to saturate an i64: still named, never wrapped.
+        let huge = SoftWindow::parse("x=-1e18:5").unwrap();
+        assert!(huge.steps(80.0, 0).unwrap_err().contains("24-bit"));
+        let widest = SoftWindow::parse("x=-8388608:8388607").unwrap();
+        assert_eq!(widest.steps(1.0, 0), Ok((-8_388_608, 8_388_607)));
+    }
+
+    #[test]
+    fn names_a_stop_past_the_bound() {
+        let w = SoftWindow::parse("x=-1:4").unwrap();
+        let inside = tripped_line(&w, false, [3.5, 0.0, 0.0], 5, 9);
+        assert!(inside.contains("3.5000 mm, 0.5000 mm inside"), "{inside}");
+        let past = tripped_line(&w, false, [4.25, 0.0, 0.0], 5, 9);
+        assert!(past.contains("0.2500 mm PAST it"), "{past}");
+    }
+}
