@@ -9,7 +9,7 @@
 //! `--hold-rate`: the stop from the path's peak speed within the machine's
 //! limits ([`super::hold_window`]).
 
-use super::machine::axis_index;
+use super::machine::{axis_index, AXIS_LETTERS};
 
 /// The bounds `SOFT_MIN` and `SOFT_MAX` hold: 24-bit signed steps.
 const BOUND_RANGE: std::ops::RangeInclusive<i64> = -(1 << 23)..=(1 << 23) - 1;
@@ -25,9 +25,10 @@ pub struct SoftWindow {
     pub max_mm: f64,
 }
 
-/// Axis names as the option takes them, and as positions print.
-const OPTION_AXES: [&str; 3] = ["x", "y", "z"];
-const AXES: [&str; 3] = ["X", "Y", "Z"];
+/// Axis `axis` as the option names it (`x`).
+fn option_name(axis: usize) -> char {
+    AXIS_LETTERS[axis].to_ascii_lowercase()
+}
 
 impl SoftWindow {
     /// Reads `AXIS=MIN:MAX` (as `x=-10:250.5`): a known axis, two finite
@@ -69,7 +70,7 @@ impl SoftWindow {
     /// the controller allows no more than the window.
     pub fn steps(&self, steps_per_mm: f64, origin: i64) -> Result<(i32, i32), String> {
         const SLACK: f64 = 1e-6;
-        let name = OPTION_AXES[self.axis];
+        let name = option_name(self.axis);
         // In f64 until the range is known: a far bound must not saturate.
         let min = (self.min_mm * steps_per_mm - SLACK).ceil() - origin as f64;
         let max = (self.max_mm * steps_per_mm + SLACK).floor() - origin as f64;
@@ -98,7 +99,7 @@ pub fn by_axis(windows: &[SoftWindow]) -> Result<[Option<SoftWindow>; 3], String
         if out[w.axis].replace(*w).is_some() {
             return Err(format!(
                 "--soft-limit {} given twice: one window per axis",
-                OPTION_AXES[w.axis]
+                option_name(w.axis)
             ));
         }
     }
@@ -116,7 +117,7 @@ pub fn tripped_line(
     periods_queued: usize,
     periods: usize,
 ) -> String {
-    let name = AXES[window.axis];
+    let name = AXIS_LETTERS[window.axis];
     let at = stood_mm[window.axis];
     let (side, bound, inside) = match negative {
         true => ("minimum", window.min_mm, at - window.min_mm),

@@ -1177,6 +1177,7 @@ impl MotionControllerModel {
         );
         next.held_prev = self.feed_hold.held();
         let picked = &self.axes[self.soft.select()];
+        let (magnitude, negative) = picked.entry_steps();
         let soft_out = next.soft.step(&SoftLimitsInputs {
             reset: i.reset,
             address,
@@ -1186,8 +1187,8 @@ impl MotionControllerModel {
             rate: self.feed_hold.rate(),
             period: self.period_ticks as u16,
             position: picked.position_out.count as u32,
-            magnitude: picked.entry_steps().0,
-            negative: picked.entry_steps().1,
+            magnitude,
+            negative,
             step_axis: !picked.analog(),
             read: i.read && self.has_soft,
         });
