@@ -62,6 +62,7 @@ pub mod dac_interface;
 pub mod dda_integrator;
 pub mod dda_interpolator;
 pub mod dpram_mailbox;
+pub mod electronic_gearbox;
 pub mod external_bus_adapter;
 pub mod freq_divider;
 pub mod glitch_filter;

@@ -7,6 +7,7 @@ use crate::blocks::dac_interface::{self, DacInterface3};
 use crate::blocks::dda_integrator::{self, DdaIntegrator};
 use crate::blocks::dda_interpolator::{self, DdaInterpolator};
 use crate::blocks::dpram_mailbox::{self, DpramMailbox1024x16};
+use crate::blocks::electronic_gearbox::{self, ElectronicGearbox24};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::host_links::{self, SeedHostLinks};
@@ -148,6 +149,21 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: Some(130),
             logic_cell_budget: None,
             build: || Box::new(QuadratureDecoder::<32, 8, 16>::default()),
+        },
+        ModuleSpec {
+            name: "electronic_gearbox",
+            block: "electronic_gearbox",
+            summary: electronic_gearbox::SUMMARY,
+            parameters: &[
+                ("W", "24", "numerator, denominator and ramp width"),
+                ("E", "40", "lag width: a ramp-in of up to 2^(E - W - 1) = 32768 counts"),
+                ("L", "24", "position and length width"),
+            ],
+            port_docs: electronic_gearbox::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(ElectronicGearbox24::default()),
         },
         ModuleSpec {
             name: "step_output",

@@ -108,6 +108,12 @@ pub fn datasheets() -> Vec<DatasheetSpec> {
             build: || Box::new(input_conditioner::InputConditioner::<8>::default()),
         },
         DatasheetSpec {
+            block: "electronic_gearbox",
+            port_docs: electronic_gearbox::PORT_DOCS,
+            parameters: &[("W", 24), ("E", 40), ("L", 24)],
+            build: || Box::new(electronic_gearbox::ElectronicGearbox24::default()),
+        },
+        DatasheetSpec {
             block: "holding_ram",
             port_docs: holding_ram::PORT_DOCS,
             parameters: &[("D", 16), ("N", 8)],

@@ -8,6 +8,7 @@ mod dac_interface;
 mod dda_integrator;
 mod dda_interpolator;
 mod dpram_mailbox;
+mod electronic_gearbox;
 mod external_bus_adapter;
 mod freq_divider;
 mod glitch_filter;
