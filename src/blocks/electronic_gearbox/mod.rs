@@ -51,7 +51,7 @@
 //! * **Arm.** In idle, `arm` checks the ratio: d >= 1, n <= d, and ramp
 //!   = 0 or ramp x 2^(E - W - 1) >= n (a ramp-in of at most 2^15 counts in
 //!   the export, which keeps the lag within E bits). A valid arm clears
-//!   the position, `done` and `invalid` and arms; an invalid one sets
+//!   the position, `done`, `invalid` and `overrun` and arms; an invalid one sets
 //!   `invalid` and stays idle. `arm` in any other phase is ignored.
 //! * **Engage.** An `index` while armed engages at the edge: the rate is
 //!   0, the fraction 0, the lag 0. A count in the index's own clock is not
@@ -67,8 +67,8 @@
 //!   braking of u to 0 after it), each forward count takes the largest of
 //!   k + 1, k, k - 1 whose S fits in e (k + 1 only if n + u + ramp <= d),
 //!   so the axis never passes the ideal; then e shrinks by u. It ends
-//!   at u = 0 with 0 <= e < ramp: `locked`, and from then on e stays
-//!   constant. With ramp <= d the axis is then 0 or 1 step behind
+//!   at u = 0 with 0 <= e < ramp, and from then on e stays constant;
+//!   `locked` rises with the first forward count that finds it so. With ramp <= d the axis is then 0 or 1 step behind
 //!   floor(n x m / d) at every count. With n + ramp > d there is no room
 //!   to catch up: the lag of the ramp-in stays, and `locked` stays 0.
 //!   Backward counts before the lock move the axis back at its rate; the
@@ -76,9 +76,9 @@
 //! * **Stop at `length`** (not 0): the gearbox keeps D, an upper bound on
 //!   the steps its ramp-out takes from the present rate (each rise of the
 //!   rate from r adds r, each fall to r subtracts r, in 1/d step, carried
-//!   into whole steps). Once t + D + 3 >= length, t the net steps since
-//!   the engage (not wrapped at 2^L) (in ramp-in or
-//!   track) it stops: the rate falls by `ramp` per forward count to the
+//!   into whole steps). In ramp-in or track, once t + D + 3 >= length (t
+//!   the net steps since the engage, not wrapped at 2^L), it stops: the
+//!   rate falls by `ramp` per forward count to the
 //!   crawl rate c = min(ramp, n) (n with `ramp` = 0), runs at c, and
 //!   the forward step that brings the position to `length` ends the run
 //!   (idle, `done`). The margin of 3 steps makes the ramp-out end at c
@@ -88,8 +88,9 @@
 //!   forward count at c ends the run there (no `done`). While armed it
 //!   disarms.
 //! * **`halt`** goes idle at once from any phase, with no ramp: for an
-//!   abort or an E-stop. A step already requested stays requested (the
-//!   output stage never cuts a pulse).
+//!   abort or an E-stop. The count in work is dropped and requests no
+//!   step; a step request already on the pins keeps its clock (the output
+//!   stage never cuts a pulse).
 //!
 //! **Acceleration.** Every rate change is at most `ramp` / d step per count
 //! per count, so at a spindle count rate f_c the axis accelerates at most
