@@ -84,6 +84,14 @@ pub mod uniform_pulse_gen;
 pub mod watchdog;
 pub mod word_assembler;
 
+/// A `Constant` of any width, for blocks' `Default` (rust-hdl prints it
+/// as a `localparam`).
+pub(crate) fn konst<const N: usize>(
+    value: u64,
+) -> rust_hdl::prelude::Constant<rust_hdl::prelude::Bits<N>> {
+    rust_hdl::prelude::Constant::new(value.into())
+}
+
 /// All ones in the low `width` bits (1 to 64): the value range of a
 /// `width`-bit port, for models and stimulus.
 pub fn width_mask(width: u32) -> u64 {

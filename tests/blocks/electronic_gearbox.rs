@@ -195,7 +195,7 @@ impl Monitor {
         let lmask = (1u64 << self.w.l) - 1;
         let wmask = (1u64 << self.w.w) - 1;
         let was = self.previous.phase;
-        let engaged_before = matches!(was, Phase::RampIn | Phase::Track | Phase::Stopping);
+        let engaged_before = was.is_engaged();
         let stepped = o.step_up || o.step_down;
         if i.reset {
             *self = Self {
@@ -222,10 +222,10 @@ impl Monitor {
             _ => None,
         };
         // The arm: accepted when idle goes to armed.
+        let valid = self
+            .w
+            .valid(i.numerator & wmask, i.denominator & wmask, i.ramp & wmask);
         if was == Phase::Idle && o.phase == Phase::Armed {
-            let valid = self
-                .w
-                .valid(i.numerator & wmask, i.denominator & wmask, i.ramp & wmask);
             if !valid || !i.arm || o.overrun || o.done || o.invalid {
                 return Err(format!("armed without a valid arm: {i:?} {o:?}"));
             }
@@ -233,9 +233,6 @@ impl Monitor {
             self.position = 0;
         }
         if was == Phase::Idle && i.arm && !i.stop && !i.halt && o.phase == Phase::Idle {
-            let valid = self
-                .w
-                .valid(i.numerator & wmask, i.denominator & wmask, i.ramp & wmask);
             if valid || !o.invalid {
                 return Err(format!("an arm neither armed nor flagged: {i:?} {o:?}"));
             }

@@ -164,6 +164,7 @@ pub mod model;
 
 use rust_hdl::prelude::*;
 
+use crate::blocks::konst;
 use crate::blocks::port_doc::{port, PortDoc};
 
 /// One line for the export header and the `rtl-out` index.
@@ -202,10 +203,6 @@ const ARMED: u64 = 1;
 const RAMP_IN: u64 = 2;
 const TRACK: u64 = 3;
 const STOPPING: u64 = 4;
-
-fn konst<const N: usize>(value: u64) -> Constant<Bits<N>> {
-    Constant::new(value.into())
-}
 
 /// The exported gearbox: W = 24, E = 40, L = 24.
 pub type ElectronicGearbox24 = ElectronicGearbox<24, 40, 24>;

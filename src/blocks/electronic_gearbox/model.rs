@@ -2,7 +2,7 @@
 //! written from the datasheet's equations in plain integers, with the
 //! registers' widths applied where the datasheet says they wrap.
 
-use crate::blocks::width_mask;
+use crate::blocks::{signed_value, width_mask};
 
 /// The gearbox's phase, as `phase` reads it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -21,6 +21,17 @@ pub enum Phase {
 }
 
 impl Phase {
+    /// Engaged: ramp-in, track or stopping (the phases that gear counts).
+    pub fn is_engaged(self) -> bool {
+        matches!(self, Phase::RampIn | Phase::Track | Phase::Stopping)
+    }
+
+    /// Ramp-in or track: the phases that keep the lag and the ramp-out
+    /// bound.
+    fn is_tracking(self) -> bool {
+        matches!(self, Phase::RampIn | Phase::Track)
+    }
+
     /// The phase from its code (codes 5 to 7 never occur; read as Idle).
     pub fn from_code(code: u64) -> Phase {
         match code {
@@ -156,6 +167,37 @@ impl GearboxWidths {
     }
 }
 
+/// Whole steps and a fraction of a step in 1/d, 0 <= frac < d: the
+/// axis's travel and the ramp-out bound D carry the same way.
+#[derive(Clone, Copy, Debug, Default)]
+struct Carried {
+    whole: i64,
+    frac: u64,
+}
+
+impl Carried {
+    /// Adds `x` <= d; true when a whole step carried.
+    fn add(&mut self, x: u64, d: u64) -> bool {
+        let t = self.frac + x;
+        let carried = t >= d;
+        self.frac = if carried { t - d } else { t };
+        self.whole += carried as i64;
+        carried
+    }
+
+    /// Subtracts `x` <= d; true when a whole step was borrowed.
+    fn sub(&mut self, x: u64, d: u64) -> bool {
+        let borrowed = self.frac < x;
+        self.frac = if borrowed {
+            self.frac + d - x
+        } else {
+            self.frac - x
+        };
+        self.whole -= borrowed as i64;
+        borrowed
+    }
+}
+
 /// The gearbox at the level of counts: each call is one clock of a
 /// gearbox that takes a count in one clock (the datasheet's equations).
 /// [`GearboxModel`] wraps it in the RTL's timing.
@@ -166,18 +208,15 @@ pub struct GearboxCore {
     command_stop: bool,
     /// Rate, 1/d step per count.
     rate: u64,
-    /// Fraction of a step, 0 <= frac < d.
-    frac: u64,
+    /// Net forward steps since the arm (not wrapped: the length's; the
+    /// `position` port is its low L bits) and the fraction of the next.
+    travel: Carried,
     /// Lag behind n x counts, 1/d step (signed, E bits).
     lag: i128,
     /// The catch-up's braking distance S, 1/d step (E bits).
     catch_brake: u128,
-    /// The ramp-out's distance bound D: whole steps and fraction.
-    brake_steps: i64,
-    brake_frac: u64,
-    /// Net forward steps since the arm, not wrapped (the length's).
-    travel: i64,
-    position: u64,
+    /// The ramp-out's distance bound D.
+    brake: Carried,
     locked: bool,
     done: bool,
     invalid: bool,
@@ -200,13 +239,10 @@ impl GearboxCore {
             phase: Phase::Idle,
             command_stop: false,
             rate: 0,
-            frac: 0,
+            travel: Carried::default(),
             lag: 0,
             catch_brake: 0,
-            brake_steps: 0,
-            brake_frac: 0,
-            travel: 0,
-            position: 0,
+            brake: Carried::default(),
             locked: false,
             done: false,
             invalid: false,
@@ -221,38 +257,21 @@ impl GearboxCore {
         }
     }
 
-    /// The lag behind n x counts, in 1/d step.
-    pub fn lag(&self) -> i128 {
-        self.lag
-    }
-
-    /// The rate, in 1/d step per count.
-    pub fn rate(&self) -> u64 {
-        self.rate
-    }
-
+    /// The lag register's E-bit wrap.
     fn wrap_lag(&self, value: i128) -> i128 {
-        let bits = self.widths.e;
-        let m = 1i128 << bits;
-        let v = value.rem_euclid(m);
-        if v >= m / 2 {
-            v - m
-        } else {
-            v
-        }
+        signed_value(value as u64, self.widths.e) as i128
     }
 
     fn outputs(&self) -> GearboxOutputs {
-        let locked = self.locked;
         GearboxOutputs {
             step_up: self.step_up,
             step_down: self.step_down,
             phase: self.phase,
-            locked,
+            locked: self.locked,
             done: self.done,
             invalid: self.invalid,
             overrun: false,
-            position: self.position,
+            position: self.travel.whole as u64 & width_mask(self.widths.l),
         }
     }
 
@@ -315,17 +334,15 @@ impl GearboxCore {
     }
 
     fn engaged(&mut self, stop: bool, forward: bool, backward: bool) {
-        let w = self.widths;
-        let lmask = width_mask(w.l);
         let (n, d, ramp, axis_reverse) = (self.n, self.d, self.ramp, self.axis_reverse);
         let length = self.length;
-        let position = self.travel as i128;
+        let position = self.travel.whole as i128;
         // The ramp-out's start: the position, the bound on the ramp-out's
         // steps and a margin of 3 reach the length.
         let trigger = length != 0
             && !self.command_stop
-            && matches!(self.phase, Phase::RampIn | Phase::Track)
-            && position + self.brake_steps as i128 + 3 >= length as i128;
+            && self.phase.is_tracking()
+            && position + self.brake.whole as i128 + 3 >= length as i128;
         let mut phase = if trigger { Phase::Stopping } else { self.phase };
         if stop {
             self.command_stop = true;
@@ -379,11 +396,11 @@ impl GearboxCore {
                     }
                 }
             };
-            if matches!(phase, Phase::RampIn | Phase::Track) {
+            if phase.is_tracking() {
                 if new > old {
-                    self.add_brake(old, d);
+                    self.brake.add(old, d);
                 } else if new < old {
-                    self.sub_brake(new, d);
+                    self.brake.sub(new, d);
                 }
                 self.lag = self.wrap_lag(self.lag + n as i128 - new as i128);
                 if phase == Phase::RampIn && new == n {
@@ -391,30 +408,19 @@ impl GearboxCore {
                 }
             }
             self.rate = new;
-            let t = self.frac + new;
-            if t >= d {
-                self.frac = t - d;
-                self.position = self.position.wrapping_add(1) & lmask;
-                self.travel += 1;
+            if self.travel.add(new, d) {
                 self.emit(true, axis_reverse);
-            } else {
-                self.frac = t;
             }
         } else if backward {
-            if matches!(phase, Phase::RampIn | Phase::Track) {
+            if phase.is_tracking() {
                 self.lag = self.wrap_lag(self.lag - (n as i128 - old as i128));
             }
-            if self.frac < old {
-                self.frac = self.frac + d - old;
-                self.position = self.position.wrapping_sub(1) & lmask;
-                self.travel -= 1;
+            if self.travel.sub(old, d) {
                 self.emit(false, axis_reverse);
-            } else {
-                self.frac -= old;
             }
         }
         let reached =
-            length != 0 && (self.step_up || self.step_down) && self.travel == length as i64;
+            length != 0 && (self.step_up || self.step_down) && self.travel.whole == length as i64;
         if reached || (end && !self.command_stop) {
             self.done = true;
         }
@@ -435,25 +441,6 @@ impl GearboxCore {
             self.step_up = true;
         } else {
             self.step_down = true;
-        }
-    }
-
-    fn add_brake(&mut self, rate: u64, d: u64) {
-        let t = self.brake_frac + rate;
-        if t >= d {
-            self.brake_frac = t - d;
-            self.brake_steps += 1;
-        } else {
-            self.brake_frac = t;
-        }
-    }
-
-    fn sub_brake(&mut self, rate: u64, d: u64) {
-        if self.brake_frac < rate {
-            self.brake_frac = self.brake_frac + d - rate;
-            self.brake_steps -= 1;
-        } else {
-            self.brake_frac -= rate;
         }
     }
 }
@@ -500,11 +487,6 @@ impl GearboxModel {
             before_take: GearboxCore::new(widths),
             visible: GearboxOutputs::default(),
         }
-    }
-
-    /// The count-level state.
-    pub fn core(&self) -> &GearboxCore {
-        &self.core
     }
 
     fn quiet(mut o: GearboxOutputs) -> GearboxOutputs {
@@ -562,10 +544,7 @@ impl GearboxModel {
             }
             return self.show(Self::quiet(self.visible));
         }
-        let engaged = matches!(
-            self.core.phase,
-            Phase::RampIn | Phase::Track | Phase::Stopping
-        );
+        let engaged = self.core.phase.is_engaged();
         let take = if engaged {
             match self.pending.take() {
                 Some(waiting) => {
@@ -581,7 +560,9 @@ impl GearboxModel {
         let stop = i.stop || self.stop_request;
         self.stop_request = false;
         let before = self.core.phase;
-        self.before_take = self.core.clone();
+        if engaged && take.is_some() {
+            self.before_take = self.core.clone();
+        }
         let o = self.core.step(GearboxInputs {
             count_up: take == Some(true),
             count_down: take == Some(false),

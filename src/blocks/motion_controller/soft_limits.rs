@@ -123,6 +123,7 @@ use super::hold_ramp::{HoldRamp, HoldRampInputs, HoldRampModel, UNITY};
 use super::registers::{axis, fields, global, AXIS_BASE, AXIS_STRIDE};
 use super::POSITION_BITS;
 use crate::blocks::holding_ram::HoldingRam;
+use crate::blocks::konst;
 
 /// Clocks of one axis's turn.
 pub const CHECK_CLOCKS: u32 = 23;
@@ -180,11 +181,6 @@ const _: () = assert!(
         && fields::SOFT_AXIS_WIDTH == 3
 );
 const _: () = assert!(POSITION_BITS == 24 && REACH_BITS == 17 && CHECK_CLOCKS == 23);
-
-/// A constant of any width.
-fn konst<const N: usize>(value: u64) -> Constant<Bits<N>> {
-    Constant::new(value.into())
-}
 
 /// The soft limits of `K` axes. See the [module documentation](self).
 #[derive(LogicBlock)]
