@@ -829,7 +829,7 @@ module electronic_gearbox(clock,reset,count_up,count_down,index,arm,stop,halt,sp
         alu_negative = (alu_out & sign_e) != zero_e;
         alu_zero = alu_out == zero_e;
         take = (seq__q == zero_seq) & engaged & (pending__q | counted);
-        overrunning = (seq__q != zero_seq) & counted & pending__q;
+        overrunning = (seq__q != zero_seq) & counted & pending__q & ~halt;
         abort = halt | overrunning;
         commit = write_seq[32'he] & ~abort;
         arm_take = (state__q == idle_code) & arm & ~stop_now & ~halt;

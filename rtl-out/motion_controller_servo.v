@@ -31,6 +31,9 @@
 //   gpio_in         in         8  general inputs, asynchronous
 //   probe           in         1  touch probe or tool setter, asynchronous: the first edge `PROBE_CONTROL.EDGE` selects after arming latches every axis's positions; ignored in a build without `PROBE` (`CONFIG.PROBE` = 0)
 //   feed_hold       in         1  feed hold request, asynchronous, 1 = hold (`HOLD_CONTROL.INVERT` = 1: 0 = hold): while active the path decelerates along itself to a stop; it resumes on `HOLD_CONTROL.RELEASE` once the input is inactive
+//   spindle_a       in         1  spindle encoder A, asynchronous (synchronized and filtered inside, `SPINDLE_CONFIG`); ignored in a build without `SPINDLE` (`CONFIG.SPINDLE` = 0)
+//   spindle_b       in         1  spindle encoder B, asynchronous; ignored without `SPINDLE`
+//   spindle_index   in         1  spindle encoder index, asynchronous: an armed gearbox engages at its next event; ignored without `SPINDLE`
 //   bus_read_data   out       32  the addressed register, registered: valid in the clock after `bus_read`, held until the next read
 //   irq             out        1  level interrupt: an enabled `STATUS` bit is set; registered
 //   running         out        1  periods are running (`STATE.RUNNING`)
@@ -46,7 +49,7 @@
 // ============================================================================
 
 `default_nettype none
-module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,feed_hold,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
+module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,feed_hold,spindle_a,spindle_b,spindle_index,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
 
     // Module arguments
     input wire  clock;
@@ -66,6 +69,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     input wire  [7:0] gpio_in;
     input wire  probe;
     input wire  feed_hold;
+    input wire  spindle_a;
+    input wire  spindle_b;
+    input wire  spindle_index;
     output reg  [31:0] bus_read_data;
     output reg  irq;
     output reg  running;
@@ -96,6 +102,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  shadow_bit__13 = 32'h2000;
     localparam  shadow_bit__14 = 32'h4000;
     localparam  shadow_bit__15 = 32'h8000;
+    localparam  has_spindle = 1'b0;
+    localparam  ev_spindle = 16'h8000;
     localparam  has_soft = 1'b0;
     localparam  soft_axis__0 = 3'b0;
     localparam  soft_axis__1 = 3'b1;
@@ -105,22 +113,22 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     localparam  has_uniform = 1'b0;
     localparam  has_probe = 1'b1;
     localparam  zero32 = 32'h0;
-    localparam  ev_period_done = 15'b1;
-    localparam  ev_fifo_low = 15'b10;
-    localparam  ev_underrun = 15'b100;
-    localparam  ev_overflow = 15'b1000;
-    localparam  ev_encoder_error = 15'b10000;
-    localparam  ev_watchdog = 15'b100000;
-    localparam  ev_axis_fault = 15'b1000000;
-    localparam  ev_limit = 15'b10000000;
-    localparam  ev_alarm = 15'b100000000;
-    localparam  ev_estop = 15'b1000000000;
-    localparam  ev_home = 15'b10000000000;
-    localparam  ev_gpio = 15'b100000000000;
-    localparam  ev_probe = 15'b1000000000000;
-    localparam  ev_held = 15'b10000000000000;
-    localparam  ev_soft_limit = 15'b100000000000000;
-    localparam  zero_ev = 15'b0;
+    localparam  ev_period_done = 16'h1;
+    localparam  ev_fifo_low = 16'h2;
+    localparam  ev_underrun = 16'h4;
+    localparam  ev_overflow = 16'h8;
+    localparam  ev_encoder_error = 16'h10;
+    localparam  ev_watchdog = 16'h20;
+    localparam  ev_axis_fault = 16'h40;
+    localparam  ev_limit = 16'h80;
+    localparam  ev_alarm = 16'h100;
+    localparam  ev_estop = 16'h200;
+    localparam  ev_home = 16'h400;
+    localparam  ev_gpio = 16'h800;
+    localparam  ev_probe = 16'h1000;
+    localparam  ev_held = 16'h2000;
+    localparam  ev_soft_limit = 16'h4000;
+    localparam  zero_ev = 16'h0;
     localparam  m_status_watchdog = 32'h20;
     localparam  m_status_estop = 32'h200;
     localparam  axis_bit__0 = 3'b1;
@@ -189,6 +197,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  axes__0__code_out_of_range;
     wire  axes__0__code_negative;
     wire  [23:0] axes__0__cmd_position;
+    reg  axes__0__gear_step;
+    reg  axes__0__gear_forward;
     reg  axes__1__clock;
     reg  axes__1__reset;
     reg  axes__1__tick;
@@ -247,6 +257,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  axes__1__code_out_of_range;
     wire  axes__1__code_negative;
     wire  [23:0] axes__1__cmd_position;
+    reg  axes__1__gear_step;
+    reg  axes__1__gear_forward;
     reg  axes__2__clock;
     reg  axes__2__reset;
     reg  axes__2__tick;
@@ -305,13 +317,15 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  axes__2__code_out_of_range;
     wire  axes__2__code_negative;
     wire  [23:0] axes__2__cmd_position;
+    reg  axes__2__gear_step;
+    reg  axes__2__gear_forward;
     reg  registers__clock;
     reg  registers__reset;
     reg  [7:0] registers__address;
     reg  [31:0] registers__write_data;
     reg  registers__write;
     reg  registers__running;
-    reg  [14:0] registers__status;
+    reg  [15:0] registers__status;
     reg  registers__watchdog_armed;
     reg  registers__watchdog_expired;
     reg  registers__estop_input;
@@ -322,7 +336,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  registers__held;
     reg  [31:0] registers__period_count;
     reg  [31:0] registers__stop_cause;
-    wire  [14:0] registers__irq_enable;
+    wire  [15:0] registers__irq_enable;
     wire  [31:0] registers__tick_divisor;
     wire  [15:0] registers__period_ticks;
     wire  [4:0] registers__low_water;
@@ -388,11 +402,11 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  watchdog__armed;
     reg  interrupts__clock;
     reg  interrupts__reset;
-    reg  [14:0] interrupts__events;
+    reg  [15:0] interrupts__events;
     reg  interrupts__clear;
-    reg  [14:0] interrupts__clear_bits;
-    reg  [14:0] interrupts__enable;
-    wire  [14:0] interrupts__status;
+    reg  [15:0] interrupts__clear_bits;
+    reg  [15:0] interrupts__enable;
+    wire  [15:0] interrupts__status;
     wire  interrupts__irq;
     reg  io__clock;
     reg  io__reset;
@@ -451,6 +465,19 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     wire  [31:0] soft_limits__read_data;
     reg  soft_limits__read;
     wire  [31:0] soft_limits__window_data;
+    reg  spindle__clock;
+    reg  spindle__reset;
+    reg  spindle__spindle_a;
+    reg  spindle__spindle_b;
+    reg  spindle__spindle_index;
+    reg  [7:0] spindle__address;
+    reg  spindle__write;
+    reg  [23:0] spindle__write_data;
+    reg  spindle__abort;
+    wire  [31:0] spindle__read_data;
+    wire  [2:0] spindle__step;
+    wire  spindle__step_forward;
+    wire  spindle__cause;
     reg  feed_hold_unit__clock;
     reg  feed_hold_unit__reset;
     reg  feed_hold_unit__feed_hold;
@@ -530,6 +557,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  held_prev__clock;
 
     // Local signals
+    reg  [31:0] spindle_read;
     reg  [31:0] soft_read;
     reg  [23:0] soft_position;
     reg  [15:0] soft_magnitude;
@@ -555,7 +583,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
     reg  any_encoder_error;
     reg  any_busy;
     reg  [31:0] axes_read;
-    reg  [14:0] events;
+    reg  [15:0] events;
     reg  abort;
     reg  refuse_run;
     reg  [2:0] limit_held;
@@ -629,7 +657,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .dac_code(axes__0__dac_code),
         .code_out_of_range(axes__0__code_out_of_range),
         .code_negative(axes__0__code_negative),
-        .cmd_position(axes__0__cmd_position)
+        .cmd_position(axes__0__cmd_position),
+        .gear_step(axes__0__gear_step),
+        .gear_forward(axes__0__gear_forward)
     );
     motion_controller_servo__axes__1 axes__1(
         .clock(axes__1__clock),
@@ -689,7 +719,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .dac_code(axes__1__dac_code),
         .code_out_of_range(axes__1__code_out_of_range),
         .code_negative(axes__1__code_negative),
-        .cmd_position(axes__1__cmd_position)
+        .cmd_position(axes__1__cmd_position),
+        .gear_step(axes__1__gear_step),
+        .gear_forward(axes__1__gear_forward)
     );
     motion_controller_servo__axes__2 axes__2(
         .clock(axes__2__clock),
@@ -749,7 +781,9 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .dac_code(axes__2__dac_code),
         .code_out_of_range(axes__2__code_out_of_range),
         .code_negative(axes__2__code_negative),
-        .cmd_position(axes__2__cmd_position)
+        .cmd_position(axes__2__cmd_position),
+        .gear_step(axes__2__gear_step),
+        .gear_forward(axes__2__gear_forward)
     );
     motion_controller_servo__registers registers(
         .clock(registers__clock),
@@ -919,6 +953,21 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         .read(soft_limits__read),
         .window_data(soft_limits__window_data)
     );
+    motion_controller_servo__spindle spindle(
+        .clock(spindle__clock),
+        .reset(spindle__reset),
+        .spindle_a(spindle__spindle_a),
+        .spindle_b(spindle__spindle_b),
+        .spindle_index(spindle__spindle_index),
+        .address(spindle__address),
+        .write(spindle__write),
+        .write_data(spindle__write_data),
+        .abort(spindle__abort),
+        .read_data(spindle__read_data),
+        .step(spindle__step),
+        .step_forward(spindle__step_forward),
+        .cause(spindle__cause)
+    );
     motion_controller_servo__feed_hold_unit feed_hold_unit(
         .clock(feed_hold_unit__clock),
         .reset(feed_hold_unit__reset),
@@ -1046,6 +1095,7 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         io__clock = clock;
         probe_trigger__clock = clock;
         soft_limits__clock = clock;
+        spindle__clock = clock;
         feed_hold_unit__clock = clock;
         planner__clock = clock;
         analog__clock = clock;
@@ -1271,6 +1321,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__0__flush = period__flush;
         axes__0__halt = halt;
         axes__0__abort = abort;
+        axes__0__gear_step = (spindle__step & axis_bit__0) != zero_k;
+        axes__0__gear_forward = spindle__step_forward;
         axes__0__pop = pop;
         axes__0__underrun = underrun;
         axes__0__period_active = period__period_active;
@@ -1308,6 +1360,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__1__flush = period__flush;
         axes__1__halt = halt;
         axes__1__abort = abort;
+        axes__1__gear_step = (spindle__step & axis_bit__1) != zero_k;
+        axes__1__gear_forward = spindle__step_forward;
         axes__1__pop = pop;
         axes__1__underrun = underrun;
         axes__1__period_active = period__period_active;
@@ -1345,6 +1399,8 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         axes__2__flush = period__flush;
         axes__2__halt = halt;
         axes__2__abort = abort;
+        axes__2__gear_step = (spindle__step & axis_bit__2) != zero_k;
+        axes__2__gear_forward = spindle__step_forward;
         axes__2__pop = pop;
         axes__2__underrun = underrun;
         axes__2__period_active = period__period_active;
@@ -1378,6 +1434,14 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         step_a = steps_a;
         step_b = steps_b;
         drive_enable = enables;
+        spindle__reset = reset;
+        spindle__spindle_a = spindle_a;
+        spindle__spindle_b = spindle_b;
+        spindle__spindle_index = spindle_index;
+        spindle__address = bus_address;
+        spindle__write = bus_write & has_spindle;
+        spindle__write_data = bus_write_data[(32'h0)+:(24)];
+        spindle__abort = abort;
         soft_position = zero_position;
         soft_magnitude = zero_code;
         soft_negative = 1'b0;
@@ -1508,10 +1572,13 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         if (soft_limits__tripped & has_soft) begin
             events = events | ev_soft_limit;
         end
+        if (spindle__cause & has_spindle) begin
+            events = events | ev_spindle;
+        end
         interrupts__reset = reset;
         interrupts__events = events;
         interrupts__clear = registers__status_write;
-        interrupts__clear_bits = bus_write_data[(32'h0)+:(15)];
+        interrupts__clear_bits = bus_write_data[(32'h0)+:(16)];
         interrupts__enable = registers__irq_enable;
         irq = interrupts__irq;
         probe_read = zero32;
@@ -1522,8 +1589,12 @@ module motion_controller_servo(clock,reset,bus_address,bus_write_data,bus_write,
         if (has_soft) begin
             soft_read = soft_limits__read_data;
         end
+        spindle_read = zero32;
+        if (has_spindle) begin
+            spindle_read = spindle__read_data;
+        end
         if (bus_read) begin
-            read_data__d = registers__read_data | io__read_data | probe_read | soft_read | feed_hold_unit__read_data | axes_read;
+            read_data__d = registers__read_data | io__read_data | probe_read | soft_read | spindle_read | feed_hold_unit__read_data | axes_read;
         end
         read_out = read_data__q;
         if (analog__read_selected) begin
@@ -3876,7 +3947,7 @@ module motion_controller_servo__any_low_prev_n(d,q,clock);
 endmodule // motion_controller_servo__any_low_prev_n
 
 
-module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position);
+module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position,gear_step,gear_forward);
 
     // Module arguments
     input wire  clock;
@@ -3937,11 +4008,14 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     output reg  code_out_of_range;
     output reg  code_negative;
     output reg  [23:0] cmd_position;
+    input wire  gear_step;
+    input wire  gear_forward;
 
     // Constant declarations
     localparam  window = 3'b1;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
+    localparam  has_spindle = 1'b0;
     localparam  zero_position = 24'h0;
     localparam  position_extension = 32'hff000000;
     localparam  position_sign = 24'h800000;
@@ -4081,6 +4155,21 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     wire  io__alarm_event;
     wire  io__home_event;
     wire  io__drive_enable;
+    reg  merge__clock;
+    reg  merge__reset;
+    reg  merge__interp;
+    reg  merge__interp_forward;
+    reg  merge__gear;
+    reg  merge__gear_forward;
+    reg  merge__analog;
+    reg  merge__abort;
+    reg  merge__clear_lost;
+    wire  merge__candidate;
+    wire  merge__candidate_forward;
+    wire  merge__lost;
+    reg  gear_lost_prev__d;
+    wire  gear_lost_prev__q;
+    reg  gear_lost_prev__clock;
     reg  registers__clock;
     reg  registers__reset;
     reg  [7:0] registers__address;
@@ -4203,6 +4292,8 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
     // Local signals
     reg  clear_position;
     reg  code_nonzero;
+    reg  interp;
+    reg  interp_forward;
     reg  candidate;
     reg  candidate_forward;
     reg  candidate_blocked;
@@ -4364,6 +4455,25 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         .alarm_event(io__alarm_event),
         .home_event(io__home_event),
         .drive_enable(io__drive_enable)
+    );
+    motion_controller_servo__axes__0__merge merge(
+        .clock(merge__clock),
+        .reset(merge__reset),
+        .interp(merge__interp),
+        .interp_forward(merge__interp_forward),
+        .gear(merge__gear),
+        .gear_forward(merge__gear_forward),
+        .analog(merge__analog),
+        .abort(merge__abort),
+        .clear_lost(merge__clear_lost),
+        .candidate(merge__candidate),
+        .candidate_forward(merge__candidate_forward),
+        .lost(merge__lost)
+    );
+    motion_controller_servo__axes__0__gear_lost_prev gear_lost_prev(
+        .d(gear_lost_prev__d),
+        .q(gear_lost_prev__q),
+        .clock(gear_lost_prev__clock)
     );
     motion_controller_servo__axes__0__registers registers(
         .clock(registers__clock),
@@ -4575,6 +4685,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         request__clock = clock;
         request_forward__clock = clock;
         encoder_error_prev__clock = clock;
+        gear_lost_prev__clock = clock;
         popped__d = popped__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
@@ -4604,12 +4715,14 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         request__d = request__q;
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
+        gear_lost_prev__d = gear_lost_prev__q;
         fifo__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
         encoder__clock = clock;
         io__clock = clock;
+        merge__clock = clock;
         registers__clock = clock;
         registers__reset = reset;
         registers__address = address;
@@ -4722,12 +4835,26 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         uniform_running_forward__d = uniform_forward;
         stage__reset = reset;
         if (uniform_active__q) begin
-            candidate = uniform_pulse & ~uniform_pulse_prev__q;
-            candidate_forward = uniform_forward;
+            interp = uniform_pulse & ~uniform_pulse_prev__q;
+            interp_forward = uniform_forward;
         end
         else begin
-            candidate = uniform__dda_pulse;
-            candidate_forward = forward_2__q;
+            interp = uniform__dda_pulse;
+            interp_forward = forward_2__q;
+        end
+        merge__reset = reset;
+        merge__interp = interp;
+        merge__interp_forward = interp_forward;
+        merge__gear = gear_step & has_spindle;
+        merge__gear_forward = gear_forward;
+        merge__analog = analog_active__q;
+        merge__abort = abort;
+        merge__clear_lost = clear_faults;
+        candidate = interp;
+        candidate_forward = interp_forward;
+        if (has_spindle) begin
+            candidate = merge__candidate;
+            candidate_forward = merge__candidate_forward;
         end
         candidate_blocked = io__block_backward;
         if (candidate_forward) begin
@@ -4809,10 +4936,11 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
+        gear_lost_prev__d = merge__lost;
         dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | (merge__lost & ~gear_lost_prev__q & has_spindle) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -4820,7 +4948,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
         registers__fifo_empty = fifo__empty;
         registers__fifo_full = fifo__full;
         registers__fifo_low = fifo__low;
-        registers__step_overrun = stage__overrun;
+        registers__step_overrun = stage__overrun | (merge__lost & has_spindle);
         registers__interp_overrange = overrange_flag__q;
         registers__interp_overflow = overflow_flag__q;
         registers__encoder_error = encoder__error;
@@ -4844,6 +4972,7 @@ module motion_controller_servo__axes__0(clock,reset,tick,start,halt,pop,underrun
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
             overrun_prev__d = 1'b0;
+            gear_lost_prev__d = 1'b0;
             dda_overrange_prev__d = 1'b0;
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
@@ -6758,6 +6887,25 @@ module motion_controller_servo__axes__0__forward_2(d,q,clock);
 endmodule // motion_controller_servo__axes__0__forward_2
 
 
+module motion_controller_servo__axes__0__gear_lost_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__gear_lost_prev
+
+
 module motion_controller_servo__axes__0__integrand(d,q,clock);
 
     // Module arguments
@@ -7290,6 +7438,150 @@ module motion_controller_servo__axes__0__io__probe_cmd(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__0__io__probe_cmd
+
+
+module motion_controller_servo__axes__0__merge(clock,reset,interp,interp_forward,gear,gear_forward,analog,abort,clear_lost,candidate,candidate_forward,lost);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  interp;
+    input wire  interp_forward;
+    input wire  gear;
+    input wire  gear_forward;
+    input wire  analog;
+    input wire  abort;
+    input wire  clear_lost;
+    output reg  candidate;
+    output reg  candidate_forward;
+    output reg  lost;
+
+    // Stub signals
+    reg  held__d;
+    wire  held__q;
+    reg  held__clock;
+    reg  held_forward__d;
+    wire  held_forward__q;
+    reg  held_forward__clock;
+    reg  lost_flag__d;
+    wire  lost_flag__q;
+    reg  lost_flag__clock;
+
+    // Local signals
+    reg  gear_in;
+    reg  gear_offer;
+    reg  gear_offer_forward;
+
+    // Sub module instances
+    motion_controller_servo__axes__0__merge__held held(
+        .d(held__d),
+        .q(held__q),
+        .clock(held__clock)
+    );
+    motion_controller_servo__axes__0__merge__held_forward held_forward(
+        .d(held_forward__d),
+        .q(held_forward__q),
+        .clock(held_forward__clock)
+    );
+    motion_controller_servo__axes__0__merge__lost_flag lost_flag(
+        .d(lost_flag__d),
+        .q(lost_flag__q),
+        .clock(lost_flag__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        held__clock = clock;
+        held_forward__clock = clock;
+        lost_flag__clock = clock;
+        held__d = held__q;
+        held_forward__d = held_forward__q;
+        lost_flag__d = lost_flag__q;
+        gear_in = gear & ~analog;
+        gear_offer = gear_in | held__q;
+        gear_offer_forward = gear_forward;
+        if (held__q) begin
+            gear_offer_forward = held_forward__q;
+        end
+        candidate = interp | gear_offer;
+        candidate_forward = interp_forward;
+        if (~interp & gear_offer) begin
+            candidate_forward = gear_offer_forward;
+        end
+        held__d = (gear_in & (interp | held__q)) | (held__q & interp);
+        if (gear_in & ~(interp & held__q)) begin
+            held_forward__d = gear_forward;
+        end
+        lost = lost_flag__q;
+        lost_flag__d = (lost_flag__q & ~clear_lost) | (gear & analog) | (gear_in & interp & held__q);
+        if (abort) begin
+            held__d = 1'b0;
+        end
+        if (reset) begin
+            held__d = 1'b0;
+            held_forward__d = 1'b0;
+            lost_flag__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__axes__0__merge
+
+
+module motion_controller_servo__axes__0__merge__held(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__merge__held
+
+
+module motion_controller_servo__axes__0__merge__held_forward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__merge__held_forward
+
+
+module motion_controller_servo__axes__0__merge__lost_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__0__merge__lost_flag
 
 
 module motion_controller_servo__axes__0__overflow_flag(d,q,clock);
@@ -10211,7 +10503,7 @@ module motion_controller_servo__axes__0__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__0__uniform_running_forward
 
 
-module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position);
+module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position,gear_step,gear_forward);
 
     // Module arguments
     input wire  clock;
@@ -10272,11 +10564,14 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     output reg  code_out_of_range;
     output reg  code_negative;
     output reg  [23:0] cmd_position;
+    input wire  gear_step;
+    input wire  gear_forward;
 
     // Constant declarations
     localparam  window = 3'b10;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
+    localparam  has_spindle = 1'b0;
     localparam  zero_position = 24'h0;
     localparam  position_extension = 32'hff000000;
     localparam  position_sign = 24'h800000;
@@ -10416,6 +10711,21 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     wire  io__alarm_event;
     wire  io__home_event;
     wire  io__drive_enable;
+    reg  merge__clock;
+    reg  merge__reset;
+    reg  merge__interp;
+    reg  merge__interp_forward;
+    reg  merge__gear;
+    reg  merge__gear_forward;
+    reg  merge__analog;
+    reg  merge__abort;
+    reg  merge__clear_lost;
+    wire  merge__candidate;
+    wire  merge__candidate_forward;
+    wire  merge__lost;
+    reg  gear_lost_prev__d;
+    wire  gear_lost_prev__q;
+    reg  gear_lost_prev__clock;
     reg  registers__clock;
     reg  registers__reset;
     reg  [7:0] registers__address;
@@ -10538,6 +10848,8 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
     // Local signals
     reg  clear_position;
     reg  code_nonzero;
+    reg  interp;
+    reg  interp_forward;
     reg  candidate;
     reg  candidate_forward;
     reg  candidate_blocked;
@@ -10699,6 +11011,25 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         .alarm_event(io__alarm_event),
         .home_event(io__home_event),
         .drive_enable(io__drive_enable)
+    );
+    motion_controller_servo__axes__1__merge merge(
+        .clock(merge__clock),
+        .reset(merge__reset),
+        .interp(merge__interp),
+        .interp_forward(merge__interp_forward),
+        .gear(merge__gear),
+        .gear_forward(merge__gear_forward),
+        .analog(merge__analog),
+        .abort(merge__abort),
+        .clear_lost(merge__clear_lost),
+        .candidate(merge__candidate),
+        .candidate_forward(merge__candidate_forward),
+        .lost(merge__lost)
+    );
+    motion_controller_servo__axes__1__gear_lost_prev gear_lost_prev(
+        .d(gear_lost_prev__d),
+        .q(gear_lost_prev__q),
+        .clock(gear_lost_prev__clock)
     );
     motion_controller_servo__axes__1__registers registers(
         .clock(registers__clock),
@@ -10910,6 +11241,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         request__clock = clock;
         request_forward__clock = clock;
         encoder_error_prev__clock = clock;
+        gear_lost_prev__clock = clock;
         popped__d = popped__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
@@ -10939,12 +11271,14 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         request__d = request__q;
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
+        gear_lost_prev__d = gear_lost_prev__q;
         fifo__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
         encoder__clock = clock;
         io__clock = clock;
+        merge__clock = clock;
         registers__clock = clock;
         registers__reset = reset;
         registers__address = address;
@@ -11057,12 +11391,26 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         uniform_running_forward__d = uniform_forward;
         stage__reset = reset;
         if (uniform_active__q) begin
-            candidate = uniform_pulse & ~uniform_pulse_prev__q;
-            candidate_forward = uniform_forward;
+            interp = uniform_pulse & ~uniform_pulse_prev__q;
+            interp_forward = uniform_forward;
         end
         else begin
-            candidate = uniform__dda_pulse;
-            candidate_forward = forward_2__q;
+            interp = uniform__dda_pulse;
+            interp_forward = forward_2__q;
+        end
+        merge__reset = reset;
+        merge__interp = interp;
+        merge__interp_forward = interp_forward;
+        merge__gear = gear_step & has_spindle;
+        merge__gear_forward = gear_forward;
+        merge__analog = analog_active__q;
+        merge__abort = abort;
+        merge__clear_lost = clear_faults;
+        candidate = interp;
+        candidate_forward = interp_forward;
+        if (has_spindle) begin
+            candidate = merge__candidate;
+            candidate_forward = merge__candidate_forward;
         end
         candidate_blocked = io__block_backward;
         if (candidate_forward) begin
@@ -11144,10 +11492,11 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
+        gear_lost_prev__d = merge__lost;
         dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | (merge__lost & ~gear_lost_prev__q & has_spindle) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -11155,7 +11504,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
         registers__fifo_empty = fifo__empty;
         registers__fifo_full = fifo__full;
         registers__fifo_low = fifo__low;
-        registers__step_overrun = stage__overrun;
+        registers__step_overrun = stage__overrun | (merge__lost & has_spindle);
         registers__interp_overrange = overrange_flag__q;
         registers__interp_overflow = overflow_flag__q;
         registers__encoder_error = encoder__error;
@@ -11179,6 +11528,7 @@ module motion_controller_servo__axes__1(clock,reset,tick,start,halt,pop,underrun
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
             overrun_prev__d = 1'b0;
+            gear_lost_prev__d = 1'b0;
             dda_overrange_prev__d = 1'b0;
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
@@ -13093,6 +13443,25 @@ module motion_controller_servo__axes__1__forward_2(d,q,clock);
 endmodule // motion_controller_servo__axes__1__forward_2
 
 
+module motion_controller_servo__axes__1__gear_lost_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__gear_lost_prev
+
+
 module motion_controller_servo__axes__1__integrand(d,q,clock);
 
     // Module arguments
@@ -13625,6 +13994,150 @@ module motion_controller_servo__axes__1__io__probe_cmd(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__1__io__probe_cmd
+
+
+module motion_controller_servo__axes__1__merge(clock,reset,interp,interp_forward,gear,gear_forward,analog,abort,clear_lost,candidate,candidate_forward,lost);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  interp;
+    input wire  interp_forward;
+    input wire  gear;
+    input wire  gear_forward;
+    input wire  analog;
+    input wire  abort;
+    input wire  clear_lost;
+    output reg  candidate;
+    output reg  candidate_forward;
+    output reg  lost;
+
+    // Stub signals
+    reg  held__d;
+    wire  held__q;
+    reg  held__clock;
+    reg  held_forward__d;
+    wire  held_forward__q;
+    reg  held_forward__clock;
+    reg  lost_flag__d;
+    wire  lost_flag__q;
+    reg  lost_flag__clock;
+
+    // Local signals
+    reg  gear_in;
+    reg  gear_offer;
+    reg  gear_offer_forward;
+
+    // Sub module instances
+    motion_controller_servo__axes__1__merge__held held(
+        .d(held__d),
+        .q(held__q),
+        .clock(held__clock)
+    );
+    motion_controller_servo__axes__1__merge__held_forward held_forward(
+        .d(held_forward__d),
+        .q(held_forward__q),
+        .clock(held_forward__clock)
+    );
+    motion_controller_servo__axes__1__merge__lost_flag lost_flag(
+        .d(lost_flag__d),
+        .q(lost_flag__q),
+        .clock(lost_flag__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        held__clock = clock;
+        held_forward__clock = clock;
+        lost_flag__clock = clock;
+        held__d = held__q;
+        held_forward__d = held_forward__q;
+        lost_flag__d = lost_flag__q;
+        gear_in = gear & ~analog;
+        gear_offer = gear_in | held__q;
+        gear_offer_forward = gear_forward;
+        if (held__q) begin
+            gear_offer_forward = held_forward__q;
+        end
+        candidate = interp | gear_offer;
+        candidate_forward = interp_forward;
+        if (~interp & gear_offer) begin
+            candidate_forward = gear_offer_forward;
+        end
+        held__d = (gear_in & (interp | held__q)) | (held__q & interp);
+        if (gear_in & ~(interp & held__q)) begin
+            held_forward__d = gear_forward;
+        end
+        lost = lost_flag__q;
+        lost_flag__d = (lost_flag__q & ~clear_lost) | (gear & analog) | (gear_in & interp & held__q);
+        if (abort) begin
+            held__d = 1'b0;
+        end
+        if (reset) begin
+            held__d = 1'b0;
+            held_forward__d = 1'b0;
+            lost_flag__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__axes__1__merge
+
+
+module motion_controller_servo__axes__1__merge__held(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__merge__held
+
+
+module motion_controller_servo__axes__1__merge__held_forward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__merge__held_forward
+
+
+module motion_controller_servo__axes__1__merge__lost_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__1__merge__lost_flag
 
 
 module motion_controller_servo__axes__1__overflow_flag(d,q,clock);
@@ -16546,7 +17059,7 @@ module motion_controller_servo__axes__1__uniform_running_forward(d,q,clock);
 endmodule // motion_controller_servo__axes__1__uniform_running_forward
 
 
-module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position);
+module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun,period_active,modulus_negated,snapshot,low_water,address,write,write_data,fifo_entry,read_data,enc_a,enc_b,enc_index,out_a,out_b,empty,low,overflow_event,fault_event,encoder_error_event,busy,flush,abort,limit_forward,limit_backward,home,home_rise,probe_latch,alarm,drive_allowed,drive_enable,limit_held,alarm_held,home_held,limit_event,alarm_event,home_event,div_request,div_dividend,div_divisor,div_done,div_half,div_long_pulses,div_short_negated,div_half_is_one,div_has_pulses,div_clamped,analog,dac_code,code_out_of_range,code_negative,cmd_position,gear_step,gear_forward);
 
     // Module arguments
     input wire  clock;
@@ -16607,11 +17120,14 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     output reg  code_out_of_range;
     output reg  code_negative;
     output reg  [23:0] cmd_position;
+    input wire  gear_step;
+    input wire  gear_forward;
 
     // Constant declarations
     localparam  window = 3'b11;
     localparam  has_uniform = 1'b0;
     localparam  has_analog = 1'b1;
+    localparam  has_spindle = 1'b0;
     localparam  zero_position = 24'h0;
     localparam  position_extension = 32'hff000000;
     localparam  position_sign = 24'h800000;
@@ -16751,6 +17267,21 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     wire  io__alarm_event;
     wire  io__home_event;
     wire  io__drive_enable;
+    reg  merge__clock;
+    reg  merge__reset;
+    reg  merge__interp;
+    reg  merge__interp_forward;
+    reg  merge__gear;
+    reg  merge__gear_forward;
+    reg  merge__analog;
+    reg  merge__abort;
+    reg  merge__clear_lost;
+    wire  merge__candidate;
+    wire  merge__candidate_forward;
+    wire  merge__lost;
+    reg  gear_lost_prev__d;
+    wire  gear_lost_prev__q;
+    reg  gear_lost_prev__clock;
     reg  registers__clock;
     reg  registers__reset;
     reg  [7:0] registers__address;
@@ -16873,6 +17404,8 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
     // Local signals
     reg  clear_position;
     reg  code_nonzero;
+    reg  interp;
+    reg  interp_forward;
     reg  candidate;
     reg  candidate_forward;
     reg  candidate_blocked;
@@ -17034,6 +17567,25 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         .alarm_event(io__alarm_event),
         .home_event(io__home_event),
         .drive_enable(io__drive_enable)
+    );
+    motion_controller_servo__axes__2__merge merge(
+        .clock(merge__clock),
+        .reset(merge__reset),
+        .interp(merge__interp),
+        .interp_forward(merge__interp_forward),
+        .gear(merge__gear),
+        .gear_forward(merge__gear_forward),
+        .analog(merge__analog),
+        .abort(merge__abort),
+        .clear_lost(merge__clear_lost),
+        .candidate(merge__candidate),
+        .candidate_forward(merge__candidate_forward),
+        .lost(merge__lost)
+    );
+    motion_controller_servo__axes__2__gear_lost_prev gear_lost_prev(
+        .d(gear_lost_prev__d),
+        .q(gear_lost_prev__q),
+        .clock(gear_lost_prev__clock)
     );
     motion_controller_servo__axes__2__registers registers(
         .clock(registers__clock),
@@ -17245,6 +17797,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         request__clock = clock;
         request_forward__clock = clock;
         encoder_error_prev__clock = clock;
+        gear_lost_prev__clock = clock;
         popped__d = popped__q;
         popped_valid__d = popped_valid__q;
         underrun_d__d = underrun_d__q;
@@ -17274,12 +17827,14 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         request__d = request__q;
         request_forward__d = request_forward__q;
         encoder_error_prev__d = encoder_error_prev__q;
+        gear_lost_prev__d = gear_lost_prev__q;
         fifo__clock = clock;
         uniform__clock = clock;
         stage__clock = clock;
         position__clock = clock;
         encoder__clock = clock;
         io__clock = clock;
+        merge__clock = clock;
         registers__clock = clock;
         registers__reset = reset;
         registers__address = address;
@@ -17392,12 +17947,26 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         uniform_running_forward__d = uniform_forward;
         stage__reset = reset;
         if (uniform_active__q) begin
-            candidate = uniform_pulse & ~uniform_pulse_prev__q;
-            candidate_forward = uniform_forward;
+            interp = uniform_pulse & ~uniform_pulse_prev__q;
+            interp_forward = uniform_forward;
         end
         else begin
-            candidate = uniform__dda_pulse;
-            candidate_forward = forward_2__q;
+            interp = uniform__dda_pulse;
+            interp_forward = forward_2__q;
+        end
+        merge__reset = reset;
+        merge__interp = interp;
+        merge__interp_forward = interp_forward;
+        merge__gear = gear_step & has_spindle;
+        merge__gear_forward = gear_forward;
+        merge__analog = analog_active__q;
+        merge__abort = abort;
+        merge__clear_lost = clear_faults;
+        candidate = interp;
+        candidate_forward = interp_forward;
+        if (has_spindle) begin
+            candidate = merge__candidate;
+            candidate_forward = merge__candidate_forward;
         end
         candidate_blocked = io__block_backward;
         if (candidate_forward) begin
@@ -17479,10 +18048,11 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         alarm_event = io__alarm_event;
         home_event = io__home_event;
         overrun_prev__d = stage__overrun;
+        gear_lost_prev__d = merge__lost;
         dda_overrange_prev__d = uniform__dda_overrange;
         uniform_overrange_prev__d = uniform_overrange;
         uniform_overflow_prev__d = uniform_overflow;
-        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | saturated__q;
+        fault_event = (stage__overrun & ~overrun_prev__q) | (uniform__dda_overrange & ~dda_overrange_prev__q) | (uniform_overrange & ~uniform_overrange_prev__q) | (uniform_overflow & ~uniform_overflow_prev__q) | (merge__lost & ~gear_lost_prev__q & has_spindle) | saturated__q;
         busy = stage__busy | uniform_running;
         encoder_error_prev__d = encoder__error;
         encoder_error_event = encoder__error & ~encoder_error_prev__q;
@@ -17490,7 +18060,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
         registers__fifo_empty = fifo__empty;
         registers__fifo_full = fifo__full;
         registers__fifo_low = fifo__low;
-        registers__step_overrun = stage__overrun;
+        registers__step_overrun = stage__overrun | (merge__lost & has_spindle);
         registers__interp_overrange = overrange_flag__q;
         registers__interp_overflow = overflow_flag__q;
         registers__encoder_error = encoder__error;
@@ -17514,6 +18084,7 @@ module motion_controller_servo__axes__2(clock,reset,tick,start,halt,pop,underrun
             overrange_flag__d = 1'b0;
             overflow_flag__d = 1'b0;
             overrun_prev__d = 1'b0;
+            gear_lost_prev__d = 1'b0;
             dda_overrange_prev__d = 1'b0;
             uniform_overrange_prev__d = 1'b0;
             uniform_overflow_prev__d = 1'b0;
@@ -19428,6 +19999,25 @@ module motion_controller_servo__axes__2__forward_2(d,q,clock);
 endmodule // motion_controller_servo__axes__2__forward_2
 
 
+module motion_controller_servo__axes__2__gear_lost_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__gear_lost_prev
+
+
 module motion_controller_servo__axes__2__integrand(d,q,clock);
 
     // Module arguments
@@ -19960,6 +20550,150 @@ module motion_controller_servo__axes__2__io__probe_cmd(d,q,clock);
     end
 
 endmodule // motion_controller_servo__axes__2__io__probe_cmd
+
+
+module motion_controller_servo__axes__2__merge(clock,reset,interp,interp_forward,gear,gear_forward,analog,abort,clear_lost,candidate,candidate_forward,lost);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  interp;
+    input wire  interp_forward;
+    input wire  gear;
+    input wire  gear_forward;
+    input wire  analog;
+    input wire  abort;
+    input wire  clear_lost;
+    output reg  candidate;
+    output reg  candidate_forward;
+    output reg  lost;
+
+    // Stub signals
+    reg  held__d;
+    wire  held__q;
+    reg  held__clock;
+    reg  held_forward__d;
+    wire  held_forward__q;
+    reg  held_forward__clock;
+    reg  lost_flag__d;
+    wire  lost_flag__q;
+    reg  lost_flag__clock;
+
+    // Local signals
+    reg  gear_in;
+    reg  gear_offer;
+    reg  gear_offer_forward;
+
+    // Sub module instances
+    motion_controller_servo__axes__2__merge__held held(
+        .d(held__d),
+        .q(held__q),
+        .clock(held__clock)
+    );
+    motion_controller_servo__axes__2__merge__held_forward held_forward(
+        .d(held_forward__d),
+        .q(held_forward__q),
+        .clock(held_forward__clock)
+    );
+    motion_controller_servo__axes__2__merge__lost_flag lost_flag(
+        .d(lost_flag__d),
+        .q(lost_flag__q),
+        .clock(lost_flag__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        held__clock = clock;
+        held_forward__clock = clock;
+        lost_flag__clock = clock;
+        held__d = held__q;
+        held_forward__d = held_forward__q;
+        lost_flag__d = lost_flag__q;
+        gear_in = gear & ~analog;
+        gear_offer = gear_in | held__q;
+        gear_offer_forward = gear_forward;
+        if (held__q) begin
+            gear_offer_forward = held_forward__q;
+        end
+        candidate = interp | gear_offer;
+        candidate_forward = interp_forward;
+        if (~interp & gear_offer) begin
+            candidate_forward = gear_offer_forward;
+        end
+        held__d = (gear_in & (interp | held__q)) | (held__q & interp);
+        if (gear_in & ~(interp & held__q)) begin
+            held_forward__d = gear_forward;
+        end
+        lost = lost_flag__q;
+        lost_flag__d = (lost_flag__q & ~clear_lost) | (gear & analog) | (gear_in & interp & held__q);
+        if (abort) begin
+            held__d = 1'b0;
+        end
+        if (reset) begin
+            held__d = 1'b0;
+            held_forward__d = 1'b0;
+            lost_flag__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__axes__2__merge
+
+
+module motion_controller_servo__axes__2__merge__held(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__merge__held
+
+
+module motion_controller_servo__axes__2__merge__held_forward(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__merge__held_forward
+
+
+module motion_controller_servo__axes__2__merge__lost_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__axes__2__merge__lost_flag
 
 
 module motion_controller_servo__axes__2__overflow_flag(d,q,clock);
@@ -24121,19 +24855,19 @@ module motion_controller_servo__interrupts(clock,reset,events,clear,clear_bits,e
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [14:0] events;
+    input wire  [15:0] events;
     input wire  clear;
-    input wire  [14:0] clear_bits;
-    input wire  [14:0] enable;
-    output reg  [14:0] status;
+    input wire  [15:0] clear_bits;
+    input wire  [15:0] enable;
+    output reg  [15:0] status;
     output reg  irq;
 
     // Constant declarations
-    localparam  zero = 15'b0;
+    localparam  zero = 16'h0;
 
     // Stub signals
-    reg  [14:0] status_reg__d;
-    wire  [14:0] status_reg__q;
+    reg  [15:0] status_reg__d;
+    wire  [15:0] status_reg__q;
     reg  status_reg__clock;
     reg  irq_reg__d;
     wire  irq_reg__q;
@@ -24197,13 +24931,13 @@ endmodule // motion_controller_servo__interrupts__irq_reg
 module motion_controller_servo__interrupts__status_reg(d,q,clock);
 
     // Module arguments
-    input wire  [14:0] d;
-    output reg  [14:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 15'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -30973,7 +31707,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     input wire  [31:0] write_data;
     input wire  write;
     input wire  running;
-    input wire  [14:0] status;
+    input wire  [15:0] status;
     input wire  watchdog_armed;
     input wire  watchdog_expired;
     input wire  estop_input;
@@ -30984,7 +31718,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     input wire  held;
     input wire  [31:0] period_count;
     input wire  [31:0] stop_cause;
-    output reg  [14:0] irq_enable;
+    output reg  [15:0] irq_enable;
     output reg  [31:0] tick_divisor;
     output reg  [15:0] period_ticks;
     output reg  [4:0] low_water;
@@ -31012,7 +31746,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h701;
+    localparam  version_value = 32'h800;
     localparam  config_value = 32'h7610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;
@@ -31041,13 +31775,13 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  bit_mask__14 = 32'h4000;
     localparam  bit_mask__15 = 32'h8000;
     localparam  zero32 = 32'h0;
-    localparam  zero_irq = 15'b0;
+    localparam  zero_irq = 16'h0;
     localparam  zero_p = 16'h0;
     localparam  zero_level = 5'b0;
 
     // Stub signals
-    reg  [14:0] irq_enable_reg__d;
-    wire  [14:0] irq_enable_reg__q;
+    reg  [15:0] irq_enable_reg__d;
+    wire  [15:0] irq_enable_reg__q;
     reg  irq_enable_reg__clock;
     reg  [31:0] tick_divisor_reg__d;
     wire  [31:0] tick_divisor_reg__q;
@@ -31111,7 +31845,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         watchdog_timeout = watchdog_timeout_reg__q;
         if (write) begin
             if (address == a_irq_enable) begin
-                irq_enable_reg__d = write_data[(32'h0)+:(15)];
+                irq_enable_reg__d = write_data[(32'h0)+:(16)];
             end
             if (address == a_tick_divisor) begin
                 tick_divisor_reg__d = write_data;
@@ -31261,6 +31995,12 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
         if ((address == a_irq_enable) & irq_enable_reg__q[14]) begin
             read_data = read_data | bit_mask__14;
         end
+        if ((address == a_status) & status[15]) begin
+            read_data = read_data | bit_mask__15;
+        end
+        if ((address == a_irq_enable) & irq_enable_reg__q[15]) begin
+            read_data = read_data | bit_mask__15;
+        end
         if (address == a_tick_divisor) begin
             read_data = read_data | tick_divisor_reg__q;
         end
@@ -31354,13 +32094,13 @@ endmodule // motion_controller_servo__registers
 module motion_controller_servo__registers__irq_enable_reg(d,q,clock);
 
     // Module arguments
-    input wire  [14:0] d;
-    output reg  [14:0] q;
+    input wire  [15:0] d;
+    output reg  [15:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 15'h0;
+       q = 16'h0;
     end
 
     always @(posedge clock) begin
@@ -32896,6 +33636,4002 @@ module motion_controller_servo__soft_limits__window_selected(d,q,clock);
     end
 
 endmodule // motion_controller_servo__soft_limits__window_selected
+
+
+module motion_controller_servo__spindle(clock,reset,spindle_a,spindle_b,spindle_index,address,write,write_data,abort,read_data,step,step_forward,cause);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  spindle_a;
+    input wire  spindle_b;
+    input wire  spindle_index;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [23:0] write_data;
+    input wire  abort;
+    output reg  [31:0] read_data;
+    output reg  [2:0] step;
+    output reg  step_forward;
+    output reg  cause;
+
+    // Constant declarations
+    localparam  a_position = 8'he0;
+    localparam  a_index = 8'he1;
+    localparam  a_speed = 8'he2;
+    localparam  a_config = 8'he3;
+    localparam  a_control = 8'he4;
+    localparam  a_status = 8'he5;
+    localparam  a_numerator = 8'he6;
+    localparam  a_denominator = 8'he7;
+    localparam  a_ramp = 8'he8;
+    localparam  a_length = 8'he9;
+    localparam  a_gear_position = 8'hea;
+    localparam  axes = 3'b11;
+    localparam  axis_bit__0 = 3'b0;
+    localparam  axis_bit__1 = 3'b1;
+    localparam  axis_bit__2 = 3'b10;
+    localparam  config_reset = 24'h1400;
+    localparam  config_mask = 24'h1f3f;
+    localparam  control_mask = 24'h730;
+    localparam  one_clock = 32'h1;
+    localparam  sign = 24'h800000;
+    localparam  extension = 32'hff000000;
+    localparam  zero_position = 24'h0;
+    localparam  zero_gear = 24'h0;
+    localparam  zero_phase = 3'b0;
+    localparam  zero1 = 1'b0;
+    localparam  zero2 = 2'b0;
+    localparam  zero4 = 4'h0;
+    localparam  flag_done = 4'h1;
+    localparam  flag_invalid = 4'h2;
+    localparam  flag_overrun = 4'h4;
+    localparam  flag_encoder = 4'h8;
+    localparam  zero_clocks = 32'h0;
+    localparam  zero_k = 3'b0;
+    localparam  k_bit__0 = 3'b1;
+    localparam  k_bit__1 = 3'b10;
+    localparam  k_bit__2 = 3'b100;
+    localparam  m_phase__0 = 24'h1;
+    localparam  m_phase__1 = 24'h2;
+    localparam  m_phase__2 = 24'h4;
+    localparam  m_locked = 24'h8;
+    localparam  m_done = 24'h10;
+    localparam  m_invalid = 24'h20;
+    localparam  m_overrun = 24'h40;
+    localparam  m_encoder_error = 24'h80;
+
+    // Stub signals
+    reg  decoder__clock;
+    reg  decoder__reset;
+    reg  decoder__a;
+    reg  decoder__b;
+    reg  decoder__index;
+    reg  [3:0] decoder__filter;
+    reg  decoder__clear;
+    reg  decoder__sample_rate;
+    reg  decoder__counter_mode;
+    reg  decoder__index_invert;
+    reg  decoder__index_clear;
+    reg  decoder__index_latch;
+    reg  decoder__index_once;
+    reg  decoder__index_rearm;
+    reg  decoder__clear_error;
+    wire  [23:0] decoder__count;
+    wire  decoder__dir;
+    wire  decoder__error;
+    wire  decoder__index_seen;
+    wire  [23:0] decoder__index_count;
+    wire  decoder__count_time;
+    wire  decoder__timestamp;
+    reg  gearbox__clock;
+    reg  gearbox__reset;
+    reg  gearbox__count_up;
+    reg  gearbox__count_down;
+    reg  gearbox__index;
+    reg  gearbox__arm;
+    reg  gearbox__stop;
+    reg  gearbox__halt;
+    reg  gearbox__spindle_reverse;
+    reg  gearbox__axis_reverse;
+    reg  [23:0] gearbox__numerator;
+    reg  [23:0] gearbox__denominator;
+    reg  [23:0] gearbox__ramp;
+    reg  [23:0] gearbox__length;
+    wire  gearbox__step_up;
+    wire  gearbox__step_down;
+    wire  [2:0] gearbox__phase;
+    wire  gearbox__locked;
+    wire  gearbox__done;
+    wire  gearbox__invalid;
+    wire  gearbox__overrun;
+    wire  [23:0] gearbox__position;
+    reg  [23:0] settings__d;
+    wire  [23:0] settings__q;
+    reg  settings__clock;
+    reg  [23:0] control__d;
+    wire  [23:0] control__q;
+    reg  control__clock;
+    reg  [23:0] numerator__d;
+    wire  [23:0] numerator__q;
+    reg  numerator__clock;
+    reg  [23:0] denominator__d;
+    wire  [23:0] denominator__q;
+    reg  denominator__clock;
+    reg  [23:0] ramp__d;
+    wire  [23:0] ramp__q;
+    reg  ramp__clock;
+    reg  [23:0] length__d;
+    wire  [23:0] length__q;
+    reg  length__clock;
+    reg  [1:0] count_low__d;
+    wire  [1:0] count_low__q;
+    reg  count_low__clock;
+    reg  [31:0] clocks__d;
+    wire  [31:0] clocks__q;
+    reg  clocks__clock;
+    reg  window_bit__d;
+    wire  window_bit__q;
+    reg  window_bit__clock;
+    reg  [23:0] window_start__d;
+    wire  [23:0] window_start__q;
+    reg  window_start__clock;
+    reg  [23:0] speed__d;
+    wire  [23:0] speed__q;
+    reg  speed__clock;
+    reg  axis_invalid__d;
+    wire  axis_invalid__q;
+    reg  axis_invalid__clock;
+    reg  [3:0] flags_prev__d;
+    wire  [3:0] flags_prev__q;
+    reg  flags_prev__clock;
+
+    // Local signals
+    reg  control_write;
+    reg  idle;
+    reg  [23:0] control_now;
+    reg  arm_request;
+    reg  axis_ok;
+    reg  counted;
+    reg  count_forward;
+    reg  [31:0] window_shifted;
+    reg  window_bit_now;
+    reg  [3:0] flags;
+    reg  invalid;
+    reg  [23:0] read_wide;
+    reg  read_signed;
+    reg  [23:0] status_word;
+
+    // Sub module instances
+    motion_controller_servo__spindle__decoder decoder(
+        .clock(decoder__clock),
+        .reset(decoder__reset),
+        .a(decoder__a),
+        .b(decoder__b),
+        .index(decoder__index),
+        .filter(decoder__filter),
+        .clear(decoder__clear),
+        .sample_rate(decoder__sample_rate),
+        .counter_mode(decoder__counter_mode),
+        .index_invert(decoder__index_invert),
+        .index_clear(decoder__index_clear),
+        .index_latch(decoder__index_latch),
+        .index_once(decoder__index_once),
+        .index_rearm(decoder__index_rearm),
+        .clear_error(decoder__clear_error),
+        .count(decoder__count),
+        .dir(decoder__dir),
+        .error(decoder__error),
+        .index_seen(decoder__index_seen),
+        .index_count(decoder__index_count),
+        .count_time(decoder__count_time),
+        .timestamp(decoder__timestamp)
+    );
+    motion_controller_servo__spindle__gearbox gearbox(
+        .clock(gearbox__clock),
+        .reset(gearbox__reset),
+        .count_up(gearbox__count_up),
+        .count_down(gearbox__count_down),
+        .index(gearbox__index),
+        .arm(gearbox__arm),
+        .stop(gearbox__stop),
+        .halt(gearbox__halt),
+        .spindle_reverse(gearbox__spindle_reverse),
+        .axis_reverse(gearbox__axis_reverse),
+        .numerator(gearbox__numerator),
+        .denominator(gearbox__denominator),
+        .ramp(gearbox__ramp),
+        .length(gearbox__length),
+        .step_up(gearbox__step_up),
+        .step_down(gearbox__step_down),
+        .phase(gearbox__phase),
+        .locked(gearbox__locked),
+        .done(gearbox__done),
+        .invalid(gearbox__invalid),
+        .overrun(gearbox__overrun),
+        .position(gearbox__position)
+    );
+    motion_controller_servo__spindle__settings settings(
+        .d(settings__d),
+        .q(settings__q),
+        .clock(settings__clock)
+    );
+    motion_controller_servo__spindle__control control(
+        .d(control__d),
+        .q(control__q),
+        .clock(control__clock)
+    );
+    motion_controller_servo__spindle__numerator numerator(
+        .d(numerator__d),
+        .q(numerator__q),
+        .clock(numerator__clock)
+    );
+    motion_controller_servo__spindle__denominator denominator(
+        .d(denominator__d),
+        .q(denominator__q),
+        .clock(denominator__clock)
+    );
+    motion_controller_servo__spindle__ramp ramp(
+        .d(ramp__d),
+        .q(ramp__q),
+        .clock(ramp__clock)
+    );
+    motion_controller_servo__spindle__length length(
+        .d(length__d),
+        .q(length__q),
+        .clock(length__clock)
+    );
+    motion_controller_servo__spindle__count_low count_low(
+        .d(count_low__d),
+        .q(count_low__q),
+        .clock(count_low__clock)
+    );
+    motion_controller_servo__spindle__clocks clocks(
+        .d(clocks__d),
+        .q(clocks__q),
+        .clock(clocks__clock)
+    );
+    motion_controller_servo__spindle__window_bit window_bit(
+        .d(window_bit__d),
+        .q(window_bit__q),
+        .clock(window_bit__clock)
+    );
+    motion_controller_servo__spindle__window_start window_start(
+        .d(window_start__d),
+        .q(window_start__q),
+        .clock(window_start__clock)
+    );
+    motion_controller_servo__spindle__speed speed(
+        .d(speed__d),
+        .q(speed__q),
+        .clock(speed__clock)
+    );
+    motion_controller_servo__spindle__axis_invalid axis_invalid(
+        .d(axis_invalid__d),
+        .q(axis_invalid__q),
+        .clock(axis_invalid__clock)
+    );
+    motion_controller_servo__spindle__flags_prev flags_prev(
+        .d(flags_prev__d),
+        .q(flags_prev__q),
+        .clock(flags_prev__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        settings__clock = clock;
+        control__clock = clock;
+        numerator__clock = clock;
+        denominator__clock = clock;
+        ramp__clock = clock;
+        length__clock = clock;
+        count_low__clock = clock;
+        clocks__clock = clock;
+        window_bit__clock = clock;
+        window_start__clock = clock;
+        speed__clock = clock;
+        axis_invalid__clock = clock;
+        flags_prev__clock = clock;
+        settings__d = settings__q;
+        control__d = control__q;
+        numerator__d = numerator__q;
+        denominator__d = denominator__q;
+        ramp__d = ramp__q;
+        length__d = length__q;
+        count_low__d = count_low__q;
+        clocks__d = clocks__q;
+        window_bit__d = window_bit__q;
+        window_start__d = window_start__q;
+        speed__d = speed__q;
+        axis_invalid__d = axis_invalid__q;
+        flags_prev__d = flags_prev__q;
+        decoder__clock = clock;
+        gearbox__clock = clock;
+        control_write = write & (address == a_control);
+        if (write & (address == a_config)) begin
+            settings__d = write_data & config_mask;
+        end
+        if (write & (address == a_numerator)) begin
+            numerator__d = write_data[(32'h0)+:(24)];
+        end
+        if (write & (address == a_denominator)) begin
+            denominator__d = write_data[(32'h0)+:(24)];
+        end
+        if (write & (address == a_ramp)) begin
+            ramp__d = write_data[(32'h0)+:(24)];
+        end
+        if (write & (address == a_length)) begin
+            length__d = write_data[(32'h0)+:(24)];
+        end
+        decoder__reset = reset;
+        decoder__a = spindle_a;
+        decoder__b = spindle_b;
+        decoder__index = spindle_index;
+        decoder__filter = settings__q[(32'h0)+:(4)];
+        decoder__clear = 1'b0;
+        decoder__sample_rate = zero1;
+        decoder__counter_mode = settings__q[32'h4];
+        decoder__index_invert = settings__q[32'h5];
+        decoder__index_clear = 1'b0;
+        decoder__index_latch = 1'b1;
+        decoder__index_once = 1'b0;
+        decoder__index_rearm = decoder__index_seen;
+        decoder__clear_error = control_write & write_data[32'h3];
+        count_low__d = decoder__count[(32'h0)+:(2)];
+        counted = decoder__count[32'h0] != count_low__q[32'h0];
+        count_forward = decoder__count[32'h1] == (count_low__q[32'h1] ^ count_low__q[32'h0]);
+        idle = gearbox__phase == zero_phase;
+        control_now = control__q;
+        if (control_write & idle) begin
+            control_now = write_data & control_mask;
+        end
+        control__d = control_now;
+        arm_request = control_write & write_data[32'h0];
+        axis_ok = control_now[(32'h8)+:(3)] < axes;
+        if (arm_request & idle) begin
+            axis_invalid__d = ~axis_ok;
+        end
+        gearbox__reset = reset;
+        gearbox__count_up = counted & count_forward;
+        gearbox__count_down = counted & ~count_forward;
+        gearbox__index = decoder__index_seen;
+        gearbox__arm = arm_request & axis_ok;
+        gearbox__stop = control_write & write_data[32'h1];
+        gearbox__halt = (control_write & write_data[32'h2]) | abort;
+        gearbox__spindle_reverse = control_now[32'h4];
+        gearbox__axis_reverse = control_now[32'h5];
+        gearbox__numerator = numerator__q;
+        gearbox__denominator = denominator__q;
+        gearbox__ramp = ramp__q;
+        gearbox__length = length__q;
+        step = zero_k;
+        if ((gearbox__step_up | gearbox__step_down) & (control__q[(32'h8)+:(3)] == axis_bit__0)) begin
+            step = step | k_bit__0;
+        end
+        if ((gearbox__step_up | gearbox__step_down) & (control__q[(32'h8)+:(3)] == axis_bit__1)) begin
+            step = step | k_bit__1;
+        end
+        if ((gearbox__step_up | gearbox__step_down) & (control__q[(32'h8)+:(3)] == axis_bit__2)) begin
+            step = step | k_bit__2;
+        end
+        step_forward = gearbox__step_up;
+        clocks__d = clocks__q + one_clock;
+        window_shifted = clocks__q >> settings__q[(32'h8)+:(5)];
+        window_bit_now = window_shifted[32'h0];
+        window_bit__d = window_bit_now;
+        if (window_bit_now != window_bit__q) begin
+            speed__d = decoder__count - window_start__q;
+            window_start__d = decoder__count;
+        end
+        invalid = gearbox__invalid | axis_invalid__q;
+        flags = zero4;
+        if (gearbox__done) begin
+            flags = flags | flag_done;
+        end
+        if (invalid) begin
+            flags = flags | flag_invalid;
+        end
+        if (gearbox__overrun) begin
+            flags = flags | flag_overrun;
+        end
+        if (decoder__error) begin
+            flags = flags | flag_encoder;
+        end
+        flags_prev__d = flags;
+        cause = (flags & ~flags_prev__q) != zero4;
+        status_word = zero_gear;
+        if (gearbox__phase[0]) begin
+            status_word = status_word | m_phase__0;
+        end
+        if (gearbox__phase[1]) begin
+            status_word = status_word | m_phase__1;
+        end
+        if (gearbox__phase[2]) begin
+            status_word = status_word | m_phase__2;
+        end
+        if (gearbox__locked) begin
+            status_word = status_word | m_locked;
+        end
+        if (gearbox__done) begin
+            status_word = status_word | m_done;
+        end
+        if (invalid) begin
+            status_word = status_word | m_invalid;
+        end
+        if (gearbox__overrun) begin
+            status_word = status_word | m_overrun;
+        end
+        if (decoder__error) begin
+            status_word = status_word | m_encoder_error;
+        end
+        read_wide = zero_gear;
+        read_signed = 1'b0;
+        if (address == a_position) begin
+            read_wide = decoder__count;
+            read_signed = 1'b1;
+        end
+        if (address == a_index) begin
+            read_wide = read_wide | decoder__index_count;
+            read_signed = 1'b1;
+        end
+        if (address == a_speed) begin
+            read_wide = read_wide | speed__q;
+            read_signed = 1'b1;
+        end
+        if (address == a_gear_position) begin
+            read_wide = read_wide | gearbox__position;
+            read_signed = 1'b1;
+        end
+        if (address == a_config) begin
+            read_wide = read_wide | settings__q;
+        end
+        if (address == a_control) begin
+            read_wide = read_wide | control__q;
+        end
+        if (address == a_status) begin
+            read_wide = read_wide | status_word;
+        end
+        if (address == a_numerator) begin
+            read_wide = read_wide | numerator__q;
+        end
+        if (address == a_denominator) begin
+            read_wide = read_wide | denominator__q;
+        end
+        if (address == a_ramp) begin
+            read_wide = read_wide | ramp__q;
+        end
+        if (address == a_length) begin
+            read_wide = read_wide | length__q;
+        end
+        read_data = ((read_wide) & 32'hffffffff);
+        if (read_signed & ((read_wide & sign) != zero_gear)) begin
+            read_data = read_data | extension;
+        end
+        if (reset) begin
+            settings__d = config_reset;
+            control__d = zero_gear;
+            numerator__d = zero_gear;
+            denominator__d = zero_gear;
+            ramp__d = zero_gear;
+            length__d = zero_gear;
+            count_low__d = zero2;
+            clocks__d = zero_clocks;
+            window_bit__d = 1'b0;
+            window_start__d = zero_position;
+            speed__d = zero_position;
+            axis_invalid__d = 1'b0;
+            flags_prev__d = zero4;
+        end
+    end
+
+endmodule // motion_controller_servo__spindle
+
+
+module motion_controller_servo__spindle__axis_invalid(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__axis_invalid
+
+
+module motion_controller_servo__spindle__clocks(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__clocks
+
+
+module motion_controller_servo__spindle__control(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__control
+
+
+module motion_controller_servo__spindle__count_low(d,q,clock);
+
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__count_low
+
+
+module motion_controller_servo__spindle__decoder(clock,reset,a,b,index,filter,clear,sample_rate,counter_mode,index_invert,index_clear,index_latch,index_once,index_rearm,clear_error,count,dir,error,index_seen,index_count,count_time,timestamp);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  a;
+    input wire  b;
+    input wire  index;
+    input wire  [3:0] filter;
+    input wire  clear;
+    input wire  sample_rate;
+    input wire  counter_mode;
+    input wire  index_invert;
+    input wire  index_clear;
+    input wire  index_latch;
+    input wire  index_once;
+    input wire  index_rearm;
+    input wire  clear_error;
+    output reg  [23:0] count;
+    output reg  dir;
+    output reg  error;
+    output reg  index_seen;
+    output reg  [23:0] index_count;
+    output reg  count_time;
+    output reg  timestamp;
+
+    // Constant declarations
+    localparam  zero_w = 24'h0;
+    localparam  one_w = 24'h1;
+    localparam  two_w = 24'h2;
+    localparam  minus_one_w = 24'hffffff;
+    localparam  minus_two_w = 24'hfffffe;
+    localparam  zero_s = 1'b0;
+    localparam  one_s = 1'b1;
+    localparam  one_ts = 1'b1;
+    localparam  zero_ts = 1'b0;
+    localparam  startup_done = 2'b11;
+    localparam  one_2 = 2'b1;
+    localparam  zero_2 = 2'b0;
+
+    // Stub signals
+    reg  a_meta__d;
+    wire  a_meta__q;
+    reg  a_meta__clock;
+    reg  a_sync__d;
+    wire  a_sync__q;
+    reg  a_sync__clock;
+    reg  b_meta__d;
+    wire  b_meta__q;
+    reg  b_meta__clock;
+    reg  b_sync__d;
+    wire  b_sync__q;
+    reg  b_sync__clock;
+    reg  index_meta__d;
+    wire  index_meta__q;
+    reg  index_meta__clock;
+    reg  index_sync__d;
+    wire  index_sync__q;
+    reg  index_sync__clock;
+    reg  [1:0] startup__d;
+    wire  [1:0] startup__q;
+    reg  startup__clock;
+    reg  sample_left__d;
+    wire  sample_left__q;
+    reg  sample_left__clock;
+    reg  sample_wait__d;
+    wire  sample_wait__q;
+    reg  sample_wait__clock;
+    reg  filter_a__clock;
+    reg  filter_a__reset;
+    reg  filter_a__raw;
+    reg  filter_a__sample;
+    reg  [3:0] filter_a__length;
+    reg  filter_a__prime;
+    wire  filter_a__filtered;
+    wire  filter_a__changed;
+    reg  filter_b__clock;
+    reg  filter_b__reset;
+    reg  filter_b__raw;
+    reg  filter_b__sample;
+    reg  [3:0] filter_b__length;
+    reg  filter_b__prime;
+    wire  filter_b__filtered;
+    wire  filter_b__changed;
+    reg  filter_index__clock;
+    reg  filter_index__reset;
+    reg  filter_index__raw;
+    reg  filter_index__sample;
+    reg  [3:0] filter_index__length;
+    reg  filter_index__prime;
+    wire  filter_index__filtered;
+    wire  filter_index__changed;
+    reg  up__d;
+    wire  up__q;
+    reg  up__clock;
+    reg  down__d;
+    wire  down__q;
+    reg  down__clock;
+    reg  double__d;
+    wire  double__q;
+    reg  double__clock;
+    reg  index_event__d;
+    wire  index_event__q;
+    reg  index_event__clock;
+    reg  [23:0] position__d;
+    wire  [23:0] position__q;
+    reg  position__clock;
+    reg  [23:0] delta__d;
+    wire  [23:0] delta__q;
+    reg  delta__clock;
+    reg  dir_reg__d;
+    wire  dir_reg__q;
+    reg  dir_reg__clock;
+    reg  error_reg__d;
+    wire  error_reg__q;
+    reg  error_reg__clock;
+    reg  index_seen_reg__d;
+    wire  index_seen_reg__q;
+    reg  index_seen_reg__clock;
+    reg  [23:0] index_position__d;
+    wire  [23:0] index_position__q;
+    reg  index_position__clock;
+    reg  samples__d;
+    wire  samples__q;
+    reg  samples__clock;
+    reg  count_time_reg__d;
+    wire  count_time_reg__q;
+    reg  count_time_reg__clock;
+
+    // Local signals
+    reg  sample;
+    reg  priming;
+    reg  forward;
+    reg  index_act;
+    reg  clear_now;
+    reg  up_next;
+    reg  down_next;
+    reg  carry_up;
+    reg  carry_down;
+
+    // Sub module instances
+    motion_controller_servo__spindle__decoder__a_meta a_meta(
+        .d(a_meta__d),
+        .q(a_meta__q),
+        .clock(a_meta__clock)
+    );
+    motion_controller_servo__spindle__decoder__a_sync a_sync(
+        .d(a_sync__d),
+        .q(a_sync__q),
+        .clock(a_sync__clock)
+    );
+    motion_controller_servo__spindle__decoder__b_meta b_meta(
+        .d(b_meta__d),
+        .q(b_meta__q),
+        .clock(b_meta__clock)
+    );
+    motion_controller_servo__spindle__decoder__b_sync b_sync(
+        .d(b_sync__d),
+        .q(b_sync__q),
+        .clock(b_sync__clock)
+    );
+    motion_controller_servo__spindle__decoder__index_meta index_meta(
+        .d(index_meta__d),
+        .q(index_meta__q),
+        .clock(index_meta__clock)
+    );
+    motion_controller_servo__spindle__decoder__index_sync index_sync(
+        .d(index_sync__d),
+        .q(index_sync__q),
+        .clock(index_sync__clock)
+    );
+    motion_controller_servo__spindle__decoder__startup startup(
+        .d(startup__d),
+        .q(startup__q),
+        .clock(startup__clock)
+    );
+    motion_controller_servo__spindle__decoder__sample_left sample_left(
+        .d(sample_left__d),
+        .q(sample_left__q),
+        .clock(sample_left__clock)
+    );
+    motion_controller_servo__spindle__decoder__sample_wait sample_wait(
+        .d(sample_wait__d),
+        .q(sample_wait__q),
+        .clock(sample_wait__clock)
+    );
+    motion_controller_servo__spindle__decoder__filter_a filter_a(
+        .clock(filter_a__clock),
+        .reset(filter_a__reset),
+        .raw(filter_a__raw),
+        .sample(filter_a__sample),
+        .length(filter_a__length),
+        .prime(filter_a__prime),
+        .filtered(filter_a__filtered),
+        .changed(filter_a__changed)
+    );
+    motion_controller_servo__spindle__decoder__filter_b filter_b(
+        .clock(filter_b__clock),
+        .reset(filter_b__reset),
+        .raw(filter_b__raw),
+        .sample(filter_b__sample),
+        .length(filter_b__length),
+        .prime(filter_b__prime),
+        .filtered(filter_b__filtered),
+        .changed(filter_b__changed)
+    );
+    motion_controller_servo__spindle__decoder__filter_index filter_index(
+        .clock(filter_index__clock),
+        .reset(filter_index__reset),
+        .raw(filter_index__raw),
+        .sample(filter_index__sample),
+        .length(filter_index__length),
+        .prime(filter_index__prime),
+        .filtered(filter_index__filtered),
+        .changed(filter_index__changed)
+    );
+    motion_controller_servo__spindle__decoder__up up(
+        .d(up__d),
+        .q(up__q),
+        .clock(up__clock)
+    );
+    motion_controller_servo__spindle__decoder__down down(
+        .d(down__d),
+        .q(down__q),
+        .clock(down__clock)
+    );
+    motion_controller_servo__spindle__decoder__double double(
+        .d(double__d),
+        .q(double__q),
+        .clock(double__clock)
+    );
+    motion_controller_servo__spindle__decoder__index_event index_event(
+        .d(index_event__d),
+        .q(index_event__q),
+        .clock(index_event__clock)
+    );
+    motion_controller_servo__spindle__decoder__position position(
+        .d(position__d),
+        .q(position__q),
+        .clock(position__clock)
+    );
+    motion_controller_servo__spindle__decoder__delta delta(
+        .d(delta__d),
+        .q(delta__q),
+        .clock(delta__clock)
+    );
+    motion_controller_servo__spindle__decoder__dir_reg dir_reg(
+        .d(dir_reg__d),
+        .q(dir_reg__q),
+        .clock(dir_reg__clock)
+    );
+    motion_controller_servo__spindle__decoder__error_reg error_reg(
+        .d(error_reg__d),
+        .q(error_reg__q),
+        .clock(error_reg__clock)
+    );
+    motion_controller_servo__spindle__decoder__index_seen_reg index_seen_reg(
+        .d(index_seen_reg__d),
+        .q(index_seen_reg__q),
+        .clock(index_seen_reg__clock)
+    );
+    motion_controller_servo__spindle__decoder__index_position index_position(
+        .d(index_position__d),
+        .q(index_position__q),
+        .clock(index_position__clock)
+    );
+    motion_controller_servo__spindle__decoder__samples samples(
+        .d(samples__d),
+        .q(samples__q),
+        .clock(samples__clock)
+    );
+    motion_controller_servo__spindle__decoder__count_time_reg count_time_reg(
+        .d(count_time_reg__d),
+        .q(count_time_reg__q),
+        .clock(count_time_reg__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        a_meta__clock = clock;
+        a_sync__clock = clock;
+        b_meta__clock = clock;
+        b_sync__clock = clock;
+        index_meta__clock = clock;
+        index_sync__clock = clock;
+        startup__clock = clock;
+        sample_left__clock = clock;
+        sample_wait__clock = clock;
+        up__clock = clock;
+        down__clock = clock;
+        double__clock = clock;
+        index_event__clock = clock;
+        position__clock = clock;
+        delta__clock = clock;
+        dir_reg__clock = clock;
+        error_reg__clock = clock;
+        index_seen_reg__clock = clock;
+        index_position__clock = clock;
+        samples__clock = clock;
+        count_time_reg__clock = clock;
+        a_meta__d = a_meta__q;
+        a_sync__d = a_sync__q;
+        b_meta__d = b_meta__q;
+        b_sync__d = b_sync__q;
+        index_meta__d = index_meta__q;
+        index_sync__d = index_sync__q;
+        startup__d = startup__q;
+        sample_left__d = sample_left__q;
+        sample_wait__d = sample_wait__q;
+        up__d = up__q;
+        down__d = down__q;
+        double__d = double__q;
+        index_event__d = index_event__q;
+        position__d = position__q;
+        delta__d = delta__q;
+        dir_reg__d = dir_reg__q;
+        error_reg__d = error_reg__q;
+        index_seen_reg__d = index_seen_reg__q;
+        index_position__d = index_position__q;
+        samples__d = samples__q;
+        count_time_reg__d = count_time_reg__q;
+        filter_a__clock = clock;
+        filter_b__clock = clock;
+        filter_index__clock = clock;
+        count = position__q;
+        dir = dir_reg__q;
+        error = error_reg__q;
+        index_seen = index_seen_reg__q;
+        index_count = index_position__q;
+        count_time = count_time_reg__q;
+        timestamp = samples__q;
+        a_meta__d = a;
+        a_sync__d = a_meta__q;
+        b_meta__d = b;
+        b_sync__d = b_meta__q;
+        index_meta__d = index;
+        index_sync__d = index_meta__q;
+        sample = ~sample_wait__q;
+        if (sample) begin
+            sample_left__d = sample_rate;
+            sample_wait__d = sample_rate != zero_s;
+            samples__d = samples__q + one_ts;
+        end
+        else begin
+            sample_left__d = sample_left__q - one_s;
+            sample_wait__d = sample_left__q != one_s;
+        end
+        priming = startup__q != startup_done;
+        if (priming) begin
+            startup__d = startup__q + one_2;
+        end
+        filter_a__reset = reset;
+        filter_a__raw = a_sync__q;
+        filter_a__sample = sample;
+        filter_a__length = filter;
+        filter_a__prime = priming;
+        filter_b__reset = reset;
+        filter_b__raw = b_sync__q;
+        filter_b__sample = sample;
+        filter_b__length = filter;
+        filter_b__prime = priming;
+        filter_index__reset = reset;
+        filter_index__raw = index_sync__q;
+        filter_index__sample = sample;
+        filter_index__length = filter;
+        filter_index__prime = priming;
+        forward = ~(filter_a__changed ^ (filter_a__filtered != filter_b__filtered));
+        if (counter_mode) begin
+            up_next = filter_a__changed & filter_a__filtered & filter_b__filtered;
+            down_next = filter_a__changed & filter_a__filtered & ~filter_b__filtered;
+            double__d = filter_a__changed & filter_a__filtered & filter_b__changed;
+        end
+        else begin
+            up_next = (filter_a__changed ^ filter_b__changed) & forward;
+            down_next = (filter_a__changed ^ filter_b__changed) & ~forward;
+            double__d = filter_a__changed & filter_b__changed;
+        end
+        up__d = up_next;
+        down__d = down_next;
+        index_event__d = filter_index__changed & (filter_index__filtered != index_invert);
+        index_act = index_event__q & (~index_once | ~index_seen_reg__q | index_rearm);
+        clear_now = clear | (index_act & index_clear);
+        if (index_act & index_latch) begin
+            index_position__d = position__q;
+        end
+        index_seen_reg__d = (index_seen_reg__q & ~index_rearm) | index_act;
+        carry_up = clear_now & up__q;
+        carry_down = clear_now & down__q;
+        delta__d = zero_w;
+        if ((up_next & ~carry_down) | (carry_up & ~down_next)) begin
+            delta__d = one_w;
+        end
+        if ((down_next & ~carry_up) | (carry_down & ~up_next)) begin
+            delta__d = minus_one_w;
+        end
+        if (up_next & carry_up) begin
+            delta__d = two_w;
+        end
+        if (down_next & carry_down) begin
+            delta__d = minus_two_w;
+        end
+        if (clear_now) begin
+            position__d = zero_w;
+        end
+        else begin
+            position__d = position__q + delta__q;
+        end
+        if (up__q) begin
+            dir_reg__d = 1'b1;
+        end
+        if (down__q) begin
+            dir_reg__d = 1'b0;
+        end
+        error_reg__d = (error_reg__q & ~clear & ~clear_error) | double__q;
+        if (up__q | down__q) begin
+            count_time_reg__d = samples__q;
+        end
+        if (reset) begin
+            a_meta__d = 1'b0;
+            a_sync__d = 1'b0;
+            b_meta__d = 1'b0;
+            b_sync__d = 1'b0;
+            index_meta__d = 1'b0;
+            index_sync__d = 1'b0;
+            startup__d = zero_2;
+            sample_left__d = zero_s;
+            sample_wait__d = 1'b0;
+            up__d = 1'b0;
+            down__d = 1'b0;
+            double__d = 1'b0;
+            index_event__d = 1'b0;
+            position__d = zero_w;
+            delta__d = zero_w;
+            dir_reg__d = 1'b0;
+            error_reg__d = 1'b0;
+            index_seen_reg__d = 1'b0;
+            index_position__d = zero_w;
+            samples__d = zero_ts;
+            count_time_reg__d = zero_ts;
+        end
+    end
+
+endmodule // motion_controller_servo__spindle__decoder
+
+
+module motion_controller_servo__spindle__decoder__a_meta(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__a_meta
+
+
+module motion_controller_servo__spindle__decoder__a_sync(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__a_sync
+
+
+module motion_controller_servo__spindle__decoder__b_meta(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__b_meta
+
+
+module motion_controller_servo__spindle__decoder__b_sync(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__b_sync
+
+
+module motion_controller_servo__spindle__decoder__count_time_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__count_time_reg
+
+
+module motion_controller_servo__spindle__decoder__delta(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__delta
+
+
+module motion_controller_servo__spindle__decoder__dir_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__dir_reg
+
+
+module motion_controller_servo__spindle__decoder__double(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__double
+
+
+module motion_controller_servo__spindle__decoder__down(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__down
+
+
+module motion_controller_servo__spindle__decoder__error_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__error_reg
+
+
+module motion_controller_servo__spindle__decoder__filter_a(clock,reset,raw,sample,length,prime,filtered,changed);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  prime;
+    output reg  filtered;
+    output reg  changed;
+
+    // Constant declarations
+    localparam  zero = 4'h0;
+    localparam  one = 4'h1;
+    localparam  not_one = 4'he;
+
+    // Stub signals
+    reg  level__d;
+    wire  level__q;
+    reg  level__clock;
+    reg  changed_reg__d;
+    wire  changed_reg__q;
+    reg  changed_reg__clock;
+    reg  [3:0] left__d;
+    wire  [3:0] left__q;
+    reg  left__clock;
+
+    // Local signals
+    reg  differs;
+    reg  ready;
+    reg  accept;
+
+    // Sub module instances
+    motion_controller_servo__spindle__decoder__filter_a__level level(
+        .d(level__d),
+        .q(level__q),
+        .clock(level__clock)
+    );
+    motion_controller_servo__spindle__decoder__filter_a__changed_reg changed_reg(
+        .d(changed_reg__d),
+        .q(changed_reg__q),
+        .clock(changed_reg__clock)
+    );
+    motion_controller_servo__spindle__decoder__filter_a__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        level__clock = clock;
+        left__clock = clock;
+        changed_reg__clock = clock;
+        level__d = level__q;
+        left__d = left__q;
+        changed_reg__d = changed_reg__q;
+        filtered = level__q;
+        changed = changed_reg__q;
+        differs = raw != level__q;
+        ready = (left__q & not_one) == zero;
+        accept = ~prime & sample & differs & ready;
+        changed_reg__d = accept;
+        if (sample) begin
+            if (~differs | ready) begin
+                left__d = length;
+                level__d = raw;
+            end
+            else begin
+                left__d = left__q - one;
+            end
+        end
+        if (prime) begin
+            left__d = length;
+            level__d = raw;
+        end
+        if (reset) begin
+            left__d = zero;
+            level__d = 1'b0;
+            changed_reg__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_a
+
+
+module motion_controller_servo__spindle__decoder__filter_a__changed_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_a__changed_reg
+
+
+module motion_controller_servo__spindle__decoder__filter_a__left(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_a__left
+
+
+module motion_controller_servo__spindle__decoder__filter_a__level(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_a__level
+
+
+module motion_controller_servo__spindle__decoder__filter_b(clock,reset,raw,sample,length,prime,filtered,changed);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  prime;
+    output reg  filtered;
+    output reg  changed;
+
+    // Constant declarations
+    localparam  zero = 4'h0;
+    localparam  one = 4'h1;
+    localparam  not_one = 4'he;
+
+    // Stub signals
+    reg  level__d;
+    wire  level__q;
+    reg  level__clock;
+    reg  changed_reg__d;
+    wire  changed_reg__q;
+    reg  changed_reg__clock;
+    reg  [3:0] left__d;
+    wire  [3:0] left__q;
+    reg  left__clock;
+
+    // Local signals
+    reg  differs;
+    reg  ready;
+    reg  accept;
+
+    // Sub module instances
+    motion_controller_servo__spindle__decoder__filter_b__level level(
+        .d(level__d),
+        .q(level__q),
+        .clock(level__clock)
+    );
+    motion_controller_servo__spindle__decoder__filter_b__changed_reg changed_reg(
+        .d(changed_reg__d),
+        .q(changed_reg__q),
+        .clock(changed_reg__clock)
+    );
+    motion_controller_servo__spindle__decoder__filter_b__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        level__clock = clock;
+        left__clock = clock;
+        changed_reg__clock = clock;
+        level__d = level__q;
+        left__d = left__q;
+        changed_reg__d = changed_reg__q;
+        filtered = level__q;
+        changed = changed_reg__q;
+        differs = raw != level__q;
+        ready = (left__q & not_one) == zero;
+        accept = ~prime & sample & differs & ready;
+        changed_reg__d = accept;
+        if (sample) begin
+            if (~differs | ready) begin
+                left__d = length;
+                level__d = raw;
+            end
+            else begin
+                left__d = left__q - one;
+            end
+        end
+        if (prime) begin
+            left__d = length;
+            level__d = raw;
+        end
+        if (reset) begin
+            left__d = zero;
+            level__d = 1'b0;
+            changed_reg__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_b
+
+
+module motion_controller_servo__spindle__decoder__filter_b__changed_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_b__changed_reg
+
+
+module motion_controller_servo__spindle__decoder__filter_b__left(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_b__left
+
+
+module motion_controller_servo__spindle__decoder__filter_b__level(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_b__level
+
+
+module motion_controller_servo__spindle__decoder__filter_index(clock,reset,raw,sample,length,prime,filtered,changed);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  raw;
+    input wire  sample;
+    input wire  [3:0] length;
+    input wire  prime;
+    output reg  filtered;
+    output reg  changed;
+
+    // Constant declarations
+    localparam  zero = 4'h0;
+    localparam  one = 4'h1;
+    localparam  not_one = 4'he;
+
+    // Stub signals
+    reg  level__d;
+    wire  level__q;
+    reg  level__clock;
+    reg  changed_reg__d;
+    wire  changed_reg__q;
+    reg  changed_reg__clock;
+    reg  [3:0] left__d;
+    wire  [3:0] left__q;
+    reg  left__clock;
+
+    // Local signals
+    reg  differs;
+    reg  ready;
+    reg  accept;
+
+    // Sub module instances
+    motion_controller_servo__spindle__decoder__filter_index__level level(
+        .d(level__d),
+        .q(level__q),
+        .clock(level__clock)
+    );
+    motion_controller_servo__spindle__decoder__filter_index__changed_reg changed_reg(
+        .d(changed_reg__d),
+        .q(changed_reg__q),
+        .clock(changed_reg__clock)
+    );
+    motion_controller_servo__spindle__decoder__filter_index__left left(
+        .d(left__d),
+        .q(left__q),
+        .clock(left__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        level__clock = clock;
+        left__clock = clock;
+        changed_reg__clock = clock;
+        level__d = level__q;
+        left__d = left__q;
+        changed_reg__d = changed_reg__q;
+        filtered = level__q;
+        changed = changed_reg__q;
+        differs = raw != level__q;
+        ready = (left__q & not_one) == zero;
+        accept = ~prime & sample & differs & ready;
+        changed_reg__d = accept;
+        if (sample) begin
+            if (~differs | ready) begin
+                left__d = length;
+                level__d = raw;
+            end
+            else begin
+                left__d = left__q - one;
+            end
+        end
+        if (prime) begin
+            left__d = length;
+            level__d = raw;
+        end
+        if (reset) begin
+            left__d = zero;
+            level__d = 1'b0;
+            changed_reg__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_index
+
+
+module motion_controller_servo__spindle__decoder__filter_index__changed_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_index__changed_reg
+
+
+module motion_controller_servo__spindle__decoder__filter_index__left(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_index__left
+
+
+module motion_controller_servo__spindle__decoder__filter_index__level(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__filter_index__level
+
+
+module motion_controller_servo__spindle__decoder__index_event(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__index_event
+
+
+module motion_controller_servo__spindle__decoder__index_meta(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__index_meta
+
+
+module motion_controller_servo__spindle__decoder__index_position(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__index_position
+
+
+module motion_controller_servo__spindle__decoder__index_seen_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__index_seen_reg
+
+
+module motion_controller_servo__spindle__decoder__index_sync(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__index_sync
+
+
+module motion_controller_servo__spindle__decoder__position(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__position
+
+
+module motion_controller_servo__spindle__decoder__sample_left(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__sample_left
+
+
+module motion_controller_servo__spindle__decoder__sample_wait(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__sample_wait
+
+
+module motion_controller_servo__spindle__decoder__samples(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__samples
+
+
+module motion_controller_servo__spindle__decoder__startup(d,q,clock);
+
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__startup
+
+
+module motion_controller_servo__spindle__decoder__up(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__decoder__up
+
+
+module motion_controller_servo__spindle__denominator(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__denominator
+
+
+module motion_controller_servo__spindle__flags_prev(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__flags_prev
+
+
+module motion_controller_servo__spindle__gearbox(clock,reset,count_up,count_down,index,arm,stop,halt,spindle_reverse,axis_reverse,numerator,denominator,ramp,length,step_up,step_down,phase,locked,done,invalid,overrun,position);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  count_up;
+    input wire  count_down;
+    input wire  index;
+    input wire  arm;
+    input wire  stop;
+    input wire  halt;
+    input wire  spindle_reverse;
+    input wire  axis_reverse;
+    input wire  [23:0] numerator;
+    input wire  [23:0] denominator;
+    input wire  [23:0] ramp;
+    input wire  [23:0] length;
+    output reg  step_up;
+    output reg  step_down;
+    output reg  [2:0] phase;
+    output reg  locked;
+    output reg  done;
+    output reg  invalid;
+    output reg  overrun;
+    output reg  [23:0] position;
+
+    // Constant declarations
+    localparam  zero_w = 24'h0;
+    localparam  zero_e = 40'h0;
+    localparam  zero_l = 24'h0;
+    localparam  one_e = 40'h1;
+    localparam  two_e = 40'h2;
+    localparam  one_l = 24'h1;
+    localparam  all_ones_l = 24'hffffff;
+    localparam  four_e = 40'h4;
+    localparam  sign_e = 40'h8000000000;
+    localparam  ramp_shift = 8'hf;
+    localparam  zero_seq = 15'b0;
+    localparam  first_seq = 15'b1;
+    localparam  idle_code = 3'b0;
+    localparam  armed_code = 3'b1;
+    localparam  ramp_in_code = 3'b10;
+    localparam  track_code = 3'b11;
+    localparam  stopping_code = 3'b100;
+
+    // Stub signals
+    reg  [2:0] state__d;
+    wire  [2:0] state__q;
+    reg  state__clock;
+    reg  command_stop__d;
+    wire  command_stop__q;
+    reg  command_stop__clock;
+    reg  [23:0] rate__d;
+    wire  [23:0] rate__q;
+    reg  rate__clock;
+    reg  [23:0] rate_old__d;
+    wire  [23:0] rate_old__q;
+    reg  rate_old__clock;
+    reg  [23:0] catch_up__d;
+    wire  [23:0] catch_up__q;
+    reg  catch_up__clock;
+    reg  [23:0] to_step__d;
+    wire  [23:0] to_step__q;
+    reg  to_step__clock;
+    reg  [39:0] slack__d;
+    wire  [39:0] slack__q;
+    reg  slack__clock;
+    reg  [23:0] to_brake__d;
+    wire  [23:0] to_brake__q;
+    reg  to_brake__clock;
+    reg  [23:0] steps__d;
+    wire  [23:0] steps__q;
+    reg  steps__clock;
+    reg  [39:0] to_length__d;
+    wire  [39:0] to_length__q;
+    reg  to_length__clock;
+    reg  [39:0] beyond_brake__d;
+    wire  [39:0] beyond_brake__q;
+    reg  beyond_brake__clock;
+    reg  locked_flag__d;
+    wire  locked_flag__q;
+    reg  locked_flag__clock;
+    reg  done_flag__d;
+    wire  done_flag__q;
+    reg  done_flag__clock;
+    reg  invalid_flag__d;
+    wire  invalid_flag__q;
+    reg  invalid_flag__clock;
+    reg  overrun_flag__d;
+    wire  overrun_flag__q;
+    reg  overrun_flag__clock;
+    reg  up_request__d;
+    wire  up_request__q;
+    reg  up_request__clock;
+    reg  down_request__d;
+    wire  down_request__q;
+    reg  down_request__clock;
+    reg  [23:0] num__d;
+    wire  [23:0] num__q;
+    reg  num__clock;
+    reg  [23:0] den__d;
+    wire  [23:0] den__q;
+    reg  den__clock;
+    reg  [23:0] ramp_taken__d;
+    wire  [23:0] ramp_taken__q;
+    reg  ramp_taken__clock;
+    reg  [23:0] headroom__d;
+    wire  [23:0] headroom__q;
+    reg  headroom__clock;
+    reg  [23:0] crawl__d;
+    wire  [23:0] crawl__q;
+    reg  crawl__clock;
+    reg  has_length__d;
+    wire  has_length__q;
+    reg  has_length__clock;
+    reg  spindle_back__d;
+    wire  spindle_back__q;
+    reg  spindle_back__clock;
+    reg  axis_back__d;
+    wire  axis_back__q;
+    reg  axis_back__clock;
+    reg  [14:0] seq__d;
+    wire  [14:0] seq__q;
+    reg  seq__clock;
+    reg  [39:0] work__d;
+    wire  [39:0] work__q;
+    reg  work__clock;
+    reg  second_half__d;
+    wire  second_half__q;
+    reg  second_half__clock;
+    reg  [39:0] operand_a__d;
+    wire  [39:0] operand_a__q;
+    reg  operand_a__clock;
+    reg  [39:0] operand_b__d;
+    wire  [39:0] operand_b__q;
+    reg  operand_b__clock;
+    reg  operand_sub__d;
+    wire  operand_sub__q;
+    reg  operand_sub__clock;
+    reg  fwd__d;
+    wire  fwd__q;
+    reg  fwd__clock;
+    reg  eff_ramp_in__d;
+    wire  eff_ramp_in__q;
+    reg  eff_ramp_in__clock;
+    reg  eff_track__d;
+    wire  eff_track__q;
+    reg  eff_track__clock;
+    reg  eff_stopping__d;
+    wire  eff_stopping__q;
+    reg  eff_stopping__clock;
+    reg  pending__d;
+    wire  pending__q;
+    reg  pending__clock;
+    reg  pending_fwd__d;
+    wire  pending_fwd__q;
+    reg  pending_fwd__clock;
+    reg  stop_request__d;
+    wire  stop_request__q;
+    reg  stop_request__clock;
+    reg  gap_zero__d;
+    wire  gap_zero__q;
+    reg  gap_zero__clock;
+    reg  full__d;
+    wire  full__q;
+    reg  full__clock;
+    reg  room__d;
+    wire  room__q;
+    reg  room__clock;
+    reg  covers__d;
+    wire  covers__q;
+    reg  covers__clock;
+    reg  hold_q__d;
+    wire  hold_q__q;
+    reg  hold_q__clock;
+    reg  lock_now__d;
+    wire  lock_now__q;
+    reg  lock_now__clock;
+    reg  ge__d;
+    wire  ge__q;
+    reg  ge__clock;
+    reg  slows__d;
+    wire  slows__q;
+    reg  slows__clock;
+    reg  le__d;
+    wire  le__q;
+    reg  le__clock;
+    reg  step_back__d;
+    wire  step_back__q;
+    reg  step_back__clock;
+    reg  step_fwd__d;
+    wire  step_fwd__q;
+    reg  step_fwd__clock;
+    reg  brake_carry__d;
+    wire  brake_carry__q;
+    reg  brake_carry__clock;
+    reg  brake_borrow__d;
+    wire  brake_borrow__q;
+    reg  brake_borrow__clock;
+    reg  reached__d;
+    wire  reached__q;
+    reg  reached__clock;
+
+    // Local signals
+    reg  forward_in;
+    reg  counted;
+    reg  engaged;
+    reg  ratio_valid;
+    reg  [23:0] arm_crawl;
+    reg  slack_negative;
+    reg  length_near;
+    reg  at_length;
+    reg  trigger;
+    reg  stop_now;
+    reg  stopping_now;
+    reg  accelerate;
+    reg  decelerate;
+    reg  brake_up;
+    reg  brake_down;
+    reg  run_over;
+    reg  ramp_zero;
+    reg  catch_up_zero;
+    reg  [23:0] a_num;
+    reg  [23:0] a_rate;
+    reg  [23:0] a_catch;
+    reg  [23:0] a_step;
+    reg  [23:0] a_ramp;
+    reg  [23:0] a_head;
+    reg  [23:0] a_den;
+    reg  [23:0] a_crawl;
+    reg  [23:0] a_rold;
+    reg  [23:0] a_brake;
+    reg  [39:0] a_work_e;
+    reg  [39:0] a_slack_e;
+    reg  [39:0] a_len_e;
+    reg  [39:0] a_beyond_e;
+    reg  [23:0] a_narrow;
+    reg  [23:0] b_rate;
+    reg  [23:0] b_ramp;
+    reg  [23:0] b_crawl;
+    reg  [23:0] b_den;
+    reg  [23:0] b_catch;
+    reg  [23:0] b_brake;
+    reg  [23:0] b_rold;
+    reg  [23:0] b_step;
+    reg  [39:0] b_work_e;
+    reg  [39:0] b_one_e;
+    reg  [39:0] b_two_e;
+    reg  [23:0] b_narrow;
+    reg  overrunning;
+    reg  arm_take;
+    reg  arm_load;
+    reg  run_end;
+    reg  stepped;
+    reg  idle_now;
+    reg  [23:0] narrow_out;
+    reg  [23:0] step_delta;
+    reg  [14:0] write_seq;
+    reg  [39:0] alu_a;
+    reg  [39:0] alu_b;
+    reg  alu_sub;
+    reg  [39:0] alu_out;
+    reg  alu_negative;
+    reg  alu_zero;
+    reg  take;
+    reg  commit;
+    reg  abort;
+
+    // Sub module instances
+    motion_controller_servo__spindle__gearbox__state state(
+        .d(state__d),
+        .q(state__q),
+        .clock(state__clock)
+    );
+    motion_controller_servo__spindle__gearbox__command_stop command_stop(
+        .d(command_stop__d),
+        .q(command_stop__q),
+        .clock(command_stop__clock)
+    );
+    motion_controller_servo__spindle__gearbox__rate rate(
+        .d(rate__d),
+        .q(rate__q),
+        .clock(rate__clock)
+    );
+    motion_controller_servo__spindle__gearbox__rate_old rate_old(
+        .d(rate_old__d),
+        .q(rate_old__q),
+        .clock(rate_old__clock)
+    );
+    motion_controller_servo__spindle__gearbox__catch_up catch_up(
+        .d(catch_up__d),
+        .q(catch_up__q),
+        .clock(catch_up__clock)
+    );
+    motion_controller_servo__spindle__gearbox__to_step to_step(
+        .d(to_step__d),
+        .q(to_step__q),
+        .clock(to_step__clock)
+    );
+    motion_controller_servo__spindle__gearbox__slack slack(
+        .d(slack__d),
+        .q(slack__q),
+        .clock(slack__clock)
+    );
+    motion_controller_servo__spindle__gearbox__to_brake to_brake(
+        .d(to_brake__d),
+        .q(to_brake__q),
+        .clock(to_brake__clock)
+    );
+    motion_controller_servo__spindle__gearbox__steps steps(
+        .d(steps__d),
+        .q(steps__q),
+        .clock(steps__clock)
+    );
+    motion_controller_servo__spindle__gearbox__to_length to_length(
+        .d(to_length__d),
+        .q(to_length__q),
+        .clock(to_length__clock)
+    );
+    motion_controller_servo__spindle__gearbox__beyond_brake beyond_brake(
+        .d(beyond_brake__d),
+        .q(beyond_brake__q),
+        .clock(beyond_brake__clock)
+    );
+    motion_controller_servo__spindle__gearbox__locked_flag locked_flag(
+        .d(locked_flag__d),
+        .q(locked_flag__q),
+        .clock(locked_flag__clock)
+    );
+    motion_controller_servo__spindle__gearbox__done_flag done_flag(
+        .d(done_flag__d),
+        .q(done_flag__q),
+        .clock(done_flag__clock)
+    );
+    motion_controller_servo__spindle__gearbox__invalid_flag invalid_flag(
+        .d(invalid_flag__d),
+        .q(invalid_flag__q),
+        .clock(invalid_flag__clock)
+    );
+    motion_controller_servo__spindle__gearbox__overrun_flag overrun_flag(
+        .d(overrun_flag__d),
+        .q(overrun_flag__q),
+        .clock(overrun_flag__clock)
+    );
+    motion_controller_servo__spindle__gearbox__up_request up_request(
+        .d(up_request__d),
+        .q(up_request__q),
+        .clock(up_request__clock)
+    );
+    motion_controller_servo__spindle__gearbox__down_request down_request(
+        .d(down_request__d),
+        .q(down_request__q),
+        .clock(down_request__clock)
+    );
+    motion_controller_servo__spindle__gearbox__num num(
+        .d(num__d),
+        .q(num__q),
+        .clock(num__clock)
+    );
+    motion_controller_servo__spindle__gearbox__den den(
+        .d(den__d),
+        .q(den__q),
+        .clock(den__clock)
+    );
+    motion_controller_servo__spindle__gearbox__ramp_taken ramp_taken(
+        .d(ramp_taken__d),
+        .q(ramp_taken__q),
+        .clock(ramp_taken__clock)
+    );
+    motion_controller_servo__spindle__gearbox__headroom headroom(
+        .d(headroom__d),
+        .q(headroom__q),
+        .clock(headroom__clock)
+    );
+    motion_controller_servo__spindle__gearbox__crawl crawl(
+        .d(crawl__d),
+        .q(crawl__q),
+        .clock(crawl__clock)
+    );
+    motion_controller_servo__spindle__gearbox__has_length has_length(
+        .d(has_length__d),
+        .q(has_length__q),
+        .clock(has_length__clock)
+    );
+    motion_controller_servo__spindle__gearbox__spindle_back spindle_back(
+        .d(spindle_back__d),
+        .q(spindle_back__q),
+        .clock(spindle_back__clock)
+    );
+    motion_controller_servo__spindle__gearbox__axis_back axis_back(
+        .d(axis_back__d),
+        .q(axis_back__q),
+        .clock(axis_back__clock)
+    );
+    motion_controller_servo__spindle__gearbox__seq seq(
+        .d(seq__d),
+        .q(seq__q),
+        .clock(seq__clock)
+    );
+    motion_controller_servo__spindle__gearbox__work work(
+        .d(work__d),
+        .q(work__q),
+        .clock(work__clock)
+    );
+    motion_controller_servo__spindle__gearbox__second_half second_half(
+        .d(second_half__d),
+        .q(second_half__q),
+        .clock(second_half__clock)
+    );
+    motion_controller_servo__spindle__gearbox__operand_a operand_a(
+        .d(operand_a__d),
+        .q(operand_a__q),
+        .clock(operand_a__clock)
+    );
+    motion_controller_servo__spindle__gearbox__operand_b operand_b(
+        .d(operand_b__d),
+        .q(operand_b__q),
+        .clock(operand_b__clock)
+    );
+    motion_controller_servo__spindle__gearbox__operand_sub operand_sub(
+        .d(operand_sub__d),
+        .q(operand_sub__q),
+        .clock(operand_sub__clock)
+    );
+    motion_controller_servo__spindle__gearbox__fwd fwd(
+        .d(fwd__d),
+        .q(fwd__q),
+        .clock(fwd__clock)
+    );
+    motion_controller_servo__spindle__gearbox__eff_ramp_in eff_ramp_in(
+        .d(eff_ramp_in__d),
+        .q(eff_ramp_in__q),
+        .clock(eff_ramp_in__clock)
+    );
+    motion_controller_servo__spindle__gearbox__eff_track eff_track(
+        .d(eff_track__d),
+        .q(eff_track__q),
+        .clock(eff_track__clock)
+    );
+    motion_controller_servo__spindle__gearbox__eff_stopping eff_stopping(
+        .d(eff_stopping__d),
+        .q(eff_stopping__q),
+        .clock(eff_stopping__clock)
+    );
+    motion_controller_servo__spindle__gearbox__pending pending(
+        .d(pending__d),
+        .q(pending__q),
+        .clock(pending__clock)
+    );
+    motion_controller_servo__spindle__gearbox__pending_fwd pending_fwd(
+        .d(pending_fwd__d),
+        .q(pending_fwd__q),
+        .clock(pending_fwd__clock)
+    );
+    motion_controller_servo__spindle__gearbox__stop_request stop_request(
+        .d(stop_request__d),
+        .q(stop_request__q),
+        .clock(stop_request__clock)
+    );
+    motion_controller_servo__spindle__gearbox__gap_zero gap_zero(
+        .d(gap_zero__d),
+        .q(gap_zero__q),
+        .clock(gap_zero__clock)
+    );
+    motion_controller_servo__spindle__gearbox__full full(
+        .d(full__d),
+        .q(full__q),
+        .clock(full__clock)
+    );
+    motion_controller_servo__spindle__gearbox__room room(
+        .d(room__d),
+        .q(room__q),
+        .clock(room__clock)
+    );
+    motion_controller_servo__spindle__gearbox__covers covers(
+        .d(covers__d),
+        .q(covers__q),
+        .clock(covers__clock)
+    );
+    motion_controller_servo__spindle__gearbox__hold_q hold_q(
+        .d(hold_q__d),
+        .q(hold_q__q),
+        .clock(hold_q__clock)
+    );
+    motion_controller_servo__spindle__gearbox__lock_now lock_now(
+        .d(lock_now__d),
+        .q(lock_now__q),
+        .clock(lock_now__clock)
+    );
+    motion_controller_servo__spindle__gearbox__ge ge(
+        .d(ge__d),
+        .q(ge__q),
+        .clock(ge__clock)
+    );
+    motion_controller_servo__spindle__gearbox__slows slows(
+        .d(slows__d),
+        .q(slows__q),
+        .clock(slows__clock)
+    );
+    motion_controller_servo__spindle__gearbox__le le(
+        .d(le__d),
+        .q(le__q),
+        .clock(le__clock)
+    );
+    motion_controller_servo__spindle__gearbox__step_back step_back(
+        .d(step_back__d),
+        .q(step_back__q),
+        .clock(step_back__clock)
+    );
+    motion_controller_servo__spindle__gearbox__step_fwd step_fwd(
+        .d(step_fwd__d),
+        .q(step_fwd__q),
+        .clock(step_fwd__clock)
+    );
+    motion_controller_servo__spindle__gearbox__brake_carry brake_carry(
+        .d(brake_carry__d),
+        .q(brake_carry__q),
+        .clock(brake_carry__clock)
+    );
+    motion_controller_servo__spindle__gearbox__brake_borrow brake_borrow(
+        .d(brake_borrow__d),
+        .q(brake_borrow__q),
+        .clock(brake_borrow__clock)
+    );
+    motion_controller_servo__spindle__gearbox__reached reached(
+        .d(reached__d),
+        .q(reached__q),
+        .clock(reached__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        state__clock = clock;
+        command_stop__clock = clock;
+        rate__clock = clock;
+        rate_old__clock = clock;
+        catch_up__clock = clock;
+        to_step__clock = clock;
+        slack__clock = clock;
+        to_brake__clock = clock;
+        steps__clock = clock;
+        to_length__clock = clock;
+        beyond_brake__clock = clock;
+        locked_flag__clock = clock;
+        done_flag__clock = clock;
+        invalid_flag__clock = clock;
+        overrun_flag__clock = clock;
+        up_request__clock = clock;
+        down_request__clock = clock;
+        num__clock = clock;
+        den__clock = clock;
+        ramp_taken__clock = clock;
+        headroom__clock = clock;
+        crawl__clock = clock;
+        has_length__clock = clock;
+        spindle_back__clock = clock;
+        axis_back__clock = clock;
+        seq__clock = clock;
+        work__clock = clock;
+        second_half__clock = clock;
+        operand_a__clock = clock;
+        operand_b__clock = clock;
+        operand_sub__clock = clock;
+        fwd__clock = clock;
+        eff_ramp_in__clock = clock;
+        eff_track__clock = clock;
+        eff_stopping__clock = clock;
+        pending__clock = clock;
+        pending_fwd__clock = clock;
+        stop_request__clock = clock;
+        gap_zero__clock = clock;
+        full__clock = clock;
+        room__clock = clock;
+        covers__clock = clock;
+        hold_q__clock = clock;
+        lock_now__clock = clock;
+        ge__clock = clock;
+        slows__clock = clock;
+        le__clock = clock;
+        step_back__clock = clock;
+        step_fwd__clock = clock;
+        brake_carry__clock = clock;
+        brake_borrow__clock = clock;
+        reached__clock = clock;
+        state__d = state__q;
+        command_stop__d = command_stop__q;
+        rate__d = rate__q;
+        rate_old__d = rate_old__q;
+        catch_up__d = catch_up__q;
+        to_step__d = to_step__q;
+        slack__d = slack__q;
+        to_brake__d = to_brake__q;
+        steps__d = steps__q;
+        to_length__d = to_length__q;
+        beyond_brake__d = beyond_brake__q;
+        locked_flag__d = locked_flag__q;
+        done_flag__d = done_flag__q;
+        invalid_flag__d = invalid_flag__q;
+        overrun_flag__d = overrun_flag__q;
+        up_request__d = up_request__q;
+        down_request__d = down_request__q;
+        num__d = num__q;
+        den__d = den__q;
+        ramp_taken__d = ramp_taken__q;
+        headroom__d = headroom__q;
+        crawl__d = crawl__q;
+        has_length__d = has_length__q;
+        spindle_back__d = spindle_back__q;
+        axis_back__d = axis_back__q;
+        seq__d = seq__q;
+        work__d = work__q;
+        second_half__d = second_half__q;
+        operand_a__d = operand_a__q;
+        operand_b__d = operand_b__q;
+        operand_sub__d = operand_sub__q;
+        fwd__d = fwd__q;
+        eff_ramp_in__d = eff_ramp_in__q;
+        eff_track__d = eff_track__q;
+        eff_stopping__d = eff_stopping__q;
+        pending__d = pending__q;
+        pending_fwd__d = pending_fwd__q;
+        stop_request__d = stop_request__q;
+        gap_zero__d = gap_zero__q;
+        full__d = full__q;
+        room__d = room__q;
+        covers__d = covers__q;
+        hold_q__d = hold_q__q;
+        lock_now__d = lock_now__q;
+        ge__d = ge__q;
+        slows__d = slows__q;
+        le__d = le__q;
+        step_back__d = step_back__q;
+        step_fwd__d = step_fwd__q;
+        brake_carry__d = brake_carry__q;
+        brake_borrow__d = brake_borrow__q;
+        reached__d = reached__q;
+        step_up = up_request__q;
+        step_down = down_request__q;
+        phase = state__q;
+        locked = locked_flag__q;
+        done = done_flag__q;
+        invalid = invalid_flag__q;
+        overrun = overrun_flag__q;
+        position = steps__q;
+        up_request__d = 1'b0;
+        down_request__d = 1'b0;
+        second_half__d = ~second_half__q;
+        seq__d = seq__q;
+        if (second_half__q) begin
+            seq__d = seq__q << 32'h1;
+        end
+        counted = count_up ^ count_down;
+        forward_in = count_up ^ spindle_back__q;
+        engaged = (state__q == ramp_in_code) | (state__q == track_code) | (state__q == stopping_code);
+        ratio_valid = (denominator != zero_w) & (numerator <= denominator) & ((ramp == zero_w) | ((((ramp) & 40'hffffffffff) << ramp_shift) >= ((numerator) & 40'hffffffffff)));
+        arm_crawl = ramp;
+        if ((ramp == zero_w) | (ramp >= numerator)) begin
+            arm_crawl = numerator;
+        end
+        slack_negative = (slack__q & sign_e) != zero_e;
+        length_near = ((beyond_brake__q & sign_e) != zero_e) | (beyond_brake__q < four_e);
+        at_length = ((to_length__q & sign_e) != zero_e) | (to_length__q == zero_e);
+        trigger = has_length__q & ~command_stop__q & ((state__q == ramp_in_code) | (state__q == track_code)) & length_near;
+        stop_now = stop | stop_request__q;
+        stopping_now = (state__q == stopping_code) | trigger | stop_now;
+        ramp_zero = ramp_taken__q == zero_w;
+        catch_up_zero = catch_up__q == zero_w;
+        accelerate = covers__q & room__q;
+        decelerate = ~accelerate & ~hold_q__q;
+        brake_up = fwd__q & ((eff_ramp_in__q & ~gap_zero__q) | (eff_track__q & accelerate & ~ramp_zero));
+        brake_down = fwd__q & eff_track__q & decelerate;
+        run_over = le__q & (command_stop__q | (has_length__q & at_length));
+        a_num = zero_w;
+        if ((seq__q[32'h0] & fwd__q & eff_ramp_in__q) | (seq__q[32'h3] & ~fwd__q) | (seq__q[32'h5] & fwd__q & eff_ramp_in__q & full__q)) begin
+            a_num = num__q;
+        end
+        a_rate = zero_w;
+        if ((seq__q[32'h0] & fwd__q & eff_stopping__q) | (seq__q[32'h5] & fwd__q & ((eff_ramp_in__q & ~full__q) | eff_track__q)) | seq__q[32'ha]) begin
+            a_rate = rate__q;
+        end
+        a_catch = zero_w;
+        if ((seq__q[32'h0] & fwd__q & eff_track__q) | (seq__q[32'h6] & decelerate)) begin
+            a_catch = catch_up__q;
+        end
+        a_step = zero_w;
+        if ((seq__q[32'h0] & ~fwd__q) | seq__q[32'hb] | seq__q[32'hc]) begin
+            a_step = to_step__q;
+        end
+        a_ramp = zero_w;
+        if (seq__q[32'h1] & fwd__q & eff_ramp_in__q) begin
+            a_ramp = ramp_taken__q;
+        end
+        a_head = zero_w;
+        if (seq__q[32'h1] & fwd__q & eff_track__q) begin
+            a_head = headroom__q;
+        end
+        a_den = zero_w;
+        if ((seq__q[32'h1] & ~fwd__q) | (seq__q[32'h8] & brake_down)) begin
+            a_den = den__q;
+        end
+        a_crawl = zero_w;
+        if ((seq__q[32'h2] & fwd__q & eff_stopping__q) | (seq__q[32'h5] & fwd__q & eff_stopping__q & ~slows__q)) begin
+            a_crawl = crawl__q;
+        end
+        a_rold = zero_w;
+        if (seq__q[32'h7] & ~brake_down) begin
+            a_rold = rate_old__q;
+        end
+        a_brake = zero_w;
+        if ((seq__q[32'h7] & brake_down) | ((seq__q[32'h8] | seq__q[32'h9]) & ~brake_down)) begin
+            a_brake = to_brake__q;
+        end
+        a_work_e = zero_e;
+        if ((seq__q[32'h1] & fwd__q & eff_stopping__q) | (seq__q[32'h2] & ((fwd__q & eff_ramp_in__q) | ~fwd__q)) | (seq__q[32'h5] & fwd__q & eff_stopping__q & slows__q) | (seq__q[32'h6] & accelerate) | (seq__q[32'h9] & brake_down)) begin
+            a_work_e = work__q;
+        end
+        a_slack_e = zero_e;
+        if ((seq__q[32'h2] & fwd__q & eff_track__q) | (seq__q[32'h3] & fwd__q) | seq__q[32'h4]) begin
+            a_slack_e = slack__q;
+        end
+        a_len_e = zero_e;
+        if (seq__q[32'hd]) begin
+            a_len_e = to_length__q;
+        end
+        a_beyond_e = zero_e;
+        if (seq__q[32'he]) begin
+            a_beyond_e = beyond_brake__q;
+        end
+        a_narrow = a_num | a_rate | a_catch | a_step | a_ramp | a_head | a_den | a_crawl | a_rold | a_brake;
+        alu_a = ((a_narrow) & 40'hffffffffff) | a_work_e | a_slack_e | a_len_e | a_beyond_e;
+        b_rate = zero_w;
+        if ((seq__q[32'h0] & ((fwd__q & eff_ramp_in__q) | ~fwd__q)) | (seq__q[32'h2] & fwd__q & eff_stopping__q) | (seq__q[32'h3] & ~fwd__q) | (seq__q[32'h7] & brake_down) | seq__q[32'hb]) begin
+            b_rate = rate__q;
+        end
+        b_ramp = zero_w;
+        if ((seq__q[32'h0] & fwd__q & (eff_track__q | eff_stopping__q)) | (seq__q[32'h2] & fwd__q & eff_ramp_in__q) | (seq__q[32'h3] & fwd__q & eff_track__q & ~accelerate & ~hold_q__q) | (seq__q[32'h5] & fwd__q & ((eff_ramp_in__q & ~full__q) | (eff_track__q & (accelerate | decelerate)))) | (seq__q[32'h6] & decelerate)) begin
+            b_ramp = ramp_taken__q;
+        end
+        b_crawl = zero_w;
+        if (seq__q[32'h1] & fwd__q & eff_stopping__q) begin
+            b_crawl = crawl__q;
+        end
+        b_den = zero_w;
+        if ((seq__q[32'h2] & ~fwd__q & step_back__q) | (seq__q[32'h9] & ((brake_up & brake_carry__q) | (brake_down & brake_borrow__q))) | seq__q[32'hc]) begin
+            b_den = den__q;
+        end
+        b_catch = zero_w;
+        if ((seq__q[32'h3] & fwd__q & eff_track__q & ~accelerate & hold_q__q) | (seq__q[32'h4] & ~fwd__q & eff_track__q)) begin
+            b_catch = catch_up__q;
+        end
+        b_brake = zero_w;
+        if (seq__q[32'h7] & ~brake_down) begin
+            b_brake = to_brake__q;
+        end
+        b_rold = zero_w;
+        if (seq__q[32'h8] & ~brake_down) begin
+            b_rold = rate_old__q;
+        end
+        b_step = zero_w;
+        if (seq__q[32'ha]) begin
+            b_step = to_step__q;
+        end
+        b_work_e = zero_e;
+        if ((seq__q[32'h1] & ~(fwd__q & eff_stopping__q)) | (seq__q[32'h2] & fwd__q & eff_track__q) | (seq__q[32'h3] & fwd__q & (eff_ramp_in__q | accelerate)) | (seq__q[32'h4] & ~(~fwd__q & eff_track__q)) | (seq__q[32'h8] & brake_down)) begin
+            b_work_e = work__q;
+        end
+        b_one_e = zero_e;
+        if (seq__q[32'hd] | (seq__q[32'he] & ((fwd__q & ((step_fwd__q ^ (brake_up & brake_carry__q)) & ~(brake_down & brake_borrow__q))) | (fwd__q & brake_down & brake_borrow__q & ~step_fwd__q) | (~fwd__q & step_back__q)))) begin
+            b_one_e = one_e;
+        end
+        b_two_e = zero_e;
+        if (seq__q[32'he] & fwd__q & step_fwd__q & brake_up & brake_carry__q) begin
+            b_two_e = two_e;
+        end
+        b_narrow = b_rate | b_ramp | b_crawl | b_den | b_catch | b_brake | b_rold | b_step;
+        alu_b = ((b_narrow) & 40'hffffffffff) | b_work_e | b_one_e | b_two_e;
+        alu_sub = (seq__q[32'h0] & fwd__q & (eff_ramp_in__q | eff_stopping__q)) | seq__q[32'h1] | seq__q[32'h2] | (seq__q[32'h3] & ((fwd__q & eff_track__q & (accelerate | hold_q__q)) | ~fwd__q)) | (seq__q[32'h4] & ~(~fwd__q & eff_track__q)) | (seq__q[32'h5] & eff_track__q & decelerate) | (seq__q[32'h6] & decelerate) | (seq__q[32'h7] & ~brake_down) | seq__q[32'h8] | (seq__q[32'h9] & brake_down) | seq__q[32'ha] | seq__q[32'hb] | (seq__q[32'hd] & fwd__q) | (seq__q[32'he] & fwd__q & ~(brake_down & brake_borrow__q & ~step_fwd__q));
+        operand_a__d = alu_a;
+        operand_b__d = alu_b;
+        operand_sub__d = alu_sub;
+        if (operand_sub__q) begin
+            alu_out = operand_a__q - operand_b__q;
+        end
+        else begin
+            alu_out = operand_a__q + operand_b__q;
+        end
+        write_seq = zero_seq;
+        if (second_half__q) begin
+            write_seq = seq__q;
+        end
+        alu_negative = (alu_out & sign_e) != zero_e;
+        alu_zero = alu_out == zero_e;
+        take = (seq__q == zero_seq) & engaged & (pending__q | counted);
+        overrunning = (seq__q != zero_seq) & counted & pending__q & ~halt;
+        abort = halt | overrunning;
+        commit = write_seq[32'he] & ~abort;
+        arm_take = (state__q == idle_code) & arm & ~stop_now & ~halt;
+        arm_load = arm_take & ratio_valid;
+        run_end = commit & (reached__q | (fwd__q & eff_stopping__q & run_over));
+        stepped = (fwd__q & step_fwd__q) | (~fwd__q & step_back__q);
+        idle_now = arm_take | run_end | (abort & (state__q != idle_code));
+        narrow_out = alu_out[(32'h0)+:(24)];
+        step_delta = one_l;
+        if (~fwd__q) begin
+            step_delta = all_ones_l;
+        end
+        if (write_seq[32'h0] | (write_seq[32'h2] & fwd__q & eff_ramp_in__q) | (write_seq[32'h3] & ~fwd__q) | (write_seq[32'h7] & brake_down)) begin
+            work__d = alu_out;
+        end
+        if (write_seq[32'h0]) begin
+            gap_zero__d = alu_zero;
+            ge__d = ~alu_negative;
+        end
+        if (write_seq[32'h1]) begin
+            full__d = ~alu_negative | ramp_zero;
+            room__d = ~alu_negative;
+            slows__d = ge__q & ~alu_negative;
+            step_back__d = alu_negative;
+        end
+        if (write_seq[32'h2]) begin
+            covers__d = ~slack_negative & ~alu_negative;
+            hold_q__d = catch_up_zero | ~slack_negative;
+            lock_now__d = catch_up_zero & ~slack_negative & (ramp_zero | alu_negative);
+            le__d = ~alu_negative;
+        end
+        if ((write_seq[32'h2] & ~fwd__q) | (write_seq[32'hb] & fwd__q) | (write_seq[32'hc] & step_fwd__q)) begin
+            to_step__d = narrow_out;
+        end
+        if ((write_seq[32'h3] & fwd__q & ((eff_ramp_in__q & ~full__q) | eff_track__q)) | (write_seq[32'h4] & ((fwd__q & eff_track__q & accelerate) | (~fwd__q & ~eff_stopping__q)))) begin
+            slack__d = alu_out;
+        end
+        if (write_seq[32'h5] & fwd__q) begin
+            rate_old__d = rate__q;
+            rate__d = narrow_out;
+        end
+        if (write_seq[32'h6] & fwd__q & eff_track__q & (accelerate | decelerate)) begin
+            catch_up__d = narrow_out;
+        end
+        if (write_seq[32'h7]) begin
+            brake_carry__d = ~alu_negative;
+        end
+        if (write_seq[32'h8]) begin
+            brake_borrow__d = alu_negative;
+        end
+        if ((write_seq[32'h8] & brake_up) | (write_seq[32'h9] & ((brake_up & brake_carry__q) | brake_down))) begin
+            to_brake__d = narrow_out;
+        end
+        if (write_seq[32'ha]) begin
+            step_fwd__d = fwd__q & ~alu_negative;
+        end
+        if (write_seq[32'hd]) begin
+            reached__d = stepped & has_length__q & alu_zero;
+            if (stepped) begin
+                to_length__d = alu_out;
+            end
+        end
+        if (commit) begin
+            beyond_brake__d = alu_out;
+            if (stepped) begin
+                steps__d = steps__q + step_delta;
+                up_request__d = fwd__q ^ axis_back__q;
+                down_request__d = ~(fwd__q ^ axis_back__q);
+            end
+        end
+        if (seq__q != zero_seq) begin
+            if (counted) begin
+                pending__d = 1'b1;
+                pending_fwd__d = forward_in;
+            end
+            if (stop) begin
+                stop_request__d = 1'b1;
+            end
+        end
+        else begin
+            stop_request__d = 1'b0;
+            pending__d = 1'b0;
+            if (take) begin
+                seq__d = first_seq;
+                second_half__d = 1'b0;
+                fwd__d = forward_in;
+                if (pending__q) begin
+                    fwd__d = pending_fwd__q;
+                    pending__d = counted;
+                    pending_fwd__d = forward_in;
+                end
+                eff_stopping__d = stopping_now;
+                eff_ramp_in__d = ~stopping_now & (state__q == ramp_in_code);
+                eff_track__d = ~stopping_now & (state__q == track_code);
+            end
+            if (engaged) begin
+                command_stop__d = command_stop__q | stop_now;
+            end
+        end
+        if (overrunning) begin
+            overrun_flag__d = 1'b1;
+        end
+        if ((seq__q == zero_seq) & engaged & ~take & stopping_now) begin
+            state__d = stopping_code;
+            locked_flag__d = 1'b0;
+        end
+        if (state__q == armed_code) begin
+            if (index) begin
+                state__d = ramp_in_code;
+            end
+            if (stop_now) begin
+                state__d = idle_code;
+            end
+        end
+        if ((state__q == idle_code) & arm & ~stop_now & ~halt & ~ratio_valid) begin
+            invalid_flag__d = 1'b1;
+        end
+        if (commit) begin
+            if (eff_stopping__q) begin
+                state__d = stopping_code;
+                locked_flag__d = 1'b0;
+            end
+            if (fwd__q & eff_ramp_in__q & (rate__q == num__q)) begin
+                state__d = track_code;
+            end
+            if (fwd__q & eff_track__q & lock_now__q) begin
+                locked_flag__d = 1'b1;
+            end
+            if (run_end & (reached__q | ~command_stop__q)) begin
+                done_flag__d = 1'b1;
+            end
+        end
+        if (arm_take) begin
+            to_step__d = denominator;
+            to_brake__d = denominator;
+            to_length__d = ((length) & 40'hffffffffff);
+            beyond_brake__d = ((length) & 40'hffffffffff);
+            num__d = numerator;
+            den__d = denominator;
+            ramp_taken__d = ramp;
+            headroom__d = denominator - numerator;
+            crawl__d = arm_crawl;
+            has_length__d = length != zero_l;
+            spindle_back__d = spindle_reverse;
+            axis_back__d = axis_reverse;
+        end
+        if (arm_load) begin
+            state__d = armed_code;
+        end
+        if (idle_now & ~arm_load) begin
+            state__d = idle_code;
+        end
+        if (abort) begin
+            seq__d = zero_seq;
+            pending__d = 1'b0;
+            stop_request__d = 1'b0;
+            up_request__d = 1'b0;
+            down_request__d = 1'b0;
+        end
+        if (reset | arm_take) begin
+            command_stop__d = 1'b0;
+            catch_up__d = zero_w;
+            slack__d = zero_e;
+        end
+        if (reset | arm_load) begin
+            steps__d = zero_l;
+            done_flag__d = 1'b0;
+            invalid_flag__d = 1'b0;
+            overrun_flag__d = 1'b0;
+        end
+        if (reset | idle_now | (write_seq[32'h5] & fwd__q & eff_stopping__q & run_over)) begin
+            rate__d = zero_w;
+        end
+        if (reset | idle_now) begin
+            locked_flag__d = 1'b0;
+        end
+        if (reset) begin
+            state__d = idle_code;
+            rate_old__d = zero_w;
+            to_step__d = zero_w;
+            to_brake__d = zero_w;
+            to_length__d = zero_e;
+            beyond_brake__d = zero_e;
+            up_request__d = 1'b0;
+            down_request__d = 1'b0;
+            num__d = zero_w;
+            den__d = zero_w;
+            ramp_taken__d = zero_w;
+            headroom__d = zero_w;
+            crawl__d = zero_w;
+            has_length__d = 1'b0;
+            spindle_back__d = 1'b0;
+            axis_back__d = 1'b0;
+            seq__d = zero_seq;
+            pending__d = 1'b0;
+            stop_request__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox
+
+
+module motion_controller_servo__spindle__gearbox__axis_back(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__axis_back
+
+
+module motion_controller_servo__spindle__gearbox__beyond_brake(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__beyond_brake
+
+
+module motion_controller_servo__spindle__gearbox__brake_borrow(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__brake_borrow
+
+
+module motion_controller_servo__spindle__gearbox__brake_carry(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__brake_carry
+
+
+module motion_controller_servo__spindle__gearbox__catch_up(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__catch_up
+
+
+module motion_controller_servo__spindle__gearbox__command_stop(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__command_stop
+
+
+module motion_controller_servo__spindle__gearbox__covers(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__covers
+
+
+module motion_controller_servo__spindle__gearbox__crawl(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__crawl
+
+
+module motion_controller_servo__spindle__gearbox__den(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__den
+
+
+module motion_controller_servo__spindle__gearbox__done_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__done_flag
+
+
+module motion_controller_servo__spindle__gearbox__down_request(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__down_request
+
+
+module motion_controller_servo__spindle__gearbox__eff_ramp_in(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__eff_ramp_in
+
+
+module motion_controller_servo__spindle__gearbox__eff_stopping(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__eff_stopping
+
+
+module motion_controller_servo__spindle__gearbox__eff_track(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__eff_track
+
+
+module motion_controller_servo__spindle__gearbox__full(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__full
+
+
+module motion_controller_servo__spindle__gearbox__fwd(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__fwd
+
+
+module motion_controller_servo__spindle__gearbox__gap_zero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__gap_zero
+
+
+module motion_controller_servo__spindle__gearbox__ge(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__ge
+
+
+module motion_controller_servo__spindle__gearbox__has_length(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__has_length
+
+
+module motion_controller_servo__spindle__gearbox__headroom(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__headroom
+
+
+module motion_controller_servo__spindle__gearbox__hold_q(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__hold_q
+
+
+module motion_controller_servo__spindle__gearbox__invalid_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__invalid_flag
+
+
+module motion_controller_servo__spindle__gearbox__le(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__le
+
+
+module motion_controller_servo__spindle__gearbox__lock_now(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__lock_now
+
+
+module motion_controller_servo__spindle__gearbox__locked_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__locked_flag
+
+
+module motion_controller_servo__spindle__gearbox__num(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__num
+
+
+module motion_controller_servo__spindle__gearbox__operand_a(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__operand_a
+
+
+module motion_controller_servo__spindle__gearbox__operand_b(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__operand_b
+
+
+module motion_controller_servo__spindle__gearbox__operand_sub(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__operand_sub
+
+
+module motion_controller_servo__spindle__gearbox__overrun_flag(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__overrun_flag
+
+
+module motion_controller_servo__spindle__gearbox__pending(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__pending
+
+
+module motion_controller_servo__spindle__gearbox__pending_fwd(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__pending_fwd
+
+
+module motion_controller_servo__spindle__gearbox__ramp_taken(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__ramp_taken
+
+
+module motion_controller_servo__spindle__gearbox__rate(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__rate
+
+
+module motion_controller_servo__spindle__gearbox__rate_old(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__rate_old
+
+
+module motion_controller_servo__spindle__gearbox__reached(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__reached
+
+
+module motion_controller_servo__spindle__gearbox__room(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__room
+
+
+module motion_controller_servo__spindle__gearbox__second_half(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__second_half
+
+
+module motion_controller_servo__spindle__gearbox__seq(d,q,clock);
+
+    // Module arguments
+    input wire  [14:0] d;
+    output reg  [14:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 15'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__seq
+
+
+module motion_controller_servo__spindle__gearbox__slack(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__slack
+
+
+module motion_controller_servo__spindle__gearbox__slows(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__slows
+
+
+module motion_controller_servo__spindle__gearbox__spindle_back(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__spindle_back
+
+
+module motion_controller_servo__spindle__gearbox__state(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__state
+
+
+module motion_controller_servo__spindle__gearbox__step_back(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__step_back
+
+
+module motion_controller_servo__spindle__gearbox__step_fwd(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__step_fwd
+
+
+module motion_controller_servo__spindle__gearbox__steps(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__steps
+
+
+module motion_controller_servo__spindle__gearbox__stop_request(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__stop_request
+
+
+module motion_controller_servo__spindle__gearbox__to_brake(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__to_brake
+
+
+module motion_controller_servo__spindle__gearbox__to_length(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__to_length
+
+
+module motion_controller_servo__spindle__gearbox__to_step(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__to_step
+
+
+module motion_controller_servo__spindle__gearbox__up_request(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__up_request
+
+
+module motion_controller_servo__spindle__gearbox__work(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__gearbox__work
+
+
+module motion_controller_servo__spindle__length(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__length
+
+
+module motion_controller_servo__spindle__numerator(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__numerator
+
+
+module motion_controller_servo__spindle__ramp(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__ramp
+
+
+module motion_controller_servo__spindle__settings(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__settings
+
+
+module motion_controller_servo__spindle__speed(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__speed
+
+
+module motion_controller_servo__spindle__window_bit(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__window_bit
+
+
+module motion_controller_servo__spindle__window_start(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__spindle__window_start
 
 
 module motion_controller_servo__tick_divider(clock,reset,enable,divisor,strobe);

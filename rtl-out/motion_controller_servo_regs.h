@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000701UL
+#define MC_VERSION_RESET 0x00000800UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
-#define MC_VERSION_PATCH_RESET 0x1UL
+#define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x7UL
+#define MC_VERSION_MINOR_RESET 0x8UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -68,6 +68,9 @@
 #define MC_CONFIG_SOFT_LIMITS_SHIFT 27UL /* RO 1 = this build has the soft limits (SOFT_LIMIT, SOFT_MIN, SOFT_MAX, STATUS.SOFT_LIMIT) */
 #define MC_CONFIG_SOFT_LIMITS_MASK 0x08000000UL
 #define MC_CONFIG_SOFT_LIMITS_RESET 0x0UL
+#define MC_CONFIG_SPINDLE_SHIFT 28UL /* RO 1 = this build has the spindle encoder and the electronic gearbox (SPINDLE_*, GEAR_*, STATUS.SPINDLE); 0: the spindle_* pins are ignored */
+#define MC_CONFIG_SPINDLE_MASK 0x10000000UL
+#define MC_CONFIG_SPINDLE_RESET 0x0UL
 
 /* CONTROL: run control */
 #define MC_CONTROL_INDEX 0x0003UL
@@ -88,7 +91,7 @@
 #define MC_STATUS_ADDR16 0x0008UL
 #define MC_STATUS_ADDR8 0x0010UL
 #define MC_STATUS_RESET 0x00000000UL
-#define MC_STATUS_W1C_MASK 0x00007fffUL /* write 1 to clear; write 0 here in a read-modify-write */
+#define MC_STATUS_W1C_MASK 0x0000ffffUL /* write 1 to clear; write 0 here in a read-modify-write */
 #define MC_STATUS_PERIOD_DONE_SHIFT 0UL /* W1C a period ended and the next began */
 #define MC_STATUS_PERIOD_DONE_MASK 0x00000001UL
 #define MC_STATUS_PERIOD_DONE_RESET 0x0UL
@@ -134,6 +137,9 @@
 #define MC_STATUS_SOFT_LIMIT_SHIFT 14UL /* W1C an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS */
 #define MC_STATUS_SOFT_LIMIT_MASK 0x00004000UL
 #define MC_STATUS_SOFT_LIMIT_RESET 0x0UL
+#define MC_STATUS_SPINDLE_SHIFT 15UL /* W1C GEAR_STATUS.DONE, INVALID or OVERRUN, or SPINDLE's ENCODER_ERROR rose; see GEAR_STATUS */
+#define MC_STATUS_SPINDLE_MASK 0x00008000UL
+#define MC_STATUS_SPINDLE_RESET 0x0UL
 
 /* IRQ_ENABLE: interrupt enable mask: irq is high while an enabled STATUS bit is set */
 #define MC_IRQ_ENABLE_INDEX 0x0005UL
@@ -186,6 +192,9 @@
 #define MC_IRQ_ENABLE_SOFT_LIMIT_SHIFT 14UL /* RW an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS */
 #define MC_IRQ_ENABLE_SOFT_LIMIT_MASK 0x00004000UL
 #define MC_IRQ_ENABLE_SOFT_LIMIT_RESET 0x0UL
+#define MC_IRQ_ENABLE_SPINDLE_SHIFT 15UL /* RW GEAR_STATUS.DONE, INVALID or OVERRUN, or SPINDLE's ENCODER_ERROR rose; see GEAR_STATUS */
+#define MC_IRQ_ENABLE_SPINDLE_MASK 0x00008000UL
+#define MC_IRQ_ENABLE_SPINDLE_RESET 0x0UL
 
 /* TICK_DIVISOR: base tick = one every n clocks; 0 stops the tick (pauses everything) */
 #define MC_TICK_DIVISOR_INDEX 0x0006UL

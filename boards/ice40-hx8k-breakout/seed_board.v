@@ -178,6 +178,8 @@ module seed_board (
         .gpio_in(GPIO_IN),
         .probe(PROBE),
         .feed_hold(FEED_HOLD),
+        // No spindle encoder on this card (a SPINDLE build's spindle_* pins).
+        .spindle_a(1'b0), .spindle_b(1'b0), .spindle_index(1'b0),
         .step_a(step_a), .step_b(step_b),
         .drive_enable(drive_enable),
         .gpio_out(GPIO_OUT),

@@ -379,6 +379,7 @@ impl ControllerBus for ModelBus {
             read,
             encoders: vec![(false, false, false); 3],
             pins: self.pins,
+            spindle: Default::default(),
         });
         self.cycles += 1;
         self.irq = out.irq;

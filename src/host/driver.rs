@@ -309,6 +309,7 @@ impl<B: ControllerBus> Driver<B> {
         let analog = driver.field("CONFIG", "ANALOG", build)? == 1;
         let probe = driver.field("CONFIG", "PROBE", build)? == 1;
         let soft_limits = driver.field("CONFIG", "SOFT_LIMITS", build)? == 1;
+        let spindle = driver.field("CONFIG", "SPINDLE", build)? == 1;
         for (axis, window) in config.soft_limits.iter().enumerate() {
             match window {
                 Some(_) if !soft_limits => {
@@ -329,6 +330,7 @@ impl<B: ControllerBus> Driver<B> {
             analog,
             probe,
             soft_limits,
+            spindle,
         };
         driver.map = register_map(3, driver.depth.trailing_zeros(), options)?;
         if let Some(axis) = (0..3).find(|&k| config.analog[k] && (!analog || config.uniform[k])) {

@@ -220,6 +220,9 @@ pub fn check_instance<B: VectorPorts + Default>(
     check_instance_with::<B>(instance, stimulus, ICARUS_CLOCKS)
 }
 
+/// Stack of the thread [`check_instance_with`] simulates on.
+const COSIM_STACK_BYTES: usize = 256 << 20;
+
 /// [`check_instance`] with Icarus on the first `icarus_clocks` clocks
 /// ([`ALL_CLOCKS`] for every one).
 pub fn check_instance_with<B: VectorPorts + Default>(
@@ -228,17 +231,26 @@ pub fn check_instance_with<B: VectorPorts + Default>(
     icarus_clocks: usize,
 ) -> CosimPass {
     let stimulus: Vec<Vec<u64>> = stimulus.into_iter().collect();
-    let result = match instance {
-        Instance::Exported(module) => cross_simulate(
-            &CosimDesign::exported(module),
-            B::default(),
-            &stimulus,
-            icarus_clocks,
-        ),
-        Instance::Generated(module) => {
-            cross_simulate_generated(module, B::default(), &stimulus, icarus_clocks)
-        }
-    };
+    // The Rust simulation of a whole controller recurses deeper than a
+    // test thread's 2 MiB stack: it runs on a thread of its own.
+    let result = std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .stack_size(COSIM_STACK_BYTES)
+            .spawn_scoped(scope, || match instance {
+                Instance::Exported(module) => cross_simulate(
+                    &CosimDesign::exported(module),
+                    B::default(),
+                    &stimulus,
+                    icarus_clocks,
+                ),
+                Instance::Generated(module) => {
+                    cross_simulate_generated(module, B::default(), &stimulus, icarus_clocks)
+                }
+            })
+            .expect("a thread for the cross-simulation")
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    });
     result.unwrap_or_else(|e| panic!("{instance:?}: {e}"))
 }
 

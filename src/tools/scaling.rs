@@ -387,6 +387,7 @@ mod tests {
                 analog: true,
                 probe: false,
                 soft_limits: false,
+                spindle: false,
             },
             exported: build != "b",
             figures: SynthFigures {

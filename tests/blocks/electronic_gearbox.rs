@@ -741,3 +741,65 @@ fn narrow_verilog_matches_rust_in_icarus_and_verilator() {
             .map(GearboxInputs::to_vector),
     );
 }
+
+/// A halt wins over a count that would overrun in its clock: the count is
+/// dropped with the rest, `overrun` stays clear (found in the controller's
+/// lockstep, where an abort met a spindle counting every clock).
+#[test]
+fn a_count_that_meets_a_halt_is_dropped_not_an_overrun() {
+    let mut pair = Lockstep::on(
+        Backend::Verilator,
+        "electronic_gearbox",
+        ElectronicGearbox24::default(),
+        GearboxModel::new(EXPORTED),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let ratio = GearboxInputs {
+        numerator: 1,
+        denominator: 8,
+        ramp: 1,
+        ..Default::default()
+    };
+    let mut step = |i: GearboxInputs| pair.step(&i).unwrap_or_else(|e| panic!("{e}"));
+    step(GearboxInputs {
+        reset: true,
+        ..ratio
+    });
+    step(GearboxInputs { arm: true, ..ratio });
+    step(GearboxInputs {
+        index: true,
+        ..ratio
+    });
+    // Counts every clock: the engine takes one, the slot holds the next.
+    for _ in 0..2 {
+        step(GearboxInputs {
+            count_up: true,
+            ..ratio
+        });
+    }
+    let out = step(GearboxInputs {
+        count_up: true,
+        halt: true,
+        ..ratio
+    });
+    assert_eq!(out.phase, Phase::Idle);
+    assert!(!out.overrun, "a halted count is not an overrun");
+    // Without the halt the same count overruns.
+    step(GearboxInputs { arm: true, ..ratio });
+    step(GearboxInputs {
+        index: true,
+        ..ratio
+    });
+    for _ in 0..2 {
+        step(GearboxInputs {
+            count_up: true,
+            ..ratio
+        });
+    }
+    let out = step(GearboxInputs {
+        count_up: true,
+        ..ratio
+    });
+    assert!(out.overrun);
+    assert_eq!(out.phase, Phase::Idle);
+}

@@ -23,6 +23,7 @@ pub struct Bench<
     const ANALOG: bool,
     const PROBE: bool,
     const SOFT: bool = true,
+    const SPINDLE: bool = false,
 > {
     /// The RTL and the reference model.
     pair: Lockstep<MotionControllerModel>,
@@ -33,6 +34,8 @@ pub struct Bench<
     /// Limit, home, alarm, E-stop and general-input pins applied in the
     /// next clock.
     pub pins: MachinePins,
+    /// The spindle encoder's pins (a, b, index) applied in the next clock.
+    pub spindle: (bool, bool, bool),
     /// Drive each axis's encoder from its own step/dir pins.
     pub loopback: Option<Vec<SimulatedEncoder>>,
     /// Outputs after the last clock.
@@ -53,7 +56,8 @@ impl<
         const ANALOG: bool,
         const PROBE: bool,
         const SOFT: bool,
-    > Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
+        const SPINDLE: bool,
+    > Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
 {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
@@ -64,14 +68,14 @@ impl<
 
     /// A bench in the power-up state with the RTL on `backend`.
     pub fn on(backend: Backend) -> Self {
-        let build = MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>::BUILD;
+        let build = MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>::BUILD;
         let map = register_map(K, N as u32, build).unwrap();
         let model = MotionControllerModel::new(K, N as u32, build).unwrap();
         let module = build.module_name();
         let pair = Lockstep::on(
             backend,
             module,
-            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>::default(),
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>::default(),
             model,
         )
         .unwrap_or_else(|e| panic!("{e}"));
@@ -80,6 +84,7 @@ impl<
             map,
             encoders: vec![(false, false, false); K],
             pins: MachinePins::default(),
+            spindle: (false, false, false),
             loopback: None,
             last: ControllerOutputs {
                 steps: vec![(false, false); K],
@@ -154,11 +159,13 @@ impl<
             read,
             encoders: self.encoders.clone(),
             pins: self.pins,
+            spindle: self.spindle,
         };
         let got = self.pair.step(&inputs).unwrap_or_else(|e| panic!("{e}"));
         debug_assert_eq!(
             self.pair.input_vector().len(),
-            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>::input_names().len()
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>::input_names()
+                .len()
         );
         if let Some(recording) = self.recording.as_mut() {
             recording.push(self.pair.input_vector().to_vec());
@@ -267,7 +274,8 @@ impl<
         const ANALOG: bool,
         const PROBE: bool,
         const SOFT: bool,
-    > ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
+        const SPINDLE: bool,
+    > ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
 {
     fn axes(&self) -> usize {
         K

@@ -28,3 +28,4 @@ mod parallel_machine;
 mod position_range;
 mod probe;
 mod soft_limits;
+mod spindle;

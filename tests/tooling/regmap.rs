@@ -415,6 +415,7 @@ fn the_field_constants_agree_with_the_maps() {
             analog,
             probe: true,
             soft_limits: true,
+            spindle: false,
         };
         let map = mc::register_map(3, 4, build).unwrap();
         for &(register, field, lsb, width) in controller {
@@ -476,6 +477,171 @@ fn the_field_constants_agree_with_the_maps() {
             map.field("FIFO_LOW_WATER", "LEVEL").unwrap().width
         );
     }
+    // The spindle unit's registers: in a SPINDLE build only, at the
+    // addresses and bits the RTL and the model take by name.
+    let spindle = mc::register_map(3, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_SPINDLE).unwrap();
+    let s = mc::spindle::BASE;
+    for (register, field, lsb, width, address) in [
+        (
+            "CONFIG",
+            "SPINDLE",
+            f::CONFIG_SPINDLE,
+            1,
+            mc::global::CONFIG,
+        ),
+        (
+            "SPINDLE_CONFIG",
+            "FILTER",
+            f::SPINDLE_FILTER,
+            f::SPINDLE_FILTER_WIDTH,
+            s + 3,
+        ),
+        (
+            "SPINDLE_CONFIG",
+            "COUNTER_MODE",
+            f::SPINDLE_COUNTER_MODE,
+            1,
+            s + 3,
+        ),
+        (
+            "SPINDLE_CONFIG",
+            "INDEX_INVERT",
+            f::SPINDLE_INDEX_INVERT,
+            1,
+            s + 3,
+        ),
+        (
+            "SPINDLE_CONFIG",
+            "SPEED_WINDOW",
+            f::SPINDLE_SPEED_WINDOW,
+            f::SPINDLE_SPEED_WINDOW_WIDTH,
+            s + 3,
+        ),
+        ("GEAR_CONTROL", "ARM", f::GEAR_ARM, 1, s + 4),
+        ("GEAR_CONTROL", "STOP", f::GEAR_STOP, 1, s + 4),
+        ("GEAR_CONTROL", "HALT", f::GEAR_HALT, 1, s + 4),
+        (
+            "GEAR_CONTROL",
+            "CLEAR_ENCODER_ERROR",
+            f::GEAR_CLEAR_ENCODER_ERROR,
+            1,
+            s + 4,
+        ),
+        (
+            "GEAR_CONTROL",
+            "SPINDLE_REVERSE",
+            f::GEAR_SPINDLE_REVERSE,
+            1,
+            s + 4,
+        ),
+        (
+            "GEAR_CONTROL",
+            "AXIS_REVERSE",
+            f::GEAR_AXIS_REVERSE,
+            1,
+            s + 4,
+        ),
+        (
+            "GEAR_CONTROL",
+            "AXIS",
+            f::GEAR_AXIS,
+            f::GEAR_AXIS_WIDTH,
+            s + 4,
+        ),
+        (
+            "GEAR_STATUS",
+            "PHASE",
+            f::GEAR_PHASE,
+            f::GEAR_PHASE_WIDTH,
+            s + 5,
+        ),
+        ("GEAR_STATUS", "LOCKED", f::GEAR_LOCKED, 1, s + 5),
+        ("GEAR_STATUS", "DONE", f::GEAR_DONE, 1, s + 5),
+        ("GEAR_STATUS", "INVALID", f::GEAR_INVALID, 1, s + 5),
+        ("GEAR_STATUS", "OVERRUN", f::GEAR_OVERRUN, 1, s + 5),
+        (
+            "GEAR_STATUS",
+            "ENCODER_ERROR",
+            f::GEAR_ENCODER_ERROR,
+            1,
+            s + 5,
+        ),
+        (
+            "SPINDLE_POSITION",
+            "VALUE",
+            f::VALUE,
+            24,
+            mc::spindle::SPINDLE_POSITION,
+        ),
+        (
+            "SPINDLE_INDEX_POSITION",
+            "VALUE",
+            f::VALUE,
+            24,
+            mc::spindle::SPINDLE_INDEX_POSITION,
+        ),
+        (
+            "SPINDLE_SPEED",
+            "VALUE",
+            f::VALUE,
+            24,
+            mc::spindle::SPINDLE_SPEED,
+        ),
+        (
+            "GEAR_NUMERATOR",
+            "VALUE",
+            f::VALUE,
+            mc::GEAR_BITS,
+            mc::spindle::GEAR_NUMERATOR,
+        ),
+        (
+            "GEAR_DENOMINATOR",
+            "VALUE",
+            f::VALUE,
+            mc::GEAR_BITS,
+            mc::spindle::GEAR_DENOMINATOR,
+        ),
+        (
+            "GEAR_RAMP",
+            "VALUE",
+            f::VALUE,
+            mc::GEAR_BITS,
+            mc::spindle::GEAR_RAMP,
+        ),
+        (
+            "GEAR_LENGTH",
+            "VALUE",
+            f::VALUE,
+            mc::GEAR_BITS,
+            mc::spindle::GEAR_LENGTH,
+        ),
+        (
+            "GEAR_POSITION",
+            "VALUE",
+            f::VALUE,
+            24,
+            mc::spindle::GEAR_POSITION,
+        ),
+    ] {
+        check(&spindle, register, field, lsb, width);
+        assert_eq!(
+            spindle.register(register).unwrap().address,
+            address,
+            "{register}"
+        );
+    }
+    assert_eq!(
+        spindle
+            .field("SPINDLE_CONFIG", "SPEED_WINDOW")
+            .unwrap()
+            .reset,
+        f::SPINDLE_SPEED_WINDOW_RESET
+    );
+    let without_spindle = mc::register_map(3, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA).unwrap();
+    assert!(without_spindle.register("GEAR_CONTROL").is_err());
+    assert!(mc::register_map(7, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_SPINDLE).is_err());
+    assert!(mc::register_map(6, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_SPINDLE).is_ok());
+
     let map = dac::register_map(3, 16).unwrap();
     for (field, lsb) in [
         ("SETUP", dac::fields::TIMING_SETUP),

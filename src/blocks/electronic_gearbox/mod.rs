@@ -966,8 +966,12 @@ impl<const W: usize, const E: usize, const L: usize> Logic for ElectronicGearbox
         self.take.next = (self.seq.q.val() == self.zero_seq.val())
             & self.engaged.val()
             & (self.pending.q.val() | self.counted.val());
-        self.overrunning.next =
-            (self.seq.q.val() != self.zero_seq.val()) & self.counted.val() & self.pending.q.val();
+        // A halt wins: the count it meets is dropped with the rest, not an
+        // overrun.
+        self.overrunning.next = (self.seq.q.val() != self.zero_seq.val())
+            & self.counted.val()
+            & self.pending.q.val()
+            & !self.halt.val();
         self.abort.next = self.halt.val() | self.overrunning.val();
         self.commit.next = self.write_seq.val().get_bit(14) & !self.abort.val();
         self.arm_take.next = (self.state.q.val() == self.idle_code.val())

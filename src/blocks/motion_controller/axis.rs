@@ -12,6 +12,7 @@
 use rust_hdl::prelude::*;
 
 use super::axis_io::AxisIo;
+use super::gear_merge::GearMerge;
 use super::registers::{fields, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, DAC_BITS};
 use super::{ERROR_BITS, PERIOD_BITS, POSITION_BITS, STAGE_PENDING_BITS};
 use crate::blocks::command_fifo::CommandFifo;
@@ -160,6 +161,10 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     pub code_negative: Signal<Out, Bit>,
     /// `CMD_POSITION`, the count (for the soft limits).
     pub cmd_position: Signal<Out, Bits<POSITION_BITS>>,
+    /// A gearbox step for this axis in this clock (build option `SPINDLE`).
+    pub gear_step: Signal<In, Bit>,
+    /// Its direction: 1 = forward.
+    pub gear_forward: Signal<In, Bit>,
 
     fifo: CommandFifo<N, NP1, ENTRY_BITS>,
     /// The uniform generator, whose engine also runs the DDA (its DDA
@@ -169,6 +174,9 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     position: PulseCounter<POSITION_BITS>,
     encoder: QuadratureDecoder<POSITION_BITS, 8, 16>,
     io: AxisIo,
+    /// The gearbox's steps merged with the interpolator's.
+    merge: GearMerge,
+    gear_lost_prev: DFF<Bit>,
 
     /// The register window (configuration, strobes, snapshots, reads).
     registers: AxisRegisters<NP1>,
@@ -236,8 +244,11 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     request_forward: DFF<Bit>,
     encoder_error_prev: DFF<Bit>,
 
-    /// The interpolator's step offered to the request register, and its
-    /// direction.
+    /// The interpolator's step, and its direction.
+    interp: Signal<Local, Bit>,
+    interp_forward: Signal<Local, Bit>,
+    /// The step offered to the request register (the interpolator's or
+    /// the gearbox's), and its direction.
     candidate: Signal<Local, Bit>,
     candidate_forward: Signal<Local, Bit>,
     candidate_blocked: Signal<Local, Bit>,
@@ -263,6 +274,8 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
     has_uniform: Constant<Bit>,
     /// The build has the analog outputs (the controller's `ANALOG`).
     has_analog: Constant<Bit>,
+    /// The build has the spindle unit (the controller's `SPINDLE`).
+    has_spindle: Constant<Bit>,
     zero_position: Constant<Bits<POSITION_BITS>>,
     /// Bits 31..POSITION_BITS set: ORed into a negative position's word.
     position_extension: Constant<Bits<32>>,
@@ -280,9 +293,10 @@ pub struct MotionAxis<const N: usize, const NP1: usize> {
 impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
     /// Axis number `index` (its register window is at
     /// `AXIS_BASE + index * AXIS_STRIDE`), with its uniform generator if
-    /// `uniform` and its analog mode if `analog`; `config_mask` is
-    /// AXIS_CONFIG's read-write bits in the controller's register map.
-    pub fn new(index: usize, uniform: bool, analog: bool, config_mask: u32) -> Self {
+    /// `uniform`, its analog mode if `analog` and the gearbox's steps if
+    /// `spindle`; `config_mask` is AXIS_CONFIG's read-write bits in the
+    /// controller's register map.
+    pub fn new(index: usize, uniform: bool, analog: bool, spindle: bool, config_mask: u32) -> Self {
         let window = (AXIS_BASE + index as u32 * AXIS_STRIDE) >> AXIS_STRIDE_LOG2;
         Self {
             clock: Default::default(),
@@ -343,6 +357,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             code_out_of_range: Default::default(),
             code_negative: Default::default(),
             cmd_position: Default::default(),
+            gear_step: Default::default(),
+            gear_forward: Default::default(),
             fifo: Default::default(),
             uniform: if uniform {
                 UniformPulseCore::default()
@@ -353,6 +369,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             position: Default::default(),
             encoder: Default::default(),
             io: Default::default(),
+            merge: Default::default(),
+            gear_lost_prev: Default::default(),
             registers: AxisRegisters::new(index, config_mask),
             popped: Default::default(),
             popped_valid: Default::default(),
@@ -385,6 +403,8 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             request: Default::default(),
             request_forward: Default::default(),
             encoder_error_prev: Default::default(),
+            interp: Default::default(),
+            interp_forward: Default::default(),
             candidate: Default::default(),
             candidate_forward: Default::default(),
             candidate_blocked: Default::default(),
@@ -400,6 +420,7 @@ impl<const N: usize, const NP1: usize> MotionAxis<N, NP1> {
             uniform_overflow: Default::default(),
             window: Constant::new((window as u64).into()),
             has_uniform: Constant::new(uniform),
+            has_spindle: Constant::new(spindle),
             has_analog: Constant::new(analog),
             zero_position: Constant::new(0u64.into()),
             position_extension: Constant::new(
@@ -488,7 +509,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             uniform_pulse_prev,
             request,
             request_forward,
-            encoder_error_prev
+            encoder_error_prev,
+            gear_lost_prev
         );
         self.fifo.clock.next = self.clock.val();
         self.uniform.clock.next = self.clock.val();
@@ -496,6 +518,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.position.clock.next = self.clock.val();
         self.encoder.clock.next = self.clock.val();
         self.io.clock.next = self.clock.val();
+        self.merge.clock.next = self.clock.val();
 
         // The register window: configuration, strobes, snapshots, reads.
         self.registers.clock.next = self.clock.val();
@@ -667,11 +690,27 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // blocked direction keeps a step out of it; a step already in it or
         // pending in the stage is dropped by the stage's flush.
         if self.uniform_active.q.val() {
-            self.candidate.next = self.uniform_pulse.val() & !self.uniform_pulse_prev.q.val();
-            self.candidate_forward.next = self.uniform_forward.val();
+            self.interp.next = self.uniform_pulse.val() & !self.uniform_pulse_prev.q.val();
+            self.interp_forward.next = self.uniform_forward.val();
         } else {
-            self.candidate.next = self.uniform.dda_pulse.val();
-            self.candidate_forward.next = self.forward_2.q.val();
+            self.interp.next = self.uniform.dda_pulse.val();
+            self.interp_forward.next = self.forward_2.q.val();
+        }
+        // The gearbox's steps join the interpolator's (gated off without
+        // SPINDLE, so synthesis removes the merge).
+        self.merge.reset.next = self.reset.val();
+        self.merge.interp.next = self.interp.val();
+        self.merge.interp_forward.next = self.interp_forward.val();
+        self.merge.gear.next = self.gear_step.val() & self.has_spindle.val();
+        self.merge.gear_forward.next = self.gear_forward.val();
+        self.merge.analog.next = self.analog_active.q.val();
+        self.merge.abort.next = self.abort.val();
+        self.merge.clear_lost.next = self.clear_faults.val();
+        self.candidate.next = self.interp.val();
+        self.candidate_forward.next = self.interp_forward.val();
+        if self.has_spindle.val() {
+            self.candidate.next = self.merge.candidate.val();
+            self.candidate_forward.next = self.merge.candidate_forward.val();
         }
         self.candidate_blocked.next = self.io.block_backward.val();
         if self.candidate_forward.val() {
@@ -785,6 +824,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         // Events: each rise of a sub-block's sticky flag, and each
         // saturated entry.
         self.overrun_prev.d.next = self.stage.overrun.val();
+        self.gear_lost_prev.d.next = self.merge.lost.val();
         self.dda_overrange_prev.d.next = self.uniform.dda_overrange.val();
         self.uniform_overrange_prev.d.next = self.uniform_overrange.val();
         self.uniform_overflow_prev.d.next = self.uniform_overflow.val();
@@ -792,6 +832,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             | (self.uniform.dda_overrange.val() & !self.dda_overrange_prev.q.val())
             | (self.uniform_overrange.val() & !self.uniform_overrange_prev.q.val())
             | (self.uniform_overflow.val() & !self.uniform_overflow_prev.q.val())
+            | (self.merge.lost.val() & !self.gear_lost_prev.q.val() & self.has_spindle.val())
             | self.saturated.q.val();
         self.busy.next = self.stage.busy.val() | self.uniform_running.val();
         self.encoder_error_prev.d.next = self.encoder.error.val();
@@ -802,7 +843,8 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
         self.registers.fifo_empty.next = self.fifo.empty.val();
         self.registers.fifo_full.next = self.fifo.full.val();
         self.registers.fifo_low.next = self.fifo.low.val();
-        self.registers.step_overrun.next = self.stage.overrun.val();
+        self.registers.step_overrun.next =
+            self.stage.overrun.val() | (self.merge.lost.val() & self.has_spindle.val());
         self.registers.interp_overrange.next = self.overrange_flag.q.val();
         self.registers.interp_overflow.next = self.overflow_flag.q.val();
         self.registers.encoder_error.next = self.encoder.error.val();
@@ -827,6 +869,7 @@ impl<const N: usize, const NP1: usize> Logic for MotionAxis<N, NP1> {
             self.overrange_flag.d.next = false;
             self.overflow_flag.d.next = false;
             self.overrun_prev.d.next = false;
+            self.gear_lost_prev.d.next = false;
             self.dda_overrange_prev.d.next = false;
             self.uniform_overrange_prev.d.next = false;
             self.uniform_overflow_prev.d.next = false;

@@ -47,7 +47,7 @@ const _: () = {
     assert!(fields::CONTROL_RUN == 0);
     assert!(fields::FIFO_LEVEL == 0);
     // The interrupt bits are 0..IRQ_COUNT, in event order.
-    assert!(irq::PERIOD_DONE == 0 && irq::SOFT_LIMIT as usize == IRQ_COUNT - 1);
+    assert!(irq::PERIOD_DONE == 0 && irq::SPINDLE as usize == IRQ_COUNT - 1);
 };
 
 /// The global registers of a controller with FIFO levels of `NP1` bits.

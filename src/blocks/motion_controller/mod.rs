@@ -349,6 +349,80 @@
 //!   reset values (their flip-flops hold the value XOR the reset value), so
 //!   limits and alarms are enabled from the first clock.
 //!
+//! ## Spindle encoder and electronic gearbox (VERSION 0.8.0; build option `SPINDLE`)
+//! On in `motion_controller_dda_spindle` ([`MotionController3DdaSpindle`]);
+//! [`spindle`], [`gear_merge`]. Threading and rigid tapping: one axis
+//! is geared to the spindle's encoder, in exact ratio, from the same
+//! spindle angle at every pass.
+//! * **Registers**: a window at `0xE0` (`SPINDLE_*`, `GEAR_*`: see the
+//!   register map), where the seventh axis window would be, so a `SPINDLE`
+//!   build has at most [`registers::MAX_AXES_SPINDLE`] = 6 axes.
+//! * **The encoder** (`spindle_a`, `spindle_b`, `spindle_index`) passes a
+//!   [`QuadratureDecoder`](crate::blocks::quadrature_decoder) with
+//!   `SPINDLE_CONFIG.FILTER`, `COUNTER_MODE` and `INDEX_INVERT` (each
+//!   applied from the clock after its write), sampled every clock.
+//!   `SPINDLE_POSITION` is its count (POSITION_BITS, wrapping, never
+//!   cleared: the host takes differences); `SPINDLE_INDEX_POSITION` the
+//!   count at the last index event; `SPINDLE_SPEED` the counts in the last
+//!   window of 2^`SPEED_WINDOW` clocks (reset 20), updated at each
+//!   window's end (a window ends where bit n of a free-running clock
+//!   counter changes; a new n applies from the next clock, so the window
+//!   in which it changes may be short). It is the position's change
+//!   modulo 2^24: choose n so that fewer than 2^23 counts pass in a window.
+//!   A and B changing on one sample set `GEAR_STATUS.ENCODER_ERROR`
+//!   (counts lost; `GEAR_CONTROL.CLEAR_ENCODER_ERROR` clears it).
+//! * **The gearbox** is an
+//!   [`ElectronicGearbox`](crate::blocks::electronic_gearbox) (W = 24,
+//!   E = 40, L = 24): its datasheet states the ratio, the ramp-in and the
+//!   catch-up (a bang-bang law on the lost phase, at `GEAR_RAMP`/d step
+//!   per count per count, so the acceleration is bounded in spindle
+//!   counts), `LOCKED`, the run's length and the ramp-out, exactly. The
+//!   unit feeds it each count of the encoder (one clock after the count
+//!   changes), each index event, and `GEAR_CONTROL`'s strobes; its
+//!   parameters are `GEAR_NUMERATOR`, `DENOMINATOR`, `RAMP` and `LENGTH`
+//!   as they read in the clock of the arm.
+//! * **Arming**: writing `GEAR_CONTROL.ARM` = 1 while `PHASE` reads 0
+//!   arms the gearbox for the axis in that write's `AXIS`, with its
+//!   `SPINDLE_REVERSE` and `AXIS_REVERSE`; it engages at the next index
+//!   event, so every pass starts at the same spindle angle. `AXIS`, the
+//!   directions and the ratio are kept for the run: a `GEAR_CONTROL` write
+//!   while armed or engaged changes only what its strobes do. An arm with
+//!   `AXIS` >= K, or with a ratio the gearbox refuses (d = 0, n > d, RAMP
+//!   x 2^15 < n), sets `INVALID` and leaves the gearbox idle.
+//! * **Motion**: each gearbox step joins the geared axis's steps in front
+//!   of its request register ([`gear_merge`]): it shares the axis's limit
+//!   gate, output stage, step timing and `CMD_POSITION` with the FIFO's
+//!   steps, which add to it (tapers, retracts). An interpolator step has
+//!   the clock; a gearbox step that meets one waits one clock (a hold of
+//!   one). A gearbox step lost (the hold full and the interpolator
+//!   stepping in each of the 31 clocks since the last: a DDA at one step a
+//!   tick with `TICK_DIVISOR` 1; or the axis analog) sets the axis's
+//!   `STEP_OVERRUN` and raises `STATUS.AXIS_FAULT`.
+//! * **Latency**: a spindle count changes `SPINDLE_POSITION`
+//!   [`latency::SPINDLE_DECODE`] = 4 clocks after its pin edge (filter 0),
+//!   and the step it makes has its first pin edge
+//!   [`latency::SPINDLE_COUNT_TO_STEP`] = 38 clocks after that edge (the engine's
+//!   30 clocks, the merge, the request register and the output stage; one
+//!   clock more when the step waited in the hold, later if the stage's
+//!   timing holds it back). The gearbox takes one count per 31 clocks: a
+//!   spindle faster than that (3.2 M counts/s at 100 MHz) overruns, which
+//!   halts the gearbox and sets `OVERRUN`.
+//! * **Independent of RUN and of the feed hold.** The gearbox steps while
+//!   it is engaged, whether or not periods run, and a feed hold does not
+//!   slow it: a thread cannot pause mid-pass (LinuxCNC ignores a feed hold
+//!   in spindle-synchronized motion too). `GEAR_CONTROL.STOP` ramps it out
+//!   to the crawl rate; a `LENGTH` ends the run exactly there.
+//! * **Abort**: every abort (E-stop, limit, alarm, stop on home, watchdog)
+//!   halts the gearbox in its clock (no ramp: the axis's stage is flushed
+//!   as for the FIFO's steps), and it stays halted while the abort stands
+//!   (an arm is refused then). `GEAR_CONTROL.HALT` does the same alone.
+//! * `STATUS.SPINDLE` rises with `DONE`, `INVALID`, `OVERRUN` or
+//!   `ENCODER_ERROR`.
+//! * Without `SPINDLE` the three `spindle_*` pins are ignored (tie them
+//!   low), the window is absent (reads 0, writes ignored), `CONFIG.SPINDLE`
+//!   reads 0 and `STATUS.SPINDLE` is never set: synthesis removes the unit
+//!   and every axis's merge. The ports are the same in every build.
+//!
 //! ## Analog axes (build option `ANALOG`; on in `motion_controller_servo`)
 //! An axis with `AXIS_CONFIG.ANALOG` set (taken when RUN starts) drives a
 //! servo amplifier in velocity mode through its own DAC instead of
@@ -448,8 +522,10 @@
 //!   flag (a trip on the clock of `CLEAR_LIMITS` wins), whose OR,
 //!   `limit_held`, aborts every axis.
 //! * `formal/motion_controller_axis.sv`, on [`axis::MotionAxis`] (N = 2,
-//!   with the uniform generator, no analog outputs: an axis of the exported
-//!   `motion_controller`, with a 4-entry FIFO): a request the output stage
+//!   with the uniform generator, no analog outputs, and the gearbox's step
+//!   input of a `SPINDLE` build, free like every other input: an axis of
+//!   the exported `motion_controller`, with a 4-entry FIFO and the
+//!   [`gear_merge`]): a request the output stage
 //!   takes in clock t was made in clock t - 1 with `abort` low and its
 //!   direction not blocked; the stage is flushed in a clock exactly when
 //!   `abort` is high or a step toward a blocked direction is pending,
@@ -522,6 +598,9 @@
 //! * [`probe_trigger`]: the probe's conditioner, `PROBE_CONTROL` and its trip;
 //! * [`soft_limits`]: the windows, `SOFT_LIMIT`, the check of each axis in
 //!   turn and the gauge of the stop's reach;
+//! * [`spindle`]: the spindle encoder, its registers, and the electronic
+//!   gearbox with its register layer; [`gear_merge`] (in each axis) joins
+//!   its steps with the interpolator's;
 //! * [`feed_hold`]: the feed hold's input, `HOLD_CONTROL`, its sticky
 //!   request, and the [`hold_ramp`] (the velocity factor and the tick gate
 //!   it drives) whose gated tick paces the periods and the axes;
@@ -578,7 +657,7 @@
 //! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
 //! the DAC and its walk) have their own rows in the synthesis report.
 //!
-//! ## Build options: DDA only, analog outputs, probe, soft limits
+//! ## Build options: DDA only, analog outputs, probe, soft limits, spindle
 //! `ANALOG` = true builds the analog outputs (see "Analog axes"); without
 //! them `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0, the `DAC_*`
 //! registers are absent (read 0) and the DAC pins idle (every `dac_cs_n`
@@ -616,6 +695,13 @@
 //! the seed card beside the exported builds: the row pair is the probe's
 //! cost.
 //!
+//! `SPINDLE` = true builds the spindle encoder and the electronic gearbox
+//! (see "Spindle encoder and electronic gearbox"): exported as
+//! `motion_controller_dda_spindle` ([`MotionController3DdaSpindle`]: the
+//! DDA-only build with the probe, without soft limits, with the spindle),
+//! whose register map is `rtl-out/motion_controller_dda_spindle_regs.h`
+//! and `.md`. Every build has the `spindle_*` pins.
+//!
 //! [`MotionController3UniformServo`], uniform generators and analog
 //! outputs, is not exported:
 //! with the host links it does not fit the seed card's HX8K. The scaling
@@ -652,6 +738,7 @@ pub mod axis_registers;
 pub mod config_shadow;
 pub mod entry;
 pub mod feed_hold;
+pub mod gear_merge;
 pub mod global_registers;
 pub mod hold_ramp;
 pub mod io_model;
@@ -661,6 +748,8 @@ pub mod period_sequencer;
 pub mod probe_trigger;
 pub mod registers;
 pub mod soft_limits;
+pub mod spindle;
+pub mod spindle_model;
 pub mod stop_cause;
 
 use rust_hdl::prelude::*;
@@ -682,6 +771,7 @@ use period_sequencer::PeriodSequencer;
 use probe_trigger::ProbeTrigger;
 use registers::{fields, irq, DAC_BITS};
 use soft_limits::SoftLimits;
+use spindle::SpindleUnit;
 use stop_cause::StopCauseRegister;
 
 /// The machine-I/O latencies in clocks, as the tests measure them. Clock
@@ -705,6 +795,16 @@ pub mod latency {
     /// level at s, a cut step, a stop-on-home edge), the last step of any
     /// axis can rise at s + `ABORT_ALL_AXES`.
     pub const ABORT_ALL_AXES: u64 = 3;
+    /// A spindle count changes `SPINDLE_POSITION` at c + `SPINDLE_DECODE`
+    /// after its encoder edge at c (`SPINDLE_CONFIG.FILTER` 0 or 1; the
+    /// decoder's synchronizer, filter and count stage).
+    pub const SPINDLE_DECODE: u64 = 4;
+    /// The step a spindle count makes on the geared axis has its first pin
+    /// edge at c + `SPINDLE_COUNT_TO_STEP` after the count's encoder edge at
+    /// c (filter 0 or 1, the step not held back by the merge or the stage):
+    /// the decode, one clock to the gearbox, its engine's 30 clocks, the
+    /// request register and the output stage.
+    pub const SPINDLE_COUNT_TO_STEP: u64 = 38;
     /// `drive_enable` is low from s + `DRIVE_ENABLE` after a filtered
     /// E-stop or enabled alarm level at s, and from the clock after the
     /// watchdog expires.
@@ -791,37 +891,42 @@ const IRQ_COUNT: usize = irq::COUNT;
 /// The exported configuration (`motion_controller`): 3 axes, 16-entry
 /// FIFOs, DDA and uniform pulse generator on every axis, the probe and the
 /// soft limits.
-pub type MotionController3 = MotionController<3, 4, 5, true, false, true, true>;
+pub type MotionController3 = MotionController<3, 4, 5, true, false, true, true, false>;
 
 /// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
 /// 16-entry FIFOs, no uniform pulse generators, no analog outputs, no soft
 /// limits (see "Build options").
-pub type MotionController3Dda = MotionController<3, 4, 5, false, false, true, false>;
+pub type MotionController3Dda = MotionController<3, 4, 5, false, false, true, false, false>;
 
 /// The exported servo configuration (`motion_controller_servo`): the
 /// DDA-only controller with the analog outputs (see "Build options").
-pub type MotionController3Servo = MotionController<3, 4, 5, false, true, true, false>;
+pub type MotionController3Servo = MotionController<3, 4, 5, false, true, true, false, false>;
 
 /// The exported `motion_controller` without the probe latch (`PROBE` =
 /// false): measured on the seed card in the scaling report, not exported
 /// (see "Build options").
-pub type MotionController3NoProbe = MotionController<3, 4, 5, true, false, false, true>;
+pub type MotionController3NoProbe = MotionController<3, 4, 5, true, false, false, true, false>;
 
 /// Both build options (uniform generators and analog outputs): measured on
 /// the seed card in the scaling report, not exported (see "Build options").
-pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true, true, false>;
+pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true, true, false, false>;
 
 /// The exported `motion_controller` without the soft limits (`SOFT_LIMITS`
 /// = false): measured beside it, not exported (see "Build options").
-pub type MotionController3NoSoftLimits = MotionController<3, 4, 5, true, false, true, false>;
+pub type MotionController3NoSoftLimits = MotionController<3, 4, 5, true, false, true, false, false>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
-pub type MotionController1 = MotionController<1, 4, 5, true, false, true, true>;
+pub type MotionController1 = MotionController<1, 4, 5, true, false, true, true, false>;
 
 /// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
 /// the synthesis report's scaling table, not exported.
-pub type MotionController6 = MotionController<6, 4, 5, true, false, true, true>;
+pub type MotionController6 = MotionController<6, 4, 5, true, false, true, true, false>;
+
+/// The exported spindle configuration (`motion_controller_dda_spindle`):
+/// the DDA-only controller with the spindle encoder and the electronic
+/// gearbox (see "Spindle encoder and electronic gearbox").
+pub type MotionController3DdaSpindle = MotionController<3, 4, 5, false, false, true, false, true>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -860,6 +965,10 @@ pub const SUMMARY: &str =
 pub const SUMMARY_DDA: &str =
     "motion controller, DDA interpolators only (no uniform pulse generators): K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
 
+/// The spindle build's line (`motion_controller_dda_spindle`).
+pub const SUMMARY_DDA_SPINDLE: &str =
+    "motion controller, DDA interpolators only, with the spindle encoder and an electronic gearbox (threading, rigid tapping): K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
+
 /// The servo build's line (`motion_controller_servo`).
 pub const SUMMARY_SERVO: &str =
     "motion controller, DDA interpolators only, with analog outputs: K step or analog (AD669 DAC, velocity servo) axes with encoders, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
@@ -889,6 +998,9 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("gpio_in", "8", "general inputs, asynchronous"),
     port("probe", "1", "touch probe or tool setter, asynchronous: the first edge `PROBE_CONTROL.EDGE` selects after arming latches every axis's positions; ignored in a build without `PROBE` (`CONFIG.PROBE` = 0)"),
     port("feed_hold", "1", "feed hold request, asynchronous, 1 = hold (`HOLD_CONTROL.INVERT` = 1: 0 = hold): while active the path decelerates along itself to a stop; it resumes on `HOLD_CONTROL.RELEASE` once the input is inactive"),
+    port("spindle_a", "1", "spindle encoder A, asynchronous (synchronized and filtered inside, `SPINDLE_CONFIG`); ignored in a build without `SPINDLE` (`CONFIG.SPINDLE` = 0)"),
+    port("spindle_b", "1", "spindle encoder B, asynchronous; ignored without `SPINDLE`"),
+    port("spindle_index", "1", "spindle encoder index, asynchronous: an armed gearbox engages at its next event; ignored without `SPINDLE`"),
     port("drive_enable", "K", "bit k: enable (servo-on) of axis k's drive: `IO_CONFIG.DRIVE_ENABLE`, forced low by an E-stop, a watchdog expiry or that axis's alarm; registered"),
     port("gpio_out", "8", "general outputs (`GPIO_OUT`; the `GPIO_SAFE` ones drop on E-stop or watchdog expiry); registered"),
     port("dac_data", "16", "DAC data bus, shared by the analog channels (AD669 style; 0 in a build without them); registered"),
@@ -910,6 +1022,7 @@ pub struct MotionController<
     const ANALOG: bool,
     const PROBE: bool,
     const SOFT: bool,
+    const SPINDLE: bool,
 > {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
@@ -945,6 +1058,12 @@ pub struct MotionController<
     pub probe: Signal<In, Bit>,
     /// Pin: the feed hold request.
     pub feed_hold: Signal<In, Bit>,
+    /// Pin: spindle encoder A.
+    pub spindle_a: Signal<In, Bit>,
+    /// Pin: spindle encoder B.
+    pub spindle_b: Signal<In, Bit>,
+    /// Pin: spindle encoder index.
+    pub spindle_index: Signal<In, Bit>,
     /// Bus read data.
     pub bus_read_data: Signal<Out, Bits<32>>,
     /// Level interrupt.
@@ -990,6 +1109,13 @@ pub struct MotionController<
     probe_trigger: ProbeTrigger,
     /// The soft limits (build option `SOFT_LIMITS`).
     soft_limits: SoftLimits<K>,
+    /// The spindle encoder and the gearbox (build option `SPINDLE`).
+    spindle: SpindleUnit<K>,
+    /// `SPINDLE`: the spindle unit's steps, event and read data are used.
+    has_spindle: Constant<Bit>,
+    /// The spindle unit's read data, 0 without `SPINDLE`.
+    spindle_read: Signal<Local, Bits<32>>,
+    ev_spindle: Constant<Bits<IRQ_COUNT>>,
     /// `SOFT`: the soft limits' stop, event and read data are used.
     has_soft: Constant<Bit>,
     /// The soft limits' read data, 0 without `SOFT`.
@@ -1114,7 +1240,8 @@ impl<
         const ANALOG: bool,
         const PROBE: bool,
         const SOFT: bool,
-    > MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
+        const SPINDLE: bool,
+    > MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
 {
     /// This build's options, as the register map and the model take them.
     pub const BUILD: registers::BuildOptions = registers::BuildOptions {
@@ -1122,6 +1249,7 @@ impl<
         analog: ANALOG,
         probe: PROBE,
         soft_limits: SOFT,
+        spindle: SPINDLE,
     };
 }
 
@@ -1133,7 +1261,8 @@ impl<
         const ANALOG: bool,
         const PROBE: bool,
         const SOFT: bool,
-    > Default for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
+        const SPINDLE: bool,
+    > Default for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
 {
     fn default() -> Self {
         assert!(
@@ -1170,6 +1299,9 @@ impl<
             gpio_in: Default::default(),
             probe: Default::default(),
             feed_hold: Default::default(),
+            spindle_a: Default::default(),
+            spindle_b: Default::default(),
+            spindle_index: Default::default(),
             bus_read_data: Default::default(),
             irq: Default::default(),
             running: Default::default(),
@@ -1182,7 +1314,9 @@ impl<
             dac_cs_n: Default::default(),
             dac_l1_n: Default::default(),
             dac_ldac: Default::default(),
-            axes: array_init::array_init(|k| MotionAxis::new(k, UNIFORM, ANALOG, axis_config_mask)),
+            axes: array_init::array_init(|k| {
+                MotionAxis::new(k, UNIFORM, ANALOG, SPINDLE, axis_config_mask)
+            }),
             entry_converter: Default::default(),
             registers: GlobalRegisters::new(config),
             period: Default::default(),
@@ -1203,6 +1337,10 @@ impl<
             probe_trigger: Default::default(),
             soft_limits: Default::default(),
             has_soft: Constant::new(SOFT),
+            spindle: Default::default(),
+            has_spindle: Constant::new(SPINDLE),
+            spindle_read: Default::default(),
+            ev_spindle: ev(irq::SPINDLE),
             soft_read: Default::default(),
             soft_position: Default::default(),
             soft_magnitude: Default::default(),
@@ -1293,7 +1431,8 @@ impl<
         const ANALOG: bool,
         const PROBE: bool,
         const SOFT: bool,
-    > Logic for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT>
+        const SPINDLE: bool,
+    > Logic for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -1321,6 +1460,7 @@ impl<
             io,
             probe_trigger,
             soft_limits,
+            spindle,
             feed_hold_unit,
             planner,
             analog
@@ -1543,6 +1683,9 @@ impl<
             self.axes[i].flush.next = self.period.flush.val();
             self.axes[i].halt.next = self.halt.val();
             self.axes[i].abort.next = self.abort.val();
+            self.axes[i].gear_step.next =
+                (self.spindle.step.val() & self.axis_bit[i].val()) != self.zero_k.val();
+            self.axes[i].gear_forward.next = self.spindle.step_forward.val();
             self.axes[i].pop.next = self.pop.val();
             self.axes[i].underrun.next = self.underrun.val();
             self.axes[i].period_active.next = self.period.period_active.val();
@@ -1585,6 +1728,18 @@ impl<
         self.step_a.next = self.steps_a.val();
         self.step_b.next = self.steps_b.val();
         self.drive_enable.next = self.enables.val();
+
+        // The spindle unit: its encoder, registers and gearbox; an abort
+        // halts the gearbox. Without SPINDLE it drives nothing (the axes
+        // gate its steps), and synthesis removes it.
+        self.spindle.reset.next = self.reset.val();
+        self.spindle.spindle_a.next = self.spindle_a.val();
+        self.spindle.spindle_b.next = self.spindle_b.val();
+        self.spindle.spindle_index.next = self.spindle_index.val();
+        self.spindle.address.next = self.bus_address.val();
+        self.spindle.write.next = self.bus_write.val() & self.has_spindle.val();
+        self.spindle.write_data.next = self.bus_write_data.val().get_bits::<POSITION_BITS>(0);
+        self.spindle.abort.next = self.abort.val();
 
         // Soft limits: the axis they take in turn, its position and entry.
         self.soft_position.next = self.zero_position.val();
@@ -1702,6 +1857,9 @@ impl<
         if self.soft_limits.tripped.val() & self.has_soft.val() {
             self.events.next = self.events.val() | self.ev_soft_limit.val();
         }
+        if self.spindle.cause.val() & self.has_spindle.val() {
+            self.events.next = self.events.val() | self.ev_spindle.val();
+        }
         self.interrupts.reset.next = self.reset.val();
         self.interrupts.events.next = self.events.val();
         self.interrupts.clear.next = self.registers.status_write.val();
@@ -1720,11 +1878,16 @@ impl<
         if self.has_soft.val() {
             self.soft_read.next = self.soft_limits.read_data.val();
         }
+        self.spindle_read.next = self.zero32.val();
+        if self.has_spindle.val() {
+            self.spindle_read.next = self.spindle.read_data.val();
+        }
         if self.bus_read.val() {
             self.read_data.d.next = self.registers.read_data.val()
                 | self.io.read_data.val()
                 | self.probe_read.val()
                 | self.soft_read.val()
+                | self.spindle_read.val()
                 | self.feed_hold_unit.read_data.val()
                 | self.axes_read.val();
         }
@@ -1764,9 +1927,10 @@ impl<
     }
 }
 
-crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool, const SOFT: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT> {
+crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool, const SOFT: bool, const SPINDLE: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE> {
     inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
-        limit_pos, limit_neg, home, drive_alarm, estop, gpio_in, probe, feed_hold],
+        limit_pos, limit_neg, home, drive_alarm, estop, gpio_in, probe, feed_hold,
+        spindle_a, spindle_b, spindle_index],
     outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out,
         dac_data, dac_cs_n, dac_l1_n, dac_ldac],
 });

@@ -7,6 +7,7 @@
 //! values from the registered state of every part, then the edge.
 
 use super::analog_model::{AnalogWalkModel, WalkInputs};
+use super::gear_merge::GearMergeModel;
 use super::io_model::{
     AxisIoComb, AxisIoModel, AxisSwitches, FeedHoldModel, MachineIoModel, MachinePins, ProbeComb,
     ProbeModel, StepPath,
@@ -16,6 +17,7 @@ use super::registers::{
     VERSION_VALUE,
 };
 use super::soft_limits::{SoftLimitsInputs, SoftLimitsModel};
+use super::spindle_model::{SpindleInputs, SpindleModel};
 use crate::blocks::command_fifo::model::{CommandFifoModel, CommandFifoOutputs};
 use crate::blocks::dac_interface::model::{DacInputs, DacModel, DacOutputs};
 use crate::blocks::dda_integrator::model::{
@@ -62,6 +64,8 @@ pub struct ControllerInputs {
     pub encoders: Vec<(bool, bool, bool)>,
     /// Limit, home, alarm, E-stop and general-input pins.
     pub pins: MachinePins,
+    /// The spindle encoder: (a, b, index).
+    pub spindle: (bool, bool, bool),
 }
 
 /// The controller's outputs after one edge.
@@ -102,7 +106,7 @@ pub struct DacPins {
 impl ControllerInputs {
     /// The RTL's input vector, in its port order (`VectorPorts`).
     pub fn to_vector(&self) -> Vec<u64> {
-        let mut vector = Vec::with_capacity(15);
+        let mut vector = Vec::with_capacity(19);
         self.write_vector(&mut vector);
         vector
     }
@@ -134,6 +138,9 @@ impl ControllerInputs {
             self.pins.gpio_in as u64,
             self.pins.probe as u64,
             self.pins.feed_hold as u64,
+            self.spindle.0 as u64,
+            self.spindle.1 as u64,
+            self.spindle.2 as u64,
         ]);
     }
 }
@@ -209,6 +216,8 @@ pub struct AxisModel {
     glue: AxisGlue,
     /// Limits, alarm, home and drive enable.
     io: AxisIoModel,
+    /// The gearbox's steps merged with the interpolator's.
+    merge: GearMergeModel,
 }
 
 /// The registers of an axis outside its sub-blocks: all 0 at power-up and
@@ -251,12 +260,15 @@ struct AxisGlue {
     cmd_snapshot: u32,
     act_snapshot: u32,
     encoder_error_prev: bool,
+    gear_lost_prev: bool,
 }
 
 /// The combinational values of an axis in one clock.
 #[derive(Clone, Copy, Debug, Default)]
 struct AxisComb {
     io: AxisIoComb,
+    /// The gearbox's step for this axis in this clock: `Some(forward)`.
+    gear: Option<bool>,
     low: bool,
     overflow_event: bool,
     fault_event: bool,
@@ -316,6 +328,7 @@ impl AxisModel {
             encoder,
             glue: AxisGlue::default(),
             io: AxisIoModel::default(),
+            merge: GearMergeModel::default(),
         }
     }
 
@@ -363,9 +376,9 @@ impl AxisModel {
         address >> AXIS_STRIDE_LOG2 == self.window && address & 0x10 != 0
     }
 
-    /// The step the interpolator offers to the request register in this
-    /// clock, and its direction.
-    fn candidate(&self) -> (bool, bool) {
+    /// The step the interpolator offers in this clock, and its direction
+    /// (held with or without a step).
+    fn interp(&self) -> (bool, bool) {
         if self.glue.uniform_active {
             (
                 self.uniform_out.pulse && !self.glue.uniform_pulse_prev,
@@ -374,6 +387,13 @@ impl AxisModel {
         } else {
             (self.dda_out.pulse, self.glue.forward_2)
         }
+    }
+
+    /// The step offered to the request register in this clock (the
+    /// interpolator's or the gearbox's `gear`), and its direction.
+    fn candidate(&self, gear: Option<bool>) -> (bool, bool) {
+        self.merge
+            .candidate(self.interp(), gear, self.glue.analog_active)
     }
 
     /// The direction of the uniform generator's pulses in this clock: the
@@ -448,10 +468,11 @@ impl AxisModel {
         pop: bool,
         low_water: u64,
         switches: AxisSwitches,
+        gear: Option<bool>,
     ) -> AxisComb {
         let selected = self.selected(address);
         let offset = address & 0xf;
-        let (pulse, pulse_forward) = self.candidate();
+        let (pulse, pulse_forward) = self.candidate(gear);
         // An analog axis moves the way its code points.
         let pulse = pulse || self.glue.code_forward || self.glue.code_backward;
         let pulse_forward = if self.glue.analog_active {
@@ -500,8 +521,10 @@ impl AxisModel {
                     axis::CMD_SNAPSHOT => self.glue.cmd_snapshot,
                     axis::ACT_SNAPSHOT => self.glue.act_snapshot,
                     axis::AXIS_STATUS => {
-                        flag(self.stage_out.overrun, fields::STATUS_STEP_OVERRUN)
-                            | flag(self.glue.overrange_flag, fields::STATUS_INTERP_OVERRANGE)
+                        flag(
+                            self.stage_out.overrun || self.merge.lost(),
+                            fields::STATUS_STEP_OVERRUN,
+                        ) | flag(self.glue.overrange_flag, fields::STATUS_INTERP_OVERRANGE)
                             | flag(self.glue.overflow_flag, fields::STATUS_INTERP_OVERFLOW)
                             | flag(self.encoder_out.error, fields::STATUS_ENCODER_ERROR)
                             | flag(self.encoder_out.index_seen, fields::STATUS_INDEX_SEEN)
@@ -519,8 +542,13 @@ impl AxisModel {
             overflow_event: fifo_write && self.fifo_out.full && !pop,
             fault_event: {
                 let (a, b, c, d) = self.rises();
-                a || b || c || d || self.glue.saturated
+                a || b
+                    || c
+                    || d
+                    || self.glue.saturated
+                    || self.merge.lost() && !self.glue.gear_lost_prev
             },
+            gear,
             encoder_error_event: self.encoder_out.error && !self.glue.encoder_error_prev,
             read_data,
         }
@@ -582,6 +610,7 @@ impl AxisModel {
             next.glue.overflow_flag = true;
         }
         next.glue.overrun_prev = self.stage_out.overrun;
+        next.glue.gear_lost_prev = self.merge.lost();
         next.glue.dda_overrange_prev = self.dda_out.overrange;
         next.glue.uniform_overrange_prev = self.uniform_out.overrange;
         next.glue.uniform_overflow_prev = self.uniform_out.overflow;
@@ -649,7 +678,16 @@ impl AxisModel {
         next.glue.uniform_pulse_prev = self.uniform_out.pulse;
         next.glue.uniform_running_forward = self.uniform_forward();
         // An abort or a blocked direction keeps the offered step out.
-        let (candidate, candidate_forward) = self.candidate();
+        let (candidate, candidate_forward) = self.candidate(comb.gear);
+        let (interp, interp_forward) = self.interp();
+        next.merge.edge(
+            interp.then_some(interp_forward),
+            comb.gear,
+            self.glue.analog_active,
+            c.abort,
+            clear_faults,
+            c.reset,
+        );
         let blocked = if candidate_forward {
             comb.io.block_forward
         } else {
@@ -791,6 +829,10 @@ pub struct MotionControllerModel {
     dac_read_sel: bool,
     /// The controller's and the DAC's address of each forwarded register.
     dac_addresses: Vec<(u32, u64)>,
+    /// The spindle encoder and the gearbox (`SPINDLE`; without it never
+    /// written, its steps and event unused).
+    spindle: SpindleModel,
+    has_spindle: bool,
 }
 
 impl MotionControllerModel {
@@ -807,6 +849,7 @@ impl MotionControllerModel {
             analog,
             probe,
             soft_limits,
+            spindle,
             ..
         } = build;
         let dac_map =
@@ -875,6 +918,8 @@ impl MotionControllerModel {
             walk: AnalogWalkModel::default(),
             dac_read_sel: false,
             dac_addresses,
+            spindle: SpindleModel::new(axes),
+            has_spindle: spindle,
         })
     }
 
@@ -918,6 +963,11 @@ impl MotionControllerModel {
     /// The feed hold: its request and ramp.
     pub fn feed_hold(&self) -> &FeedHoldModel {
         &self.feed_hold
+    }
+
+    /// The spindle unit (its state is meaningful in a `SPINDLE` build).
+    pub fn spindle(&self) -> &SpindleModel {
+        &self.spindle
     }
 
     fn outputs(&self) -> ControllerOutputs {
@@ -1040,11 +1090,13 @@ impl MotionControllerModel {
         let pop = boundary && all_ready && !halt;
         let underrun = boundary && !all_ready && !halt;
         let period_next = self.period_ticks.max(1);
+        let gear_step = self.spindle.step_out().filter(|_| self.has_spindle);
         let combs: Vec<AxisComb> = self
             .axes
             .iter()
             .zip(&io.switches)
-            .map(|(a, s)| {
+            .enumerate()
+            .map(|(k, (a, s))| {
                 a.comb(
                     i.reset,
                     address,
@@ -1053,6 +1105,7 @@ impl MotionControllerModel {
                     pop,
                     self.low_water as u64,
                     *s,
+                    gear_step.filter(|(axis, _)| *axis == k).map(|(_, f)| f),
                 )
             })
             .collect();
@@ -1077,12 +1130,21 @@ impl MotionControllerModel {
         set(irq::PROBE, probe.latch);
         set(irq::HELD, self.feed_hold.held() && !self.held_prev);
         set(irq::SOFT_LIMIT, self.has_soft && self.soft_event);
+        set(irq::SPINDLE, self.has_spindle && self.spindle.event());
+        let spindle_read = match self.has_spindle {
+            true => self.spindle.read(address),
+            false => 0,
+        };
         let soft_read = match self.has_soft {
             true => self.soft.read(address, i.write),
             false => 0,
         };
         let read_word = combs.iter().fold(
-            self.global_read(address, &io) | probe.read_data | hold.read_data | soft_read,
+            self.global_read(address, &io)
+                | probe.read_data
+                | hold.read_data
+                | soft_read
+                | spindle_read,
             |w, c| w | c.read_data,
         );
         // STOP_CAUSE: the highest of this clock's causes, with the lowest
@@ -1176,6 +1238,14 @@ impl MotionControllerModel {
             self.tick,
         );
         next.held_prev = self.feed_hold.held();
+        next.spindle.edge(SpindleInputs {
+            reset: i.reset,
+            pins: i.spindle,
+            address,
+            write: i.write && self.has_spindle,
+            write_data: i.write_data,
+            abort,
+        });
         let picked = &self.axes[self.soft.select()];
         let (magnitude, negative) = picked.entry_steps();
         let soft_out = next.soft.step(&SoftLimitsInputs {

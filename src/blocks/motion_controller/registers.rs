@@ -34,8 +34,10 @@ pub const ID_VALUE: u32 = 0x4d48_4443;
 /// `CONFIG.SOFT_LIMITS`); its patch 1: the check's latency 100 clocks at
 /// K = 3 (was 96), the reach floor(N/2) + 1 + latency from the stop's
 /// length, a window written in an axis's load clock checked as written,
-/// and a window read in the clock of a write to it reading 0.
-pub const VERSION_VALUE: u32 = 0x0000_0701;
+/// and a window read in the clock of a write to it reading 0. Minor 8: the
+/// spindle encoder and the electronic gearbox (`SPINDLE_*`, `GEAR_*`,
+/// `STATUS.SPINDLE`, `CONFIG.SPINDLE`, the `spindle_*` pins).
+pub const VERSION_VALUE: u32 = 0x0000_0800;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -314,6 +316,53 @@ pub mod fields {
     pub const SOFT_MEASURED: u32 = 20;
     /// `CONFIG.SOFT_LIMITS`: the build has the soft limits.
     pub const CONFIG_SOFT_LIMITS: u32 = 27;
+    /// `CONFIG.SPINDLE`: the build has the spindle unit.
+    pub const CONFIG_SPINDLE: u32 = 28;
+    /// `SPINDLE_CONFIG.FILTER`: the spindle encoder's glitch filter length.
+    pub const SPINDLE_FILTER: u32 = 0;
+    /// Width of `SPINDLE_CONFIG.FILTER`.
+    pub const SPINDLE_FILTER_WIDTH: u32 = 4;
+    /// `SPINDLE_CONFIG.COUNTER_MODE`: count rising edges of A, B = direction.
+    pub const SPINDLE_COUNTER_MODE: u32 = 4;
+    /// `SPINDLE_CONFIG.INDEX_INVERT`: the index is active low.
+    pub const SPINDLE_INDEX_INVERT: u32 = 5;
+    /// `SPINDLE_CONFIG.SPEED_WINDOW`: the speed window is 2^n clocks.
+    pub const SPINDLE_SPEED_WINDOW: u32 = 8;
+    /// Width of `SPINDLE_CONFIG.SPEED_WINDOW`.
+    pub const SPINDLE_SPEED_WINDOW_WIDTH: u32 = 5;
+    /// `SPINDLE_CONFIG.SPEED_WINDOW` after reset: 2^20 clocks.
+    pub const SPINDLE_SPEED_WINDOW_RESET: u64 = 20;
+    /// `GEAR_CONTROL.ARM`: write 1 to arm the gearbox.
+    pub const GEAR_ARM: u32 = 0;
+    /// `GEAR_CONTROL.STOP`: write 1 to ramp out and stop.
+    pub const GEAR_STOP: u32 = 1;
+    /// `GEAR_CONTROL.HALT`: write 1 to stop at once.
+    pub const GEAR_HALT: u32 = 2;
+    /// `GEAR_CONTROL.CLEAR_ENCODER_ERROR`: write 1 to clear the spindle
+    /// encoder's error flag.
+    pub const GEAR_CLEAR_ENCODER_ERROR: u32 = 3;
+    /// `GEAR_CONTROL.SPINDLE_REVERSE`: the spindle's forward is counting down.
+    pub const GEAR_SPINDLE_REVERSE: u32 = 4;
+    /// `GEAR_CONTROL.AXIS_REVERSE`: a forward count steps the axis down.
+    pub const GEAR_AXIS_REVERSE: u32 = 5;
+    /// `GEAR_CONTROL.AXIS`: the geared axis.
+    pub const GEAR_AXIS: u32 = 8;
+    /// Width of `GEAR_CONTROL.AXIS`.
+    pub const GEAR_AXIS_WIDTH: u32 = 3;
+    /// `GEAR_STATUS.PHASE`: 0 idle, 1 armed, 2 ramp-in, 3 track, 4 stopping.
+    pub const GEAR_PHASE: u32 = 0;
+    /// Width of `GEAR_STATUS.PHASE`.
+    pub const GEAR_PHASE_WIDTH: u32 = 3;
+    /// `GEAR_STATUS.LOCKED`: tracking with the lag caught up.
+    pub const GEAR_LOCKED: u32 = 3;
+    /// `GEAR_STATUS.DONE`: sticky, the last run reached its length.
+    pub const GEAR_DONE: u32 = 4;
+    /// `GEAR_STATUS.INVALID`: sticky, an arm was refused.
+    pub const GEAR_INVALID: u32 = 5;
+    /// `GEAR_STATUS.OVERRUN`: sticky, a count was lost and the gearbox halted.
+    pub const GEAR_OVERRUN: u32 = 6;
+    /// `GEAR_STATUS.ENCODER_ERROR`: sticky, the spindle encoder lost counts.
+    pub const GEAR_ENCODER_ERROR: u32 = 7;
     /// `STATE.HOLDING`: the hold's factor is below 1.
     pub const STATE_HOLDING: u32 = 7;
     /// `STATE.HELD`: the hold's factor is 0.
@@ -394,6 +443,40 @@ pub const AXIS_STRIDE: u32 = 0x20;
 pub const AXIS_STRIDE_LOG2: u32 = 5;
 /// Most axes the 8-bit address space holds.
 pub const MAX_AXES: usize = 7;
+/// Most axes of a build with the spindle unit, whose window takes the
+/// last axis window's addresses.
+pub const MAX_AXES_SPINDLE: usize = 6;
+
+/// Word addresses of the spindle unit's registers (build option
+/// `SPINDLE`): a window at the last axis window's place, `0xE0`.
+pub mod spindle {
+    /// The window's first word.
+    pub const BASE: u32 = 0xe0;
+    /// The spindle encoder's count, signed, POSITION_BITS wide.
+    pub const SPINDLE_POSITION: u32 = BASE;
+    /// The count at the last index event.
+    pub const SPINDLE_INDEX_POSITION: u32 = BASE + 0x01;
+    /// Counts in the last speed window.
+    pub const SPINDLE_SPEED: u32 = BASE + 0x02;
+    /// Encoder filter, mode, index polarity, speed window.
+    pub const SPINDLE_CONFIG: u32 = BASE + 0x03;
+    /// Gearbox strobes, directions and axis.
+    pub const GEAR_CONTROL: u32 = BASE + 0x04;
+    /// Gearbox phase and flags.
+    pub const GEAR_STATUS: u32 = BASE + 0x05;
+    /// The ratio's numerator n.
+    pub const GEAR_NUMERATOR: u32 = BASE + 0x06;
+    /// The ratio's denominator d.
+    pub const GEAR_DENOMINATOR: u32 = BASE + 0x07;
+    /// The rate's change per count while ramping.
+    pub const GEAR_RAMP: u32 = BASE + 0x08;
+    /// Steps from the index at which a run ends.
+    pub const GEAR_LENGTH: u32 = BASE + 0x09;
+    /// Net steps since the arm.
+    pub const GEAR_POSITION: u32 = BASE + 0x0a;
+    /// Words the window decodes (`address - BASE` below this).
+    pub const WORDS: u32 = 0x0b;
+}
 
 /// Word offsets of the per-axis registers within an axis window.
 pub mod axis {
@@ -482,8 +565,11 @@ pub mod irq {
     pub const HELD: u32 = 13;
     /// A soft-limit verdict turned beyond: the hold is requested.
     pub const SOFT_LIMIT: u32 = 14;
+    /// The spindle unit: the gearbox's run ended at its length, an arm was
+    /// refused, the gearbox overran, or the spindle encoder saw an error.
+    pub const SPINDLE: u32 = 15;
     /// Number of interrupt sources.
-    pub const COUNT: usize = 15;
+    pub const COUNT: usize = 16;
 }
 
 /// A read-write register whose low `width` bits hold a number.
@@ -513,6 +599,7 @@ fn irq_fields(access: Access) -> Vec<Field> {
         field("PROBE", irq::PROBE, 1, access, "the armed probe tripped: every axis's PROBE_*_POSITION latched; see PROBE_CONTROL"),
         field("HELD", irq::HELD, 1, access, "the feed hold brought the path to a stop (STATE.HELD rose); see HOLD_CONTROL"),
         field("SOFT_LIMIT", irq::SOFT_LIMIT, 1, access, "an axis's soft-limit verdict turned beyond: the feed hold is requested; see SOFT_LIMIT.AXIS"),
+        field("SPINDLE", irq::SPINDLE, 1, access, "GEAR_STATUS.DONE, INVALID or OVERRUN, or SPINDLE's ENCODER_ERROR rose; see GEAR_STATUS"),
     ]
 }
 
@@ -529,6 +616,8 @@ pub struct BuildOptions {
     pub probe: bool,
     /// The soft limits (`CONFIG.SOFT_LIMITS`).
     pub soft_limits: bool,
+    /// The spindle encoder and the electronic gearbox (`CONFIG.SPINDLE`).
+    pub spindle: bool,
 }
 
 impl BuildOptions {
@@ -538,6 +627,7 @@ impl BuildOptions {
         analog: false,
         probe: true,
         soft_limits: true,
+        spindle: false,
     };
     /// `motion_controller_dda`: DDA only, with the probe, no soft limits
     /// (the seed card's budget).
@@ -546,6 +636,7 @@ impl BuildOptions {
         analog: false,
         probe: true,
         soft_limits: false,
+        spindle: false,
     };
     /// `motion_controller_servo`: DDA only, analog outputs and the probe, no
     /// soft limits (the seed card's budget).
@@ -554,6 +645,18 @@ impl BuildOptions {
         analog: true,
         probe: true,
         soft_limits: false,
+        spindle: false,
+    };
+
+    /// `motion_controller_dda_spindle`: the DDA-only build with the
+    /// spindle encoder and the electronic gearbox (a lathe's threading and
+    /// rigid tapping), the probe, no soft limits.
+    pub const MOTION_CONTROLLER_DDA_SPINDLE: Self = Self {
+        uniform: false,
+        analog: false,
+        probe: true,
+        soft_limits: false,
+        spindle: true,
     };
 
     /// The module name of this build (the exported ones' and the names
@@ -591,9 +694,20 @@ impl BuildOptions {
             "motion_controller_servo_no_probe_soft_limits",
             "motion_controller_uniform_servo_no_probe_soft_limits",
         ];
-        match self.soft_limits == (self.uniform && !self.analog) {
+        let name = match self.soft_limits == (self.uniform && !self.analog) {
             true => DEFAULT[base],
             false => OTHER[base],
+        };
+        if !self.spindle {
+            return name;
+        }
+        // The spindle builds: the one exported and the others the tests
+        // and the scaling report name.
+        match name {
+            "motion_controller_dda" => "motion_controller_dda_spindle",
+            "motion_controller" => "motion_controller_spindle",
+            "motion_controller_servo" => "motion_controller_servo_spindle",
+            _ => "motion_controller_other_spindle",
         }
     }
 }
@@ -617,10 +731,16 @@ pub fn register_map(
         analog,
         probe,
         soft_limits,
+        spindle,
     } = build;
     if axes == 0 || axes > MAX_AXES {
         return Err(RegMapError::NoCopies(format!(
             "motion_controller axes: {axes} (1 to {MAX_AXES} fit the 8-bit address space)"
+        )));
+    }
+    if spindle && axes > MAX_AXES_SPINDLE {
+        return Err(RegMapError::NoCopies(format!(
+            "motion_controller axes: {axes} with the spindle unit (1 to {MAX_AXES_SPINDLE}: its window takes the last axis window's addresses)"
         )));
     }
     use Access::*;
@@ -666,6 +786,13 @@ pub fn register_map(
                 ReadOnly,
                 "1 = this build has the soft limits (SOFT_LIMIT, SOFT_MIN, SOFT_MAX, STATUS.SOFT_LIMIT)",
             ),
+            field(
+                "SPINDLE",
+                fields::CONFIG_SPINDLE,
+                1,
+                ReadOnly,
+                "1 = this build has the spindle encoder and the electronic gearbox (SPINDLE_*, GEAR_*, STATUS.SPINDLE); 0: the spindle_* pins are ignored",
+            ),
         ],
     );
     config.fields[0].reset = axes as u64;
@@ -676,6 +803,7 @@ pub fn register_map(
     config.fields[5].reset = analog as u64;
     config.fields[6].reset = probe as u64;
     config.fields[7].reset = soft_limits as u64;
+    config.fields[8].reset = spindle as u64;
     let analog_access = if analog { ReadWrite } else { ReadOnly };
     let analog_doc = if analog {
         "1 = analog axis, taken when RUN starts: each FIFO entry is the axis's signed 16-bit DAC code for the period (0 = 0 V), no steps; its channel goes to 0 when RUN falls"
@@ -996,28 +1124,17 @@ pub fn register_map(
                 "the upper end, signed",
             ),
         ] {
-            map.registers.push(per_axis(register(
+            map.registers.push(per_axis(signed_position(
                 name,
                 at(offset),
+                ReadWrite,
                 doc,
-                vec![
-                    field(
-                        "VALUE",
-                        fields::VALUE,
-                        super::POSITION_BITS as u32,
-                        ReadWrite,
-                        value_doc,
-                    ),
-                    field(
-                        "SIGN",
-                        super::POSITION_BITS as u32,
-                        32 - super::POSITION_BITS as u32,
-                        ReadOnly,
-                        "copies of VALUE's sign bit (writes ignored)",
-                    ),
-                ],
+                value_doc,
             )));
         }
+    }
+    if spindle {
+        map.registers.extend(spindle_registers());
     }
     if analog {
         let dac = crate::blocks::dac_interface::registers::register_map(axes, DAC_BITS)?;
@@ -1038,3 +1155,91 @@ pub fn register_map(
     map.validate()?;
     Ok(map)
 }
+
+/// The spindle unit's registers (build option `SPINDLE`; see the
+/// controller's "Spindle encoder and electronic gearbox").
+fn spindle_registers() -> Vec<Register> {
+    use Access::*;
+    let signed = |name: &'static str, address: u32, access: Access, doc: &'static str| {
+        signed_position(name, address, access, doc, doc)
+    };
+    vec![
+        signed("SPINDLE_POSITION", spindle::SPINDLE_POSITION, ReadOnly, "the spindle encoder's count, signed, wrapping at 2^POSITION_BITS (never cleared: the host takes differences)"),
+        signed("SPINDLE_INDEX_POSITION", spindle::SPINDLE_INDEX_POSITION, ReadOnly, "SPINDLE_POSITION at the last index event (before that event's own count)"),
+        signed("SPINDLE_SPEED", spindle::SPINDLE_SPEED, ReadOnly, "counts in the last speed window of 2^SPEED_WINDOW clocks, signed (the position's change, modulo 2^POSITION_BITS)"),
+        register(
+            "SPINDLE_CONFIG",
+            spindle::SPINDLE_CONFIG,
+            "the spindle encoder's options and the speed window",
+            vec![
+                field("FILTER", fields::SPINDLE_FILTER, fields::SPINDLE_FILTER_WIDTH, ReadWrite, "encoder glitch filter: clocks a level of A, B or index must hold (0 and 1: synchronizer only)"),
+                field("COUNTER_MODE", fields::SPINDLE_COUNTER_MODE, 1, ReadWrite, "0 = 4x quadrature, 1 = count rising edges of A, B high = up"),
+                field("INDEX_INVERT", fields::SPINDLE_INDEX_INVERT, 1, ReadWrite, "1 = the index is active low"),
+                Field { reset: fields::SPINDLE_SPEED_WINDOW_RESET, ..field("SPEED_WINDOW", fields::SPINDLE_SPEED_WINDOW, fields::SPINDLE_SPEED_WINDOW_WIDTH, ReadWrite, "n: SPINDLE_SPEED is measured over windows of 2^n clocks (reset 20: 10.5 ms at 100 MHz)") },
+            ],
+        ),
+        register(
+            "GEAR_CONTROL",
+            spindle::GEAR_CONTROL,
+            "the electronic gearbox's strobes, directions and axis; SPINDLE_REVERSE, AXIS_REVERSE and AXIS are written only while GEAR_STATUS.PHASE is 0 (idle)",
+            vec![
+                field("ARM", fields::GEAR_ARM, 1, WriteOnly, "write 1 to arm (idle only): take GEAR_NUMERATOR, DENOMINATOR, RAMP, LENGTH and this write's directions and axis, zero GEAR_POSITION, clear DONE, INVALID and OVERRUN, and engage at the next index; refused with INVALID for a ratio that is not valid or AXIS >= K"),
+                field("STOP", fields::GEAR_STOP, 1, WriteOnly, "write 1 to ramp out to the crawl rate and stop; disarms while armed"),
+                field("HALT", fields::GEAR_HALT, 1, WriteOnly, "write 1 to stop at once, no ramp (an abort halts too)"),
+                field("CLEAR_ENCODER_ERROR", fields::GEAR_CLEAR_ENCODER_ERROR, 1, WriteOnly, "write 1 to clear GEAR_STATUS.ENCODER_ERROR (the count is kept)"),
+                field("SPINDLE_REVERSE", fields::GEAR_SPINDLE_REVERSE, 1, ReadWrite, "1 = the spindle's forward direction counts SPINDLE_POSITION down"),
+                field("AXIS_REVERSE", fields::GEAR_AXIS_REVERSE, 1, ReadWrite, "1 = a forward spindle count steps the axis down"),
+                field("AXIS", fields::GEAR_AXIS, fields::GEAR_AXIS_WIDTH, ReadWrite, "the geared axis k: its steps join that axis's FIFO steps (a step axis; an arm with AXIS >= K is refused)"),
+            ],
+        ),
+        register(
+            "GEAR_STATUS",
+            spindle::GEAR_STATUS,
+            "the electronic gearbox's phase and flags",
+            vec![
+                field("PHASE", fields::GEAR_PHASE, fields::GEAR_PHASE_WIDTH, ReadOnly, "0 idle, 1 armed (waiting for the index), 2 ramp-in, 3 track, 4 stopping"),
+                field("LOCKED", fields::GEAR_LOCKED, 1, ReadOnly, "tracking at the ratio with the lag caught up: the axis 0 or 1 step behind floor(n x counts / d) since the index"),
+                field("DONE", fields::GEAR_DONE, 1, ReadOnly, "sticky: the last run reached GEAR_LENGTH; cleared by an arm"),
+                field("INVALID", fields::GEAR_INVALID, 1, ReadOnly, "sticky: an arm was refused (d = 0, n > d, RAMP too small for n, or AXIS >= K); cleared by an accepted arm"),
+                field("OVERRUN", fields::GEAR_OVERRUN, 1, ReadOnly, "sticky: spindle counts came faster than the gearbox takes them (one per 31 clocks): one was lost and the gearbox halted; cleared by an arm"),
+                field("ENCODER_ERROR", fields::GEAR_ENCODER_ERROR, 1, ReadOnly, "sticky: the spindle encoder saw A and B change together (counts lost); cleared by CLEAR_ENCODER_ERROR"),
+            ],
+        ),
+        number("GEAR_NUMERATOR", spindle::GEAR_NUMERATOR, GEAR_BITS, "n: the axis moves n / d steps per spindle count, n <= d; taken at the arm"),
+        number("GEAR_DENOMINATOR", spindle::GEAR_DENOMINATOR, GEAR_BITS, "d >= 1; taken at the arm"),
+        number("GEAR_RAMP", spindle::GEAR_RAMP, GEAR_BITS, "the rate's change per spindle count while ramping and catching up, in 1/d step per count; 0 = engage and stop at full rate; RAMP x 2^15 >= n; taken at the arm"),
+        number("GEAR_LENGTH", spindle::GEAR_LENGTH, GEAR_BITS, "steps from the index at which a run ends, ramped out to reach it exactly; 0 = no end; taken at the arm"),
+        signed("GEAR_POSITION", spindle::GEAR_POSITION, ReadOnly, "net steps the gearbox requested since the arm, forward positive, signed, wrapping"),
+    ]
+}
+
+/// A register holding a signed POSITION_BITS-wide number (`VALUE`),
+/// its sign copied up to bit 31 (`SIGN`).
+fn signed_position(
+    name: &'static str,
+    address: u32,
+    access: Access,
+    doc: &'static str,
+    value_doc: &'static str,
+) -> Register {
+    let position_bits = super::POSITION_BITS as u32;
+    register(
+        name,
+        address,
+        doc,
+        vec![
+            field("VALUE", fields::VALUE, position_bits, access, value_doc),
+            field(
+                "SIGN",
+                position_bits,
+                32 - position_bits,
+                Access::ReadOnly,
+                "copies of VALUE's sign bit (writes ignored)",
+            ),
+        ],
+    )
+}
+
+/// Width of `GEAR_NUMERATOR`, `GEAR_DENOMINATOR`, `GEAR_RAMP` and
+/// `GEAR_LENGTH`: the exported gearbox's W and L.
+pub const GEAR_BITS: u32 = 24;

@@ -19,7 +19,9 @@ use crate::blocks::motion_controller::{registers, STAGE_PENDING_BITS};
 use crate::blocks::step_output::StepOutput;
 
 /// Axis 0 of the exported `motion_controller` (uniform generators, no
-/// analog outputs), with the narrowest FIFO the controller takes (N = 2).
+/// analog outputs), with the narrowest FIFO the controller takes (N = 2)
+/// and the gearbox's step input of a `SPINDLE` build, free at every clock
+/// like every other input.
 fn exported_axis() -> MotionAxis<2, 3> {
     let map = registers::register_map(1, 2, registers::BuildOptions::MOTION_CONTROLLER)
         .expect("the controller's own register map validates");
@@ -27,7 +29,7 @@ fn exported_axis() -> MotionAxis<2, 3> {
         .register("AXIS_CONFIG")
         .expect("the controller's AXIS_CONFIG")
         .rw_mask();
-    MotionAxis::new(0, true, false, axis_config)
+    MotionAxis::new(0, true, false, true, axis_config)
 }
 
 pub(super) fn specs() -> Vec<FormalSpec> {
