@@ -59,6 +59,15 @@ impl SpindleEncoder {
     }
 }
 
+/// `clocks` idle clocks of `b` with `spindle` turning.
+fn spin(b: &mut Spindle3, spindle: &mut SpindleEncoder, clocks: u64) {
+    for _ in 0..clocks {
+        spindle.clock();
+        b.spindle = spindle.pins();
+        b.idle(1);
+    }
+}
+
 /// Random traffic to the spindle window: ratios valid and not, arms,
 /// stops, halts, axes in and out of range, directions, encoder options and
 /// speed windows, reads of every register.
@@ -402,11 +411,7 @@ fn fifo_entries_on_the_geared_axis_add_to_the_gearbox_steps() {
         b.write("FIFO_WRITE", 2, 0);
     }
     b.write("CONTROL", 0, 1);
-    for _ in 0..60_000 {
-        spindle.clock();
-        b.spindle = spindle.pins();
-        b.idle(1);
-    }
+    spin(&mut b, &mut spindle, 60_000);
     let fifo: i32 = entries.iter().sum();
     assert_eq!(b.read("GEAR_POSITION", 0), 150);
     assert_eq!(b.read("CMD_POSITION", 1) as i32, fifo + 150);
@@ -422,24 +427,12 @@ fn an_abort_halts_the_gearbox_and_the_estop_stops_its_steps() {
     b.write("GEAR_RAMP", 0, 1);
     let arm = b.pack("GEAR_CONTROL", &[("ARM", 1), ("AXIS", 0)]);
     b.write("GEAR_CONTROL", 0, arm);
-    for _ in 0..20_000 {
-        spindle.clock();
-        b.spindle = spindle.pins();
-        b.idle(1);
-    }
+    spin(&mut b, &mut spindle, 20_000);
     assert!(b.pin_steps(0) > 100, "geared: {}", b.pin_steps(0));
     b.pins.estop = true;
-    for _ in 0..20 {
-        spindle.clock();
-        b.spindle = spindle.pins();
-        b.idle(1);
-    }
+    spin(&mut b, &mut spindle, 20);
     let at_stop = b.pin_steps(0);
-    for _ in 0..5_000 {
-        spindle.clock();
-        b.spindle = spindle.pins();
-        b.idle(1);
-    }
+    spin(&mut b, &mut spindle, 5_000);
     assert_eq!(b.pin_steps(0), at_stop, "no step after the E-stop");
     let status = b.read("GEAR_STATUS", 0);
     assert_eq!(b.field("GEAR_STATUS", "PHASE", status), Phase::Idle as u64);
@@ -474,19 +467,11 @@ fn the_spindle_speed_reads_the_counts_of_each_window() {
         0,
         b.pack("SPINDLE_CONFIG", &[("SPEED_WINDOW", 12)]),
     );
-    for _ in 0..20_000 {
-        spindle.clock();
-        b.spindle = spindle.pins();
-        b.idle(1);
-    }
+    spin(&mut b, &mut spindle, 20_000);
     // 4096 clocks at one count per 16 clocks.
     assert_eq!(b.read("SPINDLE_SPEED", 0), 256);
     spindle.forward = false;
-    for _ in 0..20_000 {
-        spindle.clock();
-        b.spindle = spindle.pins();
-        b.idle(1);
-    }
+    spin(&mut b, &mut spindle, 20_000);
     assert_eq!(b.read("SPINDLE_SPEED", 0) as i32, -256);
 }
 

@@ -277,17 +277,17 @@ struct AxisComb {
 }
 
 /// Whether bit `n` of `word` is set.
-fn bit_set(word: u32, n: u32) -> bool {
+pub(super) fn bit_set(word: u32, n: u32) -> bool {
     word >> n & 1 != 0
 }
 
 /// `on` placed at bit `n` of a register word.
-fn flag(on: bool, n: u32) -> u32 {
+pub(super) fn flag(on: bool, n: u32) -> u32 {
     (on as u32) << n
 }
 
 /// The `width`-bit field at `lsb` of `word`.
-fn field_value(word: u32, lsb: u32, width: u32) -> u32 {
+pub(super) fn field_value(word: u32, lsb: u32, width: u32) -> u32 {
     (word >> lsb) & crate::blocks::width_mask(width) as u32
 }
 

@@ -2,7 +2,7 @@
 //! the spindle encoder, its registers, and the electronic gearbox's model
 //! ([`GearboxModel`]) with the register layer around it.
 
-use super::model::position_word;
+use super::model::{bit_set, field_value, flag, position_word};
 use super::registers::{fields, spindle};
 use crate::blocks::electronic_gearbox::model::{
     GearboxInputs, GearboxModel, GearboxOutputs, GearboxWidths, Phase,
@@ -58,14 +58,6 @@ pub struct SpindleModel {
     flags_prev: u32,
 }
 
-fn bit(word: u32, n: u32) -> bool {
-    word >> n & 1 != 0
-}
-
-fn field(word: u32, lsb: u32, width: u32) -> u32 {
-    (word >> lsb) & width_mask(width) as u32
-}
-
 impl SpindleModel {
     /// The unit at power-up (registers 0 until the first reset).
     pub fn new(axes: usize) -> Self {
@@ -109,10 +101,10 @@ impl SpindleModel {
     }
 
     fn flags(&self) -> u32 {
-        self.gear_out.done as u32
-            | (self.invalid() as u32) << 1
-            | (self.gear_out.overrun as u32) << 2
-            | (self.decoder_out.error as u32) << 3
+        flag(self.gear_out.done, 0)
+            | flag(self.invalid(), 1)
+            | flag(self.gear_out.overrun, 2)
+            | flag(self.decoder_out.error, 3)
     }
 
     /// A `STATUS.SPINDLE` cause rose in this clock.
@@ -139,23 +131,23 @@ impl SpindleModel {
             spindle::SPINDLE_SPEED => position_word(self.speed),
             spindle::SPINDLE_CONFIG => {
                 self.filter << fields::SPINDLE_FILTER
-                    | (self.counter_mode as u32) << fields::SPINDLE_COUNTER_MODE
-                    | (self.index_invert as u32) << fields::SPINDLE_INDEX_INVERT
+                    | flag(self.counter_mode, fields::SPINDLE_COUNTER_MODE)
+                    | flag(self.index_invert, fields::SPINDLE_INDEX_INVERT)
                     | self.window << fields::SPINDLE_SPEED_WINDOW
             }
             spindle::GEAR_CONTROL => {
-                (self.spindle_reverse as u32) << fields::GEAR_SPINDLE_REVERSE
-                    | (self.axis_reverse as u32) << fields::GEAR_AXIS_REVERSE
+                flag(self.spindle_reverse, fields::GEAR_SPINDLE_REVERSE)
+                    | flag(self.axis_reverse, fields::GEAR_AXIS_REVERSE)
                     | self.axis << fields::GEAR_AXIS
             }
             spindle::GEAR_STATUS => {
                 let o = self.gear_out;
                 (o.phase as u32) << fields::GEAR_PHASE
-                    | (o.locked as u32) << fields::GEAR_LOCKED
-                    | (o.done as u32) << fields::GEAR_DONE
-                    | (self.invalid() as u32) << fields::GEAR_INVALID
-                    | (o.overrun as u32) << fields::GEAR_OVERRUN
-                    | (self.decoder_out.error as u32) << fields::GEAR_ENCODER_ERROR
+                    | flag(o.locked, fields::GEAR_LOCKED)
+                    | flag(o.done, fields::GEAR_DONE)
+                    | flag(self.invalid(), fields::GEAR_INVALID)
+                    | flag(o.overrun, fields::GEAR_OVERRUN)
+                    | flag(self.decoder_out.error, fields::GEAR_ENCODER_ERROR)
             }
             spindle::GEAR_NUMERATOR => gear(self.numerator),
             spindle::GEAR_DENOMINATOR => gear(self.denominator),
@@ -170,15 +162,15 @@ impl SpindleModel {
     pub fn edge(&mut self, i: SpindleInputs) {
         self.flags_prev = self.flags();
         let written = |address: u32| (i.write && i.address == address).then_some(i.write_data);
-        let gear_value = |w: u32| field(w, fields::VALUE, super::registers::GEAR_BITS) as u64;
+        let gear_value = |w: u32| field_value(w, fields::VALUE, super::registers::GEAR_BITS) as u64;
         let control = written(spindle::GEAR_CONTROL);
-        let strobe = |n: u32| control.is_some_and(|w| bit(w, n));
+        let strobe = |n: u32| control.is_some_and(|w| bit_set(w, n));
         // The directions and the axis are written while idle.
         let idle = self.gear_out.phase == Phase::Idle;
         if let Some(w) = control.filter(|_| idle) {
-            self.axis = field(w, fields::GEAR_AXIS, fields::GEAR_AXIS_WIDTH);
-            self.spindle_reverse = bit(w, fields::GEAR_SPINDLE_REVERSE);
-            self.axis_reverse = bit(w, fields::GEAR_AXIS_REVERSE);
+            self.axis = field_value(w, fields::GEAR_AXIS, fields::GEAR_AXIS_WIDTH);
+            self.spindle_reverse = bit_set(w, fields::GEAR_SPINDLE_REVERSE);
+            self.axis_reverse = bit_set(w, fields::GEAR_AXIS_REVERSE);
         }
         let arm_request = strobe(fields::GEAR_ARM);
         let axis_ok = self.axis < self.axes;
@@ -247,10 +239,10 @@ impl SpindleModel {
         self.decoder_out = self.decoder.step(decoder_in);
         // The encoder's options and the window apply from the next clock.
         if let Some(w) = written(spindle::SPINDLE_CONFIG) {
-            self.filter = field(w, fields::SPINDLE_FILTER, fields::SPINDLE_FILTER_WIDTH);
-            self.counter_mode = bit(w, fields::SPINDLE_COUNTER_MODE);
-            self.index_invert = bit(w, fields::SPINDLE_INDEX_INVERT);
-            self.window = field(
+            self.filter = field_value(w, fields::SPINDLE_FILTER, fields::SPINDLE_FILTER_WIDTH);
+            self.counter_mode = bit_set(w, fields::SPINDLE_COUNTER_MODE);
+            self.index_invert = bit_set(w, fields::SPINDLE_INDEX_INVERT);
+            self.window = field_value(
                 w,
                 fields::SPINDLE_SPEED_WINDOW,
                 fields::SPINDLE_SPEED_WINDOW_WIDTH,
