@@ -12,6 +12,7 @@ use motion_hdl::host::hold_window::{parse_seconds, HoldWindow};
 use motion_hdl::host::simulated_probe::{ProbePlane, ProbeResult};
 use motion_hdl::host::simulation::{simulate, HoldReport, InputFormat, SimulationOptions, Trip};
 use motion_hdl::host::soft_window::{self, SoftWindow};
+use motion_hdl::host::spindle_run::{SpindleSettings, ThreadReport};
 use motion_hdl::host::{MachineSettings, ToolTable};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
@@ -186,6 +187,14 @@ enum Command {
         /// far inside the bound.
         #[arg(long, value_name = "AXIS=MIN:MAX")]
         soft_limit: Vec<String>,
+        /// The simulated spindle's speed ripple for geared moves (G33,
+        /// G33.1, G76), percent of the speed (a sine at 7 Hz).
+        #[arg(long, value_name = "PERCENT", default_value_t = 10.0)]
+        spindle_ripple: f64,
+        /// How far the simulated spindle's speed falls under the cutting
+        /// load of each geared pass, percent.
+        #[arg(long, value_name = "PERCENT", default_value_t = 5.0)]
+        spindle_load_dip: f64,
         /// The machine: cartesian (the 3-axis controller) or hexapod (the
         /// parallel-machine card: a G-code program in X Y Z mm and A B C
         /// degrees on a Stewart platform, its legs driven by three motor
@@ -379,6 +388,66 @@ fn print_hold(h: &HoldReport) {
     );
 }
 
+/// The spindle model's options, from percentages.
+fn spindle_settings(ripple: f64, load_dip: f64) -> Result<SpindleSettings, String> {
+    for (name, v) in [
+        ("--spindle-ripple", ripple),
+        ("--spindle-load-dip", load_dip),
+    ] {
+        if !(0.0..50.0).contains(&v) {
+            return Err(format!("{name} {v}: a percentage from 0 to below 50"));
+        }
+    }
+    Ok(SpindleSettings {
+        ripple: ripple / 100.0,
+        load_dip: load_dip / 100.0,
+    })
+}
+
+/// A thread's lines: what ran, then its lead error and pass phase spread
+/// on lines of their own.
+fn print_thread(t: &ThreadReport, steps_per_mm: [f64; 3]) {
+    let g = &t.gear.run;
+    println!(
+        "thread     line {}: {} pass{} on {}, {}/{} steps per spindle count ({:.2} steps per turn), ramp {}{}",
+        t.line,
+        t.passes,
+        if t.passes == 1 { "" } else { "es" },
+        ["X", "Y", "Z"][t.axis],
+        g.numerator,
+        g.denominator,
+        t.gear.steps_per_rev,
+        g.ramp,
+        match t.unlocked {
+            0 => String::new(),
+            n => format!("; {n} never locked (shorter than the ramp-in), not measured"),
+        }
+    );
+    if let Some(deepest) = t.deepest {
+        println!(
+            "tap        line {}: {deepest} steps deep at most ({:.4} mm), then back out with the spindle",
+            t.line,
+            deepest as f64 / steps_per_mm[t.axis]
+        );
+        return;
+    }
+    match t.figures {
+        Some(f) => {
+            let mm = |steps: f64| steps / steps_per_mm[t.axis];
+            println!("lead error: max {:.2} steps", f.lead_error);
+            println!("pass phase spread: {:.2} steps", f.phase_spread);
+            println!(
+                "           ({:.5} mm and {:.5} mm, over {} locked counts of {} passes)",
+                mm(f.lead_error),
+                mm(f.phase_spread),
+                f.counts,
+                f.passes
+            );
+        }
+        None => println!("lead error: not measured (no pass locked)"),
+    }
+}
+
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Simulate {
@@ -400,6 +469,8 @@ fn run(cli: Cli) -> Result<(), String> {
             hold_rate,
             probe_plane,
             soft_limit,
+            spindle_ripple,
+            spindle_load_dip,
             kinematics,
             geometry,
             drive_lag_ms,
@@ -544,6 +615,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 hold,
                 probe_plane,
                 soft_limits,
+                spindle: spindle_settings(spindle_ripple, spindle_load_dip)?,
             };
             let r = simulate(&path_file, &options)?;
             print_program_notes(&r.ignored, &r.messages);
@@ -588,6 +660,9 @@ fn run(cli: Cli) -> Result<(), String> {
                         r.settle_periods
                     );
                 }
+            }
+            for thread in &r.threads {
+                print_thread(thread, r.steps_per_mm);
             }
             println!(
                 "simulated {} clocks in {:.1} s ({:.0} cycles/s)",

@@ -14,10 +14,13 @@ use crate::blocks::motion_controller::io_model::MachinePins;
 use crate::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
-use crate::blocks::motion_controller::{MotionController3, MotionController3Servo};
+use crate::blocks::motion_controller::{
+    MotionController3, MotionController3DdaSpindle, MotionController3Servo,
+};
 use crate::host::servo::DriveScale;
+use crate::host::thread_log::GearLog;
 use crate::regmap::RegisterMap;
-use crate::sim::plant::{quadrature_state, Ad669Bank, ServoMotor};
+use crate::sim::plant::{quadrature_state, Ad669Bank, ServoMotor, SpindleMotor};
 use crate::sim::{stepper, Backend, SimError, SimulatedEncoder, Stepper, VectorPorts};
 
 /// A `motion_controller` register bus as firmware sees it. An
@@ -102,6 +105,10 @@ pub struct RtlBus {
     clock_s: f64,
     /// A simulated probe that drives the `probe` pin from the position.
     probe_surface: Option<ProbeSurface>,
+    /// The spindle on the `spindle_*` pins (the spindle build only).
+    spindle: Option<SpindleMotor>,
+    /// While a geared move runs: its record.
+    gear_log: Option<GearLog>,
 }
 
 /// A simulated probe against a flat surface across one axis: the `probe`
@@ -165,7 +172,52 @@ impl RtlBus {
             dacs: Ad669Bank::new(3),
             clock_s: 0.0,
             probe_surface: None,
+            spindle: None,
+            gear_log: None,
         })
+    }
+
+    /// The spindle build (`motion_controller_dda_spindle`: DDA only, the
+    /// probe, the spindle encoder and the gearbox) at `clock_hz`, with
+    /// `spindle` on its `spindle_*` pins; each axis's steps are looped
+    /// back into its encoder.
+    pub fn with_spindle(
+        backend: Backend,
+        vcd: Option<&Path>,
+        spindle: SpindleMotor,
+        clock_hz: f64,
+    ) -> Result<Self, SimError> {
+        let mut bus = Self::new(backend, vcd)?;
+        bus.rtl = stepper(
+            backend,
+            "motion_controller_dda_spindle",
+            MotionController3DdaSpindle::default(),
+            vcd,
+        )?;
+        bus.outputs = vec![0; MotionController3DdaSpindle::output_names().len()];
+        bus.spindle = Some(spindle);
+        bus.clock_s = 1.0 / clock_hz;
+        Ok(bus)
+    }
+
+    /// The spindle, if the bus has one.
+    pub fn spindle(&self) -> Option<&SpindleMotor> {
+        self.spindle.as_ref()
+    }
+
+    /// The spindle, to command it.
+    pub fn spindle_mut(&mut self) -> Option<&mut SpindleMotor> {
+        self.spindle.as_mut()
+    }
+
+    /// Starts recording a geared move of `axis` (see [`GearLog`]).
+    pub fn start_gear_log(&mut self, axis: usize) {
+        self.gear_log = Some(GearLog::new(axis));
+    }
+
+    /// Stops recording; the record.
+    pub fn take_gear_log(&mut self) -> Option<GearLog> {
+        self.gear_log.take()
     }
 
     /// The analog build (`motion_controller_servo`) at `clock_hz`, with an
@@ -282,6 +334,9 @@ impl ControllerBus for RtlBus {
         if let Some(surface) = self.probe_surface {
             self.inputs.pins.probe = surface.touches(self.positions()[surface.axis]);
         }
+        if let Some(spindle) = &self.spindle {
+            self.inputs.spindle = spindle.pins();
+        }
         self.inputs.write_vector(&mut self.vector);
         self.rtl
             .step_into(&self.vector, &mut self.outputs)
@@ -301,6 +356,13 @@ impl ControllerBus for RtlBus {
                 plant
                     .motor
                     .advance(plant.scale.volts(self.dacs.code(k)), self.clock_s);
+            }
+        }
+        if let Some(spindle) = &mut self.spindle {
+            spindle.advance(self.clock_s);
+            if let Some(log) = &mut self.gear_log {
+                let position = self.encoders[log.axis].net;
+                log.clock(cycles, spindle.count(), spindle.pins().2, position);
             }
         }
         if self.sample_every > 0 && cycles.is_multiple_of(self.sample_every) {

@@ -202,6 +202,9 @@ pub enum DriverError {
     /// The controller would refuse `RUN`: why.
     #[error("RUN refused: {0}")]
     Refused(String),
+    /// A geared move could not run or stopped short: why.
+    #[error("spindle sync: {0}")]
+    Gear(String),
     /// A soft limit stopped the path: the driver stopped the controller,
     /// flushed the periods not taken and released the hold.
     #[error("soft limit: axis {axis} would leave its window moving {}; stopped at commanded position {commanded:?}, {periods_queued} of {periods} periods queued", if *.negative { "down (SOFT_MIN)" } else { "up (SOFT_MAX)" })]
@@ -243,10 +246,12 @@ pub struct Driver<B: ControllerBus> {
 }
 
 mod feed_hold;
+mod gear;
 mod probe;
 mod servo_run;
 mod soft_limits;
 pub use feed_hold::{HoldAction, HoldEvent, HoldState};
+pub use gear::{GearAction, GearReport, GearRun, GearStatus, GEAR_POLL_CLOCKS};
 pub use probe::{ProbeEdge, ProbeTrip};
 pub use servo_run::{ServoRunReport, SERVO_LEAD, SETTLED_PERIODS, SETTLE_PERIODS};
 

@@ -12,6 +12,7 @@
 //! contour_error 0.01           # mm: corner deviation and arc chord error
 //! period_us 1000               # interpolation period T
 //! parameter 5221 100.0         # G54's X origin, machine mm (LinuxCNC's #5221)
+//! spindle_encoder 4096          # spindle encoder counts per revolution (0: none)
 //! ```
 //!
 //! | setting | default | meaning |
@@ -21,6 +22,7 @@
 //! | `max_accel` | 500 500 200 | per-axis acceleration limit, mm/s^2 |
 //! | `contour_error` | 0.01 | mm: how far a corner is rounded, and the chord error of an arc's per-period chords |
 //! | `period_us` | 1000 | interpolation period T, microseconds |
+//! | `spindle_encoder` | 4096 | the spindle encoder's quadrature counts per revolution (a 1024-line encoder), for G33, G33.1 and G76; 0: the machine has none, and they are refused |
 //! | `parameter N V` | see [`PersistentParameters`] | a G-code parameter LinuxCNC keeps between runs (#5161 to #5390: G28 and G30 positions, G92 offset, active coordinate system, G54 to G59.3 origins), mm; repeatable |
 //!
 //! The defaults are a small stepper mill: 1.8 degree motors at 1/8
@@ -64,6 +66,8 @@ pub struct MachineSettings {
     pub period: f64,
     /// The G-code parameters kept between runs (#5161 to #5390), mm.
     pub parameters: PersistentParameters,
+    /// The spindle encoder's counts per revolution (0: no encoder).
+    pub spindle_counts_per_rev: u32,
 }
 
 impl Default for MachineSettings {
@@ -76,6 +80,7 @@ impl Default for MachineSettings {
             contour_error: 0.01,
             period: 1e-3,
             parameters: PersistentParameters::default(),
+            spindle_counts_per_rev: 4096,
         }
     }
 }
@@ -140,6 +145,17 @@ impl MachineSettings {
                 "max_accel" => settings.max_accel = numbers.exactly()?,
                 "contour_error" => [settings.contour_error] = numbers.exactly()?,
                 "period_us" => settings.period = numbers.exactly::<1>()?[0] * 1e-6,
+                "spindle_encoder" => {
+                    let [n] = numbers.exactly()?;
+                    settings.spindle_counts_per_rev = u32::try_from(n as i64)
+                        .ok()
+                        .filter(|&whole| f64::from(whole) == n && whole <= 1 << 24)
+                        .ok_or_else(|| {
+                            statement.error(format!(
+                                "spindle_encoder `{n}` is not a count per revolution: a whole number from 0 to 16777216"
+                            ))
+                        })?;
+                }
                 "parameter" => {
                     let [n, value] = numbers.exactly()?;
                     let n = u32::try_from(n as i64)
@@ -153,7 +169,7 @@ impl MachineSettings {
                 }
                 other => {
                     return Err(statement.error(format!(
-                        "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter)"
+                        "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter, spindle_encoder)"
                     )))
                 }
             }

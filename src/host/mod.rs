@@ -18,7 +18,9 @@ pub mod servo;
 pub mod simulated_probe;
 pub mod simulation;
 pub mod soft_window;
+pub mod spindle_run;
 mod statements;
+pub mod thread_log;
 pub mod tool_table;
 pub mod toolpath;
 

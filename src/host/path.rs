@@ -158,6 +158,7 @@ impl Path {
             contour_error: self.contour_error,
             period: self.period,
             parameters: Default::default(),
+            spindle_counts_per_rev: 0,
         }
     }
 

@@ -343,6 +343,14 @@ pub fn plan_toolpath(
                 continue;
             }
             Item::Move(m) => m,
+            // The gearbox runs it, between planned runs (the caller splits
+            // the toolpath there).
+            Item::Synced(m) => {
+                return Err(PathError::Syntax {
+                    line: m.line,
+                    message: "a spindle-synchronized move (G33, G33.1, G76) runs on the gearbox, not through the planner".into(),
+                })
+            }
         };
         let line = m.line;
         let error = |message: String| PathError::Syntax { line, message };

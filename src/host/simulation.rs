@@ -6,7 +6,9 @@
 //! drive alarm at a given time) and an optional feed hold ([`HoldWindow`]:
 //! requested and released at given times). A run the controller aborts
 //! fails with the cause, as the driver reports it ("motion stopped:
-//! E-stop ...").
+//! E-stop ..."). A G-code program with geared moves (G33, G33.1, G76)
+//! runs on the spindle build with a simulated spindle instead (see
+//! [`spindle_run`](super::spindle_run)).
 
 use std::path::{Path as FsPath, PathBuf};
 use std::time::Instant;
@@ -27,6 +29,7 @@ use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
 use super::simulated_probe::{ProbePlane, ProbeResult, ProbingRun, ProbingSession};
 use super::soft_window::{self, SoftWindow};
+use super::spindle_run::{has_geared_moves, simulate_geared, SpindleSettings, ThreadReport};
 use super::tool_table::ToolTable;
 use super::ProbeSurface;
 use super::{
@@ -283,6 +286,8 @@ pub struct SimulationOptions {
     /// the path inside it at the hold's rate, and the run fails naming
     /// where it stood).
     pub soft_limits: [Option<SoftWindow>; 3],
+    /// The simulated spindle, for geared moves (G33, G33.1, G76).
+    pub spindle: SpindleSettings,
 }
 
 /// A machine input the simulation drives active (high: tripped, in alarm,
@@ -338,7 +343,7 @@ impl Trip {
 
 /// Each trip's time with the pins from then on (a trip stays active), in
 /// time order.
-fn trip_schedule(trips: &[Trip]) -> Vec<(f64, MachinePins)> {
+pub(super) fn trip_schedule(trips: &[Trip]) -> Vec<(f64, MachinePins)> {
     let mut sorted: Vec<&Trip> = trips.iter().collect();
     sorted.sort_by(|a, b| a.at_s.total_cmp(&b.at_s));
     let mut pins = MachinePins::default();
@@ -398,6 +403,9 @@ pub struct SimulationReport {
     pub probe_plane: Option<ProbePlane>,
     /// The machine's steps per mm.
     pub steps_per_mm: [f64; 3],
+    /// The threads of geared moves (G33, G76), each with its lead error
+    /// and pass phase spread.
+    pub threads: Vec<ThreadReport>,
 }
 
 /// What a simulated feed hold did.
@@ -643,6 +651,9 @@ pub fn simulate(
                 options.machine,
                 options.tools.clone(),
             )?;
+            if has_geared_moves(&job.toolpath) {
+                return simulate_geared(path_file, options, job);
+            }
             (job, None)
         }
         Some(plane) => {
@@ -927,5 +938,6 @@ pub fn simulate(
         probes,
         probe_plane: options.probe_plane,
         steps_per_mm: machine.steps_per_mm,
+        threads: Vec::new(),
     })
 }

@@ -95,11 +95,44 @@ pub fn moves_angles_only(start: [f64; 3], end: [f64; 3]) -> bool {
     d.sqrt() < ANGLES_ONLY_TRAVEL
 }
 
+/// A straight move of one axis geared to the spindle (G33, G33.1, each
+/// pass of a G76): the controller's electronic gearbox steps the axis
+/// `pitch` mm per spindle revolution from the next index on, and the
+/// move ends exactly at `end`. The planner does not plan it; the driver
+/// arms the gearbox for it (see [`crate::host::driver::GearRun`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SyncedMove {
+    /// The one axis that moves (X = 0).
+    pub axis: usize,
+    /// Start position, absolute, machine mm (the previous item's end).
+    pub start: [f64; 3],
+    /// End position, absolute, machine mm: where the gearbox stops (for
+    /// a rigid tap, the bottom of the hole; the tap then comes back to
+    /// `start`).
+    pub end: [f64; 3],
+    /// Travel along the axis per spindle revolution, mm (above zero).
+    pub pitch: f64,
+    /// The spindle speed programmed (S), rpm, above zero.
+    pub rpm: f64,
+    /// M3 (true, clockwise) or M4.
+    pub clockwise: bool,
+    /// G33.1: at `end` the spindle reverses and the axis follows it back
+    /// to where the move started.
+    pub rigid_tap: bool,
+    /// A G76 pass: its number in the cycle, from 1; `None` for a G33 or
+    /// G33.1.
+    pub pass: Option<u32>,
+    /// The 1-based line of the program it came from.
+    pub line: usize,
+}
+
 /// One item of a toolpath.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Item {
     /// A move.
     Move(Move),
+    /// A move geared to the spindle.
+    Synced(SyncedMove),
     /// A pause at rest (G4), seconds.
     Dwell {
         /// How long.
@@ -128,6 +161,8 @@ impl Toolpath {
             .rev()
             .find_map(|item| match item {
                 Item::Move(m) => Some(m.end),
+                Item::Synced(m) if m.rigid_tap => Some(m.start),
+                Item::Synced(m) => Some(m.end),
                 Item::Dwell { .. } => None,
             })
             .unwrap_or(self.start)
@@ -140,7 +175,7 @@ impl Toolpath {
             .rev()
             .find_map(|item| match item {
                 Item::Move(m) => Some(m.angles),
-                Item::Dwell { .. } => None,
+                Item::Synced(_) | Item::Dwell { .. } => None,
             })
             .unwrap_or(self.start_angles)
     }

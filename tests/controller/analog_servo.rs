@@ -142,6 +142,7 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
         hold: None,
         probe_plane: None,
         soft_limits: [None; 3],
+        spindle: Default::default(),
     };
     let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
     let fe = r.following[0].expect("X's following error");
@@ -199,6 +200,7 @@ fn square_path_with_an_analog_x_holds_and_resumes_and_ends_within_a_count() {
         }),
         probe_plane: None,
         soft_limits: [None; 3],
+        spindle: Default::default(),
     };
     let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
     let hold = r.hold.as_ref().expect("the hold's report");

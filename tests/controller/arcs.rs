@@ -464,6 +464,7 @@ fn random_lines_and_arcs_end_exactly_within_every_limit() {
             contour_error: rng.gen_range(1e-4..0.05),
             period: [2.5e-4, 1e-3, 4e-3, 1e-2][rng.gen_range(0..4)],
             parameters: Default::default(),
+            spindle_counts_per_rev: 0,
         };
         let toolpath = random_toolpath(&mut rng);
         let (segments, i) = run(&toolpath, &machine);

@@ -22,6 +22,7 @@ mod host;
 mod host_feed_hold;
 mod host_probing;
 mod host_soft_limits;
+mod host_threading;
 mod machine_io;
 mod motion_controller;
 mod parallel_machine;

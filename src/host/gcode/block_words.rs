@@ -18,10 +18,15 @@ pub(super) enum Motion {
     Cycle(Cycle),
     /// G38.2 to G38.5.
     Probe(ProbeCode),
+    /// G33: one axis geared to the spindle.
+    SpindleSync,
+    /// G33.1: rigid tapping, geared to the spindle there and back.
+    RigidTap,
+    /// G76: LinuxCNC's threading cycle.
+    Threading,
 }
 
-/// The canned cycles that run here (G74, G84 and G33.1 need spindle
-/// synchronisation and are refused).
+/// The canned cycles that run here.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(super) enum Cycle {
     /// Peck drilling, chip breaking: back off by the clearance.
@@ -42,6 +47,11 @@ pub(super) enum Cycle {
     G88,
     /// Boring, dwell, feed out.
     G89,
+    /// Left-hand tapping with a floating holder: feed in, the spindle
+    /// reverses, dwell, feed out.
+    G74,
+    /// Right-hand tapping with a floating holder.
+    G84,
 }
 
 impl Cycle {
@@ -56,6 +66,8 @@ impl Cycle {
             Cycle::G87 => "G87",
             Cycle::G88 => "G88",
             Cycle::G89 => "G89",
+            Cycle::G74 => "G74",
+            Cycle::G84 => "G84",
         }
     }
 }
@@ -69,6 +81,9 @@ impl Motion {
             Motion::CounterClockwise => "G3",
             Motion::Cycle(c) => c.name(),
             Motion::Probe(p) => p.name(),
+            Motion::SpindleSync => "G33",
+            Motion::RigidTap => "G33.1",
+            Motion::Threading => "G76",
         }
     }
 
@@ -247,6 +262,17 @@ fn g_effect(code: u32) -> Option<(GEffect, &'static str)> {
             Motion(self::Motion::Cycle(self::Cycle::G89)),
             "one motion per block",
         ),
+        740 => (
+            Motion(self::Motion::Cycle(self::Cycle::G74)),
+            "one motion per block",
+        ),
+        840 => (
+            Motion(self::Motion::Cycle(self::Cycle::G84)),
+            "one motion per block",
+        ),
+        330 => (Motion(self::Motion::SpindleSync), "one motion per block"),
+        331 => (Motion(self::Motion::RigidTap), "one motion per block"),
+        760 => (Motion(self::Motion::Threading), "one motion per block"),
         980 => (
             RetractToR(false),
             "both select the canned cycle return level",
@@ -336,10 +362,6 @@ fn g_refused(code: u32) -> Option<&'static str> {
         50..=53 => "spline",
         70 => "lathe diameter mode",
         80 => "lathe radius mode",
-        330 => "spindle-synchronized motion",
-        331 => "rigid tapping: it needs spindle synchronisation",
-        740 | 840 => "tapping: it needs spindle synchronisation",
-        760 => "lathe threading cycle",
         520 => "local coordinate offset",
         930 => "inverse-time feed",
         950 => "feed per revolution",
@@ -422,6 +444,10 @@ pub(super) struct Words<'a> {
     pub(super) feed: Option<&'a Word>,
     pub(super) p: Option<&'a Word>,
     pub(super) q: Option<&'a Word>,
+    /// S: the spindle speed, rpm.
+    pub(super) s: Option<&'a Word>,
+    /// E: G76's taper length (else an extruder, refused).
+    pub(super) e: Option<&'a Word>,
     /// (the word, what it controls, the key it is reported once under).
     pub(super) ignored: Vec<(&'a Word, &'static str, String)>,
     /// `O<number>` alone on its block: a post's program number.
@@ -543,8 +569,12 @@ impl<'a> Words<'a> {
                         'H' => &mut words.h,
                         'D' => &mut words.d,
                         'S' => {
-                            words.ignored.push((word, "spindle speed", "S".to_string()));
-                            continue;
+                            words.ignored.push((
+                                word,
+                                "spindle speed (G33, G33.1 and G76 use it)",
+                                "S".to_string(),
+                            ));
+                            &mut words.s
                         }
                         'A' | 'B' | 'C' | 'U' | 'V' | 'W' => {
                             let have = if rotary_axes {
@@ -556,17 +586,15 @@ impl<'a> Words<'a> {
                                 "{name} moves an axis this machine does not have ({have})"
                             ));
                         }
-                        'E' => {
-                            return Err(format!(
-                                "{name} drives an extruder (RepRap), an axis this machine does not have"
-                            ))
-                        }
+                        'E' => &mut words.e,
                         'O' if block.words.len() == 1
                             && word.value >= 0.0
                             && word.value.fract() == 0.0 =>
                         {
                             words.program_number = Some(word);
-                            words.ignored.push((word, "program number", "O".to_string()));
+                            words
+                                .ignored
+                                .push((word, "program number", "O".to_string()));
                             continue;
                         }
                         'O' => {
@@ -583,6 +611,15 @@ impl<'a> Words<'a> {
         }
         if words.motion.is_some() {
             words.cancel_motion = None;
+        }
+        if let Some(e) = words
+            .e
+            .filter(|_| !matches!(words.motion, Some((_, Motion::Threading))))
+        {
+            return Err(format!(
+                "{} drives an extruder (RepRap), an axis this machine does not have",
+                e.name()
+            ));
         }
         if let Some((_, NonModal::SetOrigin)) = words.non_modal {
             // G10's R is the system's rotation, not an arc's radius.

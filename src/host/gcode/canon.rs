@@ -115,7 +115,7 @@ pub(crate) fn from_toolpath(items: &[Item]) -> Vec<CanonMove> {
                 },
                 rapid: m.feed.is_none(),
             }),
-            Item::Dwell { .. } => None,
+            Item::Dwell { .. } | Item::Synced(_) => None,
         })
         .collect()
 }

@@ -42,7 +42,7 @@ fn moves(program: &str) -> Vec<PlaneMove> {
                     MoveKind::Line => None,
                 },
             )),
-            Item::Dwell { .. } => None,
+            Item::Dwell { .. } | Item::Synced(_) => None,
         })
         .collect()
 }
@@ -142,6 +142,7 @@ fn a_dwell_waits_behind_the_held_back_move() {
         .map(|i| match i {
             Item::Move(_) => "move",
             Item::Dwell { .. } => "dwell",
+            Item::Synced(_) => "synced",
         })
         .collect();
     assert_eq!(kinds, ["move", "move", "dwell", "move", "move"]);

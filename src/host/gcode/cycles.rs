@@ -1,5 +1,5 @@
 //! Canned cycles with LinuxCNC's motion (its `interp_cycles.cc`): G73,
-//! G81, G82, G83, G85, G86, G87, G88 and G89 in the G17, G18 and G19
+//! G74, G81, G82, G83, G84, G85, G86, G87, G88 and G89 in the G17, G18 and G19
 //! planes, with R, Q, P, L and (G87) I, J, K; G98 and G99; modal repeats
 //! on bare axis lines; G91 with L repeats.
 //!
@@ -98,6 +98,10 @@ impl State {
         };
         let p = match cycle {
             Cycle::G82 | Cycle::G86 | Cycle::G88 | Cycle::G89 => sticky(words.p, memory.p, 'P')?,
+            // The tapping cycles' dwell at the bottom is optional.
+            Cycle::G74 | Cycle::G84 => words
+                .p
+                .map_or(if same { memory.p } else { 0.0 }, |w| w.value),
             _ => 0.0,
         };
         if p < 0.0 {
@@ -127,6 +131,26 @@ impl State {
                 "{name} needs the spindle turning: M3 or M4 first (LinuxCNC: Spindle not turning in {})",
                 name.to_lowercase()
             ));
+        }
+        match (cycle, self.spindle_turning) {
+            (Cycle::G74 | Cycle::G84, None) => {
+                return Err(format!(
+                    "{name} needs the spindle turning: {} first (LinuxCNC: Spindle not turning in {})",
+                    if cycle == Cycle::G84 { "M3" } else { "M4" },
+                    name.to_lowercase()
+                ))
+            }
+            (Cycle::G84, Some(false)) => {
+                return Err(
+                    "G84 taps right-hand: the spindle must turn clockwise (M3), not M4 (LinuxCNC: Spindle turning counterclockwise in G84)".into(),
+                )
+            }
+            (Cycle::G74, Some(true)) => {
+                return Err(
+                    "G74 taps left-hand: the spindle must turn counterclockwise (M4), not M3 (LinuxCNC: Spindle turning clockwise in G74)".into(),
+                )
+            }
+            _ => {}
         }
         let scale = self.units.mm_per_unit();
         let clearance = match (cycle, words.d) {
@@ -251,6 +275,17 @@ impl State {
             Cycle::G85 => {
                 self.cycle_move(false, [a, b, bottom], line);
                 self.cycle_move(false, [a, b, r], line);
+            }
+            Cycle::G74 | Cycle::G84 => {
+                // A floating holder takes up the difference between the
+                // feed and the spindle: the moves are not geared (LinuxCNC:
+                // G84 does not use synchronized motion). At the bottom the
+                // spindle reverses, then the tap feeds out to the clear
+                // level.
+                self.cycle_move(false, [a, b, bottom], line);
+                self.toolpath.items.push(Item::Dwell { seconds: p, line });
+                self.cycle_move(false, [a, b, clear], line);
+                return Ok(());
             }
             Cycle::G87 => {
                 // Back boring: the tool goes down the hole off-center, then

@@ -15,6 +15,7 @@ fn trace(program: &Program) -> Vec<(char, [f64; 3])> {
         .map(|item| match item {
             Item::Move(m) => (if m.feed.is_none() { 'R' } else { 'F' }, m.end),
             Item::Dwell { seconds, .. } => ('D', [*seconds, 0.0, 0.0]),
+            Item::Synced(m) => ('S', m.end),
         })
         .collect()
 }
@@ -235,8 +236,9 @@ fn cycle_errors_name_the_word_as_linuxcnc_does() {
         ("F100\nG86 X1 R2 Z0 P1", "line 2: G86 needs the spindle turning: M3 or M4 first (LinuxCNC: Spindle not turning in g86)"),
         ("F100 M3\nG87 X1 R2 Z0 I1 J1", "line 2: G87 needs K (LinuxCNC: K word missing with g87)"),
         ("F100\nG81 X1 R2 Z0 I1", "line 2: I1 has no G2, G3 or G87 to use it"),
-        ("G84 X1 R2 Z0", "line 1: G84 (tapping: it needs spindle synchronisation) changes the motion and is not supported"),
-        ("G33.1 Z-1 K1", "line 1: G33.1 (rigid tapping: it needs spindle synchronisation) changes the motion and is not supported"),
+        ("F100\nG84 X1 R2 Z0", "line 2: G84 needs the spindle turning: M3 first (LinuxCNC: Spindle not turning in g84)"),
+        ("F100 M4\nG84 X1 R2 Z0", "line 2: G84 taps right-hand: the spindle must turn clockwise (M3), not M4 (LinuxCNC: Spindle turning counterclockwise in G84)"),
+        ("F100 M3\nG74 X1 R2 Z0", "line 2: G74 taps left-hand: the spindle must turn counterclockwise (M4), not M3 (LinuxCNC: Spindle turning clockwise in G74)"),
         ("G0 X1 L2", "line 1: L2 has no G10 or canned cycle to use it"),
     ] {
         assert_eq!(error(program), message, "{program:?}");

@@ -15,6 +15,7 @@ use super::messages::Message;
 use super::param_store::ParamStore;
 use super::parameters::{system_name, PersistentParameters};
 use super::probing::Prober;
+use super::threading::SyncWords;
 use crate::host::tool_table::ToolTable;
 // An arc whose end is within SAME_POINT of its start, in its plane, is a
 // full circle (and its end is set to the start exactly).
@@ -268,6 +269,8 @@ pub(super) struct State {
     pub(super) retract_to_r: bool,
     /// M3 (Some(true)), M4 (Some(false)), M5 or none yet (None).
     pub(super) spindle_turning: Option<bool>,
+    /// The last S, rpm (0 before any).
+    pub(super) spindle_speed: f64,
     /// What the last canned cycle keeps for the next.
     pub(super) cycle_memory: CycleMemory,
     /// Numbered and named parameters (the persistent ones aside).
@@ -309,6 +312,7 @@ impl State {
             tool_offset: [0.0; 3],
             retract_to_r: true,
             spindle_turning: None,
+            spindle_speed: 0.0,
             cycle_memory: CycleMemory::default(),
             params: ParamStore::default(),
             messages: Vec::new(),
@@ -381,6 +385,7 @@ impl State {
     /// One block, in RS-274's order of execution.
     fn apply(&mut self, block: &Block) -> Result<(), String> {
         let mut words = Words::read(block, self.rotary_axes)?;
+        let sync = SyncWords::take(&mut words);
         if let Some(number) = words.program_number {
             // A Fanuc- or Haas-style post's program number: accepted only
             // before the program has moved, where it can name nothing else.
@@ -435,6 +440,15 @@ impl State {
         }
         if let Some(turning) = words.spindle {
             self.spindle_turning = turning;
+        }
+        if let Some(s) = words.s {
+            if s.value < 0.0 {
+                return Err(format!(
+                    "{} is not a spindle speed: it must be 0 or more rpm",
+                    s.name()
+                ));
+            }
+            self.spindle_speed = s.value;
         }
         if let Some(r) = words.retract_to_r {
             let code = if r { "G99" } else { "G98" };
@@ -559,7 +573,18 @@ impl State {
                 let same = previous_motion == Some(Motion::Cycle(c));
                 self.cycle(c, same, &words, block.line)?
             }
+            Some(Motion::SpindleSync) => self.spindle_synced(false, &sync, &words, block.line)?,
+            Some(Motion::RigidTap) => self.spindle_synced(true, &sync, &words, block.line)?,
+            Some(Motion::Threading) => {
+                self.threading_cycle(&sync, &words, block.line)?;
+                // G76 runs on its own block only: a later axis word needs
+                // a motion mode again.
+                self.motion = None;
+            }
             Some(motion) => self.run(motion, &words, block.line, machine)?,
+            None if matches!(words.motion, Some((_, Motion::Threading))) => {
+                return Err("G76 needs Z, where the thread ends".into())
+            }
             None => {}
         }
         if words.end || words.pause.is_some() {

@@ -9,7 +9,7 @@ fn moves(program: &str) -> Vec<Move> {
         .into_iter()
         .map(|item| match item {
             Item::Move(m) => m,
-            Item::Dwell { .. } => panic!("{program:?}: a dwell"),
+            Item::Dwell { .. } | Item::Synced(_) => panic!("{program:?}: not a move: {item:?}"),
         })
         .collect()
 }
@@ -484,7 +484,7 @@ fn ignored_words_are_reported_once_at_their_first_line() {
             (1, "T1", "tool"),
             (1, "M6", "tool change"),
             (2, "M3", "spindle"),
-            (2, "S12000", "spindle speed"),
+            (2, "S12000", "spindle speed (G33, G33.1 and G76 use it)"),
             (2, "M8", "coolant"),
             (3, "G64", "path control"),
             (5, "M5", "spindle"),
@@ -506,11 +506,6 @@ fn ignored_words_are_reported_once_at_their_first_line() {
 fn refused_g_codes_name_what_they_do() {
     for (word, what) in [
         ("G52", "local coordinate offset"),
-        ("G33", "spindle-synchronized motion"),
-        ("G33.1", "rigid tapping: it needs spindle synchronisation"),
-        ("G76", "lathe threading cycle"),
-        ("G74", "tapping: it needs spindle synchronisation"),
-        ("G84", "tapping: it needs spindle synchronisation"),
         ("G93", "inverse-time feed"),
         ("G95", "feed per revolution"),
         ("G5", "spline"),

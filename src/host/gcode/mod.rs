@@ -78,8 +78,13 @@
 //! | G4 P | dwell, P in **seconds** (RS-274/NGC and LinuxCNC; not Fanuc's milliseconds), P ≥ 0; non-modal, keeps the motion mode; axis words beside it run the motion mode after the dwell |
 //! | G80 | ends the motion mode (LinuxCNC's motion group 1): axis words after it need a motion code again; beside another motion code it gives way (LinuxCNC's reader) |
 //! | G73, G81, G82, G83, G85 to G89 | canned cycles with R, Q, P, L (G87: I, J, K; G73, G83: D, the peck clearance, else 0.254 mm), modal: a later block with axis words repeats the cycle there. LinuxCNC's motion, move for move: see [`cycles`] |
+//! | G74, G84 | tapping with a floating holder (LinuxCNC's G84: not geared): feed to the bottom, dwell P (default 0), feed out to the clear level; G84 needs M3, G74 M4 |
 //! | G98, G99 | cycles retract to the initial level, or to R (G99, LinuxCNC's default) |
-//! | M3, M4, M5 | the spindle turns (G86, G87 and G88 need it) or stops; reported once |
+//! | M3, M4, M5 | the spindle turns (G86, G87, G88, G74, G84 and the geared moves need it) or stops; reported once |
+//! | S | the spindle speed, rpm, ≥ 0; the geared moves need it above 0; reported once |
+//! | G33 X Y Z K | one axis geared to the spindle, K its travel per revolution ([`SyncedMove`](crate::host::toolpath::SyncedMove)); a G33 that moves two axes is refused (the gearbox drives one). Modal: a later block with axis words and K is another geared move. See [`threading`] |
+//! | G33.1 X Y Z K | rigid tap: geared in to the point, the spindle reverses there, geared back out; ends where it started |
+//! | G76 X Z P I J K \[R Q H\] | LinuxCNC's threading cycle from the drive line (the tool's position): passes to depth \|I\| + J n^(1/R), compound angle Q, H spring passes, each pass a geared move along Z; then a rapid to X Z. E and L (the taper) are refused; R below 1 is refused where LinuxCNC takes 1. Runs on its own block: axis words after it need a motion code. See [`threading`] |
 //! | G17, G18, G19 | arc plane XY, ZX, YZ |
 //! | G20, G21 | inch, mm: every later length and F in those units |
 //! | G90, G91 | X, Y, Z absolute or incremental |
@@ -159,7 +164,7 @@
 //! [`Program::ignored`] at its first occurrence (once per M code, per G
 //! code, per letter S, T, H, D) and otherwise ignored:
 //! M0, M1, M60 (program pause); M3, M4, M5, G96, G97 (spindle); S (spindle
-//! speed); M6 (tool change) and T, M61 (tool), which change no motion by
+//! speed: the geared moves take it); M6 (tool change) and T, M61 (tool), which change no motion by
 //! themselves; H without G43 or G43.2 and D without G41, G42, G41.1,
 //! G42.1 or a canned cycle (tool offset); M7, M8, M9 (coolant); M48 to M53 (override); M62
 //! to M68 (digital and analog I/O); G61, G61.1, G64, and a P or Q beside them (path
@@ -314,6 +319,7 @@ pub mod parameters;
 mod polar;
 pub mod probing;
 mod text;
+pub mod threading;
 mod tools;
 
 pub use interpreter::{

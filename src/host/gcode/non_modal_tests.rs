@@ -25,7 +25,7 @@ fn ends(program: &Program) -> Vec<(usize, [f64; 3], bool)> {
         .iter()
         .filter_map(|item| match item {
             Item::Move(m) => Some((m.line, m.end, m.feed.is_none())),
-            Item::Dwell { .. } => None,
+            Item::Dwell { .. } | Item::Synced(_) => None,
         })
         .collect()
 }
@@ -189,7 +189,7 @@ fn the_settings_select_the_starting_system_and_arcs_follow_the_offsets() {
                 MoveKind::Arc(arc) => Some(arc.center),
                 MoveKind::Line => None,
             },
-            Item::Dwell { .. } => None,
+            Item::Dwell { .. } | Item::Synced(_) => None,
         })
         .collect();
     assert_eq!(centers, [[105.0, 0.0], [105.0, 0.0]]);

@@ -12,7 +12,7 @@ fn ends(program: &str) -> Vec<[f64; 3]> {
         .iter()
         .filter_map(|i| match i {
             Item::Move(m) => Some(m.end.map(|v| (v * 1e9).round() / 1e9 + 0.0)),
-            Item::Dwell { .. } => None,
+            Item::Dwell { .. } | Item::Synced(_) => None,
         })
         .collect()
 }

@@ -21,7 +21,7 @@ fn moves(program: &str) -> Vec<Move> {
         .into_iter()
         .filter_map(|i| match i {
             Item::Move(m) => Some(m),
-            Item::Dwell { .. } => None,
+            Item::Dwell { .. } | Item::Synced(_) => None,
         })
         .collect()
 }

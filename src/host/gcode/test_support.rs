@@ -35,6 +35,7 @@ pub(super) fn xs(program: &str) -> Vec<f64> {
         .iter()
         .filter_map(|i| match i {
             Item::Move(m) => Some(m.end[0]),
+            Item::Synced(m) => Some(m.end[0]),
             Item::Dwell { .. } => None,
         })
         .collect()

@@ -34,7 +34,7 @@ fn z_ends(program: &Program) -> Vec<(usize, f64)> {
         .iter()
         .filter_map(|item| match item {
             Item::Move(m) => Some((m.line, m.end[2])),
-            Item::Dwell { .. } => None,
+            Item::Dwell { .. } | Item::Synced(_) => None,
         })
         .collect()
 }

@@ -119,6 +119,13 @@ pub enum PlanError {
         /// `leg_speed`, mm/s.
         limit: f64,
     },
+    /// A move geared to the spindle (G33, G33.1, G76): the hexapod has no
+    /// spindle encoder or gearbox.
+    #[error("line {line}: spindle-synchronized motion (G33, G33.1, G76) needs a spindle encoder and the gearbox, which the hexapod card does not have")]
+    SpindleSync {
+        /// The program line.
+        line: usize,
+    },
     /// A program longer than [`MAX_PROGRAM_SECONDS`] (a dwell, or a feed
     /// so slow its move would take that long).
     #[error("line {line}: the program would run {seconds:.3e} s by here, more than {MAX_PROGRAM_SECONDS} s (F too low, or a long dwell?)")]
@@ -283,6 +290,7 @@ impl PosePlan {
                 Item::Dwell { seconds, line } => {
                     (*line, Shape::Rest { pose: here }, None, *seconds)
                 }
+                Item::Synced(m) => return Err(PlanError::SpindleSync { line: m.line }),
                 Item::Move(m) => {
                     let end = [m.end, m.angles].concat();
                     let end: [f64; 6] = end.try_into().expect("six coordinates");
