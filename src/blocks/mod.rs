@@ -70,6 +70,7 @@ pub mod holding_ram;
 pub mod host_links;
 pub mod input_conditioner;
 pub mod interrupt_controller;
+pub mod laser_pwm;
 pub mod motion_controller;
 pub mod narrow_bus_adapter;
 pub mod parallel_card;

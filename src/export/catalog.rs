@@ -11,6 +11,7 @@ use crate::blocks::electronic_gearbox::{self, ElectronicGearbox24};
 use crate::blocks::external_bus_adapter::{self, ExternalBusAdapter};
 use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::host_links::{self, SeedHostLinks};
+use crate::blocks::laser_pwm::{self, LaserPwm};
 use crate::blocks::motion_controller::{
     self, MotionController1, MotionController3, MotionController3Dda, MotionController3DdaSpindle,
     MotionController3Servo, MotionController6,
@@ -164,6 +165,21 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(ElectronicGearbox24::default()),
+        },
+        ModuleSpec {
+            name: "laser_pwm",
+            block: "laser_pwm",
+            summary: laser_pwm::SUMMARY,
+            parameters: &[
+                ("R", "16", "PWM period, power and duty width"),
+                ("C", "16", "step count width"),
+                ("F", "24", "feed width"),
+            ],
+            port_docs: laser_pwm::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(LaserPwm::default()),
         },
         ModuleSpec {
             name: "step_output",

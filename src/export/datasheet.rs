@@ -114,6 +114,12 @@ pub fn datasheets() -> Vec<DatasheetSpec> {
             build: || Box::new(electronic_gearbox::ElectronicGearbox24::default()),
         },
         DatasheetSpec {
+            block: "laser_pwm",
+            port_docs: laser_pwm::PORT_DOCS,
+            parameters: &[("R", 16), ("C", 16), ("F", 24)],
+            build: || Box::new(laser_pwm::LaserPwm::default()),
+        },
+        DatasheetSpec {
             block: "holding_ram",
             port_docs: holding_ram::PORT_DOCS,
             parameters: &[("D", 16), ("N", 8)],

@@ -17,6 +17,7 @@ mod holding_ram;
 mod host_links;
 mod input_conditioner;
 mod interrupt_controller;
+mod laser_pwm;
 mod narrow_bus_adapter;
 mod parallel_card;
 mod pulse_counter;
