@@ -343,7 +343,7 @@ impl Trip {
 
 /// Each trip's time with the pins from then on (a trip stays active), in
 /// time order.
-pub(super) fn trip_schedule(trips: &[Trip]) -> Vec<(f64, MachinePins)> {
+fn trip_schedule(trips: &[Trip]) -> Vec<(f64, MachinePins)> {
     let mut sorted: Vec<&Trip> = trips.iter().collect();
     sorted.sort_by(|a, b| a.at_s.total_cmp(&b.at_s));
     let mut pins = MachinePins::default();
@@ -551,6 +551,41 @@ fn check_options(options: &SimulationOptions) -> Result<(), String> {
     Ok(())
 }
 
+/// The driver's settings for `options` at these tick settings.
+pub(super) fn driver_config(
+    options: &SimulationOptions,
+    tick_divisor: u32,
+    period_ticks: u32,
+    soft_limits: [Option<(i32, i32)>; 3],
+) -> DriverConfig {
+    DriverConfig {
+        tick_divisor,
+        period_ticks,
+        step_len: options.step_len,
+        step_space: options.step_space,
+        dir_time: options.step_len.max(1),
+        uniform: options.uniform,
+        analog: options.servo,
+        soft_limits,
+    }
+}
+
+/// What a simulated run records and drives on `bus`: the positions once a
+/// period, the peak step rates over 10 ms, and the trips of `options`.
+pub(super) fn watch_the_run(
+    bus: &mut RtlBus,
+    options: &SimulationOptions,
+    tick_divisor: u32,
+    period_ticks: u32,
+) {
+    bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
+    // 10 ms windows: at a real clock, 10,000 clocks hold only a step or two.
+    bus.set_rate_window((options.clock_hz / 100.0).round() as u64);
+    for (at_s, pins) in trip_schedule(&options.trips) {
+        bus.set_pins_at((at_s * options.clock_hz).round() as u64, pins);
+    }
+}
+
 /// The driver of a simulated controller for `options`, at these tick
 /// settings, programmed; with `surface`, the probe pin follows it.
 fn controller_driver(
@@ -560,16 +595,7 @@ fn controller_driver(
     surface: Option<ProbeSurface>,
     soft_limits: [Option<(i32, i32)>; 3],
 ) -> Result<Driver<RtlBus>, String> {
-    let config = DriverConfig {
-        tick_divisor,
-        period_ticks,
-        step_len: options.step_len,
-        step_space: options.step_space,
-        dir_time: options.step_len.max(1),
-        uniform: options.uniform,
-        analog: options.servo,
-        soft_limits,
-    };
+    let config = driver_config(options, tick_divisor, period_ticks, soft_limits);
     let mut bus = if options.servo.iter().any(|&s| s) {
         let motors = options.servo.map(|s| s.then(ServoMotor::default));
         RtlBus::with_servos(
@@ -583,12 +609,7 @@ fn controller_driver(
         RtlBus::new(options.backend, options.vcd.as_deref())
     }
     .map_err(|e| e.to_string())?;
-    bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
-    // 10 ms windows: at a real clock, 10,000 clocks hold only a step or two.
-    bus.set_rate_window((options.clock_hz / 100.0).round() as u64);
-    for (at_s, pins) in trip_schedule(&options.trips) {
-        bus.set_pins_at((at_s * options.clock_hz).round() as u64, pins);
-    }
+    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
     bus.set_probe_surface(surface);
     Driver::new(bus, config).map_err(|e| e.to_string())
 }

@@ -40,10 +40,12 @@ use std::time::Instant;
 use super::driver::{GearAction, GearReport, GearRun, GEAR_POLL_CLOCKS};
 use super::interpolator::interpolate;
 use super::planner::{plan_toolpath, to_steps};
-use super::simulation::{period_settings, trip_schedule, Job, SimulationOptions, SimulationReport};
+use super::simulation::{
+    driver_config, period_settings, watch_the_run, Job, SimulationOptions, SimulationReport,
+};
 use super::thread_log::{GearLog, PassErrors, ThreadFigures};
 use super::toolpath::{Item, Move, MoveKind, SyncedMove, Toolpath};
-use super::{ControllerBus, Driver, DriverConfig, MachineSettings, RtlBus};
+use super::{ControllerBus, Driver, MachineSettings, RtlBus};
 use crate::blocks::electronic_gearbox::model::ENGINE_CLOCKS;
 use crate::sim::plant::SpindleMotor;
 
@@ -388,21 +390,9 @@ pub fn simulate_geared(
         options.clock_hz,
     )
     .map_err(|e| e.to_string())?;
-    bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
-    bus.set_rate_window((options.clock_hz / 100.0).round() as u64);
-    for (at_s, pins) in trip_schedule(&options.trips) {
-        bus.set_pins_at((at_s * options.clock_hz).round() as u64, pins);
-    }
-    let config = DriverConfig {
-        tick_divisor,
-        period_ticks,
-        step_len: options.step_len,
-        step_space: options.step_space,
-        dir_time: options.step_len.max(1),
-        uniform: [false; 3],
-        analog: [false; 3],
-        soft_limits: [None; 3],
-    };
+    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
+    // Step axes only (refused above otherwise): the DDA on each.
+    let config = driver_config(options, tick_divisor, period_ticks, [None; 3]);
     let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
     driver
         .set_speed_window(speed_window_log2(options.clock_hz))
