@@ -385,7 +385,7 @@ impl State {
     /// One block, in RS-274's order of execution.
     fn apply(&mut self, block: &Block) -> Result<(), String> {
         let mut words = Words::read(block, self.rotary_axes)?;
-        let sync = SyncWords::take(&mut words);
+        let sync = SyncWords::take(&mut words, self.motion);
         if let Some(number) = words.program_number {
             // A Fanuc- or Haas-style post's program number: accepted only
             // before the program has moved, where it can name nothing else.

@@ -52,10 +52,11 @@ pub(super) struct SyncWords<'a> {
 
 impl<'a> SyncWords<'a> {
     /// Takes the words of the block's G33, G33.1 or G76 out of `words`
-    /// (nothing when the block has none of them).
-    pub(super) fn take(words: &mut Words<'a>) -> Self {
+    /// (nothing when the block has none of them and `modal`, the motion
+    /// mode in force, is not G33 or G33.1).
+    pub(super) fn take(words: &mut Words<'a>, modal: Option<Motion>) -> Self {
         let mut taken = Self::default();
-        match words.motion.map(|(_, m)| m) {
+        match words.motion.map(|(_, m)| m).or(modal) {
             Some(Motion::SpindleSync | Motion::RigidTap) => {
                 taken.k = words.offsets[2].take();
             }

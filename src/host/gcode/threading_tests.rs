@@ -38,6 +38,20 @@ fn g33_gears_one_axis_with_its_pitch_speed_and_direction() {
 }
 
 #[test]
+fn g33_is_modal_with_its_k() {
+    let moves = synced("G0 X5 Z2\nS600 M3\nG33 Z-5 K1\nG0 X6 Z2\nX5\nG33 Z-5 K1\nZ-8 K1\nG0 X7");
+    assert_eq!(moves.len(), 3);
+    assert_eq!(
+        (moves[2].start[2], moves[2].end[2], moves[2].line),
+        (-5.0, -8.0, 7)
+    );
+    assert_eq!(
+        error("S600 M3\nG33 Z-5 K1\nZ-8"),
+        "line 3: G33 needs K, the distance per spindle revolution (LinuxCNC: K word missing in G33)"
+    );
+}
+
+#[test]
 fn g33_1_taps_and_ends_where_it_started() {
     let p = run("G0 X1 Y2 Z3\nS300 M3\nG33.1 Z-10 K1.25\nG0 X4");
     let tap = match p.toolpath.items[1] {
