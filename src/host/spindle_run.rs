@@ -238,19 +238,23 @@ pub fn gear_settings(
 }
 
 /// Every geared move of `items` checked against the machine and the
-/// clock, before anything runs: the first error, by line.
+/// clock, before anything runs: their settings in order, or the first
+/// error, by line.
 fn check_geared(
     items: &[Item],
     machine: &MachineSettings,
     options: &SimulationOptions,
-) -> Result<(), String> {
-    for item in items {
-        if let Item::Synced(m) = item {
-            gear_settings(m, machine, options.clock_hz, options.spindle.ripple)
-                .map_err(|e| format!("line {}: {e}", m.line))?;
-        }
-    }
-    Ok(())
+) -> Result<Vec<GearSettings>, String> {
+    items
+        .iter()
+        .filter_map(|item| match item {
+            Item::Synced(m) => Some(
+                gear_settings(m, machine, options.clock_hz, options.spindle.ripple)
+                    .map_err(|e| format!("line {}: {e}", m.line)),
+            ),
+            _ => None,
+        })
+        .collect()
 }
 
 /// Whether a toolpath has geared moves (then [`simulate_geared`] runs it).
@@ -279,6 +283,7 @@ fn pass_errors(
     log: &GearLog,
     report: &GearReport,
     m: &SyncedMove,
+    gear: &GearSettings,
     machine: &MachineSettings,
 ) -> Option<PassErrors> {
     let locked = report.locked_at?;
@@ -287,19 +292,18 @@ fn pass_errors(
     // engine's margin for when the poll saw it.
     let end = report.stopping_at.unwrap_or(report.ended_at);
     let to = end.checked_sub(2 * GEAR_POLL_CLOCKS + ENGINE_CLOCKS as u64 + 8)?;
-    let spm = machine.steps_per_mm[m.axis];
-    let axis_dir = if m.end[m.axis] < m.start[m.axis] {
-        -1.0
-    } else {
-        1.0
+    // The directions the gearbox was armed with: a forward count of the
+    // spindle moves the axis down under one of them, up under both.
+    let dir = match gear.run.axis_reverse != gear.run.spindle_reverse {
+        true => -1.0,
+        false => 1.0,
     };
-    let spindle_dir = if m.clockwise { 1.0 } else { -1.0 };
-    let per_count = m.pitch * spm / machine.spindle_counts_per_rev as f64;
+    let per_count = gear.steps_per_rev / machine.spindle_counts_per_rev as f64;
     let errors = PassErrors::measure(
         &log.samples,
         (locked, to),
-        m.start[m.axis] * spm,
-        axis_dir * spindle_dir,
+        m.start[m.axis] * machine.steps_per_mm[m.axis],
+        dir,
         per_count,
         engaged,
     );
@@ -375,7 +379,9 @@ pub fn simulate_geared(
     }
     let started = Instant::now();
     let machine = job.machine;
-    check_geared(&job.toolpath.items, &machine, options).map_err(located)?;
+    let mut settings = check_geared(&job.toolpath.items, &machine, options)
+        .map_err(located)?
+        .into_iter();
     let spm = machine.steps_per_mm;
     let start = to_steps(job.toolpath.start, spm);
     let target = to_steps(job.toolpath.end(), spm);
@@ -440,8 +446,9 @@ pub fn simulate_geared(
         let (p, u) = run_chunk(&mut driver, &mut chunk, chunk_start)?;
         periods += p;
         underruns += u;
-        let gear = gear_settings(&m, &machine, options.clock_hz, options.spindle.ripple)
-            .map_err(|e| located(format!("line {}: {e}", m.line)))?;
+        let gear = settings
+            .next()
+            .expect("checked: one setting per geared move");
         let signed_rpm = if m.clockwise { m.rpm } else { -m.rpm };
         let spindle = driver
             .bus_mut()
@@ -485,7 +492,7 @@ pub fn simulate_geared(
         let report = result.map_err(|e| located(format!("line {}: {e}", m.line)))?;
         let key = thread_key(&m);
         let errors = (!m.rigid_tap)
-            .then(|| pass_errors(&log, &report, &m, &machine))
+            .then(|| pass_errors(&log, &report, &m, &gear, &machine))
             .flatten();
         let slot = match threads.iter().position(|(k, _, _)| *k == key) {
             Some(i) => i,
