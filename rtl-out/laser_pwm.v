@@ -20,7 +20,7 @@
 //   commit      in         1  strobe: the next interpolation period starts; the duty computed for it becomes the dynamic target
 //   count_a     in        16  the period's steps of the plane's first axis, two's complement
 //   count_b     in        16  the period's steps of the plane's second axis, two's complement
-//   feed        in        24  the programmed feed, steps per interpolation period (vector length); 0: dynamic duty 0
+//   feed        in        24  the programmed feed, 1/16 step per interpolation period (vector length); 0: dynamic duty 0
 //   factor      in        17  the feed hold's factor, 1/65536 (65536 = full speed; above counts as 65536)
 //   enable      in         1  the laser may fire; low: `pwm` low from the next clock
 //   kill        in         1  abort or the hold's stop: `pwm` low from the next clock, the duty in force 0
@@ -65,7 +65,7 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
     localparam  zero_acc = 40'h0;
     localparam  root_start = 40'h4000000000;
     localparam  ratio_one = 40'h10000;
-    localparam  quotient_saturated = 40'h100000;
+    localparam  half_clock = 40'h8000;
     localparam  factor_one = 17'b10000000000000000;
     localparam  sign_17 = 17'b10000000000000000;
     localparam  one_17 = 17'b1;
@@ -329,8 +329,8 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         if (count_b[32'hf]) begin
             magnitude_b_in = ~(((count_b) & 17'h1ffff) | sign_17) + one_17;
         end
-        ratio = divider__quotient >> 32'h4;
-        if (divider__quotient >= quotient_saturated) begin
+        ratio = divider__quotient;
+        if (divider__quotient >= ratio_one) begin
             ratio = ratio_one;
         end
         if (divider__divide_by_zero) begin
@@ -382,7 +382,7 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         if ((phase__q == code_divide) & divider__done) begin
             phase__d = code_times_power;
             seq__d = zero_seq;
-            acc__d = zero_acc;
+            acc__d = half_clock;
             mcand__d = ratio;
             mplier__d = ((power_taken__q) & 17'h1ffff);
         end

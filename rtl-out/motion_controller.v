@@ -44,10 +44,11 @@
 //   dac_cs_n        out        3  bit k: chip select of axis k's DAC, active low (1 in a build without them); registered
 //   dac_l1_n        out        1  DAC first-rank load, active low, shared; registered
 //   dac_ldac        out        1  DAC second-rank load, active high, shared: every analog output changes on its rise; registered
+//   laser_pwm       out        1  the laser's PWM (`LASER_*`): fires only while `running` and `LASER_CONTROL.ENABLE`, low in the clock after an abort or the feed hold's stop; registered; low in a build without `LASER` (`CONFIG.LASER` = 0)
 // ============================================================================
 
 `default_nettype none
-module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,feed_hold,spindle_a,spindle_b,spindle_index,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac);
+module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_read,enc_a,enc_b,enc_index,limit_pos,limit_neg,home,drive_alarm,estop,gpio_in,probe,feed_hold,spindle_a,spindle_b,spindle_index,bus_read_data,irq,running,active,step_a,step_b,drive_enable,gpio_out,dac_data,dac_cs_n,dac_l1_n,dac_ldac,laser_pwm);
 
     // Module arguments
     input wire  clock;
@@ -82,6 +83,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     output reg  [2:0] dac_cs_n;
     output reg  dac_l1_n;
     output reg  dac_ldac;
+    output reg  laser_pwm;
 
     // Constant declarations
     localparam  shadow_bit__0 = 32'h1;
@@ -101,6 +103,10 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     localparam  shadow_bit__14 = 32'h4000;
     localparam  shadow_bit__15 = 32'h8000;
     localparam  has_spindle = 1'b0;
+    localparam  has_laser = 1'b0;
+    localparam  laser_axis__0 = 3'b0;
+    localparam  laser_axis__1 = 3'b1;
+    localparam  laser_axis__2 = 3'b10;
     localparam  ev_spindle = 16'h8000;
     localparam  has_soft = 1'b1;
     localparam  soft_axis__0 = 3'b0;
@@ -476,6 +482,25 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  [2:0] spindle__step;
     wire  spindle__step_forward;
     wire  spindle__cause;
+    reg  laser__clock;
+    reg  laser__reset;
+    reg  [7:0] laser__address;
+    reg  laser__write;
+    reg  [31:0] laser__write_data;
+    reg  laser__start;
+    reg  laser__pop;
+    reg  laser__stop;
+    reg  laser__flush;
+    reg  laser__running;
+    reg  laser__kill;
+    reg  [16:0] laser__factor;
+    reg  [15:0] laser__count_a;
+    reg  [15:0] laser__count_b;
+    wire  [31:0] laser__read_data;
+    wire  laser__ready;
+    wire  [2:0] laser__axis_a;
+    wire  [2:0] laser__axis_b;
+    wire  laser__pwm;
     reg  feed_hold_unit__clock;
     reg  feed_hold_unit__reset;
     reg  feed_hold_unit__feed_hold;
@@ -491,6 +516,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
     wire  feed_hold_unit__holding;
     wire  feed_hold_unit__held;
     wire  [15:0] feed_hold_unit__factor_fraction;
+    wire  [16:0] feed_hold_unit__factor;
     wire  [31:0] feed_hold_unit__read_data;
     wire  [15:0] feed_hold_unit__rate_out;
     reg  motion_tick__d;
@@ -556,6 +582,9 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
 
     // Local signals
     reg  [31:0] spindle_read;
+    reg  [31:0] laser_read;
+    reg  [15:0] laser_count_a;
+    reg  [15:0] laser_count_b;
     reg  [31:0] soft_read;
     reg  [23:0] soft_position;
     reg  [15:0] soft_magnitude;
@@ -966,6 +995,27 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .step_forward(spindle__step_forward),
         .cause(spindle__cause)
     );
+    motion_controller__laser laser(
+        .clock(laser__clock),
+        .reset(laser__reset),
+        .address(laser__address),
+        .write(laser__write),
+        .write_data(laser__write_data),
+        .start(laser__start),
+        .pop(laser__pop),
+        .stop(laser__stop),
+        .flush(laser__flush),
+        .running(laser__running),
+        .kill(laser__kill),
+        .factor(laser__factor),
+        .count_a(laser__count_a),
+        .count_b(laser__count_b),
+        .read_data(laser__read_data),
+        .ready(laser__ready),
+        .axis_a(laser__axis_a),
+        .axis_b(laser__axis_b),
+        .pwm(laser__pwm)
+    );
     motion_controller__feed_hold_unit feed_hold_unit(
         .clock(feed_hold_unit__clock),
         .reset(feed_hold_unit__reset),
@@ -982,6 +1032,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         .holding(feed_hold_unit__holding),
         .held(feed_hold_unit__held),
         .factor_fraction(feed_hold_unit__factor_fraction),
+        .factor(feed_hold_unit__factor),
         .read_data(feed_hold_unit__read_data),
         .rate_out(feed_hold_unit__rate_out)
     );
@@ -1094,6 +1145,7 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         probe_trigger__clock = clock;
         soft_limits__clock = clock;
         spindle__clock = clock;
+        laser__clock = clock;
         feed_hold_unit__clock = clock;
         planner__clock = clock;
         analog__clock = clock;
@@ -1179,10 +1231,6 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         any_home_event = any_home_event | axes__0__home_event;
         any_busy = any_busy | axes__0__busy;
         all_ready = all_ready & ~axes__0__empty;
-        any_low = any_low | axes__0__low;
-        any_overflow = any_overflow | axes__0__overflow_event;
-        any_fault = any_fault | axes__0__fault_event;
-        any_encoder_error = any_encoder_error | axes__0__encoder_error_event;
         if (axes__1__limit_held) begin
             limit_held = limit_held | axis_bit__1;
         end
@@ -1197,10 +1245,6 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         any_home_event = any_home_event | axes__1__home_event;
         any_busy = any_busy | axes__1__busy;
         all_ready = all_ready & ~axes__1__empty;
-        any_low = any_low | axes__1__low;
-        any_overflow = any_overflow | axes__1__overflow_event;
-        any_fault = any_fault | axes__1__fault_event;
-        any_encoder_error = any_encoder_error | axes__1__encoder_error_event;
         if (axes__2__limit_held) begin
             limit_held = limit_held | axis_bit__2;
         end
@@ -1215,6 +1259,17 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         any_home_event = any_home_event | axes__2__home_event;
         any_busy = any_busy | axes__2__busy;
         all_ready = all_ready & ~axes__2__empty;
+        if (has_laser & ~laser__ready) begin
+            all_ready = 1'b0;
+        end
+        any_low = any_low | axes__0__low;
+        any_overflow = any_overflow | axes__0__overflow_event;
+        any_fault = any_fault | axes__0__fault_event;
+        any_encoder_error = any_encoder_error | axes__0__encoder_error_event;
+        any_low = any_low | axes__1__low;
+        any_overflow = any_overflow | axes__1__overflow_event;
+        any_fault = any_fault | axes__1__fault_event;
+        any_encoder_error = any_encoder_error | axes__1__encoder_error_event;
         any_low = any_low | axes__2__low;
         any_overflow = any_overflow | axes__2__overflow_event;
         any_fault = any_fault | axes__2__fault_event;
@@ -1440,6 +1495,40 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         spindle__write = bus_write & has_spindle;
         spindle__write_data = bus_write_data[(32'h0)+:(24)];
         spindle__abort = abort;
+        laser_count_a = zero_code;
+        laser_count_b = zero_code;
+        if ((laser__axis_a == laser_axis__0) & ~axes__0__analog) begin
+            laser_count_a = axes__0__dac_code;
+        end
+        if ((laser__axis_b == laser_axis__0) & ~axes__0__analog) begin
+            laser_count_b = axes__0__dac_code;
+        end
+        if ((laser__axis_a == laser_axis__1) & ~axes__1__analog) begin
+            laser_count_a = axes__1__dac_code;
+        end
+        if ((laser__axis_b == laser_axis__1) & ~axes__1__analog) begin
+            laser_count_b = axes__1__dac_code;
+        end
+        if ((laser__axis_a == laser_axis__2) & ~axes__2__analog) begin
+            laser_count_a = axes__2__dac_code;
+        end
+        if ((laser__axis_b == laser_axis__2) & ~axes__2__analog) begin
+            laser_count_b = axes__2__dac_code;
+        end
+        laser__reset = reset;
+        laser__address = bus_address;
+        laser__write = bus_write & has_laser;
+        laser__write_data = bus_write_data;
+        laser__start = start;
+        laser__pop = pop;
+        laser__stop = underrun | halt;
+        laser__flush = period__flush;
+        laser__running = period__running;
+        laser__kill = abort | feed_hold_unit__held;
+        laser__factor = feed_hold_unit__factor;
+        laser__count_a = laser_count_a;
+        laser__count_b = laser_count_b;
+        laser_pwm = laser__pwm & has_laser;
         soft_position = zero_position;
         soft_magnitude = zero_code;
         soft_negative = 1'b0;
@@ -1591,8 +1680,12 @@ module motion_controller(clock,reset,bus_address,bus_write_data,bus_write,bus_re
         if (has_spindle) begin
             spindle_read = spindle__read_data;
         end
+        laser_read = zero32;
+        if (has_laser) begin
+            laser_read = laser__read_data;
+        end
         if (bus_read) begin
-            read_data__d = registers__read_data | io__read_data | probe_read | soft_read | spindle_read | feed_hold_unit__read_data | axes_read;
+            read_data__d = registers__read_data | io__read_data | probe_read | soft_read | spindle_read | laser_read | feed_hold_unit__read_data | axes_read;
         end
         read_out = read_data__q;
         if (analog__read_selected) begin
@@ -24158,7 +24251,7 @@ module motion_controller__expired_prev(d,q,clock);
 endmodule // motion_controller__expired_prev
 
 
-module motion_controller__feed_hold_unit(clock,reset,feed_hold,sample,length,address,write,write_data,probe_stop,soft_stop,tick,tick_out,holding,held,factor_fraction,read_data,rate_out);
+module motion_controller__feed_hold_unit(clock,reset,feed_hold,sample,length,address,write,write_data,probe_stop,soft_stop,tick,tick_out,holding,held,factor_fraction,factor,read_data,rate_out);
 
     // Module arguments
     input wire  clock;
@@ -24176,6 +24269,7 @@ module motion_controller__feed_hold_unit(clock,reset,feed_hold,sample,length,add
     output reg  holding;
     output reg  held;
     output reg  [15:0] factor_fraction;
+    output reg  [16:0] factor;
     output reg  [31:0] read_data;
     output reg  [15:0] rate_out;
 
@@ -24316,6 +24410,7 @@ module motion_controller__feed_hold_unit(clock,reset,feed_hold,sample,length,add
         holding = ramp__slowed;
         held = ramp__stopped;
         factor_fraction = ramp__factor[(32'h0)+:(16)];
+        factor = ramp__factor;
         read_data = zero32;
         if (address == a_control) begin
             read_data = ((rate__q) & 32'hffffffff) << 32'h10;
@@ -30318,6 +30413,1926 @@ module motion_controller__io__sample_count(d,q,clock);
 endmodule // motion_controller__io__sample_count
 
 
+module motion_controller__laser(clock,reset,address,write,write_data,start,pop,stop,flush,running,kill,factor,count_a,count_b,read_data,ready,axis_a,axis_b,pwm);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [7:0] address;
+    input wire  write;
+    input wire  [31:0] write_data;
+    input wire  start;
+    input wire  pop;
+    input wire  stop;
+    input wire  flush;
+    input wire  running;
+    input wire  kill;
+    input wire  [16:0] factor;
+    input wire  [15:0] count_a;
+    input wire  [15:0] count_b;
+    output reg  [31:0] read_data;
+    output reg  ready;
+    output reg  [2:0] axis_a;
+    output reg  [2:0] axis_b;
+    output reg  pwm;
+
+    // Constant declarations
+    localparam  a_control = 8'hf0;
+    localparam  a_period = 8'hf1;
+    localparam  a_fifo = 8'hf2;
+    localparam  a_status = 8'hf3;
+    localparam  a_output = 8'hf4;
+    localparam  control_mask = 32'h773;
+    localparam  count_max = 16'h7fff;
+    localparam  zero16 = 16'h0;
+    localparam  zero32 = 32'h0;
+    localparam  zero_level = 5'b0;
+    localparam  m_overflow = 32'h100;
+    localparam  m_active = 32'h200;
+    localparam  m_busy = 32'h400;
+
+    // Stub signals
+    reg  fifo__clock;
+    reg  fifo__reset;
+    reg  fifo__write;
+    reg  [31:0] fifo__write_data;
+    reg  fifo__pop;
+    wire  [31:0] fifo__head;
+    wire  fifo__empty;
+    wire  fifo__full;
+    wire  [4:0] fifo__level;
+    reg  [4:0] fifo__low_water;
+    wire  fifo__low;
+    reg  fifo__clear_flags;
+    wire  fifo__overflow;
+    wire  fifo__underflow;
+    reg  engine__clock;
+    reg  engine__reset;
+    reg  [15:0] engine__pwm_period;
+    reg  [15:0] engine__power;
+    reg  engine__dynamic;
+    reg  engine__load;
+    reg  engine__commit;
+    reg  [15:0] engine__count_a;
+    reg  [15:0] engine__count_b;
+    reg  [23:0] engine__feed;
+    reg  [16:0] engine__factor;
+    reg  engine__enable;
+    reg  engine__kill;
+    wire  engine__pwm;
+    wire  [15:0] engine__duty;
+    wire  [15:0] engine__target;
+    wire  [15:0] engine__speed;
+    wire  engine__busy;
+    reg  [31:0] control__d;
+    wire  [31:0] control__q;
+    reg  control__clock;
+    reg  [15:0] pwm_period__d;
+    wire  [15:0] pwm_period__q;
+    reg  pwm_period__clock;
+    reg  [31:0] entry__d;
+    wire  [31:0] entry__q;
+    reg  entry__clock;
+    reg  active__d;
+    wire  active__q;
+    reg  active__clock;
+    reg  overflow__d;
+    wire  overflow__q;
+    reg  overflow__clock;
+    reg  busy_prev__d;
+    wire  busy_prev__q;
+    reg  busy_prev__clock;
+
+    // Local signals
+    reg  control_write;
+    reg  fifo_write;
+    reg  [15:0] saturated_a;
+    reg  [15:0] saturated_b;
+    reg  [31:0] status_word;
+    reg  [15:0] entry_feed;
+
+    // Sub module instances
+    motion_controller__laser__fifo fifo(
+        .clock(fifo__clock),
+        .reset(fifo__reset),
+        .write(fifo__write),
+        .write_data(fifo__write_data),
+        .pop(fifo__pop),
+        .head(fifo__head),
+        .empty(fifo__empty),
+        .full(fifo__full),
+        .level(fifo__level),
+        .low_water(fifo__low_water),
+        .low(fifo__low),
+        .clear_flags(fifo__clear_flags),
+        .overflow(fifo__overflow),
+        .underflow(fifo__underflow)
+    );
+    motion_controller__laser__engine engine(
+        .clock(engine__clock),
+        .reset(engine__reset),
+        .pwm_period(engine__pwm_period),
+        .power(engine__power),
+        .dynamic(engine__dynamic),
+        .load(engine__load),
+        .commit(engine__commit),
+        .count_a(engine__count_a),
+        .count_b(engine__count_b),
+        .feed(engine__feed),
+        .factor(engine__factor),
+        .enable(engine__enable),
+        .kill(engine__kill),
+        .pwm(engine__pwm),
+        .duty(engine__duty),
+        .target(engine__target),
+        .speed(engine__speed),
+        .busy(engine__busy)
+    );
+    motion_controller__laser__control control(
+        .d(control__d),
+        .q(control__q),
+        .clock(control__clock)
+    );
+    motion_controller__laser__pwm_period pwm_period(
+        .d(pwm_period__d),
+        .q(pwm_period__q),
+        .clock(pwm_period__clock)
+    );
+    motion_controller__laser__entry entry(
+        .d(entry__d),
+        .q(entry__q),
+        .clock(entry__clock)
+    );
+    motion_controller__laser__active active(
+        .d(active__d),
+        .q(active__q),
+        .clock(active__clock)
+    );
+    motion_controller__laser__overflow overflow(
+        .d(overflow__d),
+        .q(overflow__q),
+        .clock(overflow__clock)
+    );
+    motion_controller__laser__busy_prev busy_prev(
+        .d(busy_prev__d),
+        .q(busy_prev__q),
+        .clock(busy_prev__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        control__clock = clock;
+        pwm_period__clock = clock;
+        entry__clock = clock;
+        active__clock = clock;
+        overflow__clock = clock;
+        busy_prev__clock = clock;
+        control__d = control__q;
+        pwm_period__d = pwm_period__q;
+        entry__d = entry__q;
+        active__d = active__q;
+        overflow__d = overflow__q;
+        busy_prev__d = busy_prev__q;
+        fifo__clock = clock;
+        engine__clock = clock;
+        control_write = write & (address == a_control);
+        if (control_write) begin
+            control__d = write_data & control_mask;
+        end
+        if (write & (address == a_period)) begin
+            pwm_period__d = write_data[(32'h0)+:(16)];
+        end
+        axis_a = control__q[(32'h4)+:(3)];
+        axis_b = control__q[(32'h8)+:(3)];
+        fifo_write = write & (address == a_fifo);
+        fifo__reset = reset | flush;
+        fifo__write = fifo_write;
+        fifo__write_data = write_data;
+        fifo__pop = pop & active__q;
+        fifo__low_water = zero_level;
+        fifo__clear_flags = 1'b0;
+        if (control_write & write_data[32'h2]) begin
+            overflow__d = 1'b0;
+        end
+        if (fifo_write & fifo__full & ~(pop & active__q)) begin
+            overflow__d = 1'b1;
+        end
+        ready = ~active__q | ~fifo__empty;
+        if (start) begin
+            active__d = control__q[32'h0];
+        end
+        if (pop & active__q) begin
+            entry__d = fifo__head;
+        end
+        if (stop) begin
+            entry__d = zero32;
+            active__d = 1'b0;
+        end
+        saturated_a = count_a;
+        if (count_a > count_max) begin
+            saturated_a = count_max;
+        end
+        saturated_b = count_b;
+        if (count_b > count_max) begin
+            saturated_b = count_max;
+        end
+        busy_prev__d = engine__busy;
+        engine__reset = reset;
+        engine__pwm_period = pwm_period__q;
+        engine__power = entry__q[(32'h0)+:(16)];
+        engine__dynamic = control__q[32'h1];
+        engine__load = ~engine__busy;
+        engine__commit = busy_prev__q & ~engine__busy;
+        engine__count_a = saturated_a;
+        engine__count_b = saturated_b;
+        entry_feed = entry__q[(32'h10)+:(16)];
+        engine__feed = ((entry_feed) & 24'hffffff);
+        engine__factor = factor;
+        engine__enable = control__q[32'h0] & running;
+        engine__kill = kill;
+        pwm = engine__pwm;
+        status_word = ((fifo__level) & 32'hffffffff);
+        if (overflow__q) begin
+            status_word = status_word | m_overflow;
+        end
+        if (active__q) begin
+            status_word = status_word | m_active;
+        end
+        if (engine__busy) begin
+            status_word = status_word | m_busy;
+        end
+        read_data = zero32;
+        if (address == a_control) begin
+            read_data = control__q;
+        end
+        if (address == a_period) begin
+            read_data = ((pwm_period__q) & 32'hffffffff);
+        end
+        if (address == a_status) begin
+            read_data = status_word;
+        end
+        if (address == a_output) begin
+            read_data = ((engine__duty) & 32'hffffffff) | (((engine__speed) & 32'hffffffff) << 32'h10);
+        end
+        if (reset) begin
+            control__d = zero32;
+            pwm_period__d = zero16;
+            entry__d = zero32;
+            active__d = 1'b0;
+            overflow__d = 1'b0;
+            busy_prev__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller__laser
+
+
+module motion_controller__laser__active(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__active
+
+
+module motion_controller__laser__busy_prev(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__busy_prev
+
+
+module motion_controller__laser__control(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__control
+
+
+module motion_controller__laser__engine(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_b,feed,factor,enable,kill,pwm,duty,target,speed,busy);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [15:0] pwm_period;
+    input wire  [15:0] power;
+    input wire  dynamic;
+    input wire  load;
+    input wire  commit;
+    input wire  [15:0] count_a;
+    input wire  [15:0] count_b;
+    input wire  [23:0] feed;
+    input wire  [16:0] factor;
+    input wire  enable;
+    input wire  kill;
+    output reg  pwm;
+    output reg  [15:0] duty;
+    output reg  [15:0] target;
+    output reg  [15:0] speed;
+    output reg  busy;
+
+    // Constant declarations
+    localparam  code_idle = 3'b0;
+    localparam  code_square_a = 3'b1;
+    localparam  code_square_b = 3'b10;
+    localparam  code_root = 3'b11;
+    localparam  code_times_factor = 3'b100;
+    localparam  code_divide = 3'b101;
+    localparam  code_times_power = 3'b110;
+    localparam  zero_acc = 40'h0;
+    localparam  root_start = 40'h4000000000;
+    localparam  ratio_one = 40'h10000;
+    localparam  half_clock = 40'h8000;
+    localparam  factor_one = 17'b10000000000000000;
+    localparam  sign_17 = 17'b10000000000000000;
+    localparam  one_17 = 17'b1;
+    localparam  zero_17 = 17'b0;
+    localparam  zero_seq = 5'b0;
+    localparam  one_seq = 5'b1;
+    localparam  last_multiply = 5'b10000;
+    localparam  last_root = 5'b10011;
+    localparam  zero_r = 16'h0;
+    localparam  one_r = 16'h1;
+    localparam  two_r = 16'h2;
+    localparam  zero_16 = 16'h0;
+    localparam  zero_f = 24'h0;
+
+    // Stub signals
+    reg  [15:0] counter__d;
+    wire  [15:0] counter__q;
+    reg  counter__clock;
+    reg  [15:0] duty_now__d;
+    wire  [15:0] duty_now__q;
+    reg  duty_now__clock;
+    reg  ended__d;
+    wire  ended__q;
+    reg  ended__clock;
+    reg  [15:0] committed__d;
+    wire  [15:0] committed__q;
+    reg  committed__clock;
+    reg  pwm_out__d;
+    wire  pwm_out__q;
+    reg  pwm_out__clock;
+    reg  [15:0] result__d;
+    wire  [15:0] result__q;
+    reg  result__clock;
+    reg  [15:0] speed_out__d;
+    wire  [15:0] speed_out__q;
+    reg  speed_out__clock;
+    reg  [2:0] phase__d;
+    wire  [2:0] phase__q;
+    reg  phase__clock;
+    reg  [4:0] seq__d;
+    wire  [4:0] seq__q;
+    reg  seq__clock;
+    reg  [39:0] acc__d;
+    wire  [39:0] acc__q;
+    reg  acc__clock;
+    reg  [39:0] mcand__d;
+    wire  [39:0] mcand__q;
+    reg  mcand__clock;
+    reg  [16:0] mplier__d;
+    wire  [16:0] mplier__q;
+    reg  mplier__clock;
+    reg  [39:0] root_bit__d;
+    wire  [39:0] root_bit__q;
+    reg  root_bit__clock;
+    reg  [16:0] magnitude_b__d;
+    wire  [16:0] magnitude_b__q;
+    reg  magnitude_b__clock;
+    reg  [15:0] power_taken__d;
+    wire  [15:0] power_taken__q;
+    reg  power_taken__clock;
+    reg  [23:0] feed_taken__d;
+    wire  [23:0] feed_taken__q;
+    reg  feed_taken__clock;
+    reg  [16:0] factor_taken__d;
+    wire  [16:0] factor_taken__q;
+    reg  factor_taken__clock;
+    reg  divide_start__d;
+    wire  divide_start__q;
+    reg  divide_start__clock;
+    reg  divider__clock;
+    reg  divider__reset;
+    reg  divider__start;
+    reg  [39:0] divider__dividend;
+    reg  [23:0] divider__divisor;
+    wire  divider__busy;
+    wire  divider__done;
+    wire  [39:0] divider__quotient;
+    wire  [23:0] divider__remainder;
+    wire  divider__divide_by_zero;
+
+    // Local signals
+    reg  [39:0] sum;
+    reg  [39:0] trial;
+    reg  [39:0] root_next;
+    reg  [39:0] acc_next;
+    reg  [16:0] magnitude_a;
+    reg  [16:0] magnitude_b_in;
+    reg  [15:0] counter_next;
+    reg  [15:0] duty_next;
+    reg  wrap;
+    reg  ended_next;
+    reg  running;
+    reg  last_step;
+    reg  [15:0] target_duty;
+    reg  [39:0] ratio;
+    reg  multiplying;
+
+    // Sub module instances
+    motion_controller__laser__engine__counter counter(
+        .d(counter__d),
+        .q(counter__q),
+        .clock(counter__clock)
+    );
+    motion_controller__laser__engine__duty_now duty_now(
+        .d(duty_now__d),
+        .q(duty_now__q),
+        .clock(duty_now__clock)
+    );
+    motion_controller__laser__engine__ended ended(
+        .d(ended__d),
+        .q(ended__q),
+        .clock(ended__clock)
+    );
+    motion_controller__laser__engine__committed committed(
+        .d(committed__d),
+        .q(committed__q),
+        .clock(committed__clock)
+    );
+    motion_controller__laser__engine__pwm_out pwm_out(
+        .d(pwm_out__d),
+        .q(pwm_out__q),
+        .clock(pwm_out__clock)
+    );
+    motion_controller__laser__engine__result result(
+        .d(result__d),
+        .q(result__q),
+        .clock(result__clock)
+    );
+    motion_controller__laser__engine__speed_out speed_out(
+        .d(speed_out__d),
+        .q(speed_out__q),
+        .clock(speed_out__clock)
+    );
+    motion_controller__laser__engine__phase phase(
+        .d(phase__d),
+        .q(phase__q),
+        .clock(phase__clock)
+    );
+    motion_controller__laser__engine__seq seq(
+        .d(seq__d),
+        .q(seq__q),
+        .clock(seq__clock)
+    );
+    motion_controller__laser__engine__acc acc(
+        .d(acc__d),
+        .q(acc__q),
+        .clock(acc__clock)
+    );
+    motion_controller__laser__engine__mcand mcand(
+        .d(mcand__d),
+        .q(mcand__q),
+        .clock(mcand__clock)
+    );
+    motion_controller__laser__engine__mplier mplier(
+        .d(mplier__d),
+        .q(mplier__q),
+        .clock(mplier__clock)
+    );
+    motion_controller__laser__engine__root_bit root_bit(
+        .d(root_bit__d),
+        .q(root_bit__q),
+        .clock(root_bit__clock)
+    );
+    motion_controller__laser__engine__magnitude_b magnitude_b(
+        .d(magnitude_b__d),
+        .q(magnitude_b__q),
+        .clock(magnitude_b__clock)
+    );
+    motion_controller__laser__engine__power_taken power_taken(
+        .d(power_taken__d),
+        .q(power_taken__q),
+        .clock(power_taken__clock)
+    );
+    motion_controller__laser__engine__feed_taken feed_taken(
+        .d(feed_taken__d),
+        .q(feed_taken__q),
+        .clock(feed_taken__clock)
+    );
+    motion_controller__laser__engine__factor_taken factor_taken(
+        .d(factor_taken__d),
+        .q(factor_taken__q),
+        .clock(factor_taken__clock)
+    );
+    motion_controller__laser__engine__divide_start divide_start(
+        .d(divide_start__d),
+        .q(divide_start__q),
+        .clock(divide_start__clock)
+    );
+    motion_controller__laser__engine__divider divider(
+        .clock(divider__clock),
+        .reset(divider__reset),
+        .start(divider__start),
+        .dividend(divider__dividend),
+        .divisor(divider__divisor),
+        .busy(divider__busy),
+        .done(divider__done),
+        .quotient(divider__quotient),
+        .remainder(divider__remainder),
+        .divide_by_zero(divider__divide_by_zero)
+    );
+
+    // Update code
+    always @(*) begin
+        counter__clock = clock;
+        duty_now__clock = clock;
+        ended__clock = clock;
+        committed__clock = clock;
+        pwm_out__clock = clock;
+        result__clock = clock;
+        speed_out__clock = clock;
+        phase__clock = clock;
+        seq__clock = clock;
+        acc__clock = clock;
+        mcand__clock = clock;
+        mplier__clock = clock;
+        root_bit__clock = clock;
+        magnitude_b__clock = clock;
+        power_taken__clock = clock;
+        feed_taken__clock = clock;
+        factor_taken__clock = clock;
+        divide_start__clock = clock;
+        counter__d = counter__q;
+        duty_now__d = duty_now__q;
+        ended__d = ended__q;
+        committed__d = committed__q;
+        pwm_out__d = pwm_out__q;
+        result__d = result__q;
+        speed_out__d = speed_out__q;
+        phase__d = phase__q;
+        seq__d = seq__q;
+        acc__d = acc__q;
+        mcand__d = mcand__q;
+        mplier__d = mplier__q;
+        root_bit__d = root_bit__q;
+        magnitude_b__d = magnitude_b__q;
+        power_taken__d = power_taken__q;
+        feed_taken__d = feed_taken__q;
+        factor_taken__d = factor_taken__q;
+        divide_start__d = divide_start__q;
+        divider__clock = clock;
+        pwm = pwm_out__q;
+        duty = duty_now__q;
+        speed = speed_out__q;
+        busy = phase__q != code_idle;
+        sum = acc__q + mcand__q;
+        trial = acc__q - (mcand__q | root_bit__q);
+        root_next = mcand__q >> 32'h1;
+        if (~trial[32'h27]) begin
+            root_next = (mcand__q >> 32'h1) | root_bit__q;
+        end
+        acc_next = acc__q;
+        if (mplier__q[32'h0]) begin
+            acc_next = sum;
+        end
+        last_step = seq__q == last_multiply;
+        magnitude_a = ((count_a) & 17'h1ffff);
+        if (count_a[32'hf]) begin
+            magnitude_a = ~(((count_a) & 17'h1ffff) | sign_17) + one_17;
+        end
+        magnitude_b_in = ((count_b) & 17'h1ffff);
+        if (count_b[32'hf]) begin
+            magnitude_b_in = ~(((count_b) & 17'h1ffff) | sign_17) + one_17;
+        end
+        ratio = divider__quotient;
+        if (divider__quotient >= ratio_one) begin
+            ratio = ratio_one;
+        end
+        if (divider__divide_by_zero) begin
+            ratio = zero_acc;
+        end
+        divider__start = divide_start__q;
+        divider__dividend = acc__q;
+        divider__divisor = feed_taken__q;
+        divide_start__d = 1'b0;
+        multiplying = (phase__q == code_square_a) | (phase__q == code_square_b) | (phase__q == code_times_factor) | (phase__q == code_times_power);
+        if (multiplying) begin
+            acc__d = acc_next;
+            mcand__d = mcand__q << 32'h1;
+            mplier__d = mplier__q >> 32'h1;
+            seq__d = seq__q + one_seq;
+        end
+        if (phase__q == code_root) begin
+            if (~trial[32'h27]) begin
+                acc__d = trial;
+            end
+            mcand__d = root_next;
+            root_bit__d = root_bit__q >> 32'h2;
+            seq__d = seq__q + one_seq;
+        end
+        if ((phase__q == code_square_a) & last_step) begin
+            phase__d = code_square_b;
+            seq__d = zero_seq;
+            mcand__d = ((magnitude_b__q) & 40'hffffffffff);
+            mplier__d = magnitude_b__q;
+        end
+        if ((phase__q == code_square_b) & last_step) begin
+            acc__d = acc_next << 32'h8;
+            phase__d = code_root;
+            seq__d = zero_seq;
+            mcand__d = zero_acc;
+            root_bit__d = root_start;
+        end
+        if ((phase__q == code_root) & (seq__q == last_root)) begin
+            phase__d = code_times_factor;
+            seq__d = zero_seq;
+            acc__d = zero_acc;
+            mplier__d = factor_taken__q;
+            speed_out__d = root_next[(32'h4)+:(16)];
+        end
+        if ((phase__q == code_times_factor) & last_step) begin
+            phase__d = code_divide;
+            divide_start__d = 1'b1;
+        end
+        if ((phase__q == code_divide) & divider__done) begin
+            phase__d = code_times_power;
+            seq__d = zero_seq;
+            acc__d = half_clock;
+            mcand__d = ratio;
+            mplier__d = ((power_taken__q) & 17'h1ffff);
+        end
+        if ((phase__q == code_times_power) & last_step) begin
+            phase__d = code_idle;
+            result__d = acc_next[(32'h10)+:(16)];
+        end
+        if ((phase__q == code_idle) & load) begin
+            phase__d = code_square_a;
+            seq__d = zero_seq;
+            acc__d = zero_acc;
+            mcand__d = ((magnitude_a) & 40'hffffffffff);
+            mplier__d = magnitude_a;
+            magnitude_b__d = magnitude_b_in;
+            power_taken__d = power;
+            feed_taken__d = feed;
+            factor_taken__d = factor;
+            if (factor > factor_one) begin
+                factor_taken__d = factor_one;
+            end
+        end
+        target_duty = power;
+        if (dynamic) begin
+            target_duty = committed__q;
+        end
+        if (commit) begin
+            committed__d = result__q;
+        end
+        target = power;
+        if (dynamic) begin
+            target = committed__q;
+        end
+        running = pwm_period >= two_r;
+        wrap = ~running | ((((counter__q) & 17'h1ffff) + one_17) >= ((pwm_period) & 17'h1ffff));
+        counter_next = counter__q + one_r;
+        if (wrap) begin
+            counter_next = zero_r;
+        end
+        duty_next = target_duty;
+        if (kill) begin
+            duty_next = zero_r;
+        end
+        ended_next = (~wrap & ended__q) | (counter_next >= duty_next);
+        counter__d = counter_next;
+        duty_now__d = duty_next;
+        ended__d = ended_next;
+        pwm_out__d = enable & ~kill & running & ~ended_next;
+        divider__reset = reset;
+        if (reset) begin
+            counter__d = zero_r;
+            duty_now__d = zero_r;
+            ended__d = 1'b0;
+            committed__d = zero_r;
+            pwm_out__d = 1'b0;
+            result__d = zero_r;
+            speed_out__d = zero_16;
+            phase__d = code_idle;
+            seq__d = zero_seq;
+            acc__d = zero_acc;
+            mcand__d = zero_acc;
+            mplier__d = zero_17;
+            root_bit__d = zero_acc;
+            magnitude_b__d = zero_17;
+            power_taken__d = zero_r;
+            feed_taken__d = zero_f;
+            factor_taken__d = zero_17;
+            divide_start__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller__laser__engine
+
+
+module motion_controller__laser__engine__acc(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__acc
+
+
+module motion_controller__laser__engine__committed(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__committed
+
+
+module motion_controller__laser__engine__counter(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__counter
+
+
+module motion_controller__laser__engine__divide_start(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divide_start
+
+
+module motion_controller__laser__engine__divider(clock,reset,start,dividend,divisor,busy,done,quotient,remainder,divide_by_zero);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  start;
+    input wire  [39:0] dividend;
+    input wire  [23:0] divisor;
+    output reg  busy;
+    output reg  done;
+    output reg  [39:0] quotient;
+    output reg  [23:0] remainder;
+    output reg  divide_by_zero;
+
+    // Constant declarations
+    localparam  zero = 40'h0;
+    localparam  one = 40'h1;
+    localparam  msb = 40'h8000000000;
+    localparam  zero_d = 24'h0;
+    localparam  one_d = 24'h1;
+    localparam  msb_d = 24'h800000;
+    localparam  width = 8'h28;
+    localparam  one_step = 8'h1;
+    localparam  no_steps = 8'h0;
+
+    // Stub signals
+    reg  [39:0] shift__d;
+    wire  [39:0] shift__q;
+    reg  shift__clock;
+    reg  [23:0] partial__d;
+    wire  [23:0] partial__q;
+    reg  partial__clock;
+    reg  [23:0] denominator_inverted__d;
+    wire  [23:0] denominator_inverted__q;
+    reg  denominator_inverted__clock;
+    reg  [7:0] steps_left__d;
+    wire  [7:0] steps_left__q;
+    reg  steps_left__clock;
+    reg  running__d;
+    wire  running__q;
+    reg  running__clock;
+    reg  finished__d;
+    wire  finished__q;
+    reg  finished__clock;
+    reg  by_zero__d;
+    wire  by_zero__q;
+    reg  by_zero__clock;
+    reg  [23:0] subtractor__a;
+    reg  [23:0] subtractor__b;
+    wire  [23:0] subtractor__sum;
+    wire  subtractor__carry_out;
+
+    // Local signals
+    reg  [23:0] shifted;
+    reg  shifted_overflows;
+
+    // Sub module instances
+    motion_controller__laser__engine__divider__shift shift(
+        .d(shift__d),
+        .q(shift__q),
+        .clock(shift__clock)
+    );
+    motion_controller__laser__engine__divider__partial partial(
+        .d(partial__d),
+        .q(partial__q),
+        .clock(partial__clock)
+    );
+    motion_controller__laser__engine__divider__denominator_inverted denominator_inverted(
+        .d(denominator_inverted__d),
+        .q(denominator_inverted__q),
+        .clock(denominator_inverted__clock)
+    );
+    motion_controller__laser__engine__divider__steps_left steps_left(
+        .d(steps_left__d),
+        .q(steps_left__q),
+        .clock(steps_left__clock)
+    );
+    motion_controller__laser__engine__divider__running running(
+        .d(running__d),
+        .q(running__q),
+        .clock(running__clock)
+    );
+    motion_controller__laser__engine__divider__finished finished(
+        .d(finished__d),
+        .q(finished__q),
+        .clock(finished__clock)
+    );
+    motion_controller__laser__engine__divider__by_zero by_zero(
+        .d(by_zero__d),
+        .q(by_zero__q),
+        .clock(by_zero__clock)
+    );
+    motion_controller__laser__engine__divider__subtractor subtractor(
+        .a(subtractor__a),
+        .b(subtractor__b),
+        .sum(subtractor__sum),
+        .carry_out(subtractor__carry_out)
+    );
+
+    // Update code
+    always @(*) begin
+        shift__clock = clock;
+        partial__clock = clock;
+        denominator_inverted__clock = clock;
+        steps_left__clock = clock;
+        running__clock = clock;
+        finished__clock = clock;
+        by_zero__clock = clock;
+        shift__d = shift__q;
+        partial__d = partial__q;
+        denominator_inverted__d = denominator_inverted__q;
+        steps_left__d = steps_left__q;
+        running__d = running__q;
+        finished__d = finished__q;
+        by_zero__d = by_zero__q;
+        busy = running__q;
+        done = finished__q;
+        quotient = shift__q;
+        remainder = partial__q;
+        divide_by_zero = by_zero__q;
+        shifted = partial__q << 32'h1;
+        if ((shift__q & msb) != zero) begin
+            shifted = (partial__q << 32'h1) | one_d;
+        end
+        shifted_overflows = (partial__q & msb_d) != zero_d;
+        subtractor__a = shifted;
+        subtractor__b = denominator_inverted__q;
+        finished__d = 1'b0;
+        if (running__q) begin
+            if (subtractor__carry_out | shifted_overflows) begin
+                partial__d = subtractor__sum;
+                shift__d = (shift__q << 32'h1) | one;
+            end
+            else begin
+                partial__d = shifted;
+                shift__d = shift__q << 32'h1;
+            end
+            steps_left__d = steps_left__q - one_step;
+            if (steps_left__q == one_step) begin
+                running__d = 1'b0;
+                finished__d = 1'b1;
+            end
+        end
+        else if (start) begin
+            shift__d = dividend;
+            partial__d = zero_d;
+            denominator_inverted__d = ~divisor;
+            steps_left__d = width;
+            running__d = 1'b1;
+            by_zero__d = divisor == zero_d;
+        end
+        if (reset) begin
+            shift__d = zero;
+            partial__d = zero_d;
+            denominator_inverted__d = ~zero_d;
+            steps_left__d = no_steps;
+            running__d = 1'b0;
+            finished__d = 1'b0;
+            by_zero__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller__laser__engine__divider
+
+
+module motion_controller__laser__engine__divider__by_zero(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divider__by_zero
+
+
+module motion_controller__laser__engine__divider__denominator_inverted(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divider__denominator_inverted
+
+
+module motion_controller__laser__engine__divider__finished(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divider__finished
+
+
+module motion_controller__laser__engine__divider__partial(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divider__partial
+
+
+module motion_controller__laser__engine__divider__running(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divider__running
+
+
+module motion_controller__laser__engine__divider__shift(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divider__shift
+
+
+module motion_controller__laser__engine__divider__steps_left(d,q,clock);
+
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__divider__steps_left
+
+
+module motion_controller__laser__engine__divider__subtractor(a,b,sum,carry_out);
+
+    // Module arguments
+    input wire  [23:0] a;
+    input wire  [23:0] b;
+    output reg  [23:0] sum;
+    output reg  carry_out;
+
+    // Constant declarations
+    localparam  zero = 24'h0;
+    localparam  one = 24'h1;
+    localparam  msb = 24'h800000;
+    localparam  low_half = 24'hfff;
+    localparam  high_half = 24'hfff000;
+    localparam  mid_bit = 24'h1000;
+
+    // Local signals
+    reg  [23:0] low_sum;
+    reg  [23:0] high_sum_carry0;
+    reg  [23:0] high_sum_carry1;
+    reg  carry_mid;
+    reg  carry_out0;
+    reg  carry_out1;
+
+    // Update code
+    always @(*) begin
+        low_sum = (a & low_half) + (b & low_half) + one;
+        carry_mid = (low_sum & mid_bit) != zero;
+        high_sum_carry0 = (a & high_half) + (b & high_half);
+        high_sum_carry1 = (a | low_half) + (b & high_half) + one;
+        carry_out0 = (((a & b) | ((a ^ b) & ~high_sum_carry0)) & msb) != zero;
+        carry_out1 = (((a & b) | ((a ^ b) & ~high_sum_carry1)) & msb) != zero;
+        if (carry_mid) begin
+            sum = (low_sum & low_half) | high_sum_carry1;
+            carry_out = carry_out1;
+        end
+        else begin
+            sum = (low_sum & low_half) | high_sum_carry0;
+            carry_out = carry_out0;
+        end
+    end
+
+endmodule // motion_controller__laser__engine__divider__subtractor
+
+
+module motion_controller__laser__engine__duty_now(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__duty_now
+
+
+module motion_controller__laser__engine__ended(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__ended
+
+
+module motion_controller__laser__engine__factor_taken(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__factor_taken
+
+
+module motion_controller__laser__engine__feed_taken(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__feed_taken
+
+
+module motion_controller__laser__engine__magnitude_b(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__magnitude_b
+
+
+module motion_controller__laser__engine__mcand(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__mcand
+
+
+module motion_controller__laser__engine__mplier(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__mplier
+
+
+module motion_controller__laser__engine__phase(d,q,clock);
+
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__phase
+
+
+module motion_controller__laser__engine__power_taken(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__power_taken
+
+
+module motion_controller__laser__engine__pwm_out(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__pwm_out
+
+
+module motion_controller__laser__engine__result(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__result
+
+
+module motion_controller__laser__engine__root_bit(d,q,clock);
+
+    // Module arguments
+    input wire  [39:0] d;
+    output reg  [39:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 40'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__root_bit
+
+
+module motion_controller__laser__engine__seq(d,q,clock);
+
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__seq
+
+
+module motion_controller__laser__engine__speed_out(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__engine__speed_out
+
+
+module motion_controller__laser__entry(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__entry
+
+
+module motion_controller__laser__fifo(clock,reset,write,write_data,pop,head,empty,full,level,low_water,low,clear_flags,overflow,underflow);
+
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  write;
+    input wire  [31:0] write_data;
+    input wire  pop;
+    output reg  [31:0] head;
+    output reg  empty;
+    output reg  full;
+    output reg  [4:0] level;
+    input wire  [4:0] low_water;
+    output reg  low;
+    input wire  clear_flags;
+    output reg  overflow;
+    output reg  underflow;
+
+    // Constant declarations
+    localparam  one_n = 4'h1;
+    localparam  zero_n = 4'h0;
+    localparam  one_c = 5'b1;
+    localparam  zero_c = 5'b0;
+    localparam  almost_full = 5'b1111;
+
+    // Stub signals
+    reg  ram__clock;
+    reg  ram__read_enable;
+    reg  [3:0] ram__read_address;
+    wire  [31:0] ram__read_data;
+    reg  ram__write_enable;
+    reg  [3:0] ram__write_address;
+    reg  [31:0] ram__write_data;
+    reg  [3:0] read_pointer__d;
+    wire  [3:0] read_pointer__q;
+    reg  read_pointer__clock;
+    reg  [3:0] write_pointer__d;
+    wire  [3:0] write_pointer__q;
+    reg  write_pointer__clock;
+    reg  [4:0] count__d;
+    wire  [4:0] count__q;
+    reg  count__clock;
+    reg  bypass__d;
+    wire  bypass__q;
+    reg  bypass__clock;
+    reg  [31:0] bypass_data__d;
+    wire  [31:0] bypass_data__q;
+    reg  bypass_data__clock;
+    reg  overflow_reg__d;
+    wire  overflow_reg__q;
+    reg  overflow_reg__clock;
+    reg  underflow_reg__d;
+    wire  underflow_reg__q;
+    reg  underflow_reg__clock;
+    reg  not_empty_reg__d;
+    wire  not_empty_reg__q;
+    reg  not_empty_reg__clock;
+    reg  full_reg__d;
+    wire  full_reg__q;
+    reg  full_reg__clock;
+
+    // Local signals
+    reg  count_is_one;
+    reg  count_is_almost_full;
+    reg  grows;
+    reg  shrinks;
+    reg  is_empty;
+    reg  is_full;
+    reg  write_taken;
+    reg  pop_taken;
+    reg  [3:0] next_read;
+
+    // Sub module instances
+    motion_controller__laser__fifo__ram ram(
+        .clock(ram__clock),
+        .read_enable(ram__read_enable),
+        .read_address(ram__read_address),
+        .read_data(ram__read_data),
+        .write_enable(ram__write_enable),
+        .write_address(ram__write_address),
+        .write_data(ram__write_data)
+    );
+    motion_controller__laser__fifo__read_pointer read_pointer(
+        .d(read_pointer__d),
+        .q(read_pointer__q),
+        .clock(read_pointer__clock)
+    );
+    motion_controller__laser__fifo__write_pointer write_pointer(
+        .d(write_pointer__d),
+        .q(write_pointer__q),
+        .clock(write_pointer__clock)
+    );
+    motion_controller__laser__fifo__count count(
+        .d(count__d),
+        .q(count__q),
+        .clock(count__clock)
+    );
+    motion_controller__laser__fifo__bypass bypass(
+        .d(bypass__d),
+        .q(bypass__q),
+        .clock(bypass__clock)
+    );
+    motion_controller__laser__fifo__bypass_data bypass_data(
+        .d(bypass_data__d),
+        .q(bypass_data__q),
+        .clock(bypass_data__clock)
+    );
+    motion_controller__laser__fifo__overflow_reg overflow_reg(
+        .d(overflow_reg__d),
+        .q(overflow_reg__q),
+        .clock(overflow_reg__clock)
+    );
+    motion_controller__laser__fifo__underflow_reg underflow_reg(
+        .d(underflow_reg__d),
+        .q(underflow_reg__q),
+        .clock(underflow_reg__clock)
+    );
+    motion_controller__laser__fifo__not_empty_reg not_empty_reg(
+        .d(not_empty_reg__d),
+        .q(not_empty_reg__q),
+        .clock(not_empty_reg__clock)
+    );
+    motion_controller__laser__fifo__full_reg full_reg(
+        .d(full_reg__d),
+        .q(full_reg__q),
+        .clock(full_reg__clock)
+    );
+
+    // Update code
+    always @(*) begin
+        read_pointer__clock = clock;
+        write_pointer__clock = clock;
+        count__clock = clock;
+        bypass__clock = clock;
+        bypass_data__clock = clock;
+        overflow_reg__clock = clock;
+        underflow_reg__clock = clock;
+        not_empty_reg__clock = clock;
+        full_reg__clock = clock;
+        read_pointer__d = read_pointer__q;
+        write_pointer__d = write_pointer__q;
+        count__d = count__q;
+        bypass__d = bypass__q;
+        bypass_data__d = bypass_data__q;
+        overflow_reg__d = overflow_reg__q;
+        underflow_reg__d = underflow_reg__q;
+        not_empty_reg__d = not_empty_reg__q;
+        full_reg__d = full_reg__q;
+        ram__clock = clock;
+        ram__read_enable = 1'b1;
+        is_empty = ~not_empty_reg__q;
+        is_full = full_reg__q;
+        empty = is_empty;
+        full = is_full;
+        level = count__q;
+        low = count__q <= low_water;
+        overflow = overflow_reg__q;
+        underflow = underflow_reg__q;
+        head = ram__read_data;
+        if (bypass__q) begin
+            head = bypass_data__q;
+        end
+        pop_taken = pop & ~is_empty;
+        write_taken = write & (~is_full | pop_taken);
+        if (clear_flags) begin
+            overflow_reg__d = 1'b0;
+            underflow_reg__d = 1'b0;
+        end
+        if (write & ~write_taken) begin
+            overflow_reg__d = 1'b1;
+        end
+        if (pop & ~pop_taken) begin
+            underflow_reg__d = 1'b1;
+        end
+        next_read = read_pointer__q;
+        if (pop_taken) begin
+            next_read = read_pointer__q + one_n;
+            read_pointer__d = next_read;
+        end
+        ram__read_address = next_read;
+        ram__write_address = write_pointer__q;
+        ram__write_data = write_data;
+        ram__write_enable = write_taken;
+        if (write_taken) begin
+            write_pointer__d = write_pointer__q + one_n;
+        end
+        bypass__d = write_taken & (write_pointer__q == next_read);
+        bypass_data__d = write_data;
+        grows = write_taken & ~pop_taken;
+        shrinks = pop_taken & ~write_taken;
+        count_is_one = count__q == one_c;
+        count_is_almost_full = count__q == almost_full;
+        if (grows) begin
+            count__d = count__q + one_c;
+            not_empty_reg__d = 1'b1;
+            full_reg__d = count_is_almost_full;
+        end
+        if (shrinks) begin
+            count__d = count__q - one_c;
+            not_empty_reg__d = ~count_is_one;
+            full_reg__d = 1'b0;
+        end
+        if (reset) begin
+            read_pointer__d = zero_n;
+            write_pointer__d = zero_n;
+            count__d = zero_c;
+            bypass__d = 1'b0;
+            overflow_reg__d = 1'b0;
+            underflow_reg__d = 1'b0;
+            not_empty_reg__d = 1'b0;
+            full_reg__d = 1'b0;
+        end
+    end
+
+endmodule // motion_controller__laser__fifo
+
+
+module motion_controller__laser__fifo__bypass(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__bypass
+
+
+module motion_controller__laser__fifo__bypass_data(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__bypass_data
+
+
+module motion_controller__laser__fifo__count(d,q,clock);
+
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__count
+
+
+module motion_controller__laser__fifo__full_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__full_reg
+
+
+module motion_controller__laser__fifo__not_empty_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__not_empty_reg
+
+
+module motion_controller__laser__fifo__overflow_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__overflow_reg
+
+
+module motion_controller__laser__fifo__ram(clock,read_enable,read_address,read_data,write_enable,write_address,write_data);
+
+    // Module arguments
+    input wire  clock;
+    input wire  read_enable;
+    input wire  [3:0] read_address;
+    output reg  [31:0] read_data;
+    input wire  write_enable;
+    input wire  [3:0] write_address;
+    input wire  [31:0] write_data;
+
+    // Update code (custom)
+    (* no_rw_check *) reg [31:0] mem [0:15];
+    integer i;
+
+    // Block RAM powers up 0, and so do the words and the read register here.
+    initial begin
+       for (i = 0; i <= 15; i = i + 1) mem[i] = 0;
+       read_data = 0;
+    end
+
+    always @(posedge clock) begin
+       if (read_enable) begin
+          read_data <= mem[read_address];
+       end
+    end
+
+    always @(posedge clock) begin
+       if (write_enable) begin
+          mem[write_address] <= write_data;
+       end
+    end
+endmodule // motion_controller__laser__fifo__ram
+
+
+module motion_controller__laser__fifo__read_pointer(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__read_pointer
+
+
+module motion_controller__laser__fifo__underflow_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__underflow_reg
+
+
+module motion_controller__laser__fifo__write_pointer(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__fifo__write_pointer
+
+
+module motion_controller__laser__overflow(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__overflow
+
+
+module motion_controller__laser__pwm_period(d,q,clock);
+
+    // Module arguments
+    input wire  [15:0] d;
+    output reg  [15:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 16'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller__laser__pwm_period
+
+
 module motion_controller__motion_tick(d,q,clock);
 
     // Module arguments
@@ -31744,7 +33759,7 @@ module motion_controller__registers(clock,reset,address,write_data,write,running
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h800;
+    localparam  version_value = 32'h900;
     localparam  config_value = 32'hc610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;

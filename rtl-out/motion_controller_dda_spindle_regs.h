@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000800UL
+#define MC_VERSION_RESET 0x00000900UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
 #define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x8UL
+#define MC_VERSION_MINOR_RESET 0x9UL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -71,6 +71,9 @@
 #define MC_CONFIG_SPINDLE_SHIFT 28UL /* RO 1 = this build has the spindle encoder and the electronic gearbox (SPINDLE_*, GEAR_*, STATUS.SPINDLE); 0: the spindle_* pins are ignored */
 #define MC_CONFIG_SPINDLE_MASK 0x10000000UL
 #define MC_CONFIG_SPINDLE_RESET 0x1UL
+#define MC_CONFIG_LASER_SHIFT 29UL /* RO 1 = this build has the laser PWM tied to the path (LASER_*); 0: laser_pwm stays low */
+#define MC_CONFIG_LASER_MASK 0x20000000UL
+#define MC_CONFIG_LASER_RESET 0x0UL
 
 /* CONTROL: run control */
 #define MC_CONTROL_INDEX 0x0003UL

@@ -65,11 +65,13 @@ module motion_controller_dda_spindle_tb;
   reg expected_dac_l1_n;
   wire dac_ldac;
   reg expected_dac_ldac;
+  wire laser_pwm;
+  reg expected_laser_pwm;
   integer vectors;
   integer fields;
   integer cycle;
   reg [8*1024-1:0] vector_path;
-  motion_controller_dda_spindle uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a(enc_a), .enc_b(enc_b), .enc_index(enc_index), .limit_pos(limit_pos), .limit_neg(limit_neg), .home(home), .drive_alarm(drive_alarm), .estop(estop), .gpio_in(gpio_in), .probe(probe), .feed_hold(feed_hold), .spindle_a(spindle_a), .spindle_b(spindle_b), .spindle_index(spindle_index), .bus_read_data(bus_read_data), .irq(irq), .running(running), .active(active), .step_a(step_a), .step_b(step_b), .drive_enable(drive_enable), .gpio_out(gpio_out), .dac_data(dac_data), .dac_cs_n(dac_cs_n), .dac_l1_n(dac_l1_n), .dac_ldac(dac_ldac));
+  motion_controller_dda_spindle uut (.clock(clock), .reset(reset), .bus_address(bus_address), .bus_write_data(bus_write_data), .bus_write(bus_write), .bus_read(bus_read), .enc_a(enc_a), .enc_b(enc_b), .enc_index(enc_index), .limit_pos(limit_pos), .limit_neg(limit_neg), .home(home), .drive_alarm(drive_alarm), .estop(estop), .gpio_in(gpio_in), .probe(probe), .feed_hold(feed_hold), .spindle_a(spindle_a), .spindle_b(spindle_b), .spindle_index(spindle_index), .bus_read_data(bus_read_data), .irq(irq), .running(running), .active(active), .step_a(step_a), .step_b(step_b), .drive_enable(drive_enable), .gpio_out(gpio_out), .dac_data(dac_data), .dac_cs_n(dac_cs_n), .dac_l1_n(dac_l1_n), .dac_ldac(dac_ldac), .laser_pwm(laser_pwm));
   initial begin
     if (!$value$plusargs("vectors=%s", vector_path)) begin
       $display("ERROR missing +vectors=FILE");
@@ -82,8 +84,8 @@ module motion_controller_dda_spindle_tb;
     end
     cycle = 0;
     while (!$feof(vectors)) begin
-      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a, vector_enc_b, vector_enc_index, vector_limit_pos, vector_limit_neg, vector_home, vector_drive_alarm, vector_estop, vector_gpio_in, vector_probe, vector_feed_hold, vector_spindle_a, vector_spindle_b, vector_spindle_index, expected_bus_read_data, expected_irq, expected_running, expected_active, expected_step_a, expected_step_b, expected_drive_enable, expected_gpio_out, expected_dac_data, expected_dac_cs_n, expected_dac_l1_n, expected_dac_ldac);
-      if (fields == 31) begin
+      fields = $fscanf(vectors, "%h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h %h\n", vector_reset, vector_bus_address, vector_bus_write_data, vector_bus_write, vector_bus_read, vector_enc_a, vector_enc_b, vector_enc_index, vector_limit_pos, vector_limit_neg, vector_home, vector_drive_alarm, vector_estop, vector_gpio_in, vector_probe, vector_feed_hold, vector_spindle_a, vector_spindle_b, vector_spindle_index, expected_bus_read_data, expected_irq, expected_running, expected_active, expected_step_a, expected_step_b, expected_drive_enable, expected_gpio_out, expected_dac_data, expected_dac_cs_n, expected_dac_l1_n, expected_dac_ldac, expected_laser_pwm);
+      if (fields == 32) begin
         reset = vector_reset;
         bus_address = vector_bus_address;
         bus_write_data = vector_bus_write_data;
@@ -151,6 +153,10 @@ module motion_controller_dda_spindle_tb;
         end
         if (dac_ldac !== expected_dac_ldac) begin
           $display("MISMATCH cycle=%0d signal=dac_ldac expected=%h got=%h", cycle, expected_dac_ldac, dac_ldac);
+          $finish;
+        end
+        if (laser_pwm !== expected_laser_pwm) begin
+          $display("MISMATCH cycle=%0d signal=laser_pwm expected=%h got=%h", cycle, expected_laser_pwm, laser_pwm);
           $finish;
         end
         #4 clock = 1'b0;

@@ -13,8 +13,8 @@ use crate::blocks::freq_divider::{self, FreqDivider};
 use crate::blocks::host_links::{self, SeedHostLinks};
 use crate::blocks::laser_pwm::{self, LaserPwm};
 use crate::blocks::motion_controller::{
-    self, MotionController1, MotionController3, MotionController3Dda, MotionController3DdaSpindle,
-    MotionController3Servo, MotionController6,
+    self, MotionController1, MotionController3, MotionController3Dda, MotionController3DdaLaser,
+    MotionController3DdaSpindle, MotionController3Servo, MotionController6,
 };
 use crate::blocks::narrow_bus_adapter::{self, ExternalBusAdapter16, ExternalBusAdapter8};
 use crate::blocks::parallel_card::{self, ParallelCard};
@@ -337,6 +337,24 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(MotionController3DdaSpindle::default()),
+        },
+        ModuleSpec {
+            name: "motion_controller_dda_laser",
+            block: "motion_controller",
+            summary: motion_controller::SUMMARY_DDA_LASER,
+            parameters: &[
+                ("K", "3", "axes"),
+                ("N", "4", "FIFO depth 2^N = 16 periods per axis and for the laser"),
+                ("T", "16", "step timing register width"),
+                ("P", "8", "each output stage's pending-step count width: +127 / -128 steps"),
+                ("UNIFORM", "false", "no uniform pulse generators: every axis runs its DDA (CONFIG.DDA_ONLY = 1)"),
+                ("LASER", "true", "the laser FIFO and the PWM tied to the path (CONFIG.LASER = 1)"),
+            ],
+            port_docs: motion_controller::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(MotionController3DdaLaser::default()),
         },
         ModuleSpec {
             name: "motion_controller_servo",

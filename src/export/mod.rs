@@ -168,6 +168,14 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
             )?,
         ),
         (
+            "motion_controller_dda_laser_regs",
+            motion_controller::registers::register_map(
+                3,
+                4,
+                motion_controller::registers::BuildOptions::MOTION_CONTROLLER_DDA_LASER,
+            )?,
+        ),
+        (
             "motion_controller_servo_regs",
             motion_controller::registers::register_map(
                 3,

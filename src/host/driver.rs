@@ -315,6 +315,7 @@ impl<B: ControllerBus> Driver<B> {
         let probe = driver.field("CONFIG", "PROBE", build)? == 1;
         let soft_limits = driver.field("CONFIG", "SOFT_LIMITS", build)? == 1;
         let spindle = driver.field("CONFIG", "SPINDLE", build)? == 1;
+        let laser = driver.field("CONFIG", "LASER", build)? == 1;
         for (axis, window) in config.soft_limits.iter().enumerate() {
             match window {
                 Some(_) if !soft_limits => {
@@ -336,6 +337,7 @@ impl<B: ControllerBus> Driver<B> {
             probe,
             soft_limits,
             spindle,
+            laser,
         };
         driver.map = register_map(3, driver.depth.trailing_zeros(), options)?;
         if let Some(axis) = (0..3).find(|&k| config.analog[k] && (!analog || config.uniform[k])) {

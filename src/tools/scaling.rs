@@ -388,6 +388,7 @@ mod tests {
                 probe: false,
                 soft_limits: false,
                 spindle: false,
+                laser: false,
             },
             exported: build != "b",
             figures: SynthFigures {

@@ -263,7 +263,8 @@ fn dynamic_power_keeps_the_energy_per_step_through_a_corner_and_a_hold() {
         pwm_period: PWM,
         power,
         dynamic: true,
-        feed,
+        // The feed port is in 1/16 step per period.
+        feed: feed * 16,
         factor: 65536,
         enable: true,
         ..Default::default()

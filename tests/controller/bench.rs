@@ -24,6 +24,7 @@ pub struct Bench<
     const PROBE: bool,
     const SOFT: bool = true,
     const SPINDLE: bool = false,
+    const LASER: bool = false,
 > {
     /// The RTL and the reference model.
     pair: Lockstep<MotionControllerModel>,
@@ -57,7 +58,8 @@ impl<
         const PROBE: bool,
         const SOFT: bool,
         const SPINDLE: bool,
-    > Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
+        const LASER: bool,
+    > Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>
 {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
@@ -68,14 +70,15 @@ impl<
 
     /// A bench in the power-up state with the RTL on `backend`.
     pub fn on(backend: Backend) -> Self {
-        let build = MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>::BUILD;
+        let build =
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>::BUILD;
         let map = register_map(K, N as u32, build).unwrap();
         let model = MotionControllerModel::new(K, N as u32, build).unwrap();
         let module = build.module_name();
         let pair = Lockstep::on(
             backend,
             module,
-            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>::default(),
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>::default(),
             model,
         )
         .unwrap_or_else(|e| panic!("{e}"));
@@ -164,7 +167,7 @@ impl<
         let got = self.pair.step(&inputs).unwrap_or_else(|e| panic!("{e}"));
         debug_assert_eq!(
             self.pair.input_vector().len(),
-            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>::input_names()
+            MotionController::<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>::input_names()
                 .len()
         );
         if let Some(recording) = self.recording.as_mut() {
@@ -275,7 +278,8 @@ impl<
         const PROBE: bool,
         const SOFT: bool,
         const SPINDLE: bool,
-    > ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
+        const LASER: bool,
+    > ControllerUnderTest for Bench<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>
 {
     fn axes(&self) -> usize {
         K

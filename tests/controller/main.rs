@@ -23,6 +23,7 @@ mod host_feed_hold;
 mod host_probing;
 mod host_soft_limits;
 mod host_threading;
+mod laser;
 mod machine_io;
 mod motion_controller;
 mod parallel_machine;

@@ -1098,7 +1098,7 @@ pub(crate) fn cross_simulate_exported<
         b.clock(reset, address, data, write, read);
     }
     let stimulus = b.recording.take().unwrap();
-    check_instance_with::<MotionController<3, 4, 5, U, A, P, S, false>>(
+    check_instance_with::<MotionController<3, 4, 5, U, A, P, S, false, false>>(
         Instance::Exported(module),
         stimulus,
         icarus_clocks,

@@ -416,6 +416,7 @@ fn the_field_constants_agree_with_the_maps() {
             probe: true,
             soft_limits: true,
             spindle: false,
+            laser: false,
         };
         let map = mc::register_map(3, 4, build).unwrap();
         for &(register, field, lsb, width) in controller {
@@ -641,6 +642,62 @@ fn the_field_constants_agree_with_the_maps() {
     assert!(without_spindle.register("GEAR_CONTROL").is_err());
     assert!(mc::register_map(7, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_SPINDLE).is_err());
     assert!(mc::register_map(6, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_SPINDLE).is_ok());
+
+    // The laser unit's registers: in a LASER build only, at the addresses
+    // and bits the RTL and the model take by name.
+    let laser = mc::register_map(3, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_LASER).unwrap();
+    let l = mc::laser::BASE;
+    let word = f::LASER_WORD_WIDTH;
+    for (register, field, lsb, width, address) in [
+        ("CONFIG", "LASER", f::CONFIG_LASER, 1, mc::global::CONFIG),
+        ("LASER_CONTROL", "ENABLE", f::LASER_ENABLE, 1, l),
+        ("LASER_CONTROL", "DYNAMIC", f::LASER_DYNAMIC, 1, l),
+        (
+            "LASER_CONTROL",
+            "CLEAR_OVERFLOW",
+            f::LASER_CLEAR_OVERFLOW,
+            1,
+            l,
+        ),
+        (
+            "LASER_CONTROL",
+            "AXIS_A",
+            f::LASER_AXIS_A,
+            f::LASER_AXIS_WIDTH,
+            l,
+        ),
+        (
+            "LASER_CONTROL",
+            "AXIS_B",
+            f::LASER_AXIS_B,
+            f::LASER_AXIS_WIDTH,
+            l,
+        ),
+        ("LASER_PWM_PERIOD", "VALUE", f::VALUE, word, l + 1),
+        ("LASER_FIFO", "POWER", f::LASER_POWER, word, l + 2),
+        ("LASER_FIFO", "FEED", f::LASER_FEED, word, l + 2),
+        ("LASER_STATUS", "LEVEL", f::LASER_LEVEL, 5, l + 3),
+        ("LASER_STATUS", "OVERFLOW", f::LASER_OVERFLOW, 1, l + 3),
+        ("LASER_STATUS", "ACTIVE", f::LASER_ACTIVE, 1, l + 3),
+        ("LASER_STATUS", "BUSY", f::LASER_BUSY, 1, l + 3),
+        ("LASER_OUTPUT", "DUTY", f::LASER_POWER, word, l + 4),
+        ("LASER_OUTPUT", "SPEED", f::LASER_SPEED, word, l + 4),
+    ] {
+        check(&laser, register, field, lsb, width);
+        assert_eq!(
+            laser.register(register).unwrap().address,
+            address,
+            "{register}"
+        );
+    }
+    assert_eq!(
+        laser.register("LASER_OUTPUT").unwrap().address,
+        mc::laser::LASER_OUTPUT
+    );
+    assert!(laser.register("GEAR_CONTROL").is_err());
+    assert!(without_spindle.register("LASER_CONTROL").is_err());
+    assert!(mc::register_map(7, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_LASER).is_err());
+    assert!(mc::register_map(6, 4, mc::BuildOptions::MOTION_CONTROLLER_DDA_LASER).is_ok());
 
     let map = dac::register_map(3, 16).unwrap();
     for (field, lsb) in [

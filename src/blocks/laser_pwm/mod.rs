@@ -32,9 +32,11 @@
 //!   period, ahead of it, with the period's step counts a and b of the
 //!   two axes in the laser's plane) the engine computes the period's path
 //!   speed in 1/16 step, v16 = floor(sqrt(256 (a^2 + b^2))), the vector
-//!   sum, and ratio = min(floor(floor(v16 x f / `feed`) / 16), 2^16), with
+//!   sum, and ratio = min(floor(v16 x f / `feed`), 2^16), `feed` in 1/16
+//!   step per period (a feed of a few steps a period stays exact to a
+//!   few per cent), with
 //!   f = min(`factor`, 2^16) the feed hold's factor (the hold stretches
-//!   the period by 1/f). The duty is floor(ratio x `power` / 2^16):
+//!   the period by 1/f). The duty is ratio x `power` / 2^16 rounded to the nearest clock:
 //!   `power` at the programmed feed, proportional below it, never above
 //!   it, 0 when the axes stand (v = 0), when the hold has stopped them
 //!   (f = 0), or when `feed` is 0. It becomes the target at the next
@@ -92,7 +94,7 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("commit", "1", "strobe: the next interpolation period starts; the duty computed for it becomes the dynamic target"),
     port("count_a", "C", "the period's steps of the plane's first axis, two's complement"),
     port("count_b", "C", "the period's steps of the plane's second axis, two's complement"),
-    port("feed", "F", "the programmed feed, steps per interpolation period (vector length); 0: dynamic duty 0"),
+    port("feed", "F", "the programmed feed, 1/16 step per interpolation period (vector length); 0: dynamic duty 0"),
     port("factor", "17", "the feed hold's factor, 1/65536 (65536 = full speed; above counts as 65536)"),
     port("enable", "1", "the laser may fire; low: `pwm` low from the next clock"),
     port("kill", "1", "abort or the hold's stop: `pwm` low from the next clock, the duty in force 0"),
@@ -140,7 +142,7 @@ pub struct LaserPwm {
     pub count_a: Signal<In, Bits<C>>,
     /// Second axis's steps.
     pub count_b: Signal<In, Bits<C>>,
-    /// Programmed feed, steps per period.
+    /// Programmed feed, 1/16 step per period.
     pub feed: Signal<In, Bits<F>>,
     /// Hold factor, 1/65536.
     pub factor: Signal<In, Bits<17>>,
@@ -205,7 +207,8 @@ pub struct LaserPwm {
     zero_acc: Constant<Bits<ACC>>,
     root_start: Constant<Bits<ACC>>,
     ratio_one: Constant<Bits<ACC>>,
-    quotient_saturated: Constant<Bits<ACC>>,
+    /// 1/2 in the ratio x power product's 2^-16 units.
+    half_clock: Constant<Bits<ACC>>,
     factor_one: Constant<Bits<17>>,
     sign_17: Constant<Bits<17>>,
     one_17: Constant<Bits<17>>,
@@ -286,7 +289,7 @@ impl Default for LaserPwm {
             zero_acc: konst(0),
             root_start: konst(1 << 38),
             ratio_one: konst(1 << 16),
-            quotient_saturated: konst(1 << 20),
+            half_clock: konst(1 << 15),
             factor_one: konst(1 << 16),
             sign_17: konst(1 << 16),
             one_17: konst(1),
@@ -357,8 +360,8 @@ impl Logic for LaserPwm {
             self.magnitude_b_in.next =
                 !(bit_cast::<17, C>(self.count_b.val()) | self.sign_17.val()) + self.one_17.val();
         }
-        self.ratio.next = self.divider.quotient.val() >> 4;
-        if self.divider.quotient.val() >= self.quotient_saturated.val() {
+        self.ratio.next = self.divider.quotient.val();
+        if self.divider.quotient.val() >= self.ratio_one.val() {
             self.ratio.next = self.ratio_one.val();
         }
         if self.divider.divide_by_zero.val() {
@@ -416,7 +419,9 @@ impl Logic for LaserPwm {
         if (self.phase.q.val() == self.code_divide.val()) & self.divider.done.val() {
             self.phase.d.next = self.code_times_power.val();
             self.seq.d.next = self.zero_seq.val();
-            self.acc.d.next = self.zero_acc.val();
+            // Rounded to the nearest clock: a floor would bias every duty
+            // low by up to a clock, 3 % of a duty of 30 clocks.
+            self.acc.d.next = self.half_clock.val();
             self.mcand.d.next = self.ratio.val();
             self.mplier.d.next = bit_cast::<17, R>(self.power_taken.q.val());
         }

@@ -37,16 +37,17 @@ pub fn vector_sixteenths(a: i64, b: i64) -> u64 {
 }
 
 /// The dynamic duty of a period with counts `a`, `b`: `power` x min(1,
-/// v x factor / (feed x 2^16)) in whole clocks, v the vector speed in
-/// 1/16 step (v16): ratio = min(floor(floor(v16 x f / feed) / 16), 2^16),
-/// duty = floor(ratio x power / 2^16). 0 when `feed` is 0.
+/// v x factor / (feed x 2^16)) in whole clocks, v the vector speed and
+/// `feed` both in 1/16 step (v16): ratio = min(floor(v16 x f / feed),
+/// 2^16), duty = floor((ratio x power + 2^15) / 2^16) (rounded to the
+/// nearest clock, never above `power`). 0 when `feed` is 0.
 pub fn dynamic_duty(a: i64, b: i64, power: u64, feed: u64, factor: u64) -> u64 {
     if feed == 0 {
         return 0;
     }
     let f = factor.min(FACTOR_ONE);
-    let ratio = ((vector_sixteenths(a, b) * f / feed) >> 4).min(FACTOR_ONE);
-    (ratio * power) >> 16
+    let ratio = (vector_sixteenths(a, b) * f / feed).min(FACTOR_ONE);
+    (ratio * power + (1 << 15)) >> 16
 }
 
 /// Inputs of one clock.
@@ -69,7 +70,7 @@ pub struct LaserInputs {
     pub count_a: u64,
     /// The period's steps of the second axis.
     pub count_b: u64,
-    /// The programmed feed, steps per interpolation period (F bits).
+    /// The programmed feed, 1/16 step per interpolation period (F bits).
     pub feed: u64,
     /// The feed hold's factor, 1/65536 (17 bits).
     pub factor: u64,
@@ -254,15 +255,17 @@ mod tests {
         assert_eq!(isqrt((1u64 << 31) - 1), 46340);
         assert_eq!(vector_steps(3, -4), 5);
         // At the feed: the power. Half the feed: half. Above it: the power.
-        assert_eq!(dynamic_duty(30, 40, 1000, 50, FACTOR_ONE), 1000);
-        assert_eq!(dynamic_duty(15, 20, 1000, 50, FACTOR_ONE), 500);
-        assert_eq!(dynamic_duty(60, 80, 1000, 50, FACTOR_ONE), 1000);
+        assert_eq!(dynamic_duty(30, 40, 1000, 800, FACTOR_ONE), 1000);
+        assert_eq!(dynamic_duty(15, 20, 1000, 800, FACTOR_ONE), 500);
+        assert_eq!(dynamic_duty(60, 80, 1000, 800, FACTOR_ONE), 1000);
         // The hold's factor scales the speed; standing still or no feed: off.
-        assert_eq!(dynamic_duty(30, 40, 1000, 50, FACTOR_ONE / 4), 250);
-        assert_eq!(dynamic_duty(0, 0, 1000, 50, FACTOR_ONE), 0);
+        assert_eq!(dynamic_duty(30, 40, 1000, 800, FACTOR_ONE / 4), 250);
+        assert_eq!(dynamic_duty(0, 0, 1000, 800, FACTOR_ONE), 0);
         assert_eq!(dynamic_duty(30, 40, 1000, 0, FACTOR_ONE), 0);
         // The extremes of the widths (C = 16, R = 16, F = 24).
         assert_eq!(dynamic_duty(-32768, -32768, 65535, 1, 131071), 65535);
+        // The feed's 1/16 step: sqrt(2) steps a period at a feed of 24/16.
+        assert_eq!(dynamic_duty(1, 1, 1000, 24, FACTOR_ONE), 917);
     }
 
     #[test]

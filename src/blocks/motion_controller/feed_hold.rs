@@ -68,6 +68,8 @@ pub struct FeedHold {
     /// The velocity factor's 16 fraction bits (the factor itself while
     /// `holding`; 0 at 1.0).
     pub factor_fraction: Signal<Out, Bits<16>>,
+    /// The velocity factor, 0 to 2^16 (1.0).
+    pub factor: Signal<Out, Bits<17>>,
     /// `HOLD_CONTROL` when addressed, else 0.
     pub read_data: Signal<Out, Bits<32>>,
     /// `HOLD_CONTROL.RATE` as the ramp uses it (registered).
@@ -112,6 +114,7 @@ impl Default for FeedHold {
             holding: Default::default(),
             held: Default::default(),
             factor_fraction: Default::default(),
+            factor: Default::default(),
             read_data: Default::default(),
             rate_out: Default::default(),
             conditioner: Default::default(),
@@ -187,6 +190,7 @@ impl Logic for FeedHold {
         self.holding.next = self.ramp.slowed.val();
         self.held.next = self.ramp.stopped.val();
         self.factor_fraction.next = self.ramp.factor.val().get_bits::<16>(0);
+        self.factor.next = self.ramp.factor.val();
 
         self.read_data.next = self.zero32.val();
         if self.address.val() == self.a_control.val() {

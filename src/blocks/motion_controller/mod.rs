@@ -423,6 +423,63 @@
 //!   reads 0 and `STATUS.SPINDLE` is never set: synthesis removes the unit
 //!   and every axis's merge. The ports are the same in every build.
 //!
+//! ## Laser PWM (VERSION 0.9.0; build option `LASER`)
+//! On in `motion_controller_dda_laser` ([`MotionController3DdaLaser`]);
+//! [`laser`]. A laser's power tied to the path: the duty of `laser_pwm`
+//! is set per period from a FIFO and, in dynamic mode (grbl's M4), scaled
+//! in gateware by the path's speed over the programmed feed, so that the
+//! energy per millimetre holds through accelerations, corners and a feed
+//! hold.
+//! * **Registers** (see the register map): `LASER_CONTROL` (ENABLE,
+//!   DYNAMIC, CLEAR_OVERFLOW, the plane's AXIS_A and AXIS_B),
+//!   `LASER_PWM_PERIOD`, `LASER_FIFO`, `LASER_STATUS` (LEVEL, OVERFLOW,
+//!   ACTIVE, BUSY) and `LASER_OUTPUT` (DUTY, SPEED), from `0xF0` in the
+//!   spindle's window: a `LASER` build has at most
+//!   [`registers::MAX_AXES_SPINDLE`] = 6 axes.
+//! * **The PWM** is a [`LaserPwm`](crate::blocks::laser_pwm) (R = 16,
+//!   C = 16, F = 24): period `LASER_PWM_PERIOD` clocks, glitch-free (a
+//!   new duty acts in the PWM period under way; a pulse that has ended
+//!   does not restart before the next wrap, so a larger duty shows from
+//!   the next PWM period), no pulse at duty 0, a steady high at a duty of
+//!   the period or more, `laser_pwm` registered.
+//! * **Per period from the FIFO.** Firmware writes one `LASER_FIFO` entry
+//!   (POWER: clocks high per PWM period at the programmed feed; FEED: the
+//!   programmed feed in 1/16 step per period, the vector length in the
+//!   plane) per period, beside the axes' entries. With
+//!   `LASER_CONTROL.ENABLE` = 1 when RUN starts (`LASER_STATUS.ACTIVE`)
+//!   the laser FIFO takes part in the run: its head pops at every boundary
+//!   with the axes', and an empty laser FIFO there is an underrun. When RUN
+//!   falls the period's entry becomes 0 and ACTIVE clears. A write to a
+//!   full laser FIFO (no pop freeing a slot in that clock) is refused and
+//!   sets the sticky `OVERFLOW`. `CONTROL.FLUSH` empties it with the axes'.
+//! * **The duty.** Constant (DYNAMIC = 0, M3): the period's POWER.
+//!   Dynamic (M4): POWER x min(1, v x f / FEED), rounded to the nearest
+//!   clock, where v = sqrt(a^2 + b^2) in 1/16 step is the vector speed of
+//!   the running period's steps a and b on the plane's two axes (their
+//!   FIFO entries' magnitudes, each saturated to 2^15 - 1; an analog axis
+//!   or an AXIS >= K counts as standing; the gearbox's steps are not
+//!   counted) and f the feed hold's factor. The speed window is the
+//!   interpolation period: its steps are known when it starts. The engine
+//!   runs free, one computation every [`ENGINE_CLOCKS`](crate::blocks::laser_pwm::model::ENGINE_CLOCKS)
+//!   + 1 clocks with the period's values and the factor of its start, so
+//!   a new period's duty (and a changed hold factor) is in force
+//!   [`laser::LASER_LAG`] = 262 clocks after the change at most. The hold
+//!   stretches the period by 1/f and the duty scales by f: the energy per
+//!   millimetre holds through the hold's ramps. A period shorter than the
+//!   lag still gets a duty, computed for the period that was running when
+//!   its computation began.
+//! * **Off.** `laser_pwm` fires only while RUN and `ENABLE` (ENABLE = 0
+//!   turns it off from the next clock). Every abort (E-stop, limit, alarm,
+//!   stop on home: [`latency::LASER_OFF`] = 3 clocks after the filtered
+//!   level, as for the steps; the watchdog: the clock after it expires)
+//!   and the feed hold's stop (`STATE.HELD`: the clock after) turn it off
+//!   and zero the duty in force. In dynamic mode it is also off while the
+//!   plane's axes stand (v = 0) or FEED is 0.
+//! * Without `LASER` the `laser_pwm` pin stays low, the registers are
+//!   absent (read 0, writes ignored), `CONFIG.LASER` reads 0 and the
+//!   periods never wait for the laser FIFO: synthesis removes the unit.
+//!   The ports are the same in every build.
+//!
 //! ## Analog axes (build option `ANALOG`; on in `motion_controller_servo`)
 //! An axis with `AXIS_CONFIG.ANALOG` set (taken when RUN starts) drives a
 //! servo amplifier in velocity mode through its own DAC instead of
@@ -657,7 +714,7 @@
 //! (`motion_controller_dda`) and the servo build (`motion_controller_servo`:
 //! the DAC and its walk) have their own rows in the synthesis report.
 //!
-//! ## Build options: DDA only, analog outputs, probe, soft limits, spindle
+//! ## Build options: DDA only, analog outputs, probe, soft limits, spindle, laser
 //! `ANALOG` = true builds the analog outputs (see "Analog axes"); without
 //! them `CONFIG.ANALOG` and `AXIS_CONFIG.ANALOG` read 0, the `DAC_*`
 //! registers are absent (read 0) and the DAC pins idle (every `dac_cs_n`
@@ -702,6 +759,13 @@
 //! whose register map is `rtl-out/motion_controller_dda_spindle_regs.h`
 //! and `.md`. Every build has the `spindle_*` pins.
 //!
+//! `LASER` = true builds the laser FIFO and PWM (see "Laser PWM"):
+//! exported as `motion_controller_dda_laser`
+//! ([`MotionController3DdaLaser`]: the DDA-only build with the probe,
+//! without soft limits, with the laser), whose register map is
+//! `rtl-out/motion_controller_dda_laser_regs.h` and `.md`. Every build
+//! has the `laser_pwm` pin.
+//!
 //! [`MotionController3UniformServo`], uniform generators and analog
 //! outputs, is not exported:
 //! with the host links it does not fit the seed card's HX8K. The scaling
@@ -742,6 +806,8 @@ pub mod gear_merge;
 pub mod global_registers;
 pub mod hold_ramp;
 pub mod io_model;
+pub mod laser;
+pub mod laser_model;
 pub mod machine_io;
 pub mod model;
 pub mod period_sequencer;
@@ -766,6 +832,7 @@ use config_shadow::{ConfigShadow, SHADOW_BITS};
 use entry::EntryConverter;
 use feed_hold::FeedHold;
 use global_registers::{ControllerFields, GlobalRegisters};
+use laser::LaserUnit;
 use machine_io::MachineIo;
 use period_sequencer::PeriodSequencer;
 use probe_trigger::ProbeTrigger;
@@ -805,6 +872,11 @@ pub mod latency {
     /// the decode, one clock to the gearbox, its engine's 30 clocks, the
     /// request register and the output stage.
     pub const SPINDLE_COUNT_TO_STEP: u64 = 38;
+    /// `laser_pwm` is low at s + `LASER_OFF` after a filtered E-stop or
+    /// enabled alarm level at s (the registered abort, then the PWM's
+    /// registered output), and in the clock after the watchdog expires or
+    /// the feed hold's factor reaches 0 (`STATE.HELD`).
+    pub const LASER_OFF: u64 = 3;
     /// `drive_enable` is low from s + `DRIVE_ENABLE` after a filtered
     /// E-stop or enabled alarm level at s, and from the clock after the
     /// watchdog expires.
@@ -891,42 +963,52 @@ const IRQ_COUNT: usize = irq::COUNT;
 /// The exported configuration (`motion_controller`): 3 axes, 16-entry
 /// FIFOs, DDA and uniform pulse generator on every axis, the probe and the
 /// soft limits.
-pub type MotionController3 = MotionController<3, 4, 5, true, false, true, true, false>;
+pub type MotionController3 = MotionController<3, 4, 5, true, false, true, true, false, false>;
 
 /// The exported DDA-only configuration (`motion_controller_dda`): 3 axes,
 /// 16-entry FIFOs, no uniform pulse generators, no analog outputs, no soft
 /// limits (see "Build options").
-pub type MotionController3Dda = MotionController<3, 4, 5, false, false, true, false, false>;
+pub type MotionController3Dda = MotionController<3, 4, 5, false, false, true, false, false, false>;
 
 /// The exported servo configuration (`motion_controller_servo`): the
 /// DDA-only controller with the analog outputs (see "Build options").
-pub type MotionController3Servo = MotionController<3, 4, 5, false, true, true, false, false>;
+pub type MotionController3Servo = MotionController<3, 4, 5, false, true, true, false, false, false>;
 
 /// The exported `motion_controller` without the probe latch (`PROBE` =
 /// false): measured on the seed card in the scaling report, not exported
 /// (see "Build options").
-pub type MotionController3NoProbe = MotionController<3, 4, 5, true, false, false, true, false>;
+pub type MotionController3NoProbe =
+    MotionController<3, 4, 5, true, false, false, true, false, false>;
 
 /// Both build options (uniform generators and analog outputs): measured on
 /// the seed card in the scaling report, not exported (see "Build options").
-pub type MotionController3UniformServo = MotionController<3, 4, 5, true, true, true, false, false>;
+pub type MotionController3UniformServo =
+    MotionController<3, 4, 5, true, true, true, false, false, false>;
 
 /// The exported `motion_controller` without the soft limits (`SOFT_LIMITS`
 /// = false): measured beside it, not exported (see "Build options").
-pub type MotionController3NoSoftLimits = MotionController<3, 4, 5, true, false, true, false, false>;
+pub type MotionController3NoSoftLimits =
+    MotionController<3, 4, 5, true, false, true, false, false, false>;
 
 /// One axis, 16-entry FIFOs: measured in the synthesis report's scaling
 /// table, not exported.
-pub type MotionController1 = MotionController<1, 4, 5, true, false, true, true, false>;
+pub type MotionController1 = MotionController<1, 4, 5, true, false, true, true, false, false>;
 
 /// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
 /// the synthesis report's scaling table, not exported.
-pub type MotionController6 = MotionController<6, 4, 5, true, false, true, true, false>;
+pub type MotionController6 = MotionController<6, 4, 5, true, false, true, true, false, false>;
 
 /// The exported spindle configuration (`motion_controller_dda_spindle`):
 /// the DDA-only controller with the spindle encoder and the electronic
 /// gearbox (see "Spindle encoder and electronic gearbox").
-pub type MotionController3DdaSpindle = MotionController<3, 4, 5, false, false, true, false, true>;
+pub type MotionController3DdaSpindle =
+    MotionController<3, 4, 5, false, false, true, false, true, false>;
+
+/// The exported laser configuration (`motion_controller_dda_laser`): the
+/// DDA-only controller with the laser PWM tied to the path (see "Laser
+/// PWM").
+pub type MotionController3DdaLaser =
+    MotionController<3, 4, 5, false, false, true, false, false, true>;
 
 /// Width of the step timing registers.
 pub const TIMER_BITS: u32 = 16;
@@ -969,6 +1051,10 @@ pub const SUMMARY_DDA: &str =
 pub const SUMMARY_DDA_SPINDLE: &str =
     "motion controller, DDA interpolators only, with the spindle encoder and an electronic gearbox (threading, rigid tapping): K step/encoder axes, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
 
+/// The laser build's line (`motion_controller_dda_laser`).
+pub const SUMMARY_DDA_LASER: &str =
+    "motion controller, DDA interpolators only, with a laser PWM whose duty follows the path speed each period (constant energy per mm): K step/encoder axes, command FIFOs and a laser FIFO, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
+
 /// The servo build's line (`motion_controller_servo`).
 pub const SUMMARY_SERVO: &str =
     "motion controller, DDA interpolators only, with analog outputs: K step or analog (AD669 DAC, velocity servo) axes with encoders, command FIFOs, synchronized periods, limits, alarms, E-stop, home, GPIO, interrupt, watchdog, register bus";
@@ -1007,6 +1093,7 @@ pub const PORT_DOCS: &[PortDoc] = &[
     port("dac_cs_n", "K", "bit k: chip select of axis k's DAC, active low (1 in a build without them); registered"),
     port("dac_l1_n", "1", "DAC first-rank load, active low, shared; registered"),
     port("dac_ldac", "1", "DAC second-rank load, active high, shared: every analog output changes on its rise; registered"),
+    port("laser_pwm", "1", "the laser's PWM (`LASER_*`): fires only while `running` and `LASER_CONTROL.ENABLE`, low in the clock after an abort or the feed hold's stop; registered; low in a build without `LASER` (`CONFIG.LASER` = 0)"),
 ];
 
 /// The motion controller: `K` axes with FIFOs of 2^`N` entries (`NP1` =
@@ -1023,6 +1110,7 @@ pub struct MotionController<
     const PROBE: bool,
     const SOFT: bool,
     const SPINDLE: bool,
+    const LASER: bool,
 > {
     /// Rising-edge clock.
     pub clock: Signal<In, Clock>,
@@ -1088,6 +1176,8 @@ pub struct MotionController<
     pub dac_l1_n: Signal<Out, Bit>,
     /// DAC second-rank load, active high.
     pub dac_ldac: Signal<Out, Bit>,
+    /// Pin: the laser's PWM.
+    pub laser_pwm: Signal<Out, Bit>,
 
     axes: [MotionAxis<N, NP1>; K],
     /// The global registers: the register layer apart from the core.
@@ -1115,6 +1205,16 @@ pub struct MotionController<
     has_spindle: Constant<Bit>,
     /// The spindle unit's read data, 0 without `SPINDLE`.
     spindle_read: Signal<Local, Bits<32>>,
+    /// The laser FIFO and PWM (build option `LASER`).
+    laser: LaserUnit<N, NP1>,
+    /// `LASER`: the laser unit's pin, readiness and read data are used.
+    has_laser: Constant<Bit>,
+    /// The laser unit's read data, 0 without `LASER`.
+    laser_read: Signal<Local, Bits<32>>,
+    /// The running periods' |entry| of the laser plane's axes.
+    laser_count_a: Signal<Local, Bits<DAC_BITS>>,
+    laser_count_b: Signal<Local, Bits<DAC_BITS>>,
+    laser_axis: [Constant<Bits<3>>; K],
     ev_spindle: Constant<Bits<IRQ_COUNT>>,
     /// `SOFT`: the soft limits' stop, event and read data are used.
     has_soft: Constant<Bit>,
@@ -1241,7 +1341,8 @@ impl<
         const PROBE: bool,
         const SOFT: bool,
         const SPINDLE: bool,
-    > MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
+        const LASER: bool,
+    > MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>
 {
     /// This build's options, as the register map and the model take them.
     pub const BUILD: registers::BuildOptions = registers::BuildOptions {
@@ -1250,6 +1351,7 @@ impl<
         probe: PROBE,
         soft_limits: SOFT,
         spindle: SPINDLE,
+        laser: LASER,
     };
 }
 
@@ -1262,7 +1364,8 @@ impl<
         const PROBE: bool,
         const SOFT: bool,
         const SPINDLE: bool,
-    > Default for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
+        const LASER: bool,
+    > Default for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>
 {
     fn default() -> Self {
         assert!(
@@ -1314,6 +1417,7 @@ impl<
             dac_cs_n: Default::default(),
             dac_l1_n: Default::default(),
             dac_ldac: Default::default(),
+            laser_pwm: Default::default(),
             axes: array_init::array_init(|k| {
                 MotionAxis::new(k, UNIFORM, ANALOG, SPINDLE, axis_config_mask)
             }),
@@ -1340,6 +1444,12 @@ impl<
             spindle: Default::default(),
             has_spindle: Constant::new(SPINDLE),
             spindle_read: Default::default(),
+            laser: Default::default(),
+            has_laser: Constant::new(LASER),
+            laser_read: Default::default(),
+            laser_count_a: Default::default(),
+            laser_count_b: Default::default(),
+            laser_axis: array_init::array_init(|k| Constant::new((k as u64).into())),
             ev_spindle: ev(irq::SPINDLE),
             soft_read: Default::default(),
             soft_position: Default::default(),
@@ -1432,7 +1542,8 @@ impl<
         const PROBE: bool,
         const SOFT: bool,
         const SPINDLE: bool,
-    > Logic for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE>
+        const LASER: bool,
+    > Logic for MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -1461,6 +1572,7 @@ impl<
             probe_trigger,
             soft_limits,
             spindle,
+            laser,
             feed_hold_unit,
             planner,
             analog
@@ -1566,6 +1678,12 @@ impl<
             self.any_home_event.next = self.any_home_event.val() | self.axes[i].home_event.val();
             self.any_busy.next = self.any_busy.val() | self.axes[i].busy.val();
             self.all_ready.next = self.all_ready.val() & !self.axes[i].empty.val();
+        }
+        // The laser FIFO, when it takes part in the run (`LASER`).
+        if self.has_laser.val() & !self.laser.ready.val() {
+            self.all_ready.next = false;
+        }
+        for i in 0..K {
             self.any_low.next = self.any_low.val() | self.axes[i].low.val();
             self.any_overflow.next = self.any_overflow.val() | self.axes[i].overflow_event.val();
             self.any_fault.next = self.any_fault.val() | self.axes[i].fault_event.val();
@@ -1741,6 +1859,35 @@ impl<
         self.spindle.write_data.next = self.bus_write_data.val().get_bits::<POSITION_BITS>(0);
         self.spindle.abort.next = self.abort.val();
 
+        // The laser unit: the running periods' |entry| of its plane's two
+        // axes (an analog axis counts as standing), the hold's factor; an
+        // abort or the hold's stop kills the PWM. Without LASER it drives
+        // nothing, and synthesis removes it.
+        self.laser_count_a.next = self.zero_code.val();
+        self.laser_count_b.next = self.zero_code.val();
+        for i in 0..K {
+            if (self.laser.axis_a.val() == self.laser_axis[i].val()) & !self.axes[i].analog.val() {
+                self.laser_count_a.next = self.axes[i].dac_code.val();
+            }
+            if (self.laser.axis_b.val() == self.laser_axis[i].val()) & !self.axes[i].analog.val() {
+                self.laser_count_b.next = self.axes[i].dac_code.val();
+            }
+        }
+        self.laser.reset.next = self.reset.val();
+        self.laser.address.next = self.bus_address.val();
+        self.laser.write.next = self.bus_write.val() & self.has_laser.val();
+        self.laser.write_data.next = self.bus_write_data.val();
+        self.laser.start.next = self.start.val();
+        self.laser.pop.next = self.pop.val();
+        self.laser.stop.next = self.underrun.val() | self.halt.val();
+        self.laser.flush.next = self.period.flush.val();
+        self.laser.running.next = self.period.running.val();
+        self.laser.kill.next = self.abort.val() | self.feed_hold_unit.held.val();
+        self.laser.factor.next = self.feed_hold_unit.factor.val();
+        self.laser.count_a.next = self.laser_count_a.val();
+        self.laser.count_b.next = self.laser_count_b.val();
+        self.laser_pwm.next = self.laser.pwm.val() & self.has_laser.val();
+
         // Soft limits: the axis they take in turn, its position and entry.
         self.soft_position.next = self.zero_position.val();
         self.soft_magnitude.next = self.zero_code.val();
@@ -1882,12 +2029,17 @@ impl<
         if self.has_spindle.val() {
             self.spindle_read.next = self.spindle.read_data.val();
         }
+        self.laser_read.next = self.zero32.val();
+        if self.has_laser.val() {
+            self.laser_read.next = self.laser.read_data.val();
+        }
         if self.bus_read.val() {
             self.read_data.d.next = self.registers.read_data.val()
                 | self.io.read_data.val()
                 | self.probe_read.val()
                 | self.soft_read.val()
                 | self.spindle_read.val()
+                | self.laser_read.val()
                 | self.feed_hold_unit.read_data.val()
                 | self.axes_read.val();
         }
@@ -1927,10 +2079,10 @@ impl<
     }
 }
 
-crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool, const SOFT: bool, const SPINDLE: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE> {
+crate::vector_ports!(impl[const K: usize, const N: usize, const NP1: usize, const UNIFORM: bool, const ANALOG: bool, const PROBE: bool, const SOFT: bool, const SPINDLE: bool, const LASER: bool] MotionController<K, N, NP1, UNIFORM, ANALOG, PROBE, SOFT, SPINDLE, LASER> {
     inputs: [reset, bus_address, bus_write_data, bus_write, bus_read, enc_a, enc_b, enc_index,
         limit_pos, limit_neg, home, drive_alarm, estop, gpio_in, probe, feed_hold,
         spindle_a, spindle_b, spindle_index],
     outputs: [bus_read_data, irq, running, active, step_a, step_b, drive_enable, gpio_out,
-        dac_data, dac_cs_n, dac_l1_n, dac_ldac],
+        dac_data, dac_cs_n, dac_l1_n, dac_ldac, laser_pwm],
 });

@@ -12,6 +12,7 @@ use super::io_model::{
     AxisIoComb, AxisIoModel, AxisSwitches, FeedHoldModel, MachineIoModel, MachinePins, ProbeComb,
     ProbeModel, StepPath,
 };
+use super::laser_model::{LaserUnitInputs, LaserUnitModel};
 use super::registers::{
     self, axis, fields, global, irq, StopCause, AXIS_BASE, AXIS_STRIDE, AXIS_STRIDE_LOG2, ID_VALUE,
     VERSION_VALUE,
@@ -88,6 +89,8 @@ pub struct ControllerOutputs {
     /// The DAC pins: data, chip selects (active low, bit k for axis k),
     /// L1 (active low) and LDAC.
     pub dac: DacPins,
+    /// `laser_pwm`.
+    pub laser: bool,
 }
 
 /// The controller's DAC pins after one edge.
@@ -165,6 +168,7 @@ impl ControllerOutputs {
                 l1_n: v[10] != 0,
                 ldac: v[11] != 0,
             },
+            laser: v[12] != 0,
         }
     }
 }
@@ -833,6 +837,10 @@ pub struct MotionControllerModel {
     /// written, its steps and event unused).
     spindle: SpindleModel,
     has_spindle: bool,
+    /// The laser FIFO and PWM (`LASER`; without it never written, its pin
+    /// and readiness unused).
+    laser: LaserUnitModel,
+    has_laser: bool,
 }
 
 impl MotionControllerModel {
@@ -850,6 +858,7 @@ impl MotionControllerModel {
             probe,
             soft_limits,
             spindle,
+            laser,
             ..
         } = build;
         let dac_map =
@@ -920,6 +929,8 @@ impl MotionControllerModel {
             dac_addresses,
             spindle: SpindleModel::new(axes),
             has_spindle: spindle,
+            laser: LaserUnitModel::new(fifo_log2),
+            has_laser: laser,
         })
     }
 
@@ -965,6 +976,11 @@ impl MotionControllerModel {
         &self.feed_hold
     }
 
+    /// The laser unit (its state is meaningful in a `LASER` build).
+    pub fn laser(&self) -> &LaserUnitModel {
+        &self.laser
+    }
+
     /// The spindle unit (its state is meaningful in a `SPINDLE` build).
     pub fn spindle(&self) -> &SpindleModel {
         &self.spindle
@@ -1008,6 +1024,7 @@ impl MotionControllerModel {
                 .enumerate()
                 .fold(0, |w, (k, a)| w | (a.io.drive_enable() as u32) << k),
             gpio_out: self.io.gpio_out(),
+            laser: self.has_laser && self.laser.pwm(),
         }
     }
 
@@ -1086,7 +1103,8 @@ impl MotionControllerModel {
         let start = write_control && run_written && !refuse_run;
         let halt = (write_control && !run_written) || abort;
         let boundary = self.run && tick && self.boundary_next;
-        let all_ready = self.axes.iter().all(|a| !a.fifo_out.empty);
+        let all_ready =
+            self.axes.iter().all(|a| !a.fifo_out.empty) && (!self.has_laser || self.laser.ready());
         let pop = boundary && all_ready && !halt;
         let underrun = boundary && !all_ready && !halt;
         let period_next = self.period_ticks.max(1);
@@ -1135,6 +1153,10 @@ impl MotionControllerModel {
             true => self.spindle.read(address),
             false => 0,
         };
+        let laser_read = match self.has_laser {
+            true => self.laser.read(address),
+            false => 0,
+        };
         let soft_read = match self.has_soft {
             true => self.soft.read(address, i.write),
             false => 0,
@@ -1144,7 +1166,8 @@ impl MotionControllerModel {
                 | probe.read_data
                 | hold.read_data
                 | soft_read
-                | spindle_read,
+                | spindle_read
+                | laser_read,
             |w, c| w | c.read_data,
         );
         // STOP_CAUSE: the highest of this clock's causes, with the lowest
@@ -1245,6 +1268,29 @@ impl MotionControllerModel {
             write: i.write && self.has_spindle,
             write_data: i.write_data,
             abort,
+        });
+        // The laser: the plane's axes' running |entry| (an analog axis or
+        // one beyond K counts as standing).
+        let (axis_a, axis_b) = self.laser.axes();
+        let count = |k: u32| {
+            self.axes
+                .get(k as usize)
+                .filter(|a| !a.analog())
+                .map_or(0, |a| a.entry_steps().0 as u64)
+        };
+        next.laser.edge(&LaserUnitInputs {
+            reset: i.reset,
+            address,
+            write: i.write && self.has_laser,
+            write_data: i.write_data,
+            start,
+            pop,
+            stop: underrun || halt,
+            flush: write_control && bit_set(i.write_data, fields::CONTROL_FLUSH),
+            running: self.run,
+            kill: abort || self.feed_hold.held(),
+            factor: self.feed_hold.ramp().factor() as u64,
+            counts: (count(axis_a), count(axis_b)),
         });
         let picked = &self.axes[self.soft.select()];
         let (magnitude, negative) = picked.entry_steps();

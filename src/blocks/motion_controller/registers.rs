@@ -36,8 +36,10 @@ pub const ID_VALUE: u32 = 0x4d48_4443;
 /// length, a window written in an axis's load clock checked as written,
 /// and a window read in the clock of a write to it reading 0. Minor 8: the
 /// spindle encoder and the electronic gearbox (`SPINDLE_*`, `GEAR_*`,
-/// `STATUS.SPINDLE`, `CONFIG.SPINDLE`, the `spindle_*` pins).
-pub const VERSION_VALUE: u32 = 0x0000_0800;
+/// `STATUS.SPINDLE`, `CONFIG.SPINDLE`, the `spindle_*` pins). Minor 9:
+/// the laser PWM tied to the path (`LASER_*`, `CONFIG.LASER`, the
+/// `laser_pwm` pin).
+pub const VERSION_VALUE: u32 = 0x0000_0900;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -318,6 +320,38 @@ pub mod fields {
     pub const CONFIG_SOFT_LIMITS: u32 = 27;
     /// `CONFIG.SPINDLE`: the build has the spindle unit.
     pub const CONFIG_SPINDLE: u32 = 28;
+    /// `CONFIG.LASER`: the build has the laser unit.
+    pub const CONFIG_LASER: u32 = 29;
+    /// `LASER_CONTROL.ENABLE`: the laser may fire (and, at a start, its
+    /// FIFO joins the run).
+    pub const LASER_ENABLE: u32 = 0;
+    /// `LASER_CONTROL.DYNAMIC`: the duty scales with path speed / feed.
+    pub const LASER_DYNAMIC: u32 = 1;
+    /// `LASER_CONTROL.CLEAR_OVERFLOW`: write 1 to clear `LASER_STATUS.OVERFLOW`.
+    pub const LASER_CLEAR_OVERFLOW: u32 = 2;
+    /// `LASER_CONTROL.AXIS_A`: the plane's first axis.
+    pub const LASER_AXIS_A: u32 = 4;
+    /// `LASER_CONTROL.AXIS_B`: the plane's second axis.
+    pub const LASER_AXIS_B: u32 = 8;
+    /// Width of `LASER_CONTROL.AXIS_A` and `AXIS_B`.
+    pub const LASER_AXIS_WIDTH: u32 = 3;
+    /// `LASER_FIFO.POWER` and `LASER_OUTPUT.DUTY`: clocks high per PWM period.
+    pub const LASER_POWER: u32 = 0;
+    /// `LASER_FIFO.FEED`: the programmed feed, 1/16 step per period.
+    pub const LASER_FEED: u32 = 16;
+    /// Width of `LASER_FIFO.POWER`, `FEED`, `LASER_PWM_PERIOD` and
+    /// `LASER_OUTPUT`'s fields.
+    pub const LASER_WORD_WIDTH: u32 = 16;
+    /// `LASER_STATUS.LEVEL`: entries in the laser FIFO.
+    pub const LASER_LEVEL: u32 = 0;
+    /// `LASER_STATUS.OVERFLOW`: sticky, a `LASER_FIFO` write was refused.
+    pub const LASER_OVERFLOW: u32 = 8;
+    /// `LASER_STATUS.ACTIVE`: the laser FIFO takes part in the run.
+    pub const LASER_ACTIVE: u32 = 9;
+    /// `LASER_STATUS.BUSY`: the duty engine is computing.
+    pub const LASER_BUSY: u32 = 10;
+    /// `LASER_OUTPUT.SPEED`: the last computed vector speed, steps per period.
+    pub const LASER_SPEED: u32 = 16;
     /// `SPINDLE_CONFIG.FILTER`: the spindle encoder's glitch filter length.
     pub const SPINDLE_FILTER: u32 = 0;
     /// Width of `SPINDLE_CONFIG.FILTER`.
@@ -618,6 +652,8 @@ pub struct BuildOptions {
     pub soft_limits: bool,
     /// The spindle encoder and the electronic gearbox (`CONFIG.SPINDLE`).
     pub spindle: bool,
+    /// The laser PWM tied to the path (`CONFIG.LASER`).
+    pub laser: bool,
 }
 
 impl BuildOptions {
@@ -628,6 +664,7 @@ impl BuildOptions {
         probe: true,
         soft_limits: true,
         spindle: false,
+        laser: false,
     };
     /// `motion_controller_dda`: DDA only, with the probe, no soft limits
     /// (the seed card's budget).
@@ -637,6 +674,7 @@ impl BuildOptions {
         probe: true,
         soft_limits: false,
         spindle: false,
+        laser: false,
     };
     /// `motion_controller_servo`: DDA only, analog outputs and the probe, no
     /// soft limits (the seed card's budget).
@@ -646,6 +684,7 @@ impl BuildOptions {
         probe: true,
         soft_limits: false,
         spindle: false,
+        laser: false,
     };
 
     /// `motion_controller_dda_spindle`: the DDA-only build with the
@@ -657,6 +696,18 @@ impl BuildOptions {
         probe: true,
         soft_limits: false,
         spindle: true,
+        laser: false,
+    };
+    /// `motion_controller_dda_laser`: the DDA-only build with the laser
+    /// PWM tied to the path (a laser engraver or cutter), the probe, no
+    /// soft limits.
+    pub const MOTION_CONTROLLER_DDA_LASER: Self = Self {
+        uniform: false,
+        analog: false,
+        probe: true,
+        soft_limits: false,
+        spindle: false,
+        laser: true,
     };
 
     /// The module name of this build (the exported ones' and the names
@@ -698,6 +749,14 @@ impl BuildOptions {
             true => DEFAULT[base],
             false => OTHER[base],
         };
+        if self.laser {
+            return match (name, self.spindle) {
+                ("motion_controller_dda", false) => "motion_controller_dda_laser",
+                ("motion_controller", false) => "motion_controller_laser",
+                (_, true) => "motion_controller_spindle_laser",
+                _ => "motion_controller_other_laser",
+            };
+        }
         if !self.spindle {
             return name;
         }
@@ -732,15 +791,16 @@ pub fn register_map(
         probe,
         soft_limits,
         spindle,
+        laser,
     } = build;
     if axes == 0 || axes > MAX_AXES {
         return Err(RegMapError::NoCopies(format!(
             "motion_controller axes: {axes} (1 to {MAX_AXES} fit the 8-bit address space)"
         )));
     }
-    if spindle && axes > MAX_AXES_SPINDLE {
+    if (spindle || laser) && axes > MAX_AXES_SPINDLE {
         return Err(RegMapError::NoCopies(format!(
-            "motion_controller axes: {axes} with the spindle unit (1 to {MAX_AXES_SPINDLE}: its window takes the last axis window's addresses)"
+            "motion_controller axes: {axes} with the spindle or laser unit (1 to {MAX_AXES_SPINDLE}: their window takes the last axis window's addresses)"
         )));
     }
     use Access::*;
@@ -793,6 +853,13 @@ pub fn register_map(
                 ReadOnly,
                 "1 = this build has the spindle encoder and the electronic gearbox (SPINDLE_*, GEAR_*, STATUS.SPINDLE); 0: the spindle_* pins are ignored",
             ),
+            field(
+                "LASER",
+                fields::CONFIG_LASER,
+                1,
+                ReadOnly,
+                "1 = this build has the laser PWM tied to the path (LASER_*); 0: laser_pwm stays low",
+            ),
         ],
     );
     config.fields[0].reset = axes as u64;
@@ -804,6 +871,7 @@ pub fn register_map(
     config.fields[6].reset = probe as u64;
     config.fields[7].reset = soft_limits as u64;
     config.fields[8].reset = spindle as u64;
+    config.fields[9].reset = laser as u64;
     let analog_access = if analog { ReadWrite } else { ReadOnly };
     let analog_doc = if analog {
         "1 = analog axis, taken when RUN starts: each FIFO entry is the axis's signed 16-bit DAC code for the period (0 = 0 V), no steps; its channel goes to 0 when RUN falls"
@@ -1136,6 +1204,9 @@ pub fn register_map(
     if spindle {
         map.registers.extend(spindle_registers());
     }
+    if laser {
+        map.registers.extend(laser_registers(level_bits));
+    }
     if analog {
         let dac = crate::blocks::dac_interface::registers::register_map(axes, DAC_BITS)?;
         for (name, address, dac_name) in DAC_GLOBAL {
@@ -1213,6 +1284,58 @@ fn spindle_registers() -> Vec<Register> {
     ]
 }
 
+/// The laser unit's registers (build option `LASER`; see the
+/// controller's "Laser PWM").
+fn laser_registers(level_bits: u32) -> Vec<Register> {
+    use Access::*;
+    let word = fields::LASER_WORD_WIDTH;
+    let axis = fields::LASER_AXIS_WIDTH;
+    vec![
+        register(
+            "LASER_CONTROL",
+            laser::LASER_CONTROL,
+            "the laser's enable, mode and plane",
+            vec![
+                field("ENABLE", fields::LASER_ENABLE, 1, ReadWrite, "1 = laser_pwm may fire while RUN; at a start, 1 also makes the laser FIFO part of the run (one entry popped per period, an empty one is an underrun); 0 = laser_pwm low from the next clock"),
+                field("DYNAMIC", fields::LASER_DYNAMIC, 1, ReadWrite, "1 = the duty is the period's POWER x min(1, path speed x hold factor / FEED) (M4); 0 = POWER (M3)"),
+                field("CLEAR_OVERFLOW", fields::LASER_CLEAR_OVERFLOW, 1, WriteOnly, "write 1 to clear LASER_STATUS.OVERFLOW"),
+                field("AXIS_A", fields::LASER_AXIS_A, axis, ReadWrite, "the plane's first axis (an axis >= K counts as standing)"),
+                field("AXIS_B", fields::LASER_AXIS_B, axis, ReadWrite, "the plane's second axis (equal to AXIS_A: one axis only is counted)"),
+            ],
+        ),
+        number("LASER_PWM_PERIOD", laser::LASER_PWM_PERIOD, word, "the PWM period in clocks (frequency = clock / period); below 2: laser_pwm low"),
+        register(
+            "LASER_FIFO",
+            laser::LASER_FIFO,
+            "write one entry per period, in step with the axes' FIFO entries (refused when full: LASER_STATUS.OVERFLOW)",
+            vec![
+                field("POWER", fields::LASER_POWER, word, WriteOnly, "the period's power: clocks high per PWM period at the programmed feed (at or above LASER_PWM_PERIOD: steady on)"),
+                field("FEED", fields::LASER_FEED, word, WriteOnly, "the period's programmed feed, 1/16 step per period (vector length in the plane); 0: a dynamic duty of 0"),
+            ],
+        ),
+        register(
+            "LASER_STATUS",
+            laser::LASER_STATUS,
+            "the laser FIFO's level and flags",
+            vec![
+                field("LEVEL", fields::LASER_LEVEL, level_bits, ReadOnly, "entries in the laser FIFO"),
+                field("OVERFLOW", fields::LASER_OVERFLOW, 1, ReadOnly, "sticky: a LASER_FIFO write found it full and was refused; cleared by LASER_CONTROL.CLEAR_OVERFLOW"),
+                field("ACTIVE", fields::LASER_ACTIVE, 1, ReadOnly, "the laser FIFO takes part in the running periods (ENABLE at the start)"),
+                field("BUSY", fields::LASER_BUSY, 1, ReadOnly, "the duty engine is computing"),
+            ],
+        ),
+        register(
+            "LASER_OUTPUT",
+            laser::LASER_OUTPUT,
+            "the laser's duty and speed",
+            vec![
+                field("DUTY", fields::LASER_POWER, word, ReadOnly, "the duty in force, clocks high per PWM period"),
+                field("SPEED", fields::LASER_SPEED, word, ReadOnly, "the vector speed of the last computed period, steps per period"),
+            ],
+        ),
+    ]
+}
+
 /// A register holding a signed POSITION_BITS-wide number (`VALUE`),
 /// its sign copied up to bit 31 (`SIGN`).
 fn signed_position(
@@ -1238,6 +1361,25 @@ fn signed_position(
             ),
         ],
     )
+}
+
+/// Word addresses of the laser unit's registers (build option `LASER`):
+/// in the same window as the spindle's, from `0xF0`.
+pub mod laser {
+    /// The unit's first word.
+    pub const BASE: u32 = 0xf0;
+    /// Enable, mode, plane.
+    pub const LASER_CONTROL: u32 = BASE;
+    /// The PWM's period in clocks.
+    pub const LASER_PWM_PERIOD: u32 = BASE + 0x01;
+    /// The laser FIFO: one entry (power, feed) per period.
+    pub const LASER_FIFO: u32 = BASE + 0x02;
+    /// The FIFO's level and flags.
+    pub const LASER_STATUS: u32 = BASE + 0x03;
+    /// The duty in force and the last computed speed.
+    pub const LASER_OUTPUT: u32 = BASE + 0x04;
+    /// Words the unit decodes (`address - BASE` below this).
+    pub const WORDS: u32 = 0x05;
 }
 
 /// Width of `GEAR_NUMERATOR`, `GEAR_DENOMINATOR`, `GEAR_RAMP` and
