@@ -28,10 +28,11 @@ use crate::blocks::konst;
 use crate::blocks::laser_pwm::{model::ENGINE_CLOCKS, LaserPwm};
 
 /// The most clocks from a change of the running period (its counts, its
-/// entry) or of the hold's factor to the duty that reflects it: an engine
-/// run that has just taken the old values, then one that takes the new,
-/// each [`ENGINE_CLOCKS`] long plus the clock of its load.
-pub const LASER_LAG: u32 = 2 * (ENGINE_CLOCKS + 1);
+/// entry) or of the hold's factor to the duty in force that reflects it:
+/// an engine run that has just taken the old values, then one that takes
+/// the new, each [`ENGINE_CLOCKS`] long plus the clock of its load, then
+/// the clock of the commit.
+pub const LASER_LAG: u32 = 2 * (ENGINE_CLOCKS + 1) + 1;
 
 field_slices! {
     /// The multi-bit fields the unit takes from the bus's write data.

@@ -439,8 +439,9 @@
 //! * **The PWM** is a [`LaserPwm`](crate::blocks::laser_pwm) (R = 16,
 //!   C = 16, F = 24): period `LASER_PWM_PERIOD` clocks, glitch-free (a
 //!   new duty acts in the PWM period under way; a pulse that has ended
-//!   does not restart before the next wrap, so a larger duty shows from
-//!   the next PWM period), no pulse at duty 0, a steady high at a duty of
+//!   does not restart before the next wrap: a pulse under way is
+//!   lengthened at once, one that has ended waits for the next PWM
+//!   period), no pulse at duty 0, a steady high at a duty of
 //!   the period or more, `laser_pwm` registered.
 //! * **Per period from the FIFO.** Firmware writes one `LASER_FIFO` entry
 //!   (POWER: clocks high per PWM period at the programmed feed; FEED: the
@@ -463,7 +464,7 @@
 //!   runs free, one computation every [`ENGINE_CLOCKS`](crate::blocks::laser_pwm::model::ENGINE_CLOCKS)
 //!   + 1 clocks with the period's values and the factor of its start, so
 //!   a new period's duty (and a changed hold factor) is in force
-//!   [`laser::LASER_LAG`] = 262 clocks after the change at most. The hold
+//!   [`laser::LASER_LAG`] = 263 clocks after the change at most. The hold
 //!   stretches the period by 1/f and the duty scales by f: the energy per
 //!   millimetre holds through the hold's ramps. A period shorter than the
 //!   lag still gets a duty, computed for the period that was running when
@@ -473,8 +474,9 @@
 //!   stop on home: [`latency::LASER_OFF`] = 3 clocks after the filtered
 //!   level, as for the steps; the watchdog: the clock after it expires)
 //!   and the feed hold's stop (`STATE.HELD`: the clock after) turn it off
-//!   and zero the duty in force. In dynamic mode it is also off while the
-//!   plane's axes stand (v = 0) or FEED is 0.
+//!   and zero the duty in force. In dynamic mode the duty is also 0 while
+//!   the plane's axes stand (v = 0) or FEED is 0, from `LASER_LAG`
+//!   clocks after the period starts (the last duty holds until then).
 //! * Without `LASER` the `laser_pwm` pin stays low, the registers are
 //!   absent (read 0, writes ignored), `CONFIG.LASER` reads 0 and the
 //!   periods never wait for the laser FIFO: synthesis removes the unit.
