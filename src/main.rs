@@ -9,6 +9,7 @@ use motion_hdl::host::gcode::{Ignored, Message};
 use motion_hdl::host::hexapod::simulate::{schedule_name, simulate_hexapod, HexapodOptions};
 use motion_hdl::host::hexapod::Geometry;
 use motion_hdl::host::hold_window::{parse_seconds, HoldWindow};
+use motion_hdl::host::laser_log::{BurnEnergy, FEW_STEPS_PER_PERIOD};
 use motion_hdl::host::simulated_probe::{ProbePlane, ProbeResult};
 use motion_hdl::host::simulation::{simulate, HoldReport, InputFormat, SimulationOptions, Trip};
 use motion_hdl::host::soft_window::{self, SoftWindow};
@@ -448,6 +449,42 @@ fn print_thread(t: &ThreadReport, steps_per_mm: [f64; 3]) {
     }
 }
 
+/// A burn's line: what it burned, then its energy per mm at the pins
+/// (full-power ms per mm) on a line of its own.
+fn print_burn(b: &BurnEnergy) {
+    println!(
+        "burn       line {}: {} over {:.2} mm, the feed {:.2} steps a period along the plane",
+        b.line,
+        if b.dynamic {
+            "M4 (dynamic)"
+        } else {
+            "M3 (constant)"
+        },
+        b.length_mm,
+        b.feed_steps
+    );
+    if b.dynamic && b.feed_steps < FEW_STEPS_PER_PERIOD {
+        println!(
+            "           (below {FEW_STEPS_PER_PERIOD} steps a period the gateware's speed of whole steps reads high on diagonals; a longer period_us gives more)"
+        );
+    }
+    let ms = |e: f64| e * 1e3;
+    match (b.range(), b.worst_deviation()) {
+        (Some((lo, hi)), Some(worst)) => println!(
+            "energy per mm: programmed {:.4}, min {:.4}, max {:.4} (full-power ms per mm; worst {:.2} %, {} windows)",
+            ms(b.programmed),
+            ms(lo),
+            ms(hi),
+            worst * 100.0,
+            b.windows.len()
+        ),
+        _ => println!(
+            "energy per mm: programmed {:.4}, not measured (the burn is shorter than its 0.1 mm trims and a 0.5 mm window)",
+            ms(b.programmed)
+        ),
+    }
+}
+
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Simulate {
@@ -663,6 +700,9 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             for thread in &r.threads {
                 print_thread(thread, r.steps_per_mm);
+            }
+            for burn in &r.burns {
+                print_burn(burn);
             }
             println!(
                 "simulated {} clocks in {:.1} s ({:.0} cycles/s)",

@@ -15,8 +15,10 @@ use crate::blocks::motion_controller::model::{
     ControllerInputs, ControllerOutputs, MotionControllerModel,
 };
 use crate::blocks::motion_controller::{
-    MotionController3, MotionController3DdaSpindle, MotionController3Servo,
+    MotionController3, MotionController3DdaLaser, MotionController3DdaSpindle,
+    MotionController3Servo,
 };
+use crate::host::laser_log::LaserLog;
 use crate::host::servo::DriveScale;
 use crate::host::thread_log::GearLog;
 use crate::regmap::RegisterMap;
@@ -109,6 +111,8 @@ pub struct RtlBus {
     spindle: Option<SpindleMotor>,
     /// While a geared move runs: its record.
     gear_log: Option<GearLog>,
+    /// While a laser run is recorded: its record.
+    laser_log: Option<LaserLog>,
 }
 
 /// A simulated probe against a flat surface across one axis: the `probe`
@@ -174,7 +178,34 @@ impl RtlBus {
             probe_surface: None,
             spindle: None,
             gear_log: None,
+            laser_log: None,
         })
+    }
+
+    /// The laser build (`motion_controller_dda_laser`: DDA only, the
+    /// probe and the laser unit); each axis's steps are looped back into
+    /// its encoder, and `laser_pwm` may be recorded
+    /// ([`RtlBus::start_laser_log`]).
+    pub fn with_laser(backend: Backend, vcd: Option<&Path>) -> Result<Self, SimError> {
+        let mut bus = Self::new(backend, vcd)?;
+        bus.rtl = stepper(
+            backend,
+            "motion_controller_dda_laser",
+            MotionController3DdaLaser::default(),
+            vcd,
+        )?;
+        bus.outputs = vec![0; MotionController3DdaLaser::output_names().len()];
+        Ok(bus)
+    }
+
+    /// Starts recording `laser_pwm` and the steps (see [`LaserLog`]).
+    pub fn start_laser_log(&mut self) {
+        self.laser_log = Some(LaserLog::new(self.positions()));
+    }
+
+    /// The laser record so far, if one is kept.
+    pub fn laser_log(&self) -> Option<&LaserLog> {
+        self.laser_log.as_ref()
     }
 
     /// The spindle build (`motion_controller_dda_spindle`: DDA only, the
@@ -343,10 +374,16 @@ impl ControllerBus for RtlBus {
             .expect("the controller steps");
         let out = ControllerOutputs::from_vector(&self.outputs, 3);
         self.irq = out.irq;
+        let mut new_steps = 0;
         for (i, e) in self.encoders.iter_mut().enumerate() {
             let before = e.total;
             e.follow(out.steps[i]);
             self.window_steps[i] += e.total - before;
+            new_steps += e.total - before;
+        }
+        if let Some(log) = &mut self.laser_log {
+            let position = std::array::from_fn(|k| self.encoders[k].net);
+            log.clock(out.laser, new_steps, position);
         }
         let cycles = self.rtl.cycles();
         self.dacs

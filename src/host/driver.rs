@@ -243,15 +243,21 @@ pub struct Driver<B: ControllerBus> {
     depth: u32,
     /// `CONFIG.POSITION_BITS`: the position counters wrap beyond it.
     position_bits: u32,
+    /// `CONFIG.LASER`.
+    laser_build: bool,
+    /// During [`Driver::run_laser`]: each period's `LASER_FIFO` word.
+    laser_words: Vec<u32>,
 }
 
 mod feed_hold;
 mod gear;
+mod laser;
 mod probe;
 mod servo_run;
 mod soft_limits;
 pub use feed_hold::{HoldAction, HoldEvent, HoldState};
 pub use gear::{GearAction, GearReport, GearRun, GearStatus, GEAR_POLL_CLOCKS};
+pub use laser::{LaserEntry, LaserRun};
 pub use probe::{ProbeEdge, ProbeTrip};
 pub use servo_run::{ServoRunReport, SERVO_LEAD, SETTLED_PERIODS, SETTLE_PERIODS};
 
@@ -290,6 +296,8 @@ impl<B: ControllerBus> Driver<B> {
             config,
             depth: 0,
             position_bits: 32,
+            laser_build: false,
+            laser_words: Vec::new(),
         };
         let id = driver.read("ID", 0)?;
         if id != crate::blocks::motion_controller::registers::ID_VALUE {
@@ -340,6 +348,7 @@ impl<B: ControllerBus> Driver<B> {
             laser,
         };
         driver.map = register_map(3, driver.depth.trailing_zeros(), options)?;
+        driver.laser_build = laser;
         if let Some(axis) = (0..3).find(|&k| config.analog[k] && (!analog || config.uniform[k])) {
             return Err(DriverError::Config(if analog {
                 format!("axis {axis} cannot be both uniform and analog")
@@ -499,6 +508,8 @@ impl<B: ControllerBus> Driver<B> {
         for _ in 0..room {
             let Some(c) = counts.get(*next) else { break };
             self.push_period(c)?;
+            // The laser FIFO pops with the axes': its level is theirs.
+            self.push_laser(*next)?;
             *next += 1;
         }
         Ok(())

@@ -13,6 +13,8 @@
 //! period_us 1000               # interpolation period T
 //! parameter 5221 100.0         # G54's X origin, machine mm (LinuxCNC's #5221)
 //! spindle_encoder 4096          # spindle encoder counts per revolution (0: none)
+//! laser_s_max 1000              # a laser machine: S1000 is full power (0: no laser)
+//! laser_pwm_us 200              # the laser's PWM period, microseconds
 //! ```
 //!
 //! | setting | default | meaning |
@@ -23,6 +25,8 @@
 //! | `contour_error` | 0.01 | mm: how far a corner is rounded, and the chord error of an arc's per-period chords |
 //! | `period_us` | 1000 | interpolation period T, microseconds |
 //! | `spindle_encoder` | 4096 | the spindle encoder's quadrature counts per revolution (a 1024-line encoder), for G33, G33.1 and G76; 0: the machine has none, and they are refused |
+//! | `laser_s_max` | 0 | a laser machine: the S of full laser power. M3 and M4 then burn at S over it on feed moves and dwells (M4 scaled in gateware by the path speed), rapids run with the laser off, and an S above it is an error; it runs on `motion_controller_dda_laser` with the laser's plane X and Y. 0: no laser, S is a spindle speed |
+//! | `laser_pwm_us` | 200 | the laser's PWM period, microseconds (5 kHz); at the simulated clock it must be 1 to 65535 clocks |
 //! | `parameter N V` | see [`PersistentParameters`] | a G-code parameter LinuxCNC keeps between runs (#5161 to #5390: G28 and G30 positions, G92 offset, active coordinate system, G54 to G59.3 origins), mm; repeatable |
 //!
 //! The defaults are a small stepper mill: 1.8 degree motors at 1/8
@@ -68,6 +72,10 @@ pub struct MachineSettings {
     pub parameters: PersistentParameters,
     /// The spindle encoder's counts per revolution (0: no encoder).
     pub spindle_counts_per_rev: u32,
+    /// A laser machine's full-power S; 0: no laser.
+    pub laser_s_max: f64,
+    /// The laser's PWM period, seconds.
+    pub laser_pwm_period: f64,
 }
 
 impl Default for MachineSettings {
@@ -81,6 +89,8 @@ impl Default for MachineSettings {
             period: 1e-3,
             parameters: PersistentParameters::default(),
             spindle_counts_per_rev: 4096,
+            laser_s_max: 0.0,
+            laser_pwm_period: 200e-6,
         }
     }
 }
@@ -130,7 +140,24 @@ impl MachineSettings {
         if !(self.period.is_finite() && self.period > 0.0) {
             return invalid(format!("period must be positive, not {} s", self.period));
         }
+        if !(self.laser_s_max.is_finite() && self.laser_s_max >= 0.0) {
+            return invalid(format!(
+                "laser_s_max must be 0 (no laser) or positive, not {}",
+                self.laser_s_max
+            ));
+        }
+        if !(self.laser_pwm_period.is_finite() && self.laser_pwm_period > 0.0) {
+            return invalid(format!(
+                "laser_pwm_us must be positive, not {}",
+                self.laser_pwm_period * 1e6
+            ));
+        }
         Ok(())
+    }
+
+    /// The full-power S of a laser machine; `None` without a laser.
+    pub fn laser(&self) -> Option<f64> {
+        (self.laser_s_max > 0.0).then_some(self.laser_s_max)
     }
 
     /// Reads a settings file (see the [module documentation](self)) over
@@ -145,6 +172,10 @@ impl MachineSettings {
                 "max_accel" => settings.max_accel = numbers.exactly()?,
                 "contour_error" => [settings.contour_error] = numbers.exactly()?,
                 "period_us" => settings.period = numbers.exactly::<1>()?[0] * 1e-6,
+                "laser_s_max" => [settings.laser_s_max] = numbers.exactly()?,
+                "laser_pwm_us" => {
+                    settings.laser_pwm_period = numbers.exactly::<1>()?[0] * 1e-6
+                }
                 "spindle_encoder" => {
                     let [n] = numbers.exactly()?;
                     settings.spindle_counts_per_rev = u32::try_from(n as i64)
@@ -169,7 +200,7 @@ impl MachineSettings {
                 }
                 other => {
                     return Err(statement.error(format!(
-                        "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter, spindle_encoder)"
+                        "unknown setting `{other}` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter, spindle_encoder, laser_s_max, laser_pwm_us)"
                     )))
                 }
             }

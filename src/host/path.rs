@@ -24,7 +24,7 @@ use thiserror::Error;
 use super::machine::MachineSettings;
 use super::planner::MAX_POSITION_STEPS;
 use super::statements::statements;
-use super::toolpath::{Item, Move, MoveKind, Toolpath};
+use super::toolpath::{Item, LaserPower, Move, MoveKind, Toolpath};
 
 /// A problem in a path file or a path.
 #[derive(Debug, Error, PartialEq)]
@@ -139,6 +139,7 @@ impl Path {
                         end: units(s.end),
                         angles: [0.0; 3],
                         feed: Some(self.feed),
+                        laser: LaserPower::OFF,
                         line: 0,
                     })
                 })
@@ -159,6 +160,7 @@ impl Path {
             period: self.period,
             parameters: Default::default(),
             spindle_counts_per_rev: 0,
+            ..MachineSettings::default()
         }
     }
 

@@ -44,7 +44,7 @@
 use super::geometry::{unit, ArcGeometry};
 use super::machine::MachineSettings;
 use super::path::{Path, PathError};
-use super::toolpath::{Item, MoveKind, Toolpath};
+use super::toolpath::{Item, LaserPower, MoveKind, Toolpath};
 
 /// The shape of a planned move, in machine units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,6 +91,11 @@ pub struct PlannedSegment {
     pub v_exit: f64,
     /// Acceleration along the path.
     pub accel: f64,
+    /// The programmed feed, machine units per second (`None`: a rapid or
+    /// a dwell).
+    pub feed: Option<f64>,
+    /// The laser's power along it.
+    pub laser: LaserPower,
     /// The 1-based program line it came from (0 for a `.path` file's
     /// moves made in code).
     pub line: usize,
@@ -306,7 +311,7 @@ pub fn plan_toolpath(
     let mut at = toolpath.start;
     let mut at_steps = to_steps(at, spu);
     // A segment from `start` (steps); the look-ahead below sets its speeds.
-    let segment = |start, shape, end, length, v_limit, accel, line| PlannedSegment {
+    let segment = |start, shape, end, length, v_limit, accel, (feed, laser, line)| PlannedSegment {
         start,
         end,
         shape,
@@ -317,11 +322,17 @@ pub fn plan_toolpath(
         v_cruise: 0.0,
         v_exit: 0.0,
         accel,
+        feed,
+        laser,
         line,
     };
     for item in &toolpath.items {
         let m = match item {
-            Item::Dwell { seconds, line } => {
+            Item::Dwell {
+                seconds,
+                laser,
+                line,
+            } => {
                 if !(seconds.is_finite() && *seconds >= 0.0) {
                     return Err(PathError::Syntax {
                         line: *line,
@@ -338,7 +349,13 @@ pub fn plan_toolpath(
                         message,
                     })?;
                 segments.push(segment(
-                    at_steps, shape, at_steps, 0.0, v_limit, accel, *line,
+                    at_steps,
+                    shape,
+                    at_steps,
+                    0.0,
+                    v_limit,
+                    accel,
+                    (None, *laser, *line),
                 ));
                 continue;
             }
@@ -400,7 +417,13 @@ pub fn plan_toolpath(
             )));
         }
         segments.push(segment(
-            at_steps, shape, end_steps, length, v_limit, accel, line,
+            at_steps,
+            shape,
+            end_steps,
+            length,
+            v_limit,
+            accel,
+            (m.feed, m.laser, line),
         ));
         at = m.end;
         at_steps = end_steps;

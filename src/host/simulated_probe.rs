@@ -27,7 +27,7 @@ use super::gcode::{ProbeCode, ProbeOutcome, ProbeRequest, Prober};
 use super::hold_window::{rate_for_stop, stop_within_limits_s};
 use super::machine::{axis_index, AXIS_LETTERS};
 use super::planner::to_steps;
-use super::toolpath::{Item, Move, MoveKind};
+use super::toolpath::{Item, LaserPower, Move, MoveKind};
 use super::{
     interpolate, plan_toolpath, ControllerBus, Driver, Interpolation, MachineSettings,
     ProbeSurface, RtlBus, Toolpath,
@@ -245,6 +245,7 @@ impl Prober for SessionProber {
             end: r.end_mm,
             angles: [0.0; 3],
             feed: Some(r.feed),
+            laser: LaserPower::OFF,
             line: r.line,
         });
         let plan = self.plan(r.start_mm, &[probe_move])?;

@@ -24,6 +24,8 @@ use super::hold_window::{
     hold_tick_settings, min_tick_divisor, rate_for_stop, speeds_at_the_pins, stop_time_s,
     stop_within_limits_s, HoldWindow,
 };
+use super::laser_log::BurnEnergy;
+use super::laser_run::simulate_laser;
 use super::machine::axis_index;
 use super::planner::to_steps;
 use super::servo::{DriveScale, FollowingError, PositionLoop, ServoGains};
@@ -179,6 +181,7 @@ impl Job {
                     start: [0.0; 3],
                     parameters: machine.parameters,
                     tools,
+                    laser_s_max: machine.laser(),
                     ..Setup::default()
                 };
                 let (program, ending) = run_gcode_with(file, &text, &setup, prober)?;
@@ -406,6 +409,8 @@ pub struct SimulationReport {
     /// The threads of geared moves (G33, G76), each with its lead error
     /// and pass phase spread.
     pub threads: Vec<ThreadReport>,
+    /// On a laser machine: each burn's energy per mm at the pins.
+    pub burns: Vec<BurnEnergy>,
 }
 
 /// What a simulated feed hold did.
@@ -672,6 +677,9 @@ pub fn simulate(
                 options.machine,
                 options.tools.clone(),
             )?;
+            if job.machine.laser().is_some() {
+                return simulate_laser(path_file, options, job);
+            }
             if has_geared_moves(&job.toolpath) {
                 return simulate_geared(path_file, options, job);
             }
@@ -960,5 +968,6 @@ pub fn simulate(
         probe_plane: options.probe_plane,
         steps_per_mm: machine.steps_per_mm,
         threads: Vec::new(),
+        burns: Vec::new(),
     })
 }

@@ -44,7 +44,7 @@ use super::simulation::{
     driver_config, period_settings, watch_the_run, Job, SimulationOptions, SimulationReport,
 };
 use super::thread_log::{GearLog, PassErrors, ThreadFigures};
-use super::toolpath::{Item, Move, MoveKind, SyncedMove, Toolpath};
+use super::toolpath::{Item, LaserPower, Move, MoveKind, SyncedMove, Toolpath};
 use super::{ControllerBus, Driver, MachineSettings, RtlBus};
 use crate::blocks::electronic_gearbox::model::ENGINE_CLOCKS;
 use crate::sim::plant::SpindleMotor;
@@ -528,6 +528,7 @@ pub fn simulate_geared(
                 end: m.start,
                 angles: job.toolpath.start_angles,
                 feed: None,
+                laser: LaserPower::OFF,
                 line: m.line,
             }));
         }
@@ -567,6 +568,7 @@ pub fn simulate_geared(
         probe_plane: None,
         steps_per_mm: spm,
         threads,
+        burns: Vec::new(),
     })
 }
 

@@ -63,6 +63,32 @@ pub enum MoveKind {
     Arc(Arc),
 }
 
+/// The laser's power along a move or through a dwell, on a machine with a
+/// laser (`laser_s_max` in its settings): M3 or M4 with S, as a fraction
+/// of full power. Off on every other machine, on rapids (G0) and after
+/// M5.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct LaserPower {
+    /// S over the machine's full-power S, 0 to 1 (0: off).
+    pub fraction: f64,
+    /// M4: scaled in gateware by the path speed over the programmed feed
+    /// (grbl's dynamic mode); M3 (false): constant.
+    pub dynamic: bool,
+}
+
+impl LaserPower {
+    /// Off.
+    pub const OFF: Self = Self {
+        fraction: 0.0,
+        dynamic: false,
+    };
+
+    /// Whether the laser burns: a power above 0.
+    pub fn is_on(&self) -> bool {
+        self.fraction > 0.0
+    }
+}
+
 /// One move from the previous position to `end`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Move {
@@ -79,6 +105,8 @@ pub struct Move {
     /// axes alone (LinuxCNC's rule); `None` for a rapid (G0): as fast as
     /// every axis's maximum velocity allows.
     pub feed: Option<f64>,
+    /// The laser's power along it ([`LaserPower::OFF`] for a rapid).
+    pub laser: LaserPower,
     /// The 1-based line of the program it came from.
     pub line: usize,
 }
@@ -137,6 +165,8 @@ pub enum Item {
     Dwell {
         /// How long.
         seconds: f64,
+        /// The laser's power meanwhile (M3 pierces; M4 is off at rest).
+        laser: LaserPower,
         /// The 1-based line of the program.
         line: usize,
     },

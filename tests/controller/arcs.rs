@@ -6,8 +6,8 @@
 
 use motion_hdl::host::planner::to_steps;
 use motion_hdl::host::{
-    interpolate, plan_toolpath, Arc, Interpolation, Item, MachineSettings, Move, MoveKind, Plane,
-    PlannedSegment, Shape, Toolpath,
+    interpolate, plan_toolpath, Arc, Interpolation, Item, LaserPower, MachineSettings, Move,
+    MoveKind, Plane, PlannedSegment, Shape, Toolpath,
 };
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -18,6 +18,7 @@ fn line(end: [f64; 3], feed: f64) -> Item {
         end,
         angles: [0.0; 3],
         feed: Some(feed),
+        laser: LaserPower::OFF,
         line: 0,
     })
 }
@@ -33,6 +34,7 @@ fn arc(end: [f64; 3], center: [f64; 2], clockwise: bool, feed: f64) -> Item {
         end,
         angles: [0.0; 3],
         feed: Some(feed),
+        laser: LaserPower::OFF,
         line: 0,
     })
 }
@@ -218,6 +220,7 @@ fn a_helix_and_a_dwell_end_exactly_and_the_dwell_holds_still() {
         end: [2.0, 0.0, -1.5],
         angles: [0.0; 3],
         feed: Some(5.0),
+        laser: LaserPower::OFF,
         line: 0,
     });
     let toolpath = Toolpath {
@@ -227,6 +230,7 @@ fn a_helix_and_a_dwell_end_exactly_and_the_dwell_holds_still() {
             helix,
             Item::Dwell {
                 seconds: 0.25,
+                laser: LaserPower::OFF,
                 line: 0,
             },
             line([0.0, 0.0, -1.5], 10.0),
@@ -421,6 +425,7 @@ fn random_toolpath(rng: &mut StdRng) -> Toolpath {
             }
             _ => items.push(Item::Dwell {
                 seconds: rng.gen_range(0.0..0.01),
+                laser: LaserPower::OFF,
                 line: 0,
             }),
         }
@@ -465,6 +470,7 @@ fn random_lines_and_arcs_end_exactly_within_every_limit() {
             period: [2.5e-4, 1e-3, 4e-3, 1e-2][rng.gen_range(0..4)],
             parameters: Default::default(),
             spindle_counts_per_rev: 0,
+            ..MachineSettings::default()
         };
         let toolpath = random_toolpath(&mut rng);
         let (segments, i) = run(&toolpath, &machine);

@@ -280,7 +280,7 @@ fn machine_settings_files_read_over_the_defaults_and_name_bad_lines() {
     );
     assert_eq!(
         message("feed 100"),
-        "line 1: unknown setting `feed` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter, spindle_encoder)"
+        "line 1: unknown setting `feed` (steps_per_mm, max_velocity, max_accel, contour_error, period_us, parameter, spindle_encoder, laser_s_max, laser_pwm_us)"
     );
     assert_eq!(message("contour_error x"), "line 1: `x` is not a number");
     assert_eq!(

@@ -20,6 +20,7 @@ mod gcode_corpus;
 mod hexapod_program;
 mod host;
 mod host_feed_hold;
+mod host_laser;
 mod host_probing;
 mod host_soft_limits;
 mod host_threading;

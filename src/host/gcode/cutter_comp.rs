@@ -267,6 +267,7 @@ impl State {
         let (slack, units, base, current) = (f.slack, f.units, f.base, f.current);
         let (plane, r, left, normal) = (f.plane, f.r, f.left, f.normal);
         let angles = self.angles;
+        let laser = self.laser_along(feed);
         let comp = self.comp.as_mut().expect("compensation is on");
         let p = in_plane(plane, end_mm);
         let line_to = |at: [f64; 2], z: f64| {
@@ -277,6 +278,7 @@ impl State {
                 end,
                 angles,
                 feed,
+                laser,
                 line,
             })
         };
@@ -354,6 +356,7 @@ impl State {
                     end: corner_end,
                     angles: self.angles,
                     feed,
+                    laser,
                     line,
                 }),
                 [0.0; 2],
@@ -439,6 +442,7 @@ impl State {
         let f = self.comp_frame();
         let (slack, units, base, current) = (f.slack, f.units, f.base, f.current);
         let (plane, r, left, normal) = (f.plane, f.r, f.left, f.normal);
+        let laser = self.laser_along(Some(feed));
         let comp = self.comp.as_mut().expect("compensation is on");
         let turn = signed_turns(&MoveKind::Arc(arc));
         let tool_inside = inside(left, turn);
@@ -473,6 +477,7 @@ impl State {
                 end: with_plane(plane, end_mm, to),
                 angles,
                 feed: Some(feed),
+                laser,
                 line,
             })
         };
@@ -606,6 +611,7 @@ impl State {
                 end: corner_end,
                 angles: self.angles,
                 feed: Some(feed),
+                laser,
                 line,
             }));
             comp.queue.start = Some(mid);

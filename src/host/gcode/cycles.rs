@@ -253,7 +253,11 @@ impl State {
             }
             Cycle::G82 | Cycle::G86 | Cycle::G88 | Cycle::G89 => {
                 self.cycle_move(false, [a, b, bottom], line);
-                self.toolpath.items.push(Item::Dwell { seconds: p, line });
+                self.toolpath.items.push(Item::Dwell {
+                    seconds: p,
+                    laser: self.laser,
+                    line,
+                });
             }
             Cycle::G73 | Cycle::G83 => {
                 if q <= 0.0 {
@@ -283,7 +287,11 @@ impl State {
                 // spindle reverses, then the tap feeds out to the clear
                 // level.
                 self.cycle_move(false, [a, b, bottom], line);
-                self.toolpath.items.push(Item::Dwell { seconds: p, line });
+                self.toolpath.items.push(Item::Dwell {
+                    seconds: p,
+                    laser: self.laser,
+                    line,
+                });
                 self.cycle_move(false, [a, b, clear], line);
                 return Ok(());
             }

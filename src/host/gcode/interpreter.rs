@@ -20,7 +20,9 @@ use crate::host::tool_table::ToolTable;
 // An arc whose end is within SAME_POINT of its start, in its plane, is a
 // full circle (and its end is set to the start exactly).
 use crate::host::geometry::SAME_POINT;
-use crate::host::toolpath::{moves_angles_only, Arc, Item, Move, MoveKind, Plane, Toolpath};
+use crate::host::toolpath::{
+    moves_angles_only, Arc, Item, LaserPower, Move, MoveKind, Plane, Toolpath,
+};
 
 /// Positions (ends and arc centers) beyond this many mm from zero are
 /// refused: far outside any machine, and where f64 mm keep too few
@@ -172,6 +174,12 @@ pub struct Setup {
     pub rotary_axes: bool,
     /// The rotary axes at the start, degrees.
     pub start_angles: [f64; 3],
+    /// A laser machine: the S of full laser power (the machine setting
+    /// `laser_s_max`). M3 and M4 then turn the laser on at S over this,
+    /// constant (M3) or scaled by the path speed (M4), on every feed move
+    /// and dwell; rapids run with it off; M5 turns it off; an S above it
+    /// is an error. `None` (the default): S is a spindle speed.
+    pub laser_s_max: Option<f64>,
 }
 
 /// Interprets `program` from `setup`.
@@ -197,6 +205,7 @@ fn interpret_inner(
     let mut state = State::new(setup.start, setup.parameters, setup.tools.clone());
     state.prober = prober;
     state.rotary_axes = setup.rotary_axes;
+    state.laser_s_max = setup.laser_s_max;
     state.angles = setup.start_angles;
     state.toolpath.start_angles = setup.start_angles;
     let lexed = lex_program(program)?;
@@ -271,6 +280,10 @@ pub(super) struct State {
     pub(super) spindle_turning: Option<bool>,
     /// The last S, rpm (0 before any).
     pub(super) spindle_speed: f64,
+    /// A laser machine's full-power S ([`Setup::laser_s_max`]).
+    pub(super) laser_s_max: Option<f64>,
+    /// The laser's power on a feed move or a dwell now.
+    pub(super) laser: LaserPower,
     /// What the last canned cycle keeps for the next.
     pub(super) cycle_memory: CycleMemory,
     /// Numbered and named parameters (the persistent ones aside).
@@ -313,6 +326,8 @@ impl State {
             retract_to_r: true,
             spindle_turning: None,
             spindle_speed: 0.0,
+            laser_s_max: None,
+            laser: LaserPower::OFF,
             cycle_memory: CycleMemory::default(),
             params: ParamStore::default(),
             messages: Vec::new(),
@@ -337,6 +352,14 @@ impl State {
         let origin = self.parameters.origin(self.parameters.active_system());
         let g92 = self.parameters.g92();
         [0, 1, 2].map(|k| origin[k] + g92[k] + self.tool_offset[k])
+    }
+
+    /// The laser's power along a move at `feed`: off on a rapid (`None`).
+    pub(super) fn laser_along(&self, feed: Option<f64>) -> LaserPower {
+        match feed {
+            Some(_) => self.laser,
+            None => LaserPower::OFF,
+        }
     }
 
     /// The work position from the machine one, after the units or an
@@ -448,7 +471,22 @@ impl State {
                     s.name()
                 ));
             }
+            if let Some(s_max) = self.laser_s_max.filter(|&m| s.value > m) {
+                return Err(format!(
+                    "{} is beyond the laser's full power, S{s_max} (laser_s_max in the machine settings)",
+                    s.name()
+                ));
+            }
             self.spindle_speed = s.value;
+        }
+        if let Some(s_max) = self.laser_s_max {
+            self.laser = match self.spindle_turning {
+                Some(clockwise) => LaserPower {
+                    fraction: self.spindle_speed / s_max,
+                    dynamic: !clockwise,
+                },
+                None => LaserPower::OFF,
+            };
         }
         if let Some(r) = words.retract_to_r {
             let code = if r { "G99" } else { "G98" };
@@ -466,7 +504,11 @@ impl State {
             )?;
         }
         for (word, what, key) in &words.ignored {
-            self.report(key, block.line, word.name(), what);
+            // On a laser machine M3, M4, M5 and S set the laser.
+            let laser_word = matches!(key.as_str(), "S" | "M3" | "M4" | "M5");
+            if !(laser_word && self.laser_s_max.is_some()) {
+                self.report(key, block.line, word.name(), what);
+            }
         }
         // RS-274/NGC's order of execution sets F (step 3) before the units
         // (step 12): an F beside a G20 is in the units in force before it.
@@ -516,6 +558,7 @@ impl State {
             }
             self.emit(Item::Dwell {
                 seconds: p.value,
+                laser: self.laser,
                 line: block.line,
             });
         }
@@ -741,6 +784,7 @@ impl State {
             end: end_mm,
             angles,
             feed,
+            laser: self.laser_along(feed),
             line,
         }));
         Ok(())
@@ -865,6 +909,7 @@ impl State {
                 end: end_mm,
                 angles: self.angles,
                 feed,
+                laser: self.laser_along(feed),
                 line,
             }));
         }

@@ -1,6 +1,6 @@
 use super::super::test_support::{error, run};
 use super::*;
-use crate::host::toolpath::{Arc, Item, Move, MoveKind, Plane};
+use crate::host::toolpath::{Arc, Item, LaserPower, Move, MoveKind, Plane};
 
 fn moves(program: &str) -> Vec<Move> {
     run(program)
@@ -31,6 +31,7 @@ fn line(end: [f64; 3], feed: Option<f64>, line: usize) -> Move {
         end,
         angles: [0.0; 3],
         feed,
+        laser: LaserPower::OFF,
         line,
     }
 }
@@ -210,6 +211,7 @@ fn arcs_in_each_plane_with_offsets() {
             end: [7.0, 11.0, 1.0],
             angles: [0.0; 3],
             feed: Some(1.0),
+            laser: LaserPower::OFF,
             line: 1
         })]
     );
@@ -397,6 +399,7 @@ fn dwells() {
         p.toolpath.items[1],
         Item::Dwell {
             seconds: 1.5,
+            laser: LaserPower::OFF,
             line: 2
         }
     );
@@ -408,6 +411,7 @@ fn dwells() {
         p.toolpath.items[3],
         Item::Dwell {
             seconds: 0.0,
+            laser: LaserPower::OFF,
             line: 4
         }
     );
@@ -426,11 +430,13 @@ fn dwells() {
         [
             Item::Dwell {
                 seconds: 1.0,
+                laser: LaserPower::OFF,
                 line: 2
             },
             Item::Move(line([2.0, 0.0, 0.0], Some(1.0), 2)),
             Item::Dwell {
                 seconds: 0.5,
+                laser: LaserPower::OFF,
                 line: 3
             },
             Item::Move(line([3.0, 1.0, 0.0], None, 3)),

@@ -335,6 +335,8 @@ pub use text::program_text;
 #[cfg(test)]
 mod fuzz_tests;
 #[cfg(test)]
+mod laser_tests;
+#[cfg(test)]
 mod rotary_tests;
 #[cfg(test)]
 mod test_support;

@@ -28,7 +28,7 @@
 //! move"); and G38.2 or G38.4 ending without a trip.
 
 use super::interpreter::State;
-use crate::host::toolpath::{Item, Move, MoveKind};
+use crate::host::toolpath::{Item, LaserPower, Move, MoveKind};
 
 /// The four probe moves.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -159,6 +159,7 @@ impl State {
                 end: outcome.stop_mm,
                 angles: self.angles,
                 feed: Some(feed),
+                laser: LaserPower::OFF,
                 line,
             }));
         }

@@ -287,7 +287,7 @@ impl PosePlan {
         let mut time = 0.0;
         for item in &toolpath.items {
             let (line, shape, feed, seconds) = match item {
-                Item::Dwell { seconds, line } => {
+                Item::Dwell { seconds, line, .. } => {
                     (*line, Shape::Rest { pose: here }, None, *seconds)
                 }
                 Item::Synced(m) => return Err(PlanError::SpindleSync { line: m.line }),

@@ -1,0 +1,491 @@
+//! `simulate` on a laser machine (`laser_s_max` in its settings): the
+//! laser build (`motion_controller_dda_laser`) with `laser_pwm` recorded
+//! at the pins, and the energy per millimetre of every burn.
+//!
+//! **Runs.** `LASER_CONTROL.DYNAMIC` is a register, so M3 and M4 do not
+//! share a run: the toolpath is cut where the mode of a burning move
+//! differs from the last burning move's, and each part is planned and
+//! streamed as one run, which ends with the axes at rest (grbl, too,
+//! changes the mode only between motions). Moves with the laser off join
+//! the run they fall in.
+//!
+//! **Each period's entry** ([`laser_entries`]): the move the period ends
+//! on gives it.
+//! - POWER = S / `laser_s_max` x the PWM period in clocks, rounded; 0 on
+//!   a rapid, after M5, or at S0.
+//! - FEED = the programmed feed as a speed of the laser's plane (X, Y) in
+//!   1/16 step per period: F x T x (the plane's steps per mm of path over
+//!   the period's exact motion), rounded, at least 1. So the gateware's
+//!   ratio, the plane's vector speed in steps over FEED, is the path speed
+//!   over F on any direction and steps per mm. A move along Z alone has
+//!   FEED 0: under M4 the laser is off, as the plane stands.
+//! - **M4's headroom.** The gateware's speed is a period's whole steps:
+//!   at 1.6 steps a period the counts run 1, 2, 2, 1, 2, and a period of 2
+//!   steps is 25 % above the feed. The gateware caps the ratio at 1
+//!   (POWER), which would clip those periods and burn 15 % short. So the
+//!   host writes POWER and FEED both multiplied by k (up to
+//!   [`M4_HEADROOM`], as far as 16 bits hold them): the duty, POWER x v /
+//!   FEED, is the same, and the cap is k times the programmed power. A
+//!   period then burns in proportion to the steps it takes, which is
+//!   constant energy per step. The duty still cannot pass the PWM period:
+//!   at S / `laser_s_max` above (steps a period) / (steps a period,
+//!   rounded up) a period with the extra step is clipped, the more so
+//!   below one step a period.
+//!
+//! **Burns and their energy** ([`super::laser_log`]): a burn is a run of
+//! periods whose moves burn at one power, feed and mode; each is measured
+//! at the pins in windows of path and printed as `energy per mm:
+//! programmed X, min Y, max Z`.
+//!
+//! Refused: geared moves (the laser build has no gearbox), `--uniform`,
+//! `--servo`, `--soft-limit`, `--hold` and `--probe-plane` (the laser
+//! build is DDA only without soft limits; the hold's energy is measured by
+//! the gateware's own test, not here yet); a PWM period outside 1 to 65535
+//! clocks at the clock; a feed beyond FEED's 4095 steps per period.
+
+use std::path::Path as FsPath;
+use std::time::Instant;
+
+use super::driver::{LaserEntry, LaserRun};
+use super::interpolator::{interpolate, Interpolation};
+use super::laser_log::{burn_energy, BurnEnergy, LaserLog};
+use super::planner::{plan_toolpath, to_steps, PlannedSegment};
+use super::simulation::{
+    driver_config, period_settings, watch_the_run, Job, SimulationOptions, SimulationReport,
+};
+use super::toolpath::{Item, Toolpath};
+use super::{ControllerBus, Driver, MachineSettings, RtlBus};
+use crate::plots::plot_energy;
+
+/// The most an M4 entry's POWER and FEED are both multiplied by (see the
+/// [module documentation](self)).
+pub const M4_HEADROOM: u32 = 16;
+
+/// The laser's plane: X and Y.
+pub const LASER_PLANE: (usize, usize) = (0, 1);
+
+/// The PWM period in clocks of `machine` at `clock_hz`; an error when it
+/// does not fit `LASER_PWM_PERIOD`.
+pub fn pwm_clocks(machine: &MachineSettings, clock_hz: f64) -> Result<u16, String> {
+    let clocks = (machine.laser_pwm_period * clock_hz).round();
+    if !(1.0..=65535.0).contains(&clocks) {
+        return Err(format!(
+            "laser_pwm_us {} is {clocks} clocks at {} MHz: LASER_PWM_PERIOD holds 1 to 65535",
+            machine.laser_pwm_period * 1e6,
+            clock_hz / 1e6
+        ));
+    }
+    Ok(clocks as u16)
+}
+
+/// Each period's laser entry for a run planned as `segments` and
+/// interpolated as `interpolation` from `start` (mm), on `machine` with a
+/// PWM period of `pwm` clocks. An error names the line of a feed FEED
+/// cannot hold.
+pub fn laser_entries(
+    segments: &[PlannedSegment],
+    interpolation: &Interpolation,
+    start: [f64; 3],
+    machine: &MachineSettings,
+    pwm: u16,
+) -> Result<Vec<LaserEntry>, String> {
+    let (a, b) = LASER_PLANE;
+    let spm = machine.steps_per_mm;
+    let mut entries = Vec::with_capacity(interpolation.counts.len());
+    let mut before = start;
+    // The plane's steps per mm of path, of the last period that moved.
+    let mut ratio = 0.0;
+    for (k, point) in interpolation.points.iter().enumerate() {
+        let d: [f64; 3] = std::array::from_fn(|i| point[i] - before[i]);
+        before = *point;
+        let length = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if length > 1e-12 {
+            ratio = ((d[a] * spm[a]).powi(2) + (d[b] * spm[b]).powi(2)).sqrt() / length;
+        }
+        let Some(s) = segments.get(interpolation.moves[k]) else {
+            entries.push(LaserEntry::default());
+            continue;
+        };
+        if !s.laser.is_on() {
+            entries.push(LaserEntry::default());
+            continue;
+        }
+        let power = (s.laser.fraction.min(1.0) * pwm as f64).round() as u16;
+        let feed = match s.feed {
+            Some(f) => {
+                let sixteenths = (f * machine.period * ratio * 16.0).round();
+                if sixteenths > 65535.0 {
+                    return Err(format!(
+                        "line {}: the feed is {:.0} steps a period along the laser's plane, beyond the 4095 LASER_FIFO.FEED holds",
+                        s.line,
+                        sixteenths / 16.0
+                    ));
+                }
+                (sixteenths as u16).max((ratio > 0.0) as u16)
+            }
+            None => 0,
+        };
+        // M4: both scaled by the headroom, so that a period's extra step
+        // raises its duty instead of being clipped at POWER.
+        let k = match s.laser.dynamic && feed > 0 {
+            true => M4_HEADROOM
+                .min(65535 / power.max(1) as u32)
+                .min(65535 / feed as u32)
+                .max(1),
+            false => 1,
+        };
+        entries.push(LaserEntry {
+            power: (power as u32 * k) as u16,
+            feed: (feed as u32 * k) as u16,
+        });
+    }
+    Ok(entries)
+}
+
+/// A burn's key: power, feed and mode.
+fn burn_key(s: &PlannedSegment) -> Option<(u64, u64, bool)> {
+    let feed = s.feed?;
+    s.laser
+        .is_on()
+        .then_some((s.laser.fraction.to_bits(), feed.to_bits(), s.laser.dynamic))
+}
+
+/// One burn as planned.
+#[derive(Clone, Debug, PartialEq)]
+struct PlannedBurn {
+    line: usize,
+    dynamic: bool,
+    /// Programmed full-power seconds per mm.
+    programmed: f64,
+    /// The feed's steps a period along the plane, summed over the periods
+    /// (weighted by their length).
+    feed_steps: f64,
+    /// The step index at its start.
+    first: u64,
+    /// Per period: the step index at its end and the path's length in it.
+    periods: Vec<(u64, f64)>,
+}
+
+/// The burns of one run, steps counted from `base` at the run's start
+/// (from `start`, mm).
+fn burns_of(
+    segments: &[PlannedSegment],
+    interpolation: &Interpolation,
+    start: [f64; 3],
+    base: u64,
+    machine: &MachineSettings,
+) -> Vec<PlannedBurn> {
+    let (a, b) = LASER_PLANE;
+    let spm = machine.steps_per_mm;
+    let mut burns = Vec::new();
+    let mut steps = base;
+    let mut before = start;
+    let mut open: Option<((u64, u64, bool), PlannedBurn)> = None;
+    for (k, counts) in interpolation.counts.iter().enumerate() {
+        let s = &segments[interpolation.moves[k].min(segments.len() - 1)];
+        let key = burn_key(s);
+        let first = steps;
+        steps += counts.iter().map(|c| c.unsigned_abs() as u64).sum::<u64>();
+        let point = interpolation.points[k];
+        let mm = (0..3)
+            .map(|i| (point[i] - before[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        // The plane's steps along this period's motion, at the feed.
+        let plane = ((point[a] - before[a]) * spm[a]).hypot((point[b] - before[b]) * spm[b]);
+        let feed_steps = s.feed.unwrap_or(0.0) * machine.period * plane;
+        before = point;
+        match (&mut open, key) {
+            (Some((open_key, burn)), Some(key)) if *open_key == key => {
+                burn.periods.push((steps, mm));
+                burn.feed_steps += feed_steps;
+                continue;
+            }
+            _ => {}
+        }
+        if let Some((_, burn)) = open.take() {
+            burns.push(burn);
+        }
+        if let (Some(key), Some(feed)) = (key, s.feed) {
+            let burn = PlannedBurn {
+                line: s.line,
+                dynamic: s.laser.dynamic,
+                programmed: s.laser.fraction / feed,
+                feed_steps,
+                first,
+                periods: vec![(steps, mm)],
+            };
+            open = Some((key, burn));
+        }
+    }
+    if let Some((_, burn)) = open {
+        burns.push(burn);
+    }
+    burns
+}
+
+/// Runs `job` on a laser machine (see the [module doc](self)).
+pub fn simulate_laser(
+    path_file: &FsPath,
+    options: &SimulationOptions,
+    job: Job,
+) -> Result<SimulationReport, String> {
+    let located = |e: String| format!("{}: {e}", path_file.display());
+    let refuse = |what: &str| {
+        Err(located(format!(
+            "{what} cannot run on a laser machine (laser_s_max): it runs on motion_controller_dda_laser, DDA only, without the soft limits, the analog outputs, the feed hold's window or the probe plane"
+        )))
+    };
+    if options.uniform.iter().any(|&u| u) {
+        return refuse("--uniform");
+    }
+    if options.servo.iter().any(|&s| s) {
+        return refuse("--servo");
+    }
+    if options.soft_limits.iter().any(Option::is_some) {
+        return refuse("--soft-limit");
+    }
+    if options.hold.is_some() {
+        return refuse("--hold");
+    }
+    if options.probe_plane.is_some() {
+        return refuse("--probe-plane");
+    }
+    if let Some(Item::Synced(m)) = job
+        .toolpath
+        .items
+        .iter()
+        .find(|i| matches!(i, Item::Synced(_)))
+    {
+        return Err(located(format!(
+            "line {}: a geared move (G33, G33.1, G76) on a laser machine: the laser build has no gearbox",
+            m.line
+        )));
+    }
+    let started = Instant::now();
+    let machine = job.machine;
+    let spm = machine.steps_per_mm;
+    let pwm = pwm_clocks(&machine, options.clock_hz).map_err(located)?;
+    let start = to_steps(job.toolpath.start, spm);
+    let target = to_steps(job.toolpath.end(), spm);
+    let (tick_divisor, period_ticks) = period_settings(machine.period, options.clock_hz)?;
+    let mut bus =
+        RtlBus::with_laser(options.backend, options.vcd.as_deref()).map_err(|e| e.to_string())?;
+    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
+    let config = driver_config(options, tick_divisor, period_ticks, [None; 3]);
+    let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
+    driver.bus_mut().start_laser_log();
+    let mut periods = 0;
+    let mut underruns = 0;
+    let mut burns = Vec::new();
+    let mut from = job.toolpath.start;
+    for part in split_by_mode(&job.toolpath.items) {
+        let toolpath = Toolpath {
+            start: from,
+            items: part.items,
+            ..Toolpath::default()
+        };
+        from = toolpath.end();
+        let segments = plan_toolpath(&toolpath, &machine).map_err(|e| located(e.to_string()))?;
+        if segments.is_empty() {
+            continue;
+        }
+        let interpolation = interpolate(to_steps(toolpath.start, spm), &segments, machine.period);
+        let entries = laser_entries(&segments, &interpolation, toolpath.start, &machine, pwm)
+            .map_err(located)?;
+        let base = driver.bus().laser_log().map_or(0, |l| l.steps);
+        let laser = LaserRun {
+            pwm_period: pwm,
+            dynamic: part.dynamic,
+            plane: LASER_PLANE,
+        };
+        let report = driver
+            .run_laser(&interpolation.counts, &entries, laser, &[], |_| {})
+            .map_err(|e| located(e.to_string()))?;
+        periods += report.periods;
+        underruns += report.underruns;
+        burns.extend(burns_of(
+            &segments,
+            &interpolation,
+            toolpath.start,
+            base,
+            &machine,
+        ));
+    }
+    let (commanded, actual) = driver.positions().map_err(|e| e.to_string())?;
+    let bus = driver.bus();
+    let log = bus
+        .laser_log()
+        .cloned()
+        .unwrap_or_else(|| LaserLog::new([0; 3]));
+    let burns: Vec<BurnEnergy> = burns
+        .into_iter()
+        .map(|b| {
+            let length_mm: f64 = b.periods.iter().map(|p| p.1).sum();
+            BurnEnergy {
+                line: b.line,
+                dynamic: b.dynamic,
+                programmed: b.programmed,
+                length_mm,
+                feed_steps: b.feed_steps / length_mm.max(f64::MIN_POSITIVE),
+                windows: burn_energy(&log, b.first, &b.periods, options.clock_hz),
+            }
+        })
+        .collect();
+    let mut figures = Vec::new();
+    if let Some(dir) = &options.out_dir {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        let stem = path_file
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("path");
+        let energy = dir.join(format!("{stem}-energy.svg"));
+        plot_energy(&burns, &energy).map_err(|e| e.to_string())?;
+        figures.push(energy);
+    }
+    let offset =
+        |p: [i32; 3]| -> [i32; 3] { std::array::from_fn(|k| (p[k] as i64 + start[k]) as i32) };
+    Ok(SimulationReport {
+        target,
+        program_end: job.program_end,
+        ignored: job.ignored,
+        ending: job.ending,
+        messages: job.messages,
+        commanded: offset(commanded),
+        actual: offset(actual),
+        peak_rate: bus.peak_steps_per_clock().map(|r| r * options.clock_hz),
+        following: [None; 3],
+        settle_periods: 0,
+        underruns,
+        periods,
+        cycles: bus.cycles(),
+        seconds: started.elapsed().as_secs_f64(),
+        figures,
+        hold: None,
+        probes: Vec::new(),
+        probe_plane: None,
+        steps_per_mm: spm,
+        threads: Vec::new(),
+        burns,
+    })
+}
+
+/// A part of the toolpath that runs in one laser mode.
+struct ModePart {
+    dynamic: bool,
+    items: Vec<Item>,
+}
+
+/// Cuts `items` where a burning move's or dwell's mode differs from the
+/// last burning one's.
+fn split_by_mode(items: &[Item]) -> Vec<ModePart> {
+    let mut parts: Vec<ModePart> = Vec::new();
+    let mut mode: Option<bool> = None;
+    for item in items {
+        let laser = match item {
+            Item::Move(m) => m.laser,
+            Item::Dwell { laser, .. } => *laser,
+            Item::Synced(_) => continue,
+        };
+        let burning = laser.is_on().then_some(laser.dynamic);
+        let new_part = match (mode, burning) {
+            (_, None) | (None, Some(_)) => parts.is_empty(),
+            (Some(m), Some(d)) => m != d,
+        };
+        if new_part {
+            parts.push(ModePart {
+                dynamic: burning.unwrap_or(false),
+                items: Vec::new(),
+            });
+        }
+        let part = parts.last_mut().expect("a part is open");
+        if let (None, Some(d)) = (mode, burning) {
+            part.dynamic = d;
+        }
+        if burning.is_some() {
+            mode = burning;
+        }
+        part.items.push(*item);
+    }
+    parts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::host::toolpath::{LaserPower, Move, MoveKind};
+
+    fn feed_move(x: f64, laser: LaserPower) -> Item {
+        Item::Move(Move {
+            kind: MoveKind::Line,
+            end: [x, 0.0, 0.0],
+            angles: [0.0; 3],
+            feed: Some(10.0),
+            laser,
+            line: 1,
+        })
+    }
+
+    #[test]
+    fn a_change_between_m3_and_m4_cuts_the_run_and_off_moves_join() {
+        let m3 = LaserPower {
+            fraction: 0.5,
+            dynamic: false,
+        };
+        let m4 = LaserPower {
+            fraction: 0.5,
+            dynamic: true,
+        };
+        let items = [
+            feed_move(1.0, LaserPower::OFF),
+            feed_move(2.0, m4),
+            feed_move(3.0, LaserPower::OFF),
+            feed_move(4.0, m4),
+            feed_move(5.0, m3),
+            feed_move(6.0, LaserPower::OFF),
+        ];
+        let parts = split_by_mode(&items);
+        let shape: Vec<(bool, usize)> = parts.iter().map(|p| (p.dynamic, p.items.len())).collect();
+        assert_eq!(shape, [(true, 4), (false, 2)]);
+    }
+
+    #[test]
+    fn feed_is_the_planes_steps_per_period_and_power_the_clocks() {
+        let machine = MachineSettings {
+            steps_per_mm: [80.0, 160.0, 400.0],
+            laser_s_max: 1000.0,
+            ..MachineSettings::default()
+        };
+        let laser = LaserPower {
+            fraction: 0.25,
+            dynamic: true,
+        };
+        // Along Y at 10 mm/s, 1 ms periods: 1.6 steps a period, 25.6/16.
+        let toolpath = Toolpath {
+            items: vec![Item::Move(Move {
+                kind: MoveKind::Line,
+                end: [0.0, 20.0, 0.0],
+                angles: [0.0; 3],
+                feed: Some(10.0),
+                laser,
+                line: 3,
+            })],
+            ..Toolpath::default()
+        };
+        let segments = plan_toolpath(&toolpath, &machine).unwrap();
+        let i = interpolate([0; 3], &segments, machine.period);
+        let entries = laser_entries(&segments, &i, [0.0; 3], &machine, 1000).unwrap();
+        // POWER 250 and FEED 26, both scaled by the headroom, 16.
+        assert!(entries.iter().all(|e| e.power == 4000));
+        assert!(entries.iter().all(|e| e.feed == 416), "{:?}", &entries[..3]);
+        let burns = burns_of(&segments, &i, [0.0; 3], 0, &machine);
+        assert_eq!(burns.len(), 1);
+        assert_eq!(burns[0].periods.last().unwrap().0, 3200);
+        let length: f64 = burns[0].periods.iter().map(|p| p.1).sum();
+        assert!((length - 20.0).abs() < 1e-9, "{length}");
+        assert!((burns[0].programmed - 0.025).abs() < 1e-12);
+        // 1.6 steps a period at the feed, weighted by length (mm).
+        assert!((burns[0].feed_steps / length - 1.6).abs() < 1e-9);
+    }
+}
