@@ -1501,19 +1501,19 @@ module motion_controller_dda(clock,reset,bus_address,bus_write_data,bus_write,bu
         if ((laser__axis_a == laser_axis__0) & ~axes__0__analog) begin
             laser_count_a = axes__0__dac_code;
         end
-        if ((laser__axis_b == laser_axis__0) & ~axes__0__analog) begin
+        if ((laser__axis_b == laser_axis__0) & (laser__axis_b != laser__axis_a) & ~axes__0__analog) begin
             laser_count_b = axes__0__dac_code;
         end
         if ((laser__axis_a == laser_axis__1) & ~axes__1__analog) begin
             laser_count_a = axes__1__dac_code;
         end
-        if ((laser__axis_b == laser_axis__1) & ~axes__1__analog) begin
+        if ((laser__axis_b == laser_axis__1) & (laser__axis_b != laser__axis_a) & ~axes__1__analog) begin
             laser_count_b = axes__1__dac_code;
         end
         if ((laser__axis_a == laser_axis__2) & ~axes__2__analog) begin
             laser_count_a = axes__2__dac_code;
         end
-        if ((laser__axis_b == laser_axis__2) & ~axes__2__analog) begin
+        if ((laser__axis_b == laser_axis__2) & (laser__axis_b != laser__axis_a) & ~axes__2__analog) begin
             laser_count_b = axes__2__dac_code;
         end
         laser__reset = reset;
@@ -30649,7 +30649,7 @@ module motion_controller_dda__laser(clock,reset,address,write,write_data,start,p
         entry_feed = entry__q[(32'h10)+:(16)];
         engine__feed = ((entry_feed) & 24'hffffff);
         engine__factor = factor;
-        engine__enable = control__q[32'h0] & running;
+        engine__enable = control__q[32'h0] & running & ~stop;
         engine__kill = kill;
         pwm = engine__pwm;
         status_word = ((fifo__level) & 32'hffffffff);

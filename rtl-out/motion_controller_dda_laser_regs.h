@@ -101,7 +101,7 @@
 #define MC_STATUS_FIFO_LOW_SHIFT 1UL /* W1C an axis FIFO level fell to FIFO_LOW_WATER or below */
 #define MC_STATUS_FIFO_LOW_MASK 0x00000002UL
 #define MC_STATUS_FIFO_LOW_RESET 0x0UL
-#define MC_STATUS_UNDERRUN_SHIFT 2UL /* W1C a boundary found an axis FIFO empty: all axes stopped, RUN cleared */
+#define MC_STATUS_UNDERRUN_SHIFT 2UL /* W1C a boundary found an axis FIFO empty, or the laser FIFO while it takes part in the run: all axes stopped, RUN cleared */
 #define MC_STATUS_UNDERRUN_MASK 0x00000004UL
 #define MC_STATUS_UNDERRUN_RESET 0x0UL
 #define MC_STATUS_OVERFLOW_SHIFT 3UL /* W1C a FIFO_WRITE to a full FIFO was refused (nothing overwritten) */
@@ -156,7 +156,7 @@
 #define MC_IRQ_ENABLE_FIFO_LOW_SHIFT 1UL /* RW an axis FIFO level fell to FIFO_LOW_WATER or below */
 #define MC_IRQ_ENABLE_FIFO_LOW_MASK 0x00000002UL
 #define MC_IRQ_ENABLE_FIFO_LOW_RESET 0x0UL
-#define MC_IRQ_ENABLE_UNDERRUN_SHIFT 2UL /* RW a boundary found an axis FIFO empty: all axes stopped, RUN cleared */
+#define MC_IRQ_ENABLE_UNDERRUN_SHIFT 2UL /* RW a boundary found an axis FIFO empty, or the laser FIFO while it takes part in the run: all axes stopped, RUN cleared */
 #define MC_IRQ_ENABLE_UNDERRUN_MASK 0x00000004UL
 #define MC_IRQ_ENABLE_UNDERRUN_RESET 0x0UL
 #define MC_IRQ_ENABLE_OVERFLOW_SHIFT 3UL /* RW a FIFO_WRITE to a full FIFO was refused (nothing overwritten) */
@@ -859,13 +859,13 @@
 #define MC_LASER_STATUS_LEVEL_SHIFT 0UL /* RO entries in the laser FIFO */
 #define MC_LASER_STATUS_LEVEL_MASK 0x0000001fUL
 #define MC_LASER_STATUS_LEVEL_RESET 0x0UL
-#define MC_LASER_STATUS_OVERFLOW_SHIFT 8UL /* RO sticky: a LASER_FIFO write found it full and was refused; cleared by LASER_CONTROL.CLEAR_OVERFLOW */
+#define MC_LASER_STATUS_OVERFLOW_SHIFT 8UL /* RO sticky: a LASER_FIFO write found it full and was refused; cleared by LASER_CONTROL.CLEAR_OVERFLOW; raises no interrupt (STATUS.OVERFLOW is the axes' FIFOs'): firmware that streams the laser reads it with the FIFO level */
 #define MC_LASER_STATUS_OVERFLOW_MASK 0x00000100UL
 #define MC_LASER_STATUS_OVERFLOW_RESET 0x0UL
 #define MC_LASER_STATUS_ACTIVE_SHIFT 9UL /* RO the laser FIFO takes part in the running periods (ENABLE at the start) */
 #define MC_LASER_STATUS_ACTIVE_MASK 0x00000200UL
 #define MC_LASER_STATUS_ACTIVE_RESET 0x0UL
-#define MC_LASER_STATUS_BUSY_SHIFT 10UL /* RO the duty engine is computing */
+#define MC_LASER_STATUS_BUSY_SHIFT 10UL /* RO the duty engine is computing: it runs free, so BUSY reads 1 in all but one clock of every ENGINE_CLOCKS + 1 (a diagnostic, not a handshake) */
 #define MC_LASER_STATUS_BUSY_MASK 0x00000400UL
 #define MC_LASER_STATUS_BUSY_RESET 0x0UL
 

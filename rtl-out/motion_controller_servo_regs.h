@@ -101,7 +101,7 @@
 #define MC_STATUS_FIFO_LOW_SHIFT 1UL /* W1C an axis FIFO level fell to FIFO_LOW_WATER or below */
 #define MC_STATUS_FIFO_LOW_MASK 0x00000002UL
 #define MC_STATUS_FIFO_LOW_RESET 0x0UL
-#define MC_STATUS_UNDERRUN_SHIFT 2UL /* W1C a boundary found an axis FIFO empty: all axes stopped, RUN cleared */
+#define MC_STATUS_UNDERRUN_SHIFT 2UL /* W1C a boundary found an axis FIFO empty, or the laser FIFO while it takes part in the run: all axes stopped, RUN cleared */
 #define MC_STATUS_UNDERRUN_MASK 0x00000004UL
 #define MC_STATUS_UNDERRUN_RESET 0x0UL
 #define MC_STATUS_OVERFLOW_SHIFT 3UL /* W1C a FIFO_WRITE to a full FIFO was refused (nothing overwritten) */
@@ -156,7 +156,7 @@
 #define MC_IRQ_ENABLE_FIFO_LOW_SHIFT 1UL /* RW an axis FIFO level fell to FIFO_LOW_WATER or below */
 #define MC_IRQ_ENABLE_FIFO_LOW_MASK 0x00000002UL
 #define MC_IRQ_ENABLE_FIFO_LOW_RESET 0x0UL
-#define MC_IRQ_ENABLE_UNDERRUN_SHIFT 2UL /* RW a boundary found an axis FIFO empty: all axes stopped, RUN cleared */
+#define MC_IRQ_ENABLE_UNDERRUN_SHIFT 2UL /* RW a boundary found an axis FIFO empty, or the laser FIFO while it takes part in the run: all axes stopped, RUN cleared */
 #define MC_IRQ_ENABLE_UNDERRUN_MASK 0x00000004UL
 #define MC_IRQ_ENABLE_UNDERRUN_RESET 0x0UL
 #define MC_IRQ_ENABLE_OVERFLOW_SHIFT 3UL /* RW a FIFO_WRITE to a full FIFO was refused (nothing overwritten) */

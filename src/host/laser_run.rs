@@ -37,21 +37,28 @@
 //! at the pins in windows of path and printed as `energy per mm:
 //! programmed X, min Y, max Z`.
 //!
+//! **A feed hold** (`--hold`) runs as on a step build: the controller
+//! slows the path along itself, and under M4 the duty follows by the
+//! hold's factor, so a burn through the hold keeps its energy per mm; at
+//! the stop the laser is off. Its rate is `--hold-rate`, or the machine's
+//! stop from its top speeds on the tick that gives it.
+//!
 //! Refused: geared moves (the laser build has no gearbox), `--uniform`,
-//! `--servo`, `--soft-limit`, `--hold` and `--probe-plane` (the laser
-//! build is DDA only without soft limits; the hold's energy is measured by
-//! the gateware's own test, not here yet); a PWM period outside 1 to 65535
-//! clocks at the clock; a feed beyond FEED's 4095 steps per period.
+//! `--servo`, `--soft-limit` and `--probe-plane` (the laser build is DDA
+//! only, without soft limits); a PWM period outside 1 to 65535 clocks at
+//! the clock; a feed beyond FEED's 4095 steps per period.
 
 use std::path::Path as FsPath;
 use std::time::Instant;
 
-use super::driver::{LaserEntry, LaserRun};
+use super::driver::{HoldEvent, LaserEntry, LaserRun};
+use super::hold_window::{hold_tick_settings, stop_within_limits_s};
 use super::interpolator::{interpolate, Interpolation};
 use super::laser_log::{burn_energy, BurnEnergy, LaserLog};
 use super::planner::{plan_toolpath, to_steps, PlannedSegment};
 use super::simulation::{
-    driver_config, period_settings, watch_the_run, Job, SimulationOptions, SimulationReport,
+    driver_config, option_beyond_dda_build, period_settings, watch_the_run, Job, SimulationOptions,
+    SimulationReport,
 };
 use super::toolpath::{Item, Toolpath};
 use super::{ControllerBus, Driver, MachineSettings, RtlBus};
@@ -231,25 +238,10 @@ pub fn simulate_laser(
     job: Job,
 ) -> Result<SimulationReport, String> {
     let located = |e: String| format!("{}: {e}", path_file.display());
-    let refuse = |what: &str| {
-        Err(located(format!(
-            "{what} cannot run on a laser machine (laser_s_max): it runs on motion_controller_dda_laser, DDA only, without the soft limits, the analog outputs, the feed hold's window or the probe plane"
-        )))
-    };
-    if options.uniform.iter().any(|&u| u) {
-        return refuse("--uniform");
-    }
-    if options.servo.iter().any(|&s| s) {
-        return refuse("--servo");
-    }
-    if options.soft_limits.iter().any(Option::is_some) {
-        return refuse("--soft-limit");
-    }
-    if options.hold.is_some() {
-        return refuse("--hold");
-    }
-    if options.probe_plane.is_some() {
-        return refuse("--probe-plane");
+    if let Some(what) = option_beyond_dda_build(options, true) {
+        return Err(located(format!(
+            "{what} cannot run on a laser machine (laser_s_max): it runs on motion_controller_dda_laser, DDA only, without the soft limits, the analog outputs or the probe plane"
+        )));
     }
     if let Some(Item::Synced(m)) = job
         .toolpath
@@ -268,16 +260,8 @@ pub fn simulate_laser(
     let pwm = pwm_clocks(&machine, options.clock_hz).map_err(located)?;
     let start = to_steps(job.toolpath.start, spm);
     let target = to_steps(job.toolpath.end(), spm);
-    let (tick_divisor, period_ticks) = period_settings(machine.period, options.clock_hz)?;
-    let mut bus =
-        RtlBus::with_laser(options.backend, options.vcd.as_deref()).map_err(|e| e.to_string())?;
-    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
-    let config = driver_config(options, tick_divisor, period_ticks, [None; 3]);
-    let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
-    driver.bus_mut().start_laser_log();
-    let mut periods = 0;
-    let mut underruns = 0;
-    let mut burns = Vec::new();
+    // Every part planned first: a hold's tick needs the steps they take.
+    let mut parts = Vec::new();
     let mut from = job.toolpath.start;
     for part in split_by_mode(&job.toolpath.items) {
         let toolpath = Toolpath {
@@ -293,24 +277,65 @@ pub fn simulate_laser(
         let interpolation = interpolate(to_steps(toolpath.start, spm), &segments, machine.period);
         let entries = laser_entries(&segments, &interpolation, toolpath.start, &machine, pwm)
             .map_err(located)?;
+        parts.push((
+            part.dynamic,
+            toolpath.start,
+            segments,
+            interpolation,
+            entries,
+        ));
+    }
+    // With a hold: the machine's stop from its top speeds, and the tick
+    // that gives it (as `simulate` does for a step build).
+    let stop_s = stop_within_limits_s(&machine, 0.0, machine.max_velocity);
+    let (tick_divisor, period_ticks) = match options.hold {
+        Some(h) if h.rate.is_none() => {
+            let needed = parts
+                .iter()
+                .flat_map(|p| p.3.counts.iter())
+                .flat_map(|c| c.iter().map(|v| v.unsigned_abs() as u64))
+                .max()
+                .unwrap_or(0);
+            hold_tick_settings(machine.period, options.clock_hz, stop_s, needed)?
+        }
+        _ => period_settings(machine.period, options.clock_hz)?,
+    };
+    let mut bus =
+        RtlBus::with_laser(options.backend, options.vcd.as_deref()).map_err(|e| e.to_string())?;
+    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
+    let config = driver_config(options, tick_divisor, period_ticks, [None; 3]);
+    let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
+    let holds: Vec<HoldEvent> = match options.hold {
+        Some(h) => {
+            let tick_hz = options.clock_hz / tick_divisor as f64;
+            driver
+                .set_hold_rate(h.rate(stop_s, tick_hz))
+                .map_err(|e| e.to_string())?;
+            h.events(options.clock_hz).to_vec()
+        }
+        None => Vec::new(),
+    };
+    driver.bus_mut().start_laser_log();
+    let mut periods = 0;
+    let mut underruns = 0;
+    let mut burns = Vec::new();
+    for (dynamic, start_mm, segments, interpolation, entries) in &parts {
         let base = driver.bus().laser_log().map_or(0, |l| l.steps);
         let laser = LaserRun {
             pwm_period: pwm,
-            dynamic: part.dynamic,
+            dynamic: *dynamic,
             plane: LASER_PLANE,
         };
+        // The hold's events not yet due: a hold and its release may fall
+        // in different parts.
+        let now = driver.bus().cycles();
+        let due: Vec<HoldEvent> = holds.iter().copied().filter(|e| e.clock >= now).collect();
         let report = driver
-            .run_laser(&interpolation.counts, &entries, laser, &[], |_| {})
+            .run_laser(&interpolation.counts, entries, laser, &due, |_| {})
             .map_err(|e| located(e.to_string()))?;
         periods += report.periods;
         underruns += report.underruns;
-        burns.extend(burns_of(
-            &segments,
-            &interpolation,
-            toolpath.start,
-            base,
-            &machine,
-        ));
+        burns.extend(burns_of(segments, interpolation, *start_mm, base, &machine));
     }
     let (commanded, actual) = driver.positions().map_err(|e| e.to_string())?;
     let bus = driver.bus();

@@ -575,6 +575,27 @@ pub(super) fn driver_config(
     }
 }
 
+/// The first option of `options` a DDA-only build without soft limits
+/// cannot run (the spindle and laser builds): `--uniform`, `--servo`,
+/// `--soft-limit`, `--hold` (unless `hold_runs`) or `--probe-plane`.
+pub(super) fn option_beyond_dda_build(
+    options: &SimulationOptions,
+    hold_runs: bool,
+) -> Option<&'static str> {
+    [
+        ("--uniform", options.uniform.iter().any(|&u| u)),
+        ("--servo", options.servo.iter().any(|&s| s)),
+        (
+            "--soft-limit",
+            options.soft_limits.iter().any(Option::is_some),
+        ),
+        ("--hold", options.hold.is_some() && !hold_runs),
+        ("--probe-plane", options.probe_plane.is_some()),
+    ]
+    .into_iter()
+    .find_map(|(name, set)| set.then_some(name))
+}
+
 /// What a simulated run records and drives on `bus`: the positions once a
 /// period, the peak step rates over 10 ms, and the trips of `options`.
 pub(super) fn watch_the_run(

@@ -41,7 +41,8 @@ use super::driver::{GearAction, GearReport, GearRun, GEAR_POLL_CLOCKS};
 use super::interpolator::interpolate;
 use super::planner::{plan_toolpath, to_steps};
 use super::simulation::{
-    driver_config, period_settings, watch_the_run, Job, SimulationOptions, SimulationReport,
+    driver_config, option_beyond_dda_build, period_settings, watch_the_run, Job, SimulationOptions,
+    SimulationReport,
 };
 use super::thread_log::{GearLog, PassErrors, ThreadFigures};
 use super::toolpath::{Item, LaserPower, Move, MoveKind, SyncedMove, Toolpath};
@@ -357,25 +358,10 @@ pub fn simulate_geared(
     job: Job,
 ) -> Result<SimulationReport, String> {
     let located = |e: String| format!("{}: {e}", path_file.display());
-    let refuse = |what: &str| {
-        Err(located(format!(
+    if let Some(what) = option_beyond_dda_build(options, false) {
+        return Err(located(format!(
             "{what} cannot run with geared moves (G33, G33.1, G76): they run on motion_controller_dda_spindle, DDA only, without the soft limits, the analog outputs or the feed hold's window"
-        )))
-    };
-    if options.uniform.iter().any(|&u| u) {
-        return refuse("--uniform");
-    }
-    if options.servo.iter().any(|&s| s) {
-        return refuse("--servo");
-    }
-    if options.soft_limits.iter().any(Option::is_some) {
-        return refuse("--soft-limit");
-    }
-    if options.hold.is_some() {
-        return refuse("--hold");
-    }
-    if options.probe_plane.is_some() {
-        return refuse("--probe-plane");
+        )));
     }
     let started = Instant::now();
     let machine = job.machine;

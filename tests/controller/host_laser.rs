@@ -4,6 +4,7 @@
 //! last 0.1 mm of each burn; the same program in M3 misses it in the
 //! corners; the refusals.
 
+use motion_hdl::host::hold_window::HoldWindow;
 use motion_hdl::host::laser_log::BurnEnergy;
 use motion_hdl::host::simulation::{simulate, SimulationOptions, SimulationReport};
 use motion_hdl::host::MachineSettings;
@@ -78,6 +79,29 @@ fn the_same_program_in_m3_overburns_the_corners() {
     assert_eq!(r.burns.len(), 1, "{program}");
     assert!(!r.burns[0].dynamic);
     assert!(worst(&r.burns[0]) > 0.2, "{:?}", r.burns[0].range());
+}
+
+/// A feed hold in the middle of the square: the path slows to a stop
+/// along itself, stands 0.3 s dark, and resumes; under M4 the duty follows
+/// the hold's factor and the burn keeps its energy per mm.
+#[test]
+fn a_burn_through_a_feed_hold_keeps_its_energy_per_mm() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut options = options(dir.path());
+    let square = "G21 G90 G17\nM4 S600\nG1 X12 F1200\nG1 Y12\nG1 X0\nG1 Y0\nM5\nM2\n";
+    let plain = run("square.ngc", square, &options).unwrap();
+    options.hold = Some(HoldWindow::new(0.5, 0.8, None).unwrap());
+    let held = run("square.ngc", square, &options).unwrap();
+    assert_eq!(held.commanded.map(i64::from), held.target);
+    // The hold added its 0.3 s standing and the slower ramps.
+    assert!(
+        held.cycles >= plain.cycles + 300_000,
+        "{} {}",
+        held.cycles,
+        plain.cycles
+    );
+    assert_eq!(held.burns.len(), 1);
+    assert!(worst(&held.burns[0]) <= 0.05, "{:?}", held.burns[0].range());
 }
 
 #[test]

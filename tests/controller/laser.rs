@@ -490,6 +490,11 @@ fn laser_chaos(b: &mut Laser3, seed: u64, clocks: u64) -> Coverage {
             (false, 0, 0, false, false)
         };
         let out = b.clock(reset, address, data, write, read).clone();
+        // The contract at the pins: the laser fires only while `running`.
+        assert!(
+            !out.laser || out.running,
+            "clock {clock}: laser_pwm high without running"
+        );
         let laser = b.model().laser();
         cover.high_clocks += out.laser as u64;
         let status = laser.read(registers::laser::LASER_STATUS);

@@ -16,7 +16,8 @@
 //!   feed hold's factor, and commits its result in the clock it finishes.
 //!   So a change of the counts, the entry or the factor reaches the duty
 //!   within two engine runs: [`LASER_LAG`] clocks at most.
-//! * **Off**: `laser_pwm` fires only while RUN and `ENABLE`; an abort or
+//! * **Off**: `laser_pwm` fires only while RUN and `ENABLE` (low from the
+//!   first clock after RUN falls); an abort or
 //!   the feed hold's stop (`kill`) turns it off in the next clock and
 //!   zeroes the duty in force.
 
@@ -265,7 +266,10 @@ impl<const N: usize, const NP1: usize> Logic for LaserUnit<N, NP1> {
         self.entry_feed.next = self.entry.q.val().get_value_feed();
         self.engine.feed.next = bit_cast::<24, 16>(self.entry_feed.val());
         self.engine.factor.next = self.factor.val();
-        self.engine.enable.next = self.control.q.val().get_bit(0) & self.running.val();
+        // Off in the clock RUN falls, so that the registered pin is low
+        // from the first clock without RUN.
+        self.engine.enable.next =
+            self.control.q.val().get_bit(0) & self.running.val() & !self.stop.val();
         self.engine.kill.next = self.kill.val();
         self.pwm.next = self.engine.pwm.val();
 

@@ -51,14 +51,17 @@ pub struct LaserUnitModel {
     active: bool,
     overflow: bool,
     busy_prev: bool,
+    /// `LASER_CONTROL`'s read-write bits, from the register map.
+    control_mask: u32,
 }
 
 const COUNT_MAX: u64 = 0x7fff;
 const WORD: u32 = fields::LASER_WORD_WIDTH;
 
 impl LaserUnitModel {
-    /// The unit at power-up.
-    pub fn new(fifo_log2: u32) -> Self {
+    /// The unit at power-up, with FIFOs of 2^`fifo_log2` entries and
+    /// `LASER_CONTROL`'s read-write bits `control_mask` (the map's).
+    pub fn new(fifo_log2: u32, control_mask: u32) -> Self {
         let mut fifo = CommandFifoModel::new(1 << fifo_log2);
         let fifo_out = fifo.step(true, false, 0, false, 0, false);
         Self {
@@ -72,6 +75,7 @@ impl LaserUnitModel {
             active: false,
             overflow: false,
             busy_prev: false,
+            control_mask,
         }
     }
 
@@ -128,7 +132,7 @@ impl LaserUnitModel {
             count_b: i.counts.1.min(COUNT_MAX),
             feed: field_value(self.entry, fields::LASER_FEED, WORD) as u64,
             factor: i.factor,
-            enable: bit_set(self.control, fields::LASER_ENABLE) && i.running,
+            enable: bit_set(self.control, fields::LASER_ENABLE) && i.running && !i.stop,
             kill: i.kill,
         }
     }
@@ -142,13 +146,7 @@ impl LaserUnitModel {
         let engine_in = self.engine_inputs(i);
         let mut next = self.clone();
         if control_write {
-            let mask = crate::blocks::width_mask(1) as u32
-                | 1 << fields::LASER_DYNAMIC
-                | (crate::blocks::width_mask(fields::LASER_AXIS_WIDTH) as u32)
-                    << fields::LASER_AXIS_A
-                | (crate::blocks::width_mask(fields::LASER_AXIS_WIDTH) as u32)
-                    << fields::LASER_AXIS_B;
-            next.control = i.write_data & mask;
+            next.control = i.write_data & self.control_mask;
         }
         if write(laser::LASER_PWM_PERIOD) {
             next.pwm_period = field_value(i.write_data, fields::LASER_POWER, WORD) as u64;

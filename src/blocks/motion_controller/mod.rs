@@ -458,7 +458,8 @@
 //!   clock, where v = sqrt(a^2 + b^2) in 1/16 step is the vector speed of
 //!   the running period's steps a and b on the plane's two axes (their
 //!   FIFO entries' magnitudes, each saturated to 2^15 - 1; an analog axis
-//!   or an AXIS >= K counts as standing; the gearbox's steps are not
+//!   or an AXIS >= K counts as standing, and AXIS_B equal to AXIS_A makes
+//!   b = 0, a plane of that one axis; the gearbox's steps are not
 //!   counted) and f the feed hold's factor. The speed window is the
 //!   interpolation period: its steps are known when it starts. The engine
 //!   runs free, one computation every [`ENGINE_CLOCKS`](crate::blocks::laser_pwm::model::ENGINE_CLOCKS)
@@ -469,8 +470,10 @@
 //!   millimetre holds through the hold's ramps. A period shorter than the
 //!   lag still gets a duty, computed for the period that was running when
 //!   its computation began.
-//! * **Off.** `laser_pwm` fires only while RUN and `ENABLE` (ENABLE = 0
-//!   turns it off from the next clock). Every abort (E-stop, limit, alarm,
+//! * **Off.** `laser_pwm` fires only while RUN and `ENABLE`: it is low
+//!   from the clock after RUN falls (its registered output follows the
+//!   falling RUN, not the clock after), and ENABLE = 0 turns it off from
+//!   the next clock. Every abort (E-stop, limit, alarm,
 //!   stop on home: [`latency::LASER_OFF`] = 3 clocks after the filtered
 //!   level, as for the steps; the watchdog: the clock after it expires)
 //!   and the feed hold's stop (`STATE.HELD`: the clock after) turn it off
@@ -1862,7 +1865,9 @@ impl<
         self.spindle.abort.next = self.abort.val();
 
         // The laser unit: the running periods' |entry| of its plane's two
-        // axes (an analog axis counts as standing), the hold's factor; an
+        // axes (an analog axis counts as standing; AXIS_B equal to AXIS_A
+        // is a plane of that one axis, not the axis twice), the hold's
+        // factor; an
         // abort or the hold's stop kills the PWM. Without LASER it drives
         // nothing, and synthesis removes it.
         self.laser_count_a.next = self.zero_code.val();
@@ -1871,7 +1876,10 @@ impl<
             if (self.laser.axis_a.val() == self.laser_axis[i].val()) & !self.axes[i].analog.val() {
                 self.laser_count_a.next = self.axes[i].dac_code.val();
             }
-            if (self.laser.axis_b.val() == self.laser_axis[i].val()) & !self.axes[i].analog.val() {
+            if (self.laser.axis_b.val() == self.laser_axis[i].val())
+                & (self.laser.axis_b.val() != self.laser.axis_a.val())
+                & !self.axes[i].analog.val()
+            {
                 self.laser_count_b.next = self.axes[i].dac_code.val();
             }
         }

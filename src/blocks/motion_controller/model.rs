@@ -929,7 +929,10 @@ impl MotionControllerModel {
             dac_addresses,
             spindle: SpindleModel::new(axes),
             has_spindle: spindle,
-            laser: LaserUnitModel::new(fifo_log2),
+            laser: LaserUnitModel::new(
+                fifo_log2,
+                map.register("LASER_CONTROL").map_or(0, |r| r.rw_mask()),
+            ),
             has_laser: laser,
         })
     }
@@ -1278,6 +1281,8 @@ impl MotionControllerModel {
                 .filter(|a| !a.analog())
                 .map_or(0, |a| a.entry_steps().0 as u64)
         };
+        // AXIS_B equal to AXIS_A: a plane of one axis.
+        let count_b = if axis_b == axis_a { 0 } else { count(axis_b) };
         next.laser.edge(&LaserUnitInputs {
             reset: i.reset,
             address,
@@ -1290,7 +1295,7 @@ impl MotionControllerModel {
             running: self.run,
             kill: abort || self.feed_hold.held(),
             factor: self.feed_hold.ramp().factor() as u64,
-            counts: (count(axis_a), count(axis_b)),
+            counts: (count(axis_a), count_b),
         });
         let picked = &self.axes[self.soft.select()];
         let (magnitude, negative) = picked.entry_steps();

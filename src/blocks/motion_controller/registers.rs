@@ -620,7 +620,7 @@ fn irq_fields(access: Access) -> Vec<Field> {
     vec![
         field("PERIOD_DONE", irq::PERIOD_DONE, 1, access, "a period ended and the next began"),
         field("FIFO_LOW", irq::FIFO_LOW, 1, access, "an axis FIFO level fell to FIFO_LOW_WATER or below"),
-        field("UNDERRUN", irq::UNDERRUN, 1, access, "a boundary found an axis FIFO empty: all axes stopped, RUN cleared"),
+        field("UNDERRUN", irq::UNDERRUN, 1, access, "a boundary found an axis FIFO empty, or the laser FIFO while it takes part in the run: all axes stopped, RUN cleared"),
         field("OVERFLOW", irq::OVERFLOW, 1, access, "a FIFO_WRITE to a full FIFO was refused (nothing overwritten)"),
         field("ENCODER_ERROR", irq::ENCODER_ERROR, 1, access, "an encoder saw A and B change together (counts lost)"),
         field("WATCHDOG", irq::WATCHDOG, 1, access, "the watchdog expired: all axes stopped, RUN cleared; clearing it re-allows RUN"),
@@ -1319,9 +1319,9 @@ fn laser_registers(level_bits: u32) -> Vec<Register> {
             "the laser FIFO's level and flags",
             vec![
                 field("LEVEL", fields::LASER_LEVEL, level_bits, ReadOnly, "entries in the laser FIFO"),
-                field("OVERFLOW", fields::LASER_OVERFLOW, 1, ReadOnly, "sticky: a LASER_FIFO write found it full and was refused; cleared by LASER_CONTROL.CLEAR_OVERFLOW"),
+                field("OVERFLOW", fields::LASER_OVERFLOW, 1, ReadOnly, "sticky: a LASER_FIFO write found it full and was refused; cleared by LASER_CONTROL.CLEAR_OVERFLOW; raises no interrupt (STATUS.OVERFLOW is the axes' FIFOs'): firmware that streams the laser reads it with the FIFO level"),
                 field("ACTIVE", fields::LASER_ACTIVE, 1, ReadOnly, "the laser FIFO takes part in the running periods (ENABLE at the start)"),
-                field("BUSY", fields::LASER_BUSY, 1, ReadOnly, "the duty engine is computing"),
+                field("BUSY", fields::LASER_BUSY, 1, ReadOnly, "the duty engine is computing: it runs free, so BUSY reads 1 in all but one clock of every ENGINE_CLOCKS + 1 (a diagnostic, not a handshake)"),
             ],
         ),
         register(
