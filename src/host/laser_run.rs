@@ -52,13 +52,15 @@ use std::path::Path as FsPath;
 use std::time::Instant;
 
 use super::driver::{HoldEvent, LaserEntry, LaserRun};
-use super::hold_window::{hold_tick_settings, stop_within_limits_s};
+use super::hold_window::{
+    hold_tick_settings, speeds_at_the_pins, stop_time_s, stop_within_limits_s,
+};
 use super::interpolator::{interpolate, Interpolation};
 use super::laser_log::{burn_energy, BurnEnergy, LaserLog};
 use super::planner::{plan_toolpath, to_steps, PlannedSegment};
 use super::simulation::{
-    driver_config, option_beyond_dda_build, period_settings, watch_the_run, Job, SimulationOptions,
-    SimulationReport,
+    driver_config, option_beyond_dda_build, period_settings, watch_the_run, HoldReport, Job,
+    SimulationOptions, SimulationReport,
 };
 use super::toolpath::{Item, Toolpath};
 use super::{ControllerBus, Driver, MachineSettings, RtlBus};
@@ -262,6 +264,7 @@ pub fn simulate_laser(
     let target = to_steps(job.toolpath.end(), spm);
     // Every part planned first: a hold's tick needs the steps they take.
     let mut parts = Vec::new();
+    let mut planned_peak_speed = 0.0f64;
     let mut from = job.toolpath.start;
     for part in split_by_mode(&job.toolpath.items) {
         let toolpath = Toolpath {
@@ -277,6 +280,8 @@ pub fn simulate_laser(
         let interpolation = interpolate(to_steps(toolpath.start, spm), &segments, machine.period);
         let entries = laser_entries(&segments, &interpolation, toolpath.start, &machine, pwm)
             .map_err(located)?;
+        let peak = interpolation.speeds.iter().copied().fold(0.0, f64::max);
+        planned_peak_speed = planned_peak_speed.max(peak);
         parts.push((
             part.dynamic,
             toolpath.start,
@@ -305,16 +310,15 @@ pub fn simulate_laser(
     watch_the_run(&mut bus, options, tick_divisor, period_ticks);
     let config = driver_config(options, tick_divisor, period_ticks, [None; 3]);
     let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
-    let holds: Vec<HoldEvent> = match options.hold {
-        Some(h) => {
-            let tick_hz = options.clock_hz / tick_divisor as f64;
-            driver
-                .set_hold_rate(h.rate(stop_s, tick_hz))
-                .map_err(|e| e.to_string())?;
-            h.events(options.clock_hz).to_vec()
-        }
-        None => Vec::new(),
-    };
+    let tick_hz = options.clock_hz / tick_divisor as f64;
+    let hold_rate = options.hold.map(|h| h.rate(stop_s, tick_hz));
+    if let Some(rate) = hold_rate {
+        driver.set_hold_rate(rate).map_err(|e| e.to_string())?;
+    }
+    let holds: Vec<HoldEvent> = options
+        .hold
+        .map_or(Vec::new(), |h| h.events(options.clock_hz).to_vec());
+    let mut held = Vec::new();
     driver.bus_mut().start_laser_log();
     let mut periods = 0;
     let mut underruns = 0;
@@ -334,6 +338,7 @@ pub fn simulate_laser(
             .run_laser(&interpolation.counts, entries, laser, &due, |_| {})
             .map_err(|e| located(e.to_string()))?;
         periods += report.periods;
+        held.extend_from_slice(&report.held);
         underruns += report.underruns;
         burns.extend(burns_of(segments, interpolation, *start_mm, base, &machine));
     }
@@ -387,7 +392,25 @@ pub fn simulate_laser(
         cycles: bus.cycles(),
         seconds: started.elapsed().as_secs_f64(),
         figures,
-        hold: None,
+        hold: options.hold.zip(hold_rate).map(|(h, rate)| {
+            let period_s = machine.period;
+            let window = (0.01 / period_s).round() as usize;
+            let speeds = speeds_at_the_pins(bus.samples(), spm, period_s, window);
+            let at = |e: &HoldEvent| {
+                (e.clock <= bus.cycles()).then_some(e.clock as f64 / options.clock_hz)
+            };
+            let after = (h.resume_at_s / period_s) as usize;
+            HoldReport {
+                rate,
+                tick_divisor,
+                full_stop_s: stop_time_s(rate, tick_hz),
+                requested_s: at(&holds[0]),
+                stood_s: held.first().map(|&c| c as f64 / options.clock_hz),
+                released_s: at(&holds[1]),
+                peak_speed_after: speeds.iter().skip(after).copied().fold(0.0, f64::max),
+                planned_peak_speed,
+            }
+        }),
         probes: Vec::new(),
         probe_plane: None,
         steps_per_mm: spm,

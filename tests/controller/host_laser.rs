@@ -100,6 +100,9 @@ fn a_burn_through_a_feed_hold_keeps_its_energy_per_mm() {
         held.cycles,
         plain.cycles
     );
+    let h = held.hold.expect("the hold's report");
+    assert!(h.requested_s.is_some() && h.released_s.is_some(), "{h:?}");
+    assert!(h.stood_s.is_some_and(|s| s > 0.5 && s < 0.8), "{h:?}");
     assert_eq!(held.burns.len(), 1);
     assert!(worst(&held.burns[0]) <= 0.05, "{:?}", held.burns[0].range());
 }
