@@ -200,7 +200,7 @@ impl RtlBus {
 
     /// Starts recording `laser_pwm` and the steps (see [`LaserLog`]).
     pub fn start_laser_log(&mut self) {
-        self.laser_log = Some(LaserLog::new(self.positions()));
+        self.laser_log = Some(LaserLog::new());
     }
 
     /// The laser record so far, if one is kept.
@@ -382,8 +382,7 @@ impl ControllerBus for RtlBus {
             new_steps += e.total - before;
         }
         if let Some(log) = &mut self.laser_log {
-            let position = std::array::from_fn(|k| self.encoders[k].net);
-            log.clock(out.laser, new_steps, position);
+            log.clock(out.laser, new_steps);
         }
         let cycles = self.rtl.cycles();
         self.dacs

@@ -2,7 +2,7 @@
 //! made from it.
 //!
 //! **The record** ([`LaserLog`]): the clocks `laser_pwm` was high so far,
-//! sampled at every step that leaves the pins with the position there. A
+//! sampled at every step that leaves the pins. A
 //! burn's energy is the laser's full-power time: high clocks over the
 //! clock rate.
 //!
@@ -32,13 +32,11 @@ pub const TRIM_MM: f64 = 0.1;
 /// Shortest window of path the energy is measured over, mm.
 pub const WINDOW_MM: f64 = 0.5;
 
-/// The laser pin and the position at one step.
+/// The laser pin's high time at one step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct StepSample {
     /// Steps left the pins so far, over all axes (this one included).
     pub steps: u64,
-    /// The position at the pins after it, steps.
-    pub position: [i64; 3],
     /// Clocks `laser_pwm` was high so far.
     pub high: u64,
 }
@@ -54,29 +52,29 @@ pub struct LaserLog {
     pub samples: Vec<StepSample>,
 }
 
+impl Default for LaserLog {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl LaserLog {
-    /// A record from a start at `position`: its first sample, 0 steps.
-    pub fn new(position: [i64; 3]) -> Self {
+    /// An empty record: its first sample, 0 steps.
+    pub fn new() -> Self {
         Self {
             high: 0,
             steps: 0,
-            samples: vec![StepSample {
-                steps: 0,
-                position,
-                high: 0,
-            }],
+            samples: vec![StepSample { steps: 0, high: 0 }],
         }
     }
 
-    /// After a clock: the pin, the steps that left in it and the
-    /// positions after them.
-    pub fn clock(&mut self, laser: bool, new_steps: u64, position: [i64; 3]) {
+    /// After a clock: the pin and the steps that left in it.
+    pub fn clock(&mut self, laser: bool, new_steps: u64) {
         self.high += laser as u64;
         if new_steps > 0 {
             self.steps += new_steps;
             self.samples.push(StepSample {
                 steps: self.steps,
-                position,
                 high: self.high,
             });
         }
@@ -183,9 +181,9 @@ mod tests {
     /// One step a clock along X, the laser high every other clock; each
     /// period two steps of 0.01 mm each.
     fn straight(steps: i64) -> (LaserLog, Vec<(u64, f64)>) {
-        let mut log = LaserLog::new([0, 0, 0]);
+        let mut log = LaserLog::new();
         for k in 1..=steps {
-            log.clock(k % 2 == 0, 1, [k, 0, 0]);
+            log.clock(k % 2 == 0, 1);
         }
         let periods = (1..=steps as u64 / 2).map(|p| (2 * p, 0.02)).collect();
         (log, periods)

@@ -52,11 +52,9 @@ use std::path::Path as FsPath;
 use std::time::Instant;
 
 use super::driver::{HoldEvent, LaserEntry, LaserRun};
-use super::hold_window::{
-    hold_tick_settings, speeds_at_the_pins, stop_time_s, stop_within_limits_s,
-};
+use super::hold_window::{hold_tick_settings, speeds_at_the_pins, stop_within_limits_s};
 use super::interpolator::{interpolate, Interpolation};
-use super::laser_log::{burn_energy, BurnEnergy, LaserLog};
+use super::laser_log::{burn_energy, BurnEnergy};
 use super::planner::{plan_toolpath, to_steps, PlannedSegment};
 use super::simulation::{
     driver_config, option_beyond_dda_build, period_settings, watch_the_run, HoldReport, Job,
@@ -87,6 +85,17 @@ pub fn pwm_clocks(machine: &MachineSettings, clock_hz: f64) -> Result<u16, Strin
     Ok(clocks as u16)
 }
 
+/// A period's motion from `before` to `point` (mm) on a machine of
+/// `steps_per_mm`: its path length, mm, and its length in steps along the
+/// laser's plane.
+fn period_motion(before: [f64; 3], point: [f64; 3], steps_per_mm: [f64; 3]) -> (f64, f64) {
+    let (a, b) = LASER_PLANE;
+    let d: [f64; 3] = std::array::from_fn(|i| point[i] - before[i]);
+    let length = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let plane = (d[a] * steps_per_mm[a]).hypot(d[b] * steps_per_mm[b]);
+    (length, plane)
+}
+
 /// Each period's laser entry for a run planned as `segments` and
 /// interpolated as `interpolation` from `start` (mm), on `machine` with a
 /// PWM period of `pwm` clocks. An error names the line of a feed FEED
@@ -98,18 +107,15 @@ pub fn laser_entries(
     machine: &MachineSettings,
     pwm: u16,
 ) -> Result<Vec<LaserEntry>, String> {
-    let (a, b) = LASER_PLANE;
-    let spm = machine.steps_per_mm;
     let mut entries = Vec::with_capacity(interpolation.counts.len());
     let mut before = start;
     // The plane's steps per mm of path, of the last period that moved.
     let mut ratio = 0.0;
     for (k, point) in interpolation.points.iter().enumerate() {
-        let d: [f64; 3] = std::array::from_fn(|i| point[i] - before[i]);
+        let (length, plane) = period_motion(before, *point, machine.steps_per_mm);
         before = *point;
-        let length = d.iter().map(|v| v * v).sum::<f64>().sqrt();
         if length > 1e-12 {
-            ratio = ((d[a] * spm[a]).powi(2) + (d[b] * spm[b]).powi(2)).sqrt() / length;
+            ratio = plane / length;
         }
         let Some(s) = segments.get(interpolation.moves[k]) else {
             entries.push(LaserEntry::default());
@@ -184,8 +190,6 @@ fn burns_of(
     base: u64,
     machine: &MachineSettings,
 ) -> Vec<PlannedBurn> {
-    let (a, b) = LASER_PLANE;
-    let spm = machine.steps_per_mm;
     let mut burns = Vec::new();
     let mut steps = base;
     let mut before = start;
@@ -196,12 +200,8 @@ fn burns_of(
         let first = steps;
         steps += counts.iter().map(|c| c.unsigned_abs() as u64).sum::<u64>();
         let point = interpolation.points[k];
-        let mm = (0..3)
-            .map(|i| (point[i] - before[i]).powi(2))
-            .sum::<f64>()
-            .sqrt();
+        let (mm, plane) = period_motion(before, point, machine.steps_per_mm);
         // The plane's steps along this period's motion, at the feed.
-        let plane = ((point[a] - before[a]) * spm[a]).hypot((point[b] - before[b]) * spm[b]);
         let feed_steps = s.feed.unwrap_or(0.0) * machine.period * plane;
         before = point;
         match (&mut open, key) {
@@ -344,10 +344,7 @@ pub fn simulate_laser(
     }
     let (commanded, actual) = driver.positions().map_err(|e| e.to_string())?;
     let bus = driver.bus();
-    let log = bus
-        .laser_log()
-        .cloned()
-        .unwrap_or_else(|| LaserLog::new([0; 3]));
+    let log = bus.laser_log().cloned().unwrap_or_default();
     let burns: Vec<BurnEnergy> = burns
         .into_iter()
         .map(|b| {
@@ -393,23 +390,16 @@ pub fn simulate_laser(
         seconds: started.elapsed().as_secs_f64(),
         figures,
         hold: options.hold.zip(hold_rate).map(|(h, rate)| {
-            let period_s = machine.period;
-            let window = (0.01 / period_s).round() as usize;
-            let speeds = speeds_at_the_pins(bus.samples(), spm, period_s, window);
-            let at = |e: &HoldEvent| {
-                (e.clock <= bus.cycles()).then_some(e.clock as f64 / options.clock_hz)
-            };
-            let after = (h.resume_at_s / period_s) as usize;
-            HoldReport {
-                rate,
-                tick_divisor,
-                full_stop_s: stop_time_s(rate, tick_hz),
-                requested_s: at(&holds[0]),
-                stood_s: held.first().map(|&c| c as f64 / options.clock_hz),
-                released_s: at(&holds[1]),
-                peak_speed_after: speeds.iter().skip(after).copied().fold(0.0, f64::max),
-                planned_peak_speed,
-            }
+            let window = (0.01 / machine.period).round() as usize;
+            let speeds = speeds_at_the_pins(bus.samples(), spm, machine.period, window);
+            HoldReport::measured(
+                &h,
+                (rate, tick_divisor),
+                options.clock_hz,
+                (bus.cycles(), &held),
+                &speeds,
+                (machine.period, planned_peak_speed),
+            )
         }),
         probes: Vec::new(),
         probe_plane: None,

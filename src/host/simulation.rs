@@ -438,6 +438,35 @@ pub struct HoldReport {
     pub planned_peak_speed: f64,
 }
 
+impl HoldReport {
+    /// What `hold` did in a run of `cycles` clocks at `clock_hz`, at
+    /// `rate` on a tick of `tick_divisor` clocks: `held` holds the clocks
+    /// the driver saw `STATUS.HELD`, `speeds` the path speed at the pins
+    /// per period of `period_s`; the plan's peak speed beside.
+    pub fn measured(
+        hold: &HoldWindow,
+        (rate, tick_divisor): (u32, u32),
+        clock_hz: f64,
+        (cycles, held): (u64, &[u64]),
+        speeds: &[f64],
+        (period_s, planned_peak_speed): (f64, f64),
+    ) -> Self {
+        let events = hold.events(clock_hz);
+        let at = |e: &HoldEvent| (e.clock <= cycles).then_some(e.clock as f64 / clock_hz);
+        let after = (hold.resume_at_s / period_s) as usize;
+        HoldReport {
+            rate,
+            tick_divisor,
+            full_stop_s: stop_time_s(rate, clock_hz / tick_divisor as f64),
+            requested_s: at(&events[0]),
+            stood_s: held.first().map(|&c| c as f64 / clock_hz),
+            released_s: at(&events[1]),
+            peak_speed_after: speeds.iter().skip(after).copied().fold(0.0, f64::max),
+            planned_peak_speed,
+        }
+    }
+}
+
 /// Clocks per base tick and base ticks per period for `period_s` at
 /// `clock_hz`: the smallest divisor that fits the 16-bit period register
 /// and divides the period exactly.
@@ -949,21 +978,14 @@ pub fn simulate(
         }
     }
     let hold = options.hold.zip(pin_speeds).map(|(h, speeds)| {
-        let rate = hold_rate.unwrap_or(0);
-        let at =
-            |e: &HoldEvent| (e.clock <= report.cycles).then_some(e.clock as f64 / options.clock_hz);
-        let released_s = at(&hold_events[1]);
-        let after = (h.resume_at_s / period_s) as usize;
-        HoldReport {
-            rate,
-            tick_divisor,
-            full_stop_s: stop_time_s(rate, tick_hz),
-            requested_s: at(&hold_events[0]),
-            stood_s: report.held.first().map(|&c| c as f64 / options.clock_hz),
-            released_s,
-            peak_speed_after: speeds.iter().skip(after).copied().fold(0.0, f64::max),
-            planned_peak_speed,
-        }
+        HoldReport::measured(
+            &h,
+            (hold_rate.unwrap_or(0), tick_divisor),
+            options.clock_hz,
+            (report.cycles, &report.held),
+            &speeds,
+            (period_s, planned_peak_speed),
+        )
     });
     let to_path = |p: [i32; 3]| offset(p.map(i64::from));
     let commanded = to_path(report.commanded);
