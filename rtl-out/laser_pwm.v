@@ -62,10 +62,16 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
     localparam  code_times_factor = 3'b100;
     localparam  code_divide = 3'b101;
     localparam  code_times_power = 3'b110;
-    localparam  zero_acc = 40'h0;
-    localparam  root_start = 40'h4000000000;
-    localparam  ratio_one = 40'h10000;
-    localparam  half_clock = 40'h8000;
+    localparam  zero_h = 20'h0;
+    localparam  one_h = 20'h1;
+    localparam  zero_remainder = 24'h0;
+    localparam  one_24 = 24'h1;
+    localparam  two_24 = 24'h2;
+    localparam  two_h = 20'h2;
+    localparam  lo_top = 17'b10000000000000000;
+    localparam  zero_24 = 24'h0;
+    localparam  ratio_one_h = 20'h10000;
+    localparam  half_clock = 20'h8000;
     localparam  factor_one = 17'b10000000000000000;
     localparam  sign_17 = 17'b10000000000000000;
     localparam  one_17 = 17'b1;
@@ -73,6 +79,7 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
     localparam  zero_seq = 5'b0;
     localparam  one_seq = 5'b1;
     localparam  last_multiply = 5'b10000;
+    localparam  before_last_multiply = 5'b1111;
     localparam  last_root = 5'b10011;
     localparam  zero_r = 16'h0;
     localparam  one_r = 16'h1;
@@ -81,9 +88,9 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
     localparam  zero_f = 24'h0;
 
     // Stub signals
-    reg  [15:0] counter__d;
-    wire  [15:0] counter__q;
-    reg  counter__clock;
+    reg  [16:0] count_ahead_stored__d;
+    wire  [16:0] count_ahead_stored__q;
+    reg  count_ahead_stored__clock;
     reg  [15:0] duty_now__d;
     wire  [15:0] duty_now__q;
     reg  duty_now__clock;
@@ -108,18 +115,21 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
     reg  [4:0] seq__d;
     wire  [4:0] seq__q;
     reg  seq__clock;
-    reg  [39:0] acc__d;
-    wire  [39:0] acc__q;
-    reg  acc__clock;
-    reg  [39:0] mcand__d;
-    wire  [39:0] mcand__q;
-    reg  mcand__clock;
+    reg  [19:0] product_hi__d;
+    wire  [19:0] product_hi__q;
+    reg  product_hi__clock;
+    reg  [16:0] product_lo__d;
+    wire  [16:0] product_lo__q;
+    reg  product_lo__clock;
+    reg  [23:0] remainder__d;
+    wire  [23:0] remainder__q;
+    reg  remainder__clock;
+    reg  [19:0] multiplicand__d;
+    wire  [19:0] multiplicand__q;
+    reg  multiplicand__clock;
     reg  [16:0] mplier__d;
     wire  [16:0] mplier__q;
     reg  mplier__clock;
-    reg  [39:0] root_bit__d;
-    wire  [39:0] root_bit__q;
-    reg  root_bit__clock;
     reg  [16:0] magnitude_b__d;
     wire  [16:0] magnitude_b__q;
     reg  magnitude_b__clock;
@@ -135,6 +145,9 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
     reg  divide_start__d;
     wire  divide_start__q;
     reg  divide_start__clock;
+    reg  b_last__d;
+    wire  b_last__q;
+    reg  b_last__clock;
     reg  divider__clock;
     reg  divider__reset;
     reg  divider__start;
@@ -147,27 +160,38 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
     wire  divider__divide_by_zero;
 
     // Local signals
-    reg  [39:0] sum;
-    reg  [39:0] trial;
-    reg  [39:0] root_next;
-    reg  [39:0] acc_next;
+    reg  [19:0] addend;
+    reg  [19:0] a_square_high;
+    reg  [20:0] sum;
+    reg  [19:0] product_hi_next;
+    reg  [16:0] product_lo_next;
+    reg  [23:0] widened;
+    reg  [23:0] subtrahend;
+    reg  [23:0] trial;
+    reg  [19:0] root_next;
+    reg  [19:0] radicand_hi;
+    reg  [39:0] product;
+    reg  [15:0] duty_high;
+    reg  [15:0] duty_word;
     reg  [16:0] magnitude_a;
     reg  [16:0] magnitude_b_in;
-    reg  [15:0] counter_next;
+    reg  [16:0] count_ahead;
+    reg  [16:0] count_ahead_next;
     reg  [15:0] duty_next;
     reg  wrap;
     reg  ended_next;
     reg  running;
     reg  last_step;
     reg  [15:0] target_duty;
-    reg  [39:0] ratio;
+    reg  [23:0] quotient_high;
+    reg  [19:0] ratio;
     reg  multiplying;
 
     // Sub module instances
-    laser_pwm__counter counter(
-        .d(counter__d),
-        .q(counter__q),
-        .clock(counter__clock)
+    laser_pwm__count_ahead_stored count_ahead_stored(
+        .d(count_ahead_stored__d),
+        .q(count_ahead_stored__q),
+        .clock(count_ahead_stored__clock)
     );
     laser_pwm__duty_now duty_now(
         .d(duty_now__d),
@@ -209,25 +233,30 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         .q(seq__q),
         .clock(seq__clock)
     );
-    laser_pwm__acc acc(
-        .d(acc__d),
-        .q(acc__q),
-        .clock(acc__clock)
+    laser_pwm__product_hi product_hi(
+        .d(product_hi__d),
+        .q(product_hi__q),
+        .clock(product_hi__clock)
     );
-    laser_pwm__mcand mcand(
-        .d(mcand__d),
-        .q(mcand__q),
-        .clock(mcand__clock)
+    laser_pwm__product_lo product_lo(
+        .d(product_lo__d),
+        .q(product_lo__q),
+        .clock(product_lo__clock)
+    );
+    laser_pwm__remainder remainder(
+        .d(remainder__d),
+        .q(remainder__q),
+        .clock(remainder__clock)
+    );
+    laser_pwm__multiplicand multiplicand(
+        .d(multiplicand__d),
+        .q(multiplicand__q),
+        .clock(multiplicand__clock)
     );
     laser_pwm__mplier mplier(
         .d(mplier__d),
         .q(mplier__q),
         .clock(mplier__clock)
-    );
-    laser_pwm__root_bit root_bit(
-        .d(root_bit__d),
-        .q(root_bit__q),
-        .clock(root_bit__clock)
     );
     laser_pwm__magnitude_b magnitude_b(
         .d(magnitude_b__d),
@@ -254,6 +283,11 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         .q(divide_start__q),
         .clock(divide_start__clock)
     );
+    laser_pwm__b_last b_last(
+        .d(b_last__d),
+        .q(b_last__q),
+        .clock(b_last__clock)
+    );
     laser_pwm__divider divider(
         .clock(divider__clock),
         .reset(divider__reset),
@@ -269,7 +303,7 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
 
     // Update code
     always @(*) begin
-        counter__clock = clock;
+        count_ahead_stored__clock = clock;
         duty_now__clock = clock;
         ended__clock = clock;
         committed__clock = clock;
@@ -278,16 +312,18 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         speed_out__clock = clock;
         phase__clock = clock;
         seq__clock = clock;
-        acc__clock = clock;
-        mcand__clock = clock;
+        product_hi__clock = clock;
+        product_lo__clock = clock;
+        remainder__clock = clock;
+        multiplicand__clock = clock;
         mplier__clock = clock;
-        root_bit__clock = clock;
         magnitude_b__clock = clock;
         power_taken__clock = clock;
         feed_taken__clock = clock;
         factor_taken__clock = clock;
         divide_start__clock = clock;
-        counter__d = counter__q;
+        b_last__clock = clock;
+        count_ahead_stored__d = count_ahead_stored__q;
         duty_now__d = duty_now__q;
         ended__d = ended__q;
         committed__d = committed__q;
@@ -296,31 +332,64 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         speed_out__d = speed_out__q;
         phase__d = phase__q;
         seq__d = seq__q;
-        acc__d = acc__q;
-        mcand__d = mcand__q;
+        product_hi__d = product_hi__q;
+        product_lo__d = product_lo__q;
+        remainder__d = remainder__q;
+        multiplicand__d = multiplicand__q;
         mplier__d = mplier__q;
-        root_bit__d = root_bit__q;
         magnitude_b__d = magnitude_b__q;
         power_taken__d = power_taken__q;
         feed_taken__d = feed_taken__q;
         factor_taken__d = factor_taken__q;
         divide_start__d = divide_start__q;
+        b_last__d = b_last__q;
         divider__clock = clock;
         pwm = pwm_out__q;
         duty = duty_now__q;
         speed = speed_out__q;
         busy = phase__q != code_idle;
-        sum = acc__q + mcand__q;
-        trial = acc__q - (mcand__q | root_bit__q);
-        root_next = mcand__q >> 32'h1;
-        if (~trial[32'h27]) begin
-            root_next = (mcand__q >> 32'h1) | root_bit__q;
-        end
-        acc_next = acc__q;
+        a_square_high = remainder__q[(32'h0)+:(20)];
+        addend = zero_h;
         if (mplier__q[32'h0]) begin
-            acc_next = sum;
+            addend = multiplicand__q;
         end
         last_step = seq__q == last_multiply;
+        b_last__d = (phase__q == code_square_b) & (seq__q == before_last_multiply);
+        if (b_last__q) begin
+            addend = a_square_high << 32'h1;
+        end
+        sum = ((product_hi__q) & 21'h1fffff) + ((addend) & 21'h1fffff);
+        product_hi_next = sum[(32'h1)+:(20)];
+        product_lo_next = product_lo__q >> 32'h1;
+        if (sum[32'h0]) begin
+            product_lo_next = (product_lo__q >> 32'h1) | lo_top;
+        end
+        widened = remainder__q << 32'h2;
+        if (product_hi__q[32'he]) begin
+            widened = (remainder__q << 32'h2) | two_24;
+        end
+        if (product_hi__q[32'hd]) begin
+            widened = widened | one_24;
+        end
+        subtrahend = (((multiplicand__q) & 24'hffffff) << 32'h2) | one_24;
+        trial = widened - subtrahend;
+        root_next = multiplicand__q << 32'h1;
+        if (~trial[32'h17]) begin
+            root_next = (multiplicand__q << 32'h1) | one_h;
+        end
+        radicand_hi = product_hi__q << 32'h2;
+        if (product_lo__q[32'h10]) begin
+            radicand_hi = (product_hi__q << 32'h2) | two_h;
+        end
+        if (product_lo__q[32'hf]) begin
+            radicand_hi = radicand_hi | one_h;
+        end
+        product = (((product_hi__q) & 40'hffffffffff) << 32'h11) | ((product_lo__q) & 40'hffffffffff);
+        duty_high = product_hi_next[(32'h0)+:(16)];
+        duty_word = duty_high << 32'h1;
+        if (sum[32'h0]) begin
+            duty_word = (duty_high << 32'h1) | one_r;
+        end
         magnitude_a = ((count_a) & 17'h1ffff);
         if (count_a[32'hf]) begin
             magnitude_a = ~(((count_a) & 17'h1ffff) | sign_17) + one_17;
@@ -329,49 +398,53 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         if (count_b[32'hf]) begin
             magnitude_b_in = ~(((count_b) & 17'h1ffff) | sign_17) + one_17;
         end
-        ratio = divider__quotient;
-        if (divider__quotient >= ratio_one) begin
-            ratio = ratio_one;
+        ratio = divider__quotient[(32'h0)+:(20)];
+        quotient_high = divider__quotient[(32'h10)+:(24)];
+        if (quotient_high != zero_24) begin
+            ratio = ratio_one_h;
         end
         if (divider__divide_by_zero) begin
-            ratio = zero_acc;
+            ratio = zero_h;
         end
         divider__start = divide_start__q;
-        divider__dividend = acc__q;
+        divider__dividend = product;
         divider__divisor = feed_taken__q;
         divide_start__d = 1'b0;
         multiplying = (phase__q == code_square_a) | (phase__q == code_square_b) | (phase__q == code_times_factor) | (phase__q == code_times_power);
         if (multiplying) begin
-            acc__d = acc_next;
-            mcand__d = mcand__q << 32'h1;
+            product_hi__d = product_hi_next;
+            product_lo__d = product_lo_next;
             mplier__d = mplier__q >> 32'h1;
             seq__d = seq__q + one_seq;
         end
         if (phase__q == code_root) begin
-            if (~trial[32'h27]) begin
-                acc__d = trial;
+            product_hi__d = radicand_hi;
+            product_lo__d = product_lo__q << 32'h2;
+            remainder__d = widened;
+            if (~trial[32'h17]) begin
+                remainder__d = trial;
             end
-            mcand__d = root_next;
-            root_bit__d = root_bit__q >> 32'h2;
+            multiplicand__d = root_next;
             seq__d = seq__q + one_seq;
         end
         if ((phase__q == code_square_a) & last_step) begin
             phase__d = code_square_b;
             seq__d = zero_seq;
-            mcand__d = ((magnitude_b__q) & 40'hffffffffff);
+            product_hi__d = ((product_lo_next) & 20'hfffff);
+            remainder__d = ((product_hi_next) & 24'hffffff);
+            multiplicand__d = ((magnitude_b__q) & 20'hfffff);
             mplier__d = magnitude_b__q;
         end
         if ((phase__q == code_square_b) & last_step) begin
-            acc__d = acc_next << 32'h8;
             phase__d = code_root;
             seq__d = zero_seq;
-            mcand__d = zero_acc;
-            root_bit__d = root_start;
+            multiplicand__d = zero_h;
+            remainder__d = zero_remainder;
         end
         if ((phase__q == code_root) & (seq__q == last_root)) begin
             phase__d = code_times_factor;
             seq__d = zero_seq;
-            acc__d = zero_acc;
+            product_hi__d = zero_h;
             mplier__d = factor_taken__q;
             speed_out__d = root_next[(32'h4)+:(16)];
         end
@@ -382,19 +455,19 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
         if ((phase__q == code_divide) & divider__done) begin
             phase__d = code_times_power;
             seq__d = zero_seq;
-            acc__d = half_clock;
-            mcand__d = ratio;
+            product_hi__d = half_clock;
+            multiplicand__d = ratio;
             mplier__d = ((power_taken__q) & 17'h1ffff);
         end
         if ((phase__q == code_times_power) & last_step) begin
             phase__d = code_idle;
-            result__d = acc_next[(32'h10)+:(16)];
+            result__d = duty_word;
         end
         if ((phase__q == code_idle) & load) begin
             phase__d = code_square_a;
             seq__d = zero_seq;
-            acc__d = zero_acc;
-            mcand__d = ((magnitude_a) & 40'hffffffffff);
+            product_hi__d = zero_h;
+            multiplicand__d = ((magnitude_a) & 20'hfffff);
             mplier__d = magnitude_a;
             magnitude_b__d = magnitude_b_in;
             power_taken__d = power;
@@ -416,23 +489,27 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
             target = committed__q;
         end
         running = pwm_period >= two_r;
-        wrap = ~running | ((((counter__q) & 17'h1ffff) + one_17) >= ((pwm_period) & 17'h1ffff));
-        counter_next = counter__q + one_r;
+        count_ahead = count_ahead_stored__q ^ one_17;
+        wrap = ~running | (count_ahead >= ((pwm_period) & 17'h1ffff));
+        count_ahead_next = count_ahead + one_17;
         if (wrap) begin
-            counter_next = zero_r;
+            count_ahead_next = one_17;
         end
         duty_next = target_duty;
         if (kill) begin
             duty_next = zero_r;
         end
-        ended_next = (~wrap & ended__q) | (counter_next >= duty_next);
-        counter__d = counter_next;
+        ended_next = ended__q | (count_ahead >= ((duty_next) & 17'h1ffff));
+        if (wrap) begin
+            ended_next = duty_next == zero_r;
+        end
+        count_ahead_stored__d = count_ahead_next ^ one_17;
         duty_now__d = duty_next;
         ended__d = ended_next;
         pwm_out__d = enable & ~kill & running & ~ended_next;
         divider__reset = reset;
         if (reset) begin
-            counter__d = zero_r;
+            count_ahead_stored__d = zero_17;
             duty_now__d = zero_r;
             ended__d = 1'b0;
             committed__d = zero_r;
@@ -441,38 +518,40 @@ module laser_pwm(clock,reset,pwm_period,power,dynamic,load,commit,count_a,count_
             speed_out__d = zero_16;
             phase__d = code_idle;
             seq__d = zero_seq;
-            acc__d = zero_acc;
-            mcand__d = zero_acc;
+            product_hi__d = zero_h;
+            product_lo__d = zero_17;
+            remainder__d = zero_remainder;
+            multiplicand__d = zero_h;
             mplier__d = zero_17;
-            root_bit__d = zero_acc;
             magnitude_b__d = zero_17;
             power_taken__d = zero_r;
             feed_taken__d = zero_f;
             factor_taken__d = zero_17;
             divide_start__d = 1'b0;
+            b_last__d = 1'b0;
         end
     end
 
 endmodule // laser_pwm
 
 
-module laser_pwm__acc(d,q,clock);
+module laser_pwm__b_last(d,q,clock);
 
     // Module arguments
-    input wire  [39:0] d;
-    output reg  [39:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 40'h0;
+       q = 1'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // laser_pwm__acc
+endmodule // laser_pwm__b_last
 
 
 module laser_pwm__committed(d,q,clock);
@@ -494,23 +573,23 @@ module laser_pwm__committed(d,q,clock);
 endmodule // laser_pwm__committed
 
 
-module laser_pwm__counter(d,q,clock);
+module laser_pwm__count_ahead_stored(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // laser_pwm__counter
+endmodule // laser_pwm__count_ahead_stored
 
 
 module laser_pwm__divide_start(d,q,clock);
@@ -970,25 +1049,6 @@ module laser_pwm__magnitude_b(d,q,clock);
 endmodule // laser_pwm__magnitude_b
 
 
-module laser_pwm__mcand(d,q,clock);
-
-    // Module arguments
-    input wire  [39:0] d;
-    output reg  [39:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 40'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // laser_pwm__mcand
-
-
 module laser_pwm__mplier(d,q,clock);
 
     // Module arguments
@@ -1006,6 +1066,25 @@ module laser_pwm__mplier(d,q,clock);
     end
 
 endmodule // laser_pwm__mplier
+
+
+module laser_pwm__multiplicand(d,q,clock);
+
+    // Module arguments
+    input wire  [19:0] d;
+    output reg  [19:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 20'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // laser_pwm__multiplicand
 
 
 module laser_pwm__phase(d,q,clock);
@@ -1046,6 +1125,44 @@ module laser_pwm__power_taken(d,q,clock);
 endmodule // laser_pwm__power_taken
 
 
+module laser_pwm__product_hi(d,q,clock);
+
+    // Module arguments
+    input wire  [19:0] d;
+    output reg  [19:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 20'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // laser_pwm__product_hi
+
+
+module laser_pwm__product_lo(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // laser_pwm__product_lo
+
+
 module laser_pwm__pwm_out(d,q,clock);
 
     // Module arguments
@@ -1065,6 +1182,25 @@ module laser_pwm__pwm_out(d,q,clock);
 endmodule // laser_pwm__pwm_out
 
 
+module laser_pwm__remainder(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // laser_pwm__remainder
+
+
 module laser_pwm__result(d,q,clock);
 
     // Module arguments
@@ -1082,25 +1218,6 @@ module laser_pwm__result(d,q,clock);
     end
 
 endmodule // laser_pwm__result
-
-
-module laser_pwm__root_bit(d,q,clock);
-
-    // Module arguments
-    input wire  [39:0] d;
-    output reg  [39:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 40'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // laser_pwm__root_bit
 
 
 module laser_pwm__seq(d,q,clock);

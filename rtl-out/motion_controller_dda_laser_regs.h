@@ -27,13 +27,13 @@
 #define MC_VERSION_OFFSET 0x0004UL
 #define MC_VERSION_ADDR16 0x0002UL
 #define MC_VERSION_ADDR8 0x0004UL
-#define MC_VERSION_RESET 0x00000900UL
+#define MC_VERSION_RESET 0x00000a00UL
 #define MC_VERSION_PATCH_SHIFT 0UL /* RO patch */
 #define MC_VERSION_PATCH_MASK 0x000000ffUL
 #define MC_VERSION_PATCH_RESET 0x0UL
 #define MC_VERSION_MINOR_SHIFT 8UL /* RO minor */
 #define MC_VERSION_MINOR_MASK 0x0000ff00UL
-#define MC_VERSION_MINOR_RESET 0x9UL
+#define MC_VERSION_MINOR_RESET 0xaUL
 #define MC_VERSION_MAJOR_SHIFT 16UL /* RO major */
 #define MC_VERSION_MAJOR_MASK 0x00ff0000UL
 #define MC_VERSION_MAJOR_RESET 0x0UL
@@ -811,7 +811,7 @@
 #define MC_LASER_CONTROL_ADDR16 0x01e0UL
 #define MC_LASER_CONTROL_ADDR8 0x03c0UL
 #define MC_LASER_CONTROL_RESET 0x00000000UL
-#define MC_LASER_CONTROL_ENABLE_SHIFT 0UL /* RW 1 = laser_pwm may fire while RUN; at a start, 1 also makes the laser FIFO part of the run (one entry popped per period, an empty one is an underrun); 0 = laser_pwm low from the next clock */
+#define MC_LASER_CONTROL_ENABLE_SHIFT 0UL /* RW 1 = laser_pwm may fire while RUN; at a start with SOURCE = 0, 1 also makes the laser FIFO part of the run (one entry popped per period, an empty one is an underrun); 0 = laser_pwm low from the next clock */
 #define MC_LASER_CONTROL_ENABLE_MASK 0x00000001UL
 #define MC_LASER_CONTROL_ENABLE_RESET 0x0UL
 #define MC_LASER_CONTROL_DYNAMIC_SHIFT 1UL /* RW 1 = the duty is the period's POWER x min(1, path speed x hold factor / FEED) (M4); 0 = POWER (M3) */
@@ -820,6 +820,9 @@
 #define MC_LASER_CONTROL_CLEAR_OVERFLOW_SHIFT 2UL /* WO write 1 to clear LASER_STATUS.OVERFLOW */
 #define MC_LASER_CONTROL_CLEAR_OVERFLOW_MASK 0x00000004UL
 #define MC_LASER_CONTROL_CLEAR_OVERFLOW_RESET 0x0UL
+#define MC_LASER_CONTROL_SOURCE_SHIFT 3UL /* RW where the duty engine takes POWER and FEED: 0 = the running period's laser FIFO entry; 1 = LASER_POWER (a write reaches the duty within LASER_LAG clocks), and a run started with SOURCE = 1 leaves the laser FIFO out */
+#define MC_LASER_CONTROL_SOURCE_MASK 0x00000008UL
+#define MC_LASER_CONTROL_SOURCE_RESET 0x0UL
 #define MC_LASER_CONTROL_AXIS_A_SHIFT 4UL /* RW the plane's first axis (an axis >= K counts as standing) */
 #define MC_LASER_CONTROL_AXIS_A_MASK 0x00000070UL
 #define MC_LASER_CONTROL_AXIS_A_RESET 0x0UL
@@ -862,7 +865,7 @@
 #define MC_LASER_STATUS_OVERFLOW_SHIFT 8UL /* RO sticky: a LASER_FIFO write found it full and was refused; cleared by LASER_CONTROL.CLEAR_OVERFLOW; raises no interrupt (STATUS.OVERFLOW is the axes' FIFOs'): firmware that streams the laser reads it with the FIFO level */
 #define MC_LASER_STATUS_OVERFLOW_MASK 0x00000100UL
 #define MC_LASER_STATUS_OVERFLOW_RESET 0x0UL
-#define MC_LASER_STATUS_ACTIVE_SHIFT 9UL /* RO the laser FIFO takes part in the running periods (ENABLE at the start) */
+#define MC_LASER_STATUS_ACTIVE_SHIFT 9UL /* RO the laser FIFO takes part in the running periods (ENABLE = 1 and SOURCE = 0 at the start) */
 #define MC_LASER_STATUS_ACTIVE_MASK 0x00000200UL
 #define MC_LASER_STATUS_ACTIVE_RESET 0x0UL
 #define MC_LASER_STATUS_BUSY_SHIFT 10UL /* RO the duty engine is computing: it runs free, so BUSY reads 1 in all but one clock of every ENGINE_CLOCKS + 1 (a diagnostic, not a handshake) */
@@ -881,5 +884,18 @@
 #define MC_LASER_OUTPUT_SPEED_SHIFT 16UL /* RO the vector speed of the last computed period, steps per period */
 #define MC_LASER_OUTPUT_SPEED_MASK 0xffff0000UL
 #define MC_LASER_OUTPUT_SPEED_RESET 0x0UL
+
+/* LASER_POWER: the power and feed by register, in force while LASER_CONTROL.SOURCE = 1 (the layout of a LASER_FIFO entry) */
+#define MC_LASER_POWER_INDEX 0x00f5UL
+#define MC_LASER_POWER_OFFSET 0x03d4UL
+#define MC_LASER_POWER_ADDR16 0x01eaUL
+#define MC_LASER_POWER_ADDR8 0x03d4UL
+#define MC_LASER_POWER_RESET 0x00000000UL
+#define MC_LASER_POWER_POWER_SHIFT 0UL /* RW clocks high per PWM period at the programmed feed (at or above LASER_PWM_PERIOD: steady on) */
+#define MC_LASER_POWER_POWER_MASK 0x0000ffffUL
+#define MC_LASER_POWER_POWER_RESET 0x0UL
+#define MC_LASER_POWER_FEED_SHIFT 16UL /* RW the programmed feed, 1/16 step per period (vector length in the plane); 0: a dynamic duty of 0 */
+#define MC_LASER_POWER_FEED_MASK 0xffff0000UL
+#define MC_LASER_POWER_FEED_RESET 0x0UL
 
 #endif /* MC_REGS_H */

@@ -30444,7 +30444,8 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
     localparam  a_fifo = 8'hf2;
     localparam  a_status = 8'hf3;
     localparam  a_output = 8'hf4;
-    localparam  control_mask = 32'h773;
+    localparam  a_power = 8'hf5;
+    localparam  control_mask = 32'h77b;
     localparam  count_max = 16'h7fff;
     localparam  zero16 = 16'h0;
     localparam  zero32 = 32'h0;
@@ -30495,6 +30496,9 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
     reg  [31:0] entry__d;
     wire  [31:0] entry__q;
     reg  entry__clock;
+    reg  [31:0] power__d;
+    wire  [31:0] power__q;
+    reg  power__clock;
     reg  active__d;
     wire  active__q;
     reg  active__clock;
@@ -30511,6 +30515,7 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
     reg  [15:0] saturated_a;
     reg  [15:0] saturated_b;
     reg  [31:0] status_word;
+    reg  [31:0] setpoint;
     reg  [15:0] entry_feed;
 
     // Sub module instances
@@ -30565,6 +30570,11 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
         .q(entry__q),
         .clock(entry__clock)
     );
+    motion_controller_servo__laser__power power(
+        .d(power__d),
+        .q(power__q),
+        .clock(power__clock)
+    );
     motion_controller_servo__laser__active active(
         .d(active__d),
         .q(active__q),
@@ -30586,12 +30596,14 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
         control__clock = clock;
         pwm_period__clock = clock;
         entry__clock = clock;
+        power__clock = clock;
         active__clock = clock;
         overflow__clock = clock;
         busy_prev__clock = clock;
         control__d = control__q;
         pwm_period__d = pwm_period__q;
         entry__d = entry__q;
+        power__d = power__q;
         active__d = active__q;
         overflow__d = overflow__q;
         busy_prev__d = busy_prev__q;
@@ -30603,6 +30615,9 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
         end
         if (write & (address == a_period)) begin
             pwm_period__d = write_data[(32'h0)+:(16)];
+        end
+        if (write & (address == a_power)) begin
+            power__d = write_data;
         end
         axis_a = control__q[(32'h4)+:(3)];
         axis_b = control__q[(32'h8)+:(3)];
@@ -30621,7 +30636,7 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
         end
         ready = ~active__q | ~fifo__empty;
         if (start) begin
-            active__d = control__q[32'h0];
+            active__d = control__q[32'h0] & ~control__q[32'h3];
         end
         if (pop & active__q) begin
             entry__d = fifo__head;
@@ -30641,13 +30656,17 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
         busy_prev__d = engine__busy;
         engine__reset = reset;
         engine__pwm_period = pwm_period__q;
-        engine__power = entry__q[(32'h0)+:(16)];
+        setpoint = entry__q;
+        if (control__q[32'h3]) begin
+            setpoint = power__q;
+        end
+        engine__power = setpoint[(32'h0)+:(16)];
         engine__dynamic = control__q[32'h1];
         engine__load = ~engine__busy;
         engine__commit = busy_prev__q & ~engine__busy;
         engine__count_a = saturated_a;
         engine__count_b = saturated_b;
-        entry_feed = entry__q[(32'h10)+:(16)];
+        entry_feed = setpoint[(32'h10)+:(16)];
         engine__feed = ((entry_feed) & 24'hffffff);
         engine__factor = factor;
         engine__enable = control__q[32'h0] & running & ~stop;
@@ -30676,10 +30695,14 @@ module motion_controller_servo__laser(clock,reset,address,write,write_data,start
         if (address == a_output) begin
             read_data = ((engine__duty) & 32'hffffffff) | (((engine__speed) & 32'hffffffff) << 32'h10);
         end
+        if (address == a_power) begin
+            read_data = power__q;
+        end
         if (reset) begin
             control__d = zero32;
             pwm_period__d = zero16;
             entry__d = zero32;
+            power__d = zero32;
             active__d = 1'b0;
             overflow__d = 1'b0;
             busy_prev__d = 1'b0;
@@ -30776,10 +30799,16 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
     localparam  code_times_factor = 3'b100;
     localparam  code_divide = 3'b101;
     localparam  code_times_power = 3'b110;
-    localparam  zero_acc = 40'h0;
-    localparam  root_start = 40'h4000000000;
-    localparam  ratio_one = 40'h10000;
-    localparam  half_clock = 40'h8000;
+    localparam  zero_h = 20'h0;
+    localparam  one_h = 20'h1;
+    localparam  zero_remainder = 24'h0;
+    localparam  one_24 = 24'h1;
+    localparam  two_24 = 24'h2;
+    localparam  two_h = 20'h2;
+    localparam  lo_top = 17'b10000000000000000;
+    localparam  zero_24 = 24'h0;
+    localparam  ratio_one_h = 20'h10000;
+    localparam  half_clock = 20'h8000;
     localparam  factor_one = 17'b10000000000000000;
     localparam  sign_17 = 17'b10000000000000000;
     localparam  one_17 = 17'b1;
@@ -30787,6 +30816,7 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
     localparam  zero_seq = 5'b0;
     localparam  one_seq = 5'b1;
     localparam  last_multiply = 5'b10000;
+    localparam  before_last_multiply = 5'b1111;
     localparam  last_root = 5'b10011;
     localparam  zero_r = 16'h0;
     localparam  one_r = 16'h1;
@@ -30795,9 +30825,9 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
     localparam  zero_f = 24'h0;
 
     // Stub signals
-    reg  [15:0] counter__d;
-    wire  [15:0] counter__q;
-    reg  counter__clock;
+    reg  [16:0] count_ahead_stored__d;
+    wire  [16:0] count_ahead_stored__q;
+    reg  count_ahead_stored__clock;
     reg  [15:0] duty_now__d;
     wire  [15:0] duty_now__q;
     reg  duty_now__clock;
@@ -30822,18 +30852,21 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
     reg  [4:0] seq__d;
     wire  [4:0] seq__q;
     reg  seq__clock;
-    reg  [39:0] acc__d;
-    wire  [39:0] acc__q;
-    reg  acc__clock;
-    reg  [39:0] mcand__d;
-    wire  [39:0] mcand__q;
-    reg  mcand__clock;
+    reg  [19:0] product_hi__d;
+    wire  [19:0] product_hi__q;
+    reg  product_hi__clock;
+    reg  [16:0] product_lo__d;
+    wire  [16:0] product_lo__q;
+    reg  product_lo__clock;
+    reg  [23:0] remainder__d;
+    wire  [23:0] remainder__q;
+    reg  remainder__clock;
+    reg  [19:0] multiplicand__d;
+    wire  [19:0] multiplicand__q;
+    reg  multiplicand__clock;
     reg  [16:0] mplier__d;
     wire  [16:0] mplier__q;
     reg  mplier__clock;
-    reg  [39:0] root_bit__d;
-    wire  [39:0] root_bit__q;
-    reg  root_bit__clock;
     reg  [16:0] magnitude_b__d;
     wire  [16:0] magnitude_b__q;
     reg  magnitude_b__clock;
@@ -30849,6 +30882,9 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
     reg  divide_start__d;
     wire  divide_start__q;
     reg  divide_start__clock;
+    reg  b_last__d;
+    wire  b_last__q;
+    reg  b_last__clock;
     reg  divider__clock;
     reg  divider__reset;
     reg  divider__start;
@@ -30861,27 +30897,38 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
     wire  divider__divide_by_zero;
 
     // Local signals
-    reg  [39:0] sum;
-    reg  [39:0] trial;
-    reg  [39:0] root_next;
-    reg  [39:0] acc_next;
+    reg  [19:0] addend;
+    reg  [19:0] a_square_high;
+    reg  [20:0] sum;
+    reg  [19:0] product_hi_next;
+    reg  [16:0] product_lo_next;
+    reg  [23:0] widened;
+    reg  [23:0] subtrahend;
+    reg  [23:0] trial;
+    reg  [19:0] root_next;
+    reg  [19:0] radicand_hi;
+    reg  [39:0] product;
+    reg  [15:0] duty_high;
+    reg  [15:0] duty_word;
     reg  [16:0] magnitude_a;
     reg  [16:0] magnitude_b_in;
-    reg  [15:0] counter_next;
+    reg  [16:0] count_ahead;
+    reg  [16:0] count_ahead_next;
     reg  [15:0] duty_next;
     reg  wrap;
     reg  ended_next;
     reg  running;
     reg  last_step;
     reg  [15:0] target_duty;
-    reg  [39:0] ratio;
+    reg  [23:0] quotient_high;
+    reg  [19:0] ratio;
     reg  multiplying;
 
     // Sub module instances
-    motion_controller_servo__laser__engine__counter counter(
-        .d(counter__d),
-        .q(counter__q),
-        .clock(counter__clock)
+    motion_controller_servo__laser__engine__count_ahead_stored count_ahead_stored(
+        .d(count_ahead_stored__d),
+        .q(count_ahead_stored__q),
+        .clock(count_ahead_stored__clock)
     );
     motion_controller_servo__laser__engine__duty_now duty_now(
         .d(duty_now__d),
@@ -30923,25 +30970,30 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
         .q(seq__q),
         .clock(seq__clock)
     );
-    motion_controller_servo__laser__engine__acc acc(
-        .d(acc__d),
-        .q(acc__q),
-        .clock(acc__clock)
+    motion_controller_servo__laser__engine__product_hi product_hi(
+        .d(product_hi__d),
+        .q(product_hi__q),
+        .clock(product_hi__clock)
     );
-    motion_controller_servo__laser__engine__mcand mcand(
-        .d(mcand__d),
-        .q(mcand__q),
-        .clock(mcand__clock)
+    motion_controller_servo__laser__engine__product_lo product_lo(
+        .d(product_lo__d),
+        .q(product_lo__q),
+        .clock(product_lo__clock)
+    );
+    motion_controller_servo__laser__engine__remainder remainder(
+        .d(remainder__d),
+        .q(remainder__q),
+        .clock(remainder__clock)
+    );
+    motion_controller_servo__laser__engine__multiplicand multiplicand(
+        .d(multiplicand__d),
+        .q(multiplicand__q),
+        .clock(multiplicand__clock)
     );
     motion_controller_servo__laser__engine__mplier mplier(
         .d(mplier__d),
         .q(mplier__q),
         .clock(mplier__clock)
-    );
-    motion_controller_servo__laser__engine__root_bit root_bit(
-        .d(root_bit__d),
-        .q(root_bit__q),
-        .clock(root_bit__clock)
     );
     motion_controller_servo__laser__engine__magnitude_b magnitude_b(
         .d(magnitude_b__d),
@@ -30968,6 +31020,11 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
         .q(divide_start__q),
         .clock(divide_start__clock)
     );
+    motion_controller_servo__laser__engine__b_last b_last(
+        .d(b_last__d),
+        .q(b_last__q),
+        .clock(b_last__clock)
+    );
     motion_controller_servo__laser__engine__divider divider(
         .clock(divider__clock),
         .reset(divider__reset),
@@ -30983,7 +31040,7 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
 
     // Update code
     always @(*) begin
-        counter__clock = clock;
+        count_ahead_stored__clock = clock;
         duty_now__clock = clock;
         ended__clock = clock;
         committed__clock = clock;
@@ -30992,16 +31049,18 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
         speed_out__clock = clock;
         phase__clock = clock;
         seq__clock = clock;
-        acc__clock = clock;
-        mcand__clock = clock;
+        product_hi__clock = clock;
+        product_lo__clock = clock;
+        remainder__clock = clock;
+        multiplicand__clock = clock;
         mplier__clock = clock;
-        root_bit__clock = clock;
         magnitude_b__clock = clock;
         power_taken__clock = clock;
         feed_taken__clock = clock;
         factor_taken__clock = clock;
         divide_start__clock = clock;
-        counter__d = counter__q;
+        b_last__clock = clock;
+        count_ahead_stored__d = count_ahead_stored__q;
         duty_now__d = duty_now__q;
         ended__d = ended__q;
         committed__d = committed__q;
@@ -31010,31 +31069,64 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
         speed_out__d = speed_out__q;
         phase__d = phase__q;
         seq__d = seq__q;
-        acc__d = acc__q;
-        mcand__d = mcand__q;
+        product_hi__d = product_hi__q;
+        product_lo__d = product_lo__q;
+        remainder__d = remainder__q;
+        multiplicand__d = multiplicand__q;
         mplier__d = mplier__q;
-        root_bit__d = root_bit__q;
         magnitude_b__d = magnitude_b__q;
         power_taken__d = power_taken__q;
         feed_taken__d = feed_taken__q;
         factor_taken__d = factor_taken__q;
         divide_start__d = divide_start__q;
+        b_last__d = b_last__q;
         divider__clock = clock;
         pwm = pwm_out__q;
         duty = duty_now__q;
         speed = speed_out__q;
         busy = phase__q != code_idle;
-        sum = acc__q + mcand__q;
-        trial = acc__q - (mcand__q | root_bit__q);
-        root_next = mcand__q >> 32'h1;
-        if (~trial[32'h27]) begin
-            root_next = (mcand__q >> 32'h1) | root_bit__q;
-        end
-        acc_next = acc__q;
+        a_square_high = remainder__q[(32'h0)+:(20)];
+        addend = zero_h;
         if (mplier__q[32'h0]) begin
-            acc_next = sum;
+            addend = multiplicand__q;
         end
         last_step = seq__q == last_multiply;
+        b_last__d = (phase__q == code_square_b) & (seq__q == before_last_multiply);
+        if (b_last__q) begin
+            addend = a_square_high << 32'h1;
+        end
+        sum = ((product_hi__q) & 21'h1fffff) + ((addend) & 21'h1fffff);
+        product_hi_next = sum[(32'h1)+:(20)];
+        product_lo_next = product_lo__q >> 32'h1;
+        if (sum[32'h0]) begin
+            product_lo_next = (product_lo__q >> 32'h1) | lo_top;
+        end
+        widened = remainder__q << 32'h2;
+        if (product_hi__q[32'he]) begin
+            widened = (remainder__q << 32'h2) | two_24;
+        end
+        if (product_hi__q[32'hd]) begin
+            widened = widened | one_24;
+        end
+        subtrahend = (((multiplicand__q) & 24'hffffff) << 32'h2) | one_24;
+        trial = widened - subtrahend;
+        root_next = multiplicand__q << 32'h1;
+        if (~trial[32'h17]) begin
+            root_next = (multiplicand__q << 32'h1) | one_h;
+        end
+        radicand_hi = product_hi__q << 32'h2;
+        if (product_lo__q[32'h10]) begin
+            radicand_hi = (product_hi__q << 32'h2) | two_h;
+        end
+        if (product_lo__q[32'hf]) begin
+            radicand_hi = radicand_hi | one_h;
+        end
+        product = (((product_hi__q) & 40'hffffffffff) << 32'h11) | ((product_lo__q) & 40'hffffffffff);
+        duty_high = product_hi_next[(32'h0)+:(16)];
+        duty_word = duty_high << 32'h1;
+        if (sum[32'h0]) begin
+            duty_word = (duty_high << 32'h1) | one_r;
+        end
         magnitude_a = ((count_a) & 17'h1ffff);
         if (count_a[32'hf]) begin
             magnitude_a = ~(((count_a) & 17'h1ffff) | sign_17) + one_17;
@@ -31043,49 +31135,53 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
         if (count_b[32'hf]) begin
             magnitude_b_in = ~(((count_b) & 17'h1ffff) | sign_17) + one_17;
         end
-        ratio = divider__quotient;
-        if (divider__quotient >= ratio_one) begin
-            ratio = ratio_one;
+        ratio = divider__quotient[(32'h0)+:(20)];
+        quotient_high = divider__quotient[(32'h10)+:(24)];
+        if (quotient_high != zero_24) begin
+            ratio = ratio_one_h;
         end
         if (divider__divide_by_zero) begin
-            ratio = zero_acc;
+            ratio = zero_h;
         end
         divider__start = divide_start__q;
-        divider__dividend = acc__q;
+        divider__dividend = product;
         divider__divisor = feed_taken__q;
         divide_start__d = 1'b0;
         multiplying = (phase__q == code_square_a) | (phase__q == code_square_b) | (phase__q == code_times_factor) | (phase__q == code_times_power);
         if (multiplying) begin
-            acc__d = acc_next;
-            mcand__d = mcand__q << 32'h1;
+            product_hi__d = product_hi_next;
+            product_lo__d = product_lo_next;
             mplier__d = mplier__q >> 32'h1;
             seq__d = seq__q + one_seq;
         end
         if (phase__q == code_root) begin
-            if (~trial[32'h27]) begin
-                acc__d = trial;
+            product_hi__d = radicand_hi;
+            product_lo__d = product_lo__q << 32'h2;
+            remainder__d = widened;
+            if (~trial[32'h17]) begin
+                remainder__d = trial;
             end
-            mcand__d = root_next;
-            root_bit__d = root_bit__q >> 32'h2;
+            multiplicand__d = root_next;
             seq__d = seq__q + one_seq;
         end
         if ((phase__q == code_square_a) & last_step) begin
             phase__d = code_square_b;
             seq__d = zero_seq;
-            mcand__d = ((magnitude_b__q) & 40'hffffffffff);
+            product_hi__d = ((product_lo_next) & 20'hfffff);
+            remainder__d = ((product_hi_next) & 24'hffffff);
+            multiplicand__d = ((magnitude_b__q) & 20'hfffff);
             mplier__d = magnitude_b__q;
         end
         if ((phase__q == code_square_b) & last_step) begin
-            acc__d = acc_next << 32'h8;
             phase__d = code_root;
             seq__d = zero_seq;
-            mcand__d = zero_acc;
-            root_bit__d = root_start;
+            multiplicand__d = zero_h;
+            remainder__d = zero_remainder;
         end
         if ((phase__q == code_root) & (seq__q == last_root)) begin
             phase__d = code_times_factor;
             seq__d = zero_seq;
-            acc__d = zero_acc;
+            product_hi__d = zero_h;
             mplier__d = factor_taken__q;
             speed_out__d = root_next[(32'h4)+:(16)];
         end
@@ -31096,19 +31192,19 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
         if ((phase__q == code_divide) & divider__done) begin
             phase__d = code_times_power;
             seq__d = zero_seq;
-            acc__d = half_clock;
-            mcand__d = ratio;
+            product_hi__d = half_clock;
+            multiplicand__d = ratio;
             mplier__d = ((power_taken__q) & 17'h1ffff);
         end
         if ((phase__q == code_times_power) & last_step) begin
             phase__d = code_idle;
-            result__d = acc_next[(32'h10)+:(16)];
+            result__d = duty_word;
         end
         if ((phase__q == code_idle) & load) begin
             phase__d = code_square_a;
             seq__d = zero_seq;
-            acc__d = zero_acc;
-            mcand__d = ((magnitude_a) & 40'hffffffffff);
+            product_hi__d = zero_h;
+            multiplicand__d = ((magnitude_a) & 20'hfffff);
             mplier__d = magnitude_a;
             magnitude_b__d = magnitude_b_in;
             power_taken__d = power;
@@ -31130,23 +31226,27 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
             target = committed__q;
         end
         running = pwm_period >= two_r;
-        wrap = ~running | ((((counter__q) & 17'h1ffff) + one_17) >= ((pwm_period) & 17'h1ffff));
-        counter_next = counter__q + one_r;
+        count_ahead = count_ahead_stored__q ^ one_17;
+        wrap = ~running | (count_ahead >= ((pwm_period) & 17'h1ffff));
+        count_ahead_next = count_ahead + one_17;
         if (wrap) begin
-            counter_next = zero_r;
+            count_ahead_next = one_17;
         end
         duty_next = target_duty;
         if (kill) begin
             duty_next = zero_r;
         end
-        ended_next = (~wrap & ended__q) | (counter_next >= duty_next);
-        counter__d = counter_next;
+        ended_next = ended__q | (count_ahead >= ((duty_next) & 17'h1ffff));
+        if (wrap) begin
+            ended_next = duty_next == zero_r;
+        end
+        count_ahead_stored__d = count_ahead_next ^ one_17;
         duty_now__d = duty_next;
         ended__d = ended_next;
         pwm_out__d = enable & ~kill & running & ~ended_next;
         divider__reset = reset;
         if (reset) begin
-            counter__d = zero_r;
+            count_ahead_stored__d = zero_17;
             duty_now__d = zero_r;
             ended__d = 1'b0;
             committed__d = zero_r;
@@ -31155,38 +31255,40 @@ module motion_controller_servo__laser__engine(clock,reset,pwm_period,power,dynam
             speed_out__d = zero_16;
             phase__d = code_idle;
             seq__d = zero_seq;
-            acc__d = zero_acc;
-            mcand__d = zero_acc;
+            product_hi__d = zero_h;
+            product_lo__d = zero_17;
+            remainder__d = zero_remainder;
+            multiplicand__d = zero_h;
             mplier__d = zero_17;
-            root_bit__d = zero_acc;
             magnitude_b__d = zero_17;
             power_taken__d = zero_r;
             feed_taken__d = zero_f;
             factor_taken__d = zero_17;
             divide_start__d = 1'b0;
+            b_last__d = 1'b0;
         end
     end
 
 endmodule // motion_controller_servo__laser__engine
 
 
-module motion_controller_servo__laser__engine__acc(d,q,clock);
+module motion_controller_servo__laser__engine__b_last(d,q,clock);
 
     // Module arguments
-    input wire  [39:0] d;
-    output reg  [39:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 40'h0;
+       q = 1'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__laser__engine__acc
+endmodule // motion_controller_servo__laser__engine__b_last
 
 
 module motion_controller_servo__laser__engine__committed(d,q,clock);
@@ -31208,23 +31310,23 @@ module motion_controller_servo__laser__engine__committed(d,q,clock);
 endmodule // motion_controller_servo__laser__engine__committed
 
 
-module motion_controller_servo__laser__engine__counter(d,q,clock);
+module motion_controller_servo__laser__engine__count_ahead_stored(d,q,clock);
 
     // Module arguments
-    input wire  [15:0] d;
-    output reg  [15:0] q;
+    input wire  [16:0] d;
+    output reg  [16:0] q;
     input wire  clock;
 
     // Update code (custom)
     initial begin
-       q = 16'h0;
+       q = 17'h0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
 
-endmodule // motion_controller_servo__laser__engine__counter
+endmodule // motion_controller_servo__laser__engine__count_ahead_stored
 
 
 module motion_controller_servo__laser__engine__divide_start(d,q,clock);
@@ -31684,25 +31786,6 @@ module motion_controller_servo__laser__engine__magnitude_b(d,q,clock);
 endmodule // motion_controller_servo__laser__engine__magnitude_b
 
 
-module motion_controller_servo__laser__engine__mcand(d,q,clock);
-
-    // Module arguments
-    input wire  [39:0] d;
-    output reg  [39:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 40'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__laser__engine__mcand
-
-
 module motion_controller_servo__laser__engine__mplier(d,q,clock);
 
     // Module arguments
@@ -31720,6 +31803,25 @@ module motion_controller_servo__laser__engine__mplier(d,q,clock);
     end
 
 endmodule // motion_controller_servo__laser__engine__mplier
+
+
+module motion_controller_servo__laser__engine__multiplicand(d,q,clock);
+
+    // Module arguments
+    input wire  [19:0] d;
+    output reg  [19:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 20'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__laser__engine__multiplicand
 
 
 module motion_controller_servo__laser__engine__phase(d,q,clock);
@@ -31760,6 +31862,44 @@ module motion_controller_servo__laser__engine__power_taken(d,q,clock);
 endmodule // motion_controller_servo__laser__engine__power_taken
 
 
+module motion_controller_servo__laser__engine__product_hi(d,q,clock);
+
+    // Module arguments
+    input wire  [19:0] d;
+    output reg  [19:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 20'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__laser__engine__product_hi
+
+
+module motion_controller_servo__laser__engine__product_lo(d,q,clock);
+
+    // Module arguments
+    input wire  [16:0] d;
+    output reg  [16:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 17'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__laser__engine__product_lo
+
+
 module motion_controller_servo__laser__engine__pwm_out(d,q,clock);
 
     // Module arguments
@@ -31779,6 +31919,25 @@ module motion_controller_servo__laser__engine__pwm_out(d,q,clock);
 endmodule // motion_controller_servo__laser__engine__pwm_out
 
 
+module motion_controller_servo__laser__engine__remainder(d,q,clock);
+
+    // Module arguments
+    input wire  [23:0] d;
+    output reg  [23:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 24'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__laser__engine__remainder
+
+
 module motion_controller_servo__laser__engine__result(d,q,clock);
 
     // Module arguments
@@ -31796,25 +31955,6 @@ module motion_controller_servo__laser__engine__result(d,q,clock);
     end
 
 endmodule // motion_controller_servo__laser__engine__result
-
-
-module motion_controller_servo__laser__engine__root_bit(d,q,clock);
-
-    // Module arguments
-    input wire  [39:0] d;
-    output reg  [39:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 40'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // motion_controller_servo__laser__engine__root_bit
 
 
 module motion_controller_servo__laser__engine__seq(d,q,clock);
@@ -32314,6 +32454,25 @@ module motion_controller_servo__laser__overflow(d,q,clock);
     end
 
 endmodule // motion_controller_servo__laser__overflow
+
+
+module motion_controller_servo__laser__power(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // motion_controller_servo__laser__power
 
 
 module motion_controller_servo__laser__pwm_period(d,q,clock);
@@ -33761,7 +33920,7 @@ module motion_controller_servo__registers(clock,reset,address,write_data,write,r
     localparam  a_period_count = 8'hd;
     localparam  a_stop_cause = 8'h10;
     localparam  id_value = 32'h4d484443;
-    localparam  version_value = 32'h900;
+    localparam  version_value = 32'ha00;
     localparam  config_value = 32'h7610403;
     localparam  m_state_running = 32'h1;
     localparam  m_state_watchdog_armed = 32'h2;

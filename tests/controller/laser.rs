@@ -49,18 +49,23 @@ fn setup(b: &mut Laser3, period: u32, pwm: u32, dynamic: bool) {
     b.write("LASER_CONTROL", 0, control);
 }
 
-/// Writes the next period's four entries when the FIFOs have room.
+/// Writes the next period's four entries when the FIFOs have room (only
+/// the axes' three when the power is by register: `LASER_CONTROL.SOURCE`).
 fn feed_fifos(b: &mut Laser3, periods: &[Period], next: &mut usize) {
+    let control = b.model().laser().read(registers::laser::LASER_CONTROL);
+    let by_register = control >> fields::LASER_SOURCE & 1 != 0;
     while *next < periods.len() && b.model().axes()[0].fifo_level() < 12 {
         let p = periods[*next];
         for (axis, steps) in p.steps.iter().enumerate() {
             b.write("FIFO_WRITE", axis as u32, *steps as u32);
         }
-        let entry = b.pack(
-            "LASER_FIFO",
-            &[("POWER", p.power as u64), ("FEED", p.feed16 as u64)],
-        );
-        b.write("LASER_FIFO", 0, entry);
+        if !by_register {
+            let entry = b.pack(
+                "LASER_FIFO",
+                &[("POWER", p.power as u64), ("FEED", p.feed16 as u64)],
+            );
+            b.write("LASER_FIFO", 0, entry);
+        }
         *next += 1;
     }
 }
@@ -72,6 +77,8 @@ struct Trace {
     laser: Vec<bool>,
     /// (clock, axis) of each step edge.
     steps: Vec<(usize, usize)>,
+    /// Clocks with the laser FIFO in the run (`LASER_STATUS.ACTIVE`).
+    active_clocks: usize,
 }
 
 /// Runs `periods` as a burn on `b`, holding the feed from `hold.0` to
@@ -95,6 +102,8 @@ fn burn(b: &mut Laser3, periods: &[Period], hold: Option<(usize, usize)>) -> Tra
         feed_fifos(b, periods, &mut next);
         let out = b.clock(false, 0, 0, false, false).clone();
         trace.laser.push(out.laser);
+        let status = b.model().laser().read(registers::laser::LASER_STATUS);
+        trace.active_clocks += (status >> fields::LASER_ACTIVE & 1) as usize;
         for (axis, was) in previous.iter_mut().enumerate() {
             if out.steps[axis].0 && !*was {
                 trace.steps.push((trace.laser.len() - 1, axis));
@@ -299,6 +308,106 @@ fn a_periods_power_reaches_the_pin_within_the_stated_lag() {
     }
 }
 
+/// The power by register (`LASER_CONTROL.SOURCE` = 1, one `LASER_POWER`
+/// write for the whole burn): the same corner and hold as
+/// [`dynamic_power_keeps_the_energy_per_step_through_a_corner_and_a_hold_at_the_pins`]
+/// with the axes' FIFOs alone pacing the run. The laser FIFO stays out
+/// (ACTIVE 0, no entry, no underrun) and the energy per step holds.
+#[test]
+fn the_power_by_register_keeps_the_energy_per_step_without_the_laser_fifo() {
+    let expected = POWER as f64 / PWM as f64 * PERIOD as f64 / FEED;
+    let path = corner(FEED, POWER);
+    let mut b = Laser3::new();
+    setup(&mut b, PERIOD, PWM, true);
+    let control = b.read("LASER_CONTROL", 0) | 1 << fields::LASER_SOURCE;
+    b.write("LASER_CONTROL", 0, control);
+    let power = b.pack(
+        "LASER_POWER",
+        &[("POWER", POWER as u64), ("FEED", (FEED * 16.0) as u64)],
+    );
+    b.write("LASER_POWER", 0, power);
+    assert_eq!(b.read("LASER_POWER", 0), power);
+    let rate = b.pack("HOLD_CONTROL", &[("RATE", 8)]);
+    b.write("HOLD_CONTROL", 0, rate);
+    let hold_from = 50 * PERIOD as usize;
+    let trace = burn(&mut b, &path, Some((hold_from, hold_from + 40_000)));
+    let net: i64 = path
+        .iter()
+        .map(|p| p.steps[0] as i64 + p.steps[1] as i64)
+        .sum();
+    assert_eq!(trace.steps.len() as i64, net, "every step reached the pins");
+    assert_eq!(trace.active_clocks, 0, "the laser FIFO took part");
+    let (worst, windows) = energy_spread(&trace, WINDOW, 8.0, WINDOW, expected);
+    println!(
+        "power by register, through the corner and the hold: worst {:.2} % over {windows} windows",
+        worst * 100.0
+    );
+    assert!(windows > 40, "{windows}");
+    assert!(
+        worst <= 0.05,
+        "energy per step off by {:.1} %",
+        worst * 100.0
+    );
+}
+
+/// A `LASER_POWER` write during a run is the duty in force within
+/// [`LASER_LAG`] clocks, constant power: from one PWM period after the
+/// lag, every PWM period has the written POWER high clocks, until the
+/// next write.
+#[test]
+fn a_power_written_by_register_reaches_the_pin_within_the_stated_lag() {
+    let mut b = Laser3::new();
+    setup(&mut b, 2000, 100, false);
+    let control = b.read("LASER_CONTROL", 0) | 1 << fields::LASER_SOURCE;
+    b.write("LASER_CONTROL", 0, control);
+    let path: Vec<Period> = (0..8)
+        .map(|_| Period {
+            steps: [10, 0, 0],
+            power: 0,
+            feed16: 0,
+        })
+        .collect();
+    let mut next = 0;
+    feed_fifos(&mut b, &path, &mut next);
+    b.write("CONTROL", 0, 1);
+    // Writes 1500 clocks apart, not aligned with the periods.
+    let powers = [30u32, 100, 0, 55, 120, 7];
+    let address = b.address("LASER_POWER", 0);
+    let mut laser = Vec::new();
+    let mut writes = Vec::new();
+    for clock in 0..powers.len() * 1500 + 300 {
+        feed_fifos(&mut b, &path, &mut next);
+        let out = if clock % 1500 == 300 {
+            let power = powers[clock / 1500];
+            writes.push((clock, power));
+            b.clock(false, address, power | 40 << 16, true, false)
+        } else {
+            b.clock(false, 0, 0, false, false)
+        };
+        laser.push(out.laser);
+        assert!(out.running, "clock {clock}: RUN fell (an underrun?)");
+    }
+    let status = b.model().laser().read(registers::laser::LASER_STATUS);
+    assert_eq!(
+        status >> fields::LASER_ACTIVE & 1,
+        0,
+        "ACTIVE without the FIFO"
+    );
+    for (k, &(at, power)) in writes.iter().enumerate() {
+        let from = at + 1 + LASER_LAG as usize + 100;
+        let to = writes.get(k + 1).map_or(laser.len(), |w| w.0);
+        // Full power (at or above the PWM period) is a steady high.
+        let expected = power.min(100) as i64;
+        for first in from..to - 100 {
+            let highs = laser[first..first + 100].iter().filter(|&&h| h).count();
+            assert!(
+                (highs as i64 - expected).abs() <= 1,
+                "write {k}, clocks {first}..+100: {highs} high, power {power}"
+            );
+        }
+    }
+}
+
 /// An E-stop turns `laser_pwm` off at s + [`latency::LASER_OFF`] after its
 /// filtered level is set at s; the hold's stop turns it off in the clock
 /// after the factor reaches 0.
@@ -367,9 +476,10 @@ fn an_estop_and_the_holds_stop_turn_the_laser_off_within_the_stated_clocks() {
     assert!(b.model().feed_hold().held() && fired_while_moving);
 }
 
-/// Random traffic to the laser's registers: enables, modes, planes (axes
-/// beyond K too), PWM periods, FIFO entries, overflow clears, reads of
-/// every register and junk in the unit's unused words.
+/// Random traffic to the laser's registers: enables, modes, sources,
+/// planes (axes beyond K too), PWM periods, FIFO entries, register
+/// powers, overflow clears, reads of every register and junk in the
+/// unit's unused words.
 fn laser_bus(rng: &mut StdRng, b: &Laser3) -> (bool, u32, u32, bool, bool) {
     let w = |name: &str, value: u32| (false, b.address(name, 0), value, true, false);
     match rng.gen_range(0..100) {
@@ -380,7 +490,8 @@ fn laser_bus(rng: &mut StdRng, b: &Laser3) -> (bool, u32, u32, bool, bool) {
                 "LASER_STATUS",
                 "LASER_OUTPUT",
                 "LASER_FIFO",
-            ][rng.gen_range(0..5)];
+                "LASER_POWER",
+            ][rng.gen_range(0..6)];
             (false, b.address(name, 0), 0, false, true)
         }
         30..=37 => {
@@ -390,6 +501,7 @@ fn laser_bus(rng: &mut StdRng, b: &Laser3) -> (bool, u32, u32, bool, bool) {
                     ("ENABLE", !rng.gen_ratio(1, 5) as u64),
                     ("DYNAMIC", rng.gen_ratio(2, 3) as u64),
                     ("CLEAR_OVERFLOW", rng.gen_ratio(1, 4) as u64),
+                    ("SOURCE", rng.gen_ratio(1, 3) as u64),
                     ("AXIS_A", [0, 0, 1, 2, 5][rng.gen_range(0..5)]),
                     ("AXIS_B", [1, 1, 0, 2, 7][rng.gen_range(0..5)]),
                 ],
@@ -400,7 +512,12 @@ fn laser_bus(rng: &mut StdRng, b: &Laser3) -> (bool, u32, u32, bool, bool) {
             "LASER_PWM_PERIOD",
             [0u32, 1, 2, 7, 40, 100, 1000, 70_000][rng.gen_range(0..8)],
         ),
-        42..=89 => {
+        42..=49 => {
+            let power = [0, rng.gen_range(0..60), rng.gen_range(0..0x10000)][rng.gen_range(0..3)];
+            let feed = [0, rng.gen_range(1..800), rng.gen_range(0..0x10000)][rng.gen_range(0..3)];
+            w("LASER_POWER", power | feed << 16)
+        }
+        50..=89 => {
             let power = match rng.gen_range(0..6) {
                 0 => 0,
                 1 => rng.gen_range(0..0x10000),
@@ -414,7 +531,7 @@ fn laser_bus(rng: &mut StdRng, b: &Laser3) -> (bool, u32, u32, bool, bool) {
             w("LASER_FIFO", power | feed << 16)
         }
         // Junk in the unit's unused words.
-        _ => (false, 0xf5 + rng.gen_range(0..11), rng.gen(), true, false),
+        _ => (false, 0xf6 + rng.gen_range(0..10), rng.gen(), true, false),
     }
 }
 
@@ -425,6 +542,8 @@ struct Coverage {
     /// Clocks with a duty in force between 0 and the period's power.
     scaled_clocks: u64,
     running_active: u64,
+    /// Clocks high with the power by register (`SOURCE`).
+    register_high_clocks: u64,
     overflows: u64,
 }
 
@@ -500,6 +619,9 @@ fn laser_chaos(b: &mut Laser3, seed: u64, clocks: u64) -> Coverage {
         let status = laser.read(registers::laser::LASER_STATUS);
         let flag = |bit: u32| status >> bit & 1 != 0;
         cover.running_active += (b.model().running() && flag(fields::LASER_ACTIVE)) as u64;
+        let control = laser.read(registers::laser::LASER_CONTROL);
+        cover.register_high_clocks +=
+            (out.laser && control >> fields::LASER_SOURCE & 1 != 0) as u64;
         let now = flag(fields::LASER_OVERFLOW);
         cover.overflows += (now && !overflow) as u64;
         overflow = now;
@@ -516,6 +638,7 @@ fn laser_build_matches_its_model_under_random_traffic() {
     assert!(cover.high_clocks > 10_000, "{cover:?}");
     assert!(cover.scaled_clocks > 1_000, "{cover:?}");
     assert!(cover.running_active > 10_000, "{cover:?}");
+    assert!(cover.register_high_clocks > 1_000, "{cover:?}");
     assert!(cover.overflows > 0, "{cover:?}");
 }
 

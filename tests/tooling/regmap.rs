@@ -682,6 +682,9 @@ fn the_field_constants_agree_with_the_maps() {
         ("LASER_STATUS", "BUSY", f::LASER_BUSY, 1, l + 3),
         ("LASER_OUTPUT", "DUTY", f::LASER_POWER, word, l + 4),
         ("LASER_OUTPUT", "SPEED", f::LASER_SPEED, word, l + 4),
+        ("LASER_CONTROL", "SOURCE", f::LASER_SOURCE, 1, l),
+        ("LASER_POWER", "POWER", f::LASER_POWER, word, l + 5),
+        ("LASER_POWER", "FEED", f::LASER_FEED, word, l + 5),
     ] {
         check(&laser, register, field, lsb, width);
         assert_eq!(
@@ -691,8 +694,13 @@ fn the_field_constants_agree_with_the_maps() {
         );
     }
     assert_eq!(
-        laser.register("LASER_OUTPUT").unwrap().address,
-        mc::laser::LASER_OUTPUT
+        laser.register("LASER_POWER").unwrap().address,
+        mc::laser::LASER_POWER
+    );
+    assert_eq!(
+        mc::laser::BASE + mc::laser::WORDS,
+        mc::laser::LASER_POWER + 1,
+        "the unit's last word"
     );
     assert!(laser.register("GEAR_CONTROL").is_err());
     assert!(without_spindle.register("LASER_CONTROL").is_err());

@@ -5,11 +5,13 @@
 //! [`super`] ("Laser PWM") and modelled by
 //! [`super::laser_model::LaserUnitModel`].
 //!
-//! * **Per period.** With `LASER_CONTROL.ENABLE` at a start the laser
-//!   FIFO takes part in the run: at every boundary its head pops with the
-//!   axes' entries and becomes the period's (POWER, FEED); an empty laser
-//!   FIFO at a boundary is an underrun like an empty axis FIFO. When RUN
-//!   falls the period's entry becomes 0.
+//! * **Per period.** With `LASER_CONTROL.ENABLE` and not `SOURCE` at a
+//!   start the laser FIFO takes part in the run: at every boundary its
+//!   head pops with the axes' entries and becomes the period's (POWER,
+//!   FEED); an empty laser FIFO at a boundary is an underrun like an empty
+//!   axis FIFO. When RUN falls the period's entry becomes 0.
+//! * **By register.** With `SOURCE` the engine takes (POWER, FEED) from
+//!   `LASER_POWER` instead of the period's entry, in every clock.
 //! * **The duty engine runs free**: it takes a `load` in every clock it is
 //!   idle, with the running period's step counts of the plane's two axes
 //!   (their |entry|, saturated to 2^15 - 1), its POWER and FEED and the
@@ -53,7 +55,7 @@ field_slices! {
 // constant by name); each is tied to the map here.
 const _: () = {
     assert!(fields::LASER_ENABLE == 0 && fields::LASER_DYNAMIC == 1);
-    assert!(fields::LASER_CLEAR_OVERFLOW == 2);
+    assert!(fields::LASER_CLEAR_OVERFLOW == 2 && fields::LASER_SOURCE == 3);
     assert!(fields::LASER_OVERFLOW == 8 && fields::LASER_ACTIVE == 9);
     assert!(fields::LASER_BUSY == 10 && fields::LASER_SPEED == 16);
     assert!(fields::LASER_WORD_WIDTH == 16);
@@ -111,6 +113,8 @@ pub struct LaserUnit<const N: usize, const NP1: usize> {
     pwm_period: DFF<Bits<16>>,
     /// The running period's entry: POWER, FEED.
     entry: DFF<Bits<32>>,
+    /// `LASER_POWER`: POWER, FEED by register.
+    power: DFF<Bits<32>>,
     /// The laser FIFO takes part in the run.
     active: DFF<Bit>,
     overflow: DFF<Bit>,
@@ -121,7 +125,9 @@ pub struct LaserUnit<const N: usize, const NP1: usize> {
     saturated_a: Signal<Local, Bits<16>>,
     saturated_b: Signal<Local, Bits<16>>,
     status_word: Signal<Local, Bits<32>>,
-    /// The period's FEED, zero-extended to the engine's 24 bits.
+    /// The engine's (POWER, FEED): the period's entry or `LASER_POWER`.
+    setpoint: Signal<Local, Bits<32>>,
+    /// The setpoint's FEED, zero-extended to the engine's 24 bits.
     entry_feed: Signal<Local, Bits<16>>,
 
     a_control: Constant<Bits<8>>,
@@ -129,6 +135,7 @@ pub struct LaserUnit<const N: usize, const NP1: usize> {
     a_fifo: Constant<Bits<8>>,
     a_status: Constant<Bits<8>>,
     a_output: Constant<Bits<8>>,
+    a_power: Constant<Bits<8>>,
     control_mask: Constant<Bits<32>>,
     count_max: Constant<Bits<16>>,
     zero16: Constant<Bits<16>>,
@@ -144,6 +151,7 @@ impl<const N: usize, const NP1: usize> Default for LaserUnit<N, NP1> {
         let field_mask = |lsb: u32, width: u32| crate::blocks::width_mask(width) << lsb;
         let control_mask = field_mask(fields::LASER_ENABLE, 1)
             | field_mask(fields::LASER_DYNAMIC, 1)
+            | field_mask(fields::LASER_SOURCE, 1)
             | field_mask(fields::LASER_AXIS_A, fields::LASER_AXIS_WIDTH)
             | field_mask(fields::LASER_AXIS_B, fields::LASER_AXIS_WIDTH);
         let a = |address: u32| konst(address as u64);
@@ -172,6 +180,7 @@ impl<const N: usize, const NP1: usize> Default for LaserUnit<N, NP1> {
             control: Default::default(),
             pwm_period: Default::default(),
             entry: Default::default(),
+            power: Default::default(),
             active: Default::default(),
             overflow: Default::default(),
             busy_prev: Default::default(),
@@ -180,12 +189,14 @@ impl<const N: usize, const NP1: usize> Default for LaserUnit<N, NP1> {
             saturated_a: Default::default(),
             saturated_b: Default::default(),
             status_word: Default::default(),
+            setpoint: Default::default(),
             entry_feed: Default::default(),
             a_control: a(laser::LASER_CONTROL),
             a_period: a(laser::LASER_PWM_PERIOD),
             a_fifo: a(laser::LASER_FIFO),
             a_status: a(laser::LASER_STATUS),
             a_output: a(laser::LASER_OUTPUT),
+            a_power: a(laser::LASER_POWER),
             control_mask: konst(control_mask),
             count_max: konst(0x7fff),
             zero16: konst(0),
@@ -201,7 +212,7 @@ impl<const N: usize, const NP1: usize> Default for LaserUnit<N, NP1> {
 impl<const N: usize, const NP1: usize> Logic for LaserUnit<N, NP1> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, control, pwm_period, entry, active, overflow, busy_prev);
+        dff_setup!(self, clock, control, pwm_period, entry, power, active, overflow, busy_prev);
         clock!(self, clock, fifo, engine);
 
         // Registers.
@@ -211,6 +222,9 @@ impl<const N: usize, const NP1: usize> Logic for LaserUnit<N, NP1> {
         }
         if self.write.val() & (self.address.val() == self.a_period.val()) {
             self.pwm_period.d.next = self.write_data.val().get_value_word();
+        }
+        if self.write.val() & (self.address.val() == self.a_power.val()) {
+            self.power.d.next = self.write_data.val();
         }
         self.axis_a.next = self.control.q.val().get_value_axis_a();
         self.axis_b.next = self.control.q.val().get_value_axis_b();
@@ -232,10 +246,11 @@ impl<const N: usize, const NP1: usize> Logic for LaserUnit<N, NP1> {
         }
         self.ready.next = !self.active.q.val() | !self.fifo.empty.val();
 
-        // The run: ENABLE at the start decides whether the FIFO takes
-        // part; the period's entry is the popped head, 0 once RUN falls.
+        // The run: ENABLE without SOURCE at the start decides whether the
+        // FIFO takes part; the period's entry is the popped head, 0 once
+        // RUN falls.
         if self.start.val() {
-            self.active.d.next = self.control.q.val().get_bit(0);
+            self.active.d.next = self.control.q.val().get_bit(0) & !self.control.q.val().get_bit(3);
         }
         if self.pop.val() & self.active.q.val() {
             self.entry.d.next = self.fifo.head.val();
@@ -257,13 +272,17 @@ impl<const N: usize, const NP1: usize> Logic for LaserUnit<N, NP1> {
         self.busy_prev.d.next = self.engine.busy.val();
         self.engine.reset.next = self.reset.val();
         self.engine.pwm_period.next = self.pwm_period.q.val();
-        self.engine.power.next = self.entry.q.val().get_value_word();
+        self.setpoint.next = self.entry.q.val();
+        if self.control.q.val().get_bit(3) {
+            self.setpoint.next = self.power.q.val();
+        }
+        self.engine.power.next = self.setpoint.val().get_value_word();
         self.engine.dynamic.next = self.control.q.val().get_bit(1);
         self.engine.load.next = !self.engine.busy.val();
         self.engine.commit.next = self.busy_prev.q.val() & !self.engine.busy.val();
         self.engine.count_a.next = self.saturated_a.val();
         self.engine.count_b.next = self.saturated_b.val();
-        self.entry_feed.next = self.entry.q.val().get_value_feed();
+        self.entry_feed.next = self.setpoint.val().get_value_feed();
         self.engine.feed.next = bit_cast::<24, 16>(self.entry_feed.val());
         self.engine.factor.next = self.factor.val();
         // Off in the clock RUN falls, so that the registered pin is low
@@ -298,11 +317,15 @@ impl<const N: usize, const NP1: usize> Logic for LaserUnit<N, NP1> {
             self.read_data.next = bit_cast::<32, 16>(self.engine.duty.val())
                 | (bit_cast::<32, 16>(self.engine.speed.val()) << 16);
         }
+        if self.address.val() == self.a_power.val() {
+            self.read_data.next = self.power.q.val();
+        }
 
         if self.reset.val() {
             self.control.d.next = self.zero32.val();
             self.pwm_period.d.next = self.zero16.val();
             self.entry.d.next = self.zero32.val();
+            self.power.d.next = self.zero32.val();
             self.active.d.next = false;
             self.overflow.d.next = false;
             self.busy_prev.d.next = false;

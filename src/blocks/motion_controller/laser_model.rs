@@ -48,6 +48,8 @@ pub struct LaserUnitModel {
     control: u32,
     pwm_period: u64,
     entry: u32,
+    /// `LASER_POWER`.
+    power: u32,
     active: bool,
     overflow: bool,
     busy_prev: bool,
@@ -72,6 +74,7 @@ impl LaserUnitModel {
             control: 0,
             pwm_period: 0,
             entry: 0,
+            power: 0,
             active: false,
             overflow: false,
             busy_prev: false,
@@ -116,21 +119,27 @@ impl LaserUnitModel {
             laser::LASER_OUTPUT => {
                 self.engine_out.duty as u32 | (self.engine_out.speed as u32) << fields::LASER_SPEED
             }
+            laser::LASER_POWER => self.power,
             _ => 0,
         }
     }
 
     fn engine_inputs(&self, i: &LaserUnitInputs) -> LaserInputs {
+        let setpoint = if bit_set(self.control, fields::LASER_SOURCE) {
+            self.power
+        } else {
+            self.entry
+        };
         LaserInputs {
             reset: i.reset,
             pwm_period: self.pwm_period,
-            power: field_value(self.entry, fields::LASER_POWER, WORD) as u64,
+            power: field_value(setpoint, fields::LASER_POWER, WORD) as u64,
             dynamic: bit_set(self.control, fields::LASER_DYNAMIC),
             load: !self.engine_out.busy,
             commit: self.busy_prev && !self.engine_out.busy,
             count_a: i.counts.0.min(COUNT_MAX),
             count_b: i.counts.1.min(COUNT_MAX),
-            feed: field_value(self.entry, fields::LASER_FEED, WORD) as u64,
+            feed: field_value(setpoint, fields::LASER_FEED, WORD) as u64,
             factor: i.factor,
             enable: bit_set(self.control, fields::LASER_ENABLE) && i.running && !i.stop,
             kill: i.kill,
@@ -151,6 +160,9 @@ impl LaserUnitModel {
         if write(laser::LASER_PWM_PERIOD) {
             next.pwm_period = field_value(i.write_data, fields::LASER_POWER, WORD) as u64;
         }
+        if write(laser::LASER_POWER) {
+            next.power = i.write_data;
+        }
         if control_write && bit_set(i.write_data, fields::LASER_CLEAR_OVERFLOW) {
             next.overflow = false;
         }
@@ -166,7 +178,8 @@ impl LaserUnitModel {
             false,
         );
         if i.start {
-            next.active = bit_set(self.control, fields::LASER_ENABLE);
+            next.active = bit_set(self.control, fields::LASER_ENABLE)
+                && !bit_set(self.control, fields::LASER_SOURCE);
         }
         if pop {
             next.entry = self.fifo_out.head as u32;
@@ -181,6 +194,7 @@ impl LaserUnitModel {
             next.control = 0;
             next.pwm_period = 0;
             next.entry = 0;
+            next.power = 0;
             next.active = false;
             next.overflow = false;
             next.busy_prev = false;

@@ -423,17 +423,18 @@
 //!   reads 0 and `STATUS.SPINDLE` is never set: synthesis removes the unit
 //!   and every axis's merge. The ports are the same in every build.
 //!
-//! ## Laser PWM (VERSION 0.9.0; build option `LASER`)
+//! ## Laser PWM (VERSION 0.9.0, the register power 0.10.0; build option `LASER`)
 //! On in `motion_controller_dda_laser` ([`MotionController3DdaLaser`]);
 //! [`laser`]. A laser's power tied to the path: the duty of `laser_pwm`
 //! is set per period from a FIFO and, in dynamic mode (grbl's M4), scaled
 //! in gateware by the path's speed over the programmed feed, so that the
 //! energy per millimetre holds through accelerations, corners and a feed
-//! hold.
+//! hold. The power and feed may instead be held in a register.
 //! * **Registers** (see the register map): `LASER_CONTROL` (ENABLE,
-//!   DYNAMIC, CLEAR_OVERFLOW, the plane's AXIS_A and AXIS_B),
+//!   DYNAMIC, CLEAR_OVERFLOW, SOURCE, the plane's AXIS_A and AXIS_B),
 //!   `LASER_PWM_PERIOD`, `LASER_FIFO`, `LASER_STATUS` (LEVEL, OVERFLOW,
-//!   ACTIVE, BUSY) and `LASER_OUTPUT` (DUTY, SPEED), from `0xF0` in the
+//!   ACTIVE, BUSY), `LASER_OUTPUT` (DUTY, SPEED) and `LASER_POWER`
+//!   (POWER, FEED), from `0xF0` in the
 //!   spindle's window: a `LASER` build has at most
 //!   [`registers::MAX_AXES_SPINDLE`] = 6 axes.
 //! * **The PWM** is a [`LaserPwm`](crate::blocks::laser_pwm) (R = 16,
@@ -453,6 +454,15 @@
 //!   falls the period's entry becomes 0 and ACTIVE clears. A write to a
 //!   full laser FIFO (no pop freeing a slot in that clock) is refused and
 //!   sets the sticky `OVERFLOW`. `CONTROL.FLUSH` empties it with the axes'.
+//! * **By register.** With `LASER_CONTROL.SOURCE` = 1 the duty engine
+//!   takes POWER and FEED from `LASER_POWER` (a FIFO entry's layout)
+//!   instead of the period's entry, in every clock: a write reaches the
+//!   duty within [`laser::LASER_LAG`] clocks, as a new period does. A run
+//!   started with SOURCE = 1 leaves the laser FIFO out (ACTIVE stays 0, no
+//!   pop, no underrun): the axes' FIFOs alone pace it. For constant power
+//!   over a whole job, or a host that sets the power per segment and not
+//!   per period. SOURCE changed during a run switches the engine's input
+//!   at once; whether the FIFO pops was settled at the start.
 //! * **The duty.** Constant (DYNAMIC = 0, M3): the period's POWER.
 //!   Dynamic (M4): POWER x min(1, v x f / FEED), rounded to the nearest
 //!   clock, where v = sqrt(a^2 + b^2) in 1/16 step is the vector speed of

@@ -19,7 +19,7 @@ use crate::regmap::{field, register, Access, Field, RegMapError, Register, Regis
 
 /// `ID` register value: "MHDC".
 pub const ID_VALUE: u32 = 0x4d48_4443;
-/// `VERSION` register value: major 0, minor 6, patch 1 (minor 2: machine
+/// `VERSION` register value: major 0, minor 10, patch 0 (minor 2: machine
 /// I/O, 32-word axis windows; minor 3: analog axes, `CONFIG.ANALOG`;
 /// patch 1: on a uniform axis, `INTERP_OVERRANGE` for |n| > P/2 is set
 /// when the axis's period plan arrives from the shared planner, not two
@@ -38,8 +38,9 @@ pub const ID_VALUE: u32 = 0x4d48_4443;
 /// spindle encoder and the electronic gearbox (`SPINDLE_*`, `GEAR_*`,
 /// `STATUS.SPINDLE`, `CONFIG.SPINDLE`, the `spindle_*` pins). Minor 9:
 /// the laser PWM tied to the path (`LASER_*`, `CONFIG.LASER`, the
-/// `laser_pwm` pin).
-pub const VERSION_VALUE: u32 = 0x0000_0900;
+/// `laser_pwm` pin). Minor 10: the laser's power by register
+/// (`LASER_POWER`, `LASER_CONTROL.SOURCE`).
+pub const VERSION_VALUE: u32 = 0x0000_0a00;
 
 /// Word addresses of the global registers.
 pub mod global {
@@ -329,15 +330,20 @@ pub mod fields {
     pub const LASER_DYNAMIC: u32 = 1;
     /// `LASER_CONTROL.CLEAR_OVERFLOW`: write 1 to clear `LASER_STATUS.OVERFLOW`.
     pub const LASER_CLEAR_OVERFLOW: u32 = 2;
+    /// `LASER_CONTROL.SOURCE`: 1 = each period's POWER and FEED come from
+    /// `LASER_POWER`, and the laser FIFO stays out of the run.
+    pub const LASER_SOURCE: u32 = 3;
     /// `LASER_CONTROL.AXIS_A`: the plane's first axis.
     pub const LASER_AXIS_A: u32 = 4;
     /// `LASER_CONTROL.AXIS_B`: the plane's second axis.
     pub const LASER_AXIS_B: u32 = 8;
     /// Width of `LASER_CONTROL.AXIS_A` and `AXIS_B`.
     pub const LASER_AXIS_WIDTH: u32 = 3;
-    /// `LASER_FIFO.POWER` and `LASER_OUTPUT.DUTY`: clocks high per PWM period.
+    /// `LASER_FIFO.POWER`, `LASER_POWER.POWER` and `LASER_OUTPUT.DUTY`:
+    /// clocks high per PWM period.
     pub const LASER_POWER: u32 = 0;
-    /// `LASER_FIFO.FEED`: the programmed feed, 1/16 step per period.
+    /// `LASER_FIFO.FEED` and `LASER_POWER.FEED`: the programmed feed, 1/16
+    /// step per period.
     pub const LASER_FEED: u32 = 16;
     /// Width of `LASER_FIFO.POWER`, `FEED`, `LASER_PWM_PERIOD` and
     /// `LASER_OUTPUT`'s fields.
@@ -1296,9 +1302,10 @@ fn laser_registers(level_bits: u32) -> Vec<Register> {
             laser::LASER_CONTROL,
             "the laser's enable, mode and plane",
             vec![
-                field("ENABLE", fields::LASER_ENABLE, 1, ReadWrite, "1 = laser_pwm may fire while RUN; at a start, 1 also makes the laser FIFO part of the run (one entry popped per period, an empty one is an underrun); 0 = laser_pwm low from the next clock"),
+                field("ENABLE", fields::LASER_ENABLE, 1, ReadWrite, "1 = laser_pwm may fire while RUN; at a start with SOURCE = 0, 1 also makes the laser FIFO part of the run (one entry popped per period, an empty one is an underrun); 0 = laser_pwm low from the next clock"),
                 field("DYNAMIC", fields::LASER_DYNAMIC, 1, ReadWrite, "1 = the duty is the period's POWER x min(1, path speed x hold factor / FEED) (M4); 0 = POWER (M3)"),
                 field("CLEAR_OVERFLOW", fields::LASER_CLEAR_OVERFLOW, 1, WriteOnly, "write 1 to clear LASER_STATUS.OVERFLOW"),
+                field("SOURCE", fields::LASER_SOURCE, 1, ReadWrite, "where the duty engine takes POWER and FEED: 0 = the running period's laser FIFO entry; 1 = LASER_POWER (a write reaches the duty within LASER_LAG clocks), and a run started with SOURCE = 1 leaves the laser FIFO out"),
                 field("AXIS_A", fields::LASER_AXIS_A, axis, ReadWrite, "the plane's first axis (an axis >= K counts as standing)"),
                 field("AXIS_B", fields::LASER_AXIS_B, axis, ReadWrite, "the plane's second axis (equal to AXIS_A: one axis only is counted)"),
             ],
@@ -1320,7 +1327,7 @@ fn laser_registers(level_bits: u32) -> Vec<Register> {
             vec![
                 field("LEVEL", fields::LASER_LEVEL, level_bits, ReadOnly, "entries in the laser FIFO"),
                 field("OVERFLOW", fields::LASER_OVERFLOW, 1, ReadOnly, "sticky: a LASER_FIFO write found it full and was refused; cleared by LASER_CONTROL.CLEAR_OVERFLOW; raises no interrupt (STATUS.OVERFLOW is the axes' FIFOs'): firmware that streams the laser reads it with the FIFO level"),
-                field("ACTIVE", fields::LASER_ACTIVE, 1, ReadOnly, "the laser FIFO takes part in the running periods (ENABLE at the start)"),
+                field("ACTIVE", fields::LASER_ACTIVE, 1, ReadOnly, "the laser FIFO takes part in the running periods (ENABLE = 1 and SOURCE = 0 at the start)"),
                 field("BUSY", fields::LASER_BUSY, 1, ReadOnly, "the duty engine is computing: it runs free, so BUSY reads 1 in all but one clock of every ENGINE_CLOCKS + 1 (a diagnostic, not a handshake)"),
             ],
         ),
@@ -1331,6 +1338,15 @@ fn laser_registers(level_bits: u32) -> Vec<Register> {
             vec![
                 field("DUTY", fields::LASER_POWER, word, ReadOnly, "the duty in force, clocks high per PWM period"),
                 field("SPEED", fields::LASER_SPEED, word, ReadOnly, "the vector speed of the last computed period, steps per period"),
+            ],
+        ),
+        register(
+            "LASER_POWER",
+            laser::LASER_POWER,
+            "the power and feed by register, in force while LASER_CONTROL.SOURCE = 1 (the layout of a LASER_FIFO entry)",
+            vec![
+                field("POWER", fields::LASER_POWER, word, ReadWrite, "clocks high per PWM period at the programmed feed (at or above LASER_PWM_PERIOD: steady on)"),
+                field("FEED", fields::LASER_FEED, word, ReadWrite, "the programmed feed, 1/16 step per period (vector length in the plane); 0: a dynamic duty of 0"),
             ],
         ),
     ]
@@ -1378,8 +1394,10 @@ pub mod laser {
     pub const LASER_STATUS: u32 = BASE + 0x03;
     /// The duty in force and the last computed speed.
     pub const LASER_OUTPUT: u32 = BASE + 0x04;
+    /// The power and feed by register (`LASER_CONTROL.SOURCE` = 1).
+    pub const LASER_POWER: u32 = BASE + 0x05;
     /// Words the unit decodes (`address - BASE` below this).
-    pub const WORDS: u32 = 0x05;
+    pub const WORDS: u32 = 0x06;
 }
 
 /// Width of `GEAR_NUMERATOR`, `GEAR_DENOMINATOR`, `GEAR_RAMP` and
