@@ -221,6 +221,41 @@ const POWER: u32 = 128;
 /// the first and last 64.
 const WINDOW: f64 = 64.0;
 
+/// High clocks of `laser_pwm` per step at the feed: power / PWM x clocks
+/// per step.
+fn expected_energy() -> f64 {
+    POWER as f64 / PWM as f64 * PERIOD as f64 / FEED
+}
+
+/// Burns `path` on `b` (set up for it) with a feed hold a third into the
+/// run along axis 1, and checks at the pins that every step arrived and
+/// that the energy per step stays within 5 % of power / PWM x clocks per
+/// step at the feed, in windows of [`WINDOW`] steps.
+fn burn_the_corner_through_a_hold(b: &mut Laser3, path: &[Period], label: &str) -> Trace {
+    let expected = expected_energy();
+    let rate = b.pack("HOLD_CONTROL", &[("RATE", 8)]);
+    b.write("HOLD_CONTROL", 0, rate);
+    let hold_from = 50 * PERIOD as usize;
+    let trace = burn(b, path, Some((hold_from, hold_from + 40_000)));
+    let net: i64 = path
+        .iter()
+        .map(|p| p.steps[0] as i64 + p.steps[1] as i64)
+        .sum();
+    assert_eq!(trace.steps.len() as i64, net, "every step reached the pins");
+    let (worst, windows) = energy_spread(&trace, WINDOW, 8.0, WINDOW, expected);
+    println!(
+        "{label}: energy per step through the corner and the hold: worst {:.2} % over {windows} windows",
+        worst * 100.0
+    );
+    assert!(windows > 40, "{windows}");
+    assert!(
+        worst <= 0.05,
+        "{label}: energy per step off by {:.1} %",
+        worst * 100.0
+    );
+    trace
+}
+
 /// The figure of merit at the controller's pins: the energy per
 /// step (high clocks of `laser_pwm` per step of path length) through an
 /// acceleration, a 90 degree corner at 30 % speed, a feed hold with its
@@ -229,31 +264,11 @@ const WINDOW: f64 = 64.0;
 /// burn fails the monitor in the corner.
 #[test]
 fn dynamic_power_keeps_the_energy_per_step_through_a_corner_and_a_hold_at_the_pins() {
-    let expected = POWER as f64 / PWM as f64 * PERIOD as f64 / FEED;
+    let expected = expected_energy();
     let path = corner(FEED, POWER);
     let mut b = Laser3::new();
     setup(&mut b, PERIOD, PWM, true);
-    let rate = b.pack("HOLD_CONTROL", &[("RATE", 8)]);
-    b.write("HOLD_CONTROL", 0, rate);
-    // The hold starts a third into the run along axis 1.
-    let hold_from = 50 * PERIOD as usize;
-    let trace = burn(&mut b, &path, Some((hold_from, hold_from + 40_000)));
-    let net: i64 = path
-        .iter()
-        .map(|p| p.steps[0] as i64 + p.steps[1] as i64)
-        .sum();
-    assert_eq!(trace.steps.len() as i64, net, "every step reached the pins");
-    let (worst, windows) = energy_spread(&trace, WINDOW, 8.0, WINDOW, expected);
-    println!(
-        "energy per step through the corner and the hold: worst {:.2} % over {windows} windows",
-        worst * 100.0
-    );
-    assert!(windows > 40, "{windows}");
-    assert!(
-        worst <= 0.05,
-        "energy per step off by {:.1} %",
-        worst * 100.0
-    );
+    let trace = burn_the_corner_through_a_hold(&mut b, &path, "laser FIFO");
     // The hold stopped the laser: a long stretch without a pulse.
     let mut run = 0;
     let longest = trace.laser.iter().fold(0, |m, &on| {
@@ -315,7 +330,6 @@ fn a_periods_power_reaches_the_pin_within_the_stated_lag() {
 /// (ACTIVE 0, no entry, no underrun) and the energy per step holds.
 #[test]
 fn the_power_by_register_keeps_the_energy_per_step_without_the_laser_fifo() {
-    let expected = POWER as f64 / PWM as f64 * PERIOD as f64 / FEED;
     let path = corner(FEED, POWER);
     let mut b = Laser3::new();
     setup(&mut b, PERIOD, PWM, true);
@@ -327,27 +341,8 @@ fn the_power_by_register_keeps_the_energy_per_step_without_the_laser_fifo() {
     );
     b.write("LASER_POWER", 0, power);
     assert_eq!(b.read("LASER_POWER", 0), power);
-    let rate = b.pack("HOLD_CONTROL", &[("RATE", 8)]);
-    b.write("HOLD_CONTROL", 0, rate);
-    let hold_from = 50 * PERIOD as usize;
-    let trace = burn(&mut b, &path, Some((hold_from, hold_from + 40_000)));
-    let net: i64 = path
-        .iter()
-        .map(|p| p.steps[0] as i64 + p.steps[1] as i64)
-        .sum();
-    assert_eq!(trace.steps.len() as i64, net, "every step reached the pins");
+    let trace = burn_the_corner_through_a_hold(&mut b, &path, "power by register");
     assert_eq!(trace.active_clocks, 0, "the laser FIFO took part");
-    let (worst, windows) = energy_spread(&trace, WINDOW, 8.0, WINDOW, expected);
-    println!(
-        "power by register, through the corner and the hold: worst {:.2} % over {windows} windows",
-        worst * 100.0
-    );
-    assert!(windows > 40, "{windows}");
-    assert!(
-        worst <= 0.05,
-        "energy per step off by {:.1} %",
-        worst * 100.0
-    );
 }
 
 /// A `LASER_POWER` write during a run is the duty in force within
