@@ -122,6 +122,16 @@ enum Command {
         /// simulates fewer clocks.
         #[arg(long)]
         clock_mhz: Option<f64>,
+        /// The host's bus to the controller: parallel (the register bus,
+        /// one clock an access) or spi (spi_bus_adapter in front of the
+        /// controller, each access one SPI frame at --sclk-mhz; the report
+        /// gives the frames' share of the period).
+        #[arg(long, default_value = "parallel")]
+        bus: String,
+        /// SCLK of --bus spi in MHz, at most a quarter of --clock-mhz
+        /// (default: a quarter of it, the adapter's fastest).
+        #[arg(long)]
+        sclk_mhz: Option<f64>,
         /// Simulator of the controller: verilator (its exported Verilog,
         /// compiled; the default when Verilator and g++ are installed) or
         /// rust-hdl (the Rust RTL stepped directly, about 70 times slower).
@@ -499,6 +509,8 @@ fn run(cli: Cli) -> Result<(), String> {
             step_space,
             out_dir,
             vcd,
+            bus,
+            sclk_mhz,
             backend,
             trip,
             hold_at,
@@ -628,6 +640,16 @@ fn run(cli: Cli) -> Result<(), String> {
             if !(clock_mhz.is_finite() && clock_mhz > 0.0) {
                 return Err(format!("--clock-mhz must be positive, not {clock_mhz}"));
             }
+            let spi_sclk_hz = match bus.to_ascii_lowercase().as_str() {
+                "parallel" => {
+                    if sclk_mhz.is_some() {
+                        return Err("--sclk-mhz sets the SPI clock: it needs --bus spi".into());
+                    }
+                    None
+                }
+                "spi" => Some(sclk_mhz.unwrap_or(clock_mhz / 4.0) * 1e6),
+                other => return Err(format!("--bus: unknown bus `{other}` (parallel or spi)")),
+            };
             let format = format.map(|f| InputFormat::parse(&f)).transpose()?;
             let machine = machine
                 .map(|file| read_parsed(&file, MachineSettings::parse))
@@ -653,6 +675,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 probe_plane,
                 soft_limits,
                 spindle: spindle_settings(spindle_ripple, spindle_load_dip)?,
+                spi_sclk_hz,
             };
             let r = simulate(&path_file, &options)?;
             print_program_notes(&r.ignored, &r.messages);
@@ -678,6 +701,9 @@ fn run(cli: Cli) -> Result<(), String> {
                 r.peak_rate[0], r.peak_rate[1], r.peak_rate[2]
             );
             println!("periods {}, underruns {}", r.periods, r.underruns);
+            if let Some(spi) = &r.spi {
+                println!("{spi}");
+            }
             if let Some(h) = &r.hold {
                 print_hold(h);
             }

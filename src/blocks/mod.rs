@@ -78,6 +78,7 @@ pub mod port_doc;
 pub mod pulse_counter;
 pub mod quadrature_decoder;
 pub mod sequential_divider;
+pub mod spi_bus_adapter;
 pub mod step_channel;
 pub mod step_output;
 pub mod sync_fifo_bridge;

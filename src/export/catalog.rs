@@ -21,6 +21,7 @@ use crate::blocks::parallel_card::{self, ParallelCard};
 use crate::blocks::pulse_counter::{self, PulseCounter};
 use crate::blocks::quadrature_decoder::{self, QuadratureDecoder};
 use crate::blocks::sequential_divider::{self, SequentialDivider};
+use crate::blocks::spi_bus_adapter::{self, SpiBusAdapter};
 use crate::blocks::step_channel::{self, StepChannel};
 use crate::blocks::step_output::{self, StepOutput};
 use crate::blocks::sync_fifo_bridge::{self, SyncFifoBridge3};
@@ -248,6 +249,21 @@ pub fn catalog() -> Vec<ModuleSpec> {
             lut4_budget: None,
             logic_cell_budget: None,
             build: || Box::new(ExternalBusAdapter8::default()),
+        },
+        ModuleSpec {
+            name: "spi_bus_adapter",
+            block: "spi_bus_adapter",
+            summary: spi_bus_adapter::SUMMARY,
+            parameters: &[
+                ("A", "8", "register (32-bit word) address width"),
+                ("MAX_WORDS", "16", "longest burst, in words (the frame buffer)"),
+                ("SNAPSHOT", "0x0b", "the register a read frame's SNAPSHOT bit writes"),
+            ],
+            port_docs: spi_bus_adapter::PORT_DOCS,
+            fmax_target_mhz: 100.0,
+            lut4_budget: None,
+            logic_cell_budget: None,
+            build: || Box::new(SpiBusAdapter::default()),
         },
         ModuleSpec {
             name: "dpram_mailbox",

@@ -168,6 +168,12 @@ pub fn datasheets() -> Vec<DatasheetSpec> {
             build: || Box::new(sequential_divider::SequentialDivider::<32, 24>::default()),
         },
         DatasheetSpec {
+            block: "spi_bus_adapter",
+            port_docs: spi_bus_adapter::PORT_DOCS,
+            parameters: &[],
+            build: || Box::new(spi_bus_adapter::SpiBusAdapter::default()),
+        },
+        DatasheetSpec {
             block: "step_channel",
             port_docs: step_channel::PORT_DOCS,
             parameters: &[("W", 32), ("T", 16)],

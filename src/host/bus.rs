@@ -20,6 +20,7 @@ use crate::blocks::motion_controller::{
 };
 use crate::host::laser_log::LaserLog;
 use crate::host::servo::DriveScale;
+use crate::host::spi::{SpiError, SpiLink, SpiStats, SpiTiming};
 use crate::host::thread_log::GearLog;
 use crate::regmap::RegisterMap;
 use crate::sim::plant::{quadrature_state, Ad669Bank, ServoMotor, SpindleMotor};
@@ -113,6 +114,9 @@ pub struct RtlBus {
     gear_log: Option<GearLog>,
     /// While a laser run is recorded: its record.
     laser_log: Option<LaserLog>,
+    /// With an SPI link, register writes and reads go through
+    /// `spi_bus_adapter` in frames ([`RtlBus::use_spi`]).
+    spi: Option<SpiLink>,
 }
 
 /// A simulated probe against a flat surface across one axis: the `probe`
@@ -179,6 +183,7 @@ impl RtlBus {
             spindle: None,
             gear_log: None,
             laser_log: None,
+            spi: None,
         })
     }
 
@@ -331,6 +336,42 @@ impl RtlBus {
         self.rate_window = clocks.max(1);
     }
 
+    /// From now on, every register write and read goes through
+    /// `spi_bus_adapter` (its RTL, on the controller's backend) as one SPI
+    /// frame at `timing`, the controller clocked with the adapter.
+    pub fn use_spi(&mut self, backend: Backend, timing: SpiTiming) -> Result<(), SimError> {
+        self.spi = Some(SpiLink::new(backend, timing)?);
+        Ok(())
+    }
+
+    /// Reads `count` consecutive registers from `address` in one SPI read
+    /// frame (after the controller's `SNAPSHOT` write with `snapshot`): a
+    /// burst the adapter reads on consecutive clocks. `None` without an SPI
+    /// link.
+    pub fn spi_read_burst(
+        &mut self,
+        address: u8,
+        count: usize,
+        snapshot: bool,
+    ) -> Option<Result<Vec<u32>, SpiError>> {
+        let mut link = self.spi.take()?;
+        let words = link.read(address, count, snapshot, |a, d, w, r| {
+            self.clock(a, d, w, r)
+        });
+        self.spi = Some(link);
+        Some(words)
+    }
+
+    /// The SPI link's timing, if the bus has one.
+    pub fn spi_timing(&self) -> Option<SpiTiming> {
+        self.spi.as_ref().map(SpiLink::timing)
+    }
+
+    /// What the SPI link has carried, if the bus has one.
+    pub fn spi_stats(&self) -> Option<SpiStats> {
+        self.spi.as_ref().map(SpiLink::stats)
+    }
+
     /// Peak step rate per axis at the pins, in steps per clock, measured
     /// over windows of [`RtlBus::set_rate_window`] clocks.
     pub fn peak_steps_per_clock(&self) -> [f64; 3] {
@@ -413,6 +454,33 @@ impl ControllerBus for RtlBus {
             self.window_start = cycles;
         }
         out.read_data
+    }
+    fn write(&mut self, address: u32, value: u32) {
+        match self.spi.take() {
+            None => {
+                self.clock(address, value, true, false);
+            }
+            Some(mut link) => {
+                let written =
+                    link.write(address as u8, &[value], |a, d, w, r| self.clock(a, d, w, r));
+                self.spi = Some(link);
+                // The simulated pins are clean: a fault is the adapter's bug.
+                written.expect("a write frame on a clean simulated SPI link");
+            }
+        }
+    }
+    fn read(&mut self, address: u32) -> u32 {
+        match self.spi.take() {
+            None => {
+                self.clock(address, 0, false, true);
+                self.clock(0, 0, false, false)
+            }
+            Some(mut link) => {
+                let words = link.read(address as u8, 1, false, |a, d, w, r| self.clock(a, d, w, r));
+                self.spi = Some(link);
+                words.expect("a read frame on a clean simulated SPI link")[0]
+            }
+        }
     }
     fn irq(&self) -> bool {
         self.irq

@@ -58,7 +58,7 @@ use super::laser_log::{burn_energy, BurnEnergy};
 use super::planner::{plan_toolpath, to_steps, PlannedSegment};
 use super::simulation::{
     driver_config, option_beyond_dda_build, period_settings, watch_the_run, HoldReport, Job,
-    SimulationOptions, SimulationReport,
+    SimulationOptions, SimulationReport, SpiReport,
 };
 use super::toolpath::{Item, Toolpath};
 use super::{ControllerBus, Driver, MachineSettings, RtlBus};
@@ -307,7 +307,7 @@ pub fn simulate_laser(
     };
     let mut bus =
         RtlBus::with_laser(options.backend, options.vcd.as_deref()).map_err(|e| e.to_string())?;
-    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
+    watch_the_run(&mut bus, options, tick_divisor, period_ticks)?;
     let config = driver_config(options, tick_divisor, period_ticks, [None; 3]);
     let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
     let tick_hz = options.clock_hz / tick_divisor as f64;
@@ -406,6 +406,7 @@ pub fn simulate_laser(
         steps_per_mm: spm,
         threads: Vec::new(),
         burns,
+        spi: SpiReport::of(bus, options.clock_hz, periods, machine.period),
     })
 }
 

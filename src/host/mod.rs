@@ -20,6 +20,7 @@ pub mod servo;
 pub mod simulated_probe;
 pub mod simulation;
 pub mod soft_window;
+pub mod spi;
 pub mod spindle_run;
 mod statements;
 pub mod thread_log;

@@ -38,6 +38,7 @@ use super::{
     interpolate, plan_toolpath, Driver, DriverConfig, MachineSettings, Path, RtlBus, Toolpath,
 };
 use crate::blocks::motion_controller::io_model::MachinePins;
+use crate::host::spi::{SpiStats, SpiTiming};
 use crate::plots::{plot_following_error, plot_path_xy, plot_speed};
 use crate::sim::plant::ServoMotor;
 use crate::sim::Backend;
@@ -291,6 +292,11 @@ pub struct SimulationOptions {
     pub soft_limits: [Option<SoftWindow>; 3],
     /// The simulated spindle, for geared moves (G33, G33.1, G76).
     pub spindle: SpindleSettings,
+    /// With an SCLK rate (Hz), the driver reaches the controller through
+    /// `spi_bus_adapter` over a simulated SPI link at that rate, at most a
+    /// quarter of the clock (`simulate --bus spi`); without, through the
+    /// parallel register bus.
+    pub spi_sclk_hz: Option<f64>,
 }
 
 /// A machine input the simulation drives active (high: tripped, in alarm,
@@ -411,6 +417,55 @@ pub struct SimulationReport {
     pub threads: Vec<ThreadReport>,
     /// On a laser machine: each burn's energy per mm at the pins.
     pub burns: Vec<BurnEnergy>,
+    /// Over SPI (`spi_sclk_hz`): the link's traffic and time.
+    pub spi: Option<SpiReport>,
+}
+
+/// What the SPI link carried in a run, and its share of the period.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpiReport {
+    /// The SCLK the master ran (at or below the rate asked: whole clocks
+    /// per phase).
+    pub sclk_hz: f64,
+    /// Frames, bytes and clocks.
+    pub stats: SpiStats,
+    /// Seconds of frames per period, on average over the run.
+    pub seconds_per_period: f64,
+    /// The interpolation period, seconds.
+    pub period_s: f64,
+}
+
+impl SpiReport {
+    /// The report of `bus`'s link over `periods` periods of `period_s`.
+    pub fn of(bus: &RtlBus, clock_hz: f64, periods: usize, period_s: f64) -> Option<SpiReport> {
+        let (stats, timing) = (bus.spi_stats()?, bus.spi_timing()?);
+        Some(SpiReport {
+            sclk_hz: timing.sclk_hz(clock_hz),
+            stats,
+            seconds_per_period: stats.clocks as f64 / clock_hz / periods.max(1) as f64,
+            period_s,
+        })
+    }
+
+    /// The share of the period the frames take.
+    pub fn period_share(&self) -> f64 {
+        self.seconds_per_period / self.period_s
+    }
+}
+
+impl std::fmt::Display for SpiReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "SPI bus at SCLK {:.3} MHz: {} frames, {} bytes; {:.1} us of frames per {:.0} us period on average ({:.1} % of the period budget)",
+            self.sclk_hz / 1e6,
+            self.stats.frames,
+            self.stats.bytes,
+            self.seconds_per_period * 1e6,
+            self.period_s * 1e6,
+            100.0 * self.period_share()
+        )
+    }
 }
 
 /// What a simulated feed hold did.
@@ -632,13 +687,19 @@ pub(super) fn watch_the_run(
     options: &SimulationOptions,
     tick_divisor: u32,
     period_ticks: u32,
-) {
+) -> Result<(), String> {
+    if let Some(sclk_hz) = options.spi_sclk_hz {
+        let timing = SpiTiming::at(options.clock_hz, sclk_hz).map_err(|e| e.to_string())?;
+        bus.use_spi(options.backend, timing)
+            .map_err(|e| e.to_string())?;
+    }
     bus.sample_positions(tick_divisor as u64 * period_ticks as u64);
     // 10 ms windows: at a real clock, 10,000 clocks hold only a step or two.
     bus.set_rate_window((options.clock_hz / 100.0).round() as u64);
     for (at_s, pins) in trip_schedule(&options.trips) {
         bus.set_pins_at((at_s * options.clock_hz).round() as u64, pins);
     }
+    Ok(())
 }
 
 /// The driver of a simulated controller for `options`, at these tick
@@ -664,7 +725,7 @@ fn controller_driver(
         RtlBus::new(options.backend, options.vcd.as_deref())
     }
     .map_err(|e| e.to_string())?;
-    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
+    watch_the_run(&mut bus, options, tick_divisor, period_ticks)?;
     bus.set_probe_surface(surface);
     Driver::new(bus, config).map_err(|e| e.to_string())
 }
@@ -1012,5 +1073,11 @@ pub fn simulate(
         steps_per_mm: machine.steps_per_mm,
         threads: Vec::new(),
         burns: Vec::new(),
+        spi: SpiReport::of(
+            bus,
+            options.clock_hz,
+            report.periods + planned_run.counts.len(),
+            period_s,
+        ),
     })
 }

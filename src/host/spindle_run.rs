@@ -42,7 +42,7 @@ use super::interpolator::interpolate;
 use super::planner::{plan_toolpath, to_steps};
 use super::simulation::{
     driver_config, option_beyond_dda_build, period_settings, watch_the_run, Job, SimulationOptions,
-    SimulationReport,
+    SimulationReport, SpiReport,
 };
 use super::thread_log::{GearLog, PassErrors, ThreadFigures};
 use super::toolpath::{Item, LaserPower, Move, MoveKind, SyncedMove, Toolpath};
@@ -382,7 +382,7 @@ pub fn simulate_geared(
         options.clock_hz,
     )
     .map_err(|e| e.to_string())?;
-    watch_the_run(&mut bus, options, tick_divisor, period_ticks);
+    watch_the_run(&mut bus, options, tick_divisor, period_ticks)?;
     // Step axes only (refused above otherwise): the DDA on each.
     let config = driver_config(options, tick_divisor, period_ticks, [None; 3]);
     let mut driver = Driver::new(bus, config).map_err(|e| e.to_string())?;
@@ -555,6 +555,7 @@ pub fn simulate_geared(
         steps_per_mm: spm,
         threads,
         burns: Vec::new(),
+        spi: SpiReport::of(bus, options.clock_hz, periods, machine.period),
     })
 }
 

@@ -24,6 +24,7 @@ mod pulse_counter;
 mod quadrature_decoder;
 mod sequential_divider;
 mod soft_limits;
+mod spi_bus_adapter;
 mod step_channel;
 mod step_output;
 mod support;

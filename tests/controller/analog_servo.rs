@@ -143,6 +143,7 @@ fn square_path_with_x_as_an_analog_servo_ends_within_a_count() {
         probe_plane: None,
         soft_limits: [None; 3],
         spindle: Default::default(),
+        spi_sclk_hz: None,
     };
     let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
     let fe = r.following[0].expect("X's following error");
@@ -201,6 +202,7 @@ fn square_path_with_an_analog_x_holds_and_resumes_and_ends_within_a_count() {
         probe_plane: None,
         soft_limits: [None; 3],
         spindle: Default::default(),
+        spi_sclk_hz: None,
     };
     let r = simulate(&square, &options).unwrap_or_else(|e| panic!("{e}"));
     let hold = r.hold.as_ref().expect("the hold's report");

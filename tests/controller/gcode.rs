@@ -328,6 +328,7 @@ pub(crate) fn options(out_dir: &std::path::Path) -> SimulationOptions {
         probe_plane: None,
         soft_limits: [None; 3],
         spindle: Default::default(),
+        spi_sclk_hz: None,
     }
 }
 

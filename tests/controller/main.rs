@@ -23,6 +23,7 @@ mod host_feed_hold;
 mod host_laser;
 mod host_probing;
 mod host_soft_limits;
+mod host_spi;
 mod host_threading;
 mod laser;
 mod machine_io;
