@@ -43,6 +43,16 @@ if [ "${verilator_major:-0}" -lt 5 ]; then
   exit 1
 fi
 
+# FuseSoC, from PyPI: a tooling test lists the cores and runs one lint and
+# one sim target through it.
+if ! command -v fusesoc >/dev/null 2>&1; then
+  echo "installing fusesoc"
+  if ! python3 -m pip install --quiet fusesoc==2.4.3; then
+    echo "install FuseSoC with: pip install fusesoc==2.4.3" >&2
+    exit 1
+  fi
+fi
+
 # cargo-nextest runs every test of the four binaries in one pool, the
 # longest first (.config/nextest.toml). It is on every machine of the
 # project's kind; elsewhere it is built from crates.io once.

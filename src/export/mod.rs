@@ -4,6 +4,7 @@
 
 pub mod catalog;
 pub mod datasheet;
+pub mod fusesoc;
 mod header;
 mod index;
 mod ports;
@@ -135,7 +136,22 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
             file_name: format!("{}_tb.v", module.spec.name),
             contents: module.testbench.clone(),
         });
+        files.push(GeneratedFile {
+            dir: OutputDir::Rtl,
+            file_name: format!("{}.core", module.spec.name),
+            contents: fusesoc::module_core(&module.spec),
+        });
+        files.push(GeneratedFile {
+            dir: OutputDir::Testbench,
+            file_name: format!("{}_tb.core", module.spec.name),
+            contents: fusesoc::testbench_core(module.spec.name),
+        });
     }
+    files.push(GeneratedFile {
+        dir: OutputDir::Testbench,
+        file_name: "lint_waivers.core".to_string(),
+        contents: fusesoc::lint_waivers_core(),
+    });
     use crate::blocks::{dac_interface, motion_controller, parallel_card, sync_fifo_bridge};
     // The register maps of the exported configurations (see the catalog).
     let maps = [

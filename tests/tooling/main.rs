@@ -5,6 +5,7 @@
 
 mod cross_simulation;
 mod datasheets;
+mod fusesoc;
 mod harness;
 mod package;
 mod plots;
