@@ -51,6 +51,14 @@ if ! command -v fusesoc >/dev/null 2>&1; then
     echo "install FuseSoC with: pip install fusesoc==2.4.3" >&2
     exit 1
   fi
+  # Under pyenv, a new script's shim appears only after a rehash.
+  if command -v pyenv >/dev/null 2>&1; then
+    pyenv rehash
+  fi
+  if ! command -v fusesoc >/dev/null 2>&1; then
+    echo "fusesoc is installed but not on PATH: add pip's scripts folder (python3 -m site --user-base)/bin" >&2
+    exit 1
+  fi
 fi
 
 # cargo-nextest runs every test of the four binaries in one pool, the
