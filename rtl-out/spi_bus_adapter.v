@@ -745,7 +745,7 @@ module spi_bus_adapter(clock,reset,sclk,cs_n,mosi,miso,miso_oe,bus_address,bus_w
                     end_position__d = end_position_of;
                     geometry__d = 1'b1;
                 end
-                if (at_crc__q | (at_p2__q & ~crc_ok)) begin
+                if ((at_crc__q & ~complete__q) | (at_p2__q & ~crc_ok)) begin
                     complete__d = 1'b1;
                     crc_error__d = ~crc_ok;
                     good__d = crc_ok & ~overspeed_any;

@@ -516,6 +516,59 @@ fn no_cut_point_and_no_single_bit_error_writes() {
     );
 }
 
+/// A write frame whose header CRC fails writes nothing, even when its
+/// frame CRC matches the bytes as received: a bad header CRC with a frame
+/// CRC recomputed over it, and a count corrupted from 2 words to 1 (the
+/// frame then laid out one word short, its CRC byte on a data byte that
+/// happens to match). Before the fix the formal proof found, the second
+/// check at the frame CRC passed both and wrote them. RTL and model.
+#[test]
+fn a_bad_header_crc_writes_nothing_even_when_the_frame_crc_then_matches() {
+    let good = frame::write_frame(0x30, &[0x0102_0304, 0x0506_0708]).unwrap();
+    let mut bad_header = good.clone();
+    bad_header[2] ^= 0x10;
+    let crc_at = frame::write_crc_position(2);
+    bad_header[crc_at] = crc8(&bad_header[..crc_at]);
+    // The count cut to 1 word; the header CRC still the 2-word one; the
+    // frame CRC of the 1-word layout (byte 7) made to match.
+    let mut bad_count = good.clone();
+    bad_count[0] = good[0] & !frame::COMMAND_COUNT_MASK;
+    let crc_at_1 = frame::write_crc_position(1);
+    bad_count[crc_at_1] = crc8(&bad_count[..crc_at_1]);
+    let devices: [(&str, Device<'static>); 2] = [
+        ("rtl", rtl_device()),
+        ("model", {
+            let mut model = SpiBusModel::new(SNAPSHOT);
+            Box::new(move |i| model.step(i))
+        }),
+    ];
+    for (name, device) in devices {
+        let mut b = Bench::new(device);
+        for (case, mosi, status_at) in [
+            (
+                "bad header CRC",
+                &bad_header,
+                frame::write_status_position(2),
+            ),
+            ("count 2 -> 1", &bad_count, frame::write_status_position(1)),
+        ] {
+            let miso = b.frame(SpiTiming::FASTEST, mosi);
+            b.idle(4);
+            assert!(b.strobes.is_empty(), "{name}, {case}: {:?}", b.strobes);
+            assert_eq!(
+                miso[status_at],
+                STATUS_MARKER | STATUS_CRC_ERROR,
+                "{name}, {case}: {miso:02x?}"
+            );
+        }
+        assert_eq!(b.frame_errors, 2, "{name}");
+        // The good frame still writes both words.
+        b.frame(SpiTiming::FASTEST, &good);
+        b.idle(4);
+        assert_eq!(b.strobes.len(), 2, "{name}");
+    }
+}
+
 /// One SCLK phase of a single clock, anywhere up to the CRC byte: no
 /// write, `OVERSPEED` in the status. After the CRC byte: the write stands,
 /// and the next frame's first byte tells.

@@ -11,5 +11,6 @@ mod freq_divider;
 mod interrupt_controller;
 mod motion_controller;
 mod quadrature_decoder;
+mod spi_bus_adapter;
 mod step_output;
 mod watchdog;

@@ -55,3 +55,40 @@ pub fn assert_mutation_caught(name: &str, find: &str, replace: &str) {
         Outcome::Proved => panic!("{name}: the proof passes with `{find}` replaced by `{replace}`: the properties cannot see this bug"),
     }
 }
+
+/// Replaces the one occurrence of `find` in the generated Verilog of proof
+/// `name` with `replace`, and checks that the proof (bounded check and
+/// induction, with the invariants) fails on it, with a failed assertion of
+/// the property file. For a bug deeper than any bounded check reaches from
+/// power-up (a frame of the SPI adapter is a hundred clocks and more): the
+/// induction's counterexample may start in an unreachable state, so this
+/// shows only that the proof cannot pass on the bug, not a trace of it;
+/// the block's tests show the bug itself in simulation.
+pub fn assert_proof_fails(name: &str, find: &str, replace: &str) {
+    let spec = spec(name);
+    let verilog = instance_verilog(&spec).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(
+        verilog.matches(find).count(),
+        1,
+        "{name}: the mutation's text `{find}` must occur exactly once in the generated Verilog"
+    );
+    let mutant = verilog.replacen(find, replace, 1);
+    let report =
+        prove_verilog(&spec, &mutant, Checks::Proof).unwrap_or_else(|e| panic!("{name}: {e}"));
+    match report.outcome {
+        Outcome::Counterexample {
+            check,
+            steps,
+            assertion,
+            ..
+        } => {
+            println!("{name} with `{find}` -> `{replace}`: {check:?} check, {assertion} fails after {steps} clocks");
+            assert!(
+                assertion.contains(spec.property_file),
+                "{name}: the failed assertion {assertion} is not in {}",
+                spec.property_file
+            );
+        }
+        Outcome::Proved => panic!("{name}: the proof passes with `{find}` replaced by `{replace}`"),
+    }
+}

@@ -216,7 +216,7 @@ impl SpiBusModel {
                     ram_write = Some((((p >> 2) - 1) % MAX_WORDS as u8, in_word_next));
                 }
                 let crc_ok = crc_in_next == 0;
-                if p == crc_position || (p == 2 && !crc_ok) {
+                if (p == crc_position && !q.complete) || (p == 2 && !crc_ok) {
                     let pass = crc_ok && !overspeed_any;
                     d.complete = true;
                     d.crc_error = !crc_ok;

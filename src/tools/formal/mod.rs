@@ -40,6 +40,7 @@ mod freq_divider;
 mod interrupt_controller;
 mod motion_controller;
 mod quadrature_decoder;
+mod spi_bus_adapter;
 mod step_output;
 mod watchdog;
 
@@ -84,6 +85,7 @@ pub fn formal_catalog() -> Vec<FormalSpec> {
         watchdog::specs(),
         external_bus_adapter::specs(),
         motion_controller::specs(),
+        spi_bus_adapter::specs(),
     ]
     .into_iter()
     .flatten()
