@@ -29,11 +29,9 @@ pub fn assert_proved(name: &str) {
     );
 }
 
-/// Replaces the one occurrence of `find` in the generated Verilog of proof
-/// `name` with `replace` (the bug), and checks that the bounded check of
-/// the contract alone (no induction invariants) finds a counterexample
-/// from power-up.
-pub fn assert_mutation_caught(name: &str, find: &str, replace: &str) {
+/// Proof `name`'s spec, and its generated Verilog with the one occurrence
+/// of `find` replaced by `replace` (the bug).
+fn mutant(name: &str, find: &str, replace: &str) -> (FormalSpec, String) {
     let spec = spec(name);
     let verilog = instance_verilog(&spec).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert_eq!(
@@ -42,6 +40,15 @@ pub fn assert_mutation_caught(name: &str, find: &str, replace: &str) {
         "{name}: the mutation's text `{find}` must occur exactly once in the generated Verilog"
     );
     let mutant = verilog.replacen(find, replace, 1);
+    (spec, mutant)
+}
+
+/// Replaces the one occurrence of `find` in the generated Verilog of proof
+/// `name` with `replace` (the bug), and checks that the bounded check of
+/// the contract alone (no induction invariants) finds a counterexample
+/// from power-up.
+pub fn assert_mutation_caught(name: &str, find: &str, replace: &str) {
+    let (spec, mutant) = mutant(name, find, replace);
     let report = prove_verilog(&spec, &mutant, Checks::ContractBounded)
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     match report.outcome {
@@ -65,14 +72,7 @@ pub fn assert_mutation_caught(name: &str, find: &str, replace: &str) {
 /// shows only that the proof cannot pass on the bug, not a trace of it;
 /// the block's tests show the bug itself in simulation.
 pub fn assert_proof_fails(name: &str, find: &str, replace: &str) {
-    let spec = spec(name);
-    let verilog = instance_verilog(&spec).unwrap_or_else(|e| panic!("{name}: {e}"));
-    assert_eq!(
-        verilog.matches(find).count(),
-        1,
-        "{name}: the mutation's text `{find}` must occur exactly once in the generated Verilog"
-    );
-    let mutant = verilog.replacen(find, replace, 1);
+    let (spec, mutant) = mutant(name, find, replace);
     let report =
         prove_verilog(&spec, &mutant, Checks::Proof).unwrap_or_else(|e| panic!("{name}: {e}"));
     match report.outcome {
