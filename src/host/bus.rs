@@ -354,12 +354,18 @@ impl RtlBus {
         count: usize,
         snapshot: bool,
     ) -> Option<Result<Vec<u32>, SpiError>> {
+        self.with_spi(|link, bus| {
+            link.read(address, count, snapshot, |a, d, w, r| bus.clock(a, d, w, r))
+        })
+    }
+
+    /// Runs `frame` with the SPI link and this bus to clock the controller
+    /// with (the link is lent out for the frame); `None` without a link.
+    fn with_spi<T>(&mut self, frame: impl FnOnce(&mut SpiLink, &mut Self) -> T) -> Option<T> {
         let mut link = self.spi.take()?;
-        let words = link.read(address, count, snapshot, |a, d, w, r| {
-            self.clock(a, d, w, r)
-        });
+        let result = frame(&mut link, self);
         self.spi = Some(link);
-        Some(words)
+        Some(result)
     }
 
     /// The SPI link's timing, if the bus has one.
@@ -455,31 +461,28 @@ impl ControllerBus for RtlBus {
         }
         out.read_data
     }
+    // The simulated SPI pins are clean: a faulted frame is the adapter's bug.
     fn write(&mut self, address: u32, value: u32) {
-        match self.spi.take() {
+        let frame = self.with_spi(|link, bus| {
+            link.write(address as u8, &[value], |a, d, w, r| bus.clock(a, d, w, r))
+        });
+        match frame {
             None => {
                 self.clock(address, value, true, false);
             }
-            Some(mut link) => {
-                let written =
-                    link.write(address as u8, &[value], |a, d, w, r| self.clock(a, d, w, r));
-                self.spi = Some(link);
-                // The simulated pins are clean: a fault is the adapter's bug.
-                written.expect("a write frame on a clean simulated SPI link");
-            }
+            Some(written) => written.expect("a write frame on a clean simulated SPI link"),
         }
     }
     fn read(&mut self, address: u32) -> u32 {
-        match self.spi.take() {
+        let frame = self.with_spi(|link, bus| {
+            link.read(address as u8, 1, false, |a, d, w, r| bus.clock(a, d, w, r))
+        });
+        match frame {
             None => {
                 self.clock(address, 0, false, true);
                 self.clock(0, 0, false, false)
             }
-            Some(mut link) => {
-                let words = link.read(address as u8, 1, false, |a, d, w, r| self.clock(a, d, w, r));
-                self.spi = Some(link);
-                words.expect("a read frame on a clean simulated SPI link")[0]
-            }
+            Some(words) => words.expect("a read frame on a clean simulated SPI link")[0],
         }
     }
     fn irq(&self) -> bool {

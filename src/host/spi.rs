@@ -228,15 +228,14 @@ impl SpiLink {
         let mut clocks = 0;
         let miso = transfer(self.timing, mosi, |pins| {
             let before = self.shown;
-            SpiInputs {
+            self.vector = SpiInputs {
                 reset: false,
                 sclk: pins.sclk,
                 cs_n: pins.cs_n,
                 mosi: pins.mosi,
                 bus_read_data: self.read_data,
             }
-            .to_vector()
-            .clone_into(&mut self.vector);
+            .to_vector();
             self.adapter
                 .step_into(&self.vector, &mut self.outputs)
                 .expect("the SPI adapter steps");
