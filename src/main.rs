@@ -41,7 +41,8 @@ enum Kinematics {
 #[derive(Subcommand)]
 enum Command {
     /// Write every exported module as <module>.v, with its index, its
-    /// vector testbench, and every datasheet's port table.
+    /// vector testbench, and every datasheet's port table; and each board
+    /// example's controller configuration with its register map.
     Export {
         /// Folder for the Verilog and its README index.
         #[arg(long, default_value = "rtl-out")]
@@ -53,6 +54,10 @@ enum Command {
         /// port table (`<block>/ports.md`).
         #[arg(long, default_value = "src/blocks")]
         datasheet_out: PathBuf,
+        /// Folder of the board examples, for each board's generated
+        /// controller and register map (`<board>/motion_controller_k<K>.v`).
+        #[arg(long, default_value = "boards")]
+        boards_out: PathBuf,
     },
     /// Synthesize every exported module for iCE40 HX8K and write the
     /// LUT4/DFF/carry/RAM/Fmax report (needs yosys and nextpnr-ice40), then
@@ -815,11 +820,13 @@ fn run(cli: Cli) -> Result<(), String> {
             out,
             testbench_out,
             datasheet_out,
+            boards_out,
         } => {
             let dirs = ExportDirs {
                 rtl: &out,
                 testbench: &testbench_out,
                 datasheets: &datasheet_out,
+                boards: &boards_out,
             };
             let written = write_export(&dirs).map_err(|e| e.to_string())?;
             for path in written {

@@ -1,7 +1,9 @@
 //! Verilog export: the catalog of shipped modules, and the files
-//! `motion-hdl export` writes into `rtl-out/` (RTL and its index) and
-//! `testbench/` (one vector testbench per module).
+//! `motion-hdl export` writes into `rtl-out/` (RTL and its index),
+//! `testbench/` (one vector testbench per module) and `boards/` (each
+//! board example's controller configuration).
 
+pub mod boards;
 pub mod catalog;
 pub mod datasheet;
 pub mod fusesoc;
@@ -85,6 +87,9 @@ pub enum OutputDir {
     /// `src/blocks/` (or `--datasheet-out`): each block's port table,
     /// `<block>/ports.md`, included in its rustdoc.
     Datasheets,
+    /// `boards/` (or `--boards-out`): each board example's controller
+    /// configuration and its register map, `<board>/<controller>.v`.
+    Boards,
 }
 
 /// Where `write_export` puts each kind of generated file.
@@ -95,6 +100,8 @@ pub struct ExportDirs<'a> {
     pub testbench: &'a Path,
     /// `src/blocks/`.
     pub datasheets: &'a Path,
+    /// `boards/`.
+    pub boards: &'a Path,
 }
 
 impl ExportDirs<'_> {
@@ -104,6 +111,7 @@ impl ExportDirs<'_> {
             OutputDir::Rtl => self.rtl,
             OutputDir::Testbench => self.testbench,
             OutputDir::Datasheets => self.datasheets,
+            OutputDir::Boards => self.boards,
         }
     }
 }
@@ -230,6 +238,26 @@ pub fn generated_files() -> Result<Vec<GeneratedFile>, ExportError> {
             file_name: format!("{name}.md"),
             contents: crate::regmap::markdown(map, &header::generator()),
         });
+    }
+    for board in boards::boards() {
+        let map = board.register_map()?;
+        let controller = render_module(board.controller)?;
+        let name = controller.spec.name;
+        files.push(GeneratedFile {
+            dir: OutputDir::Boards,
+            file_name: format!("{}/{name}.v", board.dir),
+            contents: controller.verilog,
+        });
+        for (extension, contents) in [
+            ("h", crate::regmap::c_header(&map, &header::generator())),
+            ("md", crate::regmap::markdown(&map, &header::generator())),
+        ] {
+            files.push(GeneratedFile {
+                dir: OutputDir::Boards,
+                file_name: format!("{}/{name}_regs.{extension}", board.dir),
+                contents,
+            });
+        }
     }
     files.push(GeneratedFile {
         dir: OutputDir::Rtl,

@@ -33,7 +33,7 @@ fn fusesoc(args: &[&str], build_root: &std::path::Path) -> (bool, String) {
 }
 
 #[test]
-fn fusesoc_finds_a_core_for_every_exported_module_and_testbench() {
+fn fusesoc_finds_a_core_for_every_exported_module_testbench_and_board() {
     let dir = tempfile::tempdir().unwrap();
     let (ok, list) = fusesoc(&["core", "list"], dir.path());
     assert!(ok, "{list}");
@@ -50,6 +50,10 @@ fn fusesoc_finds_a_core_for_every_exported_module_and_testbench() {
         );
     }
     assert!(list.contains("motion-hdl:tb:lint_waivers:"), "{list}");
+    for board in motion_hdl::export::boards::boards() {
+        let core = format!("motion-hdl:board:{}:", board.dir);
+        assert!(list.contains(&core), "{core}: {list}");
+    }
     assert!(!list.contains("WARNING"), "{list}");
 }
 

@@ -1,8 +1,9 @@
 //! The export and its tools: `rtl-out/` freshness and lint, the datasheets'
-//! port tables, register maps,
+//! port tables, register maps, the board examples' pin files and builds,
 //! cross-simulation, the harness, plots, and synthesis of every exported
 //! module and the board example, and the crate package.
 
+mod boards;
 mod cross_simulation;
 mod datasheets;
 mod fusesoc;

@@ -7,6 +7,11 @@ use motion_hdl::export::{catalog, generated_files, OutputDir};
 use motion_hdl::tools::lint::lint;
 use motion_hdl::tools::{repo_root, report};
 
+/// Also the export's determinism: the committed files were written by
+/// another process (`motion-hdl export`), whose hash maps had other random
+/// seeds, so an export that depended on iteration order or addresses
+/// would differ here. (A second export in this process, compared with the
+/// first, cost 30 s more and caught less.)
 #[test]
 fn committed_export_is_fresh() {
     let root = repo_root();
@@ -16,6 +21,7 @@ fn committed_export_is_fresh() {
             OutputDir::Rtl => "rtl-out",
             OutputDir::Testbench => "testbench",
             OutputDir::Datasheets => "src/blocks",
+            OutputDir::Boards => "boards",
         };
         let path = root.join(dir).join(&file.file_name);
         if std::fs::read_to_string(&path).ok().as_deref() != Some(file.contents.as_str()) {
@@ -37,21 +43,6 @@ fn rtl_out_holds_no_module_that_is_not_exported() {
         .filter(|name| name.ends_with(".v"))
         .collect();
     assert_eq!(present, exported, "rtl-out/*.v differs from the catalog");
-}
-
-#[test]
-fn export_is_deterministic() {
-    let first: Vec<String> = generated_files()
-        .unwrap()
-        .into_iter()
-        .map(|f| f.contents)
-        .collect();
-    let second: Vec<String> = generated_files()
-        .unwrap()
-        .into_iter()
-        .map(|f| f.contents)
-        .collect();
-    assert_eq!(first, second);
 }
 
 #[test]

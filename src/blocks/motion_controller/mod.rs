@@ -1010,8 +1010,14 @@ pub type MotionController3NoSoftLimits =
 pub type MotionController1 = MotionController<1, 4, 5, true, false, true, true, false, false>;
 
 /// Six axes (the seeds' parallel mechanism), 16-entry FIFOs: measured in
-/// the synthesis report's scaling table, not exported.
+/// the synthesis report's scaling table, and the Colorlight 5A-75E board's
+/// controller (`boards/colorlight-5a-75e/motion_controller_k6.v`).
 pub type MotionController6 = MotionController<6, 4, 5, true, false, true, true, false, false>;
+
+/// Four axes, 16-entry FIFOs: the Tang Nano 20K board's controller
+/// (`boards/tang-nano-20k/motion_controller_k4.v`), where the header's
+/// pins, not the logic, set K.
+pub type MotionController4 = MotionController<4, 4, 5, true, false, true, true, false, false>;
 
 /// The exported spindle configuration (`motion_controller_dda_spindle`):
 /// the DDA-only controller with the spindle encoder and the electronic
