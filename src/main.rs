@@ -139,7 +139,7 @@ enum Command {
         sclk_mhz: Option<f64>,
         /// Simulator of the controller: verilator (its exported Verilog,
         /// compiled; the default when Verilator and g++ are installed) or
-        /// rust-hdl (the Rust RTL stepped directly, about 70 times slower).
+        /// rust-hdl (the Rust RTL stepped directly, more than ten times slower).
         #[arg(long)]
         backend: Option<String>,
         /// Axes driven by the uniform pulse generator instead of the DDA
@@ -619,8 +619,8 @@ fn run(cli: Cli) -> Result<(), String> {
             if backend == Backend::RustHdl {
                 eprintln!(
                     "motion-hdl: on rust-hdl every clock re-evaluates the whole controller through \
-                     Rust's signal objects (about 7,000 cycles/s); the verilator backend runs the same \
-                     RTL as compiled C++, about 70 times faster"
+                     Rust's signal objects; the verilator backend runs the same RTL as compiled C++, \
+                     more than ten times faster (`cargo bench --bench simulation_speed` measures both)"
                 );
             }
             let clock_mhz = clock_mhz.unwrap_or(match backend {

@@ -21,8 +21,9 @@ pub enum Backend {
     /// rust-hdl's event-free stepping of the Rust block ([`Harness`]): no
     /// tools needed, every internal signal visible, slow on big designs.
     RustHdl,
-    /// The block's Verilog compiled by Verilator ([`CompiledModel`]): about
-    /// 70 times faster on the controller; needs Verilator and g++.
+    /// The block's Verilog compiled by Verilator ([`CompiledModel`]): more
+    /// than ten times faster on the controller (`cargo bench --bench
+    /// simulation_speed`); needs Verilator and g++.
     Verilator,
 }
 

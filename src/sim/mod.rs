@@ -1,10 +1,11 @@
 //! Fast cycle-by-cycle simulation of rust-hdl blocks.
 //!
 //! rust-hdl's threaded `Simulation` hands the circuit between threads on every
-//! event and runs at about 10k cycles/s. [`Harness`] steps a block directly on
-//! the calling thread (about 200x faster). [`CompiledModel`] runs the block's
-//! Verilog compiled by Verilator, another 70 times faster on the whole
-//! controller. [`Stepper`] drives either, chosen at run time ([`Backend`]).
+//! event. [`Harness`] steps a block directly on the calling thread, far
+//! faster. [`CompiledModel`] runs the block's Verilog compiled by Verilator,
+//! faster again by more than an order of magnitude on the whole controller
+//! (`cargo bench --bench simulation_speed` measures all three).
+//! [`Stepper`] drives either, chosen at run time ([`Backend`]).
 //! [`Lockstep`] runs one of them against a block's reference model, and
 //! [`plant`] holds the models of what hangs on the pins.
 

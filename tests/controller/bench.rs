@@ -63,7 +63,7 @@ impl<
 {
     /// A bench in the power-up state, on the backend `MOTION_HDL_BACKEND`
     /// names (by default Verilator: the exported Verilog is the product, and
-    /// it runs 70 times faster).
+    /// it runs far faster).
     pub fn new() -> Self {
         Self::on(Backend::from_env_or(Backend::Verilator).unwrap())
     }

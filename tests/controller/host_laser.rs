@@ -88,7 +88,7 @@ fn the_same_program_in_m3_overburns_the_corners() {
 fn a_burn_through_a_feed_hold_keeps_its_energy_per_mm() {
     let dir = tempfile::tempdir().unwrap();
     let mut options = options(dir.path());
-    let square = "G21 G90 G17\nM4 S600\nG1 X12 F1200\nG1 Y12\nG1 X0\nG1 Y0\nM5\nM2\n";
+    let square = "G21 G90 G17\nM4 S600\nG1 X6 F1200\nG1 Y6\nG1 X0\nG1 Y0\nM5\nM2\n";
     let plain = run("square.ngc", square, &options).unwrap();
     options.hold = Some(HoldWindow::new(0.5, 0.8, None).unwrap());
     let held = run("square.ngc", square, &options).unwrap();

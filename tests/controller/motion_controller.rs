@@ -431,20 +431,35 @@ const RUST_HDL_STATUS: u32 = (1 << irq::PERIOD_DONE)
 
 #[test]
 fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic() {
-    // The one long run of the Rust RTL itself (rust-hdl); every other
-    // controller test runs its exported Verilog, compiled.
-    // 100 000 clocks: the Rust simulation of the whole controller runs
+    // The one run of the whole Rust RTL itself (rust-hdl) in the suite;
+    // every other controller test runs its exported Verilog, compiled.
+    // 40 000 clocks: the Rust simulation of the whole controller runs
     // about 1 500 to 3 000 clocks/s; the long runs are on the compiled
-    // Verilog. About a sixth of the clocks run: random trips hold the axes
-    // stopped until the firmware clears them.
-    let run = chaos_run_on(Controller3::on(Backend::RustHdl), 0xc0_ffee, 100_000);
+    // Verilog, and the ignored test below runs 400 000.
+    rust_hdl_chaos_run(0xc0_ffee, 40_000);
+}
+
+/// The rust-hdl chaos lockstep for 4 x 10^5 clocks (about 5 minutes; out
+/// of the default suite to keep it under 15 minutes).
+#[test]
+#[ignore]
+fn rtl_matches_model_under_random_firmware_and_hostile_bus_traffic_for_400_000_clocks() {
+    rust_hdl_chaos_run(0xc0_ffef, 400_000);
+}
+
+/// `cycles` clocks of the chaos lockstep on the Rust RTL: every STATUS bit
+/// but the rare ones seen set, and busy in proportion to its length (about
+/// a sixth of the clocks run: random trips hold the axes stopped until the
+/// firmware clears them).
+fn rust_hdl_chaos_run(seed: u64, cycles: u64) {
+    let run = chaos_run_on(Controller3::on(Backend::RustHdl), seed, cycles);
     assert_eq!(
         run.status_seen & RUST_HDL_STATUS,
         RUST_HDL_STATUS,
         "STATUS bits seen set: {:#x}",
         run.status_seen
     );
-    run.assert_busy("K=3, 16 entries", 12_500, 1_250, 25);
+    run.assert_busy("K=3, 16 entries", cycles / 8, cycles / 80, cycles / 4000);
 }
 
 /// Two chaos lockstep runs of the exported controller compiled by

@@ -19,7 +19,7 @@ pub const INSTALL_LINE: &str = "apt-get install -y verilator g++";
 
 /// Bumped whenever the generated wrapper, shim or build flags change, so
 /// that no stale library is ever loaded from the cache.
-pub(super) const SHIM_VERSION: u32 = 1;
+pub(super) const SHIM_VERSION: u32 = 2;
 
 /// Verilator's options. `--x-initial unique` with the context's
 /// `randReset(0)` powers every register without an `initial` up at 0, as
@@ -66,11 +66,12 @@ pub(super) fn library(
 ) -> Result<PathBuf, CompiledError> {
     // The exported file and the Verilog generated now differ only in the
     // export's header comment: one library serves both.
-    let verilog = without_header(verilog);
+    let design = Design::prepare(verilog, trace);
+    let verilog = design.verilog.as_str();
     let verilator = tool_version("verilator", &["--version"])?;
     let compiler = tool_version("g++", &["--version"])?;
     let wrapper = wrapper_verilog(layout);
-    let shim = shim_cpp(layout, trace);
+    let shim = shim_cpp(layout, trace, design.both_edges);
     let mut hasher = DefaultHasher::new();
     (
         SHIM_VERSION,
@@ -201,6 +202,7 @@ pub(super) fn plain_loop(
     layout: &Layout,
     dir: &Path,
 ) -> Result<PathBuf, CompiledError> {
+    let design = Design::prepare(verilog, false);
     let verilator = tool_version("verilator", &["--version"])?;
     let compiler = tool_version("g++", &["--version"])?;
     let runtime = runtime_objects(&cache_root(), &verilator, &compiler, false)?;
@@ -238,10 +240,19 @@ int main(int argc, char** argv) {{
     return 0;
 }}
 "#,
-        shim = shim_cpp(layout, false)
+        shim = shim_cpp(layout, false, design.both_edges)
     );
     let program = dir.join("plain_loop");
-    compile(dir, verilog, layout, false, &main, &runtime, &[], &program)?;
+    compile(
+        dir,
+        &design.verilog,
+        layout,
+        false,
+        &main,
+        &runtime,
+        &[],
+        &program,
+    )?;
     Ok(program)
 }
 
@@ -273,6 +284,48 @@ fn create_root(root: &Path) -> Result<(), CompiledError> {
         .mode(0o700)
         .create(root)
         .map_err(|e| io(root, e))
+}
+
+/// The design text Verilator builds, and how the shim clocks it.
+struct Design {
+    verilog: String,
+    /// Every clocked block runs on both edges of its clock, so that one
+    /// toggle of `clock` is one clock cycle of the design.
+    both_edges: bool,
+}
+
+impl Design {
+    /// `verilog` without the export's header ([`without_header`]); unless
+    /// the model is to `trace`, with every `@(posedge c)` made
+    /// `@(posedge c or negedge c)`.
+    ///
+    /// Why: each `eval` of a Verilator 5 model first evaluates all the
+    /// logic that reads a top-level input (its `ico` region), whether or
+    /// not an input changed. A cycle as a falling and a rising edge is two
+    /// `eval`s, and so twice that logic, half of the controller's run time;
+    /// a cycle as one toggle of a clock that both edges trigger is one
+    /// `eval` and the same cycle: the inputs settle through the logic, then
+    /// the registers take what it computed, then the logic settles again.
+    /// A trace keeps the two `eval`s (a waveform viewer expects a clock
+    /// with one rising edge a period), and so does a design with a
+    /// falling-edge block of its own.
+    fn prepare(verilog: &str, trace: bool) -> Design {
+        let verilog = without_header(verilog);
+        if trace || verilog.contains("negedge") {
+            return Design {
+                verilog: verilog.to_string(),
+                both_edges: false,
+            };
+        }
+        let posedge =
+            regex::Regex::new(r"@\(posedge ([A-Za-z_][A-Za-z0-9_$]*)\)").expect("a valid pattern");
+        Design {
+            verilog: posedge
+                .replace_all(verilog, "@(posedge $1 or negedge $1)")
+                .into_owned(),
+            both_edges: true,
+        }
+    }
 }
 
 /// `verilog` without the export's wrapping: its leading comment and blank
@@ -395,7 +448,7 @@ fn wrapper_verilog(layout: &Layout) -> String {
 
 /// The C ABI the Rust side loads: new, free, one clock cycle (inputs in,
 /// outputs out, as 64-bit words, least significant first), and the VCD.
-fn shim_cpp(layout: &Layout, trace: bool) -> String {
+fn shim_cpp(layout: &Layout, trace: bool, both_edges: bool) -> String {
     let mut set = String::new();
     for (k, slot) in layout.inputs.iter().enumerate() {
         let _ = writeln!(set, "    {}", store(&format!("t->i{k}"), slot));
@@ -416,6 +469,20 @@ fn shim_cpp(layout: &Layout, trace: bool) -> String {
         ("", "", "", "", "    (void)h; (void)path;\n    return 2;\n")
     };
     let half = crate::sim::harness::CLOCK_PERIOD_PS / 2;
+    // The inputs settle with the clock low, then the rising edge: as two
+    // `eval`s, or as one toggle of a clock whose both edges are the
+    // design's ([`Design::prepare`]).
+    let edge = if both_edges {
+        format!(
+            "    t->clock = !t->clock;\n    t->eval();\n    h->time += {};\n",
+            2 * half
+        )
+    } else {
+        format!(
+            "    t->clock = 0;\n    t->eval();\n    {trace_dump}h->time += {half};\n    \
+             t->clock = 1;\n    t->eval();\n    {trace_dump}h->time += {half};\n"
+        )
+    };
     format!(
         r#"// Generated by motion-hdl's compiled simulation backend.
 #include <cstdint>
@@ -454,13 +521,7 @@ MH_EXPORT int mh_trace(void* p, const char* path) {{
 MH_EXPORT void mh_cycle(void* p, const uint64_t* in, uint64_t* out) {{
     Handle* h = static_cast<Handle*>(p);
     Vmh_sim* t = h->top;
-{set}    t->clock = 0;
-    t->eval();
-    {trace_dump}h->time += {half};
-    t->clock = 1;
-    t->eval();
-    {trace_dump}h->time += {half};
-{get}}}
+{set}{edge}{get}}}
 "#
     )
 }
@@ -521,4 +582,27 @@ fn write(path: &Path, text: &str) -> Result<(), CompiledError> {
 
 fn io(path: &Path, e: std::io::Error) -> CompiledError {
     CompiledError::Build(format!("{}: {e}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Design;
+
+    #[test]
+    fn clocked_blocks_take_both_edges_unless_traced_or_already_on_a_falling_edge() {
+        let rtl = "module m(input clock);\nalways @(posedge clock) q <= d;\nalways @(posedge read_clock) r <= s;\nalways @(*) x = y;\nendmodule";
+        let design = Design::prepare(rtl, false);
+        assert!(design.both_edges);
+        assert_eq!(
+            design.verilog,
+            "module m(input clock);\nalways @(posedge clock or negedge clock) q <= d;\nalways @(posedge read_clock or negedge read_clock) r <= s;\nalways @(*) x = y;\nendmodule"
+        );
+        let traced = Design::prepare(rtl, true);
+        assert!(!traced.both_edges);
+        assert_eq!(traced.verilog, rtl);
+        let falling = rtl.replace("posedge read_clock", "negedge read_clock");
+        let design = Design::prepare(&falling, false);
+        assert!(!design.both_edges);
+        assert_eq!(design.verilog, falling);
+    }
 }
