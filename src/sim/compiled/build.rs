@@ -308,17 +308,20 @@ impl Design {
     /// the registers take what it computed, then the logic settles again.
     /// A trace keeps the two `eval`s (a waveform viewer expects a clock
     /// with one rising edge a period), and so does a design with a
-    /// falling-edge block of its own.
+    /// falling-edge block of its own or any rising edge not written
+    /// `@(posedge name)` (an asynchronous reset, say): rewritten, such a
+    /// block would run every other cycle.
     fn prepare(verilog: &str, trace: bool) -> Design {
         let verilog = without_header(verilog);
-        if trace || verilog.contains("negedge") {
+        let posedge =
+            regex::Regex::new(r"@\(posedge ([A-Za-z_][A-Za-z0-9_$]*)\)").expect("a valid pattern");
+        let all_plain = posedge.find_iter(verilog).count() == verilog.matches("posedge").count();
+        if trace || verilog.contains("negedge") || !all_plain {
             return Design {
                 verilog: verilog.to_string(),
                 both_edges: false,
             };
         }
-        let posedge =
-            regex::Regex::new(r"@\(posedge ([A-Za-z_][A-Za-z0-9_$]*)\)").expect("a valid pattern");
         Design {
             verilog: posedge
                 .replace_all(verilog, "@(posedge $1 or negedge $1)")
@@ -600,9 +603,19 @@ mod tests {
         let traced = Design::prepare(rtl, true);
         assert!(!traced.both_edges);
         assert_eq!(traced.verilog, rtl);
-        let falling = rtl.replace("posedge read_clock", "negedge read_clock");
-        let design = Design::prepare(&falling, false);
-        assert!(!design.both_edges);
-        assert_eq!(design.verilog, falling);
+        // A falling edge, an asynchronous reset or a spacing the rewrite does
+        // not know: the design as it is, two `eval`s a cycle.
+        for kept in [
+            rtl.replace("posedge read_clock", "negedge read_clock"),
+            rtl.replace(
+                "@(posedge read_clock)",
+                "@(posedge read_clock or posedge reset)",
+            ),
+            rtl.replace("@(posedge read_clock)", "@ (posedge read_clock)"),
+        ] {
+            let design = Design::prepare(&kept, false);
+            assert!(!design.both_edges, "{kept}");
+            assert_eq!(design.verilog, kept);
+        }
     }
 }
