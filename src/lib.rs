@@ -8,6 +8,11 @@
 //! * [`sim`]: the fast stepping harness every test uses.
 //! * [`export`]: the catalog of exported modules and the Verilog writer.
 //! * [`tools`]: lint, cross-simulation and synthesis with the open FPGA tools.
+//!
+//! The tests are all in `tests/` (one binary per area: `blocks`,
+//! `controller`, `host`, `formal`, `tooling`), so that the crate compiles
+//! once for them. The few internals they test directly are public but
+//! `#[doc(hidden)]`: not part of the API, and free to change.
 
 pub mod blocks;
 pub mod export;

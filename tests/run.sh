@@ -61,7 +61,7 @@ if ! command -v fusesoc >/dev/null 2>&1; then
   fi
 fi
 
-# cargo-nextest runs every test of the four binaries in one pool, the
+# cargo-nextest runs every test of the five binaries in one pool, the
 # longest first (.config/nextest.toml). It is on every machine of the
 # project's kind; elsewhere it is built from crates.io once.
 if ! cargo nextest --version >/dev/null 2>&1; then

@@ -19,6 +19,8 @@ pub use catalog::{catalog, ModuleSpec};
 pub use header::{generator, PortDocError};
 pub use ports::{top_ports, Port, PortDirection};
 pub use testbench::testbench_verilog;
+#[doc(hidden)]
+pub use verilog::strip_hierarchy_dollars;
 pub use verilog::{module_verilog, VerilogError};
 
 /// Why an export could not be produced or written.

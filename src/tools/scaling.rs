@@ -262,7 +262,8 @@ pub fn replace_seed_card(report: &str, card: &[SeedCardRow]) -> Option<String> {
     Some(format!("{}{}", &report[..start], render_seed_card(card)))
 }
 
-const SEED_CARD_HEADING: &str = "\n## The seed card";
+#[doc(hidden)]
+pub const SEED_CARD_HEADING: &str = "\n## The seed card";
 
 /// The seed card's figures as `scaling-report.md` records them for one
 /// controller build.
@@ -340,104 +341,4 @@ fn render_seed_card(card: &[SeedCardRow]) -> String {
         ));
     }
     md
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{render, BuildOptions, ScalingRow, SeedCardRow};
-    use crate::tools::synth::SynthFigures;
-
-    #[test]
-    fn a_configuration_that_does_not_fit_has_no_fmax() {
-        let figures = |logic_cells, fmax_mhz: Vec<f64>| SynthFigures {
-            lut4: 1,
-            dff: 2,
-            carry: 3,
-            ram: 4,
-            logic_cells,
-            fmax_mhz,
-        };
-        let rows = [
-            ScalingRow {
-                axes: 1,
-                figures: figures(3840, vec![101.0, 99.0, 100.0]),
-            },
-            ScalingRow {
-                axes: 6,
-                figures: figures(15360, vec![]),
-            },
-        ];
-        let md = render(&rows, &[], &[1, 2, 3], 100.0);
-        assert!(
-            md.contains("| 1 | 1 | 2 | 3 | 4 | 3840 | 50 % | 100.0 | 101.0, 99.0, 100.0 |"),
-            "{md}"
-        );
-        assert!(
-            md.contains("| 6 | 1 | 2 | 3 | 4 | 15360 | 200 % | does not fit | - |"),
-            "{md}"
-        );
-    }
-
-    #[test]
-    fn the_seed_card_table_says_which_builds_fit_within_the_budget() {
-        let row = |build, logic_cells, fmax_mhz: Vec<f64>| SeedCardRow {
-            build,
-            options: BuildOptions {
-                uniform: true,
-                analog: true,
-                probe: false,
-                soft_limits: false,
-                spindle: false,
-                laser: false,
-            },
-            exported: build != "b",
-            figures: SynthFigures {
-                lut4: 1,
-                dff: 2,
-                carry: 3,
-                ram: 4,
-                logic_cells,
-                fmax_mhz,
-            },
-            digest: format!("d{build}"),
-        };
-        let card = [
-            row("a", 6528, vec![64.25]),
-            row("b", 6529, vec![61.0]),
-            row("c", 8000, vec![]),
-        ];
-        let md = render(&[], &card, &[1], 100.0);
-        assert!(
-            md.contains(
-                "| `a` | yes | yes | no | no | 1 | 2 | 3 | 4 | 6528 | 85 % | yes | 64.2 | `da` |"
-            ),
-            "{md}"
-        );
-        assert!(
-            md.contains(
-                "| `b` (not exported) | yes | yes | no | no | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
-            ),
-            "{md}"
-        );
-        assert!(
-            md.contains(
-                "| `c` | yes | yes | no | no | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
-            ),
-            "{md}"
-        );
-        assert_eq!(
-            super::recorded_seed_card(&md, "a"),
-            Some(super::RecordedSeedCard {
-                logic_cells: 6528,
-                digest: "da".into()
-            })
-        );
-        assert_eq!(super::recorded_seed_card(&md, "d"), None);
-        let again = super::replace_seed_card(&md, &card[..1]).unwrap();
-        assert!(
-            again.contains("| `a` |") && !again.contains("| `c` |"),
-            "{again}"
-        );
-        assert_eq!(again.matches(super::SEED_CARD_HEADING).count(), 1);
-    }
 }

@@ -320,7 +320,7 @@ fn nextpnr(netlist: &Path, report: &Path, pcf: Option<&Path>) -> Command {
 }
 
 /// Cell counts of the last `stat` block in a yosys log: `(cell type, count)`.
-pub(crate) fn final_stat(log: &str) -> Vec<(String, u32)> {
+pub fn final_stat(log: &str) -> Vec<(String, u32)> {
     let start = log.rfind("Number of cells:").unwrap_or(0);
     log[start..]
         .lines()
@@ -376,22 +376,4 @@ pub(crate) fn slowest_fmax(json: &serde_json::Value) -> Option<f64> {
             .filter_map(|c| c["achieved"].as_f64())
             .reduce(f64::min)
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::final_stat;
-
-    #[test]
-    fn reads_the_last_stat_block() {
-        let log = "Number of cells: 3\n  $_AND_ 3\n\n=== top ===\n   Number of cells:        5\n     SB_CARRY    2\n     SB_DFFE     1\n     SB_LUT4     2\n\n";
-        assert_eq!(
-            final_stat(log),
-            vec![
-                ("SB_CARRY".into(), 2),
-                ("SB_DFFE".into(), 1),
-                ("SB_LUT4".into(), 2)
-            ]
-        );
-    }
 }

@@ -3,6 +3,7 @@
 //! cross-simulation of its exported Verilog. One binary, so that the
 //! crate's simulation code is compiled once for all of them.
 
+mod carry_select_adder;
 mod command_fifo;
 mod dac_interface;
 mod dda_integrator;
@@ -18,11 +19,14 @@ mod host_links;
 mod input_conditioner;
 mod interrupt_controller;
 mod laser_pwm;
+mod laser_pwm_model;
 mod narrow_bus_adapter;
 mod parallel_card;
+mod port_doc;
 mod pulse_counter;
 mod quadrature_decoder;
 mod sequential_divider;
+mod sim;
 mod soft_limits;
 mod spi_bus_adapter;
 mod step_channel;

@@ -6,6 +6,7 @@
 
 mod analog_axes;
 mod analog_hold;
+mod analog_model;
 mod analog_servo;
 mod arcs;
 #[allow(dead_code)] // each test module uses part of the bench

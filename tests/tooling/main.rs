@@ -6,6 +6,7 @@
 mod boards;
 mod cross_simulation;
 mod datasheets;
+mod export;
 mod fusesoc;
 mod harness;
 mod package;
@@ -13,6 +14,7 @@ mod plots;
 mod regmap;
 mod rtl_out;
 mod synthesis;
+mod tools;
 
 /// Every `.rs` file below `dir`.
 fn rust_files(dir: &std::path::Path) -> Vec<std::path::PathBuf> {

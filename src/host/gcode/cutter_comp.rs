@@ -628,7 +628,3 @@ impl State {
         Ok(())
     }
 }
-
-#[cfg(test)]
-#[path = "cutter_comp_tests.rs"]
-mod tests;

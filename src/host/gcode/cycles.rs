@@ -338,7 +338,3 @@ impl State {
         self.line_to(end_mm, if rapid { None } else { self.feed }, line);
     }
 }
-
-#[cfg(test)]
-#[path = "cycles_tests.rs"]
-mod tests;

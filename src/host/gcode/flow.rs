@@ -330,7 +330,3 @@ fn close_loop(
         }
     }
 }
-
-#[cfg(test)]
-#[path = "flow_tests.rs"]
-mod tests;

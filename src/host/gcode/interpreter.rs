@@ -1046,7 +1046,3 @@ fn check_range(what: &str, mm: f64) -> Result<(), String> {
     }
     Ok(())
 }
-
-#[cfg(test)]
-#[path = "interpreter_tests.rs"]
-mod tests;

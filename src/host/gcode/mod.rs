@@ -300,16 +300,12 @@
 
 mod arc_center;
 mod block_words;
-#[cfg(test)]
-mod canon;
 mod comp_queue;
 pub mod cutter_comp;
 pub mod cycles;
 pub mod expr;
 pub mod flow;
 mod flow_run;
-#[cfg(test)]
-mod golden_tests;
 pub mod interpreter;
 pub mod lexer;
 mod messages;
@@ -331,12 +327,3 @@ pub use messages::Message;
 pub use parameters::PersistentParameters;
 pub use probing::{ProbeCode, ProbeOutcome, ProbeRequest, Prober};
 pub use text::program_text;
-
-#[cfg(test)]
-mod fuzz_tests;
-#[cfg(test)]
-mod laser_tests;
-#[cfg(test)]
-mod rotary_tests;
-#[cfg(test)]
-mod test_support;

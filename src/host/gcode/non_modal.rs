@@ -169,7 +169,3 @@ impl State {
         Ok(())
     }
 }
-
-#[cfg(test)]
-#[path = "non_modal_tests.rs"]
-mod tests;

@@ -183,7 +183,3 @@ impl State {
         Ok(())
     }
 }
-
-#[cfg(test)]
-#[path = "param_store_tests.rs"]
-mod tests;

@@ -159,7 +159,7 @@ impl PersistentParameters {
     }
 
     /// The stored G28 (`second` false) or G30 position, machine mm.
-    pub(super) fn home(&self, second: bool) -> [f64; 3] {
+    pub fn home(&self, second: bool) -> [f64; 3] {
         self.xyz(if second { G30 } else { G28 })
     }
 
@@ -168,7 +168,7 @@ impl PersistentParameters {
     }
 
     /// The active coordinate system, 0 (G54) to 8 (G59.3).
-    pub(super) fn active_system(&self) -> usize {
+    pub fn active_system(&self) -> usize {
         // set() keeps it a whole number from 1 to 9.
         (self.values[(ACTIVE_SYSTEM - FIRST) as usize] as usize).clamp(1, SYSTEMS) - 1
     }
@@ -178,7 +178,7 @@ impl PersistentParameters {
     }
 
     /// The origin of system `index` (0 = G54), machine mm.
-    pub(super) fn origin(&self, index: usize) -> [f64; 3] {
+    pub fn origin(&self, index: usize) -> [f64; 3] {
         self.xyz(ORIGINS + SYSTEM_STRIDE * index as u32)
     }
 
@@ -187,12 +187,12 @@ impl PersistentParameters {
     }
 
     /// The G92 offset as stored (#5211 to #5213), applied or not.
-    pub(super) fn g92_stored(&self) -> [f64; 3] {
+    pub fn g92_stored(&self) -> [f64; 3] {
         self.xyz(G92)
     }
 
     /// The G92 offset in force: the stored one when #5210 is 1, else 0.
-    pub(super) fn g92(&self) -> [f64; 3] {
+    pub fn g92(&self) -> [f64; 3] {
         if self.values[(G92_ON - FIRST) as usize] == 1.0 {
             self.g92_stored()
         } else {
@@ -201,77 +201,8 @@ impl PersistentParameters {
     }
 
     /// Stores `offset` and applies it (`on`) or not.
-    pub(super) fn set_g92(&mut self, offset: [f64; 3], on: bool) {
+    pub fn set_g92(&mut self, offset: [f64; 3], on: bool) {
         self.put_xyz(G92, offset);
         self.put(G92_ON, f64::from(u8::from(on)));
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_groups_are_where_linuxcnc_keeps_them() {
-        let mut p = PersistentParameters::default();
-        assert_eq!(p.active_system(), 0);
-        for (n, v) in [
-            (5161, 1.0),
-            (5183, 3.0),
-            (5211, -4.0),
-            (5220, 9.0),
-            (5381, 7.0),
-        ] {
-            p.set(n, v).unwrap();
-        }
-        p.set(5383, 8.0).unwrap();
-        p.set(5210, 1.0).unwrap();
-        assert_eq!(p.home(false), [1.0, 0.0, 0.0]);
-        assert_eq!(p.home(true), [0.0, 0.0, 3.0]);
-        assert_eq!(p.g92(), [-4.0, 0.0, 0.0]);
-        assert_eq!(p.active_system(), 8);
-        assert_eq!(p.origin(8), [7.0, 0.0, 8.0]);
-        assert_eq!(p.origin(0), [0.0; 3]);
-        p.set_g92([1.0, 2.0, 3.0], false);
-        assert_eq!((p.g92(), p.g92_stored()), ([0.0; 3], [1.0, 2.0, 3.0]));
-        assert_eq!(p.get(5212), Some(2.0));
-        assert_eq!(p.get(5160), None);
-    }
-
-    #[test]
-    fn values_that_mean_nothing_here_are_refused_by_name() {
-        let mut p = PersistentParameters::default();
-        let error = |p: &mut PersistentParameters, n, v| p.set(n, v).unwrap_err();
-        assert_eq!(
-            error(&mut p, 5100, 1.0),
-            "#5100 is not a parameter LinuxCNC keeps between runs (#5161 to #5390)"
-        );
-        assert_eq!(
-            error(&mut p, 5164, 1.0),
-            "#5164 = 1 is an offset along an A, B, C, U, V or W axis; this machine has X, Y and Z only"
-        );
-        assert_eq!(
-            error(&mut p, 5230, 30.0),
-            "#5230 = 30 rotates a coordinate system, which is not supported"
-        );
-        assert_eq!(
-            error(&mut p, 5220, 10.0),
-            "#5220 = 10 is not a coordinate system: 1 (G54) to 9 (G59.3)"
-        );
-        assert_eq!(
-            error(&mut p, 5210, 0.5),
-            "#5210 = 0.5: it is 1 when the G92 offset applies and 0 when not"
-        );
-        assert_eq!(
-            error(&mut p, 5175, 0.0),
-            "#5175 is a parameter LinuxCNC does not use"
-        );
-        assert_eq!(
-            error(&mut p, 5231, 0.0),
-            "#5231 is a parameter LinuxCNC does not use"
-        );
-        p.set(5164, 0.0).unwrap();
-        p.set(5390, 0.0).unwrap();
-        assert_eq!(p, PersistentParameters::default());
     }
 }

@@ -72,7 +72,3 @@ impl State {
         Ok(Some([radius * theta.cos(), radius * theta.sin()]))
     }
 }
-
-#[cfg(test)]
-#[path = "polar_tests.rs"]
-mod tests;

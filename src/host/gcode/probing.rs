@@ -179,7 +179,3 @@ impl State {
         Ok(())
     }
 }
-
-#[cfg(test)]
-#[path = "probing_tests.rs"]
-mod tests;

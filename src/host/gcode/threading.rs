@@ -342,7 +342,3 @@ impl State {
         Ok(())
     }
 }
-
-#[cfg(test)]
-#[path = "threading_tests.rs"]
-mod tests;

@@ -143,7 +143,3 @@ impl State {
         Ok(())
     }
 }
-
-#[cfg(test)]
-#[path = "tools_tests.rs"]
-mod tests;

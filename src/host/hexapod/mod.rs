@@ -40,6 +40,8 @@ mod kinematics;
 mod linear;
 pub mod simulate;
 
+#[doc(hidden)]
+pub use commands::FIELDS;
 pub use commands::{CommandError, PeriodPoint, HEADER_MARK, POINTS_PER_FIFO, WORDS};
 pub use dynamics::{joint_inertia, leg_inertia, PlatformInertia};
 pub use geometry::{check_pose, condition, Geometry, PoseError};
@@ -48,6 +50,3 @@ pub use kinematics::{
     Forward, ForwardError, ForwardLimits, Pose,
 };
 pub use linear::Matrix6;
-
-#[cfg(test)]
-mod tests;

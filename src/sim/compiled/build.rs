@@ -287,11 +287,12 @@ fn create_root(root: &Path) -> Result<(), CompiledError> {
 }
 
 /// The design text Verilator builds, and how the shim clocks it.
-struct Design {
-    verilog: String,
+#[doc(hidden)]
+pub struct Design {
+    pub verilog: String,
     /// Every clocked block runs on both edges of its clock, so that one
     /// toggle of `clock` is one clock cycle of the design.
-    both_edges: bool,
+    pub both_edges: bool,
 }
 
 impl Design {
@@ -311,7 +312,7 @@ impl Design {
     /// falling-edge block of its own or any rising edge not written
     /// `@(posedge name)` (an asynchronous reset, say): rewritten, such a
     /// block would run every other cycle.
-    fn prepare(verilog: &str, trace: bool) -> Design {
+    pub fn prepare(verilog: &str, trace: bool) -> Design {
         let verilog = without_header(verilog);
         let posedge =
             regex::Regex::new(r"@\(posedge ([A-Za-z_][A-Za-z0-9_$]*)\)").expect("a valid pattern");
@@ -585,37 +586,4 @@ fn write(path: &Path, text: &str) -> Result<(), CompiledError> {
 
 fn io(path: &Path, e: std::io::Error) -> CompiledError {
     CompiledError::Build(format!("{}: {e}", path.display()))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::Design;
-
-    #[test]
-    fn clocked_blocks_take_both_edges_unless_traced_or_already_on_a_falling_edge() {
-        let rtl = "module m(input clock);\nalways @(posedge clock) q <= d;\nalways @(posedge read_clock) r <= s;\nalways @(*) x = y;\nendmodule";
-        let design = Design::prepare(rtl, false);
-        assert!(design.both_edges);
-        assert_eq!(
-            design.verilog,
-            "module m(input clock);\nalways @(posedge clock or negedge clock) q <= d;\nalways @(posedge read_clock or negedge read_clock) r <= s;\nalways @(*) x = y;\nendmodule"
-        );
-        let traced = Design::prepare(rtl, true);
-        assert!(!traced.both_edges);
-        assert_eq!(traced.verilog, rtl);
-        // A falling edge, an asynchronous reset or a spacing the rewrite does
-        // not know: the design as it is, two `eval`s a cycle.
-        for kept in [
-            rtl.replace("posedge read_clock", "negedge read_clock"),
-            rtl.replace(
-                "@(posedge read_clock)",
-                "@(posedge read_clock or posedge reset)",
-            ),
-            rtl.replace("@(posedge read_clock)", "@ (posedge read_clock)"),
-        ] {
-            let design = Design::prepare(&kept, false);
-            assert!(!design.both_edges, "{kept}");
-            assert_eq!(design.verilog, kept);
-        }
-    }
 }

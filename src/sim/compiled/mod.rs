@@ -18,6 +18,8 @@ use rust_hdl::core::prelude::Block;
 use crate::export::{module_verilog, top_ports, Port, PortDirection};
 
 pub(crate) use build::tool_version;
+#[doc(hidden)]
+pub use build::Design;
 pub use build::{cache_root, INSTALL_LINE};
 
 /// Why a compiled model could not be built, loaded or used.

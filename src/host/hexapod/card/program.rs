@@ -440,6 +440,15 @@ impl PosePlan {
         self.items.len()
     }
 
+    /// Each planned item's start time and duration (s), and the motion at
+    /// its own end as the item computes it, not the next item's start.
+    pub fn item_ends(&self) -> impl Iterator<Item = (f64, f64, MotionSample)> + '_ {
+        self.items.iter().map(|p| {
+            let end = p.start_time + p.duration;
+            (p.start_time, p.duration, p.sample(end))
+        })
+    }
+
     /// Every pose at `period_s` steps from 0 to the end: one the machine
     /// cannot take, or a leg above `leg_speed`, is an error naming its line.
     pub fn check(&self, geometry: &Geometry, period_s: f64) -> Result<(), PlanError> {
@@ -485,7 +494,3 @@ impl CartesianMotion for PosePlan {
         }
     }
 }
-
-#[cfg(test)]
-#[path = "program_tests.rs"]
-mod tests;

@@ -1,0 +1,3 @@
+//! The compiled backend (`src/sim/compiled`).
+
+mod build;

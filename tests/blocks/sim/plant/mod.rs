@@ -1,0 +1,3 @@
+//! The plant models (`src/sim/plant`).
+
+mod spindle_motor;
