@@ -149,7 +149,7 @@ fn bad_settings_are_errors_naming_the_setting() {
         "servo setting `code_bits` = 40: 2 to 32"
     );
     assert_eq!(
-            bad(g, DriveScale { counts_per_s_per_volt: 0.0, ..scale }, 0.001),
-            "servo setting `counts_per_s_per_volt` = 0: not 0 (counts/s per V; negative for a reversed drive)"
-        );
+        bad(g, DriveScale { counts_per_s_per_volt: 0.0, ..scale }, 0.001),
+        "servo setting `counts_per_s_per_volt` = 0: not 0 (counts/s per V; negative for a reversed drive)"
+    );
 }

@@ -6,8 +6,8 @@ use motion_hdl::host::tool_table::*;
 fn linuxcnc_tables_read_in_mm() {
     // The shape of LinuxCNC's configs/sim/axis/sim_mm.tbl.
     let table = ToolTable::parse(
-            "T1 P1 D0.635 Z+0.511 ;1/8 end mill\n\n; a whole-line remark\nt2 p2 d6.35 z0.1 x-1 q0 i0 j0 a0\nT99999 P99999 Z0.100 ;big tool number\n",
-        )
+        "T1 P1 D0.635 Z+0.511 ;1/8 end mill\n\n; a whole-line remark\nt2 p2 d6.35 z0.1 x-1 q0 i0 j0 a0\nT99999 P99999 Z0.100 ;big tool number\n",
+    )
         .unwrap();
     assert_eq!(table.tools.len(), 3);
     let t1 = table.get(1).unwrap();

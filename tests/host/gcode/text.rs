@@ -17,9 +17,9 @@ fn latin1_in_comments_is_read_and_elsewhere_names_its_line() {
     assert!(matches!(program_text(utf8).unwrap(), Cow::Borrowed(_)));
     let error = program_text(b"G0 X1\nG1 X\xb12 F60 (\xd8)\n").unwrap_err();
     assert_eq!(
-            error.to_string(),
-            "line 2: byte 0xB1 outside a comment: the line is not UTF-8 text (Latin-1 is read in comments only)"
-        );
+        error.to_string(),
+        "line 2: byte 0xB1 outside a comment: the line is not UTF-8 text (Latin-1 is read in comments only)"
+    );
     // A `;` inside a parenthesis comment does not open a comment.
     assert!(program_text(b"G0 X1 (a;b) \xb1\n").is_err());
 }

@@ -6,9 +6,9 @@ use motion_hdl::tools::formal::{failure_of, splice};
 fn the_property_file_is_included_before_the_top_modules_endmodule() {
     let verilog = "module top(a);\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n";
     assert_eq!(
-            splice("top", verilog, "top.sv").unwrap(),
-            "module top(a);\n`ifdef FORMAL\n`include \"top.sv\"\n`endif\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n"
-        );
+        splice("top", verilog, "top.sv").unwrap(),
+        "module top(a);\n`ifdef FORMAL\n`include \"top.sv\"\n`endif\nendmodule // top\n\nmodule top__r(d);\nendmodule // top__r\n"
+    );
     assert!(splice("other", verilog, "other.sv").is_err());
 }
 

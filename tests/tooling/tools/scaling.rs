@@ -71,17 +71,17 @@ fn the_seed_card_table_says_which_builds_fit_within_the_budget() {
         "{md}"
     );
     assert!(
-            md.contains(
-                "| `b` (not exported) | yes | yes | no | no | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
-            ),
-            "{md}"
-        );
+        md.contains(
+            "| `b` (not exported) | yes | yes | no | no | 1 | 2 | 3 | 4 | 6529 | 85 % | no | 61.0 | `db` |"
+        ),
+        "{md}"
+    );
     assert!(
-            md.contains(
-                "| `c` | yes | yes | no | no | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
-            ),
-            "{md}"
-        );
+        md.contains(
+            "| `c` | yes | yes | no | no | 1 | 2 | 3 | 4 | 8000 | 104 % | no | does not fit | `dc` |"
+        ),
+        "{md}"
+    );
     assert_eq!(
         motion_hdl::tools::scaling::recorded_seed_card(&md, "a"),
         Some(motion_hdl::tools::scaling::RecordedSeedCard {

@@ -3,14 +3,14 @@
 use motion_hdl::sim::compiled::Design;
 
 #[test]
-fn clocked_blocks_take_both_edges_unless_traced_or_already_on_a_falling_edge() {
+fn clocked_blocks_take_both_edges_unless_traced_or_one_is_not_a_plain_rising_edge() {
     let rtl = "module m(input clock);\nalways @(posedge clock) q <= d;\nalways @(posedge read_clock) r <= s;\nalways @(*) x = y;\nendmodule";
     let design = Design::prepare(rtl, false);
     assert!(design.both_edges);
     assert_eq!(
-            design.verilog,
-            "module m(input clock);\nalways @(posedge clock or negedge clock) q <= d;\nalways @(posedge read_clock or negedge read_clock) r <= s;\nalways @(*) x = y;\nendmodule"
-        );
+        design.verilog,
+        "module m(input clock);\nalways @(posedge clock or negedge clock) q <= d;\nalways @(posedge read_clock or negedge read_clock) r <= s;\nalways @(*) x = y;\nendmodule"
+    );
     let traced = Design::prepare(rtl, true);
     assert!(!traced.both_edges);
     assert_eq!(traced.verilog, rtl);
