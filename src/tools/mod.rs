@@ -1,12 +1,14 @@
 //! The open FPGA tools, run on exported Verilog: Verilator lint, cross-simulation
 //! in Icarus and Verilator against the Rust simulation, yosys/nextpnr
 //! synthesis for iCE40 HX8K, and yosys mapping on Cyclone IV E, 7-series,
-//! Gowin and ECP5 (module [`families`]). Every run works in its own
+//! Gowin and ECP5 (module [`families`]), with ECP5 and Gowin place and
+//! route (module [`gowin`] for Gowin's). Every run works in its own
 //! temporary folder.
 
 pub mod cosim;
 pub mod families;
 pub mod formal;
+pub mod gowin;
 pub mod lint;
 pub mod report;
 pub mod scaling;

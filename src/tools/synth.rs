@@ -367,7 +367,7 @@ fn read_nextpnr_report(path: &Path) -> Result<(f64, u32), ToolError> {
     Ok((fmax, utilization(&json)?))
 }
 
-/// The achieved Fmax of the slowest clock in a nextpnr (iCE40 or ECP5)
+/// The achieved Fmax of the slowest clock in a nextpnr (iCE40, ECP5 or Gowin)
 /// `--report` file, in MHz.
 pub(crate) fn slowest_fmax(json: &serde_json::Value) -> Option<f64> {
     json["fmax"].as_object().and_then(|clocks| {

@@ -71,3 +71,18 @@ fn reads_an_ecp5_report() {
     assert_eq!((fmax, comb, ff), (204.5, (101, 24288), 66));
     assert!(read_ecp5_report("{}").is_err());
 }
+
+#[test]
+fn placed_cells_give_the_share_and_every_seed() {
+    let placement = Placement {
+        lut: 143,
+        lut_available: 20736,
+        ff: 66,
+        fmax_mhz: vec![362.58, 349.0, 351.2],
+    };
+    assert_eq!(
+        placed_cells(Some(&placement)),
+        " 143 (0.7 %) / 66 | 351.2 | 362.6, 349.0, 351.2 |"
+    );
+    assert_eq!(placed_cells(None), " not measured | not measured | - |");
+}
