@@ -80,7 +80,9 @@ for bel, u in sorted(report["utilization"].items()):
         continue
     share = f"{100 * u['used'] / u['available']:5.1f} %" if u["available"] else ""
     print(f"  {bel:16s} {u['used']:6d} / {u['available']:6d}  {share}")
-ok = True
+ok = bool(report["fmax"])
+if not ok:
+    print("  nextpnr timed no path (no Fmax in build/report.json): the clock is not confirmed")
 for clock, f in report["fmax"].items():
     passed = f["achieved"] >= f["constraint"]
     ok = ok and passed

@@ -12,7 +12,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use super::gowin::{place_gowin, write_cst, GowinPins, GowinTools};
+use super::gowin::{gowin_seeds, place_gowin, write_cst, GowinPins, GowinTools};
 use super::synth::{final_stat, median, slowest_fmax};
 use super::{read_text, run, run_limited, work_dir, ToolError, FAMILY_MAPPING_TIME_LIMIT};
 use crate::export::ModuleSpec;
@@ -242,7 +242,9 @@ pub struct Placement {
     pub lut_available: u32,
     /// Flip-flops used: ECP5 `TRELLIS_FF`, Gowin `DFF`.
     pub ff: u32,
-    /// Achieved Fmax per seed, in MHz, in seed order.
+    /// Achieved Fmax per seed, in MHz, in seed order; none from a Gowin
+    /// placement whose report has no timed path (see
+    /// [`super::gowin::read_gowin_report`]).
     pub fmax_mhz: Vec<f64>,
 }
 
@@ -367,24 +369,53 @@ pub(crate) fn read_placement_report(
     lut_bel: &str,
     ff_bel: &str,
 ) -> Result<(f64, (u32, u32), u32), ToolError> {
+    let counts = read_placement_counts(tool, text, lut_bel, ff_bel)?;
+    let fmax = counts.fmax_mhz.ok_or_else(|| ToolError::Parse {
+        tool: tool.into(),
+        detail: "no achieved Fmax in the report".into(),
+    })?;
+    Ok((fmax, (counts.lut, counts.lut_available), counts.ff))
+}
+
+/// What one nextpnr `--report` file gives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlacedCounts {
+    /// The slowest clock's achieved Fmax, in MHz; `None` when nextpnr
+    /// found no register-to-register path it could time.
+    pub fmax_mhz: Option<f64>,
+    /// LUT positions used.
+    pub lut: u32,
+    /// LUT positions on the device.
+    pub lut_available: u32,
+    /// Flip-flops used.
+    pub ff: u32,
+}
+
+/// As [`read_placement_report`], the Fmax `None` when the report has none.
+pub(crate) fn read_placement_counts(
+    tool: &str,
+    text: &str,
+    lut_bel: &str,
+    ff_bel: &str,
+) -> Result<PlacedCounts, ToolError> {
     let parse_error = |detail: &str| ToolError::Parse {
         tool: tool.into(),
         detail: detail.into(),
     };
     let json: serde_json::Value =
         serde_json::from_str(text).map_err(|e| parse_error(&e.to_string()))?;
-    let fmax = slowest_fmax(&json).ok_or_else(|| parse_error("no achieved Fmax in the report"))?;
     let used = |bel: &str, key: &str| {
         json["utilization"][bel][key]
             .as_u64()
             .and_then(|n| u32::try_from(n).ok())
             .ok_or_else(|| parse_error(&format!("no {bel} {key} in the report")))
     };
-    Ok((
-        fmax,
-        (used(lut_bel, "used")?, used(lut_bel, "available")?),
-        used(ff_bel, "used")?,
-    ))
+    Ok(PlacedCounts {
+        fmax_mhz: slowest_fmax(&json),
+        lut: used(lut_bel, "used")?,
+        lut_available: used(lut_bel, "available")?,
+        ff: used(ff_bel, "used")?,
+    })
 }
 
 /// Maps `rtl_dir/<module>.v` of each spec on every family; with
@@ -440,7 +471,7 @@ fn measure_one(
             &rtl,
             spec.name,
             &cst,
-            seeds,
+            gowin_seeds(seeds),
             spec.fmax_target_mhz,
         )?),
         None => None,
@@ -488,7 +519,7 @@ pub fn render(
     let pnr = format!(
         "{ecp5}\n\n{}\n\nThe Fmax in the first table is iCE40's (nextpnr-ice40); Cyclone IV E and \
          7-series have no open place-and-route here, so no Fmax.",
-        super::gowin::describe(gowin_tool, seeds)
+        super::gowin::describe(gowin_tool, gowin_seeds(seeds))
     );
     let mut md = format!(
         "{HEADING}\n\n\
@@ -562,16 +593,23 @@ pub fn placed_cells(placement: Option<&Placement>) -> String {
         return " not measured | not measured | - |".to_string();
     };
     let per_seed: Vec<String> = p.fmax_mhz.iter().map(|x| format!("{x:.1}")).collect();
+    let median = if p.fmax_mhz.is_empty() {
+        "no timed path".to_string()
+    } else {
+        format!("{:.1}", median(&p.fmax_mhz))
+    };
+    let per_seed = if per_seed.is_empty() {
+        "-".to_string()
+    } else {
+        per_seed.join(", ")
+    };
     let percent = if p.lut_available == 0 {
         0.0
     } else {
         100.0 * f64::from(p.lut) / f64::from(p.lut_available)
     };
     format!(
-        " {} ({percent:.1} %) / {} | {:.1} | {} |",
-        p.lut,
-        p.ff,
-        median(&p.fmax_mhz),
-        per_seed.join(", ")
+        " {} ({percent:.1} %) / {} | {median} | {per_seed} |",
+        p.lut, p.ff
     )
 }

@@ -21,7 +21,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use super::families::{nextpnr_version, read_placement_report, Placement};
+use super::families::{nextpnr_version, read_placement_counts, PlacedCounts, Placement};
 use super::{read_text, run, run_limited, ToolError, FAMILY_MAPPING_TIME_LIMIT};
 use crate::export::Port;
 
@@ -48,6 +48,14 @@ const CLOCK: &str = "clock";
 /// placer's legalisation and its global routing): one seed of
 /// `motion_controller` took 33 minutes on two cores shared with other work.
 pub const GOWIN_PNR_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(7200);
+
+/// The seeds Gowin places with: the first of the report's seeds only.
+/// One placement of a controller takes 20 to 30 minutes here (the report's
+/// five seeds over every module would take most of a day), so its Fmax is
+/// one placement's, not a median.
+pub fn gowin_seeds(seeds: &[u64]) -> &[u64] {
+    &seeds[..seeds.len().min(1)]
+}
 
 /// Functions that leave a pin an ordinary user IO, by prefix: global clock
 /// inputs (`GCLKT_*`, `GCLKC_*`) and PLL inputs and feedbacks (`LPLL*`,
@@ -302,10 +310,10 @@ pub fn place_gowin(
             GOWIN_PNR_TIME_LIMIT,
         )?;
         let text = read_text(&dir.join(&report))?;
-        let (fmax, lut, ff) = read_gowin_report(&text)?;
-        placement.fmax_mhz.push(fmax);
-        (placement.lut, placement.lut_available) = lut;
-        placement.ff = ff;
+        let counts = read_gowin_report(&text)?;
+        placement.fmax_mhz.extend(counts.fmax_mhz);
+        (placement.lut, placement.lut_available) = (counts.lut, counts.lut_available);
+        placement.ff = counts.ff;
     }
     Ok(placement)
 }
@@ -315,12 +323,18 @@ pub fn place_gowin(
 /// count positions taken: each `ALU` and each `RAM16SDP4` also holds LUT4
 /// positions (as `BLOCKER_LUT` cells, and the RAM's flip-flop positions as
 /// `BLOCKER_FF`), so that the LUT4 figure is the logic the design takes.
-pub fn read_gowin_report(text: &str) -> Result<(f64, (u32, u32), u32), ToolError> {
-    read_placement_report(GOWIN_PNR, text, "LUT4", "DFF")
+///
+/// The Fmax is `None` when nextpnr-himbaechel-gowin found no interior
+/// timing path ("No Fmax available"): 0.11 says so for `pulse_counter`,
+/// whose every register-to-register path runs through its carry chain,
+/// while it times the carry chains of other modules.
+pub fn read_gowin_report(text: &str) -> Result<PlacedCounts, ToolError> {
+    read_placement_counts(GOWIN_PNR, text, "LUT4", "DFF")
 }
 
 /// The report's paragraph on the Gowin placed columns, for what
-/// [`gowin_pnr_tool`] said and the placement seeds.
+/// [`gowin_pnr_tool`] said and the placement seeds ([`gowin_seeds`] of
+/// the report's).
 pub fn describe(tool: &Result<GowinTools, String>, seeds: &[u64]) -> String {
     let tools = match tool {
         Ok(tools) => tools,
@@ -332,9 +346,14 @@ pub fn describe(tool: &Result<GowinTools, String>, seeds: &[u64]) -> String {
          `synth_gowin -json` maps no block RAM (it implies `-nobram`) and whose `DPX9` block RAM \
          nextpnr-himbaechel cannot place; the two Gowin figures can differ. That netlist is placed \
          and routed by {GOWIN_PNR} ({pnr}) on a {GOWIN_DEVICE} ({GOWIN_FAMILY}, the Tang Primer \
-         20K's) at the module's Fmax target, seeds {seeds:?}: `LUT4` (% of the device's) and `DFF` \
-         used, as nextpnr counts them (the LUT and flip-flop positions an `ALU` or a `RAM16SDP4` LUT \
-         RAM takes included), and the Fmax median over the seeds. nextpnr-himbaechel refuses \
+         20K's) at the module's Fmax target, seeds {seeds:?} (the first of the report's seeds only: one \
+         placement of a controller takes 20 to 30 minutes here): `LUT4` (% of the device's) and \
+         `DFF` used, as nextpnr counts them (the LUT and flip-flop positions an `ALU` or a \
+         `RAM16SDP4` LUT RAM takes included), and the Fmax median over the seeds (\"no timed \
+         path\": nextpnr found no register-to-register path it could time and printed \"No Fmax \
+         available\"). Its Gowin timing data are apicula's, which their author found about 20 % \
+         optimistic against Gowin's own tools (nextpnr pull request 1345): read these Fmax as upper \
+         bounds. nextpnr-himbaechel refuses \
          unconstrained IO, so each module gets a constraints file (`src/tools/gowin.rs`): `clock` \
          on the global-clock pin {clock}, every other port bit on one of the {n} other user pins of \
          the {package} package in apycula {apycula}'s chip database, in pin order (pins with a \
@@ -426,8 +445,20 @@ T15 RPLL1_T_IN
                             "IOB": {"available": 384, "used": 36},
                             "LUT4": {"available": 20736, "used": 143},
                             "MUX2_LUT5": {"available": 10368, "used": 33}}}"#;
-        let (fmax, lut, ff) = read_gowin_report(text).unwrap();
-        assert_eq!((fmax, lut, ff), (362.58160400390625, (143, 20736), 66));
+        assert_eq!(
+            read_gowin_report(text).unwrap(),
+            PlacedCounts {
+                fmax_mhz: Some(362.58160400390625),
+                lut: 143,
+                lut_available: 20736,
+                ff: 66
+            }
+        );
+        let untimed = text.replace(
+            r#"{"count__clock": {"achieved": 362.58160400390625, "constraint": 125}}"#,
+            "{}",
+        );
+        assert_eq!(read_gowin_report(&untimed).unwrap().fmax_mhz, None);
         assert!(read_gowin_report(r#"{"fmax": {}}"#).is_err());
     }
 
