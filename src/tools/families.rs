@@ -319,12 +319,14 @@ const ECP5_NETLIST: &str = "ecp5.json";
 /// Places and routes the ECP5 netlist `dir/ecp5.json` once per seed on
 /// [`ECP5_DEVICE`] with unconstrained IO, aiming at `target_mhz`. The tool
 /// runs in WebAssembly and sees only its working folder, so it runs inside
-/// `dir` with relative file names.
+/// `dir` with relative file names. A placement may take up to
+/// [`FAMILY_MAPPING_TIME_LIMIT`]: a controller's passes five minutes when the
+/// report shares the machine.
 pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Placement, ToolError> {
     let mut placement = Placement::default();
     for seed in seeds {
         let report = format!("report-{seed}.json");
-        run(
+        run_limited(
             Command::new(ECP5_PNR)
                 .current_dir(dir)
                 .args([
@@ -344,6 +346,7 @@ pub fn place_ecp5(dir: &Path, seeds: &[u64], target_mhz: f64) -> Result<Placemen
                 .arg("--seed")
                 .arg(seed.to_string()),
             false,
+            FAMILY_MAPPING_TIME_LIMIT,
         )?;
         let path = dir.join(&report);
         let text = read_text(&path)?;

@@ -85,9 +85,9 @@ pub(crate) fn read_text(path: &std::path::Path) -> Result<String, ToolError> {
 /// hopeless design; a stuck tool fails its test instead of hanging CI.
 pub const TOOL_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(300);
 
-/// Longest one yosys mapping of a report's other families may take: a whole
-/// controller's Cyclone IV E or 7-series mapping can pass
-/// [`TOOL_TIME_LIMIT`] on a loaded machine. Reports run outside the suite.
+/// Longest one yosys mapping or ECP5 placement of a report's other families
+/// may take: a whole controller's Cyclone IV E or 7-series mapping, or its
+/// ECP5 placement, can pass [`TOOL_TIME_LIMIT`] on a loaded machine. Reports run outside the suite.
 pub const FAMILY_MAPPING_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(1800);
 
 /// Runs `command` and returns its stdout and stderr joined; fails on a
