@@ -274,7 +274,8 @@ pub fn ecp5_pnr_tool() -> Result<String, String> {
 }
 
 /// `nextpnr-0.11.1` from the output of `nextpnr-* --version`.
-pub(crate) fn nextpnr_version(text: &str) -> String {
+#[doc(hidden)]
+pub fn nextpnr_version(text: &str) -> String {
     text.split_once("(Version ")
         .and_then(|(_, rest)| rest.split(')').next())
         .unwrap_or_else(|| text.trim())

@@ -3,6 +3,7 @@
 
 mod families;
 mod formal;
+mod gowin;
 mod report;
 mod scaling;
 mod synth;
