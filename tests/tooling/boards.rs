@@ -207,6 +207,52 @@ fn build(board: &BoardSpec, bitstream: &str) -> String {
     text
 }
 
+/// Runs a board's `build.sh` with `args` and the environment `env`;
+/// returns its exit code and its stdout and stderr joined.
+fn run_script(board: &BoardSpec, args: &[&str], env: &[(&str, &str)]) -> (Option<i32>, String) {
+    let out = Command::new("bash")
+        .arg(board_dir(board).join("build.sh"))
+        .args(args)
+        .envs(env.iter().copied())
+        .output()
+        .unwrap_or_else(|e| panic!("{}: bash: {e}", board.dir));
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (out.status.code(), text)
+}
+
+/// Bad input to the build scripts, which stop before any tool runs: an
+/// unknown option or a `--seed` without its number is a usage error (exit
+/// 2), and a missing tool is named with the exact pip line that installs
+/// the board's tools (exit 1).
+#[test]
+fn every_board_script_refuses_bad_options_and_names_the_pip_line_of_a_missing_tool() {
+    for board in boards() {
+        for args in [&["--fast"][..], &["--seed"][..]] {
+            let (code, text) = run_script(&board, args, &[]);
+            assert_eq!(code, Some(2), "{} {args:?}: {text}", board.dir);
+            assert!(text.contains("usage:"), "{} {args:?}: {text}", board.dir);
+        }
+        let script = std::fs::read_to_string(board_dir(&board).join("build.sh")).unwrap();
+        let install = script
+            .lines()
+            .find_map(|l| l.strip_prefix("install=\""))
+            .and_then(|l| l.strip_suffix('"'))
+            .unwrap_or_else(|| panic!("{}: no install=\"...\" line", board.dir));
+        assert!(install.starts_with("pip install "), "{install}");
+        let (code, text) = run_script(&board, &[], &[("YOSYS", "no-such-yosys")]);
+        assert_eq!(code, Some(1), "{}: {text}", board.dir);
+        assert!(
+            text.contains("'no-such-yosys' not found") && text.contains(install),
+            "{}: {text}",
+            board.dir
+        );
+    }
+}
+
 fn board(dir: &str) -> BoardSpec {
     boards().into_iter().find(|b| b.dir == dir).unwrap()
 }
