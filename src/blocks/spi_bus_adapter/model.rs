@@ -80,7 +80,7 @@ impl SpiOutputs {
 }
 
 /// The model's registers, named as in the RTL.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default)]
 struct State {
     sclk_meta: bool,
     sclk_sync: bool,
@@ -162,8 +162,8 @@ impl SpiBusModel {
 
     /// One rising clock edge; returns the outputs after it.
     pub fn step(&mut self, i: SpiInputs) -> SpiOutputs {
-        let q = self.s.clone();
-        let mut d = q.clone();
+        let q = self.s;
+        let mut d = q;
         // Synchronizers: never reset, like the RTL's.
         d.sclk_meta = i.sclk;
         d.sclk_sync = q.sclk_meta;
