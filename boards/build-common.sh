@@ -8,17 +8,16 @@
 # adapter) when copied elsewhere.
 
 # Reads the options into `seed` (nextpnr's arguments): --seed N, or none.
+# Anything else, or --seed without its number, is a usage error (exit 2).
 parse_options() {
     seed=()
     while [ $# -gt 0 ]; do
-        case "$1" in
-            --seed)
-                [ $# -ge 2 ] || { echo "usage: $0 [--seed N]" >&2; exit 2; }
-                seed=(--seed "$2")
-                shift 2
-                ;;
-            *) echo "usage: $0 [--seed N]" >&2; exit 2 ;;
-        esac
+        if [ "$1" != --seed ] || [ $# -lt 2 ]; then
+            echo "usage: $0 [--seed N]" >&2
+            exit 2
+        fi
+        seed=(--seed "$2")
+        shift 2
     done
 }
 

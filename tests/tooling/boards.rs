@@ -180,33 +180,6 @@ fn every_board_readme_gives_each_port_bit_the_pin_its_pin_file_gives() {
     }
 }
 
-/// Runs a board's `build.sh` and returns its output; fails unless the
-/// build made its bitstream.
-fn build(board: &BoardSpec, bitstream: &str) -> String {
-    let dir = board_dir(board);
-    let out = Command::new("bash")
-        .arg(dir.join("build.sh"))
-        .output()
-        .unwrap_or_else(|e| panic!("{}: bash: {e}", board.dir));
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(
-        out.status.success(),
-        "{}: build.sh failed:\n{text}",
-        board.dir
-    );
-    assert!(
-        dir.join("build").join(bitstream).exists(),
-        "{}: no build/{bitstream}:\n{text}",
-        board.dir
-    );
-    println!("{text}");
-    text
-}
-
 /// Runs a board's `build.sh` with `args` and the environment `env`;
 /// returns its exit code and its stdout and stderr joined.
 fn run_script(board: &BoardSpec, args: &[&str], env: &[(&str, &str)]) -> (Option<i32>, String) {
@@ -222,6 +195,20 @@ fn run_script(board: &BoardSpec, args: &[&str], env: &[(&str, &str)]) -> (Option
         String::from_utf8_lossy(&out.stderr)
     );
     (out.status.code(), text)
+}
+
+/// Runs a board's `build.sh` and returns its output; fails unless the
+/// build made its bitstream.
+fn build(board: &BoardSpec, bitstream: &str) -> String {
+    let (code, text) = run_script(board, &[], &[]);
+    assert_eq!(code, Some(0), "{}: build.sh failed:\n{text}", board.dir);
+    assert!(
+        board_dir(board).join("build").join(bitstream).exists(),
+        "{}: no build/{bitstream}:\n{text}",
+        board.dir
+    );
+    println!("{text}");
+    text
 }
 
 /// Bad input to the build scripts, which stop before any tool runs: an
